@@ -1,0 +1,52 @@
+// Device depth -> linear view depth, shared by C++ and GLSL (Listings 4.2 and 4.3).
+#ifndef S3D_GPU_LINEAR_DEPTH_H
+#define S3D_GPU_LINEAR_DEPTH_H
+
+#include "s3d/gpu/shared.h"
+
+S3D_GPU_BEGIN
+
+// Listing 4.3: the world and the first-person layer have their own projection and device-depth range.
+// ratio.x/ratio.y are Listing 4.2's ProjRatio in world units, already remapped to the layer's viewport depth
+// range [a, b]: x' = a + x (b - a), y' = y (b - a) with x = f / (f - n), y = n f / (n - f).
+struct LinearDepthParams {
+  vec2 worldRatio;
+  vec2 firstPersonRatio;
+  float firstPersonDeviceDepthMax;  // device depth <= this belongs to the first-person layer
+  float skyDeviceDepth;             // device depth >= this is sky at infinite distance (the cleared far plane)
+  float padding0;
+  float padding1;
+};
+
+S3D_INLINE float linearDepthFromDevice(LinearDepthParams p, float deviceDepth) {
+  if (deviceDepth >= p.skyDeviceDepth) return S3D_INFINITY;
+  // step(edge, x) is 1 when x >= edge: first-person when deviceDepth <= firstPersonDeviceDepthMax.
+  float isFirstPerson = step(deviceDepth, p.firstPersonDeviceDepthMax);
+  vec2 ratio = mix(p.worldRatio, p.firstPersonRatio, isFirstPerson);
+  return ratio.y / (deviceDepth - ratio.x);
+}
+
+#ifdef __cplusplus
+// Listing 4.2's ProjRatio for a zero-to-one perspective projection (near n, far f, world units) whose depth
+// is written into the viewport depth range [rangeBegin, rangeEnd].
+inline vec2 projectionRatio(float n, float f, float rangeBegin, float rangeEnd) {
+  float x = f / (f - n);
+  float y = n * f / (n - f);
+  return {rangeBegin + x * (rangeEnd - rangeBegin), y * (rangeEnd - rangeBegin)};
+}
+
+// World depth lives in [firstPersonDeviceDepthMax, 1], first-person depth in [0, firstPersonDeviceDepthMax].
+inline LinearDepthParams makeLinearDepthParams(float worldNear, float worldFar, float firstPersonNear,
+                                               float firstPersonFar, float firstPersonDeviceDepthMax) {
+  LinearDepthParams p{};
+  p.worldRatio = projectionRatio(worldNear, worldFar, firstPersonDeviceDepthMax, 1.0f);
+  p.firstPersonRatio = projectionRatio(firstPersonNear, firstPersonFar, 0.0f, firstPersonDeviceDepthMax);
+  p.firstPersonDeviceDepthMax = firstPersonDeviceDepthMax;
+  p.skyDeviceDepth = 1.0f;
+  return p;
+}
+#endif
+
+S3D_GPU_END
+
+#endif  // S3D_GPU_LINEAR_DEPTH_H

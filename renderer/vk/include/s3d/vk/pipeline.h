@@ -1,0 +1,50 @@
+#pragma once
+// Shader modules, push-descriptor layouts and pipelines.
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include <vulkan/vulkan.h>
+
+#include "s3d/vk/context.h"
+#include "s3d/vk/unique.h"
+
+namespace s3d::vk {
+
+Unique<VkShaderModule> createShaderModule(const Context& context, std::span<const std::uint32_t> spirv);
+
+// A descriptor-set layout for vkCmdPushDescriptorSetKHR plus the pipeline layout around it.
+struct PipelineLayout {
+  Unique<VkDescriptorSetLayout> setLayout;
+  Unique<VkPipelineLayout> layout;
+};
+PipelineLayout createPushDescriptorLayout(const Context& context,
+                                          std::span<const VkDescriptorSetLayoutBinding> bindings,
+                                          std::uint32_t pushConstantBytes, VkShaderStageFlags pushConstantStages);
+
+Unique<VkPipeline> createComputePipeline(const Context& context, VkPipelineLayout layout,
+                                         std::span<const std::uint32_t> spirv);
+
+// Graphics pipeline for dynamic rendering (no render pass objects).
+struct GraphicsPipelineDesc {
+  std::span<const std::uint32_t> vertexSpirv;
+  std::span<const std::uint32_t> fragmentSpirv;
+  std::vector<VkVertexInputBindingDescription> vertexBindings;
+  std::vector<VkVertexInputAttributeDescription> vertexAttributes;
+  std::vector<VkFormat> colorFormats;
+  VkFormat depthFormat = VK_FORMAT_UNDEFINED;
+  bool depthTest = false;
+  bool depthWrite = false;
+  VkCompareOp depthCompare = VK_COMPARE_OP_LESS;
+  bool additiveBlend = false;  // one + one on every color attachment
+  VkCullModeFlags cullMode = VK_CULL_MODE_NONE;
+};
+Unique<VkPipeline> createGraphicsPipeline(const Context& context, VkPipelineLayout layout,
+                                          const GraphicsPipelineDesc& desc);
+
+// Descriptor-write helpers for push descriptors.
+VkWriteDescriptorSet storageImageWrite(std::uint32_t binding, const VkDescriptorImageInfo* info);
+VkWriteDescriptorSet sampledImageWrite(std::uint32_t binding, const VkDescriptorImageInfo* info);
+VkWriteDescriptorSet uniformBufferWrite(std::uint32_t binding, const VkDescriptorBufferInfo* info);
+
+}  // namespace s3d::vk

@@ -1,0 +1,311 @@
+#include "s3d/vk/context.h"
+
+#include <algorithm>
+#include <cstring>
+#include <stdexcept>
+
+#include "s3d/vk/check.h"
+#include "s3d/vk/unique.h"
+
+namespace s3d::vk {
+namespace {
+
+constexpr const char* kValidationLayer = "VK_LAYER_KHRONOS_validation";
+
+bool hasLayer(const char* name) {
+  std::uint32_t count = 0;
+  S3D_VK_CHECK(vkEnumerateInstanceLayerProperties(&count, nullptr));
+  std::vector<VkLayerProperties> layers(count);
+  S3D_VK_CHECK(vkEnumerateInstanceLayerProperties(&count, layers.data()));
+  return std::any_of(layers.begin(), layers.end(),
+                     [&](const VkLayerProperties& l) { return std::strcmp(l.layerName, name) == 0; });
+}
+
+bool hasDeviceExtension(VkPhysicalDevice device, const char* name) {
+  std::uint32_t count = 0;
+  S3D_VK_CHECK(vkEnumerateDeviceExtensionProperties(device, nullptr, &count, nullptr));
+  std::vector<VkExtensionProperties> extensions(count);
+  S3D_VK_CHECK(vkEnumerateDeviceExtensionProperties(device, nullptr, &count, extensions.data()));
+  return std::any_of(extensions.begin(), extensions.end(),
+                     [&](const VkExtensionProperties& e) { return std::strcmp(e.extensionName, name) == 0; });
+}
+
+std::uint32_t findComputeGraphicsQueue(VkPhysicalDevice device) {
+  std::uint32_t count = 0;
+  vkGetPhysicalDeviceQueueFamilyProperties(device, &count, nullptr);
+  std::vector<VkQueueFamilyProperties> families(count);
+  vkGetPhysicalDeviceQueueFamilyProperties(device, &count, families.data());
+  for (std::uint32_t i = 0; i < count; ++i)
+    if ((families[i].queueFlags & VK_QUEUE_GRAPHICS_BIT) && (families[i].queueFlags & VK_QUEUE_COMPUTE_BIT)) return i;
+  return UINT32_MAX;
+}
+
+PhysicalDeviceInfo describe(VkPhysicalDevice device, std::uint32_t index) {
+  VkPhysicalDeviceProperties properties{};
+  vkGetPhysicalDeviceProperties(device, &properties);
+  PhysicalDeviceInfo info;
+  info.index = index;
+  info.name = properties.deviceName;
+  info.type = properties.deviceType;
+  info.apiVersion = properties.apiVersion;
+
+  VkPhysicalDeviceVulkan13Features features13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
+  VkPhysicalDeviceFeatures2 features{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &features13};
+  if (properties.apiVersion >= VK_API_VERSION_1_3) vkGetPhysicalDeviceFeatures2(device, &features);
+
+  if (properties.apiVersion < VK_API_VERSION_1_3)
+    info.unusableReason = "Vulkan 1.3 not supported";
+  else if (!hasDeviceExtension(device, VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME))
+    info.unusableReason = "VK_KHR_push_descriptor missing";
+  else if (!features13.dynamicRendering || !features13.synchronization2 || !features13.maintenance4)
+    info.unusableReason = "dynamicRendering, synchronization2 or maintenance4 missing";
+  else if (findComputeGraphicsQueue(device) == UINT32_MAX)
+    info.unusableReason = "no graphics+compute queue";
+  else
+    info.usable = true;
+  return info;
+}
+
+VkInstance createInstance(bool validation) {
+  VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
+  app.pApplicationName = "s3d";
+  app.apiVersion = VK_API_VERSION_1_3;
+  VkInstanceCreateInfo info{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO};
+  info.pApplicationInfo = &app;
+  const char* layers[] = {kValidationLayer};
+  const char* extensions[] = {VK_EXT_DEBUG_UTILS_EXTENSION_NAME};
+  if (validation) {
+    if (!hasLayer(kValidationLayer))
+      throw std::runtime_error(std::string("validation requested but ") + kValidationLayer +
+                               " is not installed (Debian package vulkan-validationlayers)");
+    info.enabledLayerCount = 1;
+    info.ppEnabledLayerNames = layers;
+    info.enabledExtensionCount = 1;
+    info.ppEnabledExtensionNames = extensions;
+  }
+  VkInstance instance = VK_NULL_HANDLE;
+  VkResult result = vkCreateInstance(&info, nullptr, &instance);
+  if (result == VK_ERROR_INCOMPATIBLE_DRIVER)
+    throw std::runtime_error(
+        "no Vulkan driver found (vkCreateInstance: VK_ERROR_INCOMPATIBLE_DRIVER); install mesa-vulkan-drivers "
+        "for the CPU device or a GPU driver");
+  check(result, "vkCreateInstance");
+  return instance;
+}
+
+std::vector<VkPhysicalDevice> physicalDevices(VkInstance instance) {
+  std::uint32_t count = 0;
+  S3D_VK_CHECK(vkEnumeratePhysicalDevices(instance, &count, nullptr));
+  std::vector<VkPhysicalDevice> devices(count);
+  S3D_VK_CHECK(vkEnumeratePhysicalDevices(instance, &count, devices.data()));
+  return devices;
+}
+
+bool isGpu(VkPhysicalDeviceType type) {
+  return type == VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU || type == VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU ||
+         type == VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU;
+}
+
+std::string listing(const std::vector<PhysicalDeviceInfo>& infos) {
+  std::string text;
+  for (const PhysicalDeviceInfo& i : infos)
+    text += "\n  [" + std::to_string(i.index) + "] " + i.name + (i.usable ? "" : " (unusable: " + i.unusableReason + ")");
+  return infos.empty() ? std::string("\n  (none)") : text;
+}
+
+// Picks the device named by `choice`: auto prefers a discrete GPU, then any GPU, then the CPU (lavapipe).
+std::uint32_t chooseDevice(const std::vector<PhysicalDeviceInfo>& infos, const std::string& choice) {
+  auto pick = [&](auto predicate) -> std::uint32_t {
+    for (const PhysicalDeviceInfo& i : infos)
+      if (i.usable && predicate(i)) return i.index;
+    return UINT32_MAX;
+  };
+  std::uint32_t chosen = UINT32_MAX;
+  if (choice == "auto" || choice == "gpu") {
+    chosen = pick([](const PhysicalDeviceInfo& i) { return i.type == VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU; });
+    if (chosen == UINT32_MAX) chosen = pick([](const PhysicalDeviceInfo& i) { return isGpu(i.type); });
+    if (chosen == UINT32_MAX && choice == "auto")
+      chosen = pick([](const PhysicalDeviceInfo& i) { return i.type == VK_PHYSICAL_DEVICE_TYPE_CPU; });
+    if (chosen == UINT32_MAX) chosen = choice == "auto" ? pick([](const PhysicalDeviceInfo&) { return true; }) : chosen;
+  } else if (choice == "cpu") {
+    chosen = pick([](const PhysicalDeviceInfo& i) { return i.type == VK_PHYSICAL_DEVICE_TYPE_CPU; });
+  } else if (!choice.empty() && std::all_of(choice.begin(), choice.end(), [](char c) { return c >= '0' && c <= '9'; })) {
+    std::uint32_t index = static_cast<std::uint32_t>(std::stoul(choice));
+    if (index < infos.size() && infos[index].usable) chosen = index;
+  } else {
+    throw std::invalid_argument("unknown device choice '" + choice + "' (expected auto, cpu, gpu or an index)");
+  }
+  if (chosen == UINT32_MAX)
+    throw std::runtime_error("no usable Vulkan device for --device " + choice + "; devices found:" + listing(infos) +
+                             "\n(install mesa-vulkan-drivers for the CPU device lavapipe)");
+  return chosen;
+}
+
+}  // namespace
+
+std::vector<PhysicalDeviceInfo> listPhysicalDevices() {
+  VkInstance instance = createInstance(false);
+  std::vector<PhysicalDeviceInfo> infos;
+  try {
+    std::vector<VkPhysicalDevice> devices = physicalDevices(instance);
+    for (std::uint32_t i = 0; i < devices.size(); ++i) infos.push_back(describe(devices[i], i));
+  } catch (...) {
+    vkDestroyInstance(instance, nullptr);
+    throw;
+  }
+  vkDestroyInstance(instance, nullptr);
+  return infos;
+}
+
+Context::Context(const ContextOptions& options) {
+  instance_ = createInstance(options.validation);
+  try {
+    if (options.validation) {
+      VkDebugUtilsMessengerCreateInfoEXT info{VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
+      info.messageSeverity =
+          VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
+      info.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
+                         VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT;
+      info.pfnUserCallback = &Context::onValidationMessage;
+      info.pUserData = this;
+      auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
+          vkGetInstanceProcAddr(instance_, "vkCreateDebugUtilsMessengerEXT"));
+      if (!create) throw std::runtime_error("vkCreateDebugUtilsMessengerEXT not available");
+      S3D_VK_CHECK(create(instance_, &info, nullptr, &messenger_));
+    }
+
+    std::vector<VkPhysicalDevice> devices = physicalDevices(instance_);
+    std::vector<PhysicalDeviceInfo> infos;
+    for (std::uint32_t i = 0; i < devices.size(); ++i) infos.push_back(describe(devices[i], i));
+    std::uint32_t chosen = chooseDevice(infos, options.device);
+    physicalDevice_ = devices[chosen];
+    deviceName_ = infos[chosen].name;
+    deviceType_ = infos[chosen].type;
+    queueFamily_ = findComputeGraphicsQueue(physicalDevice_);
+
+    VkPhysicalDeviceProperties properties{};
+    vkGetPhysicalDeviceProperties(physicalDevice_, &properties);
+    std::uint32_t familyCount = 0;
+    vkGetPhysicalDeviceQueueFamilyProperties(physicalDevice_, &familyCount, nullptr);
+    std::vector<VkQueueFamilyProperties> families(familyCount);
+    vkGetPhysicalDeviceQueueFamilyProperties(physicalDevice_, &familyCount, families.data());
+    if (families[queueFamily_].timestampValidBits > 0) timestampPeriodNs_ = properties.limits.timestampPeriod;
+    vkGetPhysicalDeviceMemoryProperties(physicalDevice_, &memoryProperties_);
+
+    float priority = 1.0f;
+    VkDeviceQueueCreateInfo queueInfo{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
+    queueInfo.queueFamilyIndex = queueFamily_;
+    queueInfo.queueCount = 1;
+    queueInfo.pQueuePriorities = &priority;
+    VkPhysicalDeviceVulkan13Features features13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
+    features13.dynamicRendering = VK_TRUE;
+    features13.synchronization2 = VK_TRUE;
+    features13.maintenance4 = VK_TRUE;  // glslang emits LocalSizeId for SPIR-V 1.6 compute shaders
+    VkPhysicalDeviceFeatures2 features{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &features13};
+    const char* extensions[] = {VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME};
+    VkDeviceCreateInfo deviceInfo{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO, &features};
+    deviceInfo.queueCreateInfoCount = 1;
+    deviceInfo.pQueueCreateInfos = &queueInfo;
+    deviceInfo.enabledExtensionCount = 1;
+    deviceInfo.ppEnabledExtensionNames = extensions;
+    S3D_VK_CHECK(vkCreateDevice(physicalDevice_, &deviceInfo, nullptr, &device_));
+    vkGetDeviceQueue(device_, queueFamily_, 0, &queue_);
+
+    cmdPushDescriptorSet =
+        reinterpret_cast<PFN_vkCmdPushDescriptorSetKHR>(vkGetDeviceProcAddr(device_, "vkCmdPushDescriptorSetKHR"));
+    if (!cmdPushDescriptorSet) throw std::runtime_error("vkCmdPushDescriptorSetKHR not available on " + deviceName_);
+
+    VkCommandPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
+    poolInfo.flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT | VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
+    poolInfo.queueFamilyIndex = queueFamily_;
+    S3D_VK_CHECK(vkCreateCommandPool(device_, &poolInfo, nullptr, &commandPool_));
+  } catch (...) {
+    release();  // a throwing constructor runs no destructor
+    throw;
+  }
+}
+
+Context::~Context() { release(); }
+
+void Context::release() {
+  if (device_) {
+    vkDeviceWaitIdle(device_);
+    if (commandPool_) vkDestroyCommandPool(device_, commandPool_, nullptr);
+    vkDestroyDevice(device_, nullptr);
+  }
+  if (messenger_) {
+    auto destroy = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(
+        vkGetInstanceProcAddr(instance_, "vkDestroyDebugUtilsMessengerEXT"));
+    if (destroy) destroy(instance_, messenger_, nullptr);
+  }
+  if (instance_) vkDestroyInstance(instance_, nullptr);
+  commandPool_ = VK_NULL_HANDLE;
+  device_ = VK_NULL_HANDLE;
+  messenger_ = VK_NULL_HANDLE;
+  instance_ = VK_NULL_HANDLE;
+}
+
+std::uint32_t Context::findMemoryType(std::uint32_t typeBits, VkMemoryPropertyFlags required,
+                                      VkMemoryPropertyFlags preferred) const {
+  for (int pass = 0; pass < 2; ++pass) {
+    VkMemoryPropertyFlags wanted = pass == 0 ? (required | preferred) : required;
+    for (std::uint32_t i = 0; i < memoryProperties_.memoryTypeCount; ++i)
+      if ((typeBits & (1u << i)) && (memoryProperties_.memoryTypes[i].propertyFlags & wanted) == wanted) return i;
+  }
+  throw std::runtime_error("no Vulkan memory type with the required properties on " + deviceName_);
+}
+
+void Context::submitAndWait(const std::function<void(VkCommandBuffer)>& record) {
+  VkCommandBufferAllocateInfo allocInfo{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+  allocInfo.commandPool = commandPool_;
+  allocInfo.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+  allocInfo.commandBufferCount = 1;
+  VkCommandBuffer cmd = VK_NULL_HANDLE;
+  S3D_VK_CHECK(vkAllocateCommandBuffers(device_, &allocInfo, &cmd));
+  struct FreeOnExit {
+    VkDevice device;
+    VkCommandPool pool;
+    VkCommandBuffer cmd;
+    ~FreeOnExit() { vkFreeCommandBuffers(device, pool, 1, &cmd); }
+  } freeOnExit{device_, commandPool_, cmd};
+
+  VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+  begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+  S3D_VK_CHECK(vkBeginCommandBuffer(cmd, &begin));
+  record(cmd);
+  S3D_VK_CHECK(vkEndCommandBuffer(cmd));
+
+  VkFenceCreateInfo fenceInfo{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+  VkFence rawFence = VK_NULL_HANDLE;
+  S3D_VK_CHECK(vkCreateFence(device_, &fenceInfo, nullptr, &rawFence));
+  Unique<VkFence> fence(device_, rawFence, vkDestroyFence);
+  VkCommandBufferSubmitInfo cmdInfo{VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO};
+  cmdInfo.commandBuffer = cmd;
+  VkSubmitInfo2 submit{VK_STRUCTURE_TYPE_SUBMIT_INFO_2};
+  submit.commandBufferInfoCount = 1;
+  submit.pCommandBufferInfos = &cmdInfo;
+  S3D_VK_CHECK(vkQueueSubmit2(queue_, 1, &submit, fence));
+  S3D_VK_CHECK(vkWaitForFences(device_, 1, &rawFence, VK_TRUE, UINT64_MAX));
+}
+
+std::vector<std::string> Context::validationMessages() const {
+  std::lock_guard lock(messagesMutex_);
+  return validationMessages_;
+}
+
+void Context::clearValidationMessages() {
+  std::lock_guard lock(messagesMutex_);
+  validationMessages_.clear();
+}
+
+VKAPI_ATTR VkBool32 VKAPI_CALL Context::onValidationMessage(VkDebugUtilsMessageSeverityFlagBitsEXT,
+                                                            VkDebugUtilsMessageTypeFlagsEXT,
+                                                            const VkDebugUtilsMessengerCallbackDataEXT* data,
+                                                            void* user) {
+  auto* context = static_cast<Context*>(user);
+  std::lock_guard lock(context->messagesMutex_);
+  context->validationMessages_.emplace_back(data && data->pMessage ? data->pMessage : "(no message)");
+  return VK_FALSE;
+}
+
+}  // namespace s3d::vk

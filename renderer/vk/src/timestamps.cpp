@@ -1,0 +1,36 @@
+#include "s3d/vk/timestamps.h"
+
+#include <vector>
+
+#include "s3d/vk/check.h"
+
+namespace s3d::vk {
+
+TimestampQueries::TimestampQueries(const Context& context, std::uint32_t count)
+    : context_(&context), count_(count), supported_(context.timestampPeriodNs() > 0.0) {
+  VkQueryPoolCreateInfo info{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
+  info.queryType = VK_QUERY_TYPE_TIMESTAMP;
+  info.queryCount = count;
+  VkQueryPool pool = VK_NULL_HANDLE;
+  S3D_VK_CHECK(vkCreateQueryPool(context.device(), &info, nullptr, &pool));
+  pool_ = Unique<VkQueryPool>(context.device(), pool, vkDestroyQueryPool);
+}
+
+void TimestampQueries::reset(VkCommandBuffer cmd) { vkCmdResetQueryPool(cmd, pool_, 0, count_); }
+
+void TimestampQueries::write(VkCommandBuffer cmd, std::uint32_t index, VkPipelineStageFlags2 stage) {
+  vkCmdWriteTimestamp2(cmd, stage, pool_, index);
+}
+
+std::optional<double> TimestampQueries::elapsedMs(std::uint32_t begin, std::uint32_t end) const {
+  if (!supported_) return std::nullopt;
+  std::uint64_t ticks[2]{};
+  // Two queries read separately: they need not be adjacent.
+  S3D_VK_CHECK(vkGetQueryPoolResults(context_->device(), pool_, begin, 1, sizeof(std::uint64_t), &ticks[0],
+                                     sizeof(std::uint64_t), VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
+  S3D_VK_CHECK(vkGetQueryPoolResults(context_->device(), pool_, end, 1, sizeof(std::uint64_t), &ticks[1],
+                                     sizeof(std::uint64_t), VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
+  return double(ticks[1] - ticks[0]) * context_->timestampPeriodNs() * 1e-6;
+}
+
+}  // namespace s3d::vk

@@ -1,0 +1,33 @@
+#pragma once
+// The stereo compute pass (Listing 4.5) on the GPU.
+#include <vulkan/vulkan.h>
+
+#include "s3d/stereo/stereo.h"
+#include "s3d/vk/context.h"
+#include "s3d/vk/pipeline.h"
+#include "s3d/vk/resources.h"
+
+namespace s3d::stereo {
+
+// Reads: center color (RGBA8, display-encoded) and linear depth (R32F), both in VK_IMAGE_LAYOUT_GENERAL.
+// Writes: left and right eye (RGBA8, GENERAL). One dispatch produces both eyes.
+class StereoPass {
+ public:
+  explicit StereoPass(const vk::Context& context);
+  void record(VkCommandBuffer cmd, const vk::Image& centerColor, const vk::Image& linearDepth,
+              const vk::Image& leftEye, const vk::Image& rightEye, const gpu::StereoConstants& constants) const;
+
+  static constexpr VkFormat kColorFormat = VK_FORMAT_R8G8B8A8_UNORM;
+  static constexpr VkFormat kDepthFormat = VK_FORMAT_R32_SFLOAT;
+
+ private:
+  const vk::Context* context_;
+  vk::PipelineLayout layout_;
+  vk::Unique<VkPipeline> pipeline_;
+};
+
+// Uploads CPU images, runs the pass once and reads both eyes back (tests, `s3d convert`).
+StereoPair synthesizeStereoOnGpu(vk::Context& context, const ImageRGBA8& center, const DepthImage& linearDepth,
+                                 const gpu::StereoConstants& constants);
+
+}  // namespace s3d::stereo

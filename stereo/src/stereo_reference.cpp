@@ -1,0 +1,107 @@
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "s3d/stereo/stereo.h"
+
+namespace s3d::stereo {
+namespace {
+
+void requireFinite(float value, const char* name) {
+  if (!std::isfinite(value)) throw std::invalid_argument(std::string(name) + " must be finite (got " + std::to_string(value) + ")");
+}
+
+int clampInt(int value, int low, int high) { return std::min(std::max(value, low), high); }
+
+float linearDepthAt(const DepthImage& depth, int x, int y) {
+  return *depth.at(std::uint32_t(clampInt(x, 0, int(depth.width) - 1)), std::uint32_t(y));
+}
+
+// Listing 4.5: minimum depth over the separation range, on one side of the pixel (direction +1 or -1).
+float minDepthOverTaps(const DepthImage& depth, int x, int y, int direction, const gpu::StereoConstants& c) {
+  float minDepth = S3D_INFINITY;  // the seed starts at 1.0, its normalized far plane
+  for (int i = 0; i < c.tapCount; ++i) minDepth = std::min(minDepth, linearDepthAt(depth, x + direction * c.tapOffsetPx[i], y));
+  return minDepth;
+}
+
+// Horizontal linear filter at texel coordinate u (texel centers at integers), clamped to the edge: what a
+// bilinear texture fetch does on one row. Written as the shader writes it so both round alike.
+void sampleRow(const ImageRGBA8& image, int y, float u, std::uint8_t* out) {
+  float base = std::floor(u);
+  float fraction = u - base;
+  int x0 = clampInt(int(base), 0, int(image.width) - 1);
+  int x1 = clampInt(int(base) + 1, 0, int(image.width) - 1);
+  const std::uint8_t* a = image.at(std::uint32_t(x0), std::uint32_t(y));
+  const std::uint8_t* b = image.at(std::uint32_t(x1), std::uint32_t(y));
+  for (int channel = 0; channel < 4; ++channel) {
+    float va = float(a[channel]) / 255.0f;
+    float vb = float(b[channel]) / 255.0f;
+    float value = va * (1.0f - fraction) + vb * fraction;
+    out[channel] = std::uint8_t(std::lround(std::clamp(value, 0.0f, 1.0f) * 255.0f));
+  }
+}
+
+}  // namespace
+
+void validate(const StereoParameters& p) {
+  requireFinite(p.maxSeparation, "maxSeparation");
+  requireFinite(p.zeroParallaxDistance, "zeroParallaxDistance");
+  requireFinite(p.edgeCrop, "edgeCrop");
+  if (p.maxSeparation < 0.0f || p.maxSeparation > kMaxSeparationLimit)
+    throw std::invalid_argument("maxSeparation " + std::to_string(p.maxSeparation) + " is outside [0, " +
+                                std::to_string(kMaxSeparationLimit) + "] (a fraction of the screen width)");
+  if (p.zeroParallaxDistance <= 0.0f)
+    throw std::invalid_argument("zeroParallaxDistance must be positive (got " + std::to_string(p.zeroParallaxDistance) + ")");
+  if (p.edgeCrop > kMaxSeparationLimit)
+    throw std::invalid_argument("edgeCrop " + std::to_string(p.edgeCrop) + " is above " + std::to_string(kMaxSeparationLimit));
+}
+
+gpu::StereoConstants makeSeedConstants(const StereoParameters& p, std::uint32_t width, std::uint32_t height) {
+  validate(p);
+  if (width == 0 || height == 0) throw std::invalid_argument("stereo pass: image has zero size");
+  gpu::StereoConstants c{};
+  c.tapCount = 3;
+  for (int i = 0; i < c.tapCount; ++i)
+    c.tapOffsetPx[i] = int(std::floor(0.5f + kSeedTaps[i] * p.maxSeparation * float(width)));  // nearest texel
+  c.maxSeparation = p.maxSeparation;
+  c.zeroParallaxDistance = p.zeroParallaxDistance;
+  float crop = p.edgeCrop < 0.0f ? p.maxSeparation : p.edgeCrop;
+  int cropColumns = std::min(int(std::ceil(crop * float(width))), int(width) / 2);
+  c.cropBegin = cropColumns;
+  c.cropEnd = int(width) - cropColumns;
+  c.width = int(width);
+  c.height = int(height);
+  return c;
+}
+
+StereoPair synthesizeStereoReference(const ImageRGBA8& center, const DepthImage& linearDepth,
+                                     const gpu::StereoConstants& c) {
+  requireSameSize(center, linearDepth, "stereo pass (color vs depth)");
+  if (int(center.width) != c.width || int(center.height) != c.height)
+    throw std::invalid_argument("stereo pass: constants were made for another image size");
+  StereoPair pair{ImageRGBA8(center.width, center.height), ImageRGBA8(center.width, center.height)};
+  const float width = float(c.width);
+  for (int y = 0; y < c.height; ++y) {
+    for (int x = 0; x < c.width; ++x) {
+      std::uint8_t* left = pair.left.at(std::uint32_t(x), std::uint32_t(y));
+      std::uint8_t* right = pair.right.at(std::uint32_t(x), std::uint32_t(y));
+      if (x < c.cropBegin || x >= c.cropEnd) {  // cropped edges: the search would read outside the image
+        std::fill(left, left + 4, std::uint8_t(0));
+        std::fill(right, right + 4, std::uint8_t(0));
+        left[3] = right[3] = 255;
+        continue;
+      }
+      float minDepthLeft = minDepthOverTaps(linearDepth, x, y, +1, c);
+      float minDepthRight = minDepthOverTaps(linearDepth, x, y, -1, c);
+      float parallaxLeft = gpu::parallaxFromDepth(c.maxSeparation, c.zeroParallaxDistance, minDepthLeft);
+      float parallaxRight = gpu::parallaxFromDepth(c.maxSeparation, c.zeroParallaxDistance, minDepthRight);
+      // The left eye adds the parallax, the right eye subtracts it.
+      sampleRow(center, y, float(x) + parallaxLeft * width, left);
+      sampleRow(center, y, float(x) - parallaxRight * width, right);
+    }
+  }
+  return pair;
+}
+
+}  // namespace s3d::stereo

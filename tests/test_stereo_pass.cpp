@@ -1,0 +1,136 @@
+// The stereo pass: Listing 4.5's behavior, and the GPU pass held to the C++ reference.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <random>
+
+#include "s3d/stereo/stereo.h"
+#include "s3d/stereo/stereo_pass.h"
+#include "vulkan_test.h"
+
+namespace s3d::stereo {
+namespace {
+
+// Synthetic center view: random color, depth in layers with sharp edges and some sky (+inf).
+struct SyntheticView {
+  ImageRGBA8 color;
+  DepthImage depth;
+};
+
+SyntheticView makeSyntheticView(std::uint32_t width, std::uint32_t height, unsigned seed) {
+  std::mt19937 random(seed);
+  std::uniform_int_distribution<int> byte(0, 255);
+  std::uniform_real_distribution<float> depthDist(0.3f, 50.0f);
+  SyntheticView view{ImageRGBA8(width, height), DepthImage(width, height)};
+  for (auto& channel : view.color.pixels) channel = std::uint8_t(byte(random));
+  // Blocks of constant depth, so edges exist at many places; a quarter of the blocks are sky.
+  for (std::uint32_t by = 0; by < height; by += 5)
+    for (std::uint32_t bx = 0; bx < width; bx += 7) {
+      float blockDepth = (random() % 4 == 0) ? INFINITY : depthDist(random);
+      for (std::uint32_t y = by; y < std::min(by + 5, height); ++y)
+        for (std::uint32_t x = bx; x < std::min(bx + 7, width); ++x) *view.depth.at(x, y) = blockDepth;
+    }
+  return view;
+}
+
+int largestChannelDifference(const ImageRGBA8& a, const ImageRGBA8& b) {
+  int largest = 0;
+  for (std::size_t i = 0; i < a.pixels.size(); ++i) largest = std::max(largest, std::abs(int(a.pixels[i]) - int(b.pixels[i])));
+  return largest;
+}
+
+TEST(StereoReference, ParallaxIsZeroAtTheZeroParallaxPlaneAndMaxSeparationAtInfinity) {
+  EXPECT_FLOAT_EQ(gpu::parallaxFromDepth(0.02f, 3.0f, 3.0f), 0.0f);
+  EXPECT_FLOAT_EQ(gpu::parallaxFromDepth(0.02f, 3.0f, INFINITY), 0.02f);
+  EXPECT_FLOAT_EQ(gpu::parallaxFromDepth(0.02f, 3.0f, 1.5f), -0.02f);  // twice as close: out of the screen
+}
+
+TEST(StereoReference, SeedConstantsRoundTheTapsToWholePixels) {
+  StereoParameters parameters;
+  parameters.maxSeparation = 0.02f;  // 25.6 px at 1280
+  gpu::StereoConstants c = makeSeedConstants(parameters, 1280, 720);
+  EXPECT_EQ(c.tapCount, 3);
+  EXPECT_EQ(c.tapOffsetPx[0], 13);  // 12.8
+  EXPECT_EQ(c.tapOffsetPx[1], 17);  // 16.896
+  EXPECT_EQ(c.tapOffsetPx[2], 26);  // 25.6
+  EXPECT_EQ(c.cropBegin, 26);       // crop defaults to maxSeparation, rounded up
+  EXPECT_EQ(c.cropEnd, 1280 - 26);
+}
+
+TEST(StereoReference, AbsurdParametersAreRejectedWithTheirName) {
+  StereoParameters parameters;
+  parameters.maxSeparation = 0.9f;
+  EXPECT_THROW(
+      {
+        try {
+          validate(parameters);
+        } catch (const std::invalid_argument& error) {
+          EXPECT_NE(std::string(error.what()).find("maxSeparation"), std::string::npos);
+          throw;
+        }
+      },
+      std::invalid_argument);
+  parameters = {};
+  parameters.zeroParallaxDistance = NAN;
+  EXPECT_THROW(validate(parameters), std::invalid_argument);
+  parameters = {};
+  parameters.zeroParallaxDistance = 0.0f;
+  EXPECT_THROW(validate(parameters), std::invalid_argument);
+}
+
+TEST(StereoReference, FlatDepthShiftsTheLeftEyeByTheParallax) {
+  // Uniform depth 2 * zpp: parallax = maxSeparation / 2 = 4 px at width 80, so left(x) = center(x + 4).
+  ImageRGBA8 center(80, 4);
+  for (std::uint32_t y = 0; y < 4; ++y)
+    for (std::uint32_t x = 0; x < 80; ++x) center.at(x, y)[0] = std::uint8_t(x * 3);
+  DepthImage depth(80, 4, 2.0f);
+  StereoParameters parameters{0.1f, 1.0f, -1.0f};
+  StereoPair pair = synthesizeStereoReference(center, depth, makeSeedConstants(parameters, 80, 4));
+  EXPECT_EQ(pair.left.at(40, 1)[0], center.at(44, 1)[0]);
+  EXPECT_EQ(pair.right.at(40, 1)[0], center.at(36, 1)[0]);
+  EXPECT_EQ(pair.left.at(3, 1)[0], 0);  // inside the 8-column crop
+}
+
+TEST(StereoReference, ANearOccluderInTheSearchRangeShrinksTheParallax) {
+  // Listing 4.5's occlusion rule: the minimum depth over the taps wins, so background pixels whose search
+  // range reaches a near object take the object's (smaller) parallax instead of sampling across it.
+  ImageRGBA8 center(100, 1);
+  for (std::uint32_t x = 0; x < 100; ++x) center.at(x, 0)[0] = std::uint8_t(2 * x);
+  DepthImage depth(100, 1, INFINITY);
+  for (std::uint32_t x = 50; x < 60; ++x) *depth.at(x, 0) = 1.0f;  // at the zero-parallax plane
+  StereoParameters parameters{0.1f, 1.0f, 0.0f};                  // taps at 5, 7 and 10 px
+  StereoPair pair = synthesizeStereoReference(center, depth, makeSeedConstants(parameters, 100, 1));
+  EXPECT_EQ(pair.left.at(45, 0)[0], center.at(45, 0)[0]);  // a tap hits the occluder: parallax 0
+  EXPECT_EQ(pair.left.at(30, 0)[0], center.at(40, 0)[0]);  // only sky in range: parallax = maxSeparation
+}
+
+class StereoPassGpu : public test::VulkanTest {};
+
+TEST_F(StereoPassGpu, MatchesTheCppReferenceWithinOneLevel) {
+  // Tolerance 1 level of 8 bits: the GPU may fuse the filter's multiply-add and round the unorm store
+  // differently from std::lround; everything else (taps, depth, crop) is integer-exact.
+  for (auto [width, height, separation] : {std::tuple{64u, 32u, 0.05f}, std::tuple{37u, 11u, 0.1f}, std::tuple{128u, 9u, 0.02f}}) {
+    SyntheticView view = makeSyntheticView(width, height, width);
+    StereoParameters parameters{separation, 2.0f, -1.0f};
+    gpu::StereoConstants c = makeSeedConstants(parameters, width, height);
+    StereoPair expected = synthesizeStereoReference(view.color, view.depth, c);
+    StereoPair actual = synthesizeStereoOnGpu(context(), view.color, view.depth, c);
+    EXPECT_LE(largestChannelDifference(actual.left, expected.left), 1) << width << "x" << height;
+    EXPECT_LE(largestChannelDifference(actual.right, expected.right), 1) << width << "x" << height;
+  }
+}
+
+TEST_F(StereoPassGpu, ZeroSeparationReproducesTheCenterViewBitForBit) {
+  SyntheticView view = makeSyntheticView(61, 17, 7);
+  StereoParameters parameters{0.0f, 2.0f, 0.0f};
+  gpu::StereoConstants c = makeSeedConstants(parameters, 61, 17);
+  StereoPair pair = synthesizeStereoOnGpu(context(), view.color, view.depth, c);
+  EXPECT_EQ(pair.left.pixels, view.color.pixels);
+  EXPECT_EQ(pair.right.pixels, view.color.pixels);
+  StereoPair reference = synthesizeStereoReference(view.color, view.depth, c);
+  EXPECT_EQ(reference.left.pixels, view.color.pixels);
+}
+
+}  // namespace
+}  // namespace s3d::stereo
