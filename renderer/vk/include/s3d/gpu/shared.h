@@ -15,7 +15,12 @@
 #define S3D_INFINITY (std::numeric_limits<float>::infinity())
 namespace s3d::gpu {
 using uint = std::uint32_t;
+using glm::exp2;
+using glm::mat4;
+using glm::max;
+using glm::min;
 using glm::mix;
+using glm::pow;
 using glm::step;
 using glm::vec2;
 using glm::vec3;

@@ -1,0 +1,76 @@
+#pragma once
+// The deferred renderer (the seed's section 4.3): G-buffer, light accumulation into HDR diffuse and specular
+// buffers, a shading pass applying albedo and Fresnel, the sky, then tone mapping and linear depth.
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "s3d/image.h"
+#include "s3d/renderer/scene.h"
+#include "s3d/vk/context.h"
+#include "s3d/vk/resources.h"
+
+namespace s3d::renderer {
+
+// Matrices of one rendered view. Vulkan clip space (y down, depth 0..1).
+struct ViewMatrices {
+  glm::mat4 worldView{1.0f};        // world -> view of the world layer
+  glm::mat4 worldProjection{1.0f};  // may be off-axis (two-pass reference eyes)
+  glm::mat4 firstPersonView{1.0f};  // camera space -> first-person view (identity for the center view)
+  glm::mat4 firstPersonProjection{1.0f};
+  glm::mat4 worldFromCamera{1.0f};  // inverse of the center camera's view: places first-person objects for lighting
+};
+
+// Perspective projection with Vulkan's downward y and zero-to-one depth.
+glm::mat4 vulkanPerspective(float verticalFovRadians, float aspect, float nearPlane, float farPlane);
+glm::mat4 cameraView(const Camera& camera);  // world -> view
+// The scene camera's center view at the given aspect ratio (width / height).
+ViewMatrices centerViewMatrices(const Scene& scene, float aspect);
+
+struct PassTiming {
+  std::string name;
+  double gpuMs = 0.0;
+};
+
+struct FrameTimings {
+  std::optional<double> totalGpuMs;  // empty when the device has no timestamp queries
+  std::vector<PassTiming> passes;
+};
+
+class DeferredRenderer {
+ public:
+  DeferredRenderer(vk::Context& context, std::uint32_t width, std::uint32_t height);
+  ~DeferredRenderer();
+  DeferredRenderer(const DeferredRenderer&) = delete;
+  DeferredRenderer& operator=(const DeferredRenderer&) = delete;
+
+  // Uploads the scene's meshes and materials; call again when the scene changes.
+  void setScene(const Scene& scene);
+  // Renders one view; the results stay on the GPU until read back.
+  FrameTimings render(const ViewMatrices& view);
+
+  std::uint32_t width() const;
+  std::uint32_t height() const;
+
+  // Outputs of the last render(), left in VK_IMAGE_LAYOUT_GENERAL (vk::kComputeWrite state):
+  const vk::Image& displayColor() const;  // RGBA8, tone-mapped, sRGB-encoded
+  const vk::Image& linearDepth() const;   // R32F, view depth in world units, +inf for sky (Listing 4.3)
+  const vk::Image& hdrColor() const;      // RGBA32F, exposed linear HDR before tone mapping
+
+  ImageRGBA8 readDisplayColor();
+  DepthImage readLinearDepth();
+  ImageRGBA32F readHdrColor();
+
+  // Device depth values that separate the layers (Listing 4.3): first-person depth is in [0, split].
+  static constexpr float kFirstPersonDeviceDepthMax = 0.1f;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace s3d::renderer

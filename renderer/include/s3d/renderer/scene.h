@@ -1,0 +1,104 @@
+#pragma once
+// Scene description consumed by the deferred renderer (and by comfort's Embree world queries).
+// Conventions: right-handed, Y up, camera looks down -Z in view space, metres.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace s3d::renderer {
+
+struct Vertex {
+  glm::vec3 position;
+  glm::vec3 normal;
+};
+
+struct Mesh {
+  std::vector<Vertex> vertices;
+  std::vector<std::uint32_t> indices;  // triangle list, counter-clockwise seen from outside
+};
+
+struct Material {
+  glm::vec3 albedo{0.5f};          // linear diffuse reflectance
+  glm::vec3 specularColor{0.04f};  // Fresnel reflectance at normal incidence (F0)
+  float glossiness = 0.3f;         // 0..1, mapped to a Blinn-Phong exponent
+};
+
+enum class Layer : std::uint32_t {
+  World = 0,        // drawn with the scene camera
+  FirstPerson = 1,  // drawn in camera space with its own field of view and depth range (Listing 4.3)
+};
+
+struct Object {
+  std::uint32_t mesh = 0;
+  Material material;
+  glm::mat4 transform{1.0f};  // World: object -> world. FirstPerson: object -> camera (view) space.
+  Layer layer = Layer::World;
+};
+
+struct SunLight {
+  glm::vec3 directionToSun{0.0f, 1.0f, 0.0f};  // unit vector
+  glm::vec3 color{1.0f};                       // linear radiance scale
+};
+
+struct PointLight {
+  glm::vec3 position{0.0f};
+  glm::vec3 color{1.0f};
+  float radius = 5.0f;  // light reaches zero at this distance
+};
+
+struct Camera {
+  glm::vec3 position{0.0f, 1.7f, 0.0f};
+  float yawRadians = 0.0f;    // rotation about +Y; 0 looks down -Z
+  float pitchRadians = 0.0f;  // positive looks up
+  float verticalFovRadians = 1.0f;
+  float nearPlane = 0.1f;
+  float farPlane = 1000.0f;
+};
+
+// The first-person layer's own projection (Listing 4.2/4.3: different FOV and depth range).
+struct FirstPersonView {
+  float verticalFovRadians = 0.9f;
+  float nearPlane = 0.02f;
+  float farPlane = 4.0f;
+  float deviceDepthMax = 0.1f;  // first-person depth lands in [0, deviceDepthMax], the world in [deviceDepthMax, 1]
+};
+
+struct Sky {
+  glm::vec3 zenithColor{0.25f, 0.45f, 0.9f};  // linear HDR radiance
+  glm::vec3 horizonColor{0.8f, 0.85f, 0.95f};
+  glm::vec3 groundColor{0.3f, 0.28f, 0.25f};
+};
+
+struct Scene {
+  std::string name;
+  std::vector<Mesh> meshes;
+  std::vector<Object> objects;
+  SunLight sun;
+  glm::vec3 ambientColor{0.2f};  // hemisphere ambient, scaled by (N.y * 0.7 + 0.3)
+  std::vector<PointLight> pointLights;
+  Sky sky;
+  Camera camera;
+  FirstPersonView firstPerson;
+  float exposure = 1.0f;
+  float crosshairDistance = 8.0f;  // default HUD crosshair depth in metres
+
+  bool hasLayer(Layer layer) const {
+    for (const Object& o : objects)
+      if (o.layer == layer) return true;
+    return false;
+  }
+};
+
+// Mesh builders: unit-consistent, outward normals, counter-clockwise winding.
+Mesh makeBox(glm::vec3 halfExtents);
+Mesh makeCylinder(float radius, float height, std::uint32_t segments);  // base at y=0, capped
+Mesh makeGroundPlane(float halfSize);                                   // y=0, normal +Y
+
+// Built-in procedural scenes.
+Scene makeCourtyardScene();  // the default scene
+std::vector<std::string> builtInSceneNames();
+Scene makeBuiltInScene(const std::string& name);  // throws std::invalid_argument naming the scene and the choices
+
+}  // namespace s3d::renderer

@@ -1,0 +1,23 @@
+#version 450
+// Shared by the G-buffer and the shading pass: the same module gives both the same depth (depth test EQUAL).
+#extension GL_GOOGLE_include_directive : require
+#include "s3d/renderer/renderer_shared.h"
+
+layout(location = 0) in vec3 position;
+layout(location = 1) in vec3 normal;
+
+layout(binding = 0) uniform Frame { FrameConstants frame; };
+layout(std430, binding = 1) readonly buffer Objects { ObjectConstants objects[]; };
+layout(push_constant) uniform Push { uint objectIndex; };
+
+layout(location = 0) out vec3 worldNormal;
+layout(location = 1) out vec3 worldPosition;
+
+void main() {
+  ObjectConstants object = objects[objectIndex];
+  // precise: no contraction differences, so both pipelines compute the same depth from this same module.
+  precise vec4 clipPosition = frame.layers[object.layer].viewProjection * (object.objectToLayer * vec4(position, 1.0));
+  gl_Position = clipPosition;
+  worldNormal = mat3(object.normalToWorld) * normal;
+  worldPosition = (object.objectToWorld * vec4(position, 1.0)).xyz;
+}

@@ -1,0 +1,7 @@
+#version 450
+// One triangle covering the screen on the far plane: with depth test LESS_OR_EQUAL it only reaches pixels
+// no geometry covered (depth still at its cleared 1.0).
+void main() {
+  vec2 corner = vec2((gl_VertexIndex << 1) & 2, gl_VertexIndex & 2);
+  gl_Position = vec4(corner * 2.0 - 1.0, 1.0, 1.0);
+}

@@ -1,0 +1,554 @@
+#include "s3d/renderer/deferred_renderer.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstring>
+#include <stdexcept>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/packing.hpp>
+
+#include "s3d/renderer/renderer_shared.h"
+#include "s3d/vk/check.h"
+#include "s3d/vk/pipeline.h"
+#include "s3d/vk/timestamps.h"
+
+// clang-format off
+#include <cstdint>
+#include <s3d_spirv/fullscreen_vert.h>
+#include <s3d_spirv/gbuffer_frag.h>
+#include <s3d_spirv/geometry_vert.h>
+#include <s3d_spirv/light_frag.h>
+#include <s3d_spirv/linear_depth_comp.h>
+#include <s3d_spirv/shading_frag.h>
+#include <s3d_spirv/sky_frag.h>
+#include <s3d_spirv/sky_vert.h>
+#include <s3d_spirv/tonemap_comp.h>
+// clang-format on
+
+namespace s3d::renderer {
+namespace {
+
+constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
+constexpr VkFormat kNormalFormat = VK_FORMAT_R16G16B16A16_SFLOAT;  // world normal + glossiness
+constexpr VkFormat kLightFormat = VK_FORMAT_R16G16B16A16_SFLOAT;   // HDR diffuse / specular light
+constexpr VkFormat kHdrFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
+constexpr VkFormat kDisplayFormat = VK_FORMAT_R8G8B8A8_UNORM;     // sRGB-encoded by the tone-map pass
+constexpr VkFormat kLinearDepthFormat = VK_FORMAT_R32_SFLOAT;
+
+constexpr vk::ImageState kDepthSampled{VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+                                       VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                                       VK_ACCESS_2_SHADER_SAMPLED_READ_BIT};
+constexpr vk::ImageState kDepthReadOnlyAttachment{VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL,
+                                                  VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT |
+                                                      VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
+                                                  VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT};
+constexpr vk::ImageState kComputeSampled{VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+                                         VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT};
+
+enum Timestamp : std::uint32_t { kFrameBegin, kGBufferEnd, kLightingEnd, kShadingEnd, kResolveEnd, kTimestampCount };
+
+VkDescriptorSetLayoutBinding binding(std::uint32_t index, VkDescriptorType type, VkShaderStageFlags stages) {
+  return {index, type, 1, stages, nullptr};
+}
+
+VkRenderingAttachmentInfo colorAttachment(const vk::Image& image, bool clear) {
+  VkRenderingAttachmentInfo info{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+  info.imageView = image.view;
+  info.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+  info.loadOp = clear ? VK_ATTACHMENT_LOAD_OP_CLEAR : VK_ATTACHMENT_LOAD_OP_LOAD;
+  info.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+  info.clearValue.color = {{0.0f, 0.0f, 0.0f, 0.0f}};
+  return info;
+}
+
+void beginRendering(VkCommandBuffer cmd, std::uint32_t width, std::uint32_t height,
+                    std::span<const VkRenderingAttachmentInfo> colors, const VkRenderingAttachmentInfo* depth) {
+  VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
+  info.renderArea = {{0, 0}, {width, height}};
+  info.layerCount = 1;
+  info.colorAttachmentCount = static_cast<std::uint32_t>(colors.size());
+  info.pColorAttachments = colors.data();
+  info.pDepthAttachment = depth;
+  vkCmdBeginRendering(cmd, &info);
+}
+
+void setViewport(VkCommandBuffer cmd, std::uint32_t width, std::uint32_t height, float minDepth, float maxDepth) {
+  VkViewport viewport{0.0f, 0.0f, float(width), float(height), minDepth, maxDepth};
+  vkCmdSetViewport(cmd, 0, 1, &viewport);
+}
+
+void setScissor(VkCommandBuffer cmd, VkRect2D rect) { vkCmdSetScissor(cmd, 0, 1, &rect); }
+
+glm::vec4 projectionTerms(const glm::mat4& projection) {
+  return {projection[0][0], projection[1][1], projection[2][0], projection[2][1]};
+}
+
+// The screen rectangle a point light's sphere can touch, so the light costs only those pixels
+// (nullopt: entirely off screen or behind the camera).
+std::optional<VkRect2D> lightScissor(const PointLight& light, const glm::mat4& viewProjection, std::uint32_t width,
+                                     std::uint32_t height) {
+  glm::vec2 lo(1e30f), hi(-1e30f);
+  int behind = 0;
+  for (int corner = 0; corner < 8; ++corner) {
+    glm::vec3 offset((corner & 1) ? light.radius : -light.radius, (corner & 2) ? light.radius : -light.radius,
+                     (corner & 4) ? light.radius : -light.radius);
+    glm::vec4 clip = viewProjection * glm::vec4(light.position + offset, 1.0f);
+    if (clip.w <= 1e-4f) {
+      ++behind;
+      continue;
+    }
+    glm::vec2 ndc = glm::vec2(clip) / clip.w;
+    lo = glm::min(lo, ndc);
+    hi = glm::max(hi, ndc);
+  }
+  if (behind == 8) return std::nullopt;
+  if (behind > 0) return VkRect2D{{0, 0}, {width, height}};  // the sphere straddles the eye plane
+  lo = glm::clamp((lo * 0.5f + 0.5f) * glm::vec2(width, height), glm::vec2(0.0f), glm::vec2(width, height));
+  hi = glm::clamp((hi * 0.5f + 0.5f) * glm::vec2(width, height), glm::vec2(0.0f), glm::vec2(width, height));
+  auto x0 = std::uint32_t(std::floor(lo.x)), y0 = std::uint32_t(std::floor(lo.y));
+  auto x1 = std::uint32_t(std::ceil(hi.x)), y1 = std::uint32_t(std::ceil(hi.y));
+  if (x1 <= x0 || y1 <= y0) return std::nullopt;
+  return VkRect2D{{int32_t(x0), int32_t(y0)}, {x1 - x0, y1 - y0}};
+}
+
+struct MeshRange {
+  std::uint32_t firstIndex = 0;
+  std::uint32_t indexCount = 0;
+  std::int32_t vertexOffset = 0;
+};
+
+}  // namespace
+
+glm::mat4 vulkanPerspective(float verticalFovRadians, float aspect, float nearPlane, float farPlane) {
+  glm::mat4 projection = glm::perspectiveRH_ZO(verticalFovRadians, aspect, nearPlane, farPlane);
+  projection[1][1] = -projection[1][1];  // Vulkan's clip-space y points down
+  return projection;
+}
+
+glm::mat4 cameraView(const Camera& camera) {
+  glm::vec3 forward(-std::sin(camera.yawRadians) * std::cos(camera.pitchRadians), std::sin(camera.pitchRadians),
+                    -std::cos(camera.yawRadians) * std::cos(camera.pitchRadians));
+  return glm::lookAt(camera.position, camera.position + forward, glm::vec3(0.0f, 1.0f, 0.0f));
+}
+
+ViewMatrices centerViewMatrices(const Scene& scene, float aspect) {
+  ViewMatrices view;
+  view.worldView = cameraView(scene.camera);
+  view.worldProjection =
+      vulkanPerspective(scene.camera.verticalFovRadians, aspect, scene.camera.nearPlane, scene.camera.farPlane);
+  view.firstPersonView = glm::mat4(1.0f);
+  view.firstPersonProjection = vulkanPerspective(scene.firstPerson.verticalFovRadians, aspect,
+                                                 scene.firstPerson.nearPlane, scene.firstPerson.farPlane);
+  view.worldFromCamera = glm::inverse(view.worldView);
+  return view;
+}
+
+struct DeferredRenderer::Impl {
+  vk::Context& context;
+  std::uint32_t width;
+  std::uint32_t height;
+
+  // Render targets.
+  vk::Image depth, normalGlossiness, diffuseLight, specularLight, hdr, display, linearDepth;
+  vk::Unique<VkSampler> nearestSampler;
+
+  // Passes: layouts and pipelines.
+  vk::PipelineLayout geometryLayout, lightLayout, shadingLayout, skyLayout, tonemapLayout, linearDepthLayout;
+  vk::Unique<VkPipeline> gbufferPipeline, lightPipeline, shadingPipeline, skyPipeline, tonemapPipeline,
+      linearDepthPipeline;
+
+  // Scene data.
+  Scene scene;
+  vk::Buffer vertexBuffer, indexBuffer, objectBuffer, frameBuffer;
+  std::vector<MeshRange> meshRanges;
+  std::vector<std::uint32_t> drawOrder;  // object indices, world layer first
+
+  vk::TimestampQueries timestamps;
+
+  Impl(vk::Context& ctx, std::uint32_t w, std::uint32_t h)
+      : context(ctx), width(w), height(h), timestamps(ctx, kTimestampCount) {
+    if (w == 0 || h == 0 || w > 16384 || h > 16384)
+      throw std::invalid_argument("renderer: resolution " + std::to_string(w) + "x" + std::to_string(h) +
+                                  " is outside 1..16384");
+    createTargets();
+    createPipelines();
+    frameBuffer = vk::createBuffer(context, sizeof(gpu::FrameConstants), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
+                                   vk::MemoryLocation::HostVisible);
+  }
+
+  void createTargets() {
+    const VkImageUsageFlags attachmentSampled = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+    depth = vk::createImage(context, kDepthFormat, width, height,
+                            VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | attachmentSampled);
+    normalGlossiness = vk::createImage(context, kNormalFormat, width, height,
+                                       VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | attachmentSampled);
+    diffuseLight = vk::createImage(context, kLightFormat, width, height,
+                                   VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | attachmentSampled);
+    specularLight = vk::createImage(context, kLightFormat, width, height,
+                                    VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | attachmentSampled);
+    hdr = vk::createImage(context, kHdrFormat, width, height,
+                          VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
+    const VkImageUsageFlags computeOutput = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+    display = vk::createImage(context, kDisplayFormat, width, height, computeOutput);
+    linearDepth = vk::createImage(context, kLinearDepthFormat, width, height, computeOutput);
+
+    VkSamplerCreateInfo samplerInfo{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
+    samplerInfo.magFilter = samplerInfo.minFilter = VK_FILTER_NEAREST;
+    samplerInfo.addressModeU = samplerInfo.addressModeV = samplerInfo.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+    samplerInfo.maxLod = 0.0f;
+    VkSampler sampler = VK_NULL_HANDLE;
+    S3D_VK_CHECK(vkCreateSampler(context.device(), &samplerInfo, nullptr, &sampler));
+    nearestSampler = vk::Unique<VkSampler>(context.device(), sampler, vkDestroySampler);
+  }
+
+  void createPipelines() {
+    constexpr VkShaderStageFlags graphics = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
+    constexpr VkDescriptorType ubo = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+    constexpr VkDescriptorType ssbo = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    constexpr VkDescriptorType sampled = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+    constexpr VkDescriptorType storage = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
+    constexpr VkShaderStageFlags fragment = VK_SHADER_STAGE_FRAGMENT_BIT;
+    constexpr VkShaderStageFlags compute = VK_SHADER_STAGE_COMPUTE_BIT;
+
+    const VkDescriptorSetLayoutBinding geometryBindings[] = {binding(0, ubo, graphics), binding(1, ssbo, graphics)};
+    geometryLayout = vk::createPushDescriptorLayout(context, geometryBindings, sizeof(std::uint32_t), graphics);
+    const VkDescriptorSetLayoutBinding shadingBindings[] = {binding(0, ubo, graphics), binding(1, ssbo, graphics),
+                                                            binding(2, sampled, fragment), binding(3, sampled, fragment)};
+    shadingLayout = vk::createPushDescriptorLayout(context, shadingBindings, sizeof(std::uint32_t), graphics);
+    const VkDescriptorSetLayoutBinding lightBindings[] = {binding(0, ubo, fragment), binding(1, sampled, fragment),
+                                                          binding(2, sampled, fragment)};
+    lightLayout = vk::createPushDescriptorLayout(context, lightBindings, sizeof(gpu::LightConstants), fragment);
+    const VkDescriptorSetLayoutBinding skyBindings[] = {binding(0, ubo, fragment)};
+    skyLayout = vk::createPushDescriptorLayout(context, skyBindings, 0, 0);
+    const VkDescriptorSetLayoutBinding tonemapBindings[] = {binding(0, ubo, compute), binding(1, storage, compute),
+                                                            binding(2, storage, compute)};
+    tonemapLayout = vk::createPushDescriptorLayout(context, tonemapBindings, 0, 0);
+    const VkDescriptorSetLayoutBinding linearDepthBindings[] = {binding(0, ubo, compute), binding(1, sampled, compute),
+                                                                binding(2, storage, compute)};
+    linearDepthLayout = vk::createPushDescriptorLayout(context, linearDepthBindings, 0, 0);
+
+    vk::GraphicsPipelineDesc geometry;
+    geometry.vertexSpirv = spirv_geometry_vert;
+    geometry.vertexBindings = {{0, sizeof(Vertex), VK_VERTEX_INPUT_RATE_VERTEX}};
+    geometry.vertexAttributes = {{0, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, position)},
+                                 {1, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, normal)}};
+    geometry.depthFormat = kDepthFormat;
+    geometry.depthTest = true;
+    geometry.cullMode = VK_CULL_MODE_BACK_BIT;
+
+    vk::GraphicsPipelineDesc gbuffer = geometry;
+    gbuffer.fragmentSpirv = spirv_gbuffer_frag;
+    gbuffer.colorFormats = {kNormalFormat};
+    gbuffer.depthWrite = true;
+    gbuffer.depthCompare = VK_COMPARE_OP_LESS;
+    gbufferPipeline = vk::createGraphicsPipeline(context, geometryLayout.layout, gbuffer);
+
+    vk::GraphicsPipelineDesc shading = geometry;
+    shading.fragmentSpirv = spirv_shading_frag;
+    shading.colorFormats = {kHdrFormat};
+    shading.depthCompare = VK_COMPARE_OP_EQUAL;  // only the surface the G-buffer kept
+    shadingPipeline = vk::createGraphicsPipeline(context, shadingLayout.layout, shading);
+
+    vk::GraphicsPipelineDesc light;
+    light.vertexSpirv = spirv_fullscreen_vert;
+    light.fragmentSpirv = spirv_light_frag;
+    light.colorFormats = {kLightFormat, kLightFormat};
+    light.additiveBlend = true;
+    lightPipeline = vk::createGraphicsPipeline(context, lightLayout.layout, light);
+
+    vk::GraphicsPipelineDesc sky;
+    sky.vertexSpirv = spirv_sky_vert;
+    sky.fragmentSpirv = spirv_sky_frag;
+    sky.colorFormats = {kHdrFormat};
+    sky.depthFormat = kDepthFormat;
+    sky.depthTest = true;
+    sky.depthCompare = VK_COMPARE_OP_LESS_OR_EQUAL;  // reaches only pixels still at the cleared far plane
+    skyPipeline = vk::createGraphicsPipeline(context, skyLayout.layout, sky);
+
+    tonemapPipeline = vk::createComputePipeline(context, tonemapLayout.layout, spirv_tonemap_comp);
+    linearDepthPipeline = vk::createComputePipeline(context, linearDepthLayout.layout, spirv_linear_depth_comp);
+  }
+
+  void setScene(const Scene& newScene) {
+    std::vector<Vertex> vertices;
+    std::vector<std::uint32_t> indices;
+    meshRanges.clear();
+    for (const Mesh& mesh : newScene.meshes) {
+      meshRanges.push_back({std::uint32_t(indices.size()), std::uint32_t(mesh.indices.size()), std::int32_t(vertices.size())});
+      for (std::uint32_t index : mesh.indices)
+        if (index >= mesh.vertices.size()) throw std::invalid_argument("scene '" + newScene.name + "': mesh index out of range");
+      vertices.insert(vertices.end(), mesh.vertices.begin(), mesh.vertices.end());
+      indices.insert(indices.end(), mesh.indices.begin(), mesh.indices.end());
+    }
+    for (const Object& object : newScene.objects)
+      if (object.mesh >= newScene.meshes.size())
+        throw std::invalid_argument("scene '" + newScene.name + "': object refers to missing mesh " + std::to_string(object.mesh));
+    if (vertices.empty() || indices.empty()) throw std::invalid_argument("scene '" + newScene.name + "' has no geometry");
+    if (newScene.pointLights.size() > 256) throw std::invalid_argument("scene has more than 256 point lights");
+
+    vertexBuffer = vk::createBuffer(context, vertices.size() * sizeof(Vertex),
+                                    VK_BUFFER_USAGE_VERTEX_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                    vk::MemoryLocation::Device);
+    vk::uploadBuffer(context, vertexBuffer, std::as_bytes(std::span(vertices)));
+    indexBuffer = vk::createBuffer(context, indices.size() * sizeof(std::uint32_t),
+                                   VK_BUFFER_USAGE_INDEX_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                   vk::MemoryLocation::Device);
+    vk::uploadBuffer(context, indexBuffer, std::as_bytes(std::span(indices)));
+    objectBuffer = vk::createBuffer(context, std::max<std::size_t>(1, newScene.objects.size()) * sizeof(gpu::ObjectConstants),
+                                    VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryLocation::HostVisible);
+    drawOrder.clear();
+    for (Layer layer : {Layer::World, Layer::FirstPerson})
+      for (std::uint32_t i = 0; i < newScene.objects.size(); ++i)
+        if (newScene.objects[i].layer == layer) drawOrder.push_back(i);
+    scene = newScene;
+  }
+
+  void writeFrameConstants(const ViewMatrices& view) {
+    gpu::FrameConstants frame{};
+    gpu::LayerConstants& world = frame.layers[S3D_LAYER_WORLD];
+    world.viewProjection = view.worldProjection * view.worldView;
+    world.worldFromView = glm::inverse(view.worldView);
+    world.projection = projectionTerms(view.worldProjection);
+    gpu::LayerConstants& firstPerson = frame.layers[S3D_LAYER_FIRST_PERSON];
+    firstPerson.viewProjection = view.firstPersonProjection * view.firstPersonView;
+    firstPerson.worldFromView = view.worldFromCamera * glm::inverse(view.firstPersonView);
+    firstPerson.projection = projectionTerms(view.firstPersonProjection);
+    frame.linearDepth = gpu::makeLinearDepthParams(scene.camera.nearPlane, scene.camera.farPlane,
+                                                   scene.firstPerson.nearPlane, scene.firstPerson.farPlane,
+                                                   kFirstPersonDeviceDepthMax);
+    frame.directionToSun = glm::vec4(glm::normalize(scene.sun.directionToSun), 0.0f);
+    frame.sunColor = glm::vec4(scene.sun.color, 0.0f);
+    frame.ambientColor = glm::vec4(scene.ambientColor, 0.0f);
+    frame.skyZenith = glm::vec4(scene.sky.zenithColor, 0.0f);
+    frame.skyHorizon = glm::vec4(scene.sky.horizonColor, 0.0f);
+    frame.skyGround = glm::vec4(scene.sky.groundColor, 0.0f);
+    frame.screen = glm::vec4(float(width), float(height), 1.0f / float(width), 1.0f / float(height));
+    frame.exposure = glm::vec4(scene.exposure, 0.0f, 0.0f, 0.0f);
+    std::memcpy(frameBuffer.mapped, &frame, sizeof(frame));
+
+    auto* objects = static_cast<gpu::ObjectConstants*>(objectBuffer.mapped);
+    for (std::size_t i = 0; i < scene.objects.size(); ++i) {
+      const Object& object = scene.objects[i];
+      gpu::ObjectConstants& constants = objects[i];
+      constants = {};
+      constants.objectToLayer = object.transform;
+      constants.objectToWorld = object.layer == Layer::FirstPerson ? view.worldFromCamera * object.transform : object.transform;
+      constants.normalToWorld = glm::transpose(glm::inverse(constants.objectToWorld));
+      constants.albedo = glm::vec4(object.material.albedo, 1.0f);
+      constants.specular = glm::vec4(object.material.specularColor, object.material.glossiness);
+      constants.layer = object.layer == Layer::FirstPerson ? S3D_LAYER_FIRST_PERSON : S3D_LAYER_WORLD;
+    }
+  }
+
+  void pushGeometryDescriptors(VkCommandBuffer cmd, VkPipelineLayout layout, std::span<VkWriteDescriptorSet> extra) {
+    VkDescriptorBufferInfo frameInfo{frameBuffer.buffer, 0, VK_WHOLE_SIZE};
+    VkDescriptorBufferInfo objectInfo{objectBuffer.buffer, 0, VK_WHOLE_SIZE};
+    std::vector<VkWriteDescriptorSet> writes = {vk::uniformBufferWrite(0, &frameInfo), vk::uniformBufferWrite(1, &objectInfo)};
+    writes[1].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    writes.insert(writes.end(), extra.begin(), extra.end());
+    context.cmdPushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 0, std::uint32_t(writes.size()), writes.data());
+  }
+
+  void drawObjects(VkCommandBuffer cmd, VkPipelineLayout layout) {
+    VkDeviceSize offset = 0;
+    VkBuffer vertex = vertexBuffer.buffer;
+    vkCmdBindVertexBuffers(cmd, 0, 1, &vertex, &offset);
+    vkCmdBindIndexBuffer(cmd, indexBuffer.buffer, 0, VK_INDEX_TYPE_UINT32);
+    std::optional<Layer> currentLayer;
+    for (std::uint32_t objectIndex : drawOrder) {
+      const Object& object = scene.objects[objectIndex];
+      if (currentLayer != object.layer) {
+        // Listing 4.3's depth ranges: first-person in [0, split], the world in [split, 1].
+        if (object.layer == Layer::FirstPerson)
+          setViewport(cmd, width, height, 0.0f, kFirstPersonDeviceDepthMax);
+        else
+          setViewport(cmd, width, height, kFirstPersonDeviceDepthMax, 1.0f);
+        currentLayer = object.layer;
+      }
+      vkCmdPushConstants(cmd, layout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
+                         sizeof(std::uint32_t), &objectIndex);
+      const MeshRange& range = meshRanges[object.mesh];
+      vkCmdDrawIndexed(cmd, range.indexCount, 1, range.firstIndex, range.vertexOffset, 0);
+    }
+  }
+
+  void recordGBuffer(VkCommandBuffer cmd) {
+    vk::transition(cmd, depth, vk::kUndefined, vk::kDepthAttachment);
+    vk::transition(cmd, normalGlossiness, vk::kUndefined, vk::kColorAttachment);
+    VkRenderingAttachmentInfo color = colorAttachment(normalGlossiness, true);
+    VkRenderingAttachmentInfo depthAttachment{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+    depthAttachment.imageView = depth.view;
+    depthAttachment.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
+    depthAttachment.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+    depthAttachment.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+    depthAttachment.clearValue.depthStencil = {1.0f, 0};
+    beginRendering(cmd, width, height, std::span(&color, 1), &depthAttachment);
+    setScissor(cmd, {{0, 0}, {width, height}});
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, gbufferPipeline);
+    pushGeometryDescriptors(cmd, geometryLayout.layout, {});
+    drawObjects(cmd, geometryLayout.layout);
+    vkCmdEndRendering(cmd);
+  }
+
+  void recordLighting(VkCommandBuffer cmd, const ViewMatrices& view) {
+    vk::transition(cmd, depth, vk::kDepthAttachment, kDepthSampled);
+    vk::transition(cmd, normalGlossiness, vk::kColorAttachment, vk::kFragmentRead);
+    vk::transition(cmd, diffuseLight, vk::kUndefined, vk::kColorAttachment);
+    vk::transition(cmd, specularLight, vk::kUndefined, vk::kColorAttachment);
+    VkRenderingAttachmentInfo colors[] = {colorAttachment(diffuseLight, true), colorAttachment(specularLight, true)};
+    beginRendering(cmd, width, height, colors, nullptr);
+    setViewport(cmd, width, height, 0.0f, 1.0f);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, lightPipeline);
+    VkDescriptorBufferInfo frameInfo{frameBuffer.buffer, 0, VK_WHOLE_SIZE};
+    VkDescriptorImageInfo depthInfo{nearestSampler, depth.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+    VkDescriptorImageInfo normalInfo{nearestSampler, normalGlossiness.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+    VkWriteDescriptorSet writes[] = {vk::uniformBufferWrite(0, &frameInfo), vk::sampledImageWrite(1, &depthInfo),
+                                     vk::sampledImageWrite(2, &normalInfo)};
+    writes[1].descriptorType = writes[2].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+    context.cmdPushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, lightLayout.layout, 0, 3, writes);
+
+    gpu::LightConstants sun{};
+    sun.kind = S3D_LIGHT_AMBIENT_AND_SUN;
+    setScissor(cmd, {{0, 0}, {width, height}});
+    vkCmdPushConstants(cmd, lightLayout.layout, VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(sun), &sun);
+    vkCmdDraw(cmd, 3, 1, 0, 0);
+    const glm::mat4 viewProjection = view.worldProjection * view.worldView;
+    for (const PointLight& pointLight : scene.pointLights) {
+      std::optional<VkRect2D> rect = lightScissor(pointLight, viewProjection, width, height);
+      if (!rect) continue;  // touches no pixel
+      gpu::LightConstants constants{};
+      constants.kind = S3D_LIGHT_POINT;
+      constants.positionRadius = glm::vec4(pointLight.position, pointLight.radius);
+      constants.color = glm::vec4(pointLight.color, 0.0f);
+      setScissor(cmd, *rect);
+      vkCmdPushConstants(cmd, lightLayout.layout, VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(constants), &constants);
+      vkCmdDraw(cmd, 3, 1, 0, 0);
+    }
+    vkCmdEndRendering(cmd);
+  }
+
+  void recordShading(VkCommandBuffer cmd) {
+    vk::transition(cmd, depth, kDepthSampled, kDepthReadOnlyAttachment);
+    vk::transition(cmd, diffuseLight, vk::kColorAttachment, vk::kFragmentRead);
+    vk::transition(cmd, specularLight, vk::kColorAttachment, vk::kFragmentRead);
+    vk::transition(cmd, hdr, vk::kUndefined, vk::kColorAttachment);
+    VkRenderingAttachmentInfo color = colorAttachment(hdr, true);
+    VkRenderingAttachmentInfo depthAttachment{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+    depthAttachment.imageView = depth.view;
+    depthAttachment.imageLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL;
+    depthAttachment.loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;
+    depthAttachment.storeOp = VK_ATTACHMENT_STORE_OP_NONE;
+    beginRendering(cmd, width, height, std::span(&color, 1), &depthAttachment);
+    setScissor(cmd, {{0, 0}, {width, height}});
+
+    setViewport(cmd, width, height, 0.0f, 1.0f);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, skyPipeline);
+    VkDescriptorBufferInfo frameInfo{frameBuffer.buffer, 0, VK_WHOLE_SIZE};
+    VkWriteDescriptorSet skyWrite = vk::uniformBufferWrite(0, &frameInfo);
+    context.cmdPushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, skyLayout.layout, 0, 1, &skyWrite);
+    vkCmdDraw(cmd, 3, 1, 0, 0);
+
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, shadingPipeline);
+    VkDescriptorImageInfo diffuseInfo{nearestSampler, diffuseLight.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+    VkDescriptorImageInfo specularInfo{nearestSampler, specularLight.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+    VkWriteDescriptorSet extra[] = {vk::sampledImageWrite(2, &diffuseInfo), vk::sampledImageWrite(3, &specularInfo)};
+    extra[0].descriptorType = extra[1].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+    pushGeometryDescriptors(cmd, shadingLayout.layout, extra);
+    drawObjects(cmd, shadingLayout.layout);
+    vkCmdEndRendering(cmd);
+  }
+
+  void recordResolve(VkCommandBuffer cmd) {
+    vk::transition(cmd, hdr, vk::kColorAttachment, vk::kComputeRead);
+    vk::transition(cmd, depth, kDepthReadOnlyAttachment, kComputeSampled);
+    vk::transition(cmd, display, vk::kUndefined, vk::kComputeWrite);
+    vk::transition(cmd, linearDepth, vk::kUndefined, vk::kComputeWrite);
+    const std::uint32_t groupsX = (width + S3D_COMPUTE_GROUP_SIZE - 1) / S3D_COMPUTE_GROUP_SIZE;
+    const std::uint32_t groupsY = (height + S3D_COMPUTE_GROUP_SIZE - 1) / S3D_COMPUTE_GROUP_SIZE;
+    VkDescriptorBufferInfo frameInfo{frameBuffer.buffer, 0, VK_WHOLE_SIZE};
+
+    VkDescriptorImageInfo hdrInfo{VK_NULL_HANDLE, hdr.view, VK_IMAGE_LAYOUT_GENERAL};
+    VkDescriptorImageInfo displayInfo{VK_NULL_HANDLE, display.view, VK_IMAGE_LAYOUT_GENERAL};
+    VkWriteDescriptorSet tonemapWrites[] = {vk::uniformBufferWrite(0, &frameInfo), vk::storageImageWrite(1, &hdrInfo),
+                                            vk::storageImageWrite(2, &displayInfo)};
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, tonemapPipeline);
+    context.cmdPushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, tonemapLayout.layout, 0, 3, tonemapWrites);
+    vkCmdDispatch(cmd, groupsX, groupsY, 1);
+
+    VkDescriptorImageInfo depthInfo{nearestSampler, depth.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+    VkDescriptorImageInfo linearInfo{VK_NULL_HANDLE, linearDepth.view, VK_IMAGE_LAYOUT_GENERAL};
+    VkWriteDescriptorSet depthWrites[] = {vk::uniformBufferWrite(0, &frameInfo), vk::sampledImageWrite(1, &depthInfo),
+                                          vk::storageImageWrite(2, &linearInfo)};
+    depthWrites[1].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, linearDepthPipeline);
+    context.cmdPushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, linearDepthLayout.layout, 0, 3, depthWrites);
+    vkCmdDispatch(cmd, groupsX, groupsY, 1);
+  }
+
+  FrameTimings render(const ViewMatrices& view) {
+    if (meshRanges.empty()) throw std::logic_error("DeferredRenderer::render called before setScene");
+    writeFrameConstants(view);
+    constexpr VkPipelineStageFlags2 kAll = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+    context.submitAndWait([&](VkCommandBuffer cmd) {
+      timestamps.reset(cmd);
+      timestamps.write(cmd, kFrameBegin, kAll);
+      recordGBuffer(cmd);
+      timestamps.write(cmd, kGBufferEnd, kAll);
+      recordLighting(cmd, view);
+      timestamps.write(cmd, kLightingEnd, kAll);
+      recordShading(cmd);
+      timestamps.write(cmd, kShadingEnd, kAll);
+      recordResolve(cmd);
+      timestamps.write(cmd, kResolveEnd, kAll);
+    });
+    FrameTimings timings;
+    timings.totalGpuMs = timestamps.elapsedMs(kFrameBegin, kResolveEnd);
+    const char* names[] = {"gbuffer", "lighting", "shading", "resolve"};
+    for (std::uint32_t pass = 0; pass < 4; ++pass)
+      if (auto ms = timestamps.elapsedMs(pass, pass + 1)) timings.passes.push_back({names[pass], *ms});
+    return timings;
+  }
+};
+
+DeferredRenderer::DeferredRenderer(vk::Context& context, std::uint32_t width, std::uint32_t height)
+    : impl_(std::make_unique<Impl>(context, width, height)) {}
+DeferredRenderer::~DeferredRenderer() = default;
+
+void DeferredRenderer::setScene(const Scene& scene) { impl_->setScene(scene); }
+FrameTimings DeferredRenderer::render(const ViewMatrices& view) { return impl_->render(view); }
+std::uint32_t DeferredRenderer::width() const { return impl_->width; }
+std::uint32_t DeferredRenderer::height() const { return impl_->height; }
+const vk::Image& DeferredRenderer::displayColor() const { return impl_->display; }
+const vk::Image& DeferredRenderer::linearDepth() const { return impl_->linearDepth; }
+const vk::Image& DeferredRenderer::hdrColor() const { return impl_->hdr; }
+
+ImageRGBA8 DeferredRenderer::readDisplayColor() {
+  ImageRGBA8 image(impl_->width, impl_->height);
+  std::vector<std::byte> bytes = vk::readbackImage(impl_->context, impl_->display, vk::kComputeWrite);
+  std::memcpy(image.pixels.data(), bytes.data(), bytes.size());
+  return image;
+}
+
+DepthImage DeferredRenderer::readLinearDepth() {
+  DepthImage image(impl_->width, impl_->height);
+  std::vector<std::byte> bytes = vk::readbackImage(impl_->context, impl_->linearDepth, vk::kComputeWrite);
+  std::memcpy(image.pixels.data(), bytes.data(), bytes.size());
+  return image;
+}
+
+ImageRGBA32F DeferredRenderer::readHdrColor() {
+  // The shading target holds half floats; the exposure is applied here so center.exr matches the display.
+  std::vector<std::byte> bytes = vk::readbackImage(impl_->context, impl_->hdr, vk::kComputeRead);
+  ImageRGBA32F image(impl_->width, impl_->height);
+  std::vector<std::uint16_t> halves(bytes.size() / 2);
+  std::memcpy(halves.data(), bytes.data(), bytes.size());
+  for (std::size_t i = 0; i < halves.size(); ++i) {
+    float value = glm::unpackHalf1x16(halves[i]);
+    image.pixels[i] = (i % 4 == 3) ? value : value * impl_->scene.exposure;
+  }
+  return image;
+}
+
+}  // namespace s3d::renderer

@@ -1,0 +1,258 @@
+#include "s3d/io/image_io.h"
+
+// Third-party headers are silenced here because pkg-config exposes them with -I, not -isystem
+// (Imath's half.h trips -Wconversion); our own code below keeps the full warning set.
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wconversion"
+#pragma GCC diagnostic ignored "-Wshadow"
+#include <ImfChannelList.h>
+#include <ImfFrameBuffer.h>
+#include <ImfHeader.h>
+#include <ImfInputFile.h>
+#include <ImfOutputFile.h>
+#include <ImfStdIO.h>
+#include <half.h>
+#include <stb/stb_image.h>
+#include <stb/stb_image_write.h>  // implementation lives in Debian's libstb.so: no STB_*_IMPLEMENTATION here
+#pragma GCC diagnostic pop
+
+#include <cerrno>
+#include <climits>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <system_error>
+#include <vector>
+
+namespace s3d::io {
+namespace fs = std::filesystem;
+
+namespace {
+
+// Our own failures: already name the file, so they pass through the library-error wrappers unchanged.
+struct FileError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// Built by appending: `"'" + std::string` trips GCC 12's -Wrestrict false positive at -O3.
+std::string quoted(const fs::path& file) {
+  std::string text(1, '\'');
+  text += file.string();
+  text += '\'';
+  return text;
+}
+
+[[noreturn]] void failWrite(const char* operation, const fs::path& file, const std::string& reason) {
+  throw FileError(std::string(operation) + ": cannot write " + quoted(file) + ": " + reason);
+}
+
+[[noreturn]] void failRead(const char* operation, const fs::path& file, const std::string& reason) {
+  throw FileError(std::string(operation) + ": cannot read " + quoted(file) + ": " + reason);
+}
+
+// Write to "<file>.tmp" in the same folder, then rename over the target: rename within one file system
+// is atomic, so readers see either the old file or the complete new one, never a partial one.
+void writeFileAtomically(const char* operation, const fs::path& file, std::string_view bytes) {
+  if (file.empty() || !file.has_filename()) failWrite(operation, file, "path names no file");
+  std::error_code error;
+  const fs::path folder = file.parent_path();
+  if (!folder.empty()) {
+    fs::create_directories(folder, error);
+    if (error) failWrite(operation, file, "cannot create folder " + quoted(folder) + ": " + error.message());
+  }
+
+  fs::path temporary = file;
+  temporary += ".tmp";
+  bool temporaryCreated = false;  // never delete a file we did not create
+  try {
+    std::ofstream stream(temporary, std::ios::binary | std::ios::trunc);
+    if (!stream) {
+      const int openErrno = errno;  // capture before anything else can overwrite it
+      failWrite(operation, file, "cannot create temporary file " + quoted(temporary) + ": " + std::strerror(openErrno));
+    }
+    temporaryCreated = true;
+    stream.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+    stream.close();
+    if (stream.fail()) {
+      const int writeErrno = errno;
+      failWrite(operation, file, "writing temporary file " + quoted(temporary) + " failed: " + std::strerror(writeErrno));
+    }
+    fs::rename(temporary, file, error);
+    if (error) failWrite(operation, file, "cannot move temporary file into place: " + error.message());
+  } catch (...) {
+    if (temporaryCreated) fs::remove(temporary, error);  // best effort; the original error is what matters
+    throw;
+  }
+}
+
+std::string readFileBytes(const char* operation, const fs::path& file) {
+  std::error_code error;
+  const fs::file_status status = fs::status(file, error);
+  if (!fs::exists(status)) failRead(operation, file, "file does not exist");
+  if (!fs::is_regular_file(status)) failRead(operation, file, "not a regular file");
+  std::ifstream stream(file, std::ios::binary);
+  if (!stream) {
+    const int openErrno = errno;
+    failRead(operation, file, std::strerror(openErrno));
+  }
+  std::string bytes((std::istreambuf_iterator<char>(stream)), std::istreambuf_iterator<char>());
+  if (stream.bad()) failRead(operation, file, "I/O error while reading");
+  return bytes;
+}
+
+template <typename Image>
+void requireWritableImage(const char* operation, const Image& image, const char* what) {
+  if (image.width == 0 || image.height == 0)
+    throw std::invalid_argument(std::string(operation) + ": " + what + " image is empty");
+  if (image.pixels.size() != image.pixelCount() * Image::channels)
+    throw std::invalid_argument(std::string(operation) + ": " + what + " pixel buffer holds " +
+                                std::to_string(image.pixels.size()) + " values, expected " +
+                                std::to_string(image.pixelCount() * Image::channels));
+  // Both libraries take int sizes and int row strides.
+  if (std::uint64_t(image.width) * Image::channels * sizeof(typename decltype(image.pixels)::value_type) > INT_MAX ||
+      image.height > INT_MAX)
+    throw std::invalid_argument(std::string(operation) + ": " + what + " image is too large for the file format");
+}
+
+void appendToByteVector(void* context, void* data, int size) {
+  auto* bytes = static_cast<std::vector<char>*>(context);
+  const char* begin = static_cast<const char*>(data);
+  bytes->insert(bytes->end(), begin, begin + size);
+}
+
+constexpr int kRgbaChannels = 4;
+
+}  // namespace
+
+void writePng(const fs::path& file, const ImageRGBA8& image) {
+  requireWritableImage("writePng", image, "PNG");
+  // Encode into memory first so the file itself goes through the atomic writer.
+  std::vector<char> encoded;
+  const int rowBytes = static_cast<int>(image.width) * kRgbaChannels;
+  if (stbi_write_png_to_func(appendToByteVector, &encoded, static_cast<int>(image.width),
+                             static_cast<int>(image.height), kRgbaChannels, image.pixels.data(), rowBytes) == 0)
+    failWrite("writePng", file, "PNG encoding failed");
+  writeFileAtomically("writePng", file, std::string_view(encoded.data(), encoded.size()));
+}
+
+ImageRGBA8 readPng(const fs::path& file) {
+  const std::string bytes = readFileBytes("readPng", file);
+  if (bytes.size() > INT_MAX) failRead("readPng", file, "file is too large");
+  // stb_image accepts several formats; the signature check keeps this function honest about "PNG".
+  constexpr std::string_view kPngSignature("\x89PNG\r\n\x1a\n", 8);
+  if (std::string_view(bytes).substr(0, kPngSignature.size()) != kPngSignature)
+    failRead("readPng", file, "not a PNG file (bad signature)");
+  int width = 0;
+  int height = 0;
+  int channelsInFile = 0;
+  std::unique_ptr<stbi_uc, void (*)(void*)> decoded(
+      stbi_load_from_memory(reinterpret_cast<const stbi_uc*>(bytes.data()), static_cast<int>(bytes.size()), &width,
+                            &height, &channelsInFile, kRgbaChannels),
+      stbi_image_free);
+  if (!decoded) {
+    const char* reason = stbi_failure_reason();
+    failRead("readPng", file, std::string("corrupt PNG: ") + (reason ? reason : "unknown decoder error"));
+  }
+  ImageRGBA8 image(static_cast<std::uint32_t>(width), static_cast<std::uint32_t>(height));
+  std::memcpy(image.pixels.data(), decoded.get(), image.pixels.size());
+  return image;
+}
+
+void writeExr(const fs::path& file, const ImageRGBA32F& color, const DepthImage* linearDepth) {
+  requireWritableImage("writeExr", color, "color");
+  if (linearDepth) {
+    requireSameSize(color, *linearDepth, "writeExr (color vs linear depth)");
+    requireWritableImage("writeExr", *linearDepth, "linear depth");
+  }
+  const int width = static_cast<int>(color.width);
+  const int height = static_cast<int>(color.height);
+
+  std::string encoded;
+  try {
+    Imf::Header header(width, height);
+    Imf::FrameBuffer frameBuffer;
+    // OpenEXR converts pixel types only when reading, so colour is converted to half here
+    // (round to nearest; magnitudes beyond 65504 become infinite).
+    std::vector<Imath::half> colorHalf(color.pixels.begin(), color.pixels.end());
+    char* colorBase = reinterpret_cast<char*>(colorHalf.data());
+    const std::size_t colorXStride = sizeof(Imath::half) * kRgbaChannels;
+    const std::size_t colorYStride = colorXStride * color.width;
+    const char* const names[kRgbaChannels] = {"R", "G", "B", "A"};
+    for (int c = 0; c < kRgbaChannels; ++c) {
+      header.channels().insert(names[c], Imf::Channel(Imf::HALF));
+      frameBuffer.insert(names[c], Imf::Slice(Imf::HALF, colorBase + sizeof(Imath::half) * std::size_t(c),
+                                              colorXStride, colorYStride));
+    }
+    if (linearDepth) {
+      // FLOAT, not HALF: depth needs the precision and half tops out at 65504. The slice is only read.
+      header.channels().insert("Z", Imf::Channel(Imf::FLOAT));
+      char* depthBase = reinterpret_cast<char*>(const_cast<float*>(linearDepth->pixels.data()));
+      frameBuffer.insert("Z", Imf::Slice(Imf::FLOAT, depthBase, sizeof(float), sizeof(float) * linearDepth->width));
+    }
+    Imf::StdOSStream stream;
+    {
+      Imf::OutputFile output(stream, header);
+      output.setFrameBuffer(frameBuffer);
+      output.writePixels(height);
+    }  // the destructor writes the line-offset table, so the bytes are complete only after this scope
+    encoded = stream.str();
+  } catch (const std::exception& error) {
+    failWrite("writeExr", file, std::string("EXR encoding failed: ") + error.what());
+  }
+  writeFileAtomically("writeExr", file, encoded);
+}
+
+ExrFrame readExr(const fs::path& file) {
+  const std::string bytes = readFileBytes("readExr", file);
+  ExrFrame frame;
+  try {
+    Imf::StdISStream stream;
+    stream.str(bytes);
+    Imf::InputFile input(stream);
+    const Imf::Header& header = input.header();
+    const Imath::Box2i dataWindow = header.dataWindow();
+    const std::int64_t width = std::int64_t(dataWindow.max.x) - dataWindow.min.x + 1;
+    const std::int64_t height = std::int64_t(dataWindow.max.y) - dataWindow.min.y + 1;
+    if (width <= 0 || height <= 0 || width > INT_MAX / (kRgbaChannels * int(sizeof(float))) || height > INT_MAX)
+      failRead("readExr", file, "invalid data window");
+
+    const Imf::ChannelList& channels = header.channels();
+    for (const char* required : {"R", "G", "B"})
+      if (!channels.findChannel(required))
+        failRead("readExr", file, std::string("missing colour channel '") + required + "'");
+    for (auto channel = channels.begin(); channel != channels.end(); ++channel)
+      if (channel.channel().xSampling != 1 || channel.channel().ySampling != 1)
+        failRead("readExr", file, std::string("subsampled channel '") + channel.name() + "' is not supported");
+
+    frame.color = ImageRGBA32F(static_cast<std::uint32_t>(width), static_cast<std::uint32_t>(height));
+    Imf::FrameBuffer frameBuffer;
+    const std::size_t colorXStride = sizeof(float) * kRgbaChannels;
+    const std::size_t colorYStride = colorXStride * std::size_t(width);
+    const char* const names[kRgbaChannels] = {"R", "G", "B", "A"};
+    for (int c = 0; c < kRgbaChannels; ++c) {
+      const double fill = (c == 3) ? 1.0 : 0.0;  // no alpha channel means fully opaque
+      frameBuffer.insert(names[c], Imf::Slice::Make(Imf::FLOAT, frame.color.pixels.data() + c, dataWindow,
+                                                    colorXStride, colorYStride, 1, 1, fill));
+    }
+    frame.hasDepth = channels.findChannel("Z") != nullptr;
+    if (frame.hasDepth) {
+      frame.linearDepth = DepthImage(static_cast<std::uint32_t>(width), static_cast<std::uint32_t>(height));
+      frameBuffer.insert("Z", Imf::Slice::Make(Imf::FLOAT, frame.linearDepth.pixels.data(), dataWindow,
+                                               sizeof(float), sizeof(float) * std::size_t(width)));
+    }
+    input.setFrameBuffer(frameBuffer);
+    input.readPixels(dataWindow.min.y, dataWindow.max.y);
+  } catch (const FileError&) {
+    throw;
+  } catch (const std::exception& error) {
+    failRead("readExr", file, std::string("corrupt EXR: ") + error.what());
+  }
+  return frame;
+}
+
+void writeTextFile(const fs::path& file, std::string_view text) { writeFileAtomically("writeTextFile", file, text); }
+
+}  // namespace s3d::io

@@ -1,0 +1,26 @@
+#pragma once
+// Image-difference statistics for judging a synthesized eye view against a rendered reference.
+#include <cstdint>
+
+#include "s3d/image.h"
+
+namespace s3d::stereo {
+
+// PSNR reported for identical images: the true value is +inf, which breaks JSON/CSV reports and averages.
+constexpr double kMaxPsnrDb = 100.0;
+
+// Differences below are over R, G, B in 8-bit sRGB code levels; alpha is ignored.
+struct ErrorStats {
+  double psnrDb;             // 10*log10(255^2 / MSE), capped at kMaxPsnrDb
+  double meanAbsoluteError;  // mean |difference| in levels over R, G, B of the compared pixels
+  double shareAbove8;        // fraction of compared pixels whose largest R/G/B |difference| exceeds 8 levels
+  std::uint64_t pixelCount;  // number of pixels compared (after cropping)
+};
+
+// Compares columns [cropColumns, W - cropColumns) of all rows: view synthesis cannot know what lies
+// beyond the image edge, so the disoccluded border strips are excluded by the caller's choice of crop.
+// Throws std::invalid_argument if the sizes differ, a buffer is inconsistent, or the crop leaves no columns.
+ErrorStats compareDisplayImages(const ImageRGBA8& synthesized, const ImageRGBA8& reference,
+                                std::uint32_t cropColumns);
+
+}  // namespace s3d::stereo

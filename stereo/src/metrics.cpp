@@ -1,0 +1,67 @@
+#include "s3d/stereo/metrics.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <stdexcept>
+#include <string>
+
+namespace s3d::stereo {
+namespace {
+
+constexpr int kShareThresholdLevels = 8;  // differences up to 8 levels are hard to see in a side-by-side flip
+constexpr double kPeakLevel = 255.0;
+
+void requireConsistentBuffer(const ImageRGBA8& image, const char* which) {
+  if (image.pixels.size() != image.pixelCount() * ImageRGBA8::channels)
+    throw std::invalid_argument(std::string("compareDisplayImages: ") + which + " pixel buffer holds " +
+                                std::to_string(image.pixels.size()) + " values, expected " +
+                                std::to_string(image.pixelCount() * ImageRGBA8::channels));
+}
+
+}  // namespace
+
+ErrorStats compareDisplayImages(const ImageRGBA8& synthesized, const ImageRGBA8& reference,
+                                std::uint32_t cropColumns) {
+  requireSameSize(synthesized, reference, "compareDisplayImages");
+  requireConsistentBuffer(synthesized, "synthesized");
+  requireConsistentBuffer(reference, "reference");
+  const std::uint32_t width = synthesized.width;
+  // 64-bit so a huge crop cannot wrap around.
+  if (std::uint64_t(cropColumns) * 2 >= width || synthesized.height == 0)
+    throw std::invalid_argument("compareDisplayImages: cropping " + std::to_string(cropColumns) +
+                                " columns from each side of a " + std::to_string(width) + "x" +
+                                std::to_string(synthesized.height) + " image leaves no pixels to compare");
+
+  const std::uint32_t firstColumn = cropColumns;
+  const std::uint32_t endColumn = width - cropColumns;
+  std::uint64_t sumSquared = 0;  // exact integer sums: no drift on large images
+  std::uint64_t sumAbsolute = 0;
+  std::uint64_t pixelsAboveThreshold = 0;
+  std::uint64_t pixelCount = 0;
+  for (std::uint32_t y = 0; y < synthesized.height; ++y) {
+    for (std::uint32_t x = firstColumn; x < endColumn; ++x) {
+      const std::uint8_t* a = synthesized.at(x, y);
+      const std::uint8_t* b = reference.at(x, y);
+      int largest = 0;
+      for (int c = 0; c < 3; ++c) {
+        const int difference = std::abs(int(a[c]) - int(b[c]));
+        sumAbsolute += std::uint64_t(difference);
+        sumSquared += std::uint64_t(difference * difference);
+        largest = std::max(largest, difference);
+      }
+      if (largest > kShareThresholdLevels) ++pixelsAboveThreshold;
+      ++pixelCount;
+    }
+  }
+
+  const double samples = 3.0 * double(pixelCount);
+  const double meanSquaredError = double(sumSquared) / samples;
+  const double psnr = meanSquaredError == 0.0
+                          ? kMaxPsnrDb
+                          : std::min(kMaxPsnrDb, 10.0 * std::log10(kPeakLevel * kPeakLevel / meanSquaredError));
+  return ErrorStats{psnr, double(sumAbsolute) / samples, double(pixelsAboveThreshold) / double(pixelCount),
+                    pixelCount};
+}
+
+}  // namespace s3d::stereo

@@ -1,0 +1,90 @@
+// Error statistics between a synthesized eye view and its reference rendering.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdint>
+#include <stdexcept>
+
+#include "s3d/stereo/metrics.h"
+
+namespace s3d::stereo {
+namespace {
+
+ImageRGBA8 gradientImage(std::uint32_t width, std::uint32_t height) {
+  ImageRGBA8 image(width, height);
+  for (std::uint32_t y = 0; y < height; ++y)
+    for (std::uint32_t x = 0; x < width; ++x) {
+      std::uint8_t* p = image.at(x, y);
+      p[0] = static_cast<std::uint8_t>(40 * x);
+      p[1] = static_cast<std::uint8_t>(30 * y);
+      p[2] = 100;
+      p[3] = 255;
+    }
+  return image;
+}
+
+TEST(CompareDisplayImages, IdenticalImagesGiveCappedPsnrAndNoError) {
+  const ImageRGBA8 image = gradientImage(4, 4);
+  const ErrorStats stats = compareDisplayImages(image, image, 0);
+  EXPECT_EQ(stats.psnrDb, kMaxPsnrDb);
+  EXPECT_EQ(stats.meanAbsoluteError, 0.0);
+  EXPECT_EQ(stats.shareAbove8, 0.0);
+  EXPECT_EQ(stats.pixelCount, 16u);
+}
+
+TEST(CompareDisplayImages, SinglePixelErrorMatchesHandComputation) {
+  // 4x4 image, one red channel off by 20 levels: 48 samples.
+  // MSE = 400/48 = 8.3333; PSNR = 10*log10(65025 / 8.3333) = 10*log10(7803) = 38.9226 dB.
+  // MAE = 20/48 = 0.416667; share = 1/16 = 0.0625 (20 > 8). Tolerance 1e-4: hand values are rounded.
+  const ImageRGBA8 reference = gradientImage(4, 4);
+  ImageRGBA8 synthesized = reference;
+  synthesized.at(2, 1)[0] = static_cast<std::uint8_t>(synthesized.at(2, 1)[0] + 20);
+  const ErrorStats stats = compareDisplayImages(synthesized, reference, 0);
+  EXPECT_NEAR(stats.psnrDb, 38.9226, 1e-4);
+  EXPECT_NEAR(stats.meanAbsoluteError, 0.416667, 1e-4);
+  EXPECT_DOUBLE_EQ(stats.shareAbove8, 0.0625);
+  EXPECT_EQ(stats.pixelCount, 16u);
+}
+
+TEST(CompareDisplayImages, DifferenceOfExactlyEightLevelsIsNotCountedAbove8) {
+  const ImageRGBA8 reference = gradientImage(2, 1);
+  ImageRGBA8 synthesized = reference;
+  synthesized.at(0, 0)[2] = static_cast<std::uint8_t>(synthesized.at(0, 0)[2] + 8);
+  synthesized.at(1, 0)[2] = static_cast<std::uint8_t>(synthesized.at(1, 0)[2] + 9);
+  EXPECT_DOUBLE_EQ(compareDisplayImages(synthesized, reference, 0).shareAbove8, 0.5);
+}
+
+TEST(CompareDisplayImages, AlphaDifferencesAreIgnored) {
+  const ImageRGBA8 reference = gradientImage(3, 3);
+  ImageRGBA8 synthesized = reference;
+  synthesized.at(1, 1)[3] = 0;
+  EXPECT_EQ(compareDisplayImages(synthesized, reference, 0).psnrDb, kMaxPsnrDb);
+}
+
+TEST(CompareDisplayImages, CropExcludesEdgeColumns) {
+  // Errors only in the first and last column: cropping one column on each side hides them.
+  const ImageRGBA8 reference = gradientImage(5, 3);
+  ImageRGBA8 synthesized = reference;
+  for (std::uint32_t y = 0; y < 3; ++y) {
+    synthesized.at(0, y)[1] = 255;
+    synthesized.at(4, y)[1] = 255;
+  }
+  EXPECT_LT(compareDisplayImages(synthesized, reference, 0).psnrDb, kMaxPsnrDb);
+  const ErrorStats cropped = compareDisplayImages(synthesized, reference, 1);
+  EXPECT_EQ(cropped.psnrDb, kMaxPsnrDb);
+  EXPECT_EQ(cropped.meanAbsoluteError, 0.0);
+  EXPECT_EQ(cropped.pixelCount, 9u);  // columns 1..3 of 3 rows
+}
+
+TEST(CompareDisplayImages, CropLeavingNoColumnsThrows) {
+  const ImageRGBA8 image = gradientImage(4, 2);
+  EXPECT_THROW(compareDisplayImages(image, image, 2), std::invalid_argument);
+  EXPECT_THROW(compareDisplayImages(image, image, 0xFFFFFFFFu), std::invalid_argument);  // no wrap-around
+}
+
+TEST(CompareDisplayImages, DifferentSizesThrow) {
+  EXPECT_THROW(compareDisplayImages(gradientImage(4, 2), gradientImage(4, 3), 0), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace s3d::stereo
