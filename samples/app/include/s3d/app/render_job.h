@@ -1,0 +1,92 @@
+#pragma once
+// `s3d render` as a library: render a built-in scene's center view with the deferred renderer, synthesize
+// both eyes on the GPU with the stereo pass (Listing 4.5), render the two-pass reference eyes with
+// off-axis cameras, compare them, and write the selected outputs plus a JSON report.
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <set>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "s3d/renderer/deferred_renderer.h"
+#include "s3d/stereo/metrics.h"
+#include "s3d/stereo/output_formats.h"
+#include "s3d/stereo/stereo.h"
+#include "s3d/vk/context.h"
+
+namespace s3d::app {
+
+// Every output runRenderJob can write, by file name inside the output folder, in the order they are written:
+//   center.png            tone-mapped center view (RGBA8, sRGB-encoded)
+//   center.exr            exposed linear HDR center view (RGBA half) + linear depth as "Z" (float, +inf: sky)
+//   left.png, right.png   eyes synthesized by the stereo pass from the center view and its depth
+//   left_reference.png,   eyes rendered by the two-pass reference (off-axis eye cameras)
+//   right_reference.png
+//   anaglyph.png          red-cyan Dubois anaglyph of the synthesized eyes
+//   sbs.png, tab.png      side-by-side / top-and-bottom frames of the synthesized eyes
+//   report.json           toJson(report), always written last
+inline const std::vector<std::string> kAllOutputs = {
+    "center.png",         "center.exr",          "left.png",     "right.png", "left_reference.png",
+    "right_reference.png", "anaglyph.png",        "sbs.png",      "tab.png",   "report.json"};
+
+// Largest accepted width or height.
+inline constexpr std::uint32_t kMaxImageSize = 16384;
+
+struct RenderJobOptions {
+  std::uint32_t width = 1280;
+  std::uint32_t height = 720;
+  std::string scene = "courtyard";  // one of renderer::builtInSceneNames()
+  std::filesystem::path outputFolder = "out";
+  // Which of kAllOutputs to write. The selection is honoured exactly: report.json is written only when
+  // selected (it is by default). An empty set renders and measures without writing any file.
+  std::set<std::string> outputs{kAllOutputs.begin(), kAllOutputs.end()};
+  stereo::PackingMode sideBySide = stereo::PackingMode::Half;
+  stereo::PackingMode topBottom = stereo::PackingMode::Half;
+  stereo::StereoParameters stereo;
+};
+
+struct EyeError {
+  stereo::ErrorStats display{};  // synthesized eye vs two-pass reference, border strips of cropColumns excluded
+};
+
+struct RenderReport {
+  std::string deviceName;
+  std::string scene;
+  std::uint32_t width = 0;
+  std::uint32_t height = 0;
+  stereo::StereoParameters stereo;  // edgeCrop resolved (never < 0)
+  std::uint32_t cropColumns = 0;    // columns blacked out on each side (and excluded from the error)
+  std::optional<double> centerFrameGpuMs;   // whole deferred frame of the center view
+  std::optional<double> stereoPassGpuMs;    // the stereo compute dispatch producing both eyes
+  std::optional<double> referenceEyeGpuMs;  // whole deferred frame of the left reference eye
+  std::vector<renderer::PassTiming> centerPasses;
+  EyeError left{};
+  EyeError right{};
+  std::vector<std::string> filesWritten;  // file names relative to the output folder, in write order
+};
+
+// Throws std::invalid_argument naming the problem: zero or absurd size (> kMaxImageSize), unknown scene,
+// unknown output name, invalid stereo parameters, a crop that leaves no columns to compare, or an output
+// folder path that exists but is not a folder. Needs no Vulkan: call it before creating a context.
+void validateRenderJobOptions(const RenderJobOptions& options);
+
+// Validates the options (before creating any GPU resource or file), renders, compares, writes the selected
+// outputs into options.outputFolder (each write atomic) and returns the report.
+// Throws std::invalid_argument for bad options, std::runtime_error for write failures, vk::VulkanError.
+RenderReport runRenderJob(vk::Context& context, const RenderJobOptions& options);
+
+// The report.json document:
+// { "device", "scene", "width", "height",
+//   "stereo": {"maxSeparation", "zeroParallaxDistance", "edgeCrop", "cropColumns", "method": "seed"},
+//   "gpuTimeMs": {"centerFrame", "stereoPass", "referenceEye"},   (null when the device has no timestamps)
+//   "centerPasses": [{"name", "gpuMs"}],
+//   "ratios": {"stereoPassToReferenceEye"},                        (null when a time is missing)
+//   "error": {"left": {"psnrDb", "meanAbsoluteError", "shareAbove8", "pixelCount"}, "right": {...}},
+//   "files": [...] }
+// Every number is finite (a non-finite value would be written as null).
+nlohmann::json toJson(const RenderReport& report);
+
+}  // namespace s3d::app

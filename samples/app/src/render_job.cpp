@@ -1,0 +1,275 @@
+#include "s3d/app/render_job.h"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <stdexcept>
+#include <string>
+#include <system_error>
+#include <utility>
+
+#include "s3d/io/image_io.h"
+#include "s3d/renderer/scene.h"
+#include "s3d/stereo/stereo_pass.h"
+#include "s3d/vk/resources.h"
+#include "s3d/vk/timestamps.h"
+
+namespace s3d::app {
+namespace fs = std::filesystem;
+
+namespace {
+
+struct ValidatedJob {
+  renderer::Scene scene;
+  gpu::StereoConstants constants;
+};
+
+std::string joined(const std::vector<std::string>& names) {
+  std::string text;
+  for (const std::string& name : names) {
+    if (!text.empty()) text += ", ";
+    text += name;
+  }
+  return text;
+}
+
+void requireImageSize(std::uint32_t value, const char* name) {
+  if (value == 0 || value > kMaxImageSize)
+    throw std::invalid_argument(std::string(name) + " must be in [1, " + std::to_string(kMaxImageSize) + "] (got " +
+                                std::to_string(value) + ")");
+}
+
+// Everything runRenderJob checks before touching the GPU or the file system; returns what it built on the way.
+ValidatedJob validateJob(const RenderJobOptions& options) {
+  requireImageSize(options.width, "width");
+  requireImageSize(options.height, "height");
+  for (const std::string& name : options.outputs)
+    if (std::find(kAllOutputs.begin(), kAllOutputs.end(), name) == kAllOutputs.end())
+      throw std::invalid_argument("unknown output '" + name + "' (choices: " + joined(kAllOutputs) + ")");
+  if (options.outputFolder.empty()) throw std::invalid_argument("the output folder is empty");
+  std::error_code error;
+  const fs::file_status status = fs::status(options.outputFolder, error);
+  if (fs::exists(status) && !fs::is_directory(status))
+    throw std::invalid_argument("output folder '" + options.outputFolder.string() + "' exists and is not a folder");
+
+  stereo::validate(options.stereo);
+  ValidatedJob job{renderer::makeBuiltInScene(options.scene),  // throws naming the scene and the choices
+                   stereo::makeSeedConstants(options.stereo, options.width, options.height)};
+  if (job.constants.cropEnd <= job.constants.cropBegin)
+    throw std::invalid_argument("edgeCrop " + std::to_string(options.stereo.edgeCrop) + " blacks out all " +
+                                std::to_string(options.width) + " columns: nothing left to compare");
+  return job;
+}
+
+ImageRGBA8 toImageRGBA8(const std::vector<std::byte>& bytes, std::uint32_t width, std::uint32_t height) {
+  ImageRGBA8 image(width, height);
+  if (bytes.size() != image.pixels.size()) throw std::logic_error("stereo pass readback: unexpected byte count");
+  std::memcpy(image.pixels.data(), bytes.data(), bytes.size());
+  return image;
+}
+
+// Listing 4.5 on the GPU, straight on the renderer's outputs (no upload), timed with two timestamps.
+stereo::StereoPair runStereoPass(vk::Context& context, const renderer::DeferredRenderer& deferred,
+                                 const gpu::StereoConstants& constants, std::optional<double>& gpuMs) {
+  const vk::Image& color = deferred.displayColor();
+  const vk::Image& depth = deferred.linearDepth();
+  if (color.format != stereo::StereoPass::kColorFormat || depth.format != stereo::StereoPass::kDepthFormat)
+    throw std::logic_error("renderer outputs do not have the stereo pass's formats (RGBA8 unorm, R32 float)");
+  const std::uint32_t width = color.width;
+  const std::uint32_t height = color.height;
+
+  const stereo::StereoPass pass(context);
+  const VkImageUsageFlags usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+  vk::Image left = vk::createImage(context, stereo::StereoPass::kColorFormat, width, height, usage);
+  vk::Image right = vk::createImage(context, stereo::StereoPass::kColorFormat, width, height, usage);
+  vk::TimestampQueries timestamps(context, 2);
+  const bool timed = timestamps.supported();
+
+  // Two submissions: the first prepares the images, runs one untimed warm-up dispatch (first-use costs such
+  // as lazy shader compilation or first-touch of fresh memory are not the pass's cost; the reference eye it
+  // is compared with is a warm frame too) and writes the begin timestamp; the second runs the timed dispatch.
+  // Keeping the begin timestamp in its own submission also matters on lavapipe: after the renderer's graphics
+  // work, a begin timestamp in the dispatch's own command buffer was observed to land after the dispatch
+  // (0.06-0.2 ms reported for a 14 ms pass at 1280x720, whatever the stage). ALL_COMMANDS on both ends, as the
+  // renderer times its frames, so the ratio compares like with like.
+  context.submitAndWait([&](VkCommandBuffer cmd) {
+    // The renderer leaves its outputs in the compute-write state: make its writes visible to our reads.
+    vk::transition(cmd, color, vk::kComputeWrite, vk::kComputeRead);
+    vk::transition(cmd, depth, vk::kComputeWrite, vk::kComputeRead);
+    vk::transition(cmd, left, vk::kUndefined, vk::kComputeWrite);
+    vk::transition(cmd, right, vk::kUndefined, vk::kComputeWrite);
+    pass.record(cmd, color, depth, left, right, constants);  // warm-up
+    vk::transition(cmd, left, vk::kComputeWrite, vk::kComputeWrite);  // write-after-write barrier
+    vk::transition(cmd, right, vk::kComputeWrite, vk::kComputeWrite);
+    if (timed) {
+      timestamps.reset(cmd);
+      timestamps.write(cmd, 0, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT);
+    }
+  });
+  context.submitAndWait([&](VkCommandBuffer cmd) {
+    pass.record(cmd, color, depth, left, right, constants);
+    if (timed) timestamps.write(cmd, 1, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT);
+    // Hand the outputs back in the state the renderer's header promises (and its next frame expects).
+    vk::transition(cmd, color, vk::kComputeRead, vk::kComputeWrite);
+    vk::transition(cmd, depth, vk::kComputeRead, vk::kComputeWrite);
+  });
+  gpuMs = timed ? timestamps.elapsedMs(0, 1) : std::nullopt;
+
+  return {toImageRGBA8(vk::readbackImage(context, left, vk::kComputeWrite), width, height),
+          toImageRGBA8(vk::readbackImage(context, right, vk::kComputeWrite), width, height)};
+}
+
+// The two-pass reference's view of one eye: both layers get their own off-axis camera, because the
+// first-person layer has its own projection and so its own eye offset (e = 2 m zpp / P00).
+renderer::ViewMatrices eyeViewMatrices(const renderer::ViewMatrices& center, stereo::Eye eye,
+                                       const stereo::StereoParameters& parameters) {
+  const float m = parameters.maxSeparation;
+  const float zpp = parameters.zeroParallaxDistance;
+  const stereo::EyeCamera world = stereo::offAxisEyeCamera(center.worldView, center.worldProjection, eye, m, zpp);
+  const stereo::EyeCamera firstPerson =
+      stereo::offAxisEyeCamera(center.firstPersonView, center.firstPersonProjection, eye, m, zpp);
+  renderer::ViewMatrices view = center;  // worldFromCamera stays: lighting places first-person objects alike
+  view.worldView = world.view;
+  view.worldProjection = world.projection;
+  view.firstPersonView = firstPerson.view;
+  view.firstPersonProjection = firstPerson.projection;
+  return view;
+}
+
+// Shortest decimal that round-trips the float (0.02f is reported as 0.02, not 0.019999999552965164).
+double tidy(float value) {
+  if (!std::isfinite(value)) return double(value);
+  char text[32];
+  const std::to_chars_result result = std::to_chars(text, text + sizeof(text), value);
+  if (result.ec != std::errc()) return double(value);
+  *result.ptr = '\0';
+  return std::strtod(text, nullptr);
+}
+
+nlohmann::json finiteOrNull(double value) { return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(); }
+
+nlohmann::json optionalMs(const std::optional<double>& value) {
+  return value ? finiteOrNull(*value) : nlohmann::json();
+}
+
+nlohmann::json errorJson(const EyeError& error) {
+  return {{"psnrDb", finiteOrNull(error.display.psnrDb)},
+          {"meanAbsoluteError", finiteOrNull(error.display.meanAbsoluteError)},
+          {"shareAbove8", finiteOrNull(error.display.shareAbove8)},
+          {"pixelCount", error.display.pixelCount}};
+}
+
+}  // namespace
+
+void validateRenderJobOptions(const RenderJobOptions& options) { (void)validateJob(options); }
+
+RenderReport runRenderJob(vk::Context& context, const RenderJobOptions& options) {
+  // 1. Options: all checks happen before any GPU resource or file exists.
+  const ValidatedJob job = validateJob(options);
+  const std::uint32_t width = options.width;
+  const std::uint32_t height = options.height;
+  auto selected = [&](const std::string& name) { return options.outputs.count(name) != 0; };
+
+  RenderReport report;
+  report.deviceName = context.deviceName();
+  report.scene = options.scene;
+  report.width = width;
+  report.height = height;
+  report.stereo = options.stereo;
+  if (report.stereo.edgeCrop < 0.0f) report.stereo.edgeCrop = report.stereo.maxSeparation;
+  report.cropColumns = std::uint32_t(job.constants.cropBegin);
+
+  // 2. The center view.
+  renderer::DeferredRenderer deferred(context, width, height);
+  deferred.setScene(job.scene);
+  const renderer::ViewMatrices center = renderer::centerViewMatrices(job.scene, float(width) / float(height));
+  // The first frame on fresh pipelines includes shader compilation (lavapipe compiles at first use):
+  // render it once untimed so the center frame, the stereo pass and the reference eye are all warm.
+  (void)deferred.render(center);
+  renderer::FrameTimings centerTimings = deferred.render(center);
+  report.centerFrameGpuMs = centerTimings.totalGpuMs;
+  report.centerPasses = std::move(centerTimings.passes);
+  const ImageRGBA8 centerColor = deferred.readDisplayColor();
+  const bool wantsExr = selected("center.exr");
+  const DepthImage centerDepth = wantsExr ? deferred.readLinearDepth() : DepthImage();
+  const ImageRGBA32F centerHdr = wantsExr ? deferred.readHdrColor() : ImageRGBA32F();
+
+  // 3. Both eyes synthesized on the GPU from the renderer's own images.
+  const stereo::StereoPair synthesized = runStereoPass(context, deferred, job.constants, report.stereoPassGpuMs);
+
+  // 4. The two-pass reference: each eye rendered with its off-axis camera.
+  const renderer::FrameTimings leftTimings = deferred.render(eyeViewMatrices(center, stereo::Eye::Left, options.stereo));
+  const ImageRGBA8 leftReference = deferred.readDisplayColor();
+  (void)deferred.render(eyeViewMatrices(center, stereo::Eye::Right, options.stereo));
+  const ImageRGBA8 rightReference = deferred.readDisplayColor();
+  report.referenceEyeGpuMs = leftTimings.totalGpuMs;
+
+  // 5. Synthesized vs reference, without the border strips that view synthesis cannot know.
+  report.left.display = stereo::compareDisplayImages(synthesized.left, leftReference, report.cropColumns);
+  report.right.display = stereo::compareDisplayImages(synthesized.right, rightReference, report.cropColumns);
+
+  // 6. Outputs, each written atomically by s3d::io; report.json last so it lists everything before it.
+  const fs::path& folder = options.outputFolder;
+  auto writeOutputPng = [&](const std::string& name, const ImageRGBA8& image) {
+    if (!selected(name)) return;
+    io::writePng(folder / name, image);
+    report.filesWritten.push_back(name);
+  };
+  writeOutputPng("center.png", centerColor);
+  if (wantsExr) {
+    io::writeExr(folder / "center.exr", centerHdr, &centerDepth);
+    report.filesWritten.push_back("center.exr");
+  }
+  writeOutputPng("left.png", synthesized.left);
+  writeOutputPng("right.png", synthesized.right);
+  writeOutputPng("left_reference.png", leftReference);
+  writeOutputPng("right_reference.png", rightReference);
+  if (selected("anaglyph.png")) writeOutputPng("anaglyph.png", stereo::makeAnaglyphDubois(synthesized.left, synthesized.right));
+  if (selected("sbs.png"))
+    writeOutputPng("sbs.png", stereo::makeSideBySide(synthesized.left, synthesized.right, options.sideBySide));
+  if (selected("tab.png"))
+    writeOutputPng("tab.png", stereo::makeTopAndBottom(synthesized.left, synthesized.right, options.topBottom));
+  if (selected("report.json")) {
+    report.filesWritten.push_back("report.json");  // listed in itself: the document describes the whole output
+    try {
+      io::writeTextFile(folder / "report.json", toJson(report).dump(2) + "\n");
+    } catch (...) {
+      report.filesWritten.pop_back();
+      throw;
+    }
+  }
+  return report;
+}
+
+nlohmann::json toJson(const RenderReport& report) {
+  nlohmann::json passes = nlohmann::json::array();
+  for (const renderer::PassTiming& pass : report.centerPasses)
+    passes.push_back(nlohmann::json{{"name", pass.name}, {"gpuMs", finiteOrNull(pass.gpuMs)}});
+
+  nlohmann::json ratio;  // null unless both times exist and the reference took measurable time
+  if (report.stereoPassGpuMs && report.referenceEyeGpuMs && *report.referenceEyeGpuMs > 0.0)
+    ratio = finiteOrNull(*report.stereoPassGpuMs / *report.referenceEyeGpuMs);
+
+  return {{"device", report.deviceName},
+          {"scene", report.scene},
+          {"width", report.width},
+          {"height", report.height},
+          {"stereo",
+           {{"maxSeparation", finiteOrNull(tidy(report.stereo.maxSeparation))},
+            {"zeroParallaxDistance", finiteOrNull(tidy(report.stereo.zeroParallaxDistance))},
+            {"edgeCrop", finiteOrNull(tidy(report.stereo.edgeCrop))},
+            {"cropColumns", report.cropColumns},
+            {"method", "seed"}}},
+          {"gpuTimeMs",
+           {{"centerFrame", optionalMs(report.centerFrameGpuMs)},
+            {"stereoPass", optionalMs(report.stereoPassGpuMs)},
+            {"referenceEye", optionalMs(report.referenceEyeGpuMs)}}},
+          {"centerPasses", passes},
+          {"ratios", {{"stereoPassToReferenceEye", ratio}}},
+          {"error", {{"left", errorJson(report.left)}, {"right", errorJson(report.right)}}},
+          {"files", report.filesWritten}};
+}
+
+}  // namespace s3d::app
