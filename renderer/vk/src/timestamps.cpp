@@ -20,6 +20,17 @@ void TimestampQueries::reset(VkCommandBuffer cmd) { vkCmdResetQueryPool(cmd, poo
 
 void TimestampQueries::write(VkCommandBuffer cmd, std::uint32_t index, VkPipelineStageFlags2 stage) {
   vkCmdWriteTimestamp2(cmd, stage, pool_, index);
+  // A full barrier right after the timestamp: lavapipe bins timestamps with its deferred draw work while it
+  // runs compute dispatches at once, so without it a timestamp taken before a dispatch is resolved after it.
+  VkMemoryBarrier2 barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
+  barrier.srcStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+  barrier.srcAccessMask = VK_ACCESS_2_MEMORY_WRITE_BIT;
+  barrier.dstStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+  barrier.dstAccessMask = VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT;
+  VkDependencyInfo dependency{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+  dependency.memoryBarrierCount = 1;
+  dependency.pMemoryBarriers = &barrier;
+  vkCmdPipelineBarrier2(cmd, &dependency);
 }
 
 std::optional<double> TimestampQueries::elapsedMs(std::uint32_t begin, std::uint32_t end) const {

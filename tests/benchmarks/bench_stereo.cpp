@@ -1,0 +1,125 @@
+// GPU time (Vulkan timestamps) of the stereo pass against the center frame and one two-pass reference eye,
+// measured in one run so the ratios compare like with like. Device: S3D_BENCH_DEVICE (default auto).
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <map>
+#include <memory>
+#include <vector>
+
+#include "s3d/renderer/deferred_renderer.h"
+#include "s3d/stereo/stereo.h"
+#include "s3d/stereo/stereo_pass.h"
+#include "s3d/vk/timestamps.h"
+
+namespace {
+
+using namespace s3d;
+
+vk::Context& benchContext() {
+  static std::unique_ptr<vk::Context> context = [] {
+    vk::ContextOptions options;
+    if (const char* device = std::getenv("S3D_BENCH_DEVICE")) options.device = device;
+    return std::make_unique<vk::Context>(options);
+  }();
+  return *context;
+}
+
+// One renderer per resolution with the default scene loaded and a warm center frame on its outputs.
+struct Setup {
+  renderer::Scene scene = renderer::makeCourtyardScene();
+  renderer::DeferredRenderer deferred;
+  renderer::ViewMatrices center;
+  renderer::ViewMatrices leftEye;
+  stereo::StereoParameters parameters;
+  Setup(std::uint32_t width, std::uint32_t height) : deferred(benchContext(), width, height) {
+    deferred.setScene(scene);
+    center = renderer::centerViewMatrices(scene, float(width) / float(height));
+    leftEye = center;
+    stereo::EyeCamera world = stereo::offAxisEyeCamera(center.worldView, center.worldProjection, stereo::Eye::Left,
+                                                       parameters.maxSeparation, parameters.zeroParallaxDistance);
+    stereo::EyeCamera firstPerson =
+        stereo::offAxisEyeCamera(center.firstPersonView, center.firstPersonProjection, stereo::Eye::Left,
+                                 parameters.maxSeparation, parameters.zeroParallaxDistance);
+    leftEye.worldView = world.view;
+    leftEye.worldProjection = world.projection;
+    leftEye.firstPersonView = firstPerson.view;
+    leftEye.firstPersonProjection = firstPerson.projection;
+    deferred.render(leftEye);  // warm-up: lavapipe compiles shaders at first use
+    deferred.render(center);
+  }
+};
+
+Setup& setupFor(std::uint32_t width, std::uint32_t height) {
+  static std::map<std::pair<std::uint32_t, std::uint32_t>, std::unique_ptr<Setup>> setups;
+  auto& setup = setups[{width, height}];
+  if (!setup) setup = std::make_unique<Setup>(width, height);
+  return *setup;
+}
+
+void reportDevice(benchmark::State& state) { state.SetLabel(benchContext().deviceName()); }
+
+void CenterFrame(benchmark::State& state) {
+  Setup& setup = setupFor(std::uint32_t(state.range(0)), std::uint32_t(state.range(1)));
+  for (auto _ : state) state.SetIterationTime(setup.deferred.render(setup.center).totalGpuMs.value_or(0.0) * 1e-3);
+  reportDevice(state);
+}
+
+void ReferenceEye(benchmark::State& state) {
+  Setup& setup = setupFor(std::uint32_t(state.range(0)), std::uint32_t(state.range(1)));
+  for (auto _ : state) state.SetIterationTime(setup.deferred.render(setup.leftEye).totalGpuMs.value_or(0.0) * 1e-3);
+  setup.deferred.render(setup.center);  // leave the center view on the outputs for the stereo benchmark
+  reportDevice(state);
+}
+
+// Listing 4.5, both eyes in one dispatch, on the renderer's own center color and linear depth.
+void StereoPassSeed(benchmark::State& state) {
+  const auto width = std::uint32_t(state.range(0)), height = std::uint32_t(state.range(1));
+  Setup& setup = setupFor(width, height);
+  vk::Context& context = benchContext();
+  stereo::StereoPass pass(context);
+  const gpu::StereoConstants constants = stereo::makeSeedConstants(setup.parameters, width, height);
+  const VkImageUsageFlags usage = VK_IMAGE_USAGE_STORAGE_BIT;
+  vk::Image left = vk::createImage(context, stereo::StereoPass::kColorFormat, width, height, usage);
+  vk::Image right = vk::createImage(context, stereo::StereoPass::kColorFormat, width, height, usage);
+  const vk::Image& color = setup.deferred.displayColor();
+  const vk::Image& depth = setup.deferred.linearDepth();
+  context.submitAndWait([&](VkCommandBuffer cmd) {
+    vk::transition(cmd, color, vk::kComputeWrite, vk::kComputeRead);
+    vk::transition(cmd, depth, vk::kComputeWrite, vk::kComputeRead);
+    vk::transition(cmd, left, vk::kUndefined, vk::kComputeWrite);
+    vk::transition(cmd, right, vk::kUndefined, vk::kComputeWrite);
+    pass.record(cmd, color, depth, left, right, constants);  // warm-up
+  });
+  vk::TimestampQueries timestamps(context, 2);
+  for (auto _ : state) {
+    context.submitAndWait([&](VkCommandBuffer cmd) {
+      timestamps.reset(cmd);
+      timestamps.write(cmd, 0, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT);
+      pass.record(cmd, color, depth, left, right, constants);
+      timestamps.write(cmd, 1, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT);
+    });
+    state.SetIterationTime(timestamps.elapsedMs(0, 1).value_or(0.0) * 1e-3);
+  }
+  context.submitAndWait([&](VkCommandBuffer cmd) {  // hand the outputs back in the renderer's state
+    vk::transition(cmd, color, vk::kComputeRead, vk::kComputeWrite);
+    vk::transition(cmd, depth, vk::kComputeRead, vk::kComputeWrite);
+  });
+  const std::uint64_t bytesPerPixel = 4 + 4 + 4 + 4;  // color + depth read once (ideal caching), two eyes written
+  state.counters["pixels"] = double(width) * height;
+  state.SetBytesProcessed(std::int64_t(state.iterations() * bytesPerPixel * width * height));
+  reportDevice(state);
+}
+
+void resolutions(benchmark::internal::Benchmark* benchmark) {
+  benchmark->Args({1280, 720})->Args({1920, 1080})->UseManualTime()->Unit(benchmark::kMillisecond);
+}
+
+BENCHMARK(CenterFrame)->Apply(resolutions)->MinTime(0.2);
+BENCHMARK(ReferenceEye)->Apply(resolutions)->MinTime(0.2);
+BENCHMARK(StereoPassSeed)->Apply(resolutions)->MinTime(0.2);
+
+}  // namespace
+
+BENCHMARK_MAIN();
