@@ -161,6 +161,22 @@ TEST_F(RenderJob, ReportJsonHasEveryFieldAndOnlyFiniteNumbers) {
   EXPECT_EQ(report.at("files").get<std::vector<std::string>>(), kAllOutputs);
 }
 
+TEST_F(RenderJob, CrosshairIsPlacedByTheAimRayAndReported) {
+  // The courtyard's aim ray is open for the scene's 8 m default, or the crosshair sits before a hit.
+  const RenderReport& report = defaultRun(context()).report;
+  EXPECT_GT(report.crosshair.depth, 0.0f);
+  EXPECT_LE(report.crosshair.depth, 8.0f);
+  if (!report.crosshair.hitWorld) {
+    EXPECT_FLOAT_EQ(report.crosshair.depth, 8.0f);
+  }
+  // parallax = 0.02 * (1 - 1 / depth) * 320 px
+  EXPECT_NEAR(report.crosshair.parallaxPx, 0.02f * (1.0f - 1.0f / report.crosshair.depth) * 320.0f, 1e-3f);
+  std::ifstream stream(defaultRun(context()).folder / "report.json");
+  nlohmann::json json = nlohmann::json::parse(stream);
+  for (const char* key : {"depth", "parallaxPx"}) expectFiniteNumber(json.at("crosshair"), key, "crosshair");
+  EXPECT_TRUE(json.at("crosshair").at("hitWorld").is_boolean());
+}
+
 TEST_F(RenderJob, SynthesizedEyesAreCloseToTheTwoPassReference) {
   const RenderReport& report = defaultRun(context()).report;
   EXPECT_GE(report.left.display.psnrDb, kMinDefaultScenePsnrDb);

@@ -10,6 +10,8 @@
 #include <system_error>
 #include <utility>
 
+#include "s3d/comfort/world_queries.h"
+#include "s3d/hud/crosshair.h"
 #include "s3d/io/image_io.h"
 #include "s3d/renderer/scene.h"
 #include "s3d/stereo/stereo_pass.h"
@@ -210,27 +212,46 @@ RenderReport runRenderJob(vk::Context& context, const RenderJobOptions& options)
   report.left.display = stereo::compareDisplayImages(synthesized.left, leftReference, report.cropColumns);
   report.right.display = stereo::compareDisplayImages(synthesized.right, rightReference, report.cropColumns);
 
-  // 6. Outputs, each written atomically by s3d::io; report.json last so it lists everything before it.
+  // 6. HUD: the crosshair, placed by an Embree ray cast along the aim (seed 4.6.2), drawn after stereo
+  // synthesis into every view at the parallax of its depth. It is not part of the 3D scene, so synthesized
+  // eyes and references get the same overlay, after the comparison so it cannot flatter the error.
+  const comfort::WorldQueries world(job.scene);
+  const comfort::CrosshairPlacement placement = comfort::placeCrosshair(world, job.scene.camera, job.scene.crosshairDistance);
+  report.crosshair.depth = placement.depth;
+  report.crosshair.hitWorld = placement.hitWorld;
+  report.crosshair.parallaxPx = -hud::hudEyeOffsetPx(options.stereo, placement.depth, width, stereo::Eye::Left);
+  const hud::CrosshairStyle crosshairStyle = hud::crosshairStyleForHeight(height);
+  auto withCrosshair = [&](ImageRGBA8 image, float offsetPx) {
+    hud::drawCrosshair(image, float(width) * 0.5f - 0.5f + offsetPx, float(height) * 0.5f - 0.5f, crosshairStyle);
+    return image;
+  };
+  const float leftOffset = hud::hudEyeOffsetPx(options.stereo, placement.depth, width, stereo::Eye::Left);
+  const float rightOffset = hud::hudEyeOffsetPx(options.stereo, placement.depth, width, stereo::Eye::Right);
+  const ImageRGBA8 centerHud = withCrosshair(centerColor, 0.0f);
+  const stereo::StereoPair eyesHud{withCrosshair(synthesized.left, leftOffset), withCrosshair(synthesized.right, rightOffset)};
+  const stereo::StereoPair referenceHud{withCrosshair(leftReference, leftOffset), withCrosshair(rightReference, rightOffset)};
+
+  // 7. Outputs, each written atomically by s3d::io; report.json last so it lists everything before it.
   const fs::path& folder = options.outputFolder;
   auto writeOutputPng = [&](const std::string& name, const ImageRGBA8& image) {
     if (!selected(name)) return;
     io::writePng(folder / name, image);
     report.filesWritten.push_back(name);
   };
-  writeOutputPng("center.png", centerColor);
+  writeOutputPng("center.png", centerHud);
   if (wantsExr) {
     io::writeExr(folder / "center.exr", centerHdr, &centerDepth);
     report.filesWritten.push_back("center.exr");
   }
-  writeOutputPng("left.png", synthesized.left);
-  writeOutputPng("right.png", synthesized.right);
-  writeOutputPng("left_reference.png", leftReference);
-  writeOutputPng("right_reference.png", rightReference);
-  if (selected("anaglyph.png")) writeOutputPng("anaglyph.png", stereo::makeAnaglyphDubois(synthesized.left, synthesized.right));
+  writeOutputPng("left.png", eyesHud.left);
+  writeOutputPng("right.png", eyesHud.right);
+  writeOutputPng("left_reference.png", referenceHud.left);
+  writeOutputPng("right_reference.png", referenceHud.right);
+  if (selected("anaglyph.png")) writeOutputPng("anaglyph.png", stereo::makeAnaglyphDubois(eyesHud.left, eyesHud.right));
   if (selected("sbs.png"))
-    writeOutputPng("sbs.png", stereo::makeSideBySide(synthesized.left, synthesized.right, options.sideBySide));
+    writeOutputPng("sbs.png", stereo::makeSideBySide(eyesHud.left, eyesHud.right, options.sideBySide));
   if (selected("tab.png"))
-    writeOutputPng("tab.png", stereo::makeTopAndBottom(synthesized.left, synthesized.right, options.topBottom));
+    writeOutputPng("tab.png", stereo::makeTopAndBottom(eyesHud.left, eyesHud.right, options.topBottom));
   if (selected("report.json")) {
     report.filesWritten.push_back("report.json");  // listed in itself: the document describes the whole output
     try {
@@ -269,6 +290,10 @@ nlohmann::json toJson(const RenderReport& report) {
           {"centerPasses", passes},
           {"ratios", {{"stereoPassToReferenceEye", ratio}}},
           {"error", {{"left", errorJson(report.left)}, {"right", errorJson(report.right)}}},
+          {"crosshair",
+           {{"depth", finiteOrNull(tidy(report.crosshair.depth))},
+            {"hitWorld", report.crosshair.hitWorld},
+            {"parallaxPx", finiteOrNull(tidy(report.crosshair.parallaxPx))}}},
           {"files", report.filesWritten}};
 }
 

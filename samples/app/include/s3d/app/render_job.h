@@ -52,6 +52,12 @@ struct EyeError {
   stereo::ErrorStats display{};  // synthesized eye vs two-pass reference, border strips of cropColumns excluded
 };
 
+struct CrosshairReport {
+  float depth = 0.0f;       // linear depth the crosshair is placed at (world units)
+  bool hitWorld = false;    // the aim ray hit a surface closer than the scene's crosshair distance
+  float parallaxPx = 0.0f;  // its per-eye displacement (left eye: -parallaxPx, right eye: +parallaxPx)
+};
+
 struct RenderReport {
   std::string deviceName;
   std::string scene;
@@ -65,6 +71,7 @@ struct RenderReport {
   std::vector<renderer::PassTiming> centerPasses;
   EyeError left{};
   EyeError right{};
+  CrosshairReport crosshair;
   std::vector<std::string> filesWritten;  // file names relative to the output folder, in write order
 };
 
