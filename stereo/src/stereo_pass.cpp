@@ -44,6 +44,19 @@ void StereoPass::record(VkCommandBuffer cmd, const vk::Image& centerColor, const
   vkCmdDispatch(cmd, groupCount(constants.width), groupCount(constants.height), 1);
 }
 
+void StereoPass::recordInputBarriers(VkCommandBuffer cmd, const vk::Image& centerColor, const vk::Image& linearDepth,
+                                     const vk::Image& leftEye, const vk::Image& rightEye) {
+  vk::transition(cmd, centerColor, vk::kComputeWrite, vk::kComputeRead);
+  vk::transition(cmd, linearDepth, vk::kComputeWrite, vk::kComputeRead);
+  vk::transition(cmd, leftEye, vk::kUndefined, vk::kComputeWrite);
+  vk::transition(cmd, rightEye, vk::kUndefined, vk::kComputeWrite);
+}
+
+void StereoPass::recordInputRelease(VkCommandBuffer cmd, const vk::Image& centerColor, const vk::Image& linearDepth) {
+  vk::transition(cmd, centerColor, vk::kComputeRead, vk::kComputeWrite);
+  vk::transition(cmd, linearDepth, vk::kComputeRead, vk::kComputeWrite);
+}
+
 StereoPair synthesizeStereoOnGpu(vk::Context& context, const ImageRGBA8& center, const DepthImage& linearDepth,
                                  const gpu::StereoConstants& constants) {
   requireSameSize(center, linearDepth, "stereo pass (color vs depth)");

@@ -86,10 +86,7 @@ void StereoPassSeed(benchmark::State& state) {
   const vk::Image& color = setup.deferred.displayColor();
   const vk::Image& depth = setup.deferred.linearDepth();
   context.submitAndWait([&](VkCommandBuffer cmd) {
-    vk::transition(cmd, color, vk::kComputeWrite, vk::kComputeRead);
-    vk::transition(cmd, depth, vk::kComputeWrite, vk::kComputeRead);
-    vk::transition(cmd, left, vk::kUndefined, vk::kComputeWrite);
-    vk::transition(cmd, right, vk::kUndefined, vk::kComputeWrite);
+    stereo::StereoPass::recordInputBarriers(cmd, color, depth, left, right);
     pass.record(cmd, color, depth, left, right, constants);  // warm-up
   });
   vk::TimestampQueries timestamps(context, 2);
@@ -102,10 +99,7 @@ void StereoPassSeed(benchmark::State& state) {
     });
     state.SetIterationTime(timestamps.elapsedMs(0, 1).value_or(0.0) * 1e-3);
   }
-  context.submitAndWait([&](VkCommandBuffer cmd) {  // hand the outputs back in the renderer's state
-    vk::transition(cmd, color, vk::kComputeRead, vk::kComputeWrite);
-    vk::transition(cmd, depth, vk::kComputeRead, vk::kComputeWrite);
-  });
+  context.submitAndWait([&](VkCommandBuffer cmd) { stereo::StereoPass::recordInputRelease(cmd, color, depth); });
   const std::uint64_t bytesPerPixel = 4 + 4 + 4 + 4;  // color + depth read once (ideal caching), two eyes written
   state.counters["pixels"] = double(width) * height;
   state.SetBytesProcessed(std::int64_t(state.iterations() * bytesPerPixel * width * height));

@@ -89,34 +89,21 @@ stereo::StereoPair runStereoPass(vk::Context& context, const renderer::DeferredR
   vk::TimestampQueries timestamps(context, 2);
   const bool timed = timestamps.supported();
 
-  // Two submissions: the first prepares the images, runs one untimed warm-up dispatch (first-use costs such
-  // as lazy shader compilation or first-touch of fresh memory are not the pass's cost; the reference eye it
-  // is compared with is a warm frame too) and writes the begin timestamp; the second runs the timed dispatch.
-  // Keeping the begin timestamp in its own submission also matters on lavapipe: after the renderer's graphics
-  // work, a begin timestamp in the dispatch's own command buffer was observed to land after the dispatch
-  // (0.06-0.2 ms reported for a 14 ms pass at 1280x720, whatever the stage). ALL_COMMANDS on both ends, as the
-  // renderer times its frames, so the ratio compares like with like.
-  context.submitAndWait([&](VkCommandBuffer cmd) {
-    // The renderer leaves its outputs in the compute-write state: make its writes visible to our reads.
-    vk::transition(cmd, color, vk::kComputeWrite, vk::kComputeRead);
-    vk::transition(cmd, depth, vk::kComputeWrite, vk::kComputeRead);
-    vk::transition(cmd, left, vk::kUndefined, vk::kComputeWrite);
-    vk::transition(cmd, right, vk::kUndefined, vk::kComputeWrite);
-    pass.record(cmd, color, depth, left, right, constants);  // warm-up
-    vk::transition(cmd, left, vk::kComputeWrite, vk::kComputeWrite);  // write-after-write barrier
-    vk::transition(cmd, right, vk::kComputeWrite, vk::kComputeWrite);
-    if (timed) {
-      timestamps.reset(cmd);
-      timestamps.write(cmd, 0, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT);
-    }
-  });
-  context.submitAndWait([&](VkCommandBuffer cmd) {
-    pass.record(cmd, color, depth, left, right, constants);
-    if (timed) timestamps.write(cmd, 1, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT);
-    // Hand the outputs back in the state the renderer's header promises (and its next frame expects).
-    vk::transition(cmd, color, vk::kComputeRead, vk::kComputeWrite);
-    vk::transition(cmd, depth, vk::kComputeRead, vk::kComputeWrite);
-  });
+  // An untimed warm-up dispatch first (lavapipe compiles at first use; the reference eye it is compared
+  // with is a warm frame too), then the timed one. ALL_COMMANDS on both ends, as the renderer times frames.
+  for (bool timedRun : {false, true}) {
+    context.submitAndWait([&](VkCommandBuffer cmd) {
+      stereo::StereoPass::recordInputBarriers(cmd, color, depth, left, right);
+      if (timedRun && timed) {
+        timestamps.reset(cmd);
+        timestamps.write(cmd, 0, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT);
+      }
+      pass.record(cmd, color, depth, left, right, constants);
+      if (timedRun && timed) timestamps.write(cmd, 1, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT);
+      // Hand the inputs back in the state the renderer's header promises (and its next frame expects).
+      stereo::StereoPass::recordInputRelease(cmd, color, depth);
+    });
+  }
   gpuMs = timed ? timestamps.elapsedMs(0, 1) : std::nullopt;
 
   return {toImageRGBA8(vk::readbackImage(context, left, vk::kComputeWrite), width, height),

@@ -17,6 +17,13 @@ class StereoPass {
   void record(VkCommandBuffer cmd, const vk::Image& centerColor, const vk::Image& linearDepth,
               const vk::Image& leftEye, const vk::Image& rightEye, const gpu::StereoConstants& constants) const;
 
+  // Barriers for inputs another compute pass just wrote (vk::kComputeWrite, e.g. the renderer's resolve):
+  // before the dispatch the inputs become readable and the eyes writable; after it the inputs go back to
+  // the state their producer expects.
+  static void recordInputBarriers(VkCommandBuffer cmd, const vk::Image& centerColor, const vk::Image& linearDepth,
+                                  const vk::Image& leftEye, const vk::Image& rightEye);
+  static void recordInputRelease(VkCommandBuffer cmd, const vk::Image& centerColor, const vk::Image& linearDepth);
+
   static constexpr VkFormat kColorFormat = VK_FORMAT_R8G8B8A8_UNORM;
   static constexpr VkFormat kDepthFormat = VK_FORMAT_R32_SFLOAT;
 
