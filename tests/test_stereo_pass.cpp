@@ -134,3 +134,73 @@ TEST_F(StereoPassGpu, ZeroSeparationReproducesTheCenterViewBitForBit) {
 
 }  // namespace
 }  // namespace s3d::stereo
+
+namespace s3d::stereo {
+namespace {
+
+TEST(StereoSearch, TapsAreSpreadEvenlyOverTheSeparationInWholePixels) {
+  StereoParameters parameters;
+  parameters.method = StereoMethod::Search;
+  parameters.searchTaps = 4;
+  parameters.maxSeparation = 0.1f;  // 10 px at width 100
+  gpu::StereoConstants c = makeStereoConstants(parameters, 100, 10);
+  ASSERT_EQ(c.tapCount, 4);
+  EXPECT_EQ(c.tapOffsetPx[0], 3);  // 2.5 rounds up
+  EXPECT_EQ(c.tapOffsetPx[1], 5);
+  EXPECT_EQ(c.tapOffsetPx[2], 8);  // 7.5 rounds up
+  EXPECT_EQ(c.tapOffsetPx[3], 10);
+}
+
+TEST(StereoSearch, RepeatedOffsetsAreDroppedWhenTheSeparationIsNarrow) {
+  StereoParameters parameters;
+  parameters.method = StereoMethod::Search;
+  parameters.searchTaps = 16;
+  parameters.maxSeparation = 0.03f;  // 3 px at width 100: only offsets 0..3 exist
+  gpu::StereoConstants c = makeStereoConstants(parameters, 100, 10);
+  EXPECT_LE(c.tapCount, 4);
+  for (int i = 1; i < c.tapCount; ++i) EXPECT_LT(c.tapOffsetPx[i - 1], c.tapOffsetPx[i]);
+}
+
+TEST(StereoSearch, AThinOccluderBetweenTheSeedsTapsIsFoundBySearch) {
+  // A 1 px occluder at offset 6 of a 10 px separation: the seed's taps (5, 7, 10) step over it.
+  DepthImage depth(40, 1, INFINITY);
+  *depth.at(26, 0) = 1.0f;
+  ImageRGBA8 center(40, 1);
+  for (std::uint32_t x = 0; x < 40; ++x) center.at(x, 0)[0] = std::uint8_t(5 * x);
+  StereoParameters parameters{0.25f, 1.0f, 0.0f};  // 10 px at width 40
+  StereoParameters search = parameters;
+  search.method = StereoMethod::Search;
+  search.searchTaps = 10;
+  StereoPair seed = synthesizeStereoReference(center, depth, makeStereoConstants(parameters, 40, 1));
+  StereoPair found = synthesizeStereoReference(center, depth, makeStereoConstants(search, 40, 1));
+  EXPECT_EQ(seed.left.at(20, 0)[0], center.at(30, 0)[0]);   // seed: sky parallax, samples across the occluder
+  EXPECT_EQ(found.left.at(20, 0)[0], center.at(20, 0)[0]);  // search: the occluder's zero parallax
+}
+
+TEST(StereoSearch, UnknownMethodAndTapCountsAreRejected) {
+  EXPECT_THROW(parseStereoMethod("magic"), std::invalid_argument);
+  StereoParameters parameters;
+  parameters.method = StereoMethod::Search;
+  parameters.searchTaps = 0;
+  EXPECT_THROW(validate(parameters), std::invalid_argument);
+  parameters.searchTaps = S3D_STEREO_MAX_TAPS + 1;
+  EXPECT_THROW(validate(parameters), std::invalid_argument);
+}
+
+class StereoSearchGpu : public test::VulkanTest {};
+
+TEST_F(StereoSearchGpu, MatchesTheCppReferenceWithinOneLevel) {
+  // Same shader as the seed with other taps; same tolerance and reason.
+  SyntheticView view = makeSyntheticView(96, 24, 11);
+  StereoParameters parameters{0.06f, 2.0f, -1.0f};
+  parameters.method = StereoMethod::Search;
+  parameters.searchTaps = S3D_STEREO_MAX_TAPS;
+  gpu::StereoConstants c = makeStereoConstants(parameters, 96, 24);
+  StereoPair expected = synthesizeStereoReference(view.color, view.depth, c);
+  StereoPair actual = synthesizeStereoOnGpu(context(), view.color, view.depth, c);
+  EXPECT_LE(largestChannelDifference(actual.left, expected.left), 1);
+  EXPECT_LE(largestChannelDifference(actual.right, expected.right), 1);
+}
+
+}  // namespace
+}  // namespace s3d::stereo

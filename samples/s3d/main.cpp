@@ -176,6 +176,7 @@ int main(int argc, char** argv) {
   std::vector<std::string> outputs(s3d::app::kAllOutputs);
   std::string sideBySide = "half";
   std::string topBottom = "half";
+  std::string stereoMethod = "seed";
   bool renderListDevices = false;
 
   CLI::App* render = app.add_subcommand(
@@ -233,6 +234,12 @@ int main(int argc, char** argv) {
                    "Fraction of the width blacked out on each side of both eyes (and left out of the comparison); "
                    "default: = --max-separation")
       ->check(floatRange(0.0, double(s3d::stereo::kMaxSeparationLimit), false, "a fraction of the screen width"));
+  render->add_option("--method", stereoMethod, "Stereo method: seed (Listing 4.5, taps at 0.5/0.66/1.0 of the separation) or search (--taps taps spread over the separation)")
+      ->check(CLI::IsMember({"seed", "search"}))
+      ->capture_default_str();
+  render->add_option("--taps", options.stereo.searchTaps, "Depth-search taps of --method search")
+      ->check(CLI::Range(1, S3D_STEREO_MAX_TAPS))
+      ->capture_default_str();
   render
       ->add_option("--device", contextOptions.device,
                    "Vulkan device: auto (a GPU if present, else the CPU device), cpu, gpu, or an index from "
@@ -273,6 +280,7 @@ int main(int argc, char** argv) {
     options.outputs = std::set<std::string>(outputs.begin(), outputs.end());
     options.sideBySide = s3d::stereo::parsePackingMode(sideBySide);
     options.topBottom = s3d::stereo::parsePackingMode(topBottom);
+    options.stereo.method = s3d::stereo::parseStereoMethod(stereoMethod);
     return runRender(options, contextOptions);
   } catch (const std::exception& error) {
     return fail(error.what());

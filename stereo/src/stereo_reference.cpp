@@ -53,17 +53,32 @@ void validate(const StereoParameters& p) {
                                 std::to_string(kMaxSeparationLimit) + "] (a fraction of the screen width)");
   if (p.zeroParallaxDistance <= 0.0f)
     throw std::invalid_argument("zeroParallaxDistance must be positive (got " + std::to_string(p.zeroParallaxDistance) + ")");
+  if (p.method == StereoMethod::Search && (p.searchTaps < 1 || p.searchTaps > S3D_STEREO_MAX_TAPS))
+    throw std::invalid_argument("searchTaps " + std::to_string(p.searchTaps) + " is outside [1, " +
+                                std::to_string(S3D_STEREO_MAX_TAPS) + "]");
   if (p.edgeCrop > kMaxSeparationLimit)
     throw std::invalid_argument("edgeCrop " + std::to_string(p.edgeCrop) + " is above " + std::to_string(kMaxSeparationLimit));
 }
 
-gpu::StereoConstants makeSeedConstants(const StereoParameters& p, std::uint32_t width, std::uint32_t height) {
+const char* methodName(StereoMethod method) { return method == StereoMethod::Seed ? "seed" : "search"; }
+
+StereoMethod parseStereoMethod(const std::string& name) {
+  if (name == "seed") return StereoMethod::Seed;
+  if (name == "search") return StereoMethod::Search;
+  throw std::invalid_argument("unknown stereo method '" + name + "' (expected seed or search)");
+}
+
+namespace {
+
+int nearestTexelOffset(float tapFraction, float maxSeparation, std::uint32_t width) {
+  return int(std::floor(0.5f + tapFraction * maxSeparation * float(width)));
+}
+
+// Everything but the taps.
+gpu::StereoConstants makeConstantsWithoutTaps(const StereoParameters& p, std::uint32_t width, std::uint32_t height) {
   validate(p);
   if (width == 0 || height == 0) throw std::invalid_argument("stereo pass: image has zero size");
   gpu::StereoConstants c{};
-  c.tapCount = 3;
-  for (int i = 0; i < c.tapCount; ++i)
-    c.tapOffsetPx[i] = int(std::floor(0.5f + kSeedTaps[i] * p.maxSeparation * float(width)));  // nearest texel
   c.maxSeparation = p.maxSeparation;
   c.zeroParallaxDistance = p.zeroParallaxDistance;
   float crop = p.edgeCrop < 0.0f ? p.maxSeparation : p.edgeCrop;
@@ -72,6 +87,26 @@ gpu::StereoConstants makeSeedConstants(const StereoParameters& p, std::uint32_t 
   c.cropEnd = int(width) - cropColumns;
   c.width = int(width);
   c.height = int(height);
+  return c;
+}
+
+}  // namespace
+
+gpu::StereoConstants makeSeedConstants(const StereoParameters& p, std::uint32_t width, std::uint32_t height) {
+  gpu::StereoConstants c = makeConstantsWithoutTaps(p, width, height);
+  c.tapCount = 3;
+  for (int i = 0; i < c.tapCount; ++i) c.tapOffsetPx[i] = nearestTexelOffset(kSeedTaps[i], p.maxSeparation, width);
+  return c;
+}
+
+gpu::StereoConstants makeStereoConstants(const StereoParameters& p, std::uint32_t width, std::uint32_t height) {
+  if (p.method == StereoMethod::Seed) return makeSeedConstants(p, width, height);
+  gpu::StereoConstants c = makeConstantsWithoutTaps(p, width, height);
+  // Evenly spread over (0, maxSeparation], rounded to whole pixels; repeated offsets are dropped.
+  for (int i = 1; i <= p.searchTaps; ++i) {
+    int offset = nearestTexelOffset(float(i) / float(p.searchTaps), p.maxSeparation, width);
+    if (c.tapCount == 0 || offset != c.tapOffsetPx[c.tapCount - 1]) c.tapOffsetPx[c.tapCount++] = offset;
+  }
   return c;
 }
 

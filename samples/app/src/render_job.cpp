@@ -58,7 +58,7 @@ ValidatedJob validateJob(const RenderJobOptions& options) {
 
   stereo::validate(options.stereo);
   ValidatedJob job{renderer::makeBuiltInScene(options.scene),  // throws naming the scene and the choices
-                   stereo::makeSeedConstants(options.stereo, options.width, options.height)};
+                   stereo::makeStereoConstants(options.stereo, options.width, options.height)};
   if (job.constants.cropEnd <= job.constants.cropBegin)
     throw std::invalid_argument("edgeCrop " + std::to_string(options.stereo.edgeCrop) + " blacks out all " +
                                 std::to_string(options.width) + " columns: nothing left to compare");
@@ -269,7 +269,9 @@ nlohmann::json toJson(const RenderReport& report) {
             {"zeroParallaxDistance", finiteOrNull(tidy(report.stereo.zeroParallaxDistance))},
             {"edgeCrop", finiteOrNull(tidy(report.stereo.edgeCrop))},
             {"cropColumns", report.cropColumns},
-            {"method", "seed"}}},
+            {"method", stereo::methodName(report.stereo.method)},
+            {"searchTaps", report.stereo.method == stereo::StereoMethod::Search ? nlohmann::json(report.stereo.searchTaps)
+                                                                                 : nlohmann::json()}}},
           {"gpuTimeMs",
            {{"centerFrame", optionalMs(report.centerFrameGpuMs)},
             {"stereoPass", optionalMs(report.stereoPassGpuMs)},

@@ -2,6 +2,7 @@
 // The stereo core: parameters, the C++ reference of the stereo pass, and the off-axis eye cameras of the
 // two-pass reference. Depends on GLM (and, for the GPU pass in stereo_pass.h, on Vulkan) only.
 #include <cstdint>
+#include <string>
 
 #include <glm/glm.hpp>
 
@@ -10,10 +11,21 @@
 
 namespace s3d::stereo {
 
+// Min-depth search patterns of the gather pass (one shader, different taps).
+enum class StereoMethod {
+  Seed,    // Listing 4.5 exactly: taps at 0.5, 0.66 and 1.0 of maxSeparation
+  Search,  // searchTaps taps spread evenly over (0, maxSeparation]: no thin occluder falls between taps
+};
+
+const char* methodName(StereoMethod method);
+StereoMethod parseStereoMethod(const std::string& name);  // throws std::invalid_argument listing the choices
+
 struct StereoParameters {
   float maxSeparation = 0.02f;        // per-eye displacement at infinity, fraction of the screen width
   float zeroParallaxDistance = 1.0f;  // world units: depth that stays on the screen plane
   float edgeCrop = -1.0f;             // fraction of the width blacked out per side; < 0 means = maxSeparation
+  StereoMethod method = StereoMethod::Seed;
+  int searchTaps = 8;  // StereoMethod::Search only, 1..S3D_STEREO_MAX_TAPS
 };
 
 // Largest accepted maxSeparation / edgeCrop: beyond a quarter of the screen the eyes cannot fuse anything.
@@ -25,7 +37,9 @@ void validate(const StereoParameters& parameters);
 // Listing 4.5's depth-search taps, as fractions of maxSeparation.
 inline constexpr float kSeedTaps[3] = {0.5f, 0.66f, 1.0f};
 
-// Push constants for Listing 4.5 at the given image size (taps rounded to whole pixels).
+// Push constants for the parameters' method at the given image size (taps rounded to whole pixels).
+gpu::StereoConstants makeStereoConstants(const StereoParameters& parameters, std::uint32_t width, std::uint32_t height);
+// Listing 4.5's constants whatever parameters.method says.
 gpu::StereoConstants makeSeedConstants(const StereoParameters& parameters, std::uint32_t width, std::uint32_t height);
 
 struct StereoPair {

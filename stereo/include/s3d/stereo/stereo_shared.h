@@ -6,7 +6,7 @@
 
 S3D_GPU_BEGIN
 
-#define S3D_STEREO_MAX_TAPS 8
+#define S3D_STEREO_MAX_TAPS 16  // keeps the push constants within the guaranteed 128 bytes
 #define S3D_STEREO_GROUP_SIZE 8
 
 // Push constants of the stereo pass; scalars only, so the std430 and C++ layouts agree.

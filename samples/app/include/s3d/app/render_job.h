@@ -87,7 +87,7 @@ RenderReport runRenderJob(vk::Context& context, const RenderJobOptions& options)
 
 // The report.json document:
 // { "device", "scene", "width", "height",
-//   "stereo": {"maxSeparation", "zeroParallaxDistance", "edgeCrop", "cropColumns", "method": "seed"},
+//   "stereo": {"maxSeparation", "zeroParallaxDistance", "edgeCrop", "cropColumns", "method": "seed"|"search", "searchTaps" (search only)},
 //   "gpuTimeMs": {"centerFrame", "stereoPass", "referenceEye"},   (null when the device has no timestamps)
 //   "centerPasses": [{"name", "gpuMs"}],
 //   "ratios": {"stereoPassToReferenceEye"},                        (null when a time is missing)
