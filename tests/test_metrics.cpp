@@ -88,3 +88,43 @@ TEST(CompareDisplayImages, DifferentSizesThrow) {
 
 }  // namespace
 }  // namespace s3d::stereo
+
+namespace s3d::stereo {
+namespace {
+
+TEST(HaloMask, MarksColumnsWithinTheRadiusOfADepthEdge) {
+  DepthImage depth(20, 1, 10.0f);
+  for (std::uint32_t x = 10; x < 20; ++x) *depth.at(x, 0) = 2.0f;  // edge between columns 9 and 10
+  std::vector<std::uint8_t> mask = haloMask(depth, 3);
+  for (std::uint32_t x = 0; x < 20; ++x) EXPECT_EQ(mask[x], (x >= 7 && x < 13) ? 1 : 0) << x;
+}
+
+TEST(HaloMask, SkyAgainstASurfaceIsAnEdgeAndSkyAgainstSkyIsNot) {
+  DepthImage depth(10, 1, INFINITY);
+  *depth.at(9, 0) = 5.0f;
+  std::vector<std::uint8_t> mask = haloMask(depth, 1);
+  EXPECT_EQ(mask[0], 0);
+  EXPECT_EQ(mask[8], 1);
+  EXPECT_EQ(mask[9], 1);
+}
+
+TEST(RegionErrors, SplitTheErrorBetweenHaloAndRest) {
+  ImageRGBA8 reference(4, 1, 100), synthesized(4, 1, 100);
+  synthesized.at(1, 0)[0] = 120;  // one error, inside the halo
+  std::vector<std::uint8_t> halo = {0, 1, 1, 0};
+  RegionErrors errors = compareByRegion(synthesized, reference, 0, halo);
+  EXPECT_EQ(errors.halo.pixelCount, 2u);
+  EXPECT_EQ(errors.rest.pixelCount, 2u);
+  EXPECT_DOUBLE_EQ(errors.rest.psnrDb, kMaxPsnrDb);
+  EXPECT_LT(errors.halo.psnrDb, errors.all.psnrDb);  // the same error over fewer pixels
+}
+
+TEST(RegionErrors, AnEmptyRegionReportsNoPixelsAndNoError) {
+  ImageRGBA8 image(4, 1, 100);
+  RegionErrors errors = compareByRegion(image, image, 0, std::vector<std::uint8_t>(4, 0));
+  EXPECT_EQ(errors.halo.pixelCount, 0u);
+  EXPECT_DOUBLE_EQ(errors.halo.meanAbsoluteError, 0.0);
+}
+
+}  // namespace
+}  // namespace s3d::stereo

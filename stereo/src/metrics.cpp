@@ -21,11 +21,17 @@ void requireConsistentBuffer(const ImageRGBA8& image, const char* which) {
 
 }  // namespace
 
-ErrorStats compareDisplayImages(const ImageRGBA8& synthesized, const ImageRGBA8& reference,
-                                std::uint32_t cropColumns) {
+namespace {
+
+// Statistics over the cropped columns, restricted to the pixels whose mask value equals `wanted` (no mask:
+// every pixel). An empty selection reports 0 pixels, no error and kMaxPsnrDb.
+ErrorStats compareSelected(const ImageRGBA8& synthesized, const ImageRGBA8& reference, std::uint32_t cropColumns,
+                           const std::vector<std::uint8_t>* mask, std::uint8_t wanted) {
   requireSameSize(synthesized, reference, "compareDisplayImages");
   requireConsistentBuffer(synthesized, "synthesized");
   requireConsistentBuffer(reference, "reference");
+  if (mask && mask->size() != synthesized.pixelCount())
+    throw std::invalid_argument("compareDisplayImages: region mask size does not match the images");
   const std::uint32_t width = synthesized.width;
   // 64-bit so a huge crop cannot wrap around.
   if (std::uint64_t(cropColumns) * 2 >= width || synthesized.height == 0)
@@ -41,6 +47,7 @@ ErrorStats compareDisplayImages(const ImageRGBA8& synthesized, const ImageRGBA8&
   std::uint64_t pixelCount = 0;
   for (std::uint32_t y = 0; y < synthesized.height; ++y) {
     for (std::uint32_t x = firstColumn; x < endColumn; ++x) {
+      if (mask && (*mask)[std::size_t(y) * width + x] != wanted) continue;
       const std::uint8_t* a = synthesized.at(x, y);
       const std::uint8_t* b = reference.at(x, y);
       int largest = 0;
@@ -54,6 +61,7 @@ ErrorStats compareDisplayImages(const ImageRGBA8& synthesized, const ImageRGBA8&
       ++pixelCount;
     }
   }
+  if (pixelCount == 0) return ErrorStats{kMaxPsnrDb, 0.0, 0.0, 0};
 
   const double samples = 3.0 * double(pixelCount);
   const double meanSquaredError = double(sumSquared) / samples;
@@ -62,6 +70,42 @@ ErrorStats compareDisplayImages(const ImageRGBA8& synthesized, const ImageRGBA8&
                           : std::min(kMaxPsnrDb, 10.0 * std::log10(kPeakLevel * kPeakLevel / meanSquaredError));
   return ErrorStats{psnr, double(sumAbsolute) / samples, double(pixelsAboveThreshold) / double(pixelCount),
                     pixelCount};
+}
+
+bool isDepthEdge(float a, float b) {
+  if (std::isinf(a) != std::isinf(b)) return true;  // surface against sky
+  if (std::isinf(a)) return false;
+  return std::abs(a - b) > kDepthEdgeRelativeJump * std::min(a, b);
+}
+
+}  // namespace
+
+ErrorStats compareDisplayImages(const ImageRGBA8& synthesized, const ImageRGBA8& reference,
+                                std::uint32_t cropColumns) {
+  return compareSelected(synthesized, reference, cropColumns, nullptr, 0);
+}
+
+std::vector<std::uint8_t> haloMask(const DepthImage& centerDepth, std::uint32_t radiusPx) {
+  const std::uint32_t width = centerDepth.width;
+  std::vector<std::uint8_t> mask(centerDepth.pixelCount(), 0);
+  for (std::uint32_t y = 0; y < centerDepth.height; ++y) {
+    for (std::uint32_t x = 0; x + 1 < width; ++x) {
+      if (!isDepthEdge(*centerDepth.at(x, y), *centerDepth.at(x + 1, y))) continue;
+      // Mark every column within radiusPx of the edge between x and x + 1.
+      const std::uint32_t begin = x + 1 > radiusPx ? x + 1 - radiusPx : 0;
+      const std::uint32_t end = std::min(width, x + 1 + radiusPx);
+      std::fill(mask.begin() + std::ptrdiff_t(std::size_t(y) * width + begin),
+                mask.begin() + std::ptrdiff_t(std::size_t(y) * width + end), std::uint8_t(1));
+    }
+  }
+  return mask;
+}
+
+RegionErrors compareByRegion(const ImageRGBA8& synthesized, const ImageRGBA8& reference, std::uint32_t cropColumns,
+                             const std::vector<std::uint8_t>& halo) {
+  return {compareSelected(synthesized, reference, cropColumns, nullptr, 0),
+          compareSelected(synthesized, reference, cropColumns, &halo, 1),
+          compareSelected(synthesized, reference, cropColumns, &halo, 0)};
 }
 
 }  // namespace s3d::stereo

@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <string>
 #include <system_error>
+#include <tuple>
 #include <utility>
 
 #include "s3d/comfort/world_queries.h"
@@ -143,11 +144,19 @@ nlohmann::json optionalMs(const std::optional<double>& value) {
   return value ? finiteOrNull(*value) : nlohmann::json();
 }
 
+nlohmann::json statsJson(const stereo::ErrorStats& stats) {
+  return {{"psnrDb", finiteOrNull(stats.psnrDb)},
+          {"meanAbsoluteError", finiteOrNull(stats.meanAbsoluteError)},
+          {"shareAbove8", finiteOrNull(stats.shareAbove8)},
+          {"pixelCount", stats.pixelCount}};
+}
+
+// The whole cropped area at the top level, the regions below it.
 nlohmann::json errorJson(const EyeError& error) {
-  return {{"psnrDb", finiteOrNull(error.display.psnrDb)},
-          {"meanAbsoluteError", finiteOrNull(error.display.meanAbsoluteError)},
-          {"shareAbove8", finiteOrNull(error.display.shareAbove8)},
-          {"pixelCount", error.display.pixelCount}};
+  nlohmann::json json = statsJson(error.display);
+  json["halo"] = statsJson(error.halo);
+  json["rest"] = statsJson(error.rest);
+  return json;
 }
 
 }  // namespace
@@ -182,7 +191,7 @@ RenderReport runRenderJob(vk::Context& context, const RenderJobOptions& options)
   report.centerPasses = std::move(centerTimings.passes);
   const ImageRGBA8 centerColor = deferred.readDisplayColor();
   const bool wantsExr = selected("center.exr");
-  const DepthImage centerDepth = wantsExr ? deferred.readLinearDepth() : DepthImage();
+  const DepthImage centerDepth = deferred.readLinearDepth();  // for center.exr and the halo region
   const ImageRGBA32F centerHdr = wantsExr ? deferred.readHdrColor() : ImageRGBA32F();
 
   // 3. Both eyes synthesized on the GPU from the renderer's own images.
@@ -196,8 +205,13 @@ RenderReport runRenderJob(vk::Context& context, const RenderJobOptions& options)
   report.referenceEyeGpuMs = leftTimings.totalGpuMs;
 
   // 5. Synthesized vs reference, without the border strips that view synthesis cannot know.
-  report.left.display = stereo::compareDisplayImages(synthesized.left, leftReference, report.cropColumns);
-  report.right.display = stereo::compareDisplayImages(synthesized.right, rightReference, report.cropColumns);
+  const std::vector<std::uint8_t> halo =
+      stereo::haloMask(centerDepth, std::uint32_t(std::ceil(options.stereo.maxSeparation * float(width))));
+  for (auto [eyeError, eye, reference] : {std::tuple{&report.left, &synthesized.left, &leftReference},
+                                          std::tuple{&report.right, &synthesized.right, &rightReference}}) {
+    const stereo::RegionErrors regions = stereo::compareByRegion(*eye, *reference, report.cropColumns, halo);
+    *eyeError = {regions.all, regions.halo, regions.rest};
+  }
 
   // 6. HUD: the crosshair, placed by an Embree ray cast along the aim (seed 4.6.2), drawn after stereo
   // synthesis into every view at the parallax of its depth. It is not part of the 3D scene, so synthesized

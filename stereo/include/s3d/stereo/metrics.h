@@ -1,6 +1,7 @@
 #pragma once
 // Image-difference statistics for judging a synthesized eye view against a rendered reference.
 #include <cstdint>
+#include <vector>
 
 #include "s3d/image.h"
 
@@ -22,5 +23,21 @@ struct ErrorStats {
 // Throws std::invalid_argument if the sizes differ, a buffer is inconsistent, or the crop leaves no columns.
 ErrorStats compareDisplayImages(const ImageRGBA8& synthesized, const ImageRGBA8& reference,
                                 std::uint32_t cropColumns);
+
+// Neighbouring depths differing by more than this fraction of the nearer one form a depth edge.
+constexpr float kDepthEdgeRelativeJump = 0.1f;
+
+// Halo region (issue #4): 1 for pixels within radiusPx columns of a horizontal depth edge of the center view
+// (surface against sky counts), where the seed clones background next to near objects. Use
+// radiusPx = maxSeparation * width.
+std::vector<std::uint8_t> haloMask(const DepthImage& centerDepth, std::uint32_t radiusPx);
+
+struct RegionErrors {
+  ErrorStats all;
+  ErrorStats halo;  // pixels of the halo mask
+  ErrorStats rest;  // the others
+};
+RegionErrors compareByRegion(const ImageRGBA8& synthesized, const ImageRGBA8& reference, std::uint32_t cropColumns,
+                             const std::vector<std::uint8_t>& halo);
 
 }  // namespace s3d::stereo

@@ -50,6 +50,8 @@ struct RenderJobOptions {
 
 struct EyeError {
   stereo::ErrorStats display{};  // synthesized eye vs two-pass reference, border strips of cropColumns excluded
+  stereo::ErrorStats halo{};     // the same within maxSeparation of a center-view depth edge (stereo::haloMask)
+  stereo::ErrorStats rest{};     // and everywhere else
 };
 
 struct CrosshairReport {
