@@ -73,13 +73,19 @@ void ReferenceEye(benchmark::State& state) {
   reportDevice(state);
 }
 
-// Listing 4.5, both eyes in one dispatch, on the renderer's own center color and linear depth.
-void StereoPassSeed(benchmark::State& state) {
+// Both eyes in one dispatch on the renderer's own center color and linear depth. Third argument: the
+// search method's tap count, 0 for the seed (Listing 4.5).
+void StereoPass(benchmark::State& state) {
   const auto width = std::uint32_t(state.range(0)), height = std::uint32_t(state.range(1));
   Setup& setup = setupFor(width, height);
   vk::Context& context = benchContext();
   stereo::StereoPass pass(context);
-  const gpu::StereoConstants constants = stereo::makeSeedConstants(setup.parameters, width, height);
+  stereo::StereoParameters parameters = setup.parameters;
+  if (state.range(2) > 0) {
+    parameters.method = stereo::StereoMethod::Search;
+    parameters.searchTaps = int(state.range(2));
+  }
+  const gpu::StereoConstants constants = stereo::makeStereoConstants(parameters, width, height);
   const VkImageUsageFlags usage = VK_IMAGE_USAGE_STORAGE_BIT;
   vk::Image left = vk::createImage(context, stereo::StereoPass::kColorFormat, width, height, usage);
   vk::Image right = vk::createImage(context, stereo::StereoPass::kColorFormat, width, height, usage);
@@ -110,9 +116,14 @@ void resolutions(benchmark::internal::Benchmark* benchmark) {
   benchmark->Args({1280, 720})->Args({1920, 1080})->UseManualTime()->Unit(benchmark::kMillisecond);
 }
 
+void methods(benchmark::internal::Benchmark* benchmark) {
+  for (std::int64_t taps : {0, 8, 16}) benchmark->Args({1280, 720, taps})->Args({1920, 1080, taps});
+  benchmark->ArgNames({"width", "height", "searchTaps"})->UseManualTime()->Unit(benchmark::kMillisecond);
+}
+
 BENCHMARK(CenterFrame)->Apply(resolutions)->MinTime(0.2);
 BENCHMARK(ReferenceEye)->Apply(resolutions)->MinTime(0.2);
-BENCHMARK(StereoPassSeed)->Apply(resolutions)->MinTime(0.2);
+BENCHMARK(StereoPass)->Apply(methods)->MinTime(0.2);
 
 }  // namespace
 
