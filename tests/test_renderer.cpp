@@ -1,6 +1,7 @@
 // The deferred renderer on tiny scenes: the linear depth it hands to the stereo pass, per layer.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -93,6 +94,51 @@ TEST_F(DeferredRendererTest, ABrighterSunGivesABrighterWall) {
 TEST_F(DeferredRendererTest, RejectsAbsurdResolutions) {
   EXPECT_THROW(DeferredRenderer(context(), 0, 10), std::invalid_argument);
   EXPECT_THROW(DeferredRenderer(context(), 20000, 10), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace s3d::renderer
+
+namespace s3d::renderer {
+namespace {
+
+std::vector<std::string> passNames(const FrameTimings& timings) {
+  std::vector<std::string> names;
+  for (const PassTiming& pass : timings.passes) names.push_back(pass.name);
+  return names;
+}
+
+TEST_F(DeferredRendererTest, ASceneWithoutPointLightsDoesNotRunThePointLightPass) {
+  Scene scene = makeWallScene(5.0f, false);
+  DeferredRenderer renderer(context(), kWidth, kHeight);
+  renderer.setScene(scene);
+  FrameTimings timings = renderer.render(centerViewMatrices(scene, float(kWidth) / float(kHeight)));
+  EXPECT_EQ(passNames(timings), (std::vector<std::string>{"gbuffer", "sun-and-ambient", "shading", "resolve"}));
+}
+
+TEST_F(DeferredRendererTest, APointLightBehindTheCameraDoesNotRunThePointLightPass) {
+  Scene scene = makeWallScene(5.0f, false);
+  scene.pointLights.push_back({glm::vec3(0.0f, 0.0f, 20.0f), glm::vec3(1.0f), 3.0f});  // behind, out of reach
+  DeferredRenderer renderer(context(), kWidth, kHeight);
+  renderer.setScene(scene);
+  FrameTimings timings = renderer.render(centerViewMatrices(scene, float(kWidth) / float(kHeight)));
+  std::vector<std::string> names = passNames(timings);
+  EXPECT_EQ(std::count(names.begin(), names.end(), "point-lights"), 0);
+}
+
+TEST_F(DeferredRendererTest, AVisiblePointLightRunsThePointLightPassAndBrightensTheWall) {
+  Scene scene = makeWallScene(5.0f, false);
+  DeferredRenderer renderer(context(), kWidth, kHeight);
+  renderer.setScene(scene);
+  const ViewMatrices view = centerViewMatrices(scene, float(kWidth) / float(kHeight));
+  renderer.render(view);
+  const std::uint8_t unlit = renderer.readDisplayColor().at(kWidth / 2, kHeight - 4)[0];
+  scene.pointLights.push_back({glm::vec3(0.0f, -1.0f, -4.0f), glm::vec3(4.0f, 0.0f, 0.0f), 3.0f});
+  renderer.setScene(scene);
+  FrameTimings timings = renderer.render(view);
+  std::vector<std::string> names = passNames(timings);
+  EXPECT_EQ(std::count(names.begin(), names.end(), "point-lights"), 1);
+  EXPECT_GT(renderer.readDisplayColor().at(kWidth / 2, kHeight - 4)[0], unlit);
 }
 
 }  // namespace

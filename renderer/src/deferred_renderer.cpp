@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <cstring>
+#include <functional>
 #include <stdexcept>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -47,7 +48,7 @@ constexpr vk::ImageState kDepthReadOnlyAttachment{VK_IMAGE_LAYOUT_DEPTH_STENCIL_
 constexpr vk::ImageState kComputeSampled{VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
                                          VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT};
 
-enum Timestamp : std::uint32_t { kFrameBegin, kGBufferEnd, kLightingEnd, kShadingEnd, kResolveEnd, kTimestampCount };
+constexpr std::uint32_t kMaxPasses = 8;  // timestamps: one before the first pass and one after each
 
 VkDescriptorSetLayoutBinding binding(std::uint32_t index, VkDescriptorType type, VkShaderStageFlags stages) {
   return {index, type, 1, stages, nullptr};
@@ -168,7 +169,7 @@ struct DeferredRenderer::Impl {
   vk::TimestampQueries timestamps;
 
   Impl(vk::Context& ctx, std::uint32_t w, std::uint32_t h)
-      : context(ctx), width(w), height(h), timestamps(ctx, kTimestampCount) {
+      : context(ctx), width(w), height(h), timestamps(ctx, kMaxPasses + 1) {
     if (w == 0 || h == 0 || w > 16384 || h > 16384)
       throw std::invalid_argument("renderer: resolution " + std::to_string(w) + "x" + std::to_string(h) +
                                   " is outside 1..16384");
@@ -392,15 +393,7 @@ struct DeferredRenderer::Impl {
     vkCmdEndRendering(cmd);
   }
 
-  void recordLighting(VkCommandBuffer cmd, const ViewMatrices& view) {
-    vk::transition(cmd, depth, vk::kDepthAttachment, kDepthSampled);
-    vk::transition(cmd, normalGlossiness, vk::kColorAttachment, vk::kFragmentRead);
-    vk::transition(cmd, diffuseLight, vk::kUndefined, vk::kColorAttachment);
-    vk::transition(cmd, specularLight, vk::kUndefined, vk::kColorAttachment);
-    VkRenderingAttachmentInfo colors[] = {colorAttachment(diffuseLight, true), colorAttachment(specularLight, true)};
-    beginRendering(cmd, width, height, colors, nullptr);
-    setViewport(cmd, width, height, 0.0f, 1.0f);
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, lightPipeline);
+  void pushLightDescriptors(VkCommandBuffer cmd) {
     VkDescriptorBufferInfo frameInfo{frameBuffer.buffer, 0, VK_WHOLE_SIZE};
     VkDescriptorImageInfo depthInfo{nearestSampler, depth.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
     VkDescriptorImageInfo normalInfo{nearestSampler, normalGlossiness.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
@@ -408,21 +401,58 @@ struct DeferredRenderer::Impl {
                                      vk::sampledImageWrite(2, &normalInfo)};
     writes[1].descriptorType = writes[2].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
     context.cmdPushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, lightLayout.layout, 0, 3, writes);
+  }
 
+  // Starts a light-accumulation render pass instance over the diffuse and specular light buffers.
+  void beginLightAccumulation(VkCommandBuffer cmd, bool clear) {
+    VkRenderingAttachmentInfo colors[] = {colorAttachment(diffuseLight, clear), colorAttachment(specularLight, clear)};
+    beginRendering(cmd, width, height, colors, nullptr);
+    setViewport(cmd, width, height, 0.0f, 1.0f);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, lightPipeline);
+    pushLightDescriptors(cmd);
+  }
+
+  // Hemisphere ambient and the sun: one fullscreen triangle; clears the light buffers.
+  void recordSunAndAmbient(VkCommandBuffer cmd) {
+    vk::transition(cmd, depth, vk::kDepthAttachment, kDepthSampled);
+    vk::transition(cmd, normalGlossiness, vk::kColorAttachment, vk::kFragmentRead);
+    vk::transition(cmd, diffuseLight, vk::kUndefined, vk::kColorAttachment);
+    vk::transition(cmd, specularLight, vk::kUndefined, vk::kColorAttachment);
+    beginLightAccumulation(cmd, true);
     gpu::LightConstants sun{};
     sun.kind = S3D_LIGHT_AMBIENT_AND_SUN;
     setScissor(cmd, {{0, 0}, {width, height}});
     vkCmdPushConstants(cmd, lightLayout.layout, VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(sun), &sun);
     vkCmdDraw(cmd, 3, 1, 0, 0);
+    vkCmdEndRendering(cmd);
+  }
+
+  struct VisibleLight {
+    const PointLight* light;
+    VkRect2D screenRect;
+  };
+
+  // Point lights whose sphere reaches the screen, with the rectangle each can touch.
+  std::vector<VisibleLight> visiblePointLights(const ViewMatrices& view) const {
+    std::vector<VisibleLight> visible;
     const glm::mat4 viewProjection = view.worldProjection * view.worldView;
-    for (const PointLight& pointLight : scene.pointLights) {
-      std::optional<VkRect2D> rect = lightScissor(pointLight, viewProjection, width, height);
-      if (!rect) continue;  // touches no pixel
+    for (const PointLight& pointLight : scene.pointLights)
+      if (std::optional<VkRect2D> rect = lightScissor(pointLight, viewProjection, width, height))
+        visible.push_back({&pointLight, *rect});
+    return visible;
+  }
+
+  // Point lights, each scissored to its screen rectangle so it costs only the pixels it can touch.
+  void recordPointLights(VkCommandBuffer cmd, const std::vector<VisibleLight>& lights) {
+    vk::transition(cmd, diffuseLight, vk::kColorAttachment, vk::kColorAttachment);  // after the sun's writes
+    vk::transition(cmd, specularLight, vk::kColorAttachment, vk::kColorAttachment);
+    beginLightAccumulation(cmd, false);
+    for (const VisibleLight& visible : lights) {
       gpu::LightConstants constants{};
       constants.kind = S3D_LIGHT_POINT;
-      constants.positionRadius = glm::vec4(pointLight.position, pointLight.radius);
-      constants.color = glm::vec4(pointLight.color, 0.0f);
-      setScissor(cmd, *rect);
+      constants.positionRadius = glm::vec4(visible.light->position, visible.light->radius);
+      constants.color = glm::vec4(visible.light->color, 0.0f);
+      setScissor(cmd, visible.screenRect);
       vkCmdPushConstants(cmd, lightLayout.layout, VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(constants), &constants);
       vkCmdDraw(cmd, 3, 1, 0, 0);
     }
@@ -487,27 +517,44 @@ struct DeferredRenderer::Impl {
     vkCmdDispatch(cmd, groupsX, groupsY, 1);
   }
 
+  struct ScheduledPass {
+    const char* name;
+    std::function<void(VkCommandBuffer)> record;
+  };
+
+  // The passes this frame needs, in order: a pass that serves nothing in the scene does not run.
+  std::vector<ScheduledPass> schedulePasses(const ViewMatrices& view) {
+    std::vector<ScheduledPass> passes;
+    passes.push_back({"gbuffer", [this](VkCommandBuffer cmd) { recordGBuffer(cmd); }});
+    passes.push_back({"sun-and-ambient", [this](VkCommandBuffer cmd) { recordSunAndAmbient(cmd); }});
+    std::vector<VisibleLight> lights = visiblePointLights(view);
+    if (!lights.empty())
+      passes.push_back({"point-lights", [this, lights](VkCommandBuffer cmd) { recordPointLights(cmd, lights); }});
+    passes.push_back({"shading", [this](VkCommandBuffer cmd) { recordShading(cmd); }});
+    passes.push_back({"resolve", [this](VkCommandBuffer cmd) { recordResolve(cmd); }});
+    return passes;
+  }
+
   FrameTimings render(const ViewMatrices& view) {
     if (meshRanges.empty()) throw std::logic_error("DeferredRenderer::render called before setScene");
     writeFrameConstants(view);
+    const std::vector<ScheduledPass> passes = schedulePasses(view);
     constexpr VkPipelineStageFlags2 kAll = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
     context.submitAndWait([&](VkCommandBuffer cmd) {
       timestamps.reset(cmd);
-      timestamps.write(cmd, kFrameBegin, kAll);
-      recordGBuffer(cmd);
-      timestamps.write(cmd, kGBufferEnd, kAll);
-      recordLighting(cmd, view);
-      timestamps.write(cmd, kLightingEnd, kAll);
-      recordShading(cmd);
-      timestamps.write(cmd, kShadingEnd, kAll);
-      recordResolve(cmd);
-      timestamps.write(cmd, kResolveEnd, kAll);
+      timestamps.write(cmd, 0, kAll);
+      for (std::uint32_t pass = 0; pass < passes.size(); ++pass) {
+        passes[pass].record(cmd);
+        timestamps.write(cmd, pass + 1, kAll);
+      }
     });
     FrameTimings timings;
-    timings.totalGpuMs = timestamps.elapsedMs(kFrameBegin, kResolveEnd);
-    const char* names[] = {"gbuffer", "lighting", "shading", "resolve"};
-    for (std::uint32_t pass = 0; pass < 4; ++pass)
-      if (auto ms = timestamps.elapsedMs(pass, pass + 1)) timings.passes.push_back({names[pass], *ms});
+    const auto passCount = std::uint32_t(passes.size());
+    timings.totalGpuMs = timestamps.elapsedMs(0, passCount);
+    for (std::uint32_t pass = 0; pass < passCount; ++pass) {
+      PassTiming timing{passes[pass].name, timestamps.elapsedMs(pass, pass + 1).value_or(0.0)};
+      timings.passes.push_back(timing);
+    }
     return timings;
   }
 };

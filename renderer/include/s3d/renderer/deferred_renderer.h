@@ -38,7 +38,7 @@ struct PassTiming {
 
 struct FrameTimings {
   std::optional<double> totalGpuMs;  // empty when the device has no timestamp queries
-  std::vector<PassTiming> passes;
+  std::vector<PassTiming> passes;    // every pass that ran, in order (gpuMs 0 without timestamps)
 };
 
 class DeferredRenderer {
