@@ -49,3 +49,21 @@ TEST(LinearDepth, TheClearedFarPlaneIsSkyAtInfiniteDistance) {
 
 }  // namespace
 }  // namespace s3d::gpu
+
+namespace s3d::gpu {
+namespace {
+
+TEST(StereoDepth, PushesOnlyTheFirstPersonLayer) {
+  // Seed 4.6.2: pushed = offset + scale * depth for the weapon; the world keeps its depth. Tolerances as above.
+  LinearDepthParams p = makeLinearDepthParams(kWorldNear, kWorldFar, kWeaponNear, kWeaponFar, kSplit);
+  p.firstPersonDepthOffset = 1.0f;
+  p.firstPersonDepthScale = 2.0f;
+  float weapon = deviceDepthOf(0.4, kWeaponNear, kWeaponFar, 0.0, kSplit);
+  EXPECT_NEAR(stereoDepthFromDevice(p, weapon), 1.0f + 2.0f * 0.4f, 1e-4f);
+  float world = deviceDepthOf(10.0, kWorldNear, kWorldFar, kSplit, 1.0);
+  EXPECT_NEAR(stereoDepthFromDevice(p, world), 10.0f, 2e-2f);
+  EXPECT_TRUE(std::isinf(stereoDepthFromDevice(p, 1.0f)));
+}
+
+}  // namespace
+}  // namespace s3d::gpu

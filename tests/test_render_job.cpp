@@ -26,11 +26,11 @@ namespace {
 namespace fs = std::filesystem;
 
 // Lowest accepted PSNR of each synthesized eye against its two-pass reference on the default scene at
-// 320x180. Measured with Listing 4.5: left 17.8 dB, right 19.5 dB; most of the error is the weapon, whose
-// negative parallax (0.3-0.6 m in front of a 1 m zero-parallax plane) the seed's min-depth search does not
-// handle. 16 dB leaves ~2 dB for driver differences and still fails when the displacement is wrong:
-// swapped eyes measure 11.5-11.9 dB and the undisplaced center view 12.6-12.7 dB against the references.
-constexpr double kMinDefaultScenePsnrDb = 16.0;
+// 320x180 with the default parameters (Listing 4.5, weapon pushed 1 m into the screen): measured 21.6 dB
+// (left) and 21.7 dB (right). 19 dB leaves room for driver differences and still fails when the
+// displacement goes wrong: swapped eyes measured 11.5-11.9 dB, and without the weapon push (whose
+// negative parallax the seed's search cannot handle) 17.8 / 19.5 dB.
+constexpr double kMinDefaultScenePsnrDb = 19.0;
 
 constexpr std::uint32_t kWidth = 320;
 constexpr std::uint32_t kHeight = 180;

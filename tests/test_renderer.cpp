@@ -143,3 +143,32 @@ TEST_F(DeferredRendererTest, AVisiblePointLightRunsThePointLightPassAndBrightens
 
 }  // namespace
 }  // namespace s3d::renderer
+
+namespace s3d::renderer {
+namespace {
+
+TEST_F(DeferredRendererTest, WeaponDepthPushChangesLinearDepthButNotTheImage) {
+  // The push is applied to the stereo pass's linear depth only: same pixels, weapon at offset + scale * d.
+  Scene scene = makeWallScene(5.0f, true, 0.5f);
+  DeferredRenderer renderer(context(), kWidth, kHeight);
+  renderer.setScene(scene);
+  const float aspect = float(kWidth) / float(kHeight);
+  renderer.render(centerViewMatrices(scene, aspect));
+  const ImageRGBA8 unpushedColor = renderer.readDisplayColor();
+  renderer.render(centerViewMatrices(scene, aspect, {1.0f, 2.0f}));
+  EXPECT_EQ(renderer.readDisplayColor().pixels, unpushedColor.pixels);
+  const DepthImage depth = renderer.readLinearDepth();
+  float nearest = INFINITY;
+  for (float d : depth.pixels) nearest = std::min(nearest, d);
+  EXPECT_NEAR(nearest, 1.0f + 2.0f * 0.5f, 2e-3f);  // 2x the 1e-3 m tolerance above, scaled by the push
+}
+
+TEST_F(DeferredRendererTest, AbsurdWeaponPushIsRejected) {
+  Scene scene = makeWallScene(5.0f, true);
+  EXPECT_THROW(centerViewMatrices(scene, 1.0f, {-1.0f, 1.0f}), std::invalid_argument);
+  EXPECT_THROW(centerViewMatrices(scene, 1.0f, {0.0f, 0.0f}), std::invalid_argument);
+  EXPECT_THROW(centerViewMatrices(scene, 1.0f, {NAN, 1.0f}), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace s3d::renderer

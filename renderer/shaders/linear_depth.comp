@@ -1,5 +1,5 @@
 #version 450
-// Device depth -> linear view depth in world units for every pixel (Listing 4.3; +inf for sky).
+// Device depth -> the stereo pass's linear depth in world units (Listing 4.3; +inf for sky; weapon pushed).
 #extension GL_GOOGLE_include_directive : require
 #include "s3d/renderer/renderer_shared.h"
 
@@ -12,5 +12,5 @@ void main() {
   ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
   if (pixel.x >= int(frame.screen.x) || pixel.y >= int(frame.screen.y)) return;
   float depth = texelFetch(deviceDepth, pixel, 0).r;
-  imageStore(linearDepth, pixel, vec4(linearDepthFromDevice(frame.linearDepth, depth)));
+  imageStore(linearDepth, pixel, vec4(stereoDepthFromDevice(frame.linearDepth, depth)));
 }

@@ -134,8 +134,25 @@ glm::mat4 cameraView(const Camera& camera) {
   return glm::lookAt(camera.position, camera.position + forward, glm::vec3(0.0f, 1.0f, 0.0f));
 }
 
-ViewMatrices centerViewMatrices(const Scene& scene, float aspect) {
+std::optional<glm::vec2> firstPersonDepthRange(const Scene& scene) {
+  std::optional<glm::vec2> range;
+  for (const Object& object : scene.objects) {
+    if (object.layer != Layer::FirstPerson) continue;
+    for (const Vertex& vertex : scene.meshes.at(object.mesh).vertices) {
+      float depth = -(object.transform * glm::vec4(vertex.position, 1.0f)).z;
+      range = range ? glm::vec2(std::min(range->x, depth), std::max(range->y, depth)) : glm::vec2(depth);
+    }
+  }
+  return range;
+}
+
+ViewMatrices centerViewMatrices(const Scene& scene, float aspect, FirstPersonDepthPush push) {
+  if (!std::isfinite(push.offset) || push.offset < 0.0f)
+    throw std::invalid_argument("weapon depth offset must be finite and >= 0 (got " + std::to_string(push.offset) + ")");
+  if (!std::isfinite(push.scale) || push.scale <= 0.0f)
+    throw std::invalid_argument("weapon depth scale must be finite and > 0 (got " + std::to_string(push.scale) + ")");
   ViewMatrices view;
+  view.firstPersonDepthPush = push;
   view.worldView = cameraView(scene.camera);
   view.worldProjection =
       vulkanPerspective(scene.camera.verticalFovRadians, aspect, scene.camera.nearPlane, scene.camera.farPlane);
@@ -319,6 +336,8 @@ struct DeferredRenderer::Impl {
     frame.linearDepth = gpu::makeLinearDepthParams(scene.camera.nearPlane, scene.camera.farPlane,
                                                    scene.firstPerson.nearPlane, scene.firstPerson.farPlane,
                                                    kFirstPersonDeviceDepthMax);
+    frame.linearDepth.firstPersonDepthOffset = view.firstPersonDepthPush.offset;
+    frame.linearDepth.firstPersonDepthScale = view.firstPersonDepthPush.scale;
     frame.directionToSun = glm::vec4(glm::normalize(scene.sun.directionToSun), 0.0f);
     frame.sunColor = glm::vec4(scene.sun.color, 0.0f);
     frame.ambientColor = glm::vec4(scene.ambientColor, 0.0f);

@@ -234,6 +234,14 @@ int main(int argc, char** argv) {
                    "Fraction of the width blacked out on each side of both eyes (and left out of the comparison); "
                    "default: = --max-separation")
       ->check(floatRange(0.0, double(s3d::stereo::kMaxSeparationLimit), false, "a fraction of the screen width"));
+  render->add_option("--weapon-depth-offset", options.stereo.weaponDepthOffset,
+                     "First-person weapon: depth offset in world units added before stereo (pushes it into the screen)")
+      ->check(floatRange(0.0, 1.0e4, false, "a distance in world units"))
+      ->capture_default_str();
+  render->add_option("--weapon-depth-scale", options.stereo.weaponDepthScale,
+                     "First-person weapon: depth scale applied before the offset (pushed = offset + scale * depth)")
+      ->check(floatRange(0.0, 1.0e4, true, "a positive factor"))
+      ->capture_default_str();
   render->add_option("--method", stereoMethod, "Stereo method: seed (Listing 4.5, taps at 0.5/0.66/1.0 of the separation) or search (--taps taps spread over the separation)")
       ->check(CLI::IsMember({"seed", "search"}))
       ->capture_default_str();

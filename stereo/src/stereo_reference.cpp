@@ -48,6 +48,10 @@ void validate(const StereoParameters& p) {
   requireFinite(p.maxSeparation, "maxSeparation");
   requireFinite(p.zeroParallaxDistance, "zeroParallaxDistance");
   requireFinite(p.edgeCrop, "edgeCrop");
+  requireFinite(p.weaponDepthOffset, "weaponDepthOffset");
+  requireFinite(p.weaponDepthScale, "weaponDepthScale");
+  if (p.weaponDepthOffset < 0.0f) throw std::invalid_argument("weaponDepthOffset must be >= 0 (got " + std::to_string(p.weaponDepthOffset) + ")");
+  if (p.weaponDepthScale <= 0.0f) throw std::invalid_argument("weaponDepthScale must be > 0 (got " + std::to_string(p.weaponDepthScale) + ")");
   if (p.maxSeparation < 0.0f || p.maxSeparation > kMaxSeparationLimit)
     throw std::invalid_argument("maxSeparation " + std::to_string(p.maxSeparation) + " is outside [0, " +
                                 std::to_string(kMaxSeparationLimit) + "] (a fraction of the screen width)");

@@ -113,13 +113,17 @@ stereo::StereoPair runStereoPass(vk::Context& context, const renderer::DeferredR
 
 // The two-pass reference's view of one eye: both layers get their own off-axis camera, because the
 // first-person layer has its own projection and so its own eye offset (e = 2 m zpp / P00).
-renderer::ViewMatrices eyeViewMatrices(const renderer::ViewMatrices& center, stereo::Eye eye,
-                                       const stereo::StereoParameters& parameters) {
+renderer::ViewMatrices eyeViewMatrices(const renderer::Scene& scene, const renderer::ViewMatrices& center,
+                                       stereo::Eye eye, const stereo::StereoParameters& parameters) {
   const float m = parameters.maxSeparation;
   const float zpp = parameters.zeroParallaxDistance;
   const stereo::EyeCamera world = stereo::offAxisEyeCamera(center.worldView, center.worldProjection, eye, m, zpp);
-  const stereo::EyeCamera firstPerson =
-      stereo::offAxisEyeCamera(center.firstPersonView, center.firstPersonProjection, eye, m, zpp);
+  // The weapon's depth is pushed for the stereo pass, so its reference eyes follow the pushed parallax.
+  const glm::vec2 weaponDepths = renderer::firstPersonDepthRange(scene).value_or(glm::vec2(1.0f));
+  const stereo::EyeCamera firstPerson = stereo::offAxisEyeCamera(
+      center.firstPersonView, center.firstPersonProjection, eye,
+      stereo::pushedLayerTerms(center.firstPersonProjection[0][0], m, zpp, parameters.weaponDepthOffset,
+                               parameters.weaponDepthScale, weaponDepths.x, weaponDepths.y));
   renderer::ViewMatrices view = center;  // worldFromCamera stays: lighting places first-person objects alike
   view.worldView = world.view;
   view.worldProjection = world.projection;
@@ -182,7 +186,8 @@ RenderReport runRenderJob(vk::Context& context, const RenderJobOptions& options)
   // 2. The center view.
   renderer::DeferredRenderer deferred(context, width, height);
   deferred.setScene(job.scene);
-  const renderer::ViewMatrices center = renderer::centerViewMatrices(job.scene, float(width) / float(height));
+  const renderer::ViewMatrices center = renderer::centerViewMatrices(
+      job.scene, float(width) / float(height), {options.stereo.weaponDepthOffset, options.stereo.weaponDepthScale});
   // The first frame on fresh pipelines includes shader compilation (lavapipe compiles at first use):
   // render it once untimed so the center frame, the stereo pass and the reference eye are all warm.
   (void)deferred.render(center);
@@ -198,9 +203,9 @@ RenderReport runRenderJob(vk::Context& context, const RenderJobOptions& options)
   const stereo::StereoPair synthesized = runStereoPass(context, deferred, job.constants, report.stereoPassGpuMs);
 
   // 4. The two-pass reference: each eye rendered with its off-axis camera.
-  const renderer::FrameTimings leftTimings = deferred.render(eyeViewMatrices(center, stereo::Eye::Left, options.stereo));
+  const renderer::FrameTimings leftTimings = deferred.render(eyeViewMatrices(job.scene, center, stereo::Eye::Left, options.stereo));
   const ImageRGBA8 leftReference = deferred.readDisplayColor();
-  (void)deferred.render(eyeViewMatrices(center, stereo::Eye::Right, options.stereo));
+  (void)deferred.render(eyeViewMatrices(job.scene, center, stereo::Eye::Right, options.stereo));
   const ImageRGBA8 rightReference = deferred.readDisplayColor();
   report.referenceEyeGpuMs = leftTimings.totalGpuMs;
 
@@ -284,6 +289,8 @@ nlohmann::json toJson(const RenderReport& report) {
             {"edgeCrop", finiteOrNull(tidy(report.stereo.edgeCrop))},
             {"cropColumns", report.cropColumns},
             {"method", stereo::methodName(report.stereo.method)},
+            {"weaponDepthOffset", finiteOrNull(tidy(report.stereo.weaponDepthOffset))},
+            {"weaponDepthScale", finiteOrNull(tidy(report.stereo.weaponDepthScale))},
             {"searchTaps", report.stereo.method == stereo::StereoMethod::Search ? nlohmann::json(report.stereo.searchTaps)
                                                                                  : nlohmann::json()}}},
           {"gpuTimeMs",

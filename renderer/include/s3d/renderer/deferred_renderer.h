@@ -16,6 +16,14 @@
 
 namespace s3d::renderer {
 
+// Seed 4.6.2: the first-person layer's depth is offset and scaled (pushed into the screen) in the linear
+// depth handed to the stereo pass: pushed = offset + scale * depth. Rendering and lighting are unchanged.
+// {0, 1} leaves it where it is.
+struct FirstPersonDepthPush {
+  float offset = 0.0f;  // world units
+  float scale = 1.0f;
+};
+
 // Matrices of one rendered view. Vulkan clip space (y down, depth 0..1).
 struct ViewMatrices {
   glm::mat4 worldView{1.0f};        // world -> view of the world layer
@@ -23,13 +31,18 @@ struct ViewMatrices {
   glm::mat4 firstPersonView{1.0f};  // camera space -> first-person view (identity for the center view)
   glm::mat4 firstPersonProjection{1.0f};
   glm::mat4 worldFromCamera{1.0f};  // inverse of the center camera's view: places first-person objects for lighting
+  FirstPersonDepthPush firstPersonDepthPush;  // applied to linearDepth() only
 };
 
 // Perspective projection with Vulkan's downward y and zero-to-one depth.
 glm::mat4 vulkanPerspective(float verticalFovRadians, float aspect, float nearPlane, float farPlane);
 glm::mat4 cameraView(const Camera& camera);  // world -> view
 // The scene camera's center view at the given aspect ratio (width / height).
-ViewMatrices centerViewMatrices(const Scene& scene, float aspect);
+// Nearest and farthest camera-space depth of the first-person layer's vertices (nullopt: no such layer).
+std::optional<glm::vec2> firstPersonDepthRange(const Scene& scene);
+
+// Throws std::invalid_argument for a negative/non-finite offset or a non-positive/non-finite scale.
+ViewMatrices centerViewMatrices(const Scene& scene, float aspect, FirstPersonDepthPush push = {});
 
 struct PassTiming {
   std::string name;
@@ -58,7 +71,7 @@ class DeferredRenderer {
 
   // Outputs of the last render(), left in VK_IMAGE_LAYOUT_GENERAL (vk::kComputeWrite state):
   const vk::Image& displayColor() const;  // RGBA8, tone-mapped, sRGB-encoded
-  const vk::Image& linearDepth() const;   // R32F, view depth in world units, +inf for sky (Listing 4.3)
+  const vk::Image& linearDepth() const;   // R32F, view depth in world units, +inf for sky (Listing 4.3), weapon pushed
   const vk::Image& hdrColor() const;      // RGBA32F, exposed linear HDR before tone mapping
 
   ImageRGBA8 readDisplayColor();

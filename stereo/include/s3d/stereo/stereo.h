@@ -26,6 +26,10 @@ struct StereoParameters {
   float edgeCrop = -1.0f;             // fraction of the width blacked out per side; < 0 means = maxSeparation
   StereoMethod method = StereoMethod::Seed;
   int searchTaps = 8;  // StereoMethod::Search only, 1..S3D_STEREO_MAX_TAPS
+  // Seed 4.6.2: the first-person weapon's depth as the stereo pass sees it is offset + scale * depth, so it
+  // sits behind the screen plane instead of popping out (applied where linear depth is produced).
+  float weaponDepthOffset = 1.0f;  // world units
+  float weaponDepthScale = 1.0f;
 };
 
 // Largest accepted maxSeparation / edgeCrop: beyond a quarter of the screen the eyes cannot fuse anything.
@@ -60,23 +64,55 @@ struct EyeCameraT {
 };
 using EyeCamera = EyeCameraT<float>;
 
-// Two-pass reference: an eye camera with a parallel axis and an off-axis frustum such that a point at linear
-// depth d lands exactly parallaxFromDepth(maxSeparation, zpp, d) * width away from its center-view position
-// (left eye: to the left). See docs/DESIGN.md for the derivation:
-//   eye offset e = 2 * maxSeparation * zpp / P[0][0], frustum shift s = 2 * maxSeparation (NDC units).
-// Templated so the hard-case tests can check it in double precision.
+// An off-axis eye: the camera moves by `eyeOffset` (view units) along its x axis and the frustum shifts by
+// `frustumShift` in NDC; the left eye moves to -eyeOffset and shifts by +frustumShift, the right mirrors it.
 template <typename T>
-EyeCameraT<T> offAxisEyeCamera(const glm::mat<4, 4, T>& centerView, const glm::mat<4, 4, T>& centerProjection,
-                               Eye eye, T maxSeparation, T zeroParallaxDistance) {
-  // x_ndc(eye) = P00 (X + sign e) / d - P20 must equal x_ndc(center) - sign 2 m (1 - zpp / d) for every depth d:
-  // the 1/d terms give e = 2 m zpp / P00, the constant terms P20 = sign 2 m (sign = +1 for the left eye).
+struct OffAxisTerms {
+  T eyeOffset;
+  T frustumShift;
+};
+
+template <typename T>
+EyeCameraT<T> offAxisEyeCamera(const glm::mat<4, 4, T>& centerView, const glm::mat<4, 4, T>& centerProjection, Eye eye,
+                               OffAxisTerms<T> terms) {
   const T sign = eye == Eye::Left ? T(1) : T(-1);
-  const T eyeOffset = T(2) * maxSeparation * zeroParallaxDistance / centerProjection[0][0];
   glm::mat<4, 4, T> toEye(T(1));
-  toEye[3][0] = sign * eyeOffset;  // the left camera sits at -e, so view-space points move by +e
+  toEye[3][0] = sign * terms.eyeOffset;  // the left camera sits at -e, so view-space points move by +e
   EyeCameraT<T> camera{toEye * centerView, centerProjection};
-  camera.projection[2][0] += sign * T(2) * maxSeparation;
+  camera.projection[2][0] += sign * terms.frustumShift;
   return camera;
+}
+
+// Two-pass reference: the terms that make a point at linear depth d land exactly
+// parallaxFromDepth(maxSeparation, zpp, d) * width away from its center-view position (left eye: to the
+// left), for every d. See docs/DESIGN.md: x_ndc(eye) = P00 (X + sign e) / d - P20 must equal
+// x_ndc(center) - sign 2 m (1 - zpp / d), so e = 2 m zpp / P00 and s = 2 m.
+template <typename T>
+OffAxisTerms<T> exactParallaxTerms(T projectionScaleX, T maxSeparation, T zeroParallaxDistance) {
+  return {T(2) * maxSeparation * zeroParallaxDistance / projectionScaleX, T(2) * maxSeparation};
+}
+
+// The first-person layer with its depth pushed (d' = offset + scale d, seed 4.6.2): its parallax
+// m (1 - zpp / d') is a camera's A - B / d only when offset = 0, so the reference uses the chord of 1/d'
+// as a function of 1/d over the weapon's depth range [nearest, farthest]: exact at both ends (and
+// everywhere when offset = 0), within a fraction of a pixel between them (docs/DESIGN.md).
+template <typename T>
+OffAxisTerms<T> pushedLayerTerms(T projectionScaleX, T maxSeparation, T zeroParallaxDistance, T offset, T scale,
+                                 T nearest, T farthest) {
+  auto pushedInverse = [&](T inverseDepth) { return inverseDepth / (offset * inverseDepth + scale); };
+  const T uNear = T(1) / nearest, uFar = T(1) / farthest;
+  const T slope = uNear > uFar ? (pushedInverse(uNear) - pushedInverse(uFar)) / (uNear - uFar) : T(1) / (offset * uFar + scale) / (offset * uFar + scale) * scale;
+  const T intercept = pushedInverse(uFar) - slope * uFar;
+  return {T(2) * maxSeparation * zeroParallaxDistance * slope / projectionScaleX,
+          T(2) * maxSeparation * (T(1) - zeroParallaxDistance * intercept)};
+}
+
+// Shorthand for the exact terms.
+template <typename T>
+EyeCameraT<T> offAxisEyeCamera(const glm::mat<4, 4, T>& centerView, const glm::mat<4, 4, T>& centerProjection, Eye eye,
+                               T maxSeparation, T zeroParallaxDistance) {
+  return offAxisEyeCamera(centerView, centerProjection, eye,
+                          exactParallaxTerms(centerProjection[0][0], maxSeparation, zeroParallaxDistance));
 }
 
 }  // namespace s3d::stereo

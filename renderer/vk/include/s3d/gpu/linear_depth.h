@@ -14,8 +14,8 @@ struct LinearDepthParams {
   vec2 firstPersonRatio;
   float firstPersonDeviceDepthMax;  // device depth <= this belongs to the first-person layer
   float skyDeviceDepth;             // device depth >= this is sky at infinite distance (the cleared far plane)
-  float padding0;
-  float padding1;
+  float firstPersonDepthOffset;     // seed 4.6.2 weapon push, for stereoDepthFromDevice only
+  float firstPersonDepthScale;
 };
 
 S3D_INLINE float linearDepthFromDevice(LinearDepthParams p, float deviceDepth) {
@@ -24,6 +24,14 @@ S3D_INLINE float linearDepthFromDevice(LinearDepthParams p, float deviceDepth) {
   float isFirstPerson = step(deviceDepth, p.firstPersonDeviceDepthMax);
   vec2 ratio = mix(p.worldRatio, p.firstPersonRatio, isFirstPerson);
   return ratio.y / (deviceDepth - ratio.x);
+}
+
+// The depth the stereo pass sees: linear depth, with the first-person layer pushed into the screen by
+// offsetting and scaling its depth (seed 4.6.2). Per pixel, so the weapon's own visibility is untouched.
+S3D_INLINE float stereoDepthFromDevice(LinearDepthParams p, float deviceDepth) {
+  float depth = linearDepthFromDevice(p, deviceDepth);
+  if (deviceDepth <= p.firstPersonDeviceDepthMax) depth = p.firstPersonDepthOffset + p.firstPersonDepthScale * depth;
+  return depth;
 }
 
 #ifdef __cplusplus
@@ -43,6 +51,8 @@ inline LinearDepthParams makeLinearDepthParams(float worldNear, float worldFar, 
   p.firstPersonRatio = projectionRatio(firstPersonNear, firstPersonFar, 0.0f, firstPersonDeviceDepthMax);
   p.firstPersonDeviceDepthMax = firstPersonDeviceDepthMax;
   p.skyDeviceDepth = 1.0f;
+  p.firstPersonDepthOffset = 0.0f;
+  p.firstPersonDepthScale = 1.0f;
   return p;
 }
 #endif
