@@ -36,7 +36,7 @@ constexpr std::uint32_t kWidth = 320;
 constexpr std::uint32_t kHeight = 180;
 
 fs::path scratchFolder(const std::string& name) {
-  return fs::temp_directory_path() / ("s3d_render_job_" + std::to_string(::getpid())) / name;
+  return fs::temp_directory_path() / ("s3d_render_job_" + std::to_string(::getpid()) + "_" + name);
 }
 
 // The default scene rendered once per test binary (the suite stays fast); the folder goes at exit.
@@ -45,7 +45,7 @@ struct DefaultRun {
   RenderReport report;
   ~DefaultRun() {
     std::error_code ignored;
-    fs::remove_all(folder.parent_path(), ignored);
+    fs::remove_all(folder, ignored);
   }
 };
 
