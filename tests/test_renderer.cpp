@@ -172,3 +172,58 @@ TEST_F(DeferredRendererTest, AbsurdWeaponPushIsRejected) {
 
 }  // namespace
 }  // namespace s3d::renderer
+
+namespace s3d::renderer {
+namespace {
+
+// The wall scene with a half-transparent red pane 2 m ahead covering the view's lower middle.
+Scene wallBehindGlass() {
+  Scene scene = makeWallScene(5.0f, false);
+  Object pane;
+  pane.transform = glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, -1.0f, -2.0f)) *
+                   glm::scale(glm::mat4(1.0f), glm::vec3(2.0f, 2.0f, 0.02f));
+  pane.material.albedo = glm::vec3(0.9f, 0.05f, 0.05f);
+  pane.material.opacity = 0.5f;
+  scene.objects.push_back(pane);
+  return scene;
+}
+
+TEST_F(DeferredRendererTest, GlassTintsWhatIsBehindItButWritesNoDepth) {
+  // The seed's transparency flaw made measurable: the stereo pass will see the wall's depth under the glass.
+  DeferredRenderer renderer(context(), kWidth, kHeight);
+  Scene clear = makeWallScene(5.0f, false);
+  renderer.setScene(clear);
+  const float aspect = float(kWidth) / float(kHeight);
+  renderer.render(centerViewMatrices(clear, aspect));
+  const ImageRGBA8 withoutGlass = renderer.readDisplayColor();
+  const int redBefore = withoutGlass.at(kWidth / 2, kHeight - 4)[0], greenBefore = withoutGlass.at(kWidth / 2, kHeight - 4)[1];
+  Scene glass = wallBehindGlass();
+  renderer.setScene(glass);
+  FrameTimings timings = renderer.render(centerViewMatrices(glass, aspect));
+  const ImageRGBA8 color = renderer.readDisplayColor();
+  EXPECT_LT(color.at(kWidth / 2, kHeight - 4)[1], greenBefore);  // red glass takes green away
+  EXPECT_GE(color.at(kWidth / 2, kHeight - 4)[0] + 8, redBefore);  // and keeps red (8 levels: the tone curve)
+  EXPECT_NEAR(*renderer.readLinearDepth().at(kWidth / 2, kHeight - 4), 5.0f, 5e-3f);  // the wall's depth
+  std::vector<std::string> names = passNames(timings);
+  EXPECT_EQ(std::count(names.begin(), names.end(), "transparent"), 1);
+}
+
+TEST_F(DeferredRendererTest, ASceneWithoutGlassDoesNotRunTheTransparentPass) {
+  Scene scene = makeWallScene(5.0f, true);
+  DeferredRenderer renderer(context(), kWidth, kHeight);
+  renderer.setScene(scene);
+  std::vector<std::string> names = passNames(renderer.render(centerViewMatrices(scene, float(kWidth) / float(kHeight))));
+  EXPECT_EQ(std::count(names.begin(), names.end(), "transparent"), 0);
+}
+
+TEST_F(DeferredRendererTest, OpacityOutsideZeroToOneIsRejected) {
+  Scene scene = wallBehindGlass();
+  scene.objects.back().material.opacity = 0.0f;
+  DeferredRenderer renderer(context(), kWidth, kHeight);
+  EXPECT_THROW(renderer.setScene(scene), std::invalid_argument);
+  scene.objects.back().material.opacity = NAN;
+  EXPECT_THROW(renderer.setScene(scene), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace s3d::renderer

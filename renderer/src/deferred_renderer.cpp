@@ -26,6 +26,7 @@
 #include <s3d_spirv/sky_frag.h>
 #include <s3d_spirv/sky_vert.h>
 #include <s3d_spirv/tonemap_comp.h>
+#include <s3d_spirv/transparent_frag.h>
 // clang-format on
 
 namespace s3d::renderer {
@@ -174,14 +175,15 @@ struct DeferredRenderer::Impl {
 
   // Passes: layouts and pipelines.
   vk::PipelineLayout geometryLayout, lightLayout, shadingLayout, skyLayout, tonemapLayout, linearDepthLayout;
-  vk::Unique<VkPipeline> gbufferPipeline, lightPipeline, shadingPipeline, skyPipeline, tonemapPipeline,
+  vk::Unique<VkPipeline> gbufferPipeline, lightPipeline, shadingPipeline, transparentPipeline, skyPipeline, tonemapPipeline,
       linearDepthPipeline;
 
   // Scene data.
   Scene scene;
   vk::Buffer vertexBuffer, indexBuffer, objectBuffer, frameBuffer;
   std::vector<MeshRange> meshRanges;
-  std::vector<std::uint32_t> drawOrder;  // object indices, world layer first
+  std::vector<std::uint32_t> drawOrder;          // opaque object indices, world layer first
+  std::vector<std::uint32_t> transparentOrder;   // transparent objects, sorted back to front per frame
 
   vk::TimestampQueries timestamps;
 
@@ -269,11 +271,19 @@ struct DeferredRenderer::Impl {
     shading.depthCompare = VK_COMPARE_OP_EQUAL;  // only the surface the G-buffer kept
     shadingPipeline = vk::createGraphicsPipeline(context, shadingLayout.layout, shading);
 
+    vk::GraphicsPipelineDesc transparent = geometry;
+    transparent.fragmentSpirv = spirv_transparent_frag;
+    transparent.colorFormats = {kHdrFormat};
+    transparent.depthCompare = VK_COMPARE_OP_LESS;  // behind opaque surfaces is hidden; no depth write
+    transparent.cullMode = VK_CULL_MODE_NONE;
+    transparent.blend = vk::GraphicsPipelineDesc::Blend::Alpha;
+    transparentPipeline = vk::createGraphicsPipeline(context, geometryLayout.layout, transparent);
+
     vk::GraphicsPipelineDesc light;
     light.vertexSpirv = spirv_fullscreen_vert;
     light.fragmentSpirv = spirv_light_frag;
     light.colorFormats = {kLightFormat, kLightFormat};
-    light.additiveBlend = true;
+    light.blend = vk::GraphicsPipelineDesc::Blend::Additive;
     lightPipeline = vk::createGraphicsPipeline(context, lightLayout.layout, light);
 
     vk::GraphicsPipelineDesc sky;
@@ -317,9 +327,20 @@ struct DeferredRenderer::Impl {
     objectBuffer = vk::createBuffer(context, std::max<std::size_t>(1, newScene.objects.size()) * sizeof(gpu::ObjectConstants),
                                     VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryLocation::HostVisible);
     drawOrder.clear();
+    transparentOrder.clear();
+    for (std::uint32_t i = 0; i < newScene.objects.size(); ++i) {
+      const float opacity = newScene.objects[i].material.opacity;
+      if (!(opacity > 0.0f && opacity <= 1.0f))
+        throw std::invalid_argument("scene '" + newScene.name + "': object " + std::to_string(i) + " has opacity " +
+                                    std::to_string(opacity) + " outside (0, 1]");
+      if (opacity < 1.0f && newScene.objects[i].layer == Layer::FirstPerson)
+        throw std::invalid_argument("scene '" + newScene.name + "': transparent first-person objects are not supported");
+    }
     for (Layer layer : {Layer::World, Layer::FirstPerson})
       for (std::uint32_t i = 0; i < newScene.objects.size(); ++i)
-        if (newScene.objects[i].layer == layer) drawOrder.push_back(i);
+        if (newScene.objects[i].layer == layer && newScene.objects[i].material.opacity >= 1.0f) drawOrder.push_back(i);
+    for (std::uint32_t i = 0; i < newScene.objects.size(); ++i)
+      if (newScene.objects[i].material.opacity < 1.0f) transparentOrder.push_back(i);
     scene = newScene;
   }
 
@@ -356,7 +377,7 @@ struct DeferredRenderer::Impl {
       constants.objectToLayer = object.transform;
       constants.objectToWorld = object.layer == Layer::FirstPerson ? view.worldFromCamera * object.transform : object.transform;
       constants.normalToWorld = glm::transpose(glm::inverse(constants.objectToWorld));
-      constants.albedo = glm::vec4(object.material.albedo, 1.0f);
+      constants.albedo = glm::vec4(object.material.albedo, object.material.opacity);
       constants.specular = glm::vec4(object.material.specularColor, object.material.glossiness);
       constants.layer = object.layer == Layer::FirstPerson ? S3D_LAYER_FIRST_PERSON : S3D_LAYER_WORLD;
     }
@@ -371,13 +392,13 @@ struct DeferredRenderer::Impl {
     context.cmdPushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 0, std::uint32_t(writes.size()), writes.data());
   }
 
-  void drawObjects(VkCommandBuffer cmd, VkPipelineLayout layout) {
+  void drawObjects(VkCommandBuffer cmd, VkPipelineLayout layout, const std::vector<std::uint32_t>& objects) {
     VkDeviceSize offset = 0;
     VkBuffer vertex = vertexBuffer.buffer;
     vkCmdBindVertexBuffers(cmd, 0, 1, &vertex, &offset);
     vkCmdBindIndexBuffer(cmd, indexBuffer.buffer, 0, VK_INDEX_TYPE_UINT32);
     std::optional<Layer> currentLayer;
-    for (std::uint32_t objectIndex : drawOrder) {
+    for (std::uint32_t objectIndex : objects) {
       const Object& object = scene.objects[objectIndex];
       if (currentLayer != object.layer) {
         // Listing 4.3's depth ranges: first-person in [0, split], the world in [split, 1].
@@ -408,7 +429,7 @@ struct DeferredRenderer::Impl {
     setScissor(cmd, {{0, 0}, {width, height}});
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, gbufferPipeline);
     pushGeometryDescriptors(cmd, geometryLayout.layout, {});
-    drawObjects(cmd, geometryLayout.layout);
+    drawObjects(cmd, geometryLayout.layout, drawOrder);
     vkCmdEndRendering(cmd);
   }
 
@@ -505,8 +526,36 @@ struct DeferredRenderer::Impl {
     VkWriteDescriptorSet extra[] = {vk::sampledImageWrite(2, &diffuseInfo), vk::sampledImageWrite(3, &specularInfo)};
     extra[0].descriptorType = extra[1].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
     pushGeometryDescriptors(cmd, shadingLayout.layout, extra);
-    drawObjects(cmd, shadingLayout.layout);
+    drawObjects(cmd, shadingLayout.layout, drawOrder);
     vkCmdEndRendering(cmd);
+  }
+
+  // Transparent surfaces over the shaded image, back to front, depth-tested against the opaque depth.
+  void recordTransparent(VkCommandBuffer cmd, const std::vector<std::uint32_t>& backToFront) {
+    vk::transition(cmd, hdr, vk::kColorAttachment, vk::kColorAttachment);  // after the shading pass's writes
+    VkRenderingAttachmentInfo color = colorAttachment(hdr, false);
+    VkRenderingAttachmentInfo depthAttachment{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+    depthAttachment.imageView = depth.view;
+    depthAttachment.imageLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL;
+    depthAttachment.loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;
+    depthAttachment.storeOp = VK_ATTACHMENT_STORE_OP_NONE;
+    beginRendering(cmd, width, height, std::span(&color, 1), &depthAttachment);
+    setScissor(cmd, {{0, 0}, {width, height}});
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, transparentPipeline);
+    pushGeometryDescriptors(cmd, geometryLayout.layout, {});
+    drawObjects(cmd, geometryLayout.layout, backToFront);
+    vkCmdEndRendering(cmd);
+  }
+
+  // Transparent objects sorted by the view depth of their origin, farthest first.
+  std::vector<std::uint32_t> transparentBackToFront(const ViewMatrices& view) const {
+    std::vector<std::pair<float, std::uint32_t>> keyed;
+    for (std::uint32_t index : transparentOrder)
+      keyed.push_back({(view.worldView * scene.objects[index].transform[3]).z, index});
+    std::sort(keyed.begin(), keyed.end());  // most negative view z = farthest
+    std::vector<std::uint32_t> sorted;
+    for (const auto& entry : keyed) sorted.push_back(entry.second);
+    return sorted;
   }
 
   void recordResolve(VkCommandBuffer cmd) {
@@ -550,6 +599,10 @@ struct DeferredRenderer::Impl {
     if (!lights.empty())
       passes.push_back({"point-lights", [this, lights](VkCommandBuffer cmd) { recordPointLights(cmd, lights); }});
     passes.push_back({"shading", [this](VkCommandBuffer cmd) { recordShading(cmd); }});
+    if (!transparentOrder.empty()) {
+      std::vector<std::uint32_t> backToFront = transparentBackToFront(view);
+      passes.push_back({"transparent", [this, backToFront](VkCommandBuffer cmd) { recordTransparent(cmd, backToFront); }});
+    }
     passes.push_back({"resolve", [this](VkCommandBuffer cmd) { recordResolve(cmd); }});
     return passes;
   }

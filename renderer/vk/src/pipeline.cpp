@@ -91,10 +91,17 @@ Unique<VkPipeline> createGraphicsPipeline(const Context& context, VkPipelineLayo
   for (VkPipelineColorBlendAttachmentState& blend : blends) {
     blend.colorWriteMask =
         VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT | VK_COLOR_COMPONENT_B_BIT | VK_COLOR_COMPONENT_A_BIT;
-    if (desc.additiveBlend) {
+    if (desc.blend == GraphicsPipelineDesc::Blend::Additive) {
       blend.blendEnable = VK_TRUE;
       blend.srcColorBlendFactor = blend.dstColorBlendFactor = VK_BLEND_FACTOR_ONE;
       blend.srcAlphaBlendFactor = blend.dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
+      blend.colorBlendOp = blend.alphaBlendOp = VK_BLEND_OP_ADD;
+    } else if (desc.blend == GraphicsPipelineDesc::Blend::Alpha) {
+      blend.blendEnable = VK_TRUE;
+      blend.srcColorBlendFactor = VK_BLEND_FACTOR_SRC_ALPHA;
+      blend.dstColorBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
+      blend.srcAlphaBlendFactor = VK_BLEND_FACTOR_ZERO;  // keep the opaque pass's alpha
+      blend.dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
       blend.colorBlendOp = blend.alphaBlendOp = VK_BLEND_OP_ADD;
     }
   }

@@ -23,6 +23,7 @@ struct Material {
   glm::vec3 albedo{0.5f};          // linear diffuse reflectance
   glm::vec3 specularColor{0.04f};  // Fresnel reflectance at normal incidence (F0)
   float glossiness = 0.3f;         // 0..1, mapped to a Blinn-Phong exponent
+  float opacity = 1.0f;            // < 1: glass-like, drawn alpha-blended after shading and writing no depth
 };
 
 enum class Layer : std::uint32_t {

@@ -36,7 +36,8 @@ struct GraphicsPipelineDesc {
   bool depthTest = false;
   bool depthWrite = false;
   VkCompareOp depthCompare = VK_COMPARE_OP_LESS;
-  bool additiveBlend = false;  // one + one on every color attachment
+  enum class Blend { None, Additive, Alpha };
+  Blend blend = Blend::None;  // Additive: one + one; Alpha: src alpha over (1 - src alpha)
   VkCullModeFlags cullMode = VK_CULL_MODE_NONE;
 };
 Unique<VkPipeline> createGraphicsPipeline(const Context& context, VkPipelineLayout layout,
