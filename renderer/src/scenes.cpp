@@ -151,10 +151,27 @@ Scene makeCourtyardScene() {
   return scene;
 }
 
-std::vector<std::string> builtInSceneNames() { return {"courtyard"}; }
+Scene makeGlassScene() {
+  Scene scene = makeCourtyardScene();
+  scene.name = "glass";
+  constexpr std::uint32_t kBox = 1;
+  // Panes that write no depth in front of geometry at other depths: the seed's transparency flaw.
+  Material tintedGlass = material({0.55f, 0.75f, 0.85f}, 0.95f, glm::vec3(0.04f));
+  tintedGlass.opacity = 0.35f;
+  Material greenGlass = material({0.35f, 0.80f, 0.45f}, 0.95f, glm::vec3(0.04f));
+  greenGlass.opacity = 0.5f;
+  // A tall window 3 m ahead, left of the view axis, over the fence and the boxes behind it.
+  scene.objects.push_back({kBox, tintedGlass, boxOnGround({-1.6f, 0.0f, 3.0f}, {2.2f, 2.6f, 0.02f}), Layer::World});
+  // A smaller green pane 2 m ahead, right of centre, in front of the pole and the pillars.
+  scene.objects.push_back({kBox, greenGlass, boxOnGround({0.9f, 0.6f, 4.0f}, {0.9f, 1.2f, 0.02f}), Layer::World});
+  return scene;
+}
+
+std::vector<std::string> builtInSceneNames() { return {"courtyard", "glass"}; }
 
 Scene makeBuiltInScene(const std::string& name) {
   if (name == "courtyard") return makeCourtyardScene();
+  if (name == "glass") return makeGlassScene();
   std::string choices;
   for (const std::string& n : builtInSceneNames()) choices += (choices.empty() ? "" : ", ") + n;
   throw std::invalid_argument("unknown scene '" + name + "' (choices: " + choices + ")");

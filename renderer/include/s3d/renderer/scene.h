@@ -99,6 +99,7 @@ Mesh makeGroundPlane(float halfSize);                                   // y=0, 
 
 // Built-in procedural scenes.
 Scene makeCourtyardScene();  // the default scene
+Scene makeGlassScene();      // the courtyard with transparent panes in front of it
 std::vector<std::string> builtInSceneNames();
 Scene makeBuiltInScene(const std::string& name);  // throws std::invalid_argument naming the scene and the choices
 
