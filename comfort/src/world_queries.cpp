@@ -2,79 +2,110 @@
 
 #include <embree3/rtcore.h>
 
-#include <algorithm>
 #include <cmath>
-#include <cstring>
+#include <cstddef>
 #include <limits>
 #include <stdexcept>
 #include <string>
 
-#include "s3d/renderer/deferred_renderer.h"
-
 namespace s3d::comfort {
 namespace {
 
-void checkEmbree(RTCDevice device, const char* call) {
-  RTCError error = rtcGetDeviceError(device);
-  if (error != RTC_ERROR_NONE) throw std::runtime_error(std::string(call) + " failed: Embree error " + std::to_string(int(error)));
+static_assert(sizeof(glm::vec3) == 3 * sizeof(float), "vertex buffer is written as RTC_FORMAT_FLOAT3");
+
+const char* errorName(RTCError error) {
+  switch (error) {
+    case RTC_ERROR_NONE: return "RTC_ERROR_NONE";
+    case RTC_ERROR_UNKNOWN: return "RTC_ERROR_UNKNOWN";
+    case RTC_ERROR_INVALID_ARGUMENT: return "RTC_ERROR_INVALID_ARGUMENT";
+    case RTC_ERROR_INVALID_OPERATION: return "RTC_ERROR_INVALID_OPERATION";
+    case RTC_ERROR_OUT_OF_MEMORY: return "RTC_ERROR_OUT_OF_MEMORY";
+    case RTC_ERROR_UNSUPPORTED_CPU: return "RTC_ERROR_UNSUPPORTED_CPU";
+    case RTC_ERROR_CANCELLED: return "RTC_ERROR_CANCELLED";
+  }
+  return "unknown RTCError";
 }
+
+// Embree reports errors through the device (or, for a device that could not be created, per thread with a
+// null device): turn the first pending one into an exception naming the call that was just made.
+void checkEmbree(RTCDevice device, const char* call) {
+  const RTCError error = rtcGetDeviceError(device);
+  if (error != RTC_ERROR_NONE) throw std::runtime_error(std::string(call) + " failed: " + errorName(error));
+}
+
+// Owns one RTCGeometry until it is attached to the scene (which then holds its own reference).
+struct GeometryRef {
+  RTCGeometry handle;
+  ~GeometryRef() {
+    if (handle) rtcReleaseGeometry(handle);
+  }
+};
 
 }  // namespace
 
-struct WorldQueries::Impl {
+struct WorldQueries::Embree {
   RTCDevice device = nullptr;
   RTCScene scene = nullptr;
-  ~Impl() {
+  Embree() = default;
+  Embree(const Embree&) = delete;
+  Embree& operator=(const Embree&) = delete;
+  ~Embree() {
     if (scene) rtcReleaseScene(scene);
     if (device) rtcReleaseDevice(device);
   }
 };
 
-WorldQueries::WorldQueries(const renderer::Scene& scene) : impl_(new Impl) {
-  try {
-    impl_->device = rtcNewDevice(nullptr);
-    if (!impl_->device) throw std::runtime_error("rtcNewDevice failed: Embree error " + std::to_string(int(rtcGetDeviceError(nullptr))));
-    impl_->scene = rtcNewScene(impl_->device);
-    checkEmbree(impl_->device, "rtcNewScene");
-    for (const renderer::Object& object : scene.objects) {
-      if (object.layer != renderer::Layer::World) continue;  // the weapon is not part of the world
-      const renderer::Mesh& mesh = scene.meshes.at(object.mesh);
-      RTCGeometry geometry = rtcNewGeometry(impl_->device, RTC_GEOMETRY_TYPE_TRIANGLE);
-      checkEmbree(impl_->device, "rtcNewGeometry");
-      auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
-                                                                   3 * sizeof(float), mesh.vertices.size()));
-      auto* indices = static_cast<unsigned*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
-                                                                     3 * sizeof(unsigned), mesh.indices.size() / 3));
-      if (!vertices || !indices) {
-        rtcReleaseGeometry(geometry);
-        checkEmbree(impl_->device, "rtcSetNewGeometryBuffer");
-        throw std::runtime_error("rtcSetNewGeometryBuffer returned no buffer");
-      }
-      for (std::size_t i = 0; i < mesh.vertices.size(); ++i) {
-        glm::vec3 world = glm::vec3(object.transform * glm::vec4(mesh.vertices[i].position, 1.0f));
-        std::memcpy(vertices + 3 * i, &world, sizeof(world));
-      }
-      std::copy(mesh.indices.begin(), mesh.indices.begin() + std::ptrdiff_t(mesh.indices.size() / 3 * 3), indices);
-      rtcCommitGeometry(geometry);
-      rtcAttachGeometry(impl_->scene, geometry);
-      rtcReleaseGeometry(geometry);  // the scene holds it now
-      checkEmbree(impl_->device, "rtcAttachGeometry");
-    }
-    rtcCommitScene(impl_->scene);
-    checkEmbree(impl_->device, "rtcCommitScene");
-  } catch (...) {
-    delete impl_;
-    throw;
+WorldQueries::WorldQueries(const renderer::Scene& scene) : embree_(std::make_unique<Embree>()) {
+  embree_->device = rtcNewDevice(nullptr);
+  if (!embree_->device) checkEmbree(nullptr, "rtcNewDevice");
+  if (!embree_->device) throw std::runtime_error("rtcNewDevice failed: no device and no error");
+  RTCDevice device = embree_->device;
+  embree_->scene = rtcNewScene(device);
+  checkEmbree(device, "rtcNewScene");
+
+  for (const renderer::Object& object : scene.objects) {
+    if (object.layer != renderer::Layer::World) continue;  // the first-person weapon is not part of the world
+    const renderer::Mesh& mesh = scene.meshes.at(object.mesh);
+    const std::size_t triangleCount = mesh.indices.size() / 3;
+    if (triangleCount == 0 || mesh.vertices.empty()) continue;
+    for (std::uint32_t index : mesh.indices)
+      if (index >= mesh.vertices.size())
+        throw std::invalid_argument("WorldQueries: mesh " + std::to_string(object.mesh) + " has triangle index " +
+                                    std::to_string(index) + " beyond its " + std::to_string(mesh.vertices.size()) +
+                                    " vertices");
+
+    const GeometryRef geometry{rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE)};
+    checkEmbree(device, "rtcNewGeometry");
+    auto* positions = static_cast<glm::vec3*>(rtcSetNewGeometryBuffer(
+        geometry.handle, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, sizeof(glm::vec3), mesh.vertices.size()));
+    checkEmbree(device, "rtcSetNewGeometryBuffer(vertex)");
+    auto* triangles = static_cast<std::uint32_t*>(rtcSetNewGeometryBuffer(
+        geometry.handle, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(std::uint32_t), triangleCount));
+    checkEmbree(device, "rtcSetNewGeometryBuffer(index)");
+
+    // Embree's buffers are padded for its 16-byte loads; glm::vec3 is three packed floats like RTC_FORMAT_FLOAT3.
+    for (std::size_t i = 0; i < mesh.vertices.size(); ++i)
+      positions[i] = glm::vec3(object.transform * glm::vec4(mesh.vertices[i].position, 1.0f));
+    for (std::size_t i = 0; i < 3 * triangleCount; ++i) triangles[i] = mesh.indices[i];
+
+    rtcCommitGeometry(geometry.handle);
+    checkEmbree(device, "rtcCommitGeometry");
+    rtcAttachGeometry(embree_->scene, geometry.handle);
+    checkEmbree(device, "rtcAttachGeometry");
   }
+  rtcCommitScene(embree_->scene);
+  checkEmbree(device, "rtcCommitScene");
 }
 
-WorldQueries::~WorldQueries() { delete impl_; }
+WorldQueries::~WorldQueries() = default;
 
 std::optional<float> WorldQueries::castRay(glm::vec3 origin, glm::vec3 direction, float maxDistance) const {
-  float length = glm::length(direction);
-  if (!(length > 0.0f) || !std::isfinite(length) || !(maxDistance > 0.0f))
-    throw std::invalid_argument("castRay: direction must be non-zero and finite, maxDistance positive");
-  direction /= length;
+  const float length = glm::length(direction);
+  if (!(length > 0.0f) || !std::isfinite(length))
+    throw std::invalid_argument("castRay: the direction must be non-zero and finite");
+  if (!(maxDistance > 0.0f)) throw std::invalid_argument("castRay: maxDistance must be positive");
+  direction /= length;  // Embree measures tfar in units of the direction's length: normalized, it is metres
+
   RTCRayHit query{};
   query.ray.org_x = origin.x;
   query.ray.org_y = origin.y;
@@ -89,21 +120,9 @@ std::optional<float> WorldQueries::castRay(glm::vec3 origin, glm::vec3 direction
   query.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
-  rtcIntersect1(impl_->scene, &context, &query);
+  rtcIntersect1(embree_->scene, &context, &query);
   if (query.hit.geomID == RTC_INVALID_GEOMETRY_ID) return std::nullopt;
   return query.ray.tfar;
-}
-
-CrosshairPlacement placeCrosshair(const WorldQueries& world, const renderer::Camera& camera, float defaultDistance,
-                                  float margin) {
-  if (!(defaultDistance > 0.0f) || !std::isfinite(defaultDistance))
-    throw std::invalid_argument("crosshair distance must be positive and finite (got " + std::to_string(defaultDistance) + ")");
-  // The aim is the view axis, so the distance along it is the crosshair's linear depth.
-  glm::mat4 cameraToWorld = glm::inverse(renderer::cameraView(camera));
-  glm::vec3 aim = -glm::vec3(cameraToWorld[2]);
-  std::optional<float> hit = world.castRay(camera.position, aim, defaultDistance);
-  if (!hit) return {defaultDistance, false};
-  return {std::max(*hit - margin, camera.nearPlane), true};
 }
 
 }  // namespace s3d::comfort

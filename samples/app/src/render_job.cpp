@@ -11,6 +11,7 @@
 #include <tuple>
 #include <utility>
 
+#include "s3d/comfort/crosshair.h"
 #include "s3d/comfort/world_queries.h"
 #include "s3d/hud/crosshair.h"
 #include "s3d/io/image_io.h"
@@ -221,18 +222,18 @@ RenderReport runRenderJob(vk::Context& context, const RenderJobOptions& options)
   // 6. HUD: the crosshair, placed by an Embree ray cast along the aim (seed 4.6.2), drawn after stereo
   // synthesis into every view at the parallax of its depth. It is not part of the 3D scene, so synthesized
   // eyes and references get the same overlay, after the comparison so it cannot flatter the error.
-  const comfort::WorldQueries world(job.scene);
-  const comfort::CrosshairPlacement placement = comfort::placeCrosshair(world, job.scene.camera, job.scene.crosshairDistance);
-  report.crosshair.depth = placement.depth;
-  report.crosshair.hitWorld = placement.hitWorld;
-  report.crosshair.parallaxPx = -hud::hudEyeOffsetPx(options.stereo, placement.depth, width, stereo::Eye::Left);
+  const comfort::WorldQueries world(job.scene);  // once per job: the world does not change between views
+  const comfort::CrosshairPlacement placement =
+      comfort::placeCrosshair(world, job.scene.camera, job.scene.crosshairDistance);
+  const float leftOffset = hud::crosshairEyeOffsetPx(options.stereo, placement.depth, width, stereo::Eye::Left);
+  const float rightOffset = hud::crosshairEyeOffsetPx(options.stereo, placement.depth, width, stereo::Eye::Right);
+  report.crosshair = {placement.depth, placement.hitWorld, rightOffset};
   const hud::CrosshairStyle crosshairStyle = hud::crosshairStyleForHeight(height);
+  // The image center in pixel indices ((W - 1) / 2, rounded half up by drawCrosshair), plus the eye's offset.
   auto withCrosshair = [&](ImageRGBA8 image, float offsetPx) {
-    hud::drawCrosshair(image, float(width) * 0.5f - 0.5f + offsetPx, float(height) * 0.5f - 0.5f, crosshairStyle);
+    hud::drawCrosshair(image, 0.5f * float(width - 1) + offsetPx, 0.5f * float(height - 1), crosshairStyle);
     return image;
   };
-  const float leftOffset = hud::hudEyeOffsetPx(options.stereo, placement.depth, width, stereo::Eye::Left);
-  const float rightOffset = hud::hudEyeOffsetPx(options.stereo, placement.depth, width, stereo::Eye::Right);
   const ImageRGBA8 centerHud = withCrosshair(centerColor, 0.0f);
   const stereo::StereoPair eyesHud{withCrosshair(synthesized.left, leftOffset), withCrosshair(synthesized.right, rightOffset)};
   const stereo::StereoPair referenceHud{withCrosshair(leftReference, leftOffset), withCrosshair(rightReference, rightOffset)};

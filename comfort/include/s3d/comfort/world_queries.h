@@ -1,7 +1,8 @@
 #pragma once
-// Ray casts against the world with Embree 3 (the seed's section 4.6.2 uses "a few ray casts" for the
-// crosshair and the zero-parallax control). Built from the same meshes the renderer draws; the
-// first-person layer is not part of the world.
+// Ray casts against the world with Embree 3 (the seed's section 4.6.2 uses "a ray-cast against the world"
+// for the crosshair, and ray casts for the zero-parallax control). Built from the same meshes the renderer
+// draws, in world space; the first-person layer (the weapon) is not part of the world.
+#include <memory>
 #include <optional>
 
 #include <glm/glm.hpp>
@@ -12,27 +13,22 @@ namespace s3d::comfort {
 
 class WorldQueries {
  public:
+  // Builds an Embree scene from scene.objects with Layer::World (vertices transformed by object.transform).
+  // Throws std::runtime_error naming the Embree call that failed, std::out_of_range for a bad mesh index
+  // and std::invalid_argument for a triangle index outside its mesh.
   explicit WorldQueries(const renderer::Scene& scene);
   ~WorldQueries();
   WorldQueries(const WorldQueries&) = delete;
   WorldQueries& operator=(const WorldQueries&) = delete;
 
-  // Distance along the (normalized) direction to the first world surface within maxDistance.
+  // Distance from origin along the normalized direction to the first world surface within maxDistance
+  // (either side of a triangle counts), or nothing. Throws std::invalid_argument for a zero or non-finite
+  // direction or a maxDistance that is not positive. Safe to call from several threads at once.
   std::optional<float> castRay(glm::vec3 origin, glm::vec3 direction, float maxDistance) const;
 
  private:
-  struct Impl;
-  Impl* impl_;
+  struct Embree;  // RTCDevice + RTCScene, released in reverse order
+  std::unique_ptr<Embree> embree_;
 };
-
-struct CrosshairPlacement {
-  float depth = 0.0f;     // linear (view) depth of the crosshair in world units
-  bool hitWorld = false;  // a surface closer than the default distance pulled it in
-};
-
-// The seed's crosshair: a few meters beyond the weapon, or just in front of the world surface the aim ray
-// hits when that is closer. A pure function of this frame; smoothing over frames comes with sequences.
-CrosshairPlacement placeCrosshair(const WorldQueries& world, const renderer::Camera& camera, float defaultDistance,
-                                  float margin = 0.25f);
 
 }  // namespace s3d::comfort

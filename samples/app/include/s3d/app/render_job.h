@@ -57,7 +57,7 @@ struct EyeError {
 struct CrosshairReport {
   float depth = 0.0f;       // linear depth the crosshair is placed at (world units)
   bool hitWorld = false;    // the aim ray hit a surface closer than the scene's crosshair distance
-  float parallaxPx = 0.0f;  // its per-eye displacement (left eye: -parallaxPx, right eye: +parallaxPx)
+  float parallaxPx = 0.0f;  // per-eye displacement in pixels (left eye: -parallaxPx, right eye: +parallaxPx)
 };
 
 struct RenderReport {
@@ -94,6 +94,7 @@ RenderReport runRenderJob(vk::Context& context, const RenderJobOptions& options)
 //   "centerPasses": [{"name", "gpuMs"}],
 //   "ratios": {"stereoPassToReferenceEye"},                        (null when a time is missing)
 //   "error": {"left": {"psnrDb", "meanAbsoluteError", "shareAbove8", "pixelCount"}, "right": {...}},
+//   "crosshair": {"depth", "hitWorld", "parallaxPx"},              (the HUD crosshair, see CrosshairReport)
 //   "files": [...] }
 // Every number is finite (a non-finite value would be written as null).
 nlohmann::json toJson(const RenderReport& report);
