@@ -6,6 +6,7 @@
 layout(binding = 0) uniform Frame { FrameConstants frame; };
 layout(binding = 1) uniform sampler2D deviceDepth;
 layout(binding = 2) uniform sampler2D normalGlossiness;
+layout(binding = 3) uniform sampler2D ambientOcclusion;  // 1 everywhere when SSAO is off
 layout(push_constant) uniform Push { LightConstants light; };
 
 layout(location = 0) out vec4 diffuseLight;
@@ -36,7 +37,8 @@ void main() {
   if (light.kind == S3D_LIGHT_AMBIENT_AND_SUN) {
     toLight = frame.directionToSun.xyz;
     radiance = frame.sunColor.rgb;
-    ambient = frame.ambientColor.rgb * (normal.y * 0.7 + 0.3);  // hemisphere ambient, Y up
+    // Hemisphere ambient (Y up), occluded by SSAO.
+    ambient = frame.ambientColor.rgb * (normal.y * 0.7 + 0.3) * texelFetch(ambientOcclusion, pixel, 0).r;
   } else {
     vec3 offset = light.positionRadius.xyz - worldPosition;
     float distanceToLight = length(offset);

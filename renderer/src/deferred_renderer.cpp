@@ -24,6 +24,7 @@
 #include <s3d_spirv/linear_depth_comp.h>
 #include <s3d_spirv/shading_frag.h>
 #include <s3d_spirv/sky_frag.h>
+#include <s3d_spirv/ssao_comp.h>
 #include <s3d_spirv/sky_vert.h>
 #include <s3d_spirv/tonemap_comp.h>
 #include <s3d_spirv/transparent_frag.h>
@@ -38,6 +39,7 @@ constexpr VkFormat kLightFormat = VK_FORMAT_R16G16B16A16_SFLOAT;   // HDR diffus
 constexpr VkFormat kHdrFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
 constexpr VkFormat kDisplayFormat = VK_FORMAT_R8G8B8A8_UNORM;     // sRGB-encoded by the tone-map pass
 constexpr VkFormat kLinearDepthFormat = VK_FORMAT_R32_SFLOAT;
+constexpr VkFormat kAmbientOcclusionFormat = VK_FORMAT_R16_SFLOAT;
 
 constexpr vk::ImageState kDepthSampled{VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
                                        VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
@@ -46,6 +48,11 @@ constexpr vk::ImageState kDepthReadOnlyAttachment{VK_IMAGE_LAYOUT_DEPTH_STENCIL_
                                                   VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT |
                                                       VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
                                                   VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT};
+// Sampled by the light pass (fragment) and SSAO (compute).
+constexpr vk::ImageState kNormalSampled{VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+                                        VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                                        VK_ACCESS_2_SHADER_SAMPLED_READ_BIT};
+constexpr vk::ImageState kOcclusionSampled = kNormalSampled;
 constexpr vk::ImageState kComputeSampled{VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
                                          VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT};
 
@@ -170,13 +177,13 @@ struct DeferredRenderer::Impl {
   std::uint32_t height;
 
   // Render targets.
-  vk::Image depth, normalGlossiness, diffuseLight, specularLight, hdr, display, linearDepth;
+  vk::Image depth, normalGlossiness, diffuseLight, specularLight, hdr, display, linearDepth, ambientOcclusion;
   vk::Unique<VkSampler> nearestSampler;
 
   // Passes: layouts and pipelines.
-  vk::PipelineLayout geometryLayout, lightLayout, shadingLayout, skyLayout, tonemapLayout, linearDepthLayout;
+  vk::PipelineLayout geometryLayout, lightLayout, shadingLayout, skyLayout, tonemapLayout, linearDepthLayout, ssaoLayout;
   vk::Unique<VkPipeline> gbufferPipeline, lightPipeline, shadingPipeline, transparentPipeline, skyPipeline, tonemapPipeline,
-      linearDepthPipeline;
+      linearDepthPipeline, ssaoPipeline;
 
   // Scene data.
   Scene scene;
@@ -213,6 +220,9 @@ struct DeferredRenderer::Impl {
     const VkImageUsageFlags computeOutput = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
     display = vk::createImage(context, kDisplayFormat, width, height, computeOutput);
     linearDepth = vk::createImage(context, kLinearDepthFormat, width, height, computeOutput);
+    ambientOcclusion = vk::createImage(context, kAmbientOcclusionFormat, width, height,
+                                       VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
+                                           VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
 
     VkSamplerCreateInfo samplerInfo{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
     samplerInfo.magFilter = samplerInfo.minFilter = VK_FILTER_NEAREST;
@@ -238,7 +248,7 @@ struct DeferredRenderer::Impl {
                                                             binding(2, sampled, fragment), binding(3, sampled, fragment)};
     shadingLayout = vk::createPushDescriptorLayout(context, shadingBindings, sizeof(std::uint32_t), graphics);
     const VkDescriptorSetLayoutBinding lightBindings[] = {binding(0, ubo, fragment), binding(1, sampled, fragment),
-                                                          binding(2, sampled, fragment)};
+                                                          binding(2, sampled, fragment), binding(3, sampled, fragment)};
     lightLayout = vk::createPushDescriptorLayout(context, lightBindings, sizeof(gpu::LightConstants), fragment);
     const VkDescriptorSetLayoutBinding skyBindings[] = {binding(0, ubo, fragment)};
     skyLayout = vk::createPushDescriptorLayout(context, skyBindings, 0, 0);
@@ -248,6 +258,9 @@ struct DeferredRenderer::Impl {
     const VkDescriptorSetLayoutBinding linearDepthBindings[] = {binding(0, ubo, compute), binding(1, sampled, compute),
                                                                 binding(2, storage, compute)};
     linearDepthLayout = vk::createPushDescriptorLayout(context, linearDepthBindings, 0, 0);
+    const VkDescriptorSetLayoutBinding ssaoBindings[] = {binding(0, ubo, compute), binding(1, sampled, compute),
+                                                         binding(2, sampled, compute), binding(3, storage, compute)};
+    ssaoLayout = vk::createPushDescriptorLayout(context, ssaoBindings, 0, 0);
 
     vk::GraphicsPipelineDesc geometry;
     geometry.vertexSpirv = spirv_geometry_vert;
@@ -297,6 +310,7 @@ struct DeferredRenderer::Impl {
 
     tonemapPipeline = vk::createComputePipeline(context, tonemapLayout.layout, spirv_tonemap_comp);
     linearDepthPipeline = vk::createComputePipeline(context, linearDepthLayout.layout, spirv_linear_depth_comp);
+    ssaoPipeline = vk::createComputePipeline(context, ssaoLayout.layout, spirv_ssao_comp);
   }
 
   void setScene(const Scene& newScene) {
@@ -315,6 +329,8 @@ struct DeferredRenderer::Impl {
         throw std::invalid_argument("scene '" + newScene.name + "': object refers to missing mesh " + std::to_string(object.mesh));
     if (vertices.empty() || indices.empty()) throw std::invalid_argument("scene '" + newScene.name + "' has no geometry");
     if (newScene.pointLights.size() > 256) throw std::invalid_argument("scene has more than 256 point lights");
+    if (newScene.ambientOcclusion && !(newScene.ambientOcclusionRadius > 0.0f && newScene.ambientOcclusionRadius < 1e4f))
+      throw std::invalid_argument("scene '" + newScene.name + "': ambient-occlusion radius must be in (0, 1e4) world units");
 
     vertexBuffer = vk::createBuffer(context, vertices.size() * sizeof(Vertex),
                                     VK_BUFFER_USAGE_VERTEX_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
@@ -367,6 +383,7 @@ struct DeferredRenderer::Impl {
     frame.skyGround = glm::vec4(scene.sky.groundColor, 0.0f);
     frame.screen = glm::vec4(float(width), float(height), 1.0f / float(width), 1.0f / float(height));
     frame.exposure = glm::vec4(scene.exposure, 0.0f, 0.0f, 0.0f);
+    frame.ambientOcclusion = glm::vec4(scene.ambientOcclusionRadius, 0.0f, 0.0f, 0.0f);
     std::memcpy(frameBuffer.mapped, &frame, sizeof(frame));
 
     auto* objects = static_cast<gpu::ObjectConstants*>(objectBuffer.mapped);
@@ -437,10 +454,12 @@ struct DeferredRenderer::Impl {
     VkDescriptorBufferInfo frameInfo{frameBuffer.buffer, 0, VK_WHOLE_SIZE};
     VkDescriptorImageInfo depthInfo{nearestSampler, depth.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
     VkDescriptorImageInfo normalInfo{nearestSampler, normalGlossiness.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+    VkDescriptorImageInfo occlusionInfo{nearestSampler, ambientOcclusion.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
     VkWriteDescriptorSet writes[] = {vk::uniformBufferWrite(0, &frameInfo), vk::sampledImageWrite(1, &depthInfo),
-                                     vk::sampledImageWrite(2, &normalInfo)};
-    writes[1].descriptorType = writes[2].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-    context.cmdPushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, lightLayout.layout, 0, 3, writes);
+                                     vk::sampledImageWrite(2, &normalInfo), vk::sampledImageWrite(3, &occlusionInfo)};
+    writes[1].descriptorType = writes[2].descriptorType = writes[3].descriptorType =
+        VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+    context.cmdPushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, lightLayout.layout, 0, 4, writes);
   }
 
   // Starts a light-accumulation render pass instance over the diffuse and specular light buffers.
@@ -452,10 +471,45 @@ struct DeferredRenderer::Impl {
     pushLightDescriptors(cmd);
   }
 
-  // Hemisphere ambient and the sun: one fullscreen triangle; clears the light buffers.
-  void recordSunAndAmbient(VkCommandBuffer cmd) {
+  // After the G-buffer: depth and normals become readable by the fragment and compute passes that follow.
+  void recordGBufferReadable(VkCommandBuffer cmd) {
     vk::transition(cmd, depth, vk::kDepthAttachment, kDepthSampled);
-    vk::transition(cmd, normalGlossiness, vk::kColorAttachment, vk::kFragmentRead);
+    vk::transition(cmd, normalGlossiness, vk::kColorAttachment, kNormalSampled);
+  }
+
+  // SSAO into the ambient-occlusion image (left readable by the light pass).
+  void recordAmbientOcclusion(VkCommandBuffer cmd) {
+    recordGBufferReadable(cmd);
+    vk::transition(cmd, ambientOcclusion, vk::kUndefined, vk::kComputeWrite);
+    VkDescriptorBufferInfo frameInfo{frameBuffer.buffer, 0, VK_WHOLE_SIZE};
+    VkDescriptorImageInfo depthInfo{nearestSampler, depth.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+    VkDescriptorImageInfo normalInfo{nearestSampler, normalGlossiness.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+    VkDescriptorImageInfo occlusionInfo{VK_NULL_HANDLE, ambientOcclusion.view, VK_IMAGE_LAYOUT_GENERAL};
+    VkWriteDescriptorSet writes[] = {vk::uniformBufferWrite(0, &frameInfo), vk::sampledImageWrite(1, &depthInfo),
+                                     vk::sampledImageWrite(2, &normalInfo), vk::storageImageWrite(3, &occlusionInfo)};
+    writes[1].descriptorType = writes[2].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, ssaoPipeline);
+    context.cmdPushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, ssaoLayout.layout, 0, 4, writes);
+    vkCmdDispatch(cmd, (width + S3D_COMPUTE_GROUP_SIZE - 1) / S3D_COMPUTE_GROUP_SIZE,
+                  (height + S3D_COMPUTE_GROUP_SIZE - 1) / S3D_COMPUTE_GROUP_SIZE, 1);
+    vk::transition(cmd, ambientOcclusion, vk::kComputeWrite, kOcclusionSampled);
+  }
+
+  // Without SSAO the light pass reads an occlusion of 1 everywhere.
+  void recordNoAmbientOcclusion(VkCommandBuffer cmd) {
+    vk::transition(cmd, ambientOcclusion, vk::kUndefined, vk::kTransferDestination);
+    VkClearColorValue one{{1.0f, 1.0f, 1.0f, 1.0f}};
+    VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+    vkCmdClearColorImage(cmd, ambientOcclusion.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &one, 1, &range);
+    vk::transition(cmd, ambientOcclusion, vk::kTransferDestination, kOcclusionSampled);
+  }
+
+  // Hemisphere ambient and the sun: one fullscreen triangle; clears the light buffers.
+  void recordSunAndAmbient(VkCommandBuffer cmd, bool withAmbientOcclusion) {
+    if (!withAmbientOcclusion) {
+      recordGBufferReadable(cmd);
+      recordNoAmbientOcclusion(cmd);
+    }
     vk::transition(cmd, diffuseLight, vk::kUndefined, vk::kColorAttachment);
     vk::transition(cmd, specularLight, vk::kUndefined, vk::kColorAttachment);
     beginLightAccumulation(cmd, true);
@@ -594,7 +648,11 @@ struct DeferredRenderer::Impl {
   std::vector<ScheduledPass> schedulePasses(const ViewMatrices& view) {
     std::vector<ScheduledPass> passes;
     passes.push_back({"gbuffer", [this](VkCommandBuffer cmd) { recordGBuffer(cmd); }});
-    passes.push_back({"sun-and-ambient", [this](VkCommandBuffer cmd) { recordSunAndAmbient(cmd); }});
+    const bool withAmbientOcclusion = scene.ambientOcclusion;
+    if (withAmbientOcclusion) passes.push_back({"ssao", [this](VkCommandBuffer cmd) { recordAmbientOcclusion(cmd); }});
+    passes.push_back({"sun-and-ambient", [this, withAmbientOcclusion](VkCommandBuffer cmd) {
+                        recordSunAndAmbient(cmd, withAmbientOcclusion);
+                      }});
     std::vector<VisibleLight> lights = visiblePointLights(view);
     if (!lights.empty())
       passes.push_back({"point-lights", [this, lights](VkCommandBuffer cmd) { recordPointLights(cmd, lights); }});

@@ -32,7 +32,10 @@ struct FrameConstants {  // uniform buffer, std140 (every member 16-byte aligned
   vec4 skyGround;
   vec4 screen;  // width, height, 1 / width, 1 / height
   vec4 exposure;  // x: exposure multiplier
+  vec4 ambientOcclusion;  // x: radius in world units
 };
+
+#define S3D_SSAO_SAMPLES 16
 
 struct ObjectConstants {  // storage buffer, std430, one per object
   mat4 objectToLayer;  // world layer: object -> world; first-person: object -> camera space

@@ -1,6 +1,7 @@
 #pragma once
 // Scene description consumed by the deferred renderer (and by comfort's Embree world queries).
 // Conventions: right-handed, Y up, camera looks down -Z in view space, metres.
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -78,9 +79,13 @@ struct Scene {
   std::vector<Object> objects;
   SunLight sun;
   glm::vec3 ambientColor{0.2f};  // hemisphere ambient, scaled by (N.y * 0.7 + 0.3)
+  // Screen-space ambient occlusion on the ambient light only; off: the pass does not run.
+  bool ambientOcclusion = true;
+  float ambientOcclusionRadius = 0.5f;  // world units
   std::vector<PointLight> pointLights;
   Sky sky;
   Camera camera;
+  std::vector<Camera> cameraPath;  // one camera per frame of the scene's sequence; empty: only `camera`
   FirstPersonView firstPerson;
   float exposure = 1.0f;
   float crosshairDistance = 8.0f;  // default HUD crosshair depth in metres
@@ -102,5 +107,9 @@ Scene makeCourtyardScene();  // the default scene
 Scene makeGlassScene();      // the courtyard with transparent panes in front of it
 std::vector<std::string> builtInSceneNames();
 Scene makeBuiltInScene(const std::string& name);  // throws std::invalid_argument naming the scene and the choices
+
+// The camera of frame `frame` of the scene's sequence: cameraPath[frame], or `camera` for frame 0 of a scene
+// without a path. Throws std::out_of_range naming the frame and the scene's frame count.
+Camera cameraForFrame(const Scene& scene, std::size_t frame);
 
 }  // namespace s3d::renderer
