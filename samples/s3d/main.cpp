@@ -20,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "s3d/app/convert_job.h"
 #include "s3d/app/render_job.h"
 #include "s3d/renderer/scene.h"
 #include "s3d/stereo/output_formats.h"
@@ -267,12 +268,53 @@ int main(int argc, char** argv) {
   render->add_flag("--list-devices", renderListDevices,
                    "List the Vulkan devices and whether s3d can use them, then exit without rendering");
 
+  s3d::app::ConvertJobOptions convertOptions;
+  s3d::vk::ContextOptions convertContext;
+  std::string depthKind = "linear";
+  std::string convertSideBySide = "half", convertTopBottom = "half", convertMethod = "seed";
+  std::string referenceLeft, referenceRight;
+  CLI::App* convert = app.add_subcommand(
+      "convert",
+      "Synthesize a stereo pair from an existing frame: a color image and its depth (from any renderer or "
+      "capture). Writes left.png, right.png, anaglyph.png, sbs.png, tab.png and report.json. Sign convention: "
+      "the left eye shows a point of parallax p (maxSeparation * (1 - zeroParallaxDistance / depth), a "
+      "fraction of the width) p * width pixels left of where the input shows it, the right eye as far right");
+  convert->add_option("--color", convertOptions.color, "Color image: .png (display-encoded) or .exr (linear; clamped and sRGB-encoded)")
+      ->required();
+  convert->add_option("--depth", convertOptions.depth, "Depth: an .exr with a Z channel (may be the color file)")->required();
+  convert->add_option("--depth-kind", depthKind, "linear (view depth in world units; >= 1e30 or inf is sky) or hardware "
+                                                 "(zero-to-one perspective depth; needs --near and --far; 1 is sky)")
+      ->check(CLI::IsMember({"linear", "hardware"}))
+      ->capture_default_str();
+  convert->add_option("--near", convertOptions.nearPlane, "Near plane of the projection, for --depth-kind hardware");
+  convert->add_option("--far", convertOptions.farPlane, "Far plane of the projection, for --depth-kind hardware");
+  convert->add_option("--output", convertOptions.outputFolder, "Output folder (created if missing)")->capture_default_str();
+  convert->add_option("--reference-left", referenceLeft, "A real left view to measure the synthesized left eye against");
+  convert->add_option("--reference-right", referenceRight, "A real right view to measure the synthesized right eye against");
+  convert->add_option("--max-separation", convertOptions.stereo.maxSeparation, "Eye separation at infinity, fraction of the width")
+      ->check(floatRange(0.0, double(s3d::stereo::kMaxSeparationLimit), false, "a fraction of the screen width"))
+      ->capture_default_str();
+  convert->add_option("--zero-parallax-distance", convertOptions.stereo.zeroParallaxDistance,
+                      "Depth (in the depth file's units) that stays on the screen plane")
+      ->check(floatRange(0.0, 1.0e6, true, "a distance"))
+      ->capture_default_str();
+  convert->add_option("--edge-crop", convertOptions.stereo.edgeCrop, "Fraction of the width blacked out per side; default: = --max-separation")
+      ->check(floatRange(0.0, double(s3d::stereo::kMaxSeparationLimit), false, "a fraction of the screen width"));
+  convert->add_option("--method", convertMethod, "seed or search")->check(CLI::IsMember({"seed", "search"}))->capture_default_str();
+  convert->add_option("--taps", convertOptions.stereo.searchTaps, "Depth-search taps of --method search")
+      ->check(CLI::Range(1, S3D_STEREO_MAX_TAPS))
+      ->capture_default_str();
+  convert->add_option("--sbs", convertSideBySide, "Side-by-side packing: half or full")->check(CLI::IsMember({"half", "full"}));
+  convert->add_option("--tab", convertTopBottom, "Top-and-bottom packing: half or full")->check(CLI::IsMember({"half", "full"}));
+  convert->add_option("--device", convertContext.device, "Vulkan device: auto, cpu, gpu or an index")->capture_default_str();
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::Success& success) {  // --help
     return app.exit(success);
   } catch (const CLI::ParseError& error) {
-    return fail(std::string(error.what()) + " (see `s3d " + (render->parsed() ? "render " : "") + "--help`)");
+    const char* command = render->parsed() ? "render " : convert->parsed() ? "convert " : "";
+    return fail(std::string(error.what()) + " (see `s3d " + command + "--help`)");
   }
 
   try {
@@ -280,9 +322,24 @@ int main(int argc, char** argv) {
       listDevices();
       return 0;
     }
+    if (convert->parsed()) {
+      convertOptions.depthKind = depthKind == "hardware" ? s3d::app::DepthKind::Hardware : s3d::app::DepthKind::Linear;
+      convertOptions.sideBySide = s3d::stereo::parsePackingMode(convertSideBySide);
+      convertOptions.topBottom = s3d::stereo::parsePackingMode(convertTopBottom);
+      convertOptions.stereo.method = s3d::stereo::parseStereoMethod(convertMethod);
+      if (!referenceLeft.empty()) convertOptions.referenceLeft = referenceLeft;
+      if (!referenceRight.empty()) convertOptions.referenceRight = referenceRight;
+      s3d::stereo::validate(convertOptions.stereo);
+      s3d::vk::Context context(convertContext);
+      const s3d::app::ConvertReport report = s3d::app::runConvertJob(context, convertOptions);
+      std::cout << "s3d convert: " << report.width << "x" << report.height << " on " << report.deviceName
+                << ", stereo pass " << formatMs(report.stereoPassGpuMs) << ", wrote " << report.filesWritten.size()
+                << " files to " << convertOptions.outputFolder.string() << '\n';
+      return 0;
+    }
     if (!render->parsed()) {
       std::cerr << app.help();
-      return fail("no command given (try `s3d render`)");
+      return fail("no command given (try `s3d render` or `s3d convert`)");
     }
     if (!resolution.empty()) parseResolution(resolution, options.width, options.height);  // checked above
     options.outputs = std::set<std::string>(outputs.begin(), outputs.end());
