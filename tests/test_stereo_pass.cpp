@@ -204,3 +204,43 @@ TEST_F(StereoSearchGpu, MatchesTheCppReferenceWithinOneLevel) {
 
 }  // namespace
 }  // namespace s3d::stereo
+
+namespace s3d::stereo {
+namespace {
+
+class StereoHardCasesGpu : public test::VulkanTest {};
+
+TEST_F(StereoHardCasesGpu, InvalidDepthIsReadAsTheZeroParallaxPlaneOnGpuAndCpu) {
+  // NaN, zero and negative depth carry no information: read as the zero-parallax distance, so a
+  // neighbourhood of such pixels stays in place; never NaN or garbage. Exact: parallax is exactly 0.
+  SyntheticView view = makeSyntheticView(40, 6, 3);
+  for (std::uint32_t x = 0; x < 40; ++x) *view.depth.at(x, 2) = (x % 3 == 0) ? NAN : (x % 3 == 1) ? 0.0f : -5.0f;
+  StereoParameters parameters{0.05f, 2.0f, 0.0f};
+  gpu::StereoConstants c = makeStereoConstants(parameters, 40, 6);
+  StereoPair gpu = synthesizeStereoOnGpu(context(), view.color, view.depth, c);
+  StereoPair cpu = synthesizeStereoReference(view.color, view.depth, c);
+  for (std::uint32_t x = 0; x < 40; ++x)
+    for (int channel = 0; channel < 4; ++channel) {
+      EXPECT_EQ(gpu.left.at(x, 2)[channel], view.color.at(x, 2)[channel]) << x;
+      EXPECT_EQ(cpu.left.at(x, 2)[channel], view.color.at(x, 2)[channel]) << x;
+    }
+}
+
+TEST(StereoHardCases, SkyEverywhereShiftsByExactlyMaxSeparation) {
+  // +inf depth: parallax = maxSeparation exactly (never NaN); 0.1 of 50 px = 5 px.
+  ImageRGBA8 center(50, 1);
+  for (std::uint32_t x = 0; x < 50; ++x) center.at(x, 0)[0] = std::uint8_t(x * 5);
+  DepthImage sky(50, 1, INFINITY);
+  StereoPair pair = synthesizeStereoReference(center, sky, makeStereoConstants({0.1f, 1.0f, 0.0f}, 50, 1));
+  for (std::uint32_t x = 0; x < 45; ++x) EXPECT_EQ(pair.left.at(x, 0)[0], center.at(x + 5, 0)[0]) << x;
+}
+
+TEST(StereoHardCases, OneByOneImageIsItsOwnEyes) {
+  ImageRGBA8 center(1, 1, 77);
+  DepthImage depth(1, 1, 3.0f);
+  StereoPair pair = synthesizeStereoReference(center, depth, makeStereoConstants({0.02f, 1.0f, 0.0f}, 1, 1));
+  EXPECT_EQ(pair.left.pixels, center.pixels);  // every tap and sample clamps to the only pixel
+}
+
+}  // namespace
+}  // namespace s3d::stereo

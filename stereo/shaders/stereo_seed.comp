@@ -12,7 +12,9 @@ layout(binding = 3, rgba8) uniform writeonly image2D rightEye;
 
 layout(push_constant) uniform Push { StereoConstants c; };
 
-float depthAt(int x, int y) { return imageLoad(linearDepth, ivec2(clamp(x, 0, c.width - 1), y)).r; }
+float depthAt(int x, int y) {
+  return sanitizedDepth(imageLoad(linearDepth, ivec2(clamp(x, 0, c.width - 1), y)).r, c.zeroParallaxDistance);
+}
 
 // Listing 4.5: minimum depth over the separation range on one side of the pixel.
 float minDepthOverTaps(int x, int y, int direction) {

@@ -14,14 +14,15 @@ void requireFinite(float value, const char* name) {
 
 int clampInt(int value, int low, int high) { return std::min(std::max(value, low), high); }
 
-float linearDepthAt(const DepthImage& depth, int x, int y) {
-  return *depth.at(std::uint32_t(clampInt(x, 0, int(depth.width) - 1)), std::uint32_t(y));
+float linearDepthAt(const DepthImage& depth, int x, int y, float zeroParallaxDistance) {
+  return gpu::sanitizedDepth(*depth.at(std::uint32_t(clampInt(x, 0, int(depth.width) - 1)), std::uint32_t(y)),
+                             zeroParallaxDistance);
 }
 
 // Listing 4.5: minimum depth over the separation range, on one side of the pixel (direction +1 or -1).
 float minDepthOverTaps(const DepthImage& depth, int x, int y, int direction, const gpu::StereoConstants& c) {
   float minDepth = S3D_INFINITY;  // the seed starts at 1.0, its normalized far plane
-  for (int i = 0; i < c.tapCount; ++i) minDepth = std::min(minDepth, linearDepthAt(depth, x + direction * c.tapOffsetPx[i], y));
+  for (int i = 0; i < c.tapCount; ++i) minDepth = std::min(minDepth, linearDepthAt(depth, x + direction * c.tapOffsetPx[i], y, c.zeroParallaxDistance));
   return minDepth;
 }
 

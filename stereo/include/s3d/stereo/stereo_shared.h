@@ -28,6 +28,12 @@ S3D_INLINE float parallaxFromDepth(float maxSeparation, float zeroParallaxDistan
   return maxSeparation * (1.0f - zeroParallaxDistance / linearDepth);
 }
 
+// Depth that carries no information (NaN, zero, negative) is read as the zero-parallax distance: the
+// pixel then stays where it is instead of spreading NaN or jumping by a meaningless parallax.
+S3D_INLINE float sanitizedDepth(float linearDepth, float zeroParallaxDistance) {
+  return linearDepth > 0.0f ? linearDepth : zeroParallaxDistance;
+}
+
 S3D_GPU_END
 
 #endif  // S3D_STEREO_SHARED_H
