@@ -1,13 +1,15 @@
-// Tests for the procedural meshes and the built-in courtyard scene (renderer/src/meshes.cpp, scenes.cpp).
+// Tests for the procedural meshes, the built-in scenes and their camera paths (renderer/src/meshes.cpp, scenes.cpp).
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <limits>
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -417,6 +419,357 @@ TEST(BuiltInScenes, UnknownSceneThrowsNamingItAndTheChoices) {
     EXPECT_NE(what.find("no-such-scene"), std::string::npos) << what;
     EXPECT_NE(what.find("courtyard"), std::string::npos) << what;
   }
+}
+
+
+// --- Stereo hard-case scenes (fence, cover, depth-range) and camera paths -------------------------
+
+struct Aabb {
+  glm::vec3 lo{std::numeric_limits<float>::max()};
+  glm::vec3 hi{-std::numeric_limits<float>::max()};
+};
+
+Aabb worldBounds(const Scene& scene, const Object& o) {
+  Aabb box;
+  for (const Vertex& v : scene.meshes.at(o.mesh).vertices) {
+    const glm::vec3 p(o.transform * glm::vec4(v.position, 1.0f));
+    box.lo = glm::min(box.lo, p);
+    box.hi = glm::max(box.hi, p);
+  }
+  return box;
+}
+
+// Euclidean distance from p to the box (0 inside).
+float distanceToBox(const Aabb& box, glm::vec3 p) {
+  return glm::length(glm::max(glm::max(box.lo - p, p - box.hi), glm::vec3(0.0f)));
+}
+
+// Slab test of the ray origin + t dir (t > 0) against the box; handles flat boxes (the ground plane).
+std::optional<float> rayBoxEntry(const Aabb& box, glm::vec3 origin, glm::vec3 dir) {
+  float t0 = 0.0f, t1 = std::numeric_limits<float>::max();
+  for (int a = 0; a < 3; ++a) {
+    if (std::abs(dir[a]) < 1e-12f) {
+      if (origin[a] < box.lo[a] || origin[a] > box.hi[a]) return std::nullopt;
+      continue;
+    }
+    float ta = (box.lo[a] - origin[a]) / dir[a], tb = (box.hi[a] - origin[a]) / dir[a];
+    if (ta > tb) std::swap(ta, tb);
+    t0 = std::max(t0, ta);
+    t1 = std::min(t1, tb);
+    if (t0 > t1) return std::nullopt;
+  }
+  return t0;
+}
+
+// Sizes of the object's oriented box (its mesh's local bounds through the transform's axes), ascending.
+std::array<float, 3> orientedSizes(const Scene& scene, const Object& o) {
+  glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+  for (const Vertex& v : scene.meshes.at(o.mesh).vertices) {
+    lo = glm::min(lo, v.position);
+    hi = glm::max(hi, v.position);
+  }
+  std::array<float, 3> sizes{};
+  for (int a = 0; a < 3; ++a)
+    sizes[static_cast<std::size_t>(a)] = (hi[a] - lo[a]) * glm::length(glm::vec3(o.transform[a]));
+  std::sort(sizes.begin(), sizes.end());
+  return sizes;
+}
+
+glm::vec3 forwardOf(const Camera& cam) { return cameraRotation(cam) * glm::vec3(0.0f, 0.0f, -1.0f); }
+
+// Every camera a scene is seen from: `camera` and each frame of its path.
+std::vector<Camera> allCameras(const Scene& scene) {
+  std::vector<Camera> cams{scene.camera};
+  cams.insert(cams.end(), scene.cameraPath.begin(), scene.cameraPath.end());
+  return cams;
+}
+
+bool sameCamera(const Camera& a, const Camera& b) {
+  return a.position == b.position && a.yawRadians == b.yawRadians && a.pitchRadians == b.pitchRadians &&
+         a.verticalFovRadians == b.verticalFovRadians && a.nearPlane == b.nearPlane && a.farPlane == b.farPlane;
+}
+
+// On a w x h ray grid from `cam`: the share of rays whose visible world hit has view depth in [minDepth, maxDepth]
+// (and, with aboveGround, lies above y = 0.01).
+double shareOfHitsInDepthRange(const Scene& scene, const Camera& cam, float minDepth, float maxDepth,
+                               bool aboveGround) {
+  const std::vector<Triangle> tris = trianglesOfLayer(scene, Layer::World);
+  const glm::mat3 rot = cameraRotation(cam);
+  const glm::vec3 forward = forwardOf(cam);
+  constexpr int w = 64, h = 36;
+  int count = 0;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const glm::vec3 dir = rot * viewRay(x, y, w, h, cam.verticalFovRadians);
+      const auto t = closestHit(tris, cam.position, dir);
+      if (!t) continue;
+      const float depth = *t * glm::dot(dir, forward);
+      if (depth >= minDepth && depth <= maxDepth && (!aboveGround || (cam.position + *t * dir).y > 0.01f)) ++count;
+    }
+  return static_cast<double>(count) / (w * h);
+}
+
+TEST(SceneCatalog, ListsTheStereoHardCases) {
+  const std::vector<std::string> names = builtInSceneNames();
+  for (const char* name : {"courtyard", "fence", "cover", "depth-range"})
+    EXPECT_NE(std::find(names.begin(), names.end(), name), names.end()) << name;
+}
+
+TEST(SceneCatalog, EveryBuiltInSceneBuildsWithBothLayers) {
+  for (const std::string& name : builtInSceneNames()) {
+    const Scene scene = makeBuiltInScene(name);
+    EXPECT_EQ(scene.name, name);
+    EXPECT_TRUE(scene.hasLayer(Layer::World)) << name;
+    EXPECT_TRUE(scene.hasLayer(Layer::FirstPerson)) << name;
+    for (const Object& o : scene.objects) EXPECT_LT(o.mesh, scene.meshes.size()) << name;
+  }
+}
+
+TEST(SceneCatalog, EveryCameraIsOutsideEveryWorldBoundingBoxByTheNearPlane) {
+  // `camera` and every path frame: no world object's axis-aligned box, grown by nearPlane on every side, contains
+  // the eye (so its Euclidean distance to each box is at least nearPlane too).
+  for (const std::string& name : builtInSceneNames()) {
+    const Scene scene = makeBuiltInScene(name);
+    const std::vector<Camera> cams = allCameras(scene);
+    for (std::size_t c = 0; c < cams.size(); ++c)
+      for (std::size_t i = 0; i < scene.objects.size(); ++i) {
+        if (scene.objects[i].layer != Layer::World) continue;
+        const Aabb box = worldBounds(scene, scene.objects[i]);
+        const glm::vec3 margin(cams[c].nearPlane);
+        const bool inside = glm::all(glm::greaterThanEqual(cams[c].position, box.lo - margin)) &&
+                            glm::all(glm::lessThanEqual(cams[c].position, box.hi + margin));
+        EXPECT_FALSE(inside) << name << ": camera " << c << " (0 = scene.camera, k = path frame k-1), object " << i;
+      }
+  }
+}
+
+TEST(SceneCatalog, EveryWeaponVertexLiesInsideTheFirstPersonFrustum) {
+  // glm::perspective(fp fov, 16/9, fp near, fp far): |ndc.x|, |ndc.y| <= 0.98 (2% margin), depth in [near, far].
+  for (const std::string& name : builtInSceneNames()) {
+    const Scene scene = makeBuiltInScene(name);
+    const FirstPersonView& fp = scene.firstPerson;
+    const glm::mat4 proj = glm::perspective(fp.verticalFovRadians, kAspect, fp.nearPlane, fp.farPlane);
+    for (const Object& o : scene.objects) {
+      if (o.layer != Layer::FirstPerson) continue;
+      for (const Vertex& v : scene.meshes[o.mesh].vertices) {
+        const glm::vec4 view = o.transform * glm::vec4(v.position, 1.0f);
+        EXPECT_GE(-view.z, fp.nearPlane) << name;
+        EXPECT_LE(-view.z, fp.farPlane) << name;
+        const glm::vec4 clip = proj * view;
+        ASSERT_GT(clip.w, 0.0f) << name;
+        EXPECT_LE(std::abs(clip.x / clip.w), 0.98f) << name << " x=" << view.x << " z=" << view.z;
+        EXPECT_LE(std::abs(clip.y / clip.w), 0.98f) << name << " y=" << view.y << " z=" << view.z;
+      }
+    }
+  }
+}
+
+TEST(SceneCatalog, CameraIsOneOfItsPathFrames) {
+  for (const std::string& name : builtInSceneNames()) {
+    const Scene scene = makeBuiltInScene(name);
+    EXPECT_TRUE(std::any_of(scene.cameraPath.begin(), scene.cameraPath.end(),
+                            [&](const Camera& c) { return sameCamera(c, scene.camera); }))
+        << name;
+  }
+}
+
+TEST(FenceScene, HasAtLeastTwentyThinOccludersTwoToFourMetresAhead) {
+  // A thin occluder: its two smaller oriented sizes are < 5 cm and its longest >= 0.5 m (a slat, bar or wire), and
+  // its centre is 2-4 m ahead of `camera` along the view axis.
+  const Scene scene = makeBuiltInScene("fence");
+  const glm::vec3 forward = forwardOf(scene.camera);
+  int thin = 0;
+  for (const Object& o : scene.objects) {
+    if (o.layer != Layer::World) continue;
+    const std::array<float, 3> sizes = orientedSizes(scene, o);
+    const glm::vec3 centre(o.transform * glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
+    const float depth = glm::dot(centre - scene.camera.position, forward);
+    if (sizes[1] < 0.05f && sizes[2] >= 0.5f && depth >= 2.0f && depth <= 4.0f) ++thin;
+  }
+  std::printf("thin occluders 2-4 m ahead: %d\n", thin);
+  EXPECT_GE(thin, 20);
+}
+
+TEST(FenceScene, SlatGapsAreOneHalfToTwiceTheSlatWidth) {
+  // Upright slats 2-4 cm wide (x extent of their bounding box), >= 1 m tall, < 5 cm deep: at least 20 neighbouring
+  // pairs (sorted by x) whose gap is 0.5-2 slat widths.
+  const Scene scene = makeBuiltInScene("fence");
+  std::vector<Aabb> slats;
+  for (const Object& o : scene.objects) {
+    if (o.layer != Layer::World) continue;
+    const Aabb box = worldBounds(scene, o);
+    const glm::vec3 size = box.hi - box.lo;
+    if (size.x >= 0.02f && size.x <= 0.04f && size.y >= 1.0f && size.z < 0.05f) slats.push_back(box);
+  }
+  ASSERT_GE(slats.size(), 21u);
+  std::sort(slats.begin(), slats.end(), [](const Aabb& a, const Aabb& b) { return a.lo.x < b.lo.x; });
+  int similarGaps = 0;
+  for (std::size_t i = 0; i + 1 < slats.size(); ++i) {
+    const float width = slats[i].hi.x - slats[i].lo.x;
+    const float gap = slats[i + 1].lo.x - slats[i].hi.x;
+    if (gap >= 0.5f * width && gap <= 2.0f * width) ++similarGaps;
+  }
+  EXPECT_GE(similarGaps, 20);
+}
+
+TEST(CoverScene, NearestWorldSurfaceAlongTheViewAxisIsUnderOneMetre) {
+  // At the cover frame (`camera`), the ray along the view axis enters some world bounding box between the near
+  // plane and 1 m (exact slab test).
+  const Scene scene = makeBuiltInScene("cover");
+  const glm::vec3 forward = forwardOf(scene.camera);
+  float nearest = std::numeric_limits<float>::max();
+  for (const Object& o : scene.objects)
+    if (o.layer == Layer::World)
+      if (auto t = rayBoxEntry(worldBounds(scene, o), scene.camera.position, forward))
+        nearest = std::min(nearest, *t);
+  std::printf("cover: nearest surface on the view axis %.3f m\n", static_cast<double>(nearest));
+  EXPECT_LT(nearest, 1.0f);
+  EXPECT_GE(nearest, scene.camera.nearPlane);
+}
+
+TEST(CoverScene, GeometryFiveToTwentyMetresAwayShowsPastTheWall) {
+  // On a 64 x 36 ray grid at the cover frame: >= 30% of the view is world surface within 1 m (the wall), and >= 5%
+  // is above-ground surface 5-20 m away.
+  const Scene scene = makeBuiltInScene("cover");
+  const double wall = shareOfHitsInDepthRange(scene, scene.camera, 0.0f, 1.0f, false);
+  const double beyond = shareOfHitsInDepthRange(scene, scene.camera, 5.0f, 20.0f, true);
+  std::printf("cover: within 1 m %.3f, above ground at 5-20 m %.3f\n", wall, beyond);
+  EXPECT_GE(wall, 0.30);
+  EXPECT_GE(beyond, 0.05);
+}
+
+TEST(CoverScene, PathWalksFromFourMetresIntoCoverAndBack) {
+  // Distance from the eye to the wall's face (the nearest box entry straight ahead, yaw ignored): first and last
+  // frames 4 m +- 5 cm, smallest 0.6 m +- 1 cm.
+  const Scene scene = makeBuiltInScene("cover");
+  auto wallDistance = [&scene](const Camera& cam) {
+    float nearest = std::numeric_limits<float>::max();
+    for (const Object& o : scene.objects)
+      if (o.layer == Layer::World)
+        if (auto t = rayBoxEntry(worldBounds(scene, o), cam.position, glm::vec3(0.0f, 0.0f, -1.0f)))
+          nearest = std::min(nearest, *t);
+    return nearest;
+  };
+  ASSERT_FALSE(scene.cameraPath.empty());
+  float smallest = std::numeric_limits<float>::max();
+  for (const Camera& cam : scene.cameraPath) smallest = std::min(smallest, wallDistance(cam));
+  EXPECT_NEAR(wallDistance(scene.cameraPath.front()), 4.0f, 0.05f);
+  EXPECT_NEAR(wallDistance(scene.cameraPath.back()), 4.0f, 0.05f);
+  EXPECT_NEAR(smallest, 0.6f, 0.01f);
+}
+
+TEST(DepthRangeScene, SpansThirtyCentimetresToKilometresWithAHundredKilometreFarPlane) {
+  // Distances from `camera` to world bounding boxes: some object within 0.5 m, some beyond 5 km;
+  // near plane 0.1 m, far plane >= 100 km.
+  const Scene scene = makeBuiltInScene("depth-range");
+  float nearest = std::numeric_limits<float>::max(), farthest = 0.0f;
+  for (const Object& o : scene.objects) {
+    if (o.layer != Layer::World) continue;
+    const float d = distanceToBox(worldBounds(scene, o), scene.camera.position);
+    nearest = std::min(nearest, d);
+    farthest = std::max(farthest, d);
+  }
+  std::printf("depth-range: nearest object %.3f m, farthest %.0f m\n", static_cast<double>(nearest),
+              static_cast<double>(farthest));
+  EXPECT_LE(nearest, 0.5f);
+  EXPECT_GE(farthest, 5000.0f);
+  EXPECT_FLOAT_EQ(scene.camera.nearPlane, 0.1f);
+  EXPECT_GE(scene.camera.farPlane, 100000.0f);
+}
+
+TEST(DepthRangeScene, NearObjectIsVisibleInTheLowerLeftOfEveryFrame) {
+  // The centre of the nearest world object (within 0.5 m) projects into the view's lower left at every path frame:
+  // -0.98 <= ndc.x < 0, -0.98 <= ndc.y < 0 (y up), with a positive view depth.
+  const Scene scene = makeBuiltInScene("depth-range");
+  const Object* nearObject = nullptr;
+  float nearest = std::numeric_limits<float>::max();
+  for (const Object& o : scene.objects)
+    if (o.layer == Layer::World)
+      if (const float d = distanceToBox(worldBounds(scene, o), scene.camera.position); d < nearest) {
+        nearest = d;
+        nearObject = &o;
+      }
+  ASSERT_NE(nearObject, nullptr);
+  ASSERT_LE(nearest, 0.5f);
+  const Aabb box = worldBounds(scene, *nearObject);
+  const glm::vec3 centre = 0.5f * (box.lo + box.hi);
+  for (std::size_t f = 0; f < scene.cameraPath.size(); ++f) {
+    const Camera& cam = scene.cameraPath[f];
+    const glm::vec3 view = glm::transpose(cameraRotation(cam)) * (centre - cam.position);
+    ASSERT_LT(view.z, 0.0f) << "frame " << f;
+    const glm::vec4 clip = glm::perspective(cam.verticalFovRadians, kAspect, cam.nearPlane, cam.farPlane) *
+                           glm::vec4(view, 1.0f);
+    const glm::vec2 ndc(clip.x / clip.w, clip.y / clip.w);
+    EXPECT_GE(ndc.x, -0.98f) << "frame " << f;
+    EXPECT_LT(ndc.x, 0.0f) << "frame " << f;
+    EXPECT_GE(ndc.y, -0.98f) << "frame " << f;
+    EXPECT_LT(ndc.y, 0.0f) << "frame " << f;
+  }
+}
+
+TEST(SceneCameraPaths, EachHasTwentyFourToFortyEightFrames) {
+  for (const std::string& name : builtInSceneNames()) {
+    const Scene scene = makeBuiltInScene(name);
+    EXPECT_GE(scene.cameraPath.size(), 24u) << name;
+    EXPECT_LE(scene.cameraPath.size(), 48u) << name;
+  }
+}
+
+TEST(SceneCameraPaths, ConsecutiveFramesMoveLessThanHalfAMetre) {
+  for (const std::string& name : builtInSceneNames()) {
+    const Scene scene = makeBuiltInScene(name);
+    for (std::size_t f = 1; f < scene.cameraPath.size(); ++f)
+      EXPECT_LT(glm::distance(scene.cameraPath[f - 1].position, scene.cameraPath[f].position), 0.5f)
+          << name << " frames " << f - 1 << "-" << f;
+  }
+}
+
+TEST(SceneCameraPaths, ConsecutiveFramesTurnLessThanAHundredthOfATurn) {
+  // |d yaw|, |d pitch| < 2 pi / 100 rad between neighbouring frames; lens and planes stay the same.
+  for (const std::string& name : builtInSceneNames()) {
+    const Scene scene = makeBuiltInScene(name);
+    for (std::size_t f = 1; f < scene.cameraPath.size(); ++f) {
+      const Camera& a = scene.cameraPath[f - 1];
+      const Camera& b = scene.cameraPath[f];
+      EXPECT_LT(std::abs(b.yawRadians - a.yawRadians), 0.0628f) << name << " frame " << f;
+      EXPECT_LT(std::abs(b.pitchRadians - a.pitchRadians), 0.0628f) << name << " frame " << f;
+      EXPECT_EQ(b.verticalFovRadians, a.verticalFovRadians) << name << " frame " << f;
+      EXPECT_EQ(b.nearPlane, a.nearPlane) << name << " frame " << f;
+      EXPECT_EQ(b.farPlane, a.farPlane) << name << " frame " << f;
+    }
+  }
+}
+
+TEST(SceneCameraForFrame, ReturnsEachFrameOfThePath) {
+  const Scene scene = makeBuiltInScene("cover");
+  ASSERT_FALSE(scene.cameraPath.empty());
+  for (std::size_t f = 0; f < scene.cameraPath.size(); ++f)
+    EXPECT_TRUE(sameCamera(cameraForFrame(scene, f), scene.cameraPath[f])) << "frame " << f;
+}
+
+TEST(SceneCameraForFrame, WithoutAPathFrameZeroIsTheCamera) {
+  Scene scene = makeCourtyardScene();
+  scene.cameraPath.clear();
+  scene.camera.position = glm::vec3(1.0f, 2.0f, 3.0f);
+  EXPECT_TRUE(sameCamera(cameraForFrame(scene, 0), scene.camera));
+  EXPECT_THROW(cameraForFrame(scene, 1), std::out_of_range);
+}
+
+TEST(SceneCameraForFrame, ThrowsOutOfRangeNamingTheFrameAndTheCount) {
+  const Scene scene = makeBuiltInScene("depth-range");
+  const std::size_t count = scene.cameraPath.size();
+  ASSERT_EQ(count, 48u);
+  try {
+    cameraForFrame(scene, 1000);
+    FAIL() << "expected std::out_of_range";
+  } catch (const std::out_of_range& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("frame 1000"), std::string::npos) << what;
+    EXPECT_NE(what.find("48 frames"), std::string::npos) << what;
+    EXPECT_NE(what.find("depth-range"), std::string::npos) << what;
+  }
+  EXPECT_THROW(cameraForFrame(scene, count), std::out_of_range);
+  EXPECT_NO_THROW(cameraForFrame(scene, count - 1));
 }
 
 }  // namespace
