@@ -286,3 +286,21 @@ TEST_F(RenderJob, ErrorMessagesNameTheProblem) {
 
 }  // namespace
 }  // namespace s3d::app
+
+namespace s3d::app {
+namespace {
+
+TEST(RenderJobOptionsCheck, AFrameBeyondTheScenesPathIsRejectedWithItsCount) {
+  RenderJobOptions options;
+  options.scene = "cover";
+  options.frame = 1000;
+  try {
+    validateRenderJobOptions(options);
+    FAIL() << "no exception";
+  } catch (const std::out_of_range& error) {
+    EXPECT_NE(std::string(error.what()).find("1000"), std::string::npos) << error.what();
+  }
+}
+
+}  // namespace
+}  // namespace s3d::app

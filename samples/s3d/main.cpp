@@ -243,6 +243,8 @@ int main(int argc, char** argv) {
                      "First-person weapon: depth scale applied before the offset (pushed = offset + scale * depth)")
       ->check(floatRange(0.0, 1.0e4, true, "a positive factor"))
       ->capture_default_str();
+  render->add_option("--frame", options.frame, "Frame of the scene's camera path to render (0: its first)")
+      ->capture_default_str();
   render->add_option("--method", stereoMethod, "Stereo method: seed (Listing 4.5, taps at 0.5/0.66/1.0 of the separation) or search (--taps taps spread over the separation)")
       ->check(CLI::IsMember({"seed", "search"}))
       ->capture_default_str();

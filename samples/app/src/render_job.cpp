@@ -61,6 +61,8 @@ ValidatedJob validateJob(const RenderJobOptions& options) {
   stereo::validate(options.stereo);
   ValidatedJob job{renderer::makeBuiltInScene(options.scene),  // throws naming the scene and the choices
                    stereo::makeStereoConstants(options.stereo, options.width, options.height)};
+  // The scene's camera at the requested frame of its path (throws naming the frame and the count).
+  job.scene.camera = renderer::cameraForFrame(job.scene, options.frame);
   if (job.constants.cropEnd <= job.constants.cropBegin)
     throw std::invalid_argument("edgeCrop " + std::to_string(options.stereo.edgeCrop) + " blacks out all " +
                                 std::to_string(options.width) + " columns: nothing left to compare");

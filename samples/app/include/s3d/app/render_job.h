@@ -39,6 +39,7 @@ struct RenderJobOptions {
   std::uint32_t width = 1280;
   std::uint32_t height = 720;
   std::string scene = "courtyard";  // one of renderer::builtInSceneNames()
+  std::size_t frame = 0;            // frame of the scene's camera path
   std::filesystem::path outputFolder = "out";
   // Which of kAllOutputs to write. The selection is honoured exactly: report.json is written only when
   // selected (it is by default). An empty set renders and measures without writing any file.
