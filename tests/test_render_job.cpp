@@ -304,3 +304,30 @@ TEST(RenderJobOptionsCheck, AFrameBeyondTheScenesPathIsRejectedWithItsCount) {
 
 }  // namespace
 }  // namespace s3d::app
+
+namespace s3d::app {
+namespace {
+
+class RenderJobMethods : public test::VulkanTest {};
+
+TEST_F(RenderJobMethods, TheIterativeMethodRunsEndToEndAndReportsFilledPixels) {
+  const fs::path folder = scratchFolder("iterative");
+  RenderJobOptions options;
+  options.width = 96;
+  options.height = 54;
+  options.outputFolder = folder;
+  options.outputs = {"report.json"};
+  options.stereo.method = stereo::StereoMethod::Iterative;
+  const RenderReport report = runRenderJob(context(), options);
+  std::ifstream stream(folder / "report.json");
+  const nlohmann::json json = nlohmann::json::parse(stream);
+  EXPECT_EQ(json.at("stereo").at("method"), "iterative");
+  EXPECT_EQ(json.at("stereo").at("iterations"), 6);
+  EXPECT_GT(report.filledPixels[0] + report.filledPixels[1], 0u);  // the weapon and pillars disocclude something
+  EXPECT_GT(report.left.display.pixelCount, 0u);  // its quality is held to the seed's in test_iterative.cpp
+  std::error_code ignored;
+  fs::remove_all(folder, ignored);
+}
+
+}  // namespace
+}  // namespace s3d::app

@@ -245,11 +245,16 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   render->add_option("--frame", options.frame, "Frame of the scene's camera path to render (0: its first)")
       ->capture_default_str();
-  render->add_option("--method", stereoMethod, "Stereo method: seed (Listing 4.5, taps at 0.5/0.66/1.0 of the separation) or search (--taps taps spread over the separation)")
-      ->check(CLI::IsMember({"seed", "search"}))
+  render->add_option("--method", stereoMethod,
+                     "Stereo method: seed (Listing 4.5, taps at 0.5/0.66/1.0 of the separation), search (--taps taps "
+                     "spread over the separation) or iterative (fixed-point source search, --iterations)")
+      ->check(CLI::IsMember({"seed", "search", "iterative"}))
       ->capture_default_str();
   render->add_option("--taps", options.stereo.searchTaps, "Depth-search taps of --method search")
       ->check(CLI::Range(1, S3D_STEREO_MAX_TAPS))
+      ->capture_default_str();
+  render->add_option("--iterations", options.stereo.iterations, "Fixed-point iterations of --method iterative")
+      ->check(CLI::Range(1, 16))
       ->capture_default_str();
   render
       ->add_option("--device", contextOptions.device,
@@ -302,7 +307,12 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   convert->add_option("--edge-crop", convertOptions.stereo.edgeCrop, "Fraction of the width blacked out per side; default: = --max-separation")
       ->check(floatRange(0.0, double(s3d::stereo::kMaxSeparationLimit), false, "a fraction of the screen width"));
-  convert->add_option("--method", convertMethod, "seed or search")->check(CLI::IsMember({"seed", "search"}))->capture_default_str();
+  convert->add_option("--method", convertMethod, "seed, search or iterative")
+      ->check(CLI::IsMember({"seed", "search", "iterative"}))
+      ->capture_default_str();
+  convert->add_option("--iterations", convertOptions.stereo.iterations, "Fixed-point iterations of --method iterative")
+      ->check(CLI::Range(1, 16))
+      ->capture_default_str();
   convert->add_option("--taps", convertOptions.stereo.searchTaps, "Depth-search taps of --method search")
       ->check(CLI::Range(1, S3D_STEREO_MAX_TAPS))
       ->capture_default_str();

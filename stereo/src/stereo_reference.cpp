@@ -61,16 +61,25 @@ void validate(const StereoParameters& p) {
   if (p.method == StereoMethod::Search && (p.searchTaps < 1 || p.searchTaps > S3D_STEREO_MAX_TAPS))
     throw std::invalid_argument("searchTaps " + std::to_string(p.searchTaps) + " is outside [1, " +
                                 std::to_string(S3D_STEREO_MAX_TAPS) + "]");
+  if (p.method == StereoMethod::Iterative && (p.iterations < 1 || p.iterations > 16))
+    throw std::invalid_argument("iterations " + std::to_string(p.iterations) + " is outside [1, 16]");
   if (p.edgeCrop > kMaxSeparationLimit)
     throw std::invalid_argument("edgeCrop " + std::to_string(p.edgeCrop) + " is above " + std::to_string(kMaxSeparationLimit));
 }
 
-const char* methodName(StereoMethod method) { return method == StereoMethod::Seed ? "seed" : "search"; }
+const char* methodName(StereoMethod method) {
+  switch (method) {
+    case StereoMethod::Seed: return "seed";
+    case StereoMethod::Search: return "search";
+    case StereoMethod::Iterative: return "iterative";
+  }
+  return "unknown";
+}
 
 StereoMethod parseStereoMethod(const std::string& name) {
-  if (name == "seed") return StereoMethod::Seed;
-  if (name == "search") return StereoMethod::Search;
-  throw std::invalid_argument("unknown stereo method '" + name + "' (expected seed or search)");
+  for (StereoMethod method : {StereoMethod::Seed, StereoMethod::Search, StereoMethod::Iterative})
+    if (name == methodName(method)) return method;
+  throw std::invalid_argument("unknown stereo method '" + name + "' (expected seed, search or iterative)");
 }
 
 namespace {
@@ -105,7 +114,8 @@ gpu::StereoConstants makeSeedConstants(const StereoParameters& p, std::uint32_t 
 }
 
 gpu::StereoConstants makeStereoConstants(const StereoParameters& p, std::uint32_t width, std::uint32_t height) {
-  if (p.method == StereoMethod::Seed) return makeSeedConstants(p, width, height);
+  // The iterative pass has its own constants (makeIterativeConstants); crop and size are the seed's.
+  if (p.method != StereoMethod::Search) return makeSeedConstants(p, width, height);
   gpu::StereoConstants c = makeConstantsWithoutTaps(p, width, height);
   // Evenly spread over (0, maxSeparation], rounded to whole pixels; repeated offsets are dropped.
   for (int i = 1; i <= p.searchTaps; ++i) {

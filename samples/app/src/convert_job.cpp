@@ -10,7 +10,7 @@
 #include "s3d/io/image_io.h"
 #include "s3d/stereo/srgb.h"
 #include "s3d/stereo/stereo_pass.h"
-#include "s3d/vk/timestamps.h"
+#include "s3d/stereo/synthesis.h"
 
 namespace s3d::app {
 namespace {
@@ -82,38 +82,16 @@ DepthImage readLinearDepth(const ConvertJobOptions& options) {
   return depth;
 }
 
-// Runs the pass once warm and once timed on the uploaded images; returns both eyes.
-stereo::StereoPair synthesize(vk::Context& context, const ImageRGBA8& color, const DepthImage& depth,
-                              const gpu::StereoConstants& constants, std::optional<double>& gpuMs) {
+// Uploads the frame and runs the parameters' method on it (untimed once, then timed).
+stereo::SynthesisResult synthesize(vk::Context& context, const ImageRGBA8& color, const DepthImage& depth,
+                                   const stereo::StereoParameters& parameters) {
   const VkImageUsageFlags usage =
       VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
   vk::Image colorImage = vk::createImage(context, stereo::StereoPass::kColorFormat, color.width, color.height, usage);
   vk::Image depthImage = vk::createImage(context, stereo::StereoPass::kDepthFormat, color.width, color.height, usage);
-  vk::Image left = vk::createImage(context, stereo::StereoPass::kColorFormat, color.width, color.height, usage);
-  vk::Image right = vk::createImage(context, stereo::StereoPass::kColorFormat, color.width, color.height, usage);
   vk::uploadImage(context, colorImage, std::as_bytes(std::span(color.pixels)), vk::kComputeWrite);
   vk::uploadImage(context, depthImage, std::as_bytes(std::span(depth.pixels)), vk::kComputeWrite);
-  const stereo::StereoPass pass(context);
-  vk::TimestampQueries timestamps(context, 2);
-  for (bool timed : {false, true}) {  // the first dispatch compiles (lavapipe) and is not timed
-    context.submitAndWait([&](VkCommandBuffer cmd) {
-      stereo::StereoPass::recordInputBarriers(cmd, colorImage, depthImage, left, right);
-      if (timed && timestamps.supported()) {
-        timestamps.reset(cmd);
-        timestamps.write(cmd, 0, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT);
-      }
-      pass.record(cmd, colorImage, depthImage, left, right, constants);
-      if (timed && timestamps.supported()) timestamps.write(cmd, 1, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT);
-      stereo::StereoPass::recordInputRelease(cmd, colorImage, depthImage);
-    });
-  }
-  gpuMs = timestamps.elapsedMs(0, 1);
-  stereo::StereoPair pair{ImageRGBA8(color.width, color.height), ImageRGBA8(color.width, color.height)};
-  for (auto [image, target] : {std::pair{&left, &pair.left}, std::pair{&right, &pair.right}}) {
-    std::vector<std::byte> bytes = vk::readbackImage(context, *image, vk::kComputeWrite);
-    std::memcpy(target->pixels.data(), bytes.data(), bytes.size());
-  }
-  return pair;
+  return stereo::synthesizeTimed(context, colorImage, depthImage, parameters);
 }
 
 std::optional<ImageRGBA8> readReference(const std::optional<fs::path>& file, const ImageRGBA8& color, const char* which) {
@@ -151,7 +129,9 @@ ConvertReport runConvertJob(vk::Context& context, const ConvertJobOptions& optio
   report.width = color.width;
   report.height = color.height;
   report.cropColumns = std::uint32_t(constants.cropBegin);
-  const stereo::StereoPair eyes = synthesize(context, color, depth, constants, report.stereoPassGpuMs);
+  stereo::SynthesisResult synthesis = synthesize(context, color, depth, options.stereo);
+  report.stereoPassGpuMs = synthesis.gpuMs;
+  const stereo::StereoPair eyes = std::move(synthesis.eyes);
   if (referenceLeft) report.left = stereo::compareDisplayImages(eyes.left, *referenceLeft, report.cropColumns);
   if (referenceRight) report.right = stereo::compareDisplayImages(eyes.right, *referenceRight, report.cropColumns);
 

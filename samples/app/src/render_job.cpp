@@ -17,6 +17,7 @@
 #include "s3d/io/image_io.h"
 #include "s3d/renderer/scene.h"
 #include "s3d/stereo/stereo_pass.h"
+#include "s3d/stereo/synthesis.h"
 #include "s3d/vk/resources.h"
 #include "s3d/vk/timestamps.h"
 
@@ -67,51 +68,6 @@ ValidatedJob validateJob(const RenderJobOptions& options) {
     throw std::invalid_argument("edgeCrop " + std::to_string(options.stereo.edgeCrop) + " blacks out all " +
                                 std::to_string(options.width) + " columns: nothing left to compare");
   return job;
-}
-
-ImageRGBA8 toImageRGBA8(const std::vector<std::byte>& bytes, std::uint32_t width, std::uint32_t height) {
-  ImageRGBA8 image(width, height);
-  if (bytes.size() != image.pixels.size()) throw std::logic_error("stereo pass readback: unexpected byte count");
-  std::memcpy(image.pixels.data(), bytes.data(), bytes.size());
-  return image;
-}
-
-// Listing 4.5 on the GPU, straight on the renderer's outputs (no upload), timed with two timestamps.
-stereo::StereoPair runStereoPass(vk::Context& context, const renderer::DeferredRenderer& deferred,
-                                 const gpu::StereoConstants& constants, std::optional<double>& gpuMs) {
-  const vk::Image& color = deferred.displayColor();
-  const vk::Image& depth = deferred.linearDepth();
-  if (color.format != stereo::StereoPass::kColorFormat || depth.format != stereo::StereoPass::kDepthFormat)
-    throw std::logic_error("renderer outputs do not have the stereo pass's formats (RGBA8 unorm, R32 float)");
-  const std::uint32_t width = color.width;
-  const std::uint32_t height = color.height;
-
-  const stereo::StereoPass pass(context);
-  const VkImageUsageFlags usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
-  vk::Image left = vk::createImage(context, stereo::StereoPass::kColorFormat, width, height, usage);
-  vk::Image right = vk::createImage(context, stereo::StereoPass::kColorFormat, width, height, usage);
-  vk::TimestampQueries timestamps(context, 2);
-  const bool timed = timestamps.supported();
-
-  // An untimed warm-up dispatch first (lavapipe compiles at first use; the reference eye it is compared
-  // with is a warm frame too), then the timed one. ALL_COMMANDS on both ends, as the renderer times frames.
-  for (bool timedRun : {false, true}) {
-    context.submitAndWait([&](VkCommandBuffer cmd) {
-      stereo::StereoPass::recordInputBarriers(cmd, color, depth, left, right);
-      if (timedRun && timed) {
-        timestamps.reset(cmd);
-        timestamps.write(cmd, 0, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT);
-      }
-      pass.record(cmd, color, depth, left, right, constants);
-      if (timedRun && timed) timestamps.write(cmd, 1, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT);
-      // Hand the inputs back in the state the renderer's header promises (and its next frame expects).
-      stereo::StereoPass::recordInputRelease(cmd, color, depth);
-    });
-  }
-  gpuMs = timed ? timestamps.elapsedMs(0, 1) : std::nullopt;
-
-  return {toImageRGBA8(vk::readbackImage(context, left, vk::kComputeWrite), width, height),
-          toImageRGBA8(vk::readbackImage(context, right, vk::kComputeWrite), width, height)};
 }
 
 // The two-pass reference's view of one eye: both layers get their own off-axis camera, because the
@@ -203,7 +159,11 @@ RenderReport runRenderJob(vk::Context& context, const RenderJobOptions& options)
   const ImageRGBA32F centerHdr = wantsExr ? deferred.readHdrColor() : ImageRGBA32F();
 
   // 3. Both eyes synthesized on the GPU from the renderer's own images.
-  const stereo::StereoPair synthesized = runStereoPass(context, deferred, job.constants, report.stereoPassGpuMs);
+  stereo::SynthesisResult synthesis =
+      stereo::synthesizeTimed(context, deferred.displayColor(), deferred.linearDepth(), options.stereo);
+  report.stereoPassGpuMs = synthesis.gpuMs;
+  report.filledPixels = {synthesis.filledLeft, synthesis.filledRight};
+  const stereo::StereoPair synthesized = std::move(synthesis.eyes);
 
   // 4. The two-pass reference: each eye rendered with its off-axis camera.
   const renderer::FrameTimings leftTimings = deferred.render(eyeViewMatrices(job.scene, center, stereo::Eye::Left, options.stereo));
@@ -292,6 +252,9 @@ nlohmann::json toJson(const RenderReport& report) {
             {"edgeCrop", finiteOrNull(tidy(report.stereo.edgeCrop))},
             {"cropColumns", report.cropColumns},
             {"method", stereo::methodName(report.stereo.method)},
+            {"iterations", report.stereo.method == stereo::StereoMethod::Iterative ? nlohmann::json(report.stereo.iterations)
+                                                                                    : nlohmann::json()},
+            {"filledPixels", {{"left", report.filledPixels[0]}, {"right", report.filledPixels[1]}}},
             {"weaponDepthOffset", finiteOrNull(tidy(report.stereo.weaponDepthOffset))},
             {"weaponDepthScale", finiteOrNull(tidy(report.stereo.weaponDepthScale))},
             {"searchTaps", report.stereo.method == stereo::StereoMethod::Search ? nlohmann::json(report.stereo.searchTaps)

@@ -15,6 +15,7 @@ namespace s3d::stereo {
 enum class StereoMethod {
   Seed,    // Listing 4.5 exactly: taps at 0.5, 0.66 and 1.0 of maxSeparation
   Search,  // searchTaps taps spread evenly over (0, maxSeparation]: no thin occluder falls between taps
+  Iterative,  // fixed-point source search, nearest surface wins, holes filled from the background (iterative.h)
 };
 
 const char* methodName(StereoMethod method);
@@ -26,6 +27,7 @@ struct StereoParameters {
   float edgeCrop = -1.0f;             // fraction of the width blacked out per side; < 0 means = maxSeparation
   StereoMethod method = StereoMethod::Seed;
   int searchTaps = 8;  // StereoMethod::Search only, 1..S3D_STEREO_MAX_TAPS
+  int iterations = 6;  // StereoMethod::Iterative only, 1..16
   // Seed 4.6.2: the first-person weapon's depth as the stereo pass sees it is offset + scale * depth, so it
   // sits behind the screen plane instead of popping out (applied where linear depth is produced).
   float weaponDepthOffset = 1.0f;  // world units

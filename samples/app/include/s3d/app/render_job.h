@@ -2,6 +2,7 @@
 // `s3d render` as a library: render a built-in scene's center view with the deferred renderer, synthesize
 // both eyes on the GPU with the stereo pass (Listing 4.5), render the two-pass reference eyes with
 // off-axis cameras, compare them, and write the selected outputs plus a JSON report.
+#include <array>
 #include <cstdint>
 #include <filesystem>
 #include <optional>
@@ -75,6 +76,7 @@ struct RenderReport {
   EyeError left{};
   EyeError right{};
   CrosshairReport crosshair;
+  std::array<std::uint64_t, 2> filledPixels{};  // left, right: disoccluded pixels filled (iterative method)
   std::vector<std::string> filesWritten;  // file names relative to the output folder, in write order
 };
 
