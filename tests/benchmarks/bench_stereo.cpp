@@ -10,6 +10,8 @@
 
 #include "s3d/renderer/deferred_renderer.h"
 #include "s3d/stereo/stereo.h"
+#include "s3d/stereo/iterative.h"
+#include "s3d/stereo/iterative_pass.h"
 #include "s3d/stereo/stereo_pass.h"
 #include "s3d/vk/timestamps.h"
 
@@ -112,6 +114,36 @@ void StereoPass(benchmark::State& state) {
   reportDevice(state);
 }
 
+// The iterative method (third argument: iterations), timed the same way.
+void IterativePass(benchmark::State& state) {
+  const auto width = std::uint32_t(state.range(0)), height = std::uint32_t(state.range(1));
+  Setup& setup = setupFor(width, height);
+  vk::Context& context = benchContext();
+  stereo::IterativeStereoPass pass(context);
+  const gpu::IterativeConstants constants =
+      stereo::makeIterativeConstants(setup.parameters, int(state.range(2)), width, height);
+  vk::Image left = vk::createImage(context, stereo::StereoPass::kColorFormat, width, height, VK_IMAGE_USAGE_STORAGE_BIT);
+  vk::Image right = vk::createImage(context, stereo::StereoPass::kColorFormat, width, height, VK_IMAGE_USAGE_STORAGE_BIT);
+  const vk::Image& color = setup.deferred.displayColor();
+  const vk::Image& depth = setup.deferred.linearDepth();
+  context.submitAndWait([&](VkCommandBuffer cmd) {
+    stereo::StereoPass::recordInputBarriers(cmd, color, depth, left, right);
+    pass.record(cmd, color, depth, left, right, constants);  // warm-up
+  });
+  vk::TimestampQueries timestamps(context, 2);
+  for (auto _ : state) {
+    context.submitAndWait([&](VkCommandBuffer cmd) {
+      timestamps.reset(cmd);
+      timestamps.write(cmd, 0, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT);
+      pass.record(cmd, color, depth, left, right, constants);
+      timestamps.write(cmd, 1, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT);
+    });
+    state.SetIterationTime(timestamps.elapsedMs(0, 1).value_or(0.0) * 1e-3);
+  }
+  context.submitAndWait([&](VkCommandBuffer cmd) { stereo::StereoPass::recordInputRelease(cmd, color, depth); });
+  reportDevice(state);
+}
+
 void resolutions(benchmark::internal::Benchmark* benchmark) {
   benchmark->Args({1280, 720})->Args({1920, 1080})->UseManualTime()->Unit(benchmark::kMillisecond);
 }
@@ -124,6 +156,14 @@ void methods(benchmark::internal::Benchmark* benchmark) {
 BENCHMARK(CenterFrame)->Apply(resolutions)->MinTime(0.2);
 BENCHMARK(ReferenceEye)->Apply(resolutions)->MinTime(0.2);
 BENCHMARK(StereoPass)->Apply(methods)->MinTime(0.2);
+BENCHMARK(IterativePass)
+    ->Args({1280, 720, 6})
+    ->Args({1920, 1080, 6})
+    ->Args({1920, 1080, 4})
+    ->ArgNames({"width", "height", "iterations"})
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond)
+    ->MinTime(0.2);
 
 }  // namespace
 
