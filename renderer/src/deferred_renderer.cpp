@@ -72,6 +72,16 @@ VkRenderingAttachmentInfo colorAttachment(const vk::Image& image, bool clear) {
   return info;
 }
 
+// The G-buffer's depth, tested but not written (shading, sky, transparent surfaces).
+VkRenderingAttachmentInfo readOnlyDepthAttachment(const vk::Image& depth) {
+  VkRenderingAttachmentInfo info{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+  info.imageView = depth.view;
+  info.imageLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL;
+  info.loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;
+  info.storeOp = VK_ATTACHMENT_STORE_OP_NONE;
+  return info;
+}
+
 void beginRendering(VkCommandBuffer cmd, std::uint32_t width, std::uint32_t height,
                     std::span<const VkRenderingAttachmentInfo> colors, const VkRenderingAttachmentInfo* depth) {
   VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
@@ -559,11 +569,7 @@ struct DeferredRenderer::Impl {
     vk::transition(cmd, specularLight, vk::kColorAttachment, vk::kFragmentRead);
     vk::transition(cmd, hdr, vk::kUndefined, vk::kColorAttachment);
     VkRenderingAttachmentInfo color = colorAttachment(hdr, true);
-    VkRenderingAttachmentInfo depthAttachment{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-    depthAttachment.imageView = depth.view;
-    depthAttachment.imageLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL;
-    depthAttachment.loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;
-    depthAttachment.storeOp = VK_ATTACHMENT_STORE_OP_NONE;
+    const VkRenderingAttachmentInfo depthAttachment = readOnlyDepthAttachment(depth);
     beginRendering(cmd, width, height, std::span(&color, 1), &depthAttachment);
     setScissor(cmd, {{0, 0}, {width, height}});
 
@@ -588,11 +594,7 @@ struct DeferredRenderer::Impl {
   void recordTransparent(VkCommandBuffer cmd, const std::vector<std::uint32_t>& backToFront) {
     vk::transition(cmd, hdr, vk::kColorAttachment, vk::kColorAttachment);  // after the shading pass's writes
     VkRenderingAttachmentInfo color = colorAttachment(hdr, false);
-    VkRenderingAttachmentInfo depthAttachment{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-    depthAttachment.imageView = depth.view;
-    depthAttachment.imageLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL;
-    depthAttachment.loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;
-    depthAttachment.storeOp = VK_ATTACHMENT_STORE_OP_NONE;
+    const VkRenderingAttachmentInfo depthAttachment = readOnlyDepthAttachment(depth);
     beginRendering(cmd, width, height, std::span(&color, 1), &depthAttachment);
     setScissor(cmd, {{0, 0}, {width, height}});
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, transparentPipeline);

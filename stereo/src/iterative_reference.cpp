@@ -3,29 +3,13 @@
 #include <stdexcept>
 #include <string>
 
+#include "row_sampling.h"
 #include "s3d/stereo/iterative.h"
 
 namespace s3d::stereo {
 namespace {
 
-int clampInt(int value, int low, int high) { return std::min(std::max(value, low), high); }
-
-// Horizontal linear filter at texel coordinate u, clamped to the edge: the seed's sampleRow, written as the
-// shader writes it so both round alike.
-void sampleRow(const ImageRGBA8& image, int y, float u, std::uint8_t* out) {
-  float base = std::floor(u);
-  float fraction = u - base;
-  int x0 = clampInt(int(base), 0, int(image.width) - 1);
-  int x1 = clampInt(int(base) + 1, 0, int(image.width) - 1);
-  const std::uint8_t* a = image.at(std::uint32_t(x0), std::uint32_t(y));
-  const std::uint8_t* b = image.at(std::uint32_t(x1), std::uint32_t(y));
-  for (int channel = 0; channel < 4; ++channel) {
-    float va = float(a[channel]) / 255.0f;
-    float vb = float(b[channel]) / 255.0f;
-    float value = va * (1.0f - fraction) + vb * fraction;
-    out[channel] = std::uint8_t(std::lround(std::clamp(value, 0.0f, 1.0f) * 255.0f));
-  }
-}
+using detail::sampleRow;
 
 float depthAtTexel(const DepthImage& depth, const gpu::IterativeConstants& c, float position, int y) {
   return *depth.at(std::uint32_t(gpu::iterativeDepthTexel(c, position)), std::uint32_t(y));

@@ -3,16 +3,18 @@
 #include <stdexcept>
 #include <string>
 
+#include "row_sampling.h"
 #include "s3d/stereo/stereo.h"
 
 namespace s3d::stereo {
 namespace {
 
+using detail::clampInt;
+using detail::sampleRow;
+
 void requireFinite(float value, const char* name) {
   if (!std::isfinite(value)) throw std::invalid_argument(std::string(name) + " must be finite (got " + std::to_string(value) + ")");
 }
-
-int clampInt(int value, int low, int high) { return std::min(std::max(value, low), high); }
 
 float linearDepthAt(const DepthImage& depth, int x, int y, float zeroParallaxDistance) {
   return gpu::sanitizedDepth(*depth.at(std::uint32_t(clampInt(x, 0, int(depth.width) - 1)), std::uint32_t(y)),
@@ -24,23 +26,6 @@ float minDepthOverTaps(const DepthImage& depth, int x, int y, int direction, con
   float minDepth = S3D_INFINITY;  // the seed starts at 1.0, its normalized far plane
   for (int i = 0; i < c.tapCount; ++i) minDepth = std::min(minDepth, linearDepthAt(depth, x + direction * c.tapOffsetPx[i], y, c.zeroParallaxDistance));
   return minDepth;
-}
-
-// Horizontal linear filter at texel coordinate u (texel centers at integers), clamped to the edge: what a
-// bilinear texture fetch does on one row. Written as the shader writes it so both round alike.
-void sampleRow(const ImageRGBA8& image, int y, float u, std::uint8_t* out) {
-  float base = std::floor(u);
-  float fraction = u - base;
-  int x0 = clampInt(int(base), 0, int(image.width) - 1);
-  int x1 = clampInt(int(base) + 1, 0, int(image.width) - 1);
-  const std::uint8_t* a = image.at(std::uint32_t(x0), std::uint32_t(y));
-  const std::uint8_t* b = image.at(std::uint32_t(x1), std::uint32_t(y));
-  for (int channel = 0; channel < 4; ++channel) {
-    float va = float(a[channel]) / 255.0f;
-    float vb = float(b[channel]) / 255.0f;
-    float value = va * (1.0f - fraction) + vb * fraction;
-    out[channel] = std::uint8_t(std::lround(std::clamp(value, 0.0f, 1.0f) * 255.0f));
-  }
 }
 
 }  // namespace

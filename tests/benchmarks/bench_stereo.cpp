@@ -75,53 +75,11 @@ void ReferenceEye(benchmark::State& state) {
   reportDevice(state);
 }
 
-// Both eyes in one dispatch on the renderer's own center color and linear depth. Third argument: the
-// search method's tap count, 0 for the seed (Listing 4.5).
-void StereoPass(benchmark::State& state) {
-  const auto width = std::uint32_t(state.range(0)), height = std::uint32_t(state.range(1));
-  Setup& setup = setupFor(width, height);
+// Times `pass` on the renderer's own center color and linear depth, both eyes in one dispatch per iteration.
+template <typename Pass, typename Constants>
+void timeStereoDispatches(benchmark::State& state, Setup& setup, const Pass& pass, const Constants& constants) {
   vk::Context& context = benchContext();
-  stereo::StereoPass pass(context);
-  stereo::StereoParameters parameters = setup.parameters;
-  if (state.range(2) > 0) {
-    parameters.method = stereo::StereoMethod::Search;
-    parameters.searchTaps = int(state.range(2));
-  }
-  const gpu::StereoConstants constants = stereo::makeStereoConstants(parameters, width, height);
-  const VkImageUsageFlags usage = VK_IMAGE_USAGE_STORAGE_BIT;
-  vk::Image left = vk::createImage(context, stereo::StereoPass::kColorFormat, width, height, usage);
-  vk::Image right = vk::createImage(context, stereo::StereoPass::kColorFormat, width, height, usage);
-  const vk::Image& color = setup.deferred.displayColor();
-  const vk::Image& depth = setup.deferred.linearDepth();
-  context.submitAndWait([&](VkCommandBuffer cmd) {
-    stereo::StereoPass::recordInputBarriers(cmd, color, depth, left, right);
-    pass.record(cmd, color, depth, left, right, constants);  // warm-up
-  });
-  vk::TimestampQueries timestamps(context, 2);
-  for (auto _ : state) {
-    context.submitAndWait([&](VkCommandBuffer cmd) {
-      timestamps.reset(cmd);
-      timestamps.write(cmd, 0, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT);
-      pass.record(cmd, color, depth, left, right, constants);
-      timestamps.write(cmd, 1, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT);
-    });
-    state.SetIterationTime(timestamps.elapsedMs(0, 1).value_or(0.0) * 1e-3);
-  }
-  context.submitAndWait([&](VkCommandBuffer cmd) { stereo::StereoPass::recordInputRelease(cmd, color, depth); });
-  const std::uint64_t bytesPerPixel = 4 + 4 + 4 + 4;  // color + depth read once (ideal caching), two eyes written
-  state.counters["pixels"] = double(width) * height;
-  state.SetBytesProcessed(std::int64_t(state.iterations() * bytesPerPixel * width * height));
-  reportDevice(state);
-}
-
-// The iterative method (third argument: iterations), timed the same way.
-void IterativePass(benchmark::State& state) {
-  const auto width = std::uint32_t(state.range(0)), height = std::uint32_t(state.range(1));
-  Setup& setup = setupFor(width, height);
-  vk::Context& context = benchContext();
-  stereo::IterativeStereoPass pass(context);
-  const gpu::IterativeConstants constants =
-      stereo::makeIterativeConstants(setup.parameters, int(state.range(2)), width, height);
+  const std::uint32_t width = setup.deferred.width(), height = setup.deferred.height();
   vk::Image left = vk::createImage(context, stereo::StereoPass::kColorFormat, width, height, VK_IMAGE_USAGE_STORAGE_BIT);
   vk::Image right = vk::createImage(context, stereo::StereoPass::kColorFormat, width, height, VK_IMAGE_USAGE_STORAGE_BIT);
   const vk::Image& color = setup.deferred.displayColor();
@@ -141,7 +99,29 @@ void IterativePass(benchmark::State& state) {
     state.SetIterationTime(timestamps.elapsedMs(0, 1).value_or(0.0) * 1e-3);
   }
   context.submitAndWait([&](VkCommandBuffer cmd) { stereo::StereoPass::recordInputRelease(cmd, color, depth); });
+  const std::uint64_t bytesPerPixel = 4 + 4 + 4 + 4;  // color + depth read once (ideal caching), two eyes written
+  state.SetBytesProcessed(std::int64_t(state.iterations() * bytesPerPixel * width * height));
   reportDevice(state);
+}
+
+// Seed or search (third argument: the search's tap count, 0 for the seed, Listing 4.5).
+void StereoPass(benchmark::State& state) {
+  Setup& setup = setupFor(std::uint32_t(state.range(0)), std::uint32_t(state.range(1)));
+  stereo::StereoParameters parameters = setup.parameters;
+  if (state.range(2) > 0) {
+    parameters.method = stereo::StereoMethod::Search;
+    parameters.searchTaps = int(state.range(2));
+  }
+  timeStereoDispatches(state, setup, stereo::StereoPass(benchContext()),
+                       stereo::makeStereoConstants(parameters, setup.deferred.width(), setup.deferred.height()));
+}
+
+// The iterative method (third argument: iterations).
+void IterativePass(benchmark::State& state) {
+  Setup& setup = setupFor(std::uint32_t(state.range(0)), std::uint32_t(state.range(1)));
+  timeStereoDispatches(state, setup, stereo::IterativeStereoPass(benchContext()),
+                       stereo::makeIterativeConstants(setup.parameters, int(state.range(2)), setup.deferred.width(),
+                                                      setup.deferred.height()));
 }
 
 void resolutions(benchmark::internal::Benchmark* benchmark) {

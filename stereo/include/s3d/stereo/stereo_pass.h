@@ -3,6 +3,7 @@
 #include <vulkan/vulkan.h>
 
 #include "s3d/stereo/stereo.h"
+#include "s3d/stereo/detail/eye_pair_pipeline.h"
 #include "s3d/vk/context.h"
 #include "s3d/vk/pipeline.h"
 #include "s3d/vk/resources.h"
@@ -29,8 +30,7 @@ class StereoPass {
 
  private:
   const vk::Context* context_;
-  vk::PipelineLayout layout_;
-  vk::Unique<VkPipeline> pipeline_;
+  detail::EyePairPipeline pipeline_;
 };
 
 // Uploads CPU images, runs the pass once and reads both eyes back (tests, `s3d convert`).
