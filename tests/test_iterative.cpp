@@ -14,30 +14,18 @@
 #include "s3d/stereo/iterative_pass.h"
 #include "s3d/stereo/metrics.h"
 #include "s3d/stereo/stereo_pass.h"
+#include "stereo_test_views.h"
 #include "vulkan_test.h"
 
 namespace s3d::stereo {
 namespace {
 
-struct View {
-  ImageRGBA8 color;
-  DepthImage depth;
-};
+using View = test::SyntheticView;
+using test::largestChannelDifference;
 
-// Random color, depth in blocks with sharp edges (some sky, some in front of the zero-parallax plane).
+// Random color, depth in blocks of 1-9 columns and 3 rows (some sky, some in front of the zero-parallax plane).
 View makeRandomView(std::uint32_t width, std::uint32_t height, unsigned seed) {
-  std::mt19937 random(seed);
-  std::uniform_int_distribution<int> byte(0, 255);
-  std::uniform_real_distribution<float> depthDist(0.6f, 50.0f);
-  View view{ImageRGBA8(width, height), DepthImage(width, height)};
-  for (auto& channel : view.color.pixels) channel = std::uint8_t(byte(random));
-  for (std::uint32_t by = 0; by < height; by += 3)
-    for (std::uint32_t bx = 0; bx < width; bx += 1 + std::uint32_t(random() % 9)) {
-      float blockDepth = (random() % 4 == 0) ? INFINITY : depthDist(random);
-      for (std::uint32_t y = by; y < std::min(by + 3, height); ++y)
-        for (std::uint32_t x = bx; x < std::min(bx + 9, width); ++x) *view.depth.at(x, y) = blockDepth;
-    }
-  return view;
+  return test::makeBlockView(width, height, seed, 0.6f, 9, 3, true);
 }
 
 // A near box (red 255) at depth boxDepth over a background (red 0, green ramp) at backgroundDepth.
@@ -64,12 +52,6 @@ std::pair<int, int> boxExtent(const ImageRGBA8& eye, int inside) {
   while (isBox(first - 1)) --first;
   while (isBox(last + 1)) ++last;
   return {first, last};
-}
-
-int largestChannelDifference(const ImageRGBA8& a, const ImageRGBA8& b) {
-  int largest = 0;
-  for (std::size_t i = 0; i < a.pixels.size(); ++i) largest = std::max(largest, std::abs(int(a.pixels[i]) - int(b.pixels[i])));
-  return largest;
 }
 
 TEST(IterativeReference, IterationCountIsValidated) {

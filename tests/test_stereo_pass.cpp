@@ -7,37 +7,18 @@
 
 #include "s3d/stereo/stereo.h"
 #include "s3d/stereo/stereo_pass.h"
+#include "stereo_test_views.h"
 #include "vulkan_test.h"
 
 namespace s3d::stereo {
 namespace {
 
-// Synthetic center view: random color, depth in layers with sharp edges and some sky (+inf).
-struct SyntheticView {
-  ImageRGBA8 color;
-  DepthImage depth;
-};
+using test::largestChannelDifference;
+using test::SyntheticView;
 
+// Random color, depth in 7x5 blocks with sharp edges, a quarter sky.
 SyntheticView makeSyntheticView(std::uint32_t width, std::uint32_t height, unsigned seed) {
-  std::mt19937 random(seed);
-  std::uniform_int_distribution<int> byte(0, 255);
-  std::uniform_real_distribution<float> depthDist(0.3f, 50.0f);
-  SyntheticView view{ImageRGBA8(width, height), DepthImage(width, height)};
-  for (auto& channel : view.color.pixels) channel = std::uint8_t(byte(random));
-  // Blocks of constant depth, so edges exist at many places; a quarter of the blocks are sky.
-  for (std::uint32_t by = 0; by < height; by += 5)
-    for (std::uint32_t bx = 0; bx < width; bx += 7) {
-      float blockDepth = (random() % 4 == 0) ? INFINITY : depthDist(random);
-      for (std::uint32_t y = by; y < std::min(by + 5, height); ++y)
-        for (std::uint32_t x = bx; x < std::min(bx + 7, width); ++x) *view.depth.at(x, y) = blockDepth;
-    }
-  return view;
-}
-
-int largestChannelDifference(const ImageRGBA8& a, const ImageRGBA8& b) {
-  int largest = 0;
-  for (std::size_t i = 0; i < a.pixels.size(); ++i) largest = std::max(largest, std::abs(int(a.pixels[i]) - int(b.pixels[i])));
-  return largest;
+  return test::makeBlockView(width, height, seed, 0.3f, 7, 5, false);
 }
 
 TEST(StereoReference, ParallaxIsZeroAtTheZeroParallaxPlaneAndMaxSeparationAtInfinity) {
