@@ -11,8 +11,8 @@ namespace {
 constexpr float kFrame = 1.0f / 60.0f;
 
 TEST(ZeroParallaxControl, StepResponseApproachesTheTargetWithoutOvershoot) {
-  // A surface 0.5 m ahead: target = 1 m * 0.5 / 2 = 0.25 m. Critically damped (and bounded to 0.05 m per
-  // frame at first): monotonic, never past the goal, within 1 mm after 16 time constants (4 s at 60 Hz).
+  // A surface 0.5 m ahead: target = 1 m * 0.5 / 2 = 0.25 m. Critically damped (and bounded to 1 m/s at
+  // first): monotonic, never past the goal, within 1 mm after 16 time constants (4 s at 60 Hz).
   ZeroParallaxController control;
   float previous = control.current();
   for (int frame = 0; frame < 240; ++frame) {
@@ -26,7 +26,7 @@ TEST(ZeroParallaxControl, StepResponseApproachesTheTargetWithoutOvershoot) {
 
 TEST(ZeroParallaxControl, NeverChangesMoreThanTheBoundPerFrame) {
   ZeroParallaxControlSettings settings;
-  settings.maxChangePerFrame = 0.01f;
+  settings.maxChangePerSecond = 0.6f;  // 0.01 per 60 Hz frame
   settings.responseSeconds = 0.01f;  // a filter that would jump almost at once
   ZeroParallaxController control(settings);
   float previous = control.current();

@@ -23,7 +23,7 @@ void validate(const ZeroParallaxControlSettings& s) {
   requirePositive(s.engageDistance, "engageDistance");
   requirePositive(s.minimumDistance, "minimumDistance");
   requirePositive(s.responseSeconds, "responseSeconds");
-  requirePositive(s.maxChangePerFrame, "maxChangePerFrame");
+  requirePositive(s.maxChangePerSecond, "maxChangePerSecond");
   if (!(s.releaseMargin >= 0.0f) || !std::isfinite(s.releaseMargin))
     throw std::invalid_argument("zero-parallax control: releaseMargin must be >= 0 and finite");
   if (s.minimumDistance > s.restDistance)
@@ -87,7 +87,8 @@ float ZeroParallaxController::update(std::optional<float> nearestSurface, float 
     next = goal;
     velocity_ = 0.0f;
   }
-  const float change = std::clamp(next - current_, -settings_.maxChangePerFrame, settings_.maxChangePerFrame);
+  const float bound = settings_.maxChangePerSecond * seconds;
+  const float change = std::clamp(next - current_, -bound, bound);
   if (change != next - current_) velocity_ = change / seconds;
   current_ += change;
   return current_;

@@ -22,6 +22,7 @@
 
 #include "s3d/app/convert_job.h"
 #include "s3d/app/render_job.h"
+#include "s3d/app/sequence_job.h"
 #include "s3d/renderer/scene.h"
 #include "s3d/stereo/output_formats.h"
 #include "s3d/stereo/stereo.h"
@@ -245,6 +246,10 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   render->add_option("--frame", options.frame, "Frame of the scene's camera path to render (0: its first)")
       ->capture_default_str();
+  bool sequence = false;
+  render->add_flag("--sequence", sequence,
+                   "Render the scene's whole camera path with the comfort controls running (zero-parallax "
+                   "control, weapon push, crosshair): anaglyph_NNNN.png per frame and a per-frame report.json");
   render->add_option("--method", stereoMethod,
                      "Stereo method: seed (Listing 4.5, taps at 0.5/0.66/1.0 of the separation), search (--taps taps "
                      "spread over the separation) or iterative (fixed-point source search, --iterations)")
@@ -358,6 +363,22 @@ int main(int argc, char** argv) {
     options.sideBySide = s3d::stereo::parsePackingMode(sideBySide);
     options.topBottom = s3d::stereo::parsePackingMode(topBottom);
     options.stereo.method = s3d::stereo::parseStereoMethod(stereoMethod);
+    if (sequence) {
+      s3d::app::SequenceJobOptions sequenceOptions;
+      sequenceOptions.width = options.width;
+      sequenceOptions.height = options.height;
+      sequenceOptions.scene = options.scene;
+      sequenceOptions.outputFolder = options.outputFolder;
+      sequenceOptions.stereo = options.stereo;
+      s3d::vk::Context context(contextOptions);
+      const s3d::app::SequenceReport report = s3d::app::runSequenceJob(context, sequenceOptions);
+      std::uint64_t conflicts = 0;
+      for (const s3d::app::SequenceFrame& frame : report.frames) conflicts += frame.weaponConflictPixels;
+      std::cout << "s3d render --sequence: scene " << report.scene << ", " << report.frames.size() << " frames on "
+                << report.deviceName << ", weapon/world conflict pixels " << conflicts << ", wrote "
+                << report.filesWritten.size() << " files to " << options.outputFolder.string() << '\n';
+      return 0;
+    }
     return runRender(options, contextOptions);
   } catch (const std::exception& error) {
     return fail(error.what());

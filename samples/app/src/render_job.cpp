@@ -70,27 +70,6 @@ ValidatedJob validateJob(const RenderJobOptions& options) {
   return job;
 }
 
-// The two-pass reference's view of one eye: both layers get their own off-axis camera, because the
-// first-person layer has its own projection and so its own eye offset (e = 2 m zpp / P00).
-renderer::ViewMatrices eyeViewMatrices(const renderer::Scene& scene, const renderer::ViewMatrices& center,
-                                       stereo::Eye eye, const stereo::StereoParameters& parameters) {
-  const float m = parameters.maxSeparation;
-  const float zpp = parameters.zeroParallaxDistance;
-  const stereo::EyeCamera world = stereo::offAxisEyeCamera(center.worldView, center.worldProjection, eye, m, zpp);
-  // The weapon's depth is pushed for the stereo pass, so its reference eyes follow the pushed parallax.
-  const glm::vec2 weaponDepths = renderer::firstPersonDepthRange(scene).value_or(glm::vec2(1.0f));
-  const stereo::EyeCamera firstPerson = stereo::offAxisEyeCamera(
-      center.firstPersonView, center.firstPersonProjection, eye,
-      stereo::pushedLayerTerms(center.firstPersonProjection[0][0], m, zpp, parameters.weaponDepthOffset,
-                               parameters.weaponDepthScale, weaponDepths.x, weaponDepths.y));
-  renderer::ViewMatrices view = center;  // worldFromCamera stays: lighting places first-person objects alike
-  view.worldView = world.view;
-  view.worldProjection = world.projection;
-  view.firstPersonView = firstPerson.view;
-  view.firstPersonProjection = firstPerson.projection;
-  return view;
-}
-
 // Shortest decimal that round-trips the float (0.02f is reported as 0.02, not 0.019999999552965164).
 double tidy(float value) {
   if (!std::isfinite(value)) return double(value);
@@ -123,6 +102,27 @@ nlohmann::json errorJson(const EyeError& error) {
 }
 
 }  // namespace
+
+// The two-pass reference's view of one eye: both layers get their own off-axis camera, because the
+// first-person layer has its own projection and so its own eye offset (e = 2 m zpp / P00).
+renderer::ViewMatrices referenceEyeView(const renderer::Scene& scene, const renderer::ViewMatrices& center,
+                                       stereo::Eye eye, const stereo::StereoParameters& parameters) {
+  const float m = parameters.maxSeparation;
+  const float zpp = parameters.zeroParallaxDistance;
+  const stereo::EyeCamera world = stereo::offAxisEyeCamera(center.worldView, center.worldProjection, eye, m, zpp);
+  // The weapon's depth is pushed for the stereo pass, so its reference eyes follow the pushed parallax.
+  const glm::vec2 weaponDepths = renderer::firstPersonDepthRange(scene).value_or(glm::vec2(1.0f));
+  const stereo::EyeCamera firstPerson = stereo::offAxisEyeCamera(
+      center.firstPersonView, center.firstPersonProjection, eye,
+      stereo::pushedLayerTerms(center.firstPersonProjection[0][0], m, zpp, parameters.weaponDepthOffset,
+                               parameters.weaponDepthScale, weaponDepths.x, weaponDepths.y));
+  renderer::ViewMatrices view = center;  // worldFromCamera stays: lighting places first-person objects alike
+  view.worldView = world.view;
+  view.worldProjection = world.projection;
+  view.firstPersonView = firstPerson.view;
+  view.firstPersonProjection = firstPerson.projection;
+  return view;
+}
 
 void validateRenderJobOptions(const RenderJobOptions& options) { (void)validateJob(options); }
 
@@ -166,9 +166,9 @@ RenderReport runRenderJob(vk::Context& context, const RenderJobOptions& options)
   const stereo::StereoPair synthesized = std::move(synthesis.eyes);
 
   // 4. The two-pass reference: each eye rendered with its off-axis camera.
-  const renderer::FrameTimings leftTimings = deferred.render(eyeViewMatrices(job.scene, center, stereo::Eye::Left, options.stereo));
+  const renderer::FrameTimings leftTimings = deferred.render(referenceEyeView(job.scene, center, stereo::Eye::Left, options.stereo));
   const ImageRGBA8 leftReference = deferred.readDisplayColor();
-  (void)deferred.render(eyeViewMatrices(job.scene, center, stereo::Eye::Right, options.stereo));
+  (void)deferred.render(referenceEyeView(job.scene, center, stereo::Eye::Right, options.stereo));
   const ImageRGBA8 rightReference = deferred.readDisplayColor();
   report.referenceEyeGpuMs = leftTimings.totalGpuMs;
 

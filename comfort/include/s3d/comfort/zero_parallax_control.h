@@ -15,7 +15,7 @@ struct ZeroParallaxControlSettings {
   float releaseMargin = 0.25f;      // hysteresis: it releases only beyond engageDistance + releaseMargin
   float minimumDistance = 0.25f;    // the zero-parallax distance never goes below this
   float responseSeconds = 0.25f;    // time constant of the critically damped filter
-  float maxChangePerFrame = 0.05f;  // world units per frame, whatever the filter says
+  float maxChangePerSecond = 1.0f;  // world units per second (times the frame time: the bound per frame)
   int ringRays = 8;                 // rays on a ring around the aim, besides the aim itself
   float ringAngleRadians = 0.2f;    // angle between the aim and the ring's rays
 };

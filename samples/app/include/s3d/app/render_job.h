@@ -80,6 +80,11 @@ struct RenderReport {
   std::vector<std::string> filesWritten;  // file names relative to the output folder, in write order
 };
 
+// The two-pass reference's view of one eye: both layers get their own off-axis camera (the first-person
+// layer has its own projection, and follows the pushed weapon depth).
+renderer::ViewMatrices referenceEyeView(const renderer::Scene& scene, const renderer::ViewMatrices& center,
+                                        stereo::Eye eye, const stereo::StereoParameters& parameters);
+
 // Throws std::invalid_argument naming the problem: zero or absurd size (> kMaxImageSize), unknown scene,
 // unknown output name, invalid stereo parameters, a crop that leaves no columns to compare, or an output
 // folder path that exists but is not a folder. Needs no Vulkan: call it before creating a context.

@@ -1,0 +1,53 @@
+#pragma once
+// `s3d render --sequence`: a scene's camera path with the comfort controls running frame by frame: the
+// zero-parallax control pulls the screen plane in when the player nears a wall (seed 4.6.2), the weapon
+// push shrinks with it, the crosshair follows the aim ray; every frame is checked for depth conflicts.
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "s3d/comfort/zero_parallax_control.h"
+#include "s3d/stereo/stereo.h"
+#include "s3d/vk/context.h"
+
+namespace s3d::app {
+
+struct SequenceJobOptions {
+  std::uint32_t width = 640;
+  std::uint32_t height = 360;
+  std::string scene = "cover";
+  std::filesystem::path outputFolder = "out";
+  bool writeFrames = true;          // anaglyph_NNNN.png per frame besides report.json
+  float framesPerSecond = 12.0f;  // the built-in paths walk at about 2 m/s at this rate
+  stereo::StereoParameters stereo;  // zeroParallaxDistance is the control's rest value
+  comfort::ZeroParallaxControlSettings zeroParallax;  // its restDistance is taken from stereo
+};
+
+struct SequenceFrame {
+  std::size_t index = 0;
+  float zeroParallaxDistance = 0.0f;
+  std::optional<float> nearestSurface;  // what the control's ray casts saw
+  float crosshairDepth = 0.0f;
+  float weaponDepthOffset = 0.0f;       // the push, shrunk with the zero-parallax distance
+  float weaponDepthScale = 0.0f;
+  std::uint64_t weaponPixels = 0;
+  std::uint64_t weaponConflictPixels = 0;  // weapon pixels whose pushed depth lies behind the world surface there
+  double psnrLeftDb = 0.0, psnrRightDb = 0.0;  // synthesized vs two-pass reference
+};
+
+struct SequenceReport {
+  std::string deviceName;
+  std::string scene;
+  std::vector<SequenceFrame> frames;
+  std::vector<std::string> filesWritten;
+};
+
+// Throws std::invalid_argument for bad options (checked before rendering) and anything the renderer throws.
+SequenceReport runSequenceJob(vk::Context& context, const SequenceJobOptions& options);
+
+nlohmann::json toJson(const SequenceReport& report);
+
+}  // namespace s3d::app
