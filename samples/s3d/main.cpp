@@ -1,5 +1,7 @@
 // s3d: the command-line tool. `s3d render` renders a built-in scene, synthesizes both eyes with the stereo
-// pass, renders the two-pass reference eyes and writes images plus report.json (see s3d/app/render_job.h).
+// pass, renders the two-pass reference eyes and writes images plus report.json (s3d/app/render_job.h);
+// `--sequence` runs a scene's camera path with the comfort controls (s3d/app/sequence_job.h). `s3d convert`
+// synthesizes the eyes of an external color + depth frame (s3d/app/convert_job.h).
 //
 // Exit status: 0 on success (and for --help / --list-devices); 1 on any error, which ends with one line
 // "s3d: error: <message>" on stderr. `s3d` without a command prints the help and fails: there is nothing
