@@ -128,3 +128,31 @@ TEST(RegionErrors, AnEmptyRegionReportsNoPixelsAndNoError) {
 
 }  // namespace
 }  // namespace s3d::stereo
+
+namespace s3d::stereo {
+namespace {
+
+TEST(ErrorHeatMap, IdenticalImagesAreBlackAndFullScaleIsWhite) {
+  ImageRGBA8 reference(6, 1, 100), synthesized(6, 1, 100);
+  synthesized.at(2, 0)[1] = 100 + 32;  // full scale: 32 levels
+  synthesized.at(3, 0)[0] = 100 + 16;  // half scale: red (the ramp's midpoint)
+  ImageRGBA8 heat = makeErrorHeatMap(synthesized, reference, 1);
+  EXPECT_EQ(heat.at(1, 0)[0] + heat.at(1, 0)[1] + heat.at(1, 0)[2], 0);
+  EXPECT_EQ(heat.at(2, 0)[0], 255);
+  EXPECT_EQ(heat.at(2, 0)[1], 255);
+  EXPECT_EQ(heat.at(2, 0)[2], 255);
+  EXPECT_EQ(heat.at(3, 0)[0], 255);
+  EXPECT_EQ(heat.at(3, 0)[1], 0);
+  EXPECT_EQ(heat.at(3, 0)[2], 0);
+}
+
+TEST(ErrorHeatMap, CroppedColumnsStayBlack) {
+  ImageRGBA8 reference(6, 1, 0), synthesized(6, 1, 255);
+  ImageRGBA8 heat = makeErrorHeatMap(synthesized, reference, 2);
+  EXPECT_EQ(heat.at(0, 0)[0], 0);
+  EXPECT_EQ(heat.at(5, 0)[0], 0);
+  EXPECT_EQ(heat.at(2, 0)[0], 255);
+}
+
+}  // namespace
+}  // namespace s3d::stereo

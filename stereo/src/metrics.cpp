@@ -108,4 +108,27 @@ RegionErrors compareByRegion(const ImageRGBA8& synthesized, const ImageRGBA8& re
           compareSelected(synthesized, reference, cropColumns, &halo, 0)};
 }
 
+ImageRGBA8 makeErrorHeatMap(const ImageRGBA8& synthesized, const ImageRGBA8& reference, std::uint32_t cropColumns,
+                            int fullScaleLevels) {
+  requireSameSize(synthesized, reference, "makeErrorHeatMap");
+  if (fullScaleLevels < 1) throw std::invalid_argument("makeErrorHeatMap: fullScaleLevels must be >= 1");
+  // Piecewise-linear ramp through these colors at error fractions 0, 1/4, 1/2, 3/4 and 1.
+  static constexpr float kRamp[5][3] = {{0, 0, 0}, {0, 0, 255}, {255, 0, 0}, {255, 255, 0}, {255, 255, 255}};
+  ImageRGBA8 heat(synthesized.width, synthesized.height);
+  for (std::uint32_t y = 0; y < heat.height; ++y)
+    for (std::uint32_t x = 0; x < heat.width; ++x) {
+      std::uint8_t* out = heat.at(x, y);
+      out[3] = 255;
+      if (x < cropColumns || x + cropColumns >= heat.width) continue;
+      int largest = 0;
+      for (int c = 0; c < 3; ++c) largest = std::max(largest, std::abs(int(synthesized.at(x, y)[c]) - int(reference.at(x, y)[c])));
+      const float position = std::min(1.0f, float(largest) / float(fullScaleLevels)) * 4.0f;
+      const int segment = std::min(3, int(position));
+      const float t = position - float(segment);
+      for (int c = 0; c < 3; ++c)
+        out[c] = std::uint8_t(std::lround(kRamp[segment][c] + (kRamp[segment + 1][c] - kRamp[segment][c]) * t));
+    }
+  return heat;
+}
+
 }  // namespace s3d::stereo

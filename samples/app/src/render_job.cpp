@@ -221,6 +221,11 @@ RenderReport runRenderJob(vk::Context& context, const RenderJobOptions& options)
     writeOutputPng("sbs.png", stereo::makeSideBySide(eyesHud.left, eyesHud.right, options.sideBySide));
   if (selected("tab.png"))
     writeOutputPng("tab.png", stereo::makeTopAndBottom(eyesHud.left, eyesHud.right, options.topBottom));
+  // Heat maps of the error against the reference, without the HUD (as measured).
+  if (selected("error_left.png"))
+    writeOutputPng("error_left.png", stereo::makeErrorHeatMap(synthesized.left, leftReference, report.cropColumns));
+  if (selected("error_right.png"))
+    writeOutputPng("error_right.png", stereo::makeErrorHeatMap(synthesized.right, rightReference, report.cropColumns));
   if (selected("report.json")) {
     report.filesWritten.push_back("report.json");  // listed in itself: the document describes the whole output
     try {

@@ -40,4 +40,9 @@ struct RegionErrors {
 RegionErrors compareByRegion(const ImageRGBA8& synthesized, const ImageRGBA8& reference, std::uint32_t cropColumns,
                              const std::vector<std::uint8_t>& halo);
 
+// Error heat map (issue #4): per pixel the largest R/G/B difference, black at 0 through blue, red and
+// yellow to white at fullScaleLevels and above; the cropped border columns stay black.
+ImageRGBA8 makeErrorHeatMap(const ImageRGBA8& synthesized, const ImageRGBA8& reference, std::uint32_t cropColumns,
+                            int fullScaleLevels = 32);
+
 }  // namespace s3d::stereo

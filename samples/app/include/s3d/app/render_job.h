@@ -31,7 +31,8 @@ namespace s3d::app {
 //   report.json           toJson(report), always written last
 inline const std::vector<std::string> kAllOutputs = {
     "center.png",         "center.exr",          "left.png",     "right.png", "left_reference.png",
-    "right_reference.png", "anaglyph.png",        "sbs.png",      "tab.png",   "report.json"};
+    "right_reference.png", "anaglyph.png",        "sbs.png",      "tab.png",   "error_left.png",
+    "error_right.png",    "report.json"};
 
 // Largest accepted width or height.
 inline constexpr std::uint32_t kMaxImageSize = 16384;
