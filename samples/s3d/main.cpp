@@ -246,6 +246,11 @@ int main(int argc, char** argv) {
                      "First-person weapon: depth scale applied before the offset (pushed = offset + scale * depth)")
       ->check(floatRange(0.0, 1.0e4, true, "a positive factor"))
       ->capture_default_str();
+  render->add_option("--display", options.display,
+                     "Display profile of the comfort report: tv55 (55-inch at 2.5 m), monitor27 (27-inch at 0.7 m) or "
+                     "hmd (90-degree field of view focused at 1.3 m)")
+      ->check(CLI::IsMember({"tv55", "monitor27", "hmd"}))
+      ->capture_default_str();
   render->add_option("--frame", options.frame, "Frame of the scene's camera path to render (0: its first)")
       ->capture_default_str();
   bool sequence = false;

@@ -60,6 +60,7 @@ ValidatedJob validateJob(const RenderJobOptions& options) {
     throw std::invalid_argument("output folder '" + options.outputFolder.string() + "' exists and is not a folder");
 
   stereo::validate(options.stereo);
+  (void)comfort::builtInDisplayProfile(options.display);  // throws naming the profile and the choices
   ValidatedJob job{renderer::makeBuiltInScene(options.scene),  // throws naming the scene and the choices
                    stereo::makeStereoConstants(options.stereo, options.width, options.height)};
   // The scene's camera at the requested frame of its path (throws naming the frame and the count).
@@ -181,6 +182,10 @@ RenderReport runRenderJob(vk::Context& context, const RenderJobOptions& options)
     *eyeError = {regions.all, regions.halo, regions.rest};
   }
 
+  // Comfort report: the parallax the stereo pass gave every pixel, as angles on the chosen display.
+  report.display = comfort::builtInDisplayProfile(options.display);
+  report.parallax = comfort::parallaxStatistics(centerDepth, options.stereo, report.display);
+
   // 6. HUD: the crosshair, placed by an Embree ray cast along the aim (seed 4.6.2), drawn after stereo
   // synthesis into every view at the parallax of its depth. It is not part of the 3D scene, so synthesized
   // eyes and references get the same overlay, after the comparison so it cannot flatter the error.
@@ -271,6 +276,19 @@ nlohmann::json toJson(const RenderReport& report) {
           {"centerPasses", passes},
           {"ratios", {{"stereoPassToReferenceEye", ratio}}},
           {"error", {{"left", errorJson(report.left)}, {"right", errorJson(report.right)}}},
+          {"comfort",
+           {{"display",
+             {{"name", report.display.name},
+              {"screenWidthMeters", tidy(report.display.screenWidthMeters)},
+              {"viewingDistanceMeters", tidy(report.display.viewingDistanceMeters)},
+              {"interocularMeters", tidy(report.display.interocularMeters)}}},
+            {"parallaxPx", {{"min", finiteOrNull(report.parallax.minParallaxPx)}, {"max", finiteOrNull(report.parallax.maxParallaxPx)}}},
+            {"parallaxPercent",
+             {{"min", finiteOrNull(report.parallax.minParallaxPercent)}, {"max", finiteOrNull(report.parallax.maxParallaxPercent)}}},
+            {"disparityArcmin",
+             {{"min", finiteOrNull(report.parallax.minDisparityArcmin)}, {"max", finiteOrNull(report.parallax.maxDisparityArcmin)}}},
+            {"shareBeyondOneDegree", finiteOrNull(report.parallax.shareBeyondOneDegree)},
+            {"shareInFrontOfScreen", finiteOrNull(report.parallax.shareNegative)}}},
           {"crosshair",
            {{"depth", finiteOrNull(tidy(report.crosshair.depth))},
             {"hitWorld", report.crosshair.hitWorld},

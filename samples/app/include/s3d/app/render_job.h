@@ -12,6 +12,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "s3d/comfort/display_profile.h"
 #include "s3d/renderer/deferred_renderer.h"
 #include "s3d/stereo/metrics.h"
 #include "s3d/stereo/output_formats.h"
@@ -49,6 +50,7 @@ struct RenderJobOptions {
   stereo::PackingMode sideBySide = stereo::PackingMode::Half;
   stereo::PackingMode topBottom = stereo::PackingMode::Half;
   stereo::StereoParameters stereo;
+  std::string display = "tv55";  // comfort report: one of comfort::builtInDisplayProfileNames()
 };
 
 struct EyeError {
@@ -77,6 +79,8 @@ struct RenderReport {
   EyeError left{};
   EyeError right{};
   CrosshairReport crosshair;
+  comfort::DisplayProfile display;
+  comfort::ParallaxStatistics parallax;  // of the stereo pass's depth on that display
   std::array<std::uint64_t, 2> filledPixels{};  // left, right: disoccluded pixels filled (iterative method)
   std::vector<std::string> filesWritten;  // file names relative to the output folder, in write order
 };
