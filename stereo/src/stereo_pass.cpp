@@ -1,24 +1,41 @@
 #include "s3d/stereo/stereo_pass.h"
 
+#include <cstddef>
 #include <cstdint>
 #include <cstring>
 #include <stdexcept>
 
 // clang-format off
+#include <s3d_spirv/stereo_search_comp.h>
 #include <s3d_spirv/stereo_seed_comp.h>
 // clang-format on
 
 namespace s3d::stereo {
 
+namespace {
+
+// The tap array comes last: a variant with a shorter array reads (and is pushed) only this prefix.
+constexpr std::uint32_t pushBytesFor(int tapCapacity) {
+  return std::uint32_t(offsetof(gpu::StereoConstants, tapOffsetPx) + sizeof(int) * std::size_t(tapCapacity));
+}
+static_assert(pushBytesFor(S3D_STEREO_MAX_TAPS) == sizeof(gpu::StereoConstants));
+
+}  // namespace
+
 StereoPass::StereoPass(const vk::Context& context)
     : context_(&context),
-      pipeline_(detail::createEyePairPipeline(context, spirv_stereo_seed_comp, sizeof(gpu::StereoConstants),
-                                              S3D_STEREO_GROUP_SIZE)) {}
+      shortTaps_(detail::createEyePairPipeline(context, spirv_stereo_seed_comp, pushBytesFor(S3D_STEREO_SMALL_TAP_CAPACITY),
+                                               S3D_STEREO_GROUP_SIZE)),
+      allTaps_(detail::createEyePairPipeline(context, spirv_stereo_search_comp, pushBytesFor(S3D_STEREO_MAX_TAPS),
+                                             S3D_STEREO_GROUP_SIZE)) {}
 
 void StereoPass::record(VkCommandBuffer cmd, const vk::Image& centerColor, const vk::Image& linearDepth,
                         const vk::Image& leftEye, const vk::Image& rightEye,
                         const gpu::StereoConstants& constants) const {
-  detail::recordEyePairDispatch(cmd, *context_, pipeline_, centerColor, linearDepth, leftEye, rightEye, &constants,
+  if (constants.tapCount < 0 || constants.tapCount > S3D_STEREO_MAX_TAPS)
+    throw std::invalid_argument("StereoPass: tap count out of range (use makeStereoConstants)");
+  const detail::EyePairPipeline& pipeline = constants.tapCount <= S3D_STEREO_SMALL_TAP_CAPACITY ? shortTaps_ : allTaps_;
+  detail::recordEyePairDispatch(cmd, *context_, pipeline, centerColor, linearDepth, leftEye, rightEye, &constants,
                                 constants.width, constants.height, "StereoPass");
 }
 

@@ -30,7 +30,8 @@ class StereoPass {
 
  private:
   const vk::Context* context_;
-  detail::EyePairPipeline pipeline_;
+  detail::EyePairPipeline shortTaps_;  // up to S3D_STEREO_SMALL_TAP_CAPACITY taps (the seed)
+  detail::EyePairPipeline allTaps_;    // up to S3D_STEREO_MAX_TAPS
 };
 
 // Uploads CPU images, runs the pass once and reads both eyes back (tests, `s3d convert`).

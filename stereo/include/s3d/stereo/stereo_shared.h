@@ -7,11 +7,18 @@
 S3D_GPU_BEGIN
 
 #define S3D_STEREO_MAX_TAPS 16  // keeps the push constants within the guaranteed 128 bytes
+#define S3D_STEREO_SMALL_TAP_CAPACITY 4  // the seed's 3 taps: a pipeline with a short tap array
 #define S3D_STEREO_GROUP_SIZE 8
+
+// The tap array's length as compiled: C++ always holds the maximum; each shader variant defines its own
+// (a long push-constant array slowed the 3-tap seed from 14 to 22 ms on lavapipe), and because the
+// array comes last, every variant reads the same prefix.
+#ifndef S3D_STEREO_TAP_CAPACITY
+#define S3D_STEREO_TAP_CAPACITY S3D_STEREO_MAX_TAPS
+#endif
 
 // Push constants of the stereo pass; scalars only, so the std430 and C++ layouts agree.
 struct StereoConstants {
-  int tapOffsetPx[S3D_STEREO_MAX_TAPS];  // depth-search offsets in whole pixels (Listing 4.5's taps * width)
   int tapCount;
   float maxSeparation;         // fraction of the screen width
   float zeroParallaxDistance;  // world units, same as the linear depth
@@ -20,6 +27,7 @@ struct StereoConstants {
   int width;
   int height;
   int padding0;
+  int tapOffsetPx[S3D_STEREO_TAP_CAPACITY];  // depth-search offsets in whole pixels (Listing 4.5's taps * width)
 };
 
 // Figure 4.34: Parallax = MaxSeparation * (1 - ZPP / Depth), as a fraction of the screen width.

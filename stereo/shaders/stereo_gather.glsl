@@ -1,0 +1,51 @@
+// Listing 4.5 as a compute pass (and its N-tap search): one invocation writes the pixel of both eyes.
+// Included by stereo_seed.comp and stereo_search.comp, which set S3D_STEREO_TAP_CAPACITY first.
+#include "s3d/stereo/stereo_shared.h"
+
+layout(local_size_x = S3D_STEREO_GROUP_SIZE, local_size_y = S3D_STEREO_GROUP_SIZE) in;
+
+layout(binding = 0, rgba8) uniform readonly image2D centerColor;
+layout(binding = 1, r32f) uniform readonly image2D linearDepth;
+layout(binding = 2, rgba8) uniform writeonly image2D leftEye;
+layout(binding = 3, rgba8) uniform writeonly image2D rightEye;
+
+layout(push_constant) uniform Push { StereoConstants c; };
+
+float depthAt(int x, int y) {
+  return sanitizedDepth(imageLoad(linearDepth, ivec2(clamp(x, 0, c.width - 1), y)).r, c.zeroParallaxDistance);
+}
+
+// Listing 4.5: minimum depth over the separation range on one side of the pixel.
+float minDepthOverTaps(int x, int y, int direction) {
+  float minDepth = S3D_INFINITY;  // the seed starts at 1.0, its normalized far plane
+  // A compile-time trip count (the array's capacity) with the used count as a guard lets the compiler unroll.
+  for (int i = 0; i < S3D_STEREO_TAP_CAPACITY; ++i)
+    if (i < c.tapCount) minDepth = min(minDepth, depthAt(x + direction * c.tapOffsetPx[i], y));
+  return minDepth;
+}
+
+// Horizontal linear filter at texel coordinate u (texel centers at integers), clamped to the edge.
+vec4 sampleRow(int y, float u) {
+  float base = floor(u);
+  float fraction = u - base;
+  vec4 a = imageLoad(centerColor, ivec2(clamp(int(base), 0, c.width - 1), y));
+  vec4 b = imageLoad(centerColor, ivec2(clamp(int(base) + 1, 0, c.width - 1), y));
+  return a * (1.0 - fraction) + b * fraction;
+}
+
+void main() {
+  ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+  if (pixel.x >= c.width || pixel.y >= c.height) return;
+  if (pixel.x < c.cropBegin || pixel.x >= c.cropEnd) {  // cropped edges
+    imageStore(leftEye, pixel, vec4(0, 0, 0, 1));
+    imageStore(rightEye, pixel, vec4(0, 0, 0, 1));
+    return;
+  }
+  float minDepthLeft = minDepthOverTaps(pixel.x, pixel.y, +1);
+  float minDepthRight = minDepthOverTaps(pixel.x, pixel.y, -1);
+  float parallaxLeft = parallaxFromDepth(c.maxSeparation, c.zeroParallaxDistance, minDepthLeft);
+  float parallaxRight = parallaxFromDepth(c.maxSeparation, c.zeroParallaxDistance, minDepthRight);
+  // The left eye adds the parallax, the right eye subtracts it.
+  imageStore(leftEye, pixel, sampleRow(pixel.y, float(pixel.x) + parallaxLeft * float(c.width)));
+  imageStore(rightEye, pixel, sampleRow(pixel.y, float(pixel.x) - parallaxRight * float(c.width)));
+}
