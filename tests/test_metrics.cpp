@@ -156,3 +156,29 @@ TEST(ErrorHeatMap, CroppedColumnsStayBlack) {
 
 }  // namespace
 }  // namespace s3d::stereo
+
+namespace s3d::stereo {
+namespace {
+
+TEST(DisocclusionMask, BackgroundHiddenBehindABoxInTheCenterViewIsUnseen) {
+  // Center: a box at the zero-parallax plane (parallax 0) over sky; sky moves by 0.1 * 20 = 2 px.
+  // The left eye's sky pixel x shows center content from x + 2: at x = 6, 7 that is the box, so the
+  // center never saw that background; x = 18, 19 reproject outside the image.
+  DepthImage center(20, 1, INFINITY);
+  for (std::uint32_t x = 8; x < 12; ++x) *center.at(x, 0) = 1.0f;
+  DepthImage leftReference = center;  // the box stays put (zero parallax); the sky is sky
+  std::vector<std::uint8_t> mask = disocclusionMask(leftReference, center, 0.1f, 1.0f, Eye::Left);
+  for (std::uint32_t x = 0; x < 20; ++x) {
+    const bool unseen = x == 6 || x == 7 || x >= 18;
+    EXPECT_EQ(mask[x], unseen ? 1 : 0) << x;
+  }
+}
+
+TEST(DisocclusionMask, EverythingOnTheZeroParallaxPlaneIsSeen) {
+  DepthImage depth(10, 2, 2.0f);
+  std::vector<std::uint8_t> mask = disocclusionMask(depth, depth, 0.05f, 2.0f, Eye::Right);
+  for (std::uint8_t value : mask) EXPECT_EQ(value, 0);
+}
+
+}  // namespace
+}  // namespace s3d::stereo

@@ -108,6 +108,33 @@ RegionErrors compareByRegion(const ImageRGBA8& synthesized, const ImageRGBA8& re
           compareSelected(synthesized, reference, cropColumns, &halo, 0)};
 }
 
+ErrorStats compareWithinMask(const ImageRGBA8& synthesized, const ImageRGBA8& reference, std::uint32_t cropColumns,
+                             const std::vector<std::uint8_t>& mask) {
+  return compareSelected(synthesized, reference, cropColumns, &mask, 1);
+}
+
+std::vector<std::uint8_t> disocclusionMask(const DepthImage& referenceDepth, const DepthImage& centerDepth,
+                                           float maxSeparation, float zeroParallaxDistance, Eye eye) {
+  requireSameSize(referenceDepth, centerDepth, "disocclusionMask");
+  const float width = float(referenceDepth.width);
+  const float sign = eye == Eye::Left ? 1.0f : -1.0f;  // the left eye shows center content from x + p W
+  std::vector<std::uint8_t> mask(referenceDepth.pixelCount(), 0);
+  for (std::uint32_t y = 0; y < referenceDepth.height; ++y)
+    for (std::uint32_t x = 0; x < referenceDepth.width; ++x) {
+      const float depth = *referenceDepth.at(x, y);
+      const float parallax = gpu::parallaxFromDepth(maxSeparation, zeroParallaxDistance, gpu::sanitizedDepth(depth, zeroParallaxDistance));
+      const long centerX = std::lround(float(x) + sign * parallax * width);
+      bool seen = false;
+      if (centerX >= 0 && centerX < long(referenceDepth.width)) {
+        const float centerDepthHere = *centerDepth.at(std::uint32_t(centerX), y);
+        seen = std::isinf(depth) ? std::isinf(centerDepthHere)
+                                 : std::abs(centerDepthHere - depth) <= kSameSurfaceRelativeDepth * depth;
+      }
+      mask[std::size_t(y) * referenceDepth.width + x] = seen ? 0 : 1;
+    }
+  return mask;
+}
+
 ImageRGBA8 makeErrorHeatMap(const ImageRGBA8& synthesized, const ImageRGBA8& reference, std::uint32_t cropColumns,
                             int fullScaleLevels) {
   requireSameSize(synthesized, reference, "makeErrorHeatMap");

@@ -99,6 +99,7 @@ nlohmann::json errorJson(const EyeError& error) {
   nlohmann::json json = statsJson(error.display);
   json["halo"] = statsJson(error.halo);
   json["rest"] = statsJson(error.rest);
+  json["disocclusion"] = statsJson(error.disocclusion);
   return json;
 }
 
@@ -169,17 +170,23 @@ RenderReport runRenderJob(vk::Context& context, const RenderJobOptions& options)
   // 4. The two-pass reference: each eye rendered with its off-axis camera.
   const renderer::FrameTimings leftTimings = deferred.render(referenceEyeView(job.scene, center, stereo::Eye::Left, options.stereo));
   const ImageRGBA8 leftReference = deferred.readDisplayColor();
+  const DepthImage leftReferenceDepth = deferred.readLinearDepth();
   (void)deferred.render(referenceEyeView(job.scene, center, stereo::Eye::Right, options.stereo));
   const ImageRGBA8 rightReference = deferred.readDisplayColor();
+  const DepthImage rightReferenceDepth = deferred.readLinearDepth();
   report.referenceEyeGpuMs = leftTimings.totalGpuMs;
 
   // 5. Synthesized vs reference, without the border strips that view synthesis cannot know.
   const std::vector<std::uint8_t> halo =
       stereo::haloMask(centerDepth, std::uint32_t(std::ceil(options.stereo.maxSeparation * float(width))));
-  for (auto [eyeError, eye, reference] : {std::tuple{&report.left, &synthesized.left, &leftReference},
-                                          std::tuple{&report.right, &synthesized.right, &rightReference}}) {
+  for (auto [eyeError, eye, reference, referenceDepth, side] :
+       {std::tuple{&report.left, &synthesized.left, &leftReference, &leftReferenceDepth, stereo::Eye::Left},
+        std::tuple{&report.right, &synthesized.right, &rightReference, &rightReferenceDepth, stereo::Eye::Right}}) {
     const stereo::RegionErrors regions = stereo::compareByRegion(*eye, *reference, report.cropColumns, halo);
-    *eyeError = {regions.all, regions.halo, regions.rest};
+    const std::vector<std::uint8_t> unseen = stereo::disocclusionMask(
+        *referenceDepth, centerDepth, options.stereo.maxSeparation, options.stereo.zeroParallaxDistance, side);
+    *eyeError = {regions.all, regions.halo, regions.rest,
+                 stereo::compareWithinMask(*eye, *reference, report.cropColumns, unseen)};
   }
 
   // Comfort report: the parallax the stereo pass gave every pixel, as angles on the chosen display.

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "s3d/image.h"
+#include "s3d/stereo/stereo.h"
 
 namespace s3d::stereo {
 
@@ -39,6 +40,19 @@ struct RegionErrors {
 };
 RegionErrors compareByRegion(const ImageRGBA8& synthesized, const ImageRGBA8& reference, std::uint32_t cropColumns,
                              const std::vector<std::uint8_t>& halo);
+
+// Statistics over the cropped area's pixels whose mask value is 1.
+ErrorStats compareWithinMask(const ImageRGBA8& synthesized, const ImageRGBA8& reference, std::uint32_t cropColumns,
+                             const std::vector<std::uint8_t>& mask);
+
+// Disocclusion region (issue #4): 1 for the pixels of a reference eye that the center camera did not see.
+// Each reference pixel at linear depth d is reprojected into the center view (left eye: x + p(d) W, right
+// eye: x - p(d) W, nearest pixel); it was seen when the center's depth there matches d within
+// kSameSurfaceRelativeDepth (or both are sky), and unseen when it lands outside the image or on another
+// surface. Depths are the stereo pass's (weapon pushed), as both renders write them.
+constexpr float kSameSurfaceRelativeDepth = 0.02f;
+std::vector<std::uint8_t> disocclusionMask(const DepthImage& referenceDepth, const DepthImage& centerDepth,
+                                           float maxSeparation, float zeroParallaxDistance, Eye eye);
 
 // Error heat map (issue #4): per pixel the largest R/G/B difference, black at 0 through blue, red and
 // yellow to white at fullScaleLevels and above; the cropped border columns stay black.

@@ -57,6 +57,7 @@ struct EyeError {
   stereo::ErrorStats display{};  // synthesized eye vs two-pass reference, border strips of cropColumns excluded
   stereo::ErrorStats halo{};     // the same within maxSeparation of a center-view depth edge (stereo::haloMask)
   stereo::ErrorStats rest{};     // and everywhere else
+  stereo::ErrorStats disocclusion{};  // reference pixels the center camera never saw (stereo::disocclusionMask)
 };
 
 struct CrosshairReport {
