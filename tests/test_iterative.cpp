@@ -8,6 +8,7 @@
 #include <random>
 #include <tuple>
 
+#include "s3d/app/render_job.h"
 #include "s3d/renderer/deferred_renderer.h"
 #include "s3d/renderer/scene.h"
 #include "s3d/stereo/iterative.h"
@@ -213,24 +214,6 @@ TEST_F(IterativeGpu, InvalidAndExtremeDepthsMatchTheCppImplementation) {
   }
 }
 
-// The two-pass reference's view of one eye, as the render job makes it (both layers off-axis, the weapon
-// following its pushed depth).
-renderer::ViewMatrices eyeViewMatrices(const renderer::Scene& scene, const renderer::ViewMatrices& center, Eye eye,
-                                       const StereoParameters& p) {
-  const EyeCamera world = offAxisEyeCamera(center.worldView, center.worldProjection, eye, p.maxSeparation, p.zeroParallaxDistance);
-  const glm::vec2 weaponDepths = renderer::firstPersonDepthRange(scene).value_or(glm::vec2(1.0f));
-  const EyeCamera firstPerson = offAxisEyeCamera(
-      center.firstPersonView, center.firstPersonProjection, eye,
-      pushedLayerTerms(center.firstPersonProjection[0][0], p.maxSeparation, p.zeroParallaxDistance, p.weaponDepthOffset,
-                       p.weaponDepthScale, weaponDepths.x, weaponDepths.y));
-  renderer::ViewMatrices view = center;
-  view.worldView = world.view;
-  view.worldProjection = world.projection;
-  view.firstPersonView = firstPerson.view;
-  view.firstPersonProjection = firstPerson.projection;
-  return view;
-}
-
 class IterativeCourtyard : public test::VulkanTest {};
 
 TEST_F(IterativeCourtyard, IsAtLeastAsCloseToTheTwoPassReferenceAsTheSeed) {
@@ -244,9 +227,9 @@ TEST_F(IterativeCourtyard, IsAtLeastAsCloseToTheTwoPassReferenceAsTheSeed) {
   (void)deferred.render(center);
   const ImageRGBA8 color = deferred.readDisplayColor();
   const DepthImage depth = deferred.readLinearDepth();
-  (void)deferred.render(eyeViewMatrices(scene, center, Eye::Left, parameters));
+  (void)deferred.render(app::referenceEyeView(scene, center, Eye::Left, parameters));
   const ImageRGBA8 leftReference = deferred.readDisplayColor();
-  (void)deferred.render(eyeViewMatrices(scene, center, Eye::Right, parameters));
+  (void)deferred.render(app::referenceEyeView(scene, center, Eye::Right, parameters));
   const ImageRGBA8 rightReference = deferred.readDisplayColor();
 
   const gpu::StereoConstants seedConstants = makeSeedConstants(parameters, width, height);
