@@ -717,6 +717,15 @@ DepthImage DeferredRenderer::readLinearDepth() {
   return image;
 }
 
+std::vector<std::uint8_t> DeferredRenderer::readFirstPersonMask() {
+  std::vector<std::byte> bytes = vk::readbackImage(impl_->context, impl_->depth, kComputeSampled);
+  std::vector<float> deviceDepth(bytes.size() / sizeof(float));
+  std::memcpy(deviceDepth.data(), bytes.data(), bytes.size());
+  std::vector<std::uint8_t> mask(deviceDepth.size());
+  for (std::size_t i = 0; i < mask.size(); ++i) mask[i] = deviceDepth[i] <= kFirstPersonDeviceDepthMax ? 1 : 0;
+  return mask;
+}
+
 ImageRGBA32F DeferredRenderer::readHdrColor() {
   // The shading target holds half floats; the exposure is applied here so center.exr matches the display.
   std::vector<std::byte> bytes = vk::readbackImage(impl_->context, impl_->hdr, vk::kComputeRead);

@@ -19,17 +19,17 @@ namespace {
 // The pushed weapon's farthest point stays within this share of the distance to the nearest surface.
 constexpr float kWeaponClearance = 0.9f;
 
-// Weapon pixels (where the pushed and the unpushed linear depth differ) whose pushed depth lies behind the
-// world surface along the same pixel ray: the pushed weapon would appear behind a wall it is in front of.
+// Weapon pixels whose pushed depth lies behind the world surface along the same pixel ray: the pushed
+// weapon would appear behind a wall it is in front of.
 void countWeaponConflicts(const comfort::WorldQueries& world, const renderer::Camera& camera,
-                          const renderer::ViewMatrices& center, const DepthImage& pushed, const DepthImage& unpushed,
-                          SequenceFrame& frame) {
+                          const renderer::ViewMatrices& center, const DepthImage& pushed,
+                          const std::vector<std::uint8_t>& weaponMask, SequenceFrame& frame) {
   const glm::mat4 worldFromView = glm::inverse(center.worldView);
   const glm::mat4& projection = center.worldProjection;
   for (std::uint32_t y = 0; y < pushed.height; ++y)
     for (std::uint32_t x = 0; x < pushed.width; ++x) {
+      if (!weaponMask[std::size_t(y) * pushed.width + x]) continue;
       const float depth = *pushed.at(x, y);
-      if (depth == *unpushed.at(x, y)) continue;  // not the weapon
       ++frame.weaponPixels;
       // The world camera's ray through this pixel, at unit view depth.
       const float ndcX = (float(x) + 0.5f) / float(pushed.width) * 2.0f - 1.0f;
@@ -91,14 +91,11 @@ SequenceReport runSequenceJob(vk::Context& context, const SequenceJobOptions& op
     frame.weaponDepthScale = parameters.weaponDepthScale;
     frame.crosshairDepth = comfort::placeCrosshair(world, scene.camera, scene.crosshairDistance).depth;
 
-    const renderer::ViewMatrices unpushedView = renderer::centerViewMatrices(scene, aspect);
-    deferred.render(unpushedView);
-    const DepthImage unpushed = deferred.readLinearDepth();
     const renderer::ViewMatrices center =
         renderer::centerViewMatrices(scene, aspect, {parameters.weaponDepthOffset, parameters.weaponDepthScale});
     deferred.render(center);
     const DepthImage pushed = deferred.readLinearDepth();
-    countWeaponConflicts(world, scene.camera, center, pushed, unpushed, frame);
+    countWeaponConflicts(world, scene.camera, center, pushed, deferred.readFirstPersonMask(), frame);
     stereo::SynthesisResult eyes = stereo::synthesizeTimed(context, deferred.displayColor(), deferred.linearDepth(), parameters);
 
     deferred.render(referenceEyeView(scene, center, stereo::Eye::Left, parameters));

@@ -77,6 +77,8 @@ class DeferredRenderer {
   ImageRGBA8 readDisplayColor();
   DepthImage readLinearDepth();
   ImageRGBA32F readHdrColor();
+  // 1 where the last frame's visible surface belongs to the first-person layer (Listing 4.3's depth range).
+  std::vector<std::uint8_t> readFirstPersonMask();
 
   // Device depth values that separate the layers (Listing 4.3): first-person depth is in [0, split].
   static constexpr float kFirstPersonDeviceDepthMax = 0.1f;
