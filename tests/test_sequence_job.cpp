@@ -12,7 +12,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// Rendered once per test binary at 160x90 (48 frames x 5 renders), without frame images.
+// Rendered once per test binary at 160x90 (48 frames x 4 renders), without frame images.
 const SequenceReport& coverSequence(vk::Context& context) {
   static const SequenceReport report = [&] {
     SequenceJobOptions options;
