@@ -1,0 +1,170 @@
+#include "cli_support.h"
+
+#include <algorithm>
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <sstream>
+
+namespace s3d::cli {
+
+std::string oneLine(std::string text) {
+  for (char& c : text)
+    if (c == '\n' || c == '\r') c = ' ';
+  while (!text.empty() && text.back() == ' ') text.pop_back();
+  return text;
+}
+
+int fail(const std::string& message) {
+  std::cerr << "s3d: error: " << oneLine(message) << '\n';
+  return 1;
+}
+
+void warn(const std::string& message) { std::cerr << "s3d: warning: " << oneLine(message) << '\n'; }
+
+std::string joined(const std::vector<std::string>& names, const char* separator) {
+  std::string text;
+  for (const std::string& name : names) {
+    if (!text.empty()) text += separator;
+    text += name;
+  }
+  return text;
+}
+
+std::optional<double> parseNumber(const std::string& text) {
+  double value = 0.0;
+  const char* end = text.data() + text.size();
+  auto [ptr, ec] = std::from_chars(text.data(), end, value);
+  if (ec != std::errc() || ptr != end || !std::isfinite(value)) return std::nullopt;
+  return value;
+}
+
+std::string formatMs(const std::optional<double>& ms) {
+  if (!ms) return "n/a";
+  char text[32];
+  std::snprintf(text, sizeof(text), "%.3f ms", *ms);
+  return text;
+}
+
+CLI::Validator floatRange(double low, double high, bool lowOpen, const std::string& what) {
+  std::ostringstream description;
+  description << "FLOAT in " << (lowOpen ? "(" : "[") << low << ", " << high << "]";
+  return CLI::Validator(
+      [low, high, lowOpen, what](std::string& input) -> std::string {
+        std::optional<double> value = parseNumber(input);
+        if (!value || *value > high || (lowOpen ? *value <= low : *value < low)) {
+          std::ostringstream message;
+          message << "expected " << what << ", a number in " << (lowOpen ? "(" : "[") << low << ", " << high
+                  << "] (got '" << input << "')";
+          return message.str();
+        }
+        return {};
+      },
+      description.str());
+}
+
+bool parseResolution(const std::string& text, std::uint32_t maxSize, std::uint32_t& width, std::uint32_t& height) {
+  const std::size_t x = text.find_first_of("xX");
+  if (x == std::string::npos) return false;
+  auto parsePart = [maxSize](const char* begin, const char* end, std::uint32_t& value) {
+    auto [ptr, ec] = std::from_chars(begin, end, value);
+    return ec == std::errc() && ptr == end && begin != end && value >= 1 && value <= maxSize;
+  };
+  return parsePart(text.data(), text.data() + x, width) &&
+         parsePart(text.data() + x + 1, text.data() + text.size(), height);
+}
+
+CLI::Validator resolutionValidator(std::uint32_t maxSize) {
+  return CLI::Validator(
+      [maxSize](std::string& text) -> std::string {
+        std::uint32_t width = 0, height = 0;
+        return parseResolution(text, maxSize, width, height)
+                   ? std::string()
+                   : "expected WxH with both in [1, " + std::to_string(maxSize) + "] (got '" + text + "')";
+      },
+      "WxH");
+}
+
+void StereoOptions::add(CLI::App& command, const std::string& depthUnits) {
+  command
+      .add_option("--max-separation", parameters.maxSeparation,
+                  "Eye separation at infinity, as a fraction of the screen width")
+      ->check(floatRange(0.0, double(stereo::kMaxSeparationLimit), false, "a fraction of the screen width"))
+      ->capture_default_str();
+  command
+      .add_option("--zero-parallax-distance", parameters.zeroParallaxDistance,
+                  "Depth (" + depthUnits + ") that stays on the screen plane")
+      ->check(floatRange(0.0, 1.0e6, true, "a distance in " + depthUnits))
+      ->capture_default_str();
+  command
+      .add_option("--edge-crop", parameters.edgeCrop,
+                  "Fraction of the width blacked out on each side of both eyes (and left out of the comparison); "
+                  "default: = --max-separation")
+      ->check(floatRange(0.0, double(stereo::kMaxSeparationLimit), false, "a fraction of the screen width"));
+  command
+      .add_option("--method", method,
+                  "Stereo method: seed (Listing 4.5, taps at 0.5/0.66/1.0 of the separation), search (--taps taps "
+                  "spread over the separation) or iterative (fixed-point source search, --iterations)")
+      ->check(CLI::IsMember({"seed", "search", "iterative"}))
+      ->capture_default_str();
+  command.add_option("--taps", parameters.searchTaps, "Depth-search taps of --method search")
+      ->check(CLI::Range(1, S3D_STEREO_MAX_TAPS))
+      ->capture_default_str();
+  command.add_option("--iterations", parameters.iterations, "Fixed-point iterations of --method iterative")
+      ->check(CLI::Range(1, 16))
+      ->capture_default_str();
+}
+
+void StereoOptions::finish() {
+  parameters.method = stereo::parseStereoMethod(method);
+  stereo::validate(parameters);
+}
+
+void addDeviceOptions(CLI::App& command, vk::ContextOptions& options) {
+  command
+      .add_option("--device", options.device,
+                  "Vulkan device: auto (a GPU if present, else the CPU device), cpu, gpu, or an index from "
+                  "--list-devices")
+      ->check(
+          [](const std::string& text) -> std::string {
+            if (text == "auto" || text == "cpu" || text == "gpu") return {};
+            if (!text.empty() && text.size() < 10 &&
+                std::all_of(text.begin(), text.end(), [](unsigned char c) { return std::isdigit(c) != 0; }))
+              return {};
+            return "expected auto, cpu, gpu or a device index (got '" + text + "')";
+          },
+          "auto|cpu|gpu|N")
+      ->capture_default_str();
+  command.add_flag("--validation", options.validation,
+                   "Turn on the Khronos validation layer; any message it reports makes the run fail");
+}
+
+namespace {
+const char* deviceTypeName(VkPhysicalDeviceType type) {
+  switch (type) {
+    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU: return "integrated GPU";
+    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU: return "discrete GPU";
+    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU: return "virtual GPU";
+    case VK_PHYSICAL_DEVICE_TYPE_CPU: return "CPU";
+    default: return "other";
+  }
+}
+}  // namespace
+
+void listDevices() {
+  const std::vector<vk::PhysicalDeviceInfo> devices = vk::listPhysicalDevices();
+  if (devices.empty()) std::cout << "no Vulkan devices\n";
+  for (const vk::PhysicalDeviceInfo& device : devices) {
+    std::cout << device.index << ": " << device.name << " (" << deviceTypeName(device.type) << ", Vulkan "
+              << VK_API_VERSION_MAJOR(device.apiVersion) << '.' << VK_API_VERSION_MINOR(device.apiVersion) << '.'
+              << VK_API_VERSION_PATCH(device.apiVersion) << ") ";
+    if (device.usable)
+      std::cout << "usable\n";
+    else
+      std::cout << "not usable: " << oneLine(device.unusableReason) << '\n';
+  }
+}
+
+}  // namespace s3d::cli

@@ -1,0 +1,56 @@
+#pragma once
+// Pieces every `s3d` command shares: error/number formatting, option validators, the stereo and device options,
+// and the Command interface each command file implements (main.cpp runs the one that was parsed).
+#include <CLI/CLI.hpp>
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "s3d/stereo/stereo.h"
+#include "s3d/vk/context.h"
+
+namespace s3d::cli {
+
+// One `s3d` command: a CLI11 subcommand plus the code that runs it once parsed.
+class Command {
+ public:
+  virtual ~Command() = default;
+  CLI::App* subcommand = nullptr;
+  virtual int run() = 0;  // the exit status; throws on errors (main prints them as one line)
+};
+
+std::unique_ptr<Command> addRenderCommand(CLI::App& app);
+std::unique_ptr<Command> addConvertCommand(CLI::App& app);
+
+std::string oneLine(std::string text);
+// Prints "s3d: error: <message>" as one line on stderr and returns the failing exit status (1).
+int fail(const std::string& message);
+void warn(const std::string& message);  // "s3d: warning: <message>"
+std::string joined(const std::vector<std::string>& names, const char* separator);
+std::optional<double> parseNumber(const std::string& text);
+std::string formatMs(const std::optional<double>& ms);
+
+// A finite float in [low, high] (or (low, high] when lowOpen); CLI11 puts the option's name before the message.
+CLI::Validator floatRange(double low, double high, bool lowOpen, const std::string& what);
+// "WxH" with both parts in [1, maxSize].
+bool parseResolution(const std::string& text, std::uint32_t maxSize, std::uint32_t& width, std::uint32_t& height);
+CLI::Validator resolutionValidator(std::uint32_t maxSize);
+
+// --max-separation, --zero-parallax-distance, --edge-crop, --method, --taps, --iterations on `command`;
+// call finish() after parsing to turn the method name into StereoParameters::method and validate.
+struct StereoOptions {
+  stereo::StereoParameters parameters;
+  std::string method = "seed";
+  void add(CLI::App& command, const std::string& depthUnits);
+  void finish();
+};
+
+// --device and --validation.
+void addDeviceOptions(CLI::App& command, vk::ContextOptions& options);
+
+void listDevices();
+
+}  // namespace s3d::cli

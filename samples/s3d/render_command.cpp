@@ -1,0 +1,167 @@
+// `s3d render`: renders a built-in scene, synthesizes both eyes with the stereo pass, renders the two-pass
+// reference eyes and writes images plus report.json (s3d/app/render_job.h); `--sequence` runs the scene's camera
+// path with the comfort controls (s3d/app/sequence_job.h).
+#include <cstdio>
+#include <exception>
+#include <iostream>
+#include <set>
+
+#include "cli_support.h"
+#include "s3d/app/render_job.h"
+#include "s3d/app/sequence_job.h"
+#include "s3d/renderer/scene.h"
+#include "s3d/stereo/output_formats.h"
+
+namespace s3d::cli {
+namespace {
+
+class RenderCommand final : public Command {
+ public:
+  explicit RenderCommand(CLI::App& app) {
+    subcommand = app.add_subcommand(
+        "render",
+        "Render a built-in scene, synthesize both eyes with the stereo pass, render the two-pass reference eyes, "
+        "compare them and write the selected outputs (default: all) plus report.json");
+    CLI::App& render = *subcommand;
+    render.add_option("--width", options_.width, "Image width in pixels")
+        ->check(CLI::Range(std::uint32_t(1), app::kMaxImageSize))
+        ->capture_default_str();
+    render.add_option("--height", options_.height, "Image height in pixels")
+        ->check(CLI::Range(std::uint32_t(1), app::kMaxImageSize))
+        ->capture_default_str();
+    render.add_option("--resolution", resolution_, "Image size as WxH, e.g. 1920x1080 (instead of --width/--height)")
+        ->check(resolutionValidator(app::kMaxImageSize))
+        ->excludes("--width")
+        ->excludes("--height");
+    render.add_option("--scene", options_.scene, "Built-in scene: " + joined(renderer::builtInSceneNames(), ", "))
+        ->capture_default_str();
+    render.add_option("--output", options_.outputFolder, "Output folder (created if missing)")->capture_default_str();
+    render
+        .add_option("--outputs", outputs_,
+                    "Comma-separated subset of the outputs to write (default: all): " + joined(app::kAllOutputs, ","))
+        ->delimiter(',')
+        ->check(CLI::IsMember(app::kAllOutputs))
+        ->type_name("LIST");
+    render.add_option("--sbs", sideBySide_, "Side-by-side packing: half (each eye squeezed to half width) or full")
+        ->check(CLI::IsMember({"half", "full"}))
+        ->capture_default_str();
+    render.add_option("--tab", topBottom_, "Top-and-bottom packing: half (each eye squeezed to half height) or full")
+        ->check(CLI::IsMember({"half", "full"}))
+        ->capture_default_str();
+    stereo_.add(render, "world units, metres");
+    render
+        .add_option("--weapon-depth-offset", stereo_.parameters.weaponDepthOffset,
+                    "First-person weapon: depth offset in world units added before stereo (pushes it into the screen)")
+        ->check(floatRange(0.0, 1.0e4, false, "a distance in world units"))
+        ->capture_default_str();
+    render
+        .add_option("--weapon-depth-scale", stereo_.parameters.weaponDepthScale,
+                    "First-person weapon: depth scale applied before the offset (pushed = offset + scale * depth)")
+        ->check(floatRange(0.0, 1.0e4, true, "a positive factor"))
+        ->capture_default_str();
+    render
+        .add_option("--display", options_.display,
+                    "Display profile of the comfort report: tv55 (55-inch at 2.5 m), monitor27 (27-inch at 0.7 m) or "
+                    "hmd (90-degree field of view focused at 1.3 m)")
+        ->check(CLI::IsMember({"tv55", "monitor27", "hmd"}))
+        ->capture_default_str();
+    render.add_option("--frame", options_.frame, "Frame of the scene's camera path to render (0: its first)")
+        ->capture_default_str();
+    render.add_flag("--sequence", sequence_,
+                    "Render the scene's whole camera path with the comfort controls running (zero-parallax "
+                    "control, weapon push, crosshair): anaglyph_NNNN.png per frame and a per-frame report.json");
+    addDeviceOptions(render, contextOptions_);
+    render.add_flag("--list-devices", listDevicesOnly_,
+                    "List the Vulkan devices and whether s3d can use them, then exit without rendering");
+  }
+
+  int run() override {
+    if (listDevicesOnly_) {
+      listDevices();
+      return 0;
+    }
+    if (!resolution_.empty()) parseResolution(resolution_, app::kMaxImageSize, options_.width, options_.height);
+    options_.outputs = std::set<std::string>(outputs_.begin(), outputs_.end());
+    options_.sideBySide = stereo::parsePackingMode(sideBySide_);
+    options_.topBottom = stereo::parsePackingMode(topBottom_);
+    stereo_.finish();
+    options_.stereo = stereo_.parameters;
+    return sequence_ ? runSequence() : runSingleFrame();
+  }
+
+ private:
+  int runSequence() {
+    app::SequenceJobOptions sequenceOptions;
+    sequenceOptions.width = options_.width;
+    sequenceOptions.height = options_.height;
+    sequenceOptions.scene = options_.scene;
+    sequenceOptions.outputFolder = options_.outputFolder;
+    sequenceOptions.stereo = options_.stereo;
+    vk::Context context(contextOptions_);
+    const app::SequenceReport report = app::runSequenceJob(context, sequenceOptions);
+    std::uint64_t conflicts = 0;
+    for (const app::SequenceFrame& frame : report.frames) conflicts += frame.weaponConflictPixels;
+    std::cout << "s3d render --sequence: scene " << report.scene << ", " << report.frames.size() << " frames on "
+              << report.deviceName << ", weapon/world conflict pixels " << conflicts << ", wrote "
+              << report.filesWritten.size() << " files to " << options_.outputFolder.string() << '\n';
+    return 0;
+  }
+
+  int runSingleFrame() {
+    // Options first: a typo must not cost a Vulkan start-up, and must leave no files behind.
+    app::validateRenderJobOptions(options_);
+    vk::Context context(contextOptions_);
+    std::optional<app::RenderReport> report;
+    std::string jobError;
+    try {
+      report = app::runRenderJob(context, options_);
+    } catch (const std::exception& error) {
+      jobError = error.what();
+    }
+    // With --validation, the layer's messages explain failures and are themselves failures.
+    const std::vector<std::string> messages = context.validationMessages();
+    for (const std::string& message : messages) std::cerr << "s3d: validation: " << oneLine(message) << '\n';
+    if (!report) return fail(jobError);
+    printSummary(*report);
+    if (!messages.empty())
+      return fail("the Vulkan validation layer reported " + std::to_string(messages.size()) + " message(s)");
+    return 0;
+  }
+
+  void printSummary(const app::RenderReport& report) const {
+    std::cout << "s3d render: scene " << report.scene << ", " << report.width << "x" << report.height << " on "
+              << report.deviceName << '\n';
+    std::cout << "  GPU time: center frame " << formatMs(report.centerFrameGpuMs) << ", stereo pass "
+              << formatMs(report.stereoPassGpuMs) << ", reference eye " << formatMs(report.referenceEyeGpuMs);
+    if (report.stereoPassGpuMs && report.referenceEyeGpuMs && *report.referenceEyeGpuMs > 0.0) {
+      char ratio[32];
+      std::snprintf(ratio, sizeof(ratio), "%.3f", *report.stereoPassGpuMs / *report.referenceEyeGpuMs);
+      std::cout << " (stereo pass / reference eye = " << ratio << ')';
+    }
+    std::cout << '\n';
+    char line[160];
+    std::snprintf(line, sizeof(line),
+                  "  synthesized vs reference (%u border columns excluded): left %.2f dB, right %.2f dB\n",
+                  report.cropColumns, report.left.display.psnrDb, report.right.display.psnrDb);
+    std::cout << line;
+    const std::size_t count = report.filesWritten.size();
+    std::cout << "  wrote " << count << (count == 1 ? " file" : " files") << " to " << options_.outputFolder.string()
+              << '\n';
+  }
+
+  app::RenderJobOptions options_;
+  StereoOptions stereo_;
+  vk::ContextOptions contextOptions_;
+  std::string resolution_;
+  std::vector<std::string> outputs_{app::kAllOutputs};
+  std::string sideBySide_ = "half";
+  std::string topBottom_ = "half";
+  bool sequence_ = false;
+  bool listDevicesOnly_ = false;
+};
+
+}  // namespace
+
+std::unique_ptr<Command> addRenderCommand(CLI::App& app) { return std::make_unique<RenderCommand>(app); }
+
+}  // namespace s3d::cli
