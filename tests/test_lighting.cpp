@@ -4,6 +4,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
+#include <vector>
+
+#include <glm/gtc/matrix_transform.hpp>
 
 #include "s3d/renderer/deferred_renderer.h"
 #include "vulkan_test.h"
@@ -90,6 +94,74 @@ TEST_F(LightingTest, ALitPlaneMatchesTheAnalyticBlinnPhongValue) {
             << "pixel (" << x << ", " << y << ") channel " << channel;
     }
   }
+}
+
+// A wall 4 m ahead filling the view, and optionally a red half-transparent pane 2 m ahead over its left half.
+Scene makePaneScene(bool withPane) {
+  Scene scene;
+  scene.name = "pane";
+  scene.meshes.push_back(makeBox(glm::vec3(0.5f)));
+  scene.ambientOcclusion = false;
+  scene.camera.position = glm::vec3(0.0f, 0.0f, 0.0f);
+  scene.sun.directionToSun = glm::normalize(glm::vec3(0.2f, 0.5f, 1.0f));
+  Object wall;
+  wall.material.albedo = glm::vec3(0.5f);
+  wall.transform = glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, 0.0f, -4.5f)) * glm::scale(glm::mat4(1.0f), glm::vec3(40.0f, 40.0f, 1.0f));
+  scene.objects.push_back(wall);
+  if (withPane) {
+    Object pane;
+    pane.material.albedo = glm::vec3(0.9f, 0.05f, 0.05f);
+    pane.material.opacity = 0.5f;
+    pane.transform = glm::translate(glm::mat4(1.0f), glm::vec3(-5.0f, 0.0f, -2.0f)) * glm::scale(glm::mat4(1.0f), glm::vec3(10.0f, 10.0f, 0.02f));
+    scene.objects.push_back(pane);
+  }
+  return scene;
+}
+
+struct PaneFrame {
+  std::vector<std::string> passes;
+  ImageRGBA32F hdr;
+  DepthImage depth;
+};
+
+PaneFrame renderPaneScene(vk::Context& context, bool withPane) {
+  const Scene scene = makePaneScene(withPane);
+  DeferredRenderer renderer(context, kWidth, kHeight);
+  renderer.setScene(scene);
+  PaneFrame frame;
+  for (const PassTiming& pass : renderer.render(centerViewMatrices(scene, float(kWidth) / float(kHeight))).passes)
+    frame.passes.push_back(pass.name);
+  frame.hdr = renderer.readHdrColor();
+  frame.depth = renderer.readLinearDepth();
+  return frame;
+}
+
+TEST_F(LightingTest, AnOpaqueSceneDoesNotRunTheTransparentPass) {
+  const PaneFrame frame = renderPaneScene(context(), false);
+  EXPECT_EQ(std::count(frame.passes.begin(), frame.passes.end(), "transparent"), 0);
+}
+
+TEST_F(LightingTest, ATransparentPaneIsBlendedAfterShadingAndWritesNoDepth) {
+  const PaneFrame opaque = renderPaneScene(context(), false);
+  const PaneFrame glass = renderPaneScene(context(), true);
+  const auto shading = std::find(glass.passes.begin(), glass.passes.end(), "shading");
+  const auto transparent = std::find(glass.passes.begin(), glass.passes.end(), "transparent");
+  ASSERT_NE(transparent, glass.passes.end());
+  EXPECT_LT(shading, transparent);
+  const std::uint32_t behindPane = kWidth / 4, besidePane = kWidth * 3 / 4, row = kHeight / 2;
+  // The stereo pass must see the wall through the glass (the seed's transparency case): depth is the wall's.
+  EXPECT_FLOAT_EQ(*glass.depth.at(behindPane, row), *opaque.depth.at(behindPane, row));
+  // Behind the red pane (a thin box: the view crosses two faces, each blended at opacity 0.5) a quarter of the
+  // wall's green shows through, plus the pane's own dim green (albedo 0.05): between 0.25 and 0.5 of the wall's
+  // green, while red dominates.
+  const float* tinted = glass.hdr.at(behindPane, row);
+  const float* plain = opaque.hdr.at(behindPane, row);
+  EXPECT_GT(tinted[0], tinted[1] * 1.5f);
+  EXPECT_GE(tinted[1], 0.25f * plain[1]);
+  EXPECT_LE(tinted[1], 0.5f * plain[1]);
+  // Beside the pane nothing changes.
+  for (int channel = 0; channel < 3; ++channel)
+    EXPECT_FLOAT_EQ(glass.hdr.at(besidePane, row)[channel], opaque.hdr.at(besidePane, row)[channel]);
 }
 
 }  // namespace
