@@ -81,15 +81,16 @@ std::string xmlEscaped(const std::string& text) {
   return escaped;
 }
 
-// Error measures shown per eye beside the PSNR table: one line per stereo::ErrorStats field worth a column.
+// Error measures over the whole cropped area shown per eye after the PSNR columns: one line per stereo::ErrorStats
+// field worth a column (a new field such as SSIM is one more line here and one in statsJson).
 struct ErrorMeasure {
   const char* heading;
   double (*value)(const stereo::ErrorStats&);
   const char* pattern;
 };
 const ErrorMeasure kErrorMeasures[] = {
-    {"mean abs. error (levels)", [](const stereo::ErrorStats& s) { return s.meanAbsoluteError; }, "%.2f"},
-    {"error > 8 levels (%)", [](const stereo::ErrorStats& s) { return 100.0 * s.shareAbove8; }, "%.1f"},
+    {"mean abs. error", [](const stereo::ErrorStats& s) { return s.meanAbsoluteError; }, "%.2f"},
+    {"error > 8 levels %", [](const stereo::ErrorStats& s) { return 100.0 * s.shareAbove8; }, "%.1f"},
 };
 
 // The PSNR regions of the main table, in column order.
@@ -483,13 +484,14 @@ std::string sweepMarkdown(const BenchReport& report) {
   std::ostringstream md;
   md << "### `s3d bench` on " << report.deviceName << " (" << report.deviceKind << "), " << report.width << "x"
      << report.height << "\n\n";
-  md << "Command: `" << report.commandLine << "` (wall time " << format("%.0f", report.wallSeconds) << " s).\n";
+  md << "Command: `" << report.commandLine << "` (wall time " << format("%.1f", report.wallSeconds) << " s).\n";
   md << "Every time is the median of " << report.repeat
      << " GPU timestamp measurements of warm runs; per scene and separation the center view and both reference eyes\n"
         "are rendered once and every setting runs on that center view. Stereo: both eyes in one dispatch; eye: one\n"
         "two-pass reference eye (the left). PSNR left / right in dB against the two-pass reference over the cropped\n"
         "area (maxSeparation columns each side) and its regions: halo (within maxSeparation of a center-view depth\n"
-        "edge), disocclusion (reference pixels the center view never saw), rest (not halo).\n";
+        "edge), disocclusion (reference pixels the center view never saw), rest (not halo); the last columns are\n"
+        "over the whole cropped area.\n";
 
   std::vector<std::string> scenes;
   for (const BenchRow& row : report.rows)
@@ -501,8 +503,9 @@ std::string sweepMarkdown(const BenchReport& report) {
     md << "\n#### " << scene << " (center frame " << msText(first->centerFrameGpuMs) << " ms)\n\n";
     md << "| method | setting | sep % | stereo ms | stereo / center | stereo / eye |";
     for (const ErrorRegion& region : kErrorRegions) md << ' ' << region.heading << " |";
+    for (const ErrorMeasure& measure : kErrorMeasures) md << ' ' << measure.heading << " |";
     md << "\n|---|---|---|---|---|---|";
-    for (std::size_t i = 0; i < std::size(kErrorRegions); ++i) md << "---|";
+    for (std::size_t i = 0; i < std::size(kErrorRegions) + std::size(kErrorMeasures); ++i) md << "---|";
     md << '\n';
     for (const BenchRow& row : report.rows) {
       if (row.scene != scene) continue;
@@ -512,21 +515,11 @@ std::string sweepMarkdown(const BenchReport& report) {
          << ratioText(ratio(row.stereoGpuMs, row.referenceEyeGpuMs)) << " |";
       for (const ErrorRegion& region : kErrorRegions)
         md << ' ' << dbPair((row.left.*region.stats).psnrDb, (row.right.*region.stats).psnrDb) << " |";
+      for (const ErrorMeasure& measure : kErrorMeasures)
+        md << ' ' << format(measure.pattern, measure.value(row.left.display)) << " / "
+           << format(measure.pattern, measure.value(row.right.display)) << " |";
       md << '\n';
     }
-  }
-
-  md << "\n#### Other error measures (whole cropped area, left / right)\n\n| scene | setting | sep % |";
-  for (const ErrorMeasure& measure : kErrorMeasures) md << ' ' << measure.heading << " |";
-  md << "\n|---|---|---|";
-  for (std::size_t i = 0; i < std::size(kErrorMeasures); ++i) md << "---|";
-  md << '\n';
-  for (const BenchRow& row : report.rows) {
-    md << "| " << row.scene << " | " << row.setting.name() << " | " << percentText(row.maxSeparation) << " |";
-    for (const ErrorMeasure& measure : kErrorMeasures)
-      md << ' ' << format(measure.pattern, measure.value(row.left.display)) << " / "
-         << format(measure.pattern, measure.value(row.right.display)) << " |";
-    md << '\n';
   }
 
   // Every setting against the seed over all scenes and separations: what the dominance target asks, for all.
@@ -609,7 +602,7 @@ std::string rendererMarkdown(const BenchReport& report) {
   std::ostringstream md;
   md << "### `s3d bench --renderer` on " << report.deviceName << " (" << report.deviceKind << "), " << report.width
      << "x" << report.height << "\n\n";
-  md << "Command: `" << report.commandLine << "` (wall time " << format("%.0f", report.wallSeconds) << " s).\n";
+  md << "Command: `" << report.commandLine << "` (wall time " << format("%.1f", report.wallSeconds) << " s).\n";
   md << "Center frame GPU time per scene and per pass (ms), each the median of " << report.repeat
      << " warm frames; a pass the scene does not need does not run (-).\n\n";
   std::vector<std::string> passNames;
