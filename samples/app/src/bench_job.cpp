@@ -821,15 +821,24 @@ std::string benchSpeedErrorSvg(const BenchReport& report) {
       minDb = std::min(minDb, p.haloDb), maxDb = std::max(maxDb, p.haloDb);
     }
   }
-  const double firstDecade = std::floor(std::log10(minMs));
-  double lastDecade = std::ceil(std::log10(maxMs));
-  if (lastDecade <= firstDecade) lastDecade = firstDecade + 1;
+  // x ticks at 1, 2 and 5 of each decade; the axis spans from the last tick at or below the fastest point to
+  // the first tick at or above the slowest.
+  std::vector<double> ticks;
+  for (double decade = std::floor(std::log10(minMs)); decade <= std::ceil(std::log10(maxMs)); decade += 1.0)
+    for (double mantissa : {1.0, 2.0, 5.0}) ticks.push_back(mantissa * std::pow(10.0, decade));
+  double lowTick = ticks.front(), highTick = ticks.back();  // 10^ceil(log10(maxMs)) is a tick >= maxMs
+  for (double tick : ticks)
+    if (tick <= minMs * (1 + 1e-9)) lowTick = tick;
+  for (auto tick = ticks.rbegin(); tick != ticks.rend(); ++tick)
+    if (*tick >= maxMs * (1 - 1e-9)) highTick = *tick;
+  if (highTick <= lowTick) highTick = lowTick * 10.0;  // every point at one time
+  const double firstLog = std::log10(lowTick), lastLog = std::log10(highTick);
   minDb = std::floor(minDb) - 1.0;
   maxDb = std::ceil(maxDb) + 1.0;
   const double dbStep = maxDb - minDb > 20 ? 5.0 : maxDb - minDb > 8 ? 2.0 : 1.0;
   minDb = std::floor(minDb / dbStep) * dbStep;
   maxDb = std::ceil(maxDb / dbStep) * dbStep;
-  auto xOf = [&](double ms) { return kLeft + (std::log10(ms) - firstDecade) / (lastDecade - firstDecade) * kPlotWidth; };
+  auto xOf = [&](double ms) { return kLeft + (std::log10(ms) - firstLog) / (lastLog - firstLog) * kPlotWidth; };
   auto yOf = [&](double db) { return kTop + (maxDb - db) / (maxDb - minDb) * kPlotHeight; };
   auto number = [](double value) { return format("%.1f", value); };
 
@@ -840,16 +849,15 @@ std::string benchSpeedErrorSvg(const BenchReport& report) {
   svg << "<text x=\"" << kLeft << "\" y=\"22\" font-size=\"14\">Stereo pass speed against halo error, "
       << xmlEscaped(report.deviceName) << ", " << report.width << "x" << report.height << "</text>\n";
   // Grid and ticks: every 1, 2, 5 of each decade on x, every dbStep on y.
-  for (double decade = firstDecade; decade <= lastDecade; decade += 1.0)
-    for (double mantissa : {1.0, 2.0, 5.0}) {
-      const double ms = mantissa * std::pow(10.0, decade);
-      if (std::log10(ms) > lastDecade + 1e-9) break;
-      const double x = xOf(ms);
-      svg << "<line x1=\"" << number(x) << "\" y1=\"" << kTop << "\" x2=\"" << number(x) << "\" y2=\""
-          << kTop + kPlotHeight << "\" stroke=\"" << (mantissa == 1.0 ? "#bbbbbb" : "#eeeeee") << "\"/>\n";
-      svg << "<text x=\"" << number(x) << "\" y=\"" << kTop + kPlotHeight + 16 << "\" text-anchor=\"middle\">"
-          << format("%g", ms) << "</text>\n";
-    }
+  for (double ms : ticks) {
+    if (ms < lowTick * (1 - 1e-9) || ms > highTick * (1 + 1e-9)) continue;
+    const bool decade = std::fabs(std::log10(ms) - std::round(std::log10(ms))) < 1e-9;
+    const double x = xOf(ms);
+    svg << "<line x1=\"" << number(x) << "\" y1=\"" << kTop << "\" x2=\"" << number(x) << "\" y2=\""
+        << kTop + kPlotHeight << "\" stroke=\"" << (decade ? "#bbbbbb" : "#eeeeee") << "\"/>\n";
+    svg << "<text x=\"" << number(x) << "\" y=\"" << kTop + kPlotHeight + 16 << "\" text-anchor=\"middle\">"
+        << format("%g", ms) << "</text>\n";
+  }
   for (double db = minDb; db <= maxDb + 1e-9; db += dbStep) {
     const double y = yOf(db);
     svg << "<line x1=\"" << kLeft << "\" y1=\"" << number(y) << "\" x2=\"" << kLeft + kPlotWidth << "\" y2=\""
