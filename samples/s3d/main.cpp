@@ -22,6 +22,7 @@ int main(int argc, char** argv) {
   std::vector<std::unique_ptr<Command>> commands;
   commands.push_back(addRenderCommand(app));
   commands.push_back(addConvertCommand(app));
+  commands.push_back(addBenchCommand(app));
 
   try {
     app.parse(argc, argv);

@@ -1,6 +1,8 @@
 #include "s3d/stereo/synthesis.h"
 
+#include <algorithm>
 #include <cstring>
+#include <string>
 #include <stdexcept>
 
 #include "s3d/stereo/iterative.h"
@@ -31,12 +33,14 @@ std::uint64_t countAndClearFillMarks(ImageRGBA8& eye) {
 
 template <typename Pass, typename Constants>
 SynthesisResult run(vk::Context& context, const Pass& pass, const Constants& constants, const vk::Image& color,
-                    const vk::Image& depth) {
+                    const vk::Image& depth, int timedRuns) {
   const VkImageUsageFlags usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
   vk::Image left = vk::createImage(context, StereoPass::kColorFormat, color.width, color.height, usage);
   vk::Image right = vk::createImage(context, StereoPass::kColorFormat, color.width, color.height, usage);
   vk::TimestampQueries timestamps(context, 2);
-  for (bool timed : {false, true}) {
+  std::vector<double> gpuMsRuns;
+  for (int run = 0; run <= timedRuns; ++run) {
+    const bool timed = run > 0;  // run 0 is the untimed warm-up
     context.submitAndWait([&](VkCommandBuffer cmd) {
       StereoPass::recordInputBarriers(cmd, color, depth, left, right);
       if (timed && timestamps.supported()) {
@@ -47,29 +51,43 @@ SynthesisResult run(vk::Context& context, const Pass& pass, const Constants& con
       if (timed && timestamps.supported()) timestamps.write(cmd, 1, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT);
       StereoPass::recordInputRelease(cmd, color, depth);
     });
+    if (timed)
+      if (std::optional<double> ms = timestamps.elapsedMs(0, 1)) gpuMsRuns.push_back(*ms);
   }
-  SynthesisResult result{{readEye(context, left), readEye(context, right)}, timestamps.elapsedMs(0, 1), 0, 0};
+  SynthesisResult result{{readEye(context, left), readEye(context, right)}, medianMs(gpuMsRuns), gpuMsRuns, 0, 0};
   return result;
 }
 
 }  // namespace
 
+std::optional<double> medianMs(std::vector<double> samples) {
+  if (samples.empty()) return std::nullopt;
+  const std::size_t middle = samples.size() / 2;
+  std::nth_element(samples.begin(), samples.begin() + std::ptrdiff_t(middle), samples.end());
+  const double upper = samples[middle];
+  if (samples.size() % 2 == 1) return upper;
+  const double lower = *std::max_element(samples.begin(), samples.begin() + std::ptrdiff_t(middle));
+  return 0.5 * (lower + upper);
+}
+
 SynthesisResult synthesizeTimed(vk::Context& context, const vk::Image& centerColor, const vk::Image& linearDepth,
-                                const StereoParameters& parameters) {
+                                const StereoParameters& parameters, int timedRuns) {
+  if (timedRuns < 1)
+    throw std::invalid_argument("stereo synthesis: timedRuns must be at least 1 (got " + std::to_string(timedRuns) + ")");
   if (centerColor.format != StereoPass::kColorFormat || linearDepth.format != StereoPass::kDepthFormat)
     throw std::invalid_argument("stereo synthesis needs RGBA8 unorm color and R32 float linear depth");
   if (parameters.method == StereoMethod::Iterative) {
     const IterativeStereoPass pass(context);
     const gpu::IterativeConstants constants =
         makeIterativeConstants(parameters, parameters.iterations, centerColor.width, centerColor.height);
-    SynthesisResult result = run(context, pass, constants, centerColor, linearDepth);
+    SynthesisResult result = run(context, pass, constants, centerColor, linearDepth, timedRuns);
     result.filledLeft = countAndClearFillMarks(result.eyes.left);
     result.filledRight = countAndClearFillMarks(result.eyes.right);
     return result;
   }
   const StereoPass pass(context);
   return run(context, pass, makeStereoConstants(parameters, centerColor.width, centerColor.height), centerColor,
-             linearDepth);
+             linearDepth, timedRuns);
 }
 
 }  // namespace s3d::stereo

@@ -71,37 +71,7 @@ ValidatedJob validateJob(const RenderJobOptions& options) {
   return job;
 }
 
-// Shortest decimal that round-trips the float (0.02f is reported as 0.02, not 0.019999999552965164).
-double tidy(float value) {
-  if (!std::isfinite(value)) return double(value);
-  char text[32];
-  const std::to_chars_result result = std::to_chars(text, text + sizeof(text), value);
-  if (result.ec != std::errc()) return double(value);
-  *result.ptr = '\0';
-  return std::strtod(text, nullptr);
-}
-
-nlohmann::json finiteOrNull(double value) { return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(); }
-
-nlohmann::json optionalMs(const std::optional<double>& value) {
-  return value ? finiteOrNull(*value) : nlohmann::json();
-}
-
-nlohmann::json statsJson(const stereo::ErrorStats& stats) {
-  return {{"psnrDb", finiteOrNull(stats.psnrDb)},
-          {"meanAbsoluteError", finiteOrNull(stats.meanAbsoluteError)},
-          {"shareAbove8", finiteOrNull(stats.shareAbove8)},
-          {"pixelCount", stats.pixelCount}};
-}
-
-// The whole cropped area at the top level, the regions below it.
-nlohmann::json errorJson(const EyeError& error) {
-  nlohmann::json json = statsJson(error.display);
-  json["halo"] = statsJson(error.halo);
-  json["rest"] = statsJson(error.rest);
-  json["disocclusion"] = statsJson(error.disocclusion);
-  return json;
-}
+// tidy, finiteOrNull, optionalMs, statsJson and errorJson: extracted to eye_comparison.cpp (shared with s3d bench).
 
 }  // namespace
 
@@ -177,16 +147,13 @@ RenderReport runRenderJob(vk::Context& context, const RenderJobOptions& options)
   report.referenceEyeGpuMs = leftTimings.totalGpuMs;
 
   // 5. Synthesized vs reference, without the border strips that view synthesis cannot know.
-  const std::vector<std::uint8_t> halo =
-      stereo::haloMask(centerDepth, std::uint32_t(std::ceil(options.stereo.maxSeparation * float(width))));
+  // (region masks and comparison: eye_comparison.h, shared with s3d bench)
+  const std::vector<std::uint8_t> halo = haloMaskFor(centerDepth, options.stereo);
   for (auto [eyeError, eye, reference, referenceDepth, side] :
        {std::tuple{&report.left, &synthesized.left, &leftReference, &leftReferenceDepth, stereo::Eye::Left},
         std::tuple{&report.right, &synthesized.right, &rightReference, &rightReferenceDepth, stereo::Eye::Right}}) {
-    const stereo::RegionErrors regions = stereo::compareByRegion(*eye, *reference, report.cropColumns, halo);
-    const std::vector<std::uint8_t> unseen = stereo::disocclusionMask(
-        *referenceDepth, centerDepth, options.stereo.maxSeparation, options.stereo.zeroParallaxDistance, side);
-    *eyeError = {regions.all, regions.halo, regions.rest,
-                 stereo::compareWithinMask(*eye, *reference, report.cropColumns, unseen)};
+    *eyeError = compareEye(*eye, *reference, report.cropColumns, halo,
+                           disocclusionMaskFor(*referenceDepth, centerDepth, options.stereo, side));
   }
 
   // Comfort report: the parallax the stereo pass gave every pixel, as angles on the chosen display.

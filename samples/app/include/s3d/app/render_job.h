@@ -12,6 +12,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "s3d/app/eye_comparison.h"
 #include "s3d/comfort/display_profile.h"
 #include "s3d/renderer/deferred_renderer.h"
 #include "s3d/stereo/metrics.h"
@@ -53,12 +54,7 @@ struct RenderJobOptions {
   std::string display = "tv55";  // comfort report: one of comfort::builtInDisplayProfileNames()
 };
 
-struct EyeError {
-  stereo::ErrorStats display{};  // synthesized eye vs two-pass reference, border strips of cropColumns excluded
-  stereo::ErrorStats halo{};     // the same within maxSeparation of a center-view depth edge (stereo::haloMask)
-  stereo::ErrorStats rest{};     // and everywhere else
-  stereo::ErrorStats disocclusion{};  // reference pixels the center camera never saw (stereo::disocclusionMask)
-};
+// EyeError (per-region error of one eye) lives in eye_comparison.h, shared with `s3d bench`.
 
 struct CrosshairReport {
   float depth = 0.0f;       // linear depth the crosshair is placed at (world units)

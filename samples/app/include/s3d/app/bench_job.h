@@ -1,0 +1,141 @@
+#pragma once
+// `s3d bench` as a library (issues #3 and #4): for every scene x maxSeparation the center view and the two
+// reference eyes are rendered once, then every stereo method setting runs on that center view; each number is
+// the median of `repeat` GPU timestamp measurements. Writes bench.json, bench.md and bench_speed_vs_error.svg,
+// and optionally regenerates a marked section of docs/RESULTS.md. `renderer` mode times the deferred
+// renderer's center frame and each of its passes per scene instead.
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "s3d/app/eye_comparison.h"
+#include "s3d/renderer/deferred_renderer.h"
+#include "s3d/stereo/stereo.h"
+#include "s3d/vk/context.h"
+
+namespace s3d::app {
+
+// One stereo method with its parameter: "seed", "search-N" (N taps), "iterative-K" (K iterations).
+struct MethodSetting {
+  stereo::StereoMethod method = stereo::StereoMethod::Seed;
+  int parameter = 0;  // searchTaps (search), iterations (iterative), 0 (seed)
+  std::string name() const;
+  stereo::StereoParameters applyTo(stereo::StereoParameters parameters) const;
+  bool operator==(const MethodSetting&) const = default;
+};
+
+// Parses --methods items: "seed", "search-N" (N in [1, S3D_STEREO_MAX_TAPS]), "iterative-K" (K in [1, 16]), and
+// "search" / "iterative" for their default sweeps (taps 4, 8, 16; iterations 2, 4, 6, 8). Repeats are dropped.
+// Throws std::invalid_argument naming the bad item and the accepted forms.
+std::vector<MethodSetting> parseMethodSettings(const std::vector<std::string>& items);
+// The library's default stereo method (StereoParameters{}) as a setting: what the issue #4 targets judge.
+MethodSetting defaultMethodSetting();
+
+inline const std::vector<std::string> kDefaultBenchMethods = {"seed", "search", "iterative"};
+inline const std::vector<double> kDefaultSeparationsPercent = {1.0, 2.0, 4.0};
+
+struct BenchProgress {
+  std::size_t done = 0;   // steps finished
+  std::size_t total = 0;  // all steps (sweep: scenes x separations x settings; renderer mode: scenes)
+  std::string label;      // what runs next, e.g. "courtyard search-8 sep 2%"
+};
+
+struct BenchOptions {
+  std::uint32_t width = 1920;
+  std::uint32_t height = 1080;
+  std::vector<std::string> scenes;  // empty: every built-in scene
+  std::vector<std::string> methods = kDefaultBenchMethods;
+  std::vector<double> separationsPercent = kDefaultSeparationsPercent;  // maxSeparation in % of the width, (0, 25]
+  int repeat = 5;                 // GPU timings per number (median), [1, 1000]
+  bool rendererOnly = false;      // issue #3: center frame and pass timings per scene, no stereo sweep
+  std::optional<double> bandwidthGBs;  // memory bandwidth for the traffic target; no guess when absent
+  std::string targetSetting;      // the setting the targets judge; empty: defaultMethodSetting()
+  stereo::StereoParameters stereo;  // zeroParallaxDistance and the weapon push; method and maxSeparation are swept
+  std::filesystem::path outputFolder = "bench";
+  std::optional<std::filesystem::path> resultsMarkdown;  // file whose marked section is replaced
+  std::function<void(const BenchProgress&)> progress;  // called before each step and once at the end
+};
+
+// What the stereo pass moves per frame, counted from the shaders (stereo/shaders/): per interior pixel and eye
+// the depth imageLoads (4 B each: seed/search tapCount, iterative startTapCount + 2 x iterations), two color
+// imageLoads (4 B, the horizontal filter) and one imageStore (4 B); a cropped pixel only stores both eyes.
+struct StereoTraffic {
+  std::uint64_t bytesRead = 0;
+  std::uint64_t bytesWritten = 0;
+  std::uint64_t compulsoryBytes = 0;  // each input texel read once and each eye written once: 16 B per pixel
+  std::uint64_t total() const { return bytesRead + bytesWritten; }
+};
+StereoTraffic stereoPassTraffic(const stereo::StereoParameters& parameters, std::uint32_t width, std::uint32_t height);
+
+struct BenchRow {
+  std::string scene;
+  MethodSetting setting;
+  float maxSeparation = 0.0f;
+  std::uint32_t cropColumns = 0;
+  std::optional<double> stereoGpuMs;     // median over the repeats; empty without timestamps
+  std::vector<double> stereoGpuMsRuns;
+  std::optional<double> centerFrameGpuMs;  // the scene's center frame (median)
+  std::optional<double> referenceEyeGpuMs;  // the left reference eye at this separation (median)
+  EyeError left{};
+  EyeError right{};
+  std::uint64_t filledLeft = 0;  // iterative: disoccluded pixels filled from the background side
+  std::uint64_t filledRight = 0;
+  StereoTraffic traffic;
+};
+
+struct RendererRow {
+  std::string scene;
+  std::optional<double> frameGpuMs;           // median whole center frame
+  std::vector<renderer::PassTiming> passes;   // median per pass, in the order they ran
+};
+
+struct BenchReport {
+  std::string deviceName;
+  std::string deviceKind;  // "cpu" (e.g. lavapipe) or "gpu": picks the marked section of --results-md
+  std::uint32_t width = 0;
+  std::uint32_t height = 0;
+  int repeat = 0;
+  bool rendererOnly = false;
+  std::string commandLine;  // an `s3d bench` command that reproduces the run
+  MethodSetting targetSetting;
+  std::optional<double> bandwidthGBs;
+  std::vector<BenchRow> rows;              // scene, then separation, then setting, in option order
+  std::vector<RendererRow> rendererRows;
+  double wallSeconds = 0.0;
+  std::vector<std::string> filesWritten;   // in the output folder (and the results file, by its path)
+};
+
+// Every check runBench makes before creating a GPU resource or file: size, scenes, method settings,
+// separations (0 < s <= 25 % and leaving columns to compare), repeat, bandwidth, target setting, output folder,
+// and the results file (must exist, markers well formed). Throws std::invalid_argument naming the problem.
+void validateBenchOptions(const BenchOptions& options);
+
+// Validates, runs the sweep (or the renderer timings), writes the outputs atomically and returns the report.
+BenchReport runBench(vk::Context& context, const BenchOptions& options);
+
+nlohmann::json toJson(const BenchReport& report);
+// The tables, targets and traffic estimate; headings start at level 3 so the text fits into RESULTS.md.
+std::string benchMarkdown(const BenchReport& report);
+// Speed against error: x = stereo pass GPU ms (log scale), y = halo PSNR (mean of both eyes), one labelled
+// circle per row with a time, one color per scene.
+std::string benchSpeedErrorSvg(const BenchReport& report);
+
+// The markers of the section --results-md replaces: "<!-- s3d bench: KIND begin -->" / "... end -->"; the
+// renderer mode uses "s3d bench renderer: KIND".
+std::string resultsBeginMarker(const std::string& deviceKind, bool rendererOnly);
+std::string resultsEndMarker(const std::string& deviceKind, bool rendererOnly);
+// Replaces the text between the two marker lines with `section` (everything else stays byte for byte); when
+// neither marker is present, appends the marked section at the end. Throws std::invalid_argument when only
+// one is present, either repeats, or end comes before begin.
+std::string replaceMarkedSection(const std::string& document, const std::string& beginMarker,
+                                 const std::string& endMarker, const std::string& section);
+
+// "[#####.....] 12/48 courtyard search-8 sep 2%" (ten cells).
+std::string formatProgressBar(const BenchProgress& progress);
+
+}  // namespace s3d::app

@@ -1,0 +1,949 @@
+#include "s3d/app/bench_job.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <iterator>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+#include <system_error>
+#include <tuple>
+#include <utility>
+
+#include "s3d/app/render_job.h"
+#include "s3d/io/image_io.h"
+#include "s3d/renderer/scene.h"
+#include "s3d/stereo/iterative.h"
+#include "s3d/stereo/synthesis.h"
+
+namespace s3d::app {
+namespace fs = std::filesystem;
+
+namespace {
+
+// The default sweeps of "search" and "iterative" in --methods.
+constexpr int kDefaultSweepTaps[] = {4, 8, 16};
+constexpr int kDefaultSweepIterations[] = {2, 4, 6, 8};
+constexpr int kMaxRepeat = 1000;
+
+// Issue #4's targets.
+constexpr double kHaloGainTargetDb = 2.0;         // the default method's halo PSNR over the seed's, each eye
+constexpr double kTimeOverSeedTarget = 2.0;        // at no more than this multiple of the seed's GPU time
+constexpr double kStereoToEyeTarget = 1.0 / 20.0;  // both eyes' stereo pass against one reference eye
+constexpr double kTrafficLimitTarget = 1.5;       // measured time over (bytes / bandwidth)
+
+std::string format(const char* pattern, double value) {
+  char text[64];
+  std::snprintf(text, sizeof(text), pattern, value);
+  return text;
+}
+
+std::string percentText(double fraction) { return format("%g", double(tidy(float(fraction * 100.0)))); }
+
+std::string msText(const std::optional<double>& ms) {
+  if (!ms) return "n/a";
+  return *ms >= 10.0 ? format("%.1f", *ms) : *ms >= 1.0 ? format("%.2f", *ms) : format("%.3f", *ms);
+}
+
+std::optional<double> ratio(const std::optional<double>& numerator, const std::optional<double>& denominator) {
+  if (!numerator || !denominator || !(*denominator > 0.0)) return std::nullopt;
+  return *numerator / *denominator;
+}
+
+std::string ratioText(const std::optional<double>& value) {
+  if (!value) return "n/a";
+  return *value > 0.0 && *value < 1.0 ? format("%.3f", *value) + " (1/" + format("%.0f", 1.0 / *value) + ")"
+                                      : format("%.2f", *value);
+}
+
+std::string dbPair(double left, double right) { return format("%.2f", left) + " / " + format("%.2f", right); }
+
+std::string joinedNames(const std::vector<std::string>& names, const char* separator) {
+  std::string text;
+  for (const std::string& name : names) text += (text.empty() ? "" : separator) + name;
+  return text;
+}
+
+std::string xmlEscaped(const std::string& text) {
+  std::string escaped;
+  for (char c : text) {
+    switch (c) {
+      case '&': escaped += "&amp;"; break;
+      case '<': escaped += "&lt;"; break;
+      case '>': escaped += "&gt;"; break;
+      case '"': escaped += "&quot;"; break;
+      default: escaped += c;
+    }
+  }
+  return escaped;
+}
+
+// Error measures over the whole cropped area shown per eye after the PSNR columns: one line per stereo::ErrorStats
+// field worth a column (a new field such as SSIM is one more line here and one in statsJson).
+struct ErrorMeasure {
+  const char* heading;
+  double (*value)(const stereo::ErrorStats&);
+  const char* pattern;
+};
+const ErrorMeasure kErrorMeasures[] = {
+    {"mean abs. error", [](const stereo::ErrorStats& s) { return s.meanAbsoluteError; }, "%.2f"},
+    {"error > 8 levels %", [](const stereo::ErrorStats& s) { return 100.0 * s.shareAbove8; }, "%.1f"},
+};
+
+// The PSNR regions of the main table, in column order.
+struct ErrorRegion {
+  const char* heading;
+  stereo::ErrorStats EyeError::*stats;
+};
+const ErrorRegion kErrorRegions[] = {{"PSNR all", &EyeError::display},
+                                     {"halo", &EyeError::halo},
+                                     {"disocclusion", &EyeError::disocclusion},
+                                     {"rest", &EyeError::rest}};
+
+MethodSetting parseOneSetting(const std::string& item, std::vector<MethodSetting>& settings) {
+  auto numberAfter = [&](const std::string& prefix, int low, int high) -> std::optional<int> {
+    if (item.rfind(prefix, 0) != 0 || item.size() == prefix.size() || item.size() > prefix.size() + 3)
+      return std::nullopt;
+    int value = 0;
+    for (char c : item.substr(prefix.size())) {
+      if (c < '0' || c > '9') return std::nullopt;
+      value = value * 10 + (c - '0');
+    }
+    if (value < low || value > high) return std::nullopt;
+    return value;
+  };
+  auto add = [&](MethodSetting setting) {
+    if (std::find(settings.begin(), settings.end(), setting) == settings.end()) settings.push_back(setting);
+    return setting;
+  };
+  if (item == "seed") return add({stereo::StereoMethod::Seed, 0});
+  if (item == "search") {
+    for (int taps : kDefaultSweepTaps) add({stereo::StereoMethod::Search, taps});
+    return settings.back();
+  }
+  if (item == "iterative") {
+    for (int iterations : kDefaultSweepIterations) add({stereo::StereoMethod::Iterative, iterations});
+    return settings.back();
+  }
+  if (std::optional<int> taps = numberAfter("search-", 1, S3D_STEREO_MAX_TAPS))
+    return add({stereo::StereoMethod::Search, *taps});
+  if (std::optional<int> iterations = numberAfter("iterative-", 1, S3D_ITERATIVE_MAX_ITERATIONS))
+    return add({stereo::StereoMethod::Iterative, *iterations});
+  throw std::invalid_argument("unknown method setting '" + item + "' (expected seed, search, search-N with N in [1, " +
+                              std::to_string(S3D_STEREO_MAX_TAPS) + "], iterative, or iterative-K with K in [1, " +
+                              std::to_string(S3D_ITERATIVE_MAX_ITERATIONS) + "])");
+}
+
+MethodSetting parseSingleSetting(const std::string& item, const char* what) {
+  std::vector<MethodSetting> settings;
+  parseOneSetting(item, settings);
+  if (settings.size() != 1)
+    throw std::invalid_argument(std::string(what) + " must name one setting such as search-8 (got '" + item + "')");
+  return settings.front();
+}
+
+// Everything validated, in the form the run needs.
+struct ValidatedBench {
+  std::vector<std::string> scenes;
+  std::vector<MethodSetting> settings;
+  std::vector<float> separations;  // fractions of the width
+  MethodSetting target;
+};
+
+void requireWellFormedMarkers(const std::string& document, const fs::path& file) {
+  for (const char* kind : {"cpu", "gpu"})
+    for (bool rendererOnly : {false, true}) {
+      try {
+        (void)replaceMarkedSection(document, resultsBeginMarker(kind, rendererOnly), resultsEndMarker(kind, rendererOnly),
+                                   "");
+      } catch (const std::invalid_argument& error) {
+        throw std::invalid_argument("results file '" + file.string() + "': " + error.what());
+      }
+    }
+}
+
+std::string readTextFile(const fs::path& file) {
+  std::ifstream stream(file, std::ios::binary);
+  if (!stream) throw std::invalid_argument("cannot read results file '" + file.string() + "'");
+  return std::string(std::istreambuf_iterator<char>(stream), std::istreambuf_iterator<char>());
+}
+
+ValidatedBench validateBench(const BenchOptions& options) {
+  for (auto [value, name] : {std::pair{options.width, "width"}, std::pair{options.height, "height"}})
+    if (value == 0 || value > kMaxImageSize)
+      throw std::invalid_argument(std::string(name) + " must be in [1, " + std::to_string(kMaxImageSize) + "] (got " +
+                                  std::to_string(value) + ")");
+  if (options.repeat < 1 || options.repeat > kMaxRepeat)
+    throw std::invalid_argument("repeat must be in [1, " + std::to_string(kMaxRepeat) + "] (got " +
+                                std::to_string(options.repeat) + ")");
+  if (options.bandwidthGBs && !(std::isfinite(*options.bandwidthGBs) && *options.bandwidthGBs > 0.0))
+    throw std::invalid_argument("bandwidth must be a positive number of GB/s (got " +
+                                format("%g", *options.bandwidthGBs) + ")");
+  stereo::validate(options.stereo);
+
+  ValidatedBench bench;
+  for (const std::string& name : options.scenes.empty() ? renderer::builtInSceneNames() : options.scenes) {
+    (void)renderer::makeBuiltInScene(name);  // throws naming the scene and the choices
+    if (std::find(bench.scenes.begin(), bench.scenes.end(), name) == bench.scenes.end()) bench.scenes.push_back(name);
+  }
+  if (!options.rendererOnly) {
+    if (options.methods.empty()) throw std::invalid_argument("no method settings given");
+    for (const std::string& item : options.methods) parseOneSetting(item, bench.settings);
+    if (options.separationsPercent.empty()) throw std::invalid_argument("no separations given");
+    const double limitPercent = 100.0 * double(stereo::kMaxSeparationLimit);
+    for (double percent : options.separationsPercent) {
+      if (!std::isfinite(percent) || percent <= 0.0 || percent > limitPercent)
+        throw std::invalid_argument("separation " + format("%g", percent) + " % is outside (0, " +
+                                    format("%g", limitPercent) + "] % of the screen width");
+      const float separation = float(percent / 100.0);
+      if (std::find(bench.separations.begin(), bench.separations.end(), separation) != bench.separations.end()) continue;
+      stereo::StereoParameters parameters = options.stereo;
+      parameters.maxSeparation = separation;
+      parameters.edgeCrop = -1.0f;
+      const gpu::StereoConstants constants = stereo::makeStereoConstants(parameters, options.width, options.height);
+      if (constants.cropEnd <= constants.cropBegin)
+        throw std::invalid_argument("separation " + format("%g", percent) + " % crops all " +
+                                    std::to_string(options.width) + " columns: nothing left to compare");
+      bench.separations.push_back(separation);
+    }
+  }
+  bench.target = options.targetSetting.empty() ? defaultMethodSetting()
+                                               : parseSingleSetting(options.targetSetting, "the target setting");
+
+  if (options.outputFolder.empty()) throw std::invalid_argument("the output folder is empty");
+  std::error_code error;
+  const fs::file_status status = fs::status(options.outputFolder, error);
+  if (fs::exists(status) && !fs::is_directory(status))
+    throw std::invalid_argument("output folder '" + options.outputFolder.string() + "' exists and is not a folder");
+  if (options.resultsMarkdown) {
+    const fs::path& file = *options.resultsMarkdown;
+    if (!fs::is_regular_file(file, error))
+      throw std::invalid_argument("results file '" + file.string() + "' does not exist or is not a file");
+    requireWellFormedMarkers(readTextFile(file), file);
+  }
+  return bench;
+}
+
+std::string commandLineOf(const BenchOptions& options, const ValidatedBench& bench, const MethodSetting& target) {
+  std::string command = "s3d bench --resolution " + std::to_string(options.width) + "x" + std::to_string(options.height);
+  if (!options.scenes.empty()) command += " --scenes " + joinedNames(bench.scenes, ",");
+  if (options.rendererOnly) {
+    command += " --renderer";
+  } else {
+    std::vector<std::string> names;
+    for (const MethodSetting& setting : bench.settings) names.push_back(setting.name());
+    std::vector<std::string> separations;
+    for (float separation : bench.separations) separations.push_back(percentText(separation));
+    command += " --methods " + joinedNames(names, ",") + " --separations " + joinedNames(separations, ",");
+    if (!options.targetSetting.empty()) command += " --target-setting " + target.name();
+  }
+  command += " --repeat " + std::to_string(options.repeat);
+  if (options.bandwidthGBs) command += " --bandwidth-gbs " + format("%g", *options.bandwidthGBs);
+  return command;
+}
+
+std::optional<double> medianOf(const std::vector<std::optional<double>>& samples) {
+  std::vector<double> present;
+  for (const std::optional<double>& sample : samples)
+    if (sample) present.push_back(*sample);
+  return stereo::medianMs(present);
+}
+
+// Renders `view` `repeat` times; the median whole-frame time and the median time of each pass (first frame's order).
+std::pair<std::optional<double>, std::vector<renderer::PassTiming>> timeFrames(renderer::DeferredRenderer& deferred,
+                                                                               const renderer::ViewMatrices& view,
+                                                                               int repeat) {
+  std::vector<std::optional<double>> totals;
+  std::vector<renderer::PassTiming> order;
+  std::map<std::string, std::vector<double>> passTimes;
+  for (int run = 0; run < repeat; ++run) {
+    renderer::FrameTimings timings = deferred.render(view);
+    totals.push_back(timings.totalGpuMs);
+    if (run == 0) order = timings.passes;
+    for (const renderer::PassTiming& pass : timings.passes) passTimes[pass.name].push_back(pass.gpuMs);
+  }
+  for (renderer::PassTiming& pass : order) pass.gpuMs = stereo::medianMs(passTimes[pass.name]).value_or(0.0);
+  return {medianOf(totals), order};
+}
+
+struct EyeReferences {
+  ImageRGBA8 leftColor, rightColor;
+  DepthImage leftDepth, rightDepth;
+  std::optional<double> leftEyeGpuMs;
+};
+
+void runSweep(vk::Context& context, const BenchOptions& options, const ValidatedBench& bench, BenchReport& report) {
+  renderer::DeferredRenderer deferred(context, options.width, options.height);
+  const std::size_t total = bench.scenes.size() * bench.separations.size() * bench.settings.size();
+  std::size_t done = 0;
+  auto progress = [&](const std::string& label) {
+    if (options.progress) options.progress({done, total, label});
+  };
+  for (const std::string& sceneName : bench.scenes) {
+    renderer::Scene scene = renderer::makeBuiltInScene(sceneName);
+    scene.camera = renderer::cameraForFrame(scene, 0);
+    deferred.setScene(scene);
+    const renderer::ViewMatrices center =
+        renderer::centerViewMatrices(scene, float(options.width) / float(options.height),
+                                     {options.stereo.weaponDepthOffset, options.stereo.weaponDepthScale});
+    (void)deferred.render(center);  // warm-up: lavapipe compiles pipelines at first use
+
+    // The reference eyes depend on maxSeparation: rendered once per separation, before the center frames so the
+    // renderer's images hold the center view when the stereo settings run on them.
+    std::vector<EyeReferences> references;
+    for (float separation : bench.separations) {
+      progress(sceneName + " references sep " + percentText(separation) + "%");
+      stereo::StereoParameters parameters = options.stereo;
+      parameters.maxSeparation = separation;
+      EyeReferences eyes;
+      eyes.leftEyeGpuMs =
+          timeFrames(deferred, referenceEyeView(scene, center, stereo::Eye::Left, parameters), options.repeat).first;
+      eyes.leftColor = deferred.readDisplayColor();
+      eyes.leftDepth = deferred.readLinearDepth();
+      (void)deferred.render(referenceEyeView(scene, center, stereo::Eye::Right, parameters));
+      eyes.rightColor = deferred.readDisplayColor();
+      eyes.rightDepth = deferred.readLinearDepth();
+      references.push_back(std::move(eyes));
+    }
+    const std::optional<double> centerFrameGpuMs = timeFrames(deferred, center, options.repeat).first;
+    const DepthImage centerDepth = deferred.readLinearDepth();
+
+    for (std::size_t s = 0; s < bench.separations.size(); ++s) {
+      stereo::StereoParameters parameters = options.stereo;
+      parameters.maxSeparation = bench.separations[s];
+      parameters.edgeCrop = -1.0f;  // the crop follows the separation, as in `s3d render`
+      const EyeReferences& eyes = references[s];
+      const std::vector<std::uint8_t> halo = haloMaskFor(centerDepth, parameters);
+      const std::vector<std::uint8_t> unseenLeft =
+          disocclusionMaskFor(eyes.leftDepth, centerDepth, parameters, stereo::Eye::Left);
+      const std::vector<std::uint8_t> unseenRight =
+          disocclusionMaskFor(eyes.rightDepth, centerDepth, parameters, stereo::Eye::Right);
+      for (const MethodSetting& setting : bench.settings) {
+        progress(sceneName + " " + setting.name() + " sep " + percentText(parameters.maxSeparation) + "%");
+        const stereo::StereoParameters methodParameters = setting.applyTo(parameters);
+        stereo::SynthesisResult synthesis = stereo::synthesizeTimed(context, deferred.displayColor(),
+                                                                    deferred.linearDepth(), methodParameters,
+                                                                    options.repeat);
+        BenchRow row;
+        row.scene = sceneName;
+        row.setting = setting;
+        row.maxSeparation = parameters.maxSeparation;
+        row.cropColumns =
+            std::uint32_t(stereo::makeStereoConstants(methodParameters, options.width, options.height).cropBegin);
+        row.stereoGpuMs = synthesis.gpuMs;
+        row.stereoGpuMsRuns = synthesis.gpuMsRuns;
+        row.centerFrameGpuMs = centerFrameGpuMs;
+        row.referenceEyeGpuMs = eyes.leftEyeGpuMs;
+        row.left = compareEye(synthesis.eyes.left, eyes.leftColor, row.cropColumns, halo, unseenLeft);
+        row.right = compareEye(synthesis.eyes.right, eyes.rightColor, row.cropColumns, halo, unseenRight);
+        row.filledLeft = synthesis.filledLeft;
+        row.filledRight = synthesis.filledRight;
+        row.traffic = stereoPassTraffic(methodParameters, options.width, options.height);
+        report.rows.push_back(std::move(row));
+        ++done;
+      }
+    }
+  }
+  progress("done");
+}
+
+void runRendererTimings(vk::Context& context, const BenchOptions& options, const ValidatedBench& bench,
+                        BenchReport& report) {
+  renderer::DeferredRenderer deferred(context, options.width, options.height);
+  std::size_t done = 0;
+  for (const std::string& sceneName : bench.scenes) {
+    if (options.progress) options.progress({done, bench.scenes.size(), sceneName + " center frame"});
+    renderer::Scene scene = renderer::makeBuiltInScene(sceneName);
+    scene.camera = renderer::cameraForFrame(scene, 0);
+    deferred.setScene(scene);
+    const renderer::ViewMatrices center =
+        renderer::centerViewMatrices(scene, float(options.width) / float(options.height),
+                                     {options.stereo.weaponDepthOffset, options.stereo.weaponDepthScale});
+    (void)deferred.render(center);  // warm-up
+    auto [frameMs, passes] = timeFrames(deferred, center, options.repeat);
+    report.rendererRows.push_back({sceneName, frameMs, std::move(passes)});
+    ++done;
+  }
+  if (options.progress) options.progress({done, bench.scenes.size(), "done"});
+}
+
+// ---- targets (issue #4) ----
+
+struct TargetCase {
+  std::string scope;          // "courtyard sep 2%"
+  std::optional<bool> pass;   // empty: not measurable (a time is missing)
+  std::string numbers;
+};
+
+struct TargetResult {
+  std::string name;
+  std::string note;  // why it was skipped, or how it is judged
+  std::vector<TargetCase> cases;
+};
+
+const BenchRow* findRow(const BenchReport& report, const std::string& scene, float separation,
+                        const MethodSetting& setting) {
+  for (const BenchRow& row : report.rows)
+    if (row.scene == scene && row.maxSeparation == separation && row.setting == setting) return &row;
+  return nullptr;
+}
+
+std::string scopeOf(const BenchRow& row) { return row.scene + " sep " + percentText(row.maxSeparation) + "%"; }
+
+std::vector<TargetResult> evaluateTargets(const BenchReport& report) {
+  const MethodSetting seed{stereo::StereoMethod::Seed, 0};
+  const std::string target = report.targetSetting.name();
+  std::vector<TargetResult> results;
+
+  TargetResult dominance{"`" + target + "` dominates `seed`: halo PSNR at least " + format("%g", kHaloGainTargetDb) +
+                             " dB higher in each eye, at no more than " + format("%g", kTimeOverSeedTarget) +
+                             "x its GPU time",
+                         "", {}};
+  if (report.targetSetting == seed)
+    dominance.note = "not applicable: the judged setting is the seed itself (pass --target-setting to judge another)";
+  TargetResult budget{"`" + target + "` stereo pass (both eyes) costs at most 1/20 of one reference eye", "", {}};
+  if (report.width != 1920 || report.height != 1080)
+    budget.note = "measured at " + std::to_string(report.width) + "x" + std::to_string(report.height) +
+                  "; the target is stated at 1920x1080";
+  TargetResult traffic{"`" + target + "` within " + format("%g", kTrafficLimitTarget) +
+                           "x of the memory-traffic limit (bytes counted from the shaders over the bandwidth)",
+                       "", {}};
+  if (!report.bandwidthGBs)
+    traffic.note = "skipped: no --bandwidth-gbs given for " + report.deviceName;
+  else
+    traffic.note = "bandwidth " + format("%g", *report.bandwidthGBs) + " GB/s (given)";
+
+  for (const BenchRow& row : report.rows) {
+    if (!(row.setting == report.targetSetting)) continue;
+    const std::optional<double> eyeRatio = ratio(row.stereoGpuMs, row.referenceEyeGpuMs);
+    budget.cases.push_back({scopeOf(row), eyeRatio ? std::optional<bool>(*eyeRatio <= kStereoToEyeTarget) : std::nullopt,
+                            "stereo " + msText(row.stereoGpuMs) + " ms / eye " + msText(row.referenceEyeGpuMs) +
+                                " ms = " + ratioText(eyeRatio)});
+    if (report.bandwidthGBs) {
+      const double limitMs = double(row.traffic.total()) / (*report.bandwidthGBs * 1e9) * 1e3;
+      const std::optional<double> overLimit = ratio(row.stereoGpuMs, limitMs);
+      traffic.cases.push_back(
+          {scopeOf(row), overLimit ? std::optional<bool>(*overLimit <= kTrafficLimitTarget) : std::nullopt,
+           format("%.1f", double(row.traffic.total()) / 1e6) + " MB in " + msText(row.stereoGpuMs) + " ms, limit " +
+               msText(limitMs) + " ms: " + (overLimit ? format("%.2f", *overLimit) + "x" : "n/a")});
+    }
+    const BenchRow* seedRow = findRow(report, row.scene, row.maxSeparation, seed);
+    if (report.targetSetting == seed) continue;
+    if (!seedRow) {
+      dominance.cases.push_back({scopeOf(row), std::nullopt, "seed not in the sweep"});
+      continue;
+    }
+    const double gainLeft = row.left.halo.psnrDb - seedRow->left.halo.psnrDb;
+    const double gainRight = row.right.halo.psnrDb - seedRow->right.halo.psnrDb;
+    const std::optional<double> timeRatio = ratio(row.stereoGpuMs, seedRow->stereoGpuMs);
+    const bool gainMet = std::min(gainLeft, gainRight) >= kHaloGainTargetDb;
+    std::optional<bool> pass;
+    if (!gainMet)
+      pass = false;
+    else if (timeRatio)
+      pass = *timeRatio <= kTimeOverSeedTarget;
+    dominance.cases.push_back({scopeOf(row), pass,
+                               "halo gain " + format("%+.2f", gainLeft) + " / " + format("%+.2f", gainRight) +
+                                   " dB, time " + (timeRatio ? format("%.2f", *timeRatio) + "x" : "n/a")});
+  }
+  if (dominance.cases.empty() && dominance.note.empty()) dominance.note = "not measured: `" + target + "` not in the sweep";
+  if (budget.cases.empty() && budget.note.empty()) budget.note = "not measured: `" + target + "` not in the sweep";
+  results.push_back(std::move(dominance));
+  results.push_back(std::move(budget));
+  results.push_back(std::move(traffic));
+  return results;
+}
+
+std::string verdict(const TargetResult& target) {
+  std::size_t passed = 0, judged = 0;
+  for (const TargetCase& c : target.cases)
+    if (c.pass) {
+      ++judged;
+      passed += *c.pass ? 1 : 0;
+    }
+  if (judged == 0) return "not judged";
+  const std::string count = std::to_string(passed) + " of " + std::to_string(judged) + " cases";
+  return (passed == judged ? "**pass** (" : "**fail** (") + count + " pass)";
+}
+
+std::string passText(const std::optional<bool>& pass) { return pass ? (*pass ? "pass" : "fail") : "n/a"; }
+
+std::string settingDetail(const MethodSetting& setting) {
+  switch (setting.method) {
+    case stereo::StereoMethod::Seed: return "Listing 4.5 (3 taps)";
+    case stereo::StereoMethod::Search: return std::to_string(setting.parameter) + " taps";
+    case stereo::StereoMethod::Iterative: return std::to_string(setting.parameter) + " iterations";
+  }
+  return "";
+}
+
+std::string sweepMarkdown(const BenchReport& report) {
+  std::ostringstream md;
+  md << "### `s3d bench` on " << report.deviceName << " (" << report.deviceKind << "), " << report.width << "x"
+     << report.height << "\n\n";
+  md << "Command: `" << report.commandLine << "` (wall time " << format("%.1f", report.wallSeconds) << " s).\n";
+  md << "Every time is the median of " << report.repeat
+     << " GPU timestamp measurements of warm runs; per scene and separation the center view and both reference eyes\n"
+        "are rendered once and every setting runs on that center view. Stereo: both eyes in one dispatch; eye: one\n"
+        "two-pass reference eye (the left). PSNR left / right in dB against the two-pass reference over the cropped\n"
+        "area (maxSeparation columns each side) and its regions: halo (within maxSeparation of a center-view depth\n"
+        "edge), disocclusion (reference pixels the center view never saw), rest (not halo); the last columns are\n"
+        "over the whole cropped area.\n";
+
+  std::vector<std::string> scenes;
+  for (const BenchRow& row : report.rows)
+    if (std::find(scenes.begin(), scenes.end(), row.scene) == scenes.end()) scenes.push_back(row.scene);
+  for (const std::string& scene : scenes) {
+    const BenchRow* first = nullptr;
+    for (const BenchRow& row : report.rows)
+      if (row.scene == scene && !first) first = &row;
+    md << "\n#### " << scene << " (center frame " << msText(first->centerFrameGpuMs) << " ms)\n\n";
+    md << "| method | setting | sep % | stereo ms | stereo / center | stereo / eye |";
+    for (const ErrorRegion& region : kErrorRegions) md << ' ' << region.heading << " |";
+    for (const ErrorMeasure& measure : kErrorMeasures) md << ' ' << measure.heading << " |";
+    md << "\n|---|---|---|---|---|---|";
+    for (std::size_t i = 0; i < std::size(kErrorRegions) + std::size(kErrorMeasures); ++i) md << "---|";
+    md << '\n';
+    for (const BenchRow& row : report.rows) {
+      if (row.scene != scene) continue;
+      md << "| " << stereo::methodName(row.setting.method) << " | " << settingDetail(row.setting) << " | "
+         << percentText(row.maxSeparation) << " | " << msText(row.stereoGpuMs) << " | "
+         << ratioText(ratio(row.stereoGpuMs, row.centerFrameGpuMs)) << " | "
+         << ratioText(ratio(row.stereoGpuMs, row.referenceEyeGpuMs)) << " |";
+      for (const ErrorRegion& region : kErrorRegions)
+        md << ' ' << dbPair((row.left.*region.stats).psnrDb, (row.right.*region.stats).psnrDb) << " |";
+      for (const ErrorMeasure& measure : kErrorMeasures)
+        md << ' ' << format(measure.pattern, measure.value(row.left.display)) << " / "
+           << format(measure.pattern, measure.value(row.right.display)) << " |";
+      md << '\n';
+    }
+  }
+
+  // Every setting against the seed over all scenes and separations: what the dominance target asks, for all.
+  const MethodSetting seed{stereo::StereoMethod::Seed, 0};
+  md << "\n#### Settings against the seed (halo PSNR gain of the worse eye, over scenes and separations)\n\n"
+        "| setting | smallest gain (dB) | mean gain (dB) | largest time / seed | dominates the seed in |\n"
+        "|---|---|---|---|---|\n";
+  std::vector<MethodSetting> settings;
+  for (const BenchRow& row : report.rows)
+    if (std::find(settings.begin(), settings.end(), row.setting) == settings.end()) settings.push_back(row.setting);
+  for (const MethodSetting& setting : settings) {
+    if (setting == seed) continue;
+    double smallest = INFINITY, sum = 0.0, largestTime = 0.0;
+    std::size_t count = 0, dominating = 0;
+    bool timesKnown = true;
+    for (const BenchRow& row : report.rows) {
+      const BenchRow* seedRow = row.setting == setting ? findRow(report, row.scene, row.maxSeparation, seed) : nullptr;
+      if (!seedRow) continue;
+      const double gain = std::min(row.left.halo.psnrDb - seedRow->left.halo.psnrDb,
+                                   row.right.halo.psnrDb - seedRow->right.halo.psnrDb);
+      const std::optional<double> time = ratio(row.stereoGpuMs, seedRow->stereoGpuMs);
+      smallest = std::min(smallest, gain);
+      sum += gain;
+      ++count;
+      if (time) largestTime = std::max(largestTime, *time);
+      timesKnown = timesKnown && time.has_value();
+      if (gain >= kHaloGainTargetDb && time && *time <= kTimeOverSeedTarget) ++dominating;
+    }
+    if (count == 0) continue;
+    md << "| " << setting.name() << " | " << format("%+.2f", smallest) << " | " << format("%+.2f", sum / double(count))
+       << " | " << (timesKnown ? format("%.2f", largestTime) + "x" : std::string("n/a")) << " | " << dominating << " of "
+       << count << " |\n";
+  }
+
+  md << "\n#### Targets (issue #4), judged on `" << report.targetSetting.name() << "`\n\n";
+  for (const TargetResult& target : evaluateTargets(report)) {
+    md << "- " << target.name << ": " << verdict(target);
+    if (!target.note.empty()) md << "; " << target.note;
+    md << '\n';
+    for (const TargetCase& c : target.cases) md << "  - " << c.scope << ": " << passText(c.pass) << ", " << c.numbers << '\n';
+  }
+
+  md << "\n#### Memory traffic of the stereo pass (counted from stereo/shaders/)\n\n"
+        "Per interior pixel and eye: the depth imageLoads (4 B each; seed/search: one per tap, iterative: 8 start taps\n"
+        "+ 2 x iterations), two color imageLoads (4 B, the horizontal filter) and one imageStore (4 B); a cropped pixel\n"
+        "stores both eyes only. Compulsory: color and depth read once, both eyes written once (16 B per pixel).\n\n";
+  md << "| setting | sep % | read MB | written MB | B / pixel | compulsory MB |";
+  if (report.bandwidthGBs) md << " limit ms | compulsory limit ms | stereo ms (median of scenes) | stereo / limit |";
+  md << "\n|---|---|---|---|---|---|";
+  if (report.bandwidthGBs) md << "---|---|---|---|";
+  md << '\n';
+  std::vector<std::pair<MethodSetting, float>> seen;
+  for (const BenchRow& row : report.rows) {
+    const std::pair key{row.setting, row.maxSeparation};
+    if (std::find(seen.begin(), seen.end(), key) != seen.end()) continue;
+    seen.push_back(key);
+    const double pixels = double(report.width) * double(report.height);
+    md << "| " << row.setting.name() << " | " << percentText(row.maxSeparation) << " | "
+       << format("%.1f", double(row.traffic.bytesRead) / 1e6) << " | "
+       << format("%.1f", double(row.traffic.bytesWritten) / 1e6) << " | "
+       << format("%.1f", double(row.traffic.total()) / pixels) << " | "
+       << format("%.1f", double(row.traffic.compulsoryBytes) / 1e6) << " |";
+    if (report.bandwidthGBs) {
+      std::vector<double> times;
+      for (const BenchRow& other : report.rows)
+        if (other.setting == row.setting && other.maxSeparation == row.maxSeparation && other.stereoGpuMs)
+          times.push_back(*other.stereoGpuMs);
+      const std::optional<double> median = stereo::medianMs(times);
+      const double bytesPerMs = *report.bandwidthGBs * 1e6;
+      const double limitMs = double(row.traffic.total()) / bytesPerMs;
+      md << ' ' << msText(limitMs) << " | " << msText(double(row.traffic.compulsoryBytes) / bytesPerMs) << " | "
+         << msText(median) << " | " << (median ? format("%.2f", *median / limitMs) + "x" : "n/a") << " |";
+    }
+    md << '\n';
+  }
+  return md.str();
+}
+
+std::string rendererMarkdown(const BenchReport& report) {
+  std::ostringstream md;
+  md << "### `s3d bench --renderer` on " << report.deviceName << " (" << report.deviceKind << "), " << report.width
+     << "x" << report.height << "\n\n";
+  md << "Command: `" << report.commandLine << "` (wall time " << format("%.1f", report.wallSeconds) << " s).\n";
+  md << "Center frame GPU time per scene and per pass (ms), each the median of " << report.repeat
+     << " warm frames; a pass the scene does not need does not run (-).\n\n";
+  std::vector<std::string> passNames;
+  for (const RendererRow& row : report.rendererRows)
+    for (const renderer::PassTiming& pass : row.passes)
+      if (std::find(passNames.begin(), passNames.end(), pass.name) == passNames.end()) passNames.push_back(pass.name);
+  md << "| scene | frame |";
+  for (const std::string& name : passNames) md << ' ' << name << " |";
+  md << "\n|---|---|";
+  for (std::size_t i = 0; i < passNames.size(); ++i) md << "---|";
+  md << '\n';
+  for (const RendererRow& row : report.rendererRows) {
+    md << "| " << row.scene << " | " << msText(row.frameGpuMs) << " |";
+    for (const std::string& name : passNames) {
+      auto pass = std::find_if(row.passes.begin(), row.passes.end(),
+                               [&](const renderer::PassTiming& p) { return p.name == name; });
+      md << ' ' << (pass == row.passes.end() ? std::string("-") : msText(pass->gpuMs)) << " |";
+    }
+    md << '\n';
+  }
+  return md.str();
+}
+
+nlohmann::json rowJson(const BenchRow& row) {
+  return {{"scene", row.scene},
+          {"setting", row.setting.name()},
+          {"method", stereo::methodName(row.setting.method)},
+          {"searchTaps", row.setting.method == stereo::StereoMethod::Search ? nlohmann::json(row.setting.parameter)
+                                                                             : nlohmann::json()},
+          {"iterations", row.setting.method == stereo::StereoMethod::Iterative ? nlohmann::json(row.setting.parameter)
+                                                                                : nlohmann::json()},
+          {"maxSeparation", finiteOrNull(tidy(row.maxSeparation))},
+          {"cropColumns", row.cropColumns},
+          {"gpuTimeMs",
+           {{"stereoPass", optionalMs(row.stereoGpuMs)},
+            {"stereoPassRuns", row.stereoGpuMsRuns},
+            {"centerFrame", optionalMs(row.centerFrameGpuMs)},
+            {"referenceEye", optionalMs(row.referenceEyeGpuMs)}}},
+          {"ratios",
+           {{"stereoPassToCenterFrame", optionalMs(ratio(row.stereoGpuMs, row.centerFrameGpuMs))},
+            {"stereoPassToReferenceEye", optionalMs(ratio(row.stereoGpuMs, row.referenceEyeGpuMs))}}},
+          {"error", {{"left", errorJson(row.left)}, {"right", errorJson(row.right)}}},
+          {"filledPixels", {{"left", row.filledLeft}, {"right", row.filledRight}}},
+          {"traffic",
+           {{"bytesRead", row.traffic.bytesRead},
+            {"bytesWritten", row.traffic.bytesWritten},
+            {"compulsoryBytes", row.traffic.compulsoryBytes}}}};
+}
+
+}  // namespace
+
+std::string MethodSetting::name() const {
+  switch (method) {
+    case stereo::StereoMethod::Seed: return "seed";
+    case stereo::StereoMethod::Search: return "search-" + std::to_string(parameter);
+    case stereo::StereoMethod::Iterative: return "iterative-" + std::to_string(parameter);
+  }
+  return "unknown";
+}
+
+stereo::StereoParameters MethodSetting::applyTo(stereo::StereoParameters parameters) const {
+  parameters.method = method;
+  if (method == stereo::StereoMethod::Search) parameters.searchTaps = parameter;
+  if (method == stereo::StereoMethod::Iterative) parameters.iterations = parameter;
+  return parameters;
+}
+
+std::vector<MethodSetting> parseMethodSettings(const std::vector<std::string>& items) {
+  std::vector<MethodSetting> settings;
+  for (const std::string& item : items) parseOneSetting(item, settings);
+  return settings;
+}
+
+MethodSetting defaultMethodSetting() {
+  const stereo::StereoParameters defaults;
+  switch (defaults.method) {
+    case stereo::StereoMethod::Seed: return {stereo::StereoMethod::Seed, 0};
+    case stereo::StereoMethod::Search: return {stereo::StereoMethod::Search, defaults.searchTaps};
+    case stereo::StereoMethod::Iterative: return {stereo::StereoMethod::Iterative, defaults.iterations};
+  }
+  return {};
+}
+
+StereoTraffic stereoPassTraffic(const stereo::StereoParameters& parameters, std::uint32_t width, std::uint32_t height) {
+  constexpr std::uint64_t kTexelBytes = 4;  // RGBA8 color, R32F depth, RGBA8 eyes
+  int depthLoadsPerEye = 0;
+  gpu::StereoConstants crop{};
+  if (parameters.method == stereo::StereoMethod::Iterative) {
+    const gpu::IterativeConstants c = stereo::makeIterativeConstants(parameters, parameters.iterations, width, height);
+    depthLoadsPerEye = c.startTapCount + 2 * c.iterations;  // stereo_iterative.comp: taps, then two starts x K
+    crop.cropBegin = c.cropBegin;
+    crop.cropEnd = c.cropEnd;
+  } else {
+    crop = stereo::makeStereoConstants(parameters, width, height);
+    depthLoadsPerEye = crop.tapCount;  // stereo_gather.glsl: minDepthOverTaps
+  }
+  const std::uint64_t interior = std::uint64_t(crop.cropEnd - crop.cropBegin) * height;
+  const std::uint64_t pixels = std::uint64_t(width) * height;
+  const std::uint64_t colorLoadsPerEye = 2;  // sampleRow's two texels
+  StereoTraffic traffic;
+  traffic.bytesRead = 2 * interior * (std::uint64_t(depthLoadsPerEye) + colorLoadsPerEye) * kTexelBytes;
+  traffic.bytesWritten = 2 * pixels * kTexelBytes;  // both eyes, cropped columns too (black)
+  traffic.compulsoryBytes = pixels * 4 * kTexelBytes;
+  return traffic;
+}
+
+void validateBenchOptions(const BenchOptions& options) { (void)validateBench(options); }
+
+BenchReport runBench(vk::Context& context, const BenchOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  const ValidatedBench bench = validateBench(options);
+  BenchReport report;
+  report.deviceName = context.deviceName();
+  report.deviceKind = context.isCpuDevice() ? "cpu" : "gpu";
+  report.width = options.width;
+  report.height = options.height;
+  report.repeat = options.repeat;
+  report.rendererOnly = options.rendererOnly;
+  report.targetSetting = bench.target;
+  report.bandwidthGBs = options.bandwidthGBs;
+  report.commandLine = commandLineOf(options, bench, bench.target);
+  if (options.rendererOnly)
+    runRendererTimings(context, options, bench, report);
+  else
+    runSweep(context, options, bench, report);
+  report.wallSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+  // Outputs, each written atomically; the results file last, so it only changes after a complete run.
+  const fs::path& folder = options.outputFolder;
+  const std::string markdown = benchMarkdown(report);
+  auto write = [&](const std::string& name, const std::string& text) {
+    io::writeTextFile(folder / name, text);
+    report.filesWritten.push_back(name);
+  };
+  if (!options.rendererOnly) write("bench_speed_vs_error.svg", benchSpeedErrorSvg(report));
+  write("bench.md", "# s3d bench\n\n" + markdown);
+  // bench.json lists itself and the results file, written after it.
+  report.filesWritten.push_back("bench.json");
+  if (options.resultsMarkdown) report.filesWritten.push_back(options.resultsMarkdown->string());
+  io::writeTextFile(folder / "bench.json", toJson(report).dump(2) + "\n");
+  if (options.resultsMarkdown) {
+    const std::string document = readTextFile(*options.resultsMarkdown);
+    io::writeTextFile(*options.resultsMarkdown,
+                      replaceMarkedSection(document, resultsBeginMarker(report.deviceKind, report.rendererOnly),
+                                           resultsEndMarker(report.deviceKind, report.rendererOnly), markdown));
+  }
+  return report;
+}
+
+nlohmann::json toJson(const BenchReport& report) {
+  nlohmann::json rows = nlohmann::json::array();
+  for (const BenchRow& row : report.rows) rows.push_back(rowJson(row));
+  nlohmann::json rendererRows = nlohmann::json::array();
+  for (const RendererRow& row : report.rendererRows) {
+    nlohmann::json passes = nlohmann::json::array();
+    for (const renderer::PassTiming& pass : row.passes)
+      passes.push_back({{"name", pass.name}, {"gpuMs", finiteOrNull(pass.gpuMs)}});
+    rendererRows.push_back({{"scene", row.scene}, {"frameGpuMs", optionalMs(row.frameGpuMs)}, {"passes", passes}});
+  }
+  nlohmann::json targets = nlohmann::json::array();
+  if (!report.rendererOnly)
+    for (const TargetResult& target : evaluateTargets(report)) {
+      nlohmann::json cases = nlohmann::json::array();
+      for (const TargetCase& c : target.cases)
+        cases.push_back({{"scope", c.scope}, {"pass", c.pass ? nlohmann::json(*c.pass) : nlohmann::json()},
+                         {"numbers", c.numbers}});
+      targets.push_back({{"target", target.name}, {"note", target.note}, {"cases", cases}});
+    }
+  return {{"device", report.deviceName},
+          {"deviceKind", report.deviceKind},
+          {"width", report.width},
+          {"height", report.height},
+          {"repeat", report.repeat},
+          {"command", report.commandLine},
+          {"wallSeconds", finiteOrNull(report.wallSeconds)},
+          {"targetSetting", report.targetSetting.name()},
+          {"bandwidthGBs", report.bandwidthGBs ? finiteOrNull(*report.bandwidthGBs) : nlohmann::json()},
+          {"rows", rows},
+          {"renderer", rendererRows},
+          {"targets", targets},
+          {"files", report.filesWritten}};
+}
+
+std::string benchMarkdown(const BenchReport& report) {
+  return report.rendererOnly ? rendererMarkdown(report) : sweepMarkdown(report);
+}
+
+std::string benchSpeedErrorSvg(const BenchReport& report) {
+  constexpr double kWidth = 900, kHeight = 560;
+  constexpr double kLeft = 70, kRight = 170, kTop = 40, kBottom = 60;
+  constexpr double kPlotWidth = kWidth - kLeft - kRight, kPlotHeight = kHeight - kTop - kBottom;
+  const char* const kPalette[] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b", "#e377c2", "#17becf"};
+
+  struct Point {
+    const BenchRow* row;
+    double ms;
+    double haloDb;  // mean of both eyes
+  };
+  std::vector<Point> points;
+  std::vector<std::string> scenes;
+  std::vector<float> separations;
+  for (const BenchRow& row : report.rows) {
+    if (!row.stereoGpuMs || !(*row.stereoGpuMs > 0.0)) continue;  // nothing to place on a log axis
+    points.push_back({&row, *row.stereoGpuMs, 0.5 * (row.left.halo.psnrDb + row.right.halo.psnrDb)});
+    if (std::find(scenes.begin(), scenes.end(), row.scene) == scenes.end()) scenes.push_back(row.scene);
+    if (std::find(separations.begin(), separations.end(), row.maxSeparation) == separations.end())
+      separations.push_back(row.maxSeparation);
+  }
+  // Axes: whole decades of ms, whole dB with a margin.
+  double minMs = 1.0, maxMs = 10.0, minDb = 0.0, maxDb = 1.0;
+  if (!points.empty()) {
+    minMs = maxMs = points.front().ms;
+    minDb = maxDb = points.front().haloDb;
+    for (const Point& p : points) {
+      minMs = std::min(minMs, p.ms), maxMs = std::max(maxMs, p.ms);
+      minDb = std::min(minDb, p.haloDb), maxDb = std::max(maxDb, p.haloDb);
+    }
+  }
+  // x ticks at 1, 2 and 5 of each decade; the axis spans from the last tick at or below the fastest point to
+  // the first tick at or above the slowest.
+  std::vector<double> ticks;
+  for (double decade = std::floor(std::log10(minMs)); decade <= std::ceil(std::log10(maxMs)); decade += 1.0)
+    for (double mantissa : {1.0, 2.0, 5.0}) ticks.push_back(mantissa * std::pow(10.0, decade));
+  double lowTick = ticks.front(), highTick = ticks.back();  // 10^ceil(log10(maxMs)) is a tick >= maxMs
+  for (double tick : ticks)
+    if (tick <= minMs * (1 + 1e-9)) lowTick = tick;
+  for (auto tick = ticks.rbegin(); tick != ticks.rend(); ++tick)
+    if (*tick >= maxMs * (1 - 1e-9)) highTick = *tick;
+  if (highTick <= lowTick) highTick = lowTick * 10.0;  // every point at one time
+  const double firstLog = std::log10(lowTick), lastLog = std::log10(highTick);
+  minDb = std::floor(minDb) - 1.0;
+  maxDb = std::ceil(maxDb) + 1.0;
+  const double dbStep = maxDb - minDb > 20 ? 5.0 : maxDb - minDb > 8 ? 2.0 : 1.0;
+  minDb = std::floor(minDb / dbStep) * dbStep;
+  maxDb = std::ceil(maxDb / dbStep) * dbStep;
+  auto xOf = [&](double ms) { return kLeft + (std::log10(ms) - firstLog) / (lastLog - firstLog) * kPlotWidth; };
+  auto yOf = [&](double db) { return kTop + (maxDb - db) / (maxDb - minDb) * kPlotHeight; };
+  auto number = [](double value) { return format("%.1f", value); };
+
+  std::ostringstream svg;
+  svg << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << kWidth << "\" height=\"" << kHeight
+      << "\" viewBox=\"0 0 " << kWidth << ' ' << kHeight << "\" font-family=\"sans-serif\" font-size=\"11\">\n";
+  svg << "<rect x=\"0\" y=\"0\" width=\"" << kWidth << "\" height=\"" << kHeight << "\" fill=\"white\"/>\n";
+  svg << "<text x=\"" << kLeft << "\" y=\"22\" font-size=\"14\">Stereo pass speed against halo error, "
+      << xmlEscaped(report.deviceName) << ", " << report.width << "x" << report.height << "</text>\n";
+  // Grid and ticks: every 1, 2, 5 of each decade on x, every dbStep on y.
+  for (double ms : ticks) {
+    if (ms < lowTick * (1 - 1e-9) || ms > highTick * (1 + 1e-9)) continue;
+    const bool decade = std::fabs(std::log10(ms) - std::round(std::log10(ms))) < 1e-9;
+    const double x = xOf(ms);
+    svg << "<line x1=\"" << number(x) << "\" y1=\"" << kTop << "\" x2=\"" << number(x) << "\" y2=\""
+        << kTop + kPlotHeight << "\" stroke=\"" << (decade ? "#bbbbbb" : "#eeeeee") << "\"/>\n";
+    svg << "<text x=\"" << number(x) << "\" y=\"" << kTop + kPlotHeight + 16 << "\" text-anchor=\"middle\">"
+        << format("%g", ms) << "</text>\n";
+  }
+  for (double db = minDb; db <= maxDb + 1e-9; db += dbStep) {
+    const double y = yOf(db);
+    svg << "<line x1=\"" << kLeft << "\" y1=\"" << number(y) << "\" x2=\"" << kLeft + kPlotWidth << "\" y2=\""
+        << number(y) << "\" stroke=\"#dddddd\"/>\n";
+    svg << "<text x=\"" << kLeft - 6 << "\" y=\"" << number(y + 4) << "\" text-anchor=\"end\">" << format("%g", db)
+        << "</text>\n";
+  }
+  svg << "<rect x=\"" << kLeft << "\" y=\"" << kTop << "\" width=\"" << kPlotWidth << "\" height=\"" << kPlotHeight
+      << "\" fill=\"none\" stroke=\"black\"/>\n";
+  svg << "<text x=\"" << kLeft + kPlotWidth / 2 << "\" y=\"" << kHeight - 18
+      << "\" text-anchor=\"middle\">stereo pass GPU time, both eyes (ms, log scale; median of " << report.repeat
+      << ")</text>\n";
+  svg << "<text transform=\"translate(18 " << kTop + kPlotHeight / 2
+      << ") rotate(-90)\" text-anchor=\"middle\">halo PSNR, mean of both eyes (dB)</text>\n";
+  // One circle per row: color = scene, radius grows with the separation; labelled with the setting.
+  for (const Point& p : points) {
+    const std::size_t scene = std::size_t(std::find(scenes.begin(), scenes.end(), p.row->scene) - scenes.begin());
+    const std::size_t separation =
+        std::size_t(std::find(separations.begin(), separations.end(), p.row->maxSeparation) - separations.begin());
+    const double x = xOf(p.ms), y = yOf(p.haloDb);
+    svg << "<circle cx=\"" << number(x) << "\" cy=\"" << number(y) << "\" r=\"" << 3 + 1.5 * double(separation)
+        << "\" fill=\"" << kPalette[scene % std::size(kPalette)] << "\" fill-opacity=\"0.75\"><title>"
+        << xmlEscaped(p.row->scene + " " + p.row->setting.name() + " sep " + percentText(p.row->maxSeparation) +
+                      "%: " + msText(p.ms) + " ms, " + format("%.2f", p.haloDb) + " dB")
+        << "</title></circle>\n";
+    svg << "<text x=\"" << number(x + 6) << "\" y=\"" << number(y - 4) << "\" font-size=\"9\">"
+        << xmlEscaped(p.row->setting.name() + (separations.size() > 1 ? " " + percentText(p.row->maxSeparation) + "%" : ""))
+        << "</text>\n";
+  }
+  // Legend: scenes by color, separations by size (squares, so circles stay one per row).
+  double legendY = kTop + 10;
+  const double legendX = kLeft + kPlotWidth + 16;
+  for (std::size_t i = 0; i < scenes.size(); ++i, legendY += 18)
+    svg << "<rect x=\"" << legendX << "\" y=\"" << legendY - 9 << "\" width=\"10\" height=\"10\" fill=\""
+        << kPalette[i % std::size(kPalette)] << "\"/><text x=\"" << legendX + 16 << "\" y=\"" << legendY << "\">"
+        << xmlEscaped(scenes[i]) << "</text>\n";
+  legendY += 8;
+  for (std::size_t i = 0; i < separations.size(); ++i, legendY += 18) {
+    const double size = 2 * (3 + 1.5 * double(i));
+    svg << "<rect x=\"" << number(legendX + 5 - size / 2) << "\" y=\"" << number(legendY - 4 - size / 2)
+        << "\" width=\"" << size << "\" height=\"" << size << "\" fill=\"#888888\"/><text x=\"" << legendX + 16
+        << "\" y=\"" << legendY << "\">sep " << percentText(separations[i]) << " %</text>\n";
+  }
+  if (points.size() != report.rows.size())
+    svg << "<text x=\"" << kLeft + 8 << "\" y=\"" << kTop + 16 << "\">" << report.rows.size() - points.size()
+        << " rows without GPU timestamps are not shown</text>\n";
+  svg << "</svg>\n";
+  return svg.str();
+}
+
+std::string resultsBeginMarker(const std::string& deviceKind, bool rendererOnly) {
+  return std::string("<!-- s3d bench") + (rendererOnly ? " renderer" : "") + ": " + deviceKind + " begin -->";
+}
+
+std::string resultsEndMarker(const std::string& deviceKind, bool rendererOnly) {
+  return std::string("<!-- s3d bench") + (rendererOnly ? " renderer" : "") + ": " + deviceKind + " end -->";
+}
+
+std::string replaceMarkedSection(const std::string& document, const std::string& beginMarker,
+                                 const std::string& endMarker, const std::string& section) {
+  auto countOf = [&](const std::string& marker) {
+    std::size_t count = 0;
+    for (std::size_t at = document.find(marker); at != std::string::npos; at = document.find(marker, at + 1)) ++count;
+    return count;
+  };
+  const std::size_t begins = countOf(beginMarker), ends = countOf(endMarker);
+  if (begins == 0 && ends == 0) {  // first run: the section goes at the end
+    std::string appended = document;
+    if (!appended.empty() && appended.back() != '\n') appended += '\n';
+    if (!appended.empty()) appended += '\n';
+    return appended + beginMarker + "\n" + section + endMarker + "\n";
+  }
+  if (begins != 1 || ends != 1)
+    throw std::invalid_argument("expected the markers '" + beginMarker + "' and '" + endMarker +
+                                "' once each (found " + std::to_string(begins) + " and " + std::to_string(ends) + ")");
+  const std::size_t begin = document.find(beginMarker) + beginMarker.size();
+  const std::size_t end = document.find(endMarker);
+  if (end < begin) throw std::invalid_argument("marker '" + endMarker + "' comes before '" + beginMarker + "'");
+  return document.substr(0, begin) + "\n" + section + document.substr(end);
+}
+
+std::string formatProgressBar(const BenchProgress& progress) {
+  constexpr std::size_t kCells = 10;
+  const std::size_t filled = progress.total == 0 ? 0 : std::min(kCells, progress.done * kCells / progress.total);
+  return "[" + std::string(filled, '#') + std::string(kCells - filled, '.') + "] " + std::to_string(progress.done) +
+         "/" + std::to_string(progress.total) + " " + progress.label;
+}
+
+}  // namespace s3d::app

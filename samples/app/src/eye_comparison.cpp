@@ -1,0 +1,57 @@
+#include "s3d/app/eye_comparison.h"
+
+#include <charconv>
+#include <cmath>
+#include <cstdlib>
+#include <system_error>
+
+namespace s3d::app {
+
+std::vector<std::uint8_t> haloMaskFor(const DepthImage& centerDepth, const stereo::StereoParameters& parameters) {
+  return stereo::haloMask(centerDepth, std::uint32_t(std::ceil(parameters.maxSeparation * float(centerDepth.width))));
+}
+
+std::vector<std::uint8_t> disocclusionMaskFor(const DepthImage& referenceDepth, const DepthImage& centerDepth,
+                                              const stereo::StereoParameters& parameters, stereo::Eye eye) {
+  return stereo::disocclusionMask(referenceDepth, centerDepth, parameters.maxSeparation,
+                                  parameters.zeroParallaxDistance, eye);
+}
+
+EyeError compareEye(const ImageRGBA8& synthesized, const ImageRGBA8& reference, std::uint32_t cropColumns,
+                    const std::vector<std::uint8_t>& halo, const std::vector<std::uint8_t>& disocclusion) {
+  const stereo::RegionErrors regions = stereo::compareByRegion(synthesized, reference, cropColumns, halo);
+  return {regions.all, regions.halo, regions.rest,
+          stereo::compareWithinMask(synthesized, reference, cropColumns, disocclusion)};
+}
+
+double tidy(float value) {
+  if (!std::isfinite(value)) return double(value);
+  char text[32];
+  const std::to_chars_result result = std::to_chars(text, text + sizeof(text), value);
+  if (result.ec != std::errc()) return double(value);
+  *result.ptr = '\0';
+  return std::strtod(text, nullptr);
+}
+
+nlohmann::json finiteOrNull(double value) { return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(); }
+
+nlohmann::json optionalMs(const std::optional<double>& value) {
+  return value ? finiteOrNull(*value) : nlohmann::json();
+}
+
+nlohmann::json statsJson(const stereo::ErrorStats& stats) {
+  return {{"psnrDb", finiteOrNull(stats.psnrDb)},
+          {"meanAbsoluteError", finiteOrNull(stats.meanAbsoluteError)},
+          {"shareAbove8", finiteOrNull(stats.shareAbove8)},
+          {"pixelCount", stats.pixelCount}};
+}
+
+nlohmann::json errorJson(const EyeError& error) {
+  nlohmann::json json = statsJson(error.display);
+  json["halo"] = statsJson(error.halo);
+  json["rest"] = statsJson(error.rest);
+  json["disocclusion"] = statsJson(error.disocclusion);
+  return json;
+}
+
+}  // namespace s3d::app

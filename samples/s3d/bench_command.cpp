@@ -1,0 +1,129 @@
+// `s3d bench`: GPU time and error of every stereo method setting on every built-in scene and separation, against
+// the center frame and one two-pass reference eye (s3d/app/bench_job.h); `--renderer` times the deferred
+// renderer's passes per scene instead. Progress goes to stderr: one redrawn bar on a terminal, a line per step
+// otherwise (CI logs).
+#include <unistd.h>  // isatty
+
+#include <cstdio>
+#include <exception>
+#include <iostream>
+#include <optional>
+#include <string>
+
+#include "cli_support.h"
+#include "s3d/app/bench_job.h"
+#include "s3d/app/render_job.h"
+#include "s3d/renderer/scene.h"
+
+namespace s3d::cli {
+namespace {
+
+class BenchCommand final : public Command {
+ public:
+  explicit BenchCommand(CLI::App& app) {
+    subcommand = app.add_subcommand(
+        "bench",
+        "Time every stereo method setting (GPU timestamps, median of --repeat) on every built-in scene and "
+        "separation, measure its error against the two-pass reference, and write bench.json, bench.md and "
+        "bench_speed_vs_error.svg; --renderer times the renderer's passes instead");
+    CLI::App& bench = *subcommand;
+    bench
+        .add_option("--resolution", resolution_,
+                    "Image size as WxH (default: 1920x1080, with --renderer 1280x720)")
+        ->check(resolutionValidator(app::kMaxImageSize));
+    bench.add_option("--scenes", options_.scenes,
+                     "Comma-separated built-in scenes (default: all): " + joined(renderer::builtInSceneNames(), ", "))
+        ->delimiter(',')
+        ->type_name("LIST");
+    bench
+        .add_option("--methods", options_.methods,
+                    "Comma-separated method settings: seed, search-N (N taps), iterative-K (K iterations); search and "
+                    "iterative alone sweep taps 4,8,16 and iterations 2,4,6,8")
+        ->delimiter(',')
+        ->type_name("LIST")
+        ->capture_default_str();
+    bench
+        .add_option("--separations", options_.separationsPercent,
+                    "Comma-separated maxSeparation values in percent of the screen width, each in (0, 25]")
+        ->delimiter(',')
+        ->type_name("LIST")
+        ->capture_default_str();
+    bench.add_option("--repeat", options_.repeat, "GPU timings per number; the median is reported")
+        ->check(CLI::Range(1, 1000))
+        ->capture_default_str();
+    bench.add_flag("--renderer", options_.rendererOnly,
+                   "Time the center frame and each renderer pass per scene (issue #3) instead of the stereo sweep");
+    bench
+        .add_option("--bandwidth-gbs", bandwidth_,
+                    "Memory bandwidth of the device in GB/s for the memory-traffic target (H100 SXM: 3350, "
+                    "H100 PCIe: 2000); without it that target is skipped")
+        ->check(floatRange(0.0, 1.0e6, true, "a bandwidth in GB/s"));
+    bench.add_option("--target-setting", options_.targetSetting,
+                     "The setting the issue #4 targets judge (default: the library's default method, " +
+                         app::defaultMethodSetting().name() + ")");
+    bench.add_option("--output", options_.outputFolder, "Output folder (created if missing)")->capture_default_str();
+    bench.add_option("--results-md", resultsMarkdown_,
+                     "Markdown file whose section between '<!-- s3d bench: KIND begin -->' and '... end -->' (KIND: cpu "
+                     "or gpu; 's3d bench renderer: KIND' with --renderer) is replaced by the tables (appended when the "
+                     "file has no such section)");
+    addDeviceOptions(bench, contextOptions_);
+  }
+
+  int run() override {
+    if (resolution_.empty()) resolution_ = options_.rendererOnly ? "1280x720" : "1920x1080";
+    parseResolution(resolution_, app::kMaxImageSize, options_.width, options_.height);
+    if (bandwidth_) options_.bandwidthGBs = *bandwidth_;
+    if (!resultsMarkdown_.empty()) options_.resultsMarkdown = resultsMarkdown_;
+    // Options first: a typo must not cost a Vulkan start-up or a half-hour sweep, and must leave no files behind.
+    app::validateBenchOptions(options_);
+    vk::Context context(contextOptions_);
+    std::cerr << "s3d bench: " << context.deviceName() << " (" << (context.isCpuDevice() ? "cpu" : "gpu") << "), "
+              << options_.width << "x" << options_.height << '\n';
+    const bool terminal = ::isatty(::fileno(stderr)) != 0;
+    std::size_t previousLength = 0;
+    options_.progress = [&](const app::BenchProgress& progress) {
+      const std::string line = app::formatProgressBar(progress);
+      if (terminal) {  // one bar redrawn in place; spaces wipe the rest of a longer previous line
+        std::cerr << '\r' << line << std::string(previousLength > line.size() ? previousLength - line.size() : 0, ' ');
+        if (progress.done == progress.total) std::cerr << '\n';
+        std::cerr.flush();
+        previousLength = line.size();
+      } else {
+        std::cerr << line << '\n';
+      }
+    };
+
+    std::optional<app::BenchReport> report;
+    std::string jobError;
+    try {
+      report = app::runBench(context, options_);
+    } catch (const std::exception& error) {
+      jobError = error.what();
+    }
+    const std::vector<std::string> messages = context.validationMessages();
+    for (const std::string& message : messages) std::cerr << "s3d: validation: " << oneLine(message) << '\n';
+    if (!report) return fail(jobError);
+    if (report->rendererOnly) std::cout << app::benchMarkdown(*report);
+    char wall[32];
+    std::snprintf(wall, sizeof(wall), "%.1f", report->wallSeconds);
+    std::cout << "s3d bench: " << (report->rendererOnly ? report->rendererRows.size() : report->rows.size())
+              << " rows on " << report->deviceName << " in " << wall << " s; wrote " << joined(report->filesWritten, ", ")
+              << " (in " << options_.outputFolder.string() << ")\n";
+    if (!messages.empty())
+      return fail("the Vulkan validation layer reported " + std::to_string(messages.size()) + " message(s)");
+    return 0;
+  }
+
+ private:
+  app::BenchOptions options_;
+  vk::ContextOptions contextOptions_;
+  std::string resolution_;
+  std::optional<double> bandwidth_;
+  std::string resultsMarkdown_;
+};
+
+}  // namespace
+
+std::unique_ptr<Command> addBenchCommand(CLI::App& app) { return std::make_unique<BenchCommand>(app); }
+
+}  // namespace s3d::cli
