@@ -65,6 +65,11 @@ class RenderCommand final : public Command {
                     "hmd (90-degree field of view focused at 1.3 m)")
         ->check(CLI::IsMember({"tv55", "monitor27", "hmd"}))
         ->capture_default_str();
+    render.add_option("--supersample", options_.supersample,
+                      "Anti-aliasing: render at N x N samples per pixel and average them (center view and reference "
+                      "eyes alike; the stereo pass sees the nearest sample's depth)")
+        ->check(CLI::Range(1, 4))
+        ->capture_default_str();
     render.add_option("--frame", options_.frame, "Frame of the scene's camera path to render (0: its first)")
         ->capture_default_str();
     render.add_flag("--sequence", sequence_,
@@ -95,6 +100,7 @@ class RenderCommand final : public Command {
     sequenceOptions.width = options_.width;
     sequenceOptions.height = options_.height;
     sequenceOptions.scene = options_.scene;
+    sequenceOptions.supersample = options_.supersample;
     sequenceOptions.outputFolder = options_.outputFolder;
     sequenceOptions.stereo = options_.stereo;
     vk::Context context(contextOptions_);

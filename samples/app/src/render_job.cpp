@@ -49,6 +49,10 @@ void requireImageSize(std::uint32_t value, const char* name) {
 // Everything runRenderJob checks before touching the GPU or the file system; returns what it built on the way.
 ValidatedJob validateJob(const RenderJobOptions& options) {
   requireImageSize(options.width, "width");
+  if (options.supersample < 1 || options.supersample > 4)
+    throw std::invalid_argument("supersample must be in [1, 4] (got " + std::to_string(options.supersample) + ")");
+  if (std::max(options.width, options.height) * options.supersample > kMaxImageSize)
+    throw std::invalid_argument("width and height times supersample must stay within " + std::to_string(kMaxImageSize));
   requireImageSize(options.height, "height");
   for (const std::string& name : options.outputs)
     if (std::find(kAllOutputs.begin(), kAllOutputs.end(), name) == kAllOutputs.end())
@@ -115,7 +119,7 @@ RenderReport runRenderJob(vk::Context& context, const RenderJobOptions& options)
   report.cropColumns = std::uint32_t(job.constants.cropBegin);
 
   // 2. The center view.
-  renderer::DeferredRenderer deferred(context, width, height);
+  renderer::DeferredRenderer deferred(context, width, height, {options.supersample});
   deferred.setScene(job.scene);
   const renderer::ViewMatrices center = renderer::centerViewMatrices(
       job.scene, float(width) / float(height), {options.stereo.weaponDepthOffset, options.stereo.weaponDepthScale});

@@ -52,6 +52,7 @@ struct RenderJobOptions {
   stereo::PackingMode topBottom = stereo::PackingMode::Half;
   stereo::StereoParameters stereo;
   std::string display = "tv55";  // comfort report: one of comfort::builtInDisplayProfileNames()
+  std::uint32_t supersample = 1;  // renderer anti-aliasing, 1..4 (center view and reference eyes alike)
 };
 
 // EyeError (per-region error of one eye) lives in eye_comparison.h, shared with `s3d bench`.
