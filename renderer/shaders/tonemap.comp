@@ -19,5 +19,8 @@ void main() {
   ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
   if (pixel.x >= int(frame.screen.x) || pixel.y >= int(frame.screen.y)) return;
   vec3 hdr = imageLoad(hdrColor, pixel).rgb * frame.exposure.x;
+  // NaN or inf (a broken shader or input) is black, as stereo::sanitizeColor makes it: the curve would turn it
+  // into NaN and the unorm store into an undefined level that the stereo pass would then displace.
+  if (any(isnan(hdr)) || any(isinf(hdr))) hdr = vec3(0.0);
   imageStore(displayColor, pixel, vec4(encodeSrgb(filmic(hdr)), 1.0));
 }

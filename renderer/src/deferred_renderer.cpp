@@ -40,6 +40,7 @@ constexpr VkFormat kHdrFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
 constexpr VkFormat kDisplayFormat = VK_FORMAT_R8G8B8A8_UNORM;     // sRGB-encoded by the tone-map pass
 constexpr VkFormat kLinearDepthFormat = VK_FORMAT_R32_SFLOAT;
 constexpr VkFormat kAmbientOcclusionFormat = VK_FORMAT_R16_SFLOAT;
+constexpr VkFormat kCoverageFormat = VK_FORMAT_R8G8B8A8_UNORM;  // red: transparent coverage (the metrics' mask)
 
 constexpr vk::ImageState kDepthSampled{VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
                                        VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
@@ -188,6 +189,7 @@ struct DeferredRenderer::Impl {
 
   // Render targets.
   vk::Image depth, normalGlossiness, diffuseLight, specularLight, hdr, display, linearDepth, ambientOcclusion;
+  vk::Image transparentCoverage;  // written by the transparent pass only (scenes with transparent objects)
   vk::Unique<VkSampler> nearestSampler;
 
   // Passes: layouts and pipelines.
@@ -230,6 +232,8 @@ struct DeferredRenderer::Impl {
     const VkImageUsageFlags computeOutput = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
     display = vk::createImage(context, kDisplayFormat, width, height, computeOutput);
     linearDepth = vk::createImage(context, kLinearDepthFormat, width, height, computeOutput);
+    transparentCoverage = vk::createImage(context, kCoverageFormat, width, height,
+                                          VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
     ambientOcclusion = vk::createImage(context, kAmbientOcclusionFormat, width, height,
                                        VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
                                            VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
@@ -296,7 +300,7 @@ struct DeferredRenderer::Impl {
 
     vk::GraphicsPipelineDesc transparent = geometry;
     transparent.fragmentSpirv = spirv_transparent_frag;
-    transparent.colorFormats = {kHdrFormat};
+    transparent.colorFormats = {kHdrFormat, kCoverageFormat};  // coverage blends to 1 - prod(1 - opacity)
     transparent.depthCompare = VK_COMPARE_OP_LESS;  // behind opaque surfaces is hidden; no depth write
     transparent.cullMode = VK_CULL_MODE_NONE;
     transparent.blend = vk::GraphicsPipelineDesc::Blend::Alpha;
@@ -593,9 +597,10 @@ struct DeferredRenderer::Impl {
   // Transparent surfaces over the shaded image, back to front, depth-tested against the opaque depth.
   void recordTransparent(VkCommandBuffer cmd, const std::vector<std::uint32_t>& backToFront) {
     vk::transition(cmd, hdr, vk::kColorAttachment, vk::kColorAttachment);  // after the shading pass's writes
-    VkRenderingAttachmentInfo color = colorAttachment(hdr, false);
+    vk::transition(cmd, transparentCoverage, vk::kUndefined, vk::kColorAttachment);
+    VkRenderingAttachmentInfo colors[] = {colorAttachment(hdr, false), colorAttachment(transparentCoverage, true)};
     const VkRenderingAttachmentInfo depthAttachment = readOnlyDepthAttachment(depth);
-    beginRendering(cmd, width, height, std::span(&color, 1), &depthAttachment);
+    beginRendering(cmd, width, height, colors, &depthAttachment);
     setScissor(cmd, {{0, 0}, {width, height}});
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, transparentPipeline);
     pushGeometryDescriptors(cmd, geometryLayout.layout, {});
@@ -723,6 +728,14 @@ std::vector<std::uint8_t> DeferredRenderer::readFirstPersonMask() {
   std::memcpy(deviceDepth.data(), bytes.data(), bytes.size());
   std::vector<std::uint8_t> mask(deviceDepth.size());
   for (std::size_t i = 0; i < mask.size(); ++i) mask[i] = deviceDepth[i] <= kFirstPersonDeviceDepthMax ? 1 : 0;
+  return mask;
+}
+
+std::vector<std::uint8_t> DeferredRenderer::readTransparentMask() {
+  std::vector<std::uint8_t> mask(std::size_t(impl_->width) * impl_->height, 0);
+  if (impl_->transparentOrder.empty()) return mask;  // the transparent pass did not run
+  std::vector<std::byte> bytes = vk::readbackImage(impl_->context, impl_->transparentCoverage, vk::kColorAttachment);
+  for (std::size_t i = 0; i < mask.size(); ++i) mask[i] = bytes[4 * i] != std::byte{0} ? 1 : 0;
   return mask;
 }
 
