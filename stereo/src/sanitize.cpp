@@ -1,6 +1,7 @@
 #include "s3d/stereo/sanitize.h"
 
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 
 #include "s3d/stereo/stereo_shared.h"
@@ -9,6 +10,12 @@ namespace s3d::stereo {
 namespace {
 
 bool isInvalidDepth(float depth) { return !(depth > 0.0f); }  // NaN, -inf, zero and negative; +inf is sky
+
+std::string shortNumber(float value) {
+  char text[32];
+  std::snprintf(text, sizeof(text), "%g", double(value));
+  return text;
+}
 
 }  // namespace
 
@@ -47,13 +54,13 @@ ClampedZeroParallax clampZeroParallaxDistance(float zpp, float nearPlane, float 
   const float lowest = kMinZppFractionOfNear * nearPlane;
   const float highest = kMaxZppFractionOfFar * farPlane;
   if (zpp < lowest)
-    return {lowest, "zeroParallaxDistance " + std::to_string(zpp) + " is in front of the near plane " +
-                        std::to_string(nearPlane) + " (nothing could come out of the screen): clamped to " +
-                        std::to_string(lowest)};
+    return {lowest, "zeroParallaxDistance " + shortNumber(zpp) + " is in front of the near plane " +
+                        shortNumber(nearPlane) + " (nothing could come out of the screen): clamped to " +
+                        shortNumber(lowest)};
   if (zpp > highest)
-    return {highest, "zeroParallaxDistance " + std::to_string(zpp) + " is at or near the far plane " +
-                         std::to_string(farPlane) + " (every surface would pop out, parallax unbounded near the "
-                         "camera): clamped to " + std::to_string(highest) + " (half the far plane)"};
+    return {highest, "zeroParallaxDistance " + shortNumber(zpp) + " is beyond half the far plane " +
+                         shortNumber(farPlane) + " (at the far plane every surface would pop out, with the parallax "
+                         "near the camera unbounded): clamped to " + shortNumber(highest)};
   return {zpp, std::nullopt};
 }
 
