@@ -1,6 +1,7 @@
 #include "shadow_maps.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstring>
 #include <stdexcept>
@@ -51,6 +52,12 @@ vk::Unique<VkSampler> createSampler(const vk::Context& context, bool compare) {
   VkSampler sampler = VK_NULL_HANDLE;
   S3D_VK_CHECK(vkCreateSampler(context.device(), &info, nullptr, &sampler));
   return vk::Unique<VkSampler>(context.device(), sampler, vkDestroySampler);
+}
+
+// The shadow-map size actually used: the requested one, but no more than about two texels per screen pixel
+// along the longer screen side (never under 256), so tiny test images do not pay for megapixel maps.
+std::uint32_t effectiveShadowMapSize(std::uint32_t requested, std::uint32_t width, std::uint32_t height) {
+  return std::min(requested, std::max(256u, std::bit_ceil(2u * std::max(width, height))));
 }
 
 // Depth per world unit of an orthographic light view-projection (its third row).
@@ -137,13 +144,16 @@ void ShadowMaps::setScene(const Scene& scene, VkBuffer vertexBuffer, VkBuffer in
     throw std::invalid_argument(prefix + "shadowed point and spot lights need " + std::to_string(views) +
                                 " shadow views, at most " + std::to_string(S3D_MAX_LOCAL_SHADOW_VIEWS) +
                                 " (a point light takes 6, a spot light 1)");
-  const std::uint32_t tile = scene.localShadowMapSize;
-  if (views > 0 && (tile < 16 || tile > 2048))
-    throw std::invalid_argument(prefix + "local shadow-map size must be 16..2048 (got " + std::to_string(tile) + ")");
+  if (views > 0 && (scene.localShadowMapSize < 16 || scene.localShadowMapSize > 2048))
+    throw std::invalid_argument(prefix + "local shadow-map size must be 16..2048 (got " +
+                                std::to_string(scene.localShadowMapSize) + ")");
+  sunMapSize_ = effectiveShadowMapSize(sun.shadowMapSize, width_, height_);
+  localTileSize_ = effectiveShadowMapSize(scene.localShadowMapSize, width_, height_);
+  const std::uint32_t tile = localTileSize_;
 
   // Allocate only what the scene can use; a later setScene with the same sizes keeps the images.
   if (sun.castsShadows) {
-    const std::uint32_t w = sun.cascadeCount * sun.shadowMapSize, h = sun.shadowMapSize;
+    const std::uint32_t w = sun.cascadeCount * sunMapSize_, h = sunMapSize_;
     if (sunAtlas_.width != w || sunAtlas_.height != h)
       sunAtlas_ = vk::createImage(context_, kShadowDepthFormat, w, h,
                                   VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT);
@@ -194,13 +204,13 @@ std::vector<ShadowPass> ShadowMaps::schedule(const ViewMatrices& view, const vk:
   if (sun.castsShadows && sunLit && !casters_.empty() && shadowFar > scene_.camera.nearPlane) {
     const std::vector<float> splits = cascadeSplitDistances(scene_.camera.nearPlane, shadowFar, sun.cascadeCount);
     const std::vector<SunCascade> cascades = sunCascades(view.worldView, view.worldProjection, splits,
-                                                         sun.directionToSun, sun.shadowMapSize, casterBounds_);
+                                                         sun.directionToSun, sunMapSize_, casterBounds_);
     const float count = float(cascades.size());
     constants.sunShadow = glm::vec4(count, 1.0f / float(sunAtlas_.width), 1.0f / float(sunAtlas_.height), 0.0f);
     bool first = true;
     for (std::uint32_t i = 0; i < cascades.size(); ++i) {
       ViewDraws draws{cascades[i].viewProjection,
-                      {{std::int32_t(i * sun.shadowMapSize), 0}, {sun.shadowMapSize, sun.shadowMapSize}},
+                      {{std::int32_t(i * sunMapSize_), 0}, {sunMapSize_, sunMapSize_}},
                       castersIn(cascades[i].viewProjection)};
       const bool rendered = !draws.casters.empty();
       constants.cascadeViewProjection[i] = cascades[i].viewProjection;
@@ -223,7 +233,7 @@ std::vector<ShadowPass> ShadowMaps::schedule(const ViewMatrices& view, const vk:
 
   // Point and spot lights on screen, each only with a caster in one of its views.
   const glm::mat4 cameraViewProjection = view.worldProjection * view.worldView;
-  const std::uint32_t tile = scene_.localShadowMapSize;
+  const std::uint32_t tile = localTileSize_;
   constants.localShadow = glm::vec4(1.0f / float(localAtlas_.width), 1.0f / float(localAtlas_.height), 0.0f, 0.0f);
   for (const LocalShadow& local : localShadows_) {
     if (!sphereTouchesFrustum(cameraViewProjection, {local.position, local.radius})) continue;

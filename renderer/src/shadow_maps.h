@@ -91,6 +91,7 @@ class ShadowMaps {
   std::vector<BoundingSphere> casterBounds_;      // same order
   std::vector<LocalShadow> localShadows_;
   std::uint32_t localColumns_ = 1;
+  std::uint32_t sunMapSize_ = 0, localTileSize_ = 0;  // the sizes in use (see effectiveShadowMapSize)
 
   // This frame's plan.
   bool sunMaskThisFrame_ = false;

@@ -45,6 +45,7 @@ struct SunLight {
   glm::vec3 color{1.0f};                       // linear radiance scale
   // Cascaded shadow maps (seed 003 8.5.3.5): `cascadeCount` square maps of `shadowMapSize` texels covering
   // the view from the near plane to `shadowDistance` (clamped to the far plane); beyond it the sun is unshadowed.
+  // Map sizes (this and Scene::localShadowMapSize) are capped at twice the image's longer side (at least 256).
   bool castsShadows = false;
   float shadowDistance = 60.0f;  // world units
   std::uint32_t cascadeCount = 3;  // 1..4
