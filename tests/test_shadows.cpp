@@ -282,6 +282,35 @@ TEST_F(ShadowTest, ASpotLightWithItsOnlyCasterOutsideTheConeRunsNoShadowMap) {
   EXPECT_TRUE(ran(frame, "point-lights"));
 }
 
+// setScene's message for a scene, or "" when it is accepted.
+std::string setSceneError(vk::Context& context, const Scene& scene) {
+  DeferredRenderer renderer(context, kWidth, kHeight);
+  try {
+    renderer.setScene(scene);
+  } catch (const std::invalid_argument& error) {
+    return error.what();
+  }
+  return "";
+}
+
+TEST_F(ShadowTest, ASpotLightWithAConeOfNinetyDegreesOrMoreIsRejected) {
+  Scene scene = makeSpotLightScene();
+  scene.spotLights[0].outerConeRadians = 1.6f;
+  EXPECT_NE(setSceneError(context(), scene).find("cone angles"), std::string::npos);
+}
+
+TEST_F(ShadowTest, MoreSunCascadesThanFourAreRejected) {
+  Scene scene = makeSunScene();
+  scene.sun.cascadeCount = 5;
+  EXPECT_NE(setSceneError(context(), scene).find("sun cascade count must be 1..4"), std::string::npos);
+}
+
+TEST_F(ShadowTest, MoreShadowViewsThanTheAtlasHoldsAreRejected) {
+  Scene scene = makePointLightScene();
+  scene.pointLights.assign(9, scene.pointLights[0]);  // 54 views, the atlas holds 48
+  EXPECT_NE(setSceneError(context(), scene).find("shadow views, at most 48"), std::string::npos);
+}
+
 TEST(CascadeSplits, FollowTheBlendOfLogarithmicAndUniformSplits) {
   const float nearPlane = 0.1f, farPlane = 60.0f;
   const std::vector<float> splits = cascadeSplitDistances(nearPlane, farPlane, 4, kCascadeLogWeight);
