@@ -399,10 +399,11 @@ Scene makeCoverScene() {
   scene.ambientColor = glm::vec3(0.26f, 0.30f, 0.36f);
   scene.pointLights.push_back({{2.4f, 1.5f, -4.0f}, {2.0f, 1.1f, 0.4f}, 5.0f});   // warm, by the crates
   scene.pointLights.push_back({{4.4f, 5.8f, -15.6f}, {1.2f, 1.2f, 1.6f}, 8.0f});  // the lamp
-  // A floodlight over the crates, shadowed: the stacked crate's shadow falls on the big one and the ground.
+  // A shadowed floodlight aimed past the barrel, on ground seen past the wall's edge (over the sunlit ground its
+  // light and the barrel's shadow in it are faint after tone mapping).
   SpotLight flood;
-  flood.position = glm::vec3(2.2f, 4.2f, -3.8f);
-  flood.direction = glm::normalize(glm::vec3(3.6f, 0.0f, -5.6f) - flood.position);
+  flood.position = glm::vec3(-0.5f, 3.5f, -5.0f);
+  flood.direction = glm::normalize(glm::vec3(1.4f, 0.0f, -8.0f) - flood.position);
   flood.color = glm::vec3(6.0f, 5.2f, 4.0f);
   flood.radius = 9.0f;
   flood.innerConeRadians = 0.35f;
