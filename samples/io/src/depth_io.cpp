@@ -47,6 +47,7 @@ struct FileError : std::runtime_error {
 
 // Largest accepted side: keeps width * height * channels * 4 far from overflow on every platform.
 constexpr std::uint64_t kMaxSide = 1u << 16;
+constexpr std::uint64_t kMaxPixels = std::uint64_t(1) << 28;
 
 std::uint32_t byteSwapped(std::uint32_t value) {
   return (value >> 24) | ((value >> 8) & 0xff00u) | ((value << 8) & 0xff0000u) | (value << 24);
@@ -258,6 +259,9 @@ DepthImage readExrChannel(const fs::path& file, const std::string& channel) {
     const std::int64_t height = std::int64_t(dataWindow.max.y) - dataWindow.min.y + 1;
     if (width <= 0 || height <= 0 || std::uint64_t(width) > kMaxSide || std::uint64_t(height) > kMaxSide)
       failRead("readExrChannel", file, "invalid data window");
+    // A crafted header can claim a huge window in a tiny file: refuse before allocating it (1 GiB of floats).
+    if (std::uint64_t(width) * std::uint64_t(height) > kMaxPixels)
+      failRead("readExrChannel", file, "data window of " + std::to_string(width) + "x" + std::to_string(height) + " is too large");
     const Imf::ChannelList& channels = header.channels();
     const Imf::Channel* found = channels.findChannel(channel);
     if (!found) {
