@@ -20,7 +20,7 @@ json validSuite() {
   return json::parse(R"({
     "tolerances": {"psnrDropDb": 0.25},
     "cases": [{"name": "court", "scene": "courtyard", "resolution": "32x18",
-               "stereo": {"method": "search", "taps": 4, "maxSeparation": 0.03},
+               "stereo": {"method": "search", "searchTaps": 4, "maxSeparation": 0.03},
                "minPsnrDb": {"all": 10}}]})");
 }
 
@@ -48,9 +48,9 @@ TEST(RegressSuite, AValidSuiteKeepsItsValuesAndFillsDefaults) {
   EXPECT_EQ(entry.width, 32u);
   EXPECT_EQ(entry.height, 18u);
   EXPECT_EQ(entry.frames, std::vector<std::size_t>{0});
-  EXPECT_EQ(entry.stereo.method, stereo::StereoMethod::Search);
-  EXPECT_EQ(entry.stereo.searchTaps, 4);
-  EXPECT_FLOAT_EQ(entry.stereo.maxSeparation, 0.03f);
+  EXPECT_EQ(entry.profile.stereo.method, stereo::StereoMethod::Search);
+  EXPECT_EQ(entry.profile.stereo.searchTaps, 4);
+  EXPECT_FLOAT_EQ(entry.profile.stereo.maxSeparation, 0.03f);
   EXPECT_DOUBLE_EQ(entry.tolerances.psnrDropDb, 0.25);                        // from the suite
   EXPECT_DOUBLE_EQ(entry.tolerances.baselineImageMinPsnrDb, RegressTolerances{}.baselineImageMinPsnrDb);  // default
   EXPECT_DOUBLE_EQ(entry.minPsnrDb.at("all"), 10.0);
@@ -116,6 +116,36 @@ TEST(RegressSuite, AnEmptyCaseListIsRejected) {
   expectSuiteError(json{{"cases", json::array()}}, "cases: expected a non-empty array");
 }
 
+TEST(RegressSuite, AProfileSetsTheParametersAndStereoKeysOverrideIt) {
+  json suite = validSuite();
+  suite["cases"][0]["profile"] = json::parse(R"({"stereo": {"maxSeparation": 0.05, "zeroParallaxDistance": 3},
+                                                  "display": "monitor27"})");
+  const RegressCase entry = parseRegressSuite(suite, "suites", "suite.json").cases[0];
+  EXPECT_FLOAT_EQ(entry.profile.stereo.zeroParallaxDistance, 3.0f);  // from the profile
+  EXPECT_FLOAT_EQ(entry.profile.stereo.maxSeparation, 0.03f);        // the case's "stereo" wins
+  EXPECT_EQ(entry.profile.display.name, "monitor27");
+}
+
+TEST(RegressSuite, AProfileFileIsReadRelativeToTheSuite) {
+  const fs::path folder = fs::temp_directory_path() / ("s3d_regress_profile_" + std::to_string(::getpid()));
+  fs::create_directories(folder / "profiles");
+  std::ofstream(folder / "profiles" / "wide.json") << R"({"stereo": {"zeroParallaxDistance": 4}})";
+  json suite = validSuite();
+  suite["cases"][0]["profile"] = "profiles/wide.json";
+  const RegressCase entry = parseRegressSuite(suite, folder, "suite.json").cases[0];
+  EXPECT_FLOAT_EQ(entry.profile.stereo.zeroParallaxDistance, 4.0f);
+  suite["cases"][0]["profile"] = "profiles/missing.json";
+  expectSuiteError(suite, "cases[0].profile: ");
+  fs::remove_all(folder);
+}
+
+TEST(RegressSuite, AnUnknownProfileKeyIsNamed) {
+  json suite = validSuite();
+  suite["cases"][0]["profile"] = json::parse(R"({"stereo": {"separation": 0.05}})");
+  expectSuiteError(suite, "cases[0].profile: ");
+  expectSuiteError(suite, "separation");
+}
+
 TEST(RegressSuite, Base64MatchesRfc4648TestVectors) {
   EXPECT_EQ(base64(""), "");
   EXPECT_EQ(base64("f"), "Zg==");
@@ -152,7 +182,7 @@ TEST_F(RegressRunTest, FreshBaselinesPassAndAChangedSeparationFails) {
   EXPECT_TRUE(fs::exists(folder_ / "baselines" / "court_f0.png"));
   options.updateBaselines = false;
   EXPECT_EQ(runRegressSuite(context(), suite, options).failedRuns, 0u);
-  suite.cases[0].stereo.maxSeparation = 0.04f;
+  suite.cases[0].profile.stereo.maxSeparation = 0.04f;
   const RegressResult changed = runRegressSuite(context(), suite, options);
   EXPECT_EQ(changed.failedRuns, 1u);
   std::ifstream html(changed.htmlReport);

@@ -80,10 +80,9 @@ void parseTolerances(const json& object, const Where& where, RegressTolerances& 
   read("baselineImageMinPsnrDb", tolerances.baselineImageMinPsnrDb);
 }
 
+// The keys of a comfort profile's "stereo" object (comfort_profile.h), so a case reads like a profile.
 void parseStereo(const json& object, const Where& where, stereo::StereoParameters& parameters) {
-  requireKeys(object, where,
-              {"method", "maxSeparation", "zeroParallaxDistance", "edgeCrop", "taps", "iterations", "weaponDepthOffset",
-               "weaponDepthScale"},
+  requireKeys(object, where, {"method", "maxSeparation", "zeroParallaxDistance", "edgeCrop", "searchTaps", "iterations"},
               {});
   auto read = [&](const char* key, float& target) {
     if (object.contains(key)) target = float(number(object[key], where / key));
@@ -98,9 +97,8 @@ void parseStereo(const json& object, const Where& where, stereo::StereoParameter
   read("maxSeparation", parameters.maxSeparation);
   read("zeroParallaxDistance", parameters.zeroParallaxDistance);
   read("edgeCrop", parameters.edgeCrop);
-  read("weaponDepthOffset", parameters.weaponDepthOffset);
-  read("weaponDepthScale", parameters.weaponDepthScale);
-  if (object.contains("taps")) parameters.searchTaps = int(std::min<std::size_t>(count(object["taps"], where / "taps"), 1u << 20));
+  if (object.contains("searchTaps"))
+    parameters.searchTaps = int(std::min<std::size_t>(count(object["searchTaps"], where / "searchTaps"), 1u << 20));
   if (object.contains("iterations"))
     parameters.iterations = int(std::min<std::size_t>(count(object["iterations"], where / "iterations"), 1u << 20));
   try {
@@ -116,8 +114,10 @@ bool isCaseName(const std::string& name) {
   }) && name.front() != '.';
 }
 
-RegressCase parseCase(const json& object, const Where& where, const RegressTolerances& suiteTolerances) {
-  requireKeys(object, where, {"name", "scene", "frames", "resolution", "stereo", "minPsnrDb", "tolerances"},
+RegressCase parseCase(const json& object, const Where& where, const RegressTolerances& suiteTolerances,
+                      const fs::path& suiteFolder) {
+  requireKeys(object, where,
+              {"name", "scene", "frames", "resolution", "supersample", "profile", "stereo", "minPsnrDb", "tolerances"},
               {"name", "scene", "resolution"});
   RegressCase entry;
   entry.name = text(object["name"], where / "name");
@@ -143,7 +143,30 @@ RegressCase parseCase(const json& object, const Where& where, const RegressToler
     entry.frames.clear();
     for (std::size_t i = 0; i < frames.size(); ++i) entry.frames.push_back(count(frames[i], (where / "frames").at(i)));
   }
-  if (object.contains("stereo")) parseStereo(object["stereo"], where / "stereo", entry.stereo);
+  if (object.contains("supersample"))
+    entry.supersample = std::uint32_t(std::min<std::size_t>(count(object["supersample"], where / "supersample"), 1u << 20));
+  if (object.contains("profile")) {
+    const json& profile = object["profile"];
+    try {
+      if (profile.is_string())
+        entry.profile = comfort::loadComfortProfile(suiteFolder / profile.get<std::string>());
+      else if (profile.is_object())
+        entry.profile = comfort::comfortProfileFromJson(profile);
+      else
+        (where / "profile").fail("expected a profile file name or an inline profile object");
+    } catch (const std::invalid_argument& error) {
+      if (std::string(error.what()).starts_with(where.source)) throw;  // our own message, already placed
+      (where / "profile").fail(error.what());
+    } catch (const std::runtime_error& error) {
+      (where / "profile").fail(error.what());
+    }
+  }
+  if (object.contains("stereo")) parseStereo(object["stereo"], where / "stereo", entry.profile.stereo);
+  try {
+    comfort::validate(entry.profile);
+  } catch (const std::invalid_argument& error) {
+    where.fail(error.what());
+  }
   if (object.contains("minPsnrDb")) {
     requireKeys(object["minPsnrDb"], where / "minPsnrDb", kRegressRegions, {});
     for (const auto& [region, value] : object["minPsnrDb"].items())
@@ -158,7 +181,8 @@ RegressCase parseCase(const json& object, const Where& where, const RegressToler
     options.height = entry.height;
     options.scene = entry.scene;
     options.frame = frame;
-    options.stereo = entry.stereo;
+    options.supersample = entry.supersample;
+    options.stereo = entry.profile.stereo;
     try {
       validateRenderJobOptions(options);
     } catch (const std::logic_error& error) {  // invalid_argument, and out_of_range for a frame beyond the path
@@ -215,6 +239,8 @@ json baselineDocument(const RegressCase& entry, const RegressRun& run) {
   const stereo::StereoParameters& p = run.report.stereo;
   return {{"case", entry.name},
           {"scene", entry.scene},
+          {"supersample", entry.supersample},
+          {"profile", comfort::toJson(entry.profile)},
           {"frame", run.frame},
           {"width", entry.width},
           {"height", entry.height},
@@ -223,10 +249,8 @@ json baselineDocument(const RegressCase& entry, const RegressRun& run) {
             {"maxSeparation", tidy(p.maxSeparation)},
             {"zeroParallaxDistance", tidy(p.zeroParallaxDistance)},
             {"edgeCrop", tidy(p.edgeCrop)},
-            {"taps", p.searchTaps},
-            {"iterations", p.iterations},
-            {"weaponDepthOffset", tidy(p.weaponDepthOffset)},
-            {"weaponDepthScale", tidy(p.weaponDepthScale)}}},
+            {"searchTaps", p.searchTaps},
+            {"iterations", p.iterations}}},
           {"error", {{"left", errorJson(run.report.left)}, {"right", errorJson(run.report.right)}}}};
 }
 
@@ -395,7 +419,7 @@ RegressSuite parseRegressSuite(const json& document, const fs::path& suiteFolder
   if (!cases.is_array() || cases.empty()) (top / "cases").fail("expected a non-empty array of cases");
   std::set<std::string> names;
   for (std::size_t i = 0; i < cases.size(); ++i) {
-    suite.cases.push_back(parseCase(cases[i], (top / "cases").at(i), tolerances));
+    suite.cases.push_back(parseCase(cases[i], (top / "cases").at(i), tolerances, suiteFolder));
     if (!names.insert(suite.cases.back().name).second)
       ((top / "cases").at(i) / "name").fail("duplicate case name '" + suite.cases.back().name + "'");
   }
@@ -430,7 +454,11 @@ RegressResult runRegressSuite(vk::Context& context, const RegressSuite& suite, c
       render.height = entry.height;
       render.scene = entry.scene;
       render.frame = frame;
-      render.stereo = entry.stereo;
+      render.supersample = entry.supersample;
+      render.stereo = entry.profile.stereo;
+      render.display = entry.profile.display;
+      render.crosshair = entry.profile.crosshair;
+      render.allowNegativeParallax = entry.profile.allowNegativeParallax;
       render.outputFolder = runFolder;
       render.outputs = {"left.png", "right.png", "left_reference.png", "right_reference.png", "error_left.png",
                         "error_right.png", "report.json"};

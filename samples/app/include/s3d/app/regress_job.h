@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "s3d/app/render_job.h"
+#include "s3d/comfort/comfort_profile.h"
 #include "s3d/vk/context.h"
 
 namespace s3d::app {
@@ -33,7 +34,10 @@ struct RegressCase {
   std::string scene;
   std::vector<std::size_t> frames{0};
   std::uint32_t width = 0, height = 0;
-  stereo::StereoParameters stereo;
+  std::uint32_t supersample = 1;
+  // "profile": a comfort profile file (relative to the suite) or an inline profile object; then "stereo" keys
+  // override its stereo parameters. Without a profile: the ComfortProfile defaults.
+  comfort::ComfortProfile profile;
   std::map<std::string, double> minPsnrDb;  // absolute floors against the reference, by region (both eyes)
   RegressTolerances tolerances;
 };
