@@ -101,6 +101,12 @@ class ConvertCommand final : public Command {
     if (!folderMode && options_.color.empty()) return fail("convert needs --color (or --input-folder)");
     if (!folderMode && options_.depth.empty() && disparityFile_.empty())
       return fail("convert needs --depth or --disparity (or --input-folder)");
+    if (folderMode && (!referenceLeft_.empty() || !referenceRight_.empty()))
+      return fail("--reference-left/--reference-right measure one frame: not available with --input-folder");
+    if (!disparityPattern_.empty())
+      for (const char* derived : {"--max-separation", "--zero-parallax-distance"})
+        if (subcommand->count(derived) > 0)
+          return fail(std::string(derived) + " is derived from the disparity: not available with --disparity-pattern");
     if (!disparityFile_.empty()) options_.depth = disparityFile_;
     if (!disparityFile_.empty() || !disparityPattern_.empty())
       options_.disparity = disparityOutput_ == "left" ? app::DisparityOutput::Left : app::DisparityOutput::Right;
