@@ -329,5 +329,25 @@ TEST_F(RenderJobMethods, TheIterativeMethodRunsEndToEndAndReportsFilledPixels) {
   fs::remove_all(folder, ignored);
 }
 
+TEST_F(RenderJob, NegativeParallaxAppearsOnlyWhenAllowed) {
+  // A zero-parallax plane 3 m out puts the weapon (pushed to 1.27-1.6 m) and the near courtyard in front of
+  // the screen; disallowed, the weapon is pushed onto the plane and the plane held at the nearest surface.
+  RenderJobOptions options;
+  options.width = 64;
+  options.height = 36;
+  options.outputs = {};
+  options.stereo.zeroParallaxDistance = 3.0f;
+  options.allowNegativeParallax = true;
+  const RenderReport allowed = runRenderJob(context(), options);
+  EXPECT_GT(allowed.comfort.parallax.shareNegative, 0.0);
+  EXPECT_LT(allowed.comfort.parallax.minParallaxPx, 0.0);
+  options.allowNegativeParallax = false;
+  const RenderReport disallowed = runRenderJob(context(), options);
+  EXPECT_EQ(disallowed.comfort.parallax.shareNegative, 0.0);
+  EXPECT_GE(disallowed.comfort.parallax.minParallaxPx, 0.0);
+  EXPECT_EQ(disallowed.comfort.windowViolationPixels, 0u);
+  EXPECT_GE(disallowed.crosshair.depth, disallowed.stereo.zeroParallaxDistance);
+}
+
 }  // namespace
 }  // namespace s3d::app

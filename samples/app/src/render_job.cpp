@@ -11,6 +11,7 @@
 #include <tuple>
 #include <utility>
 
+#include "s3d/app/comfort_json.h"
 #include "s3d/comfort/crosshair.h"
 #include "s3d/comfort/world_queries.h"
 #include "s3d/hud/crosshair.h"
@@ -110,15 +111,20 @@ RenderReport runRenderJob(vk::Context& context, const RenderJobOptions& options)
   report.scene = options.scene;
   report.width = width;
   report.height = height;
-  report.stereo = options.stereo;
-  if (report.stereo.edgeCrop < 0.0f) report.stereo.edgeCrop = report.stereo.maxSeparation;
   report.cropColumns = std::uint32_t(job.constants.cropBegin);
+  // Without negative parallax allowed, the weapon push reaches at least the screen plane
+  // (comfort::pushWeaponBehindScreen) and, once the frame's depth is known, the zero-parallax distance is
+  // held at its nearest surface: every pixel gets zero or positive parallax.
+  stereo::StereoParameters parameters = options.stereo;
+  const std::optional<glm::vec2> weaponDepths = renderer::firstPersonDepthRange(job.scene);
+  if (!options.allowNegativeParallax && weaponDepths)
+    parameters = comfort::pushWeaponBehindScreen(parameters, weaponDepths->x, weaponDepths->y);
 
   // 2. The center view.
   renderer::DeferredRenderer deferred(context, width, height);
   deferred.setScene(job.scene);
   const renderer::ViewMatrices center = renderer::centerViewMatrices(
-      job.scene, float(width) / float(height), {options.stereo.weaponDepthOffset, options.stereo.weaponDepthScale});
+      job.scene, float(width) / float(height), {parameters.weaponDepthOffset, parameters.weaponDepthScale});
   // The first frame on fresh pipelines includes shader compilation (lavapipe compiles at first use):
   // render it once untimed so the center frame, the stereo pass and the reference eye are all warm.
   (void)deferred.render(center);
@@ -128,48 +134,62 @@ RenderReport runRenderJob(vk::Context& context, const RenderJobOptions& options)
   const ImageRGBA8 centerColor = deferred.readDisplayColor();
   const bool wantsExr = selected("center.exr");
   const DepthImage centerDepth = deferred.readLinearDepth();  // for center.exr and the halo region
+  const std::vector<std::uint8_t> firstPersonMask = deferred.readFirstPersonMask();  // weapon conflicts
+  if (const std::optional<float> nearest = comfort::nearestDepth(centerDepth);
+      !options.allowNegativeParallax && nearest && *nearest < parameters.zeroParallaxDistance) {
+    parameters.zeroParallaxDistance = *nearest;
+    report.zeroParallaxLimited = true;
+  }
+  report.stereo = parameters;
+  if (report.stereo.edgeCrop < 0.0f) report.stereo.edgeCrop = report.stereo.maxSeparation;
   const ImageRGBA32F centerHdr = wantsExr ? deferred.readHdrColor() : ImageRGBA32F();
 
   // 3. Both eyes synthesized on the GPU from the renderer's own images.
   stereo::SynthesisResult synthesis =
-      stereo::synthesizeTimed(context, deferred.displayColor(), deferred.linearDepth(), options.stereo);
+      stereo::synthesizeTimed(context, deferred.displayColor(), deferred.linearDepth(), parameters);
   report.stereoPassGpuMs = synthesis.gpuMs;
   report.filledPixels = {synthesis.filledLeft, synthesis.filledRight};
   const stereo::StereoPair synthesized = std::move(synthesis.eyes);
 
   // 4. The two-pass reference: each eye rendered with its off-axis camera.
-  const renderer::FrameTimings leftTimings = deferred.render(referenceEyeView(job.scene, center, stereo::Eye::Left, options.stereo));
+  const renderer::FrameTimings leftTimings = deferred.render(referenceEyeView(job.scene, center, stereo::Eye::Left, parameters));
   const ImageRGBA8 leftReference = deferred.readDisplayColor();
   const DepthImage leftReferenceDepth = deferred.readLinearDepth();
-  (void)deferred.render(referenceEyeView(job.scene, center, stereo::Eye::Right, options.stereo));
+  (void)deferred.render(referenceEyeView(job.scene, center, stereo::Eye::Right, parameters));
   const ImageRGBA8 rightReference = deferred.readDisplayColor();
   const DepthImage rightReferenceDepth = deferred.readLinearDepth();
   report.referenceEyeGpuMs = leftTimings.totalGpuMs;
 
   // 5. Synthesized vs reference, without the border strips that view synthesis cannot know.
   // (region masks and comparison: eye_comparison.h, shared with s3d bench)
-  const std::vector<std::uint8_t> halo = haloMaskFor(centerDepth, options.stereo);
+  const std::vector<std::uint8_t> halo = haloMaskFor(centerDepth, parameters);
   for (auto [eyeError, eye, reference, referenceDepth, side] :
        {std::tuple{&report.left, &synthesized.left, &leftReference, &leftReferenceDepth, stereo::Eye::Left},
         std::tuple{&report.right, &synthesized.right, &rightReference, &rightReferenceDepth, stereo::Eye::Right}}) {
     *eyeError = compareEye(*eye, *reference, report.cropColumns, halo,
-                           disocclusionMaskFor(*referenceDepth, centerDepth, options.stereo, side));
+                           disocclusionMaskFor(*referenceDepth, centerDepth, parameters, side));
   }
 
-  // Comfort report: the parallax the stereo pass gave every pixel, as angles on the chosen display.
+  // Comfort report: the parallax the stereo pass gave every pixel, as angles on the chosen display, and
+  // weapon pixels whose pushed depth lies behind the world surface there (Embree rays).
+  const comfort::WorldQueries world(job.scene);  // once per job: the world does not change between views
   report.display = options.display;
-  report.parallax = comfort::parallaxStatistics(centerDepth, options.stereo, report.display);
+  report.comfort = comfort::frameComfort(centerDepth, parameters, report.display);
+  report.weaponConflictPixels =
+      comfort::countWeaponConflicts(world, job.scene.camera, center, centerDepth, firstPersonMask).conflictPixels;
 
   // 6. HUD: the crosshair, placed by an Embree ray cast along the aim (seed 4.6.2), drawn after stereo
   // synthesis into every view at the parallax of its depth. It is not part of the 3D scene, so synthesized
   // eyes and references get the same overlay, after the comparison so it cannot flatter the error.
-  const comfort::WorldQueries world(job.scene);  // once per job: the world does not change between views
   const comfort::CrosshairPlacement placement =
       comfort::placeCrosshair(world, job.scene.camera, options.crosshair.distance.value_or(job.scene.crosshairDistance),
                               options.crosshair.margin);
-  const float leftOffset = hud::crosshairEyeOffsetPx(options.stereo, placement.depth, width, stereo::Eye::Left);
-  const float rightOffset = hud::crosshairEyeOffsetPx(options.stereo, placement.depth, width, stereo::Eye::Right);
-  report.crosshair = {placement.depth, placement.hitWorld, rightOffset};
+  // Not in front of the screen plane unless allowed (the plane is never beyond the aimed-at surface).
+  const float crosshairDepth =
+      options.allowNegativeParallax ? placement.depth : std::max(placement.depth, parameters.zeroParallaxDistance);
+  const float leftOffset = hud::crosshairEyeOffsetPx(parameters, crosshairDepth, width, stereo::Eye::Left);
+  const float rightOffset = hud::crosshairEyeOffsetPx(parameters, crosshairDepth, width, stereo::Eye::Right);
+  report.crosshair = {crosshairDepth, placement.hitWorld, rightOffset};
   const hud::CrosshairStyle crosshairStyle = hud::crosshairStyleForHeight(height);
   // The image center in pixel indices ((W - 1) / 2, rounded half up by drawCrosshair), plus the eye's offset.
   auto withCrosshair = [&](ImageRGBA8 image, float offsetPx) {
@@ -251,19 +271,15 @@ nlohmann::json toJson(const RenderReport& report) {
           {"centerPasses", passes},
           {"ratios", {{"stereoPassToReferenceEye", ratio}}},
           {"error", {{"left", errorJson(report.left)}, {"right", errorJson(report.right)}}},
-          {"comfort",
-           {{"display",
-             {{"name", report.display.name},
-              {"screenWidthMeters", tidy(report.display.screenWidthMeters)},
-              {"viewingDistanceMeters", tidy(report.display.viewingDistanceMeters)},
-              {"interocularMeters", tidy(report.display.interocularMeters)}}},
-            {"parallaxPx", {{"min", finiteOrNull(report.parallax.minParallaxPx)}, {"max", finiteOrNull(report.parallax.maxParallaxPx)}}},
-            {"parallaxPercent",
-             {{"min", finiteOrNull(report.parallax.minParallaxPercent)}, {"max", finiteOrNull(report.parallax.maxParallaxPercent)}}},
-            {"disparityArcmin",
-             {{"min", finiteOrNull(report.parallax.minDisparityArcmin)}, {"max", finiteOrNull(report.parallax.maxDisparityArcmin)}}},
-            {"shareBeyondOneDegree", finiteOrNull(report.parallax.shareBeyondOneDegree)},
-            {"shareInFrontOfScreen", finiteOrNull(report.parallax.shareNegative)}}},
+          {"comfort", [&] {
+             nlohmann::json comfort = comfortJson(report.comfort);
+             comfort["display"] = displayJson(report.display);
+             comfort["zeroParallaxDistance"] = finiteOrNull(tidy(report.stereo.zeroParallaxDistance));
+             comfort["zeroParallaxLimited"] = report.zeroParallaxLimited;
+             comfort["crosshairDepth"] = finiteOrNull(tidy(report.crosshair.depth));
+             comfort["weaponConflictPixels"] = report.weaponConflictPixels;
+             return comfort;
+           }()},
           {"crosshair",
            {{"depth", finiteOrNull(tidy(report.crosshair.depth))},
             {"hitWorld", report.crosshair.hitWorld},

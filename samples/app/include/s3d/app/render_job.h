@@ -14,6 +14,7 @@
 
 #include "s3d/app/eye_comparison.h"
 #include "s3d/comfort/comfort_profile.h"
+#include "s3d/comfort/comfort_report.h"
 #include "s3d/comfort/display_profile.h"
 #include "s3d/renderer/deferred_renderer.h"
 #include "s3d/stereo/metrics.h"
@@ -70,7 +71,7 @@ struct RenderReport {
   std::string scene;
   std::uint32_t width = 0;
   std::uint32_t height = 0;
-  stereo::StereoParameters stereo;  // edgeCrop resolved (never < 0)
+  stereo::StereoParameters stereo;  // as used: edgeCrop resolved (never < 0), the no-negative-parallax rules applied
   std::uint32_t cropColumns = 0;    // columns blacked out on each side (and excluded from the error)
   std::optional<double> centerFrameGpuMs;   // whole deferred frame of the center view
   std::optional<double> stereoPassGpuMs;    // the stereo compute dispatch producing both eyes
@@ -80,7 +81,9 @@ struct RenderReport {
   EyeError right{};
   CrosshairReport crosshair;
   comfort::DisplayProfile display;
-  comfort::ParallaxStatistics parallax;  // of the stereo pass's depth on that display
+  comfort::FrameComfort comfort;  // of the stereo pass's depth on that display
+  bool zeroParallaxLimited = false;    // lowered to the frame's nearest depth (negative parallax disallowed)
+  std::uint64_t weaponConflictPixels = 0;  // weapon pixels whose pushed depth lies behind the world surface there
   std::array<std::uint64_t, 2> filledPixels{};  // left, right: disoccluded pixels filled (iterative method)
   std::vector<std::string> filesWritten;  // file names relative to the output folder, in write order
 };
@@ -107,6 +110,9 @@ RenderReport runRenderJob(vk::Context& context, const RenderJobOptions& options)
 //   "centerPasses": [{"name", "gpuMs"}],
 //   "ratios": {"stereoPassToReferenceEye"},                        (null when a time is missing)
 //   "error": {"left": {"psnrDb", "meanAbsoluteError", "shareAbove8", "pixelCount"}, "right": {...}},
+//   "comfort": {comfortJson (comfort_json.h): parallax range in px / % / arcmin, shares beyond 1 degree, in front
+//               of the screen and outside the Shibata zone, windowViolations; "display" (with its comfort zone),
+//               "zeroParallaxDistance", "zeroParallaxLimited", "crosshairDepth", "weaponConflictPixels"},
 //   "crosshair": {"depth", "hitWorld", "parallaxPx"},              (the HUD crosshair, see CrosshairReport)
 //   "files": [...] }
 // Every number is finite (a non-finite value would be written as null).
