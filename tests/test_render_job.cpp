@@ -349,5 +349,19 @@ TEST_F(RenderJob, NegativeParallaxAppearsOnlyWhenAllowed) {
   EXPECT_GE(disallowed.crosshair.depth, disallowed.stereo.zeroParallaxDistance);
 }
 
+TEST_F(RenderJob, TheHudFadesBehindTheWeaponAndTheOutputsAreOpaque) {
+  // Courtyard: the weapon covers the lower right, where the ammo panel (2.5 m, behind the weapon) sits.
+  const DefaultRun& run = defaultRun(context());
+  ASSERT_EQ(run.report.hud.size(), 3u);  // health, ammo, crosshair
+  const HudElementReport& ammo = run.report.hud[1];
+  EXPECT_EQ(ammo.name, "ammo");
+  EXPECT_TRUE(ammo.behindWeapon);
+  EXPECT_GT(ammo.fadedPixels[0], 0u);
+  EXPECT_GT(ammo.fadedPixels[1], 0u);
+  EXPECT_EQ(run.report.hud[0].fadedPixels[0], 0u);  // health, lower left: nothing of the weapon there
+  const ImageRGBA8 left = io::readPng(run.folder / "left.png");
+  for (std::size_t i = 0; i < left.pixelCount(); ++i) ASSERT_EQ(left.pixels[4 * i + 3], 255) << "pixel " << i;
+}
+
 }  // namespace
 }  // namespace s3d::app

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
+#include <functional>
+#include <limits>
 #include <stdexcept>
 #include <string>
 #include <system_error>
@@ -15,6 +17,7 @@
 #include "s3d/comfort/crosshair.h"
 #include "s3d/comfort/world_queries.h"
 #include "s3d/hud/crosshair.h"
+#include "s3d/hud/overlay.h"
 #include "s3d/io/image_io.h"
 #include "s3d/renderer/scene.h"
 #include "s3d/stereo/stereo_pass.h"
@@ -178,27 +181,65 @@ RenderReport runRenderJob(vk::Context& context, const RenderJobOptions& options)
   report.weaponConflictPixels =
       comfort::countWeaponConflicts(world, job.scene.camera, center, centerDepth, firstPersonMask).conflictPixels;
 
-  // 6. HUD: the crosshair, placed by an Embree ray cast along the aim (seed 4.6.2), drawn after stereo
-  // synthesis into every view at the parallax of its depth. It is not part of the 3D scene, so synthesized
-  // eyes and references get the same overlay, after the comparison so it cannot flatter the error.
+  // 6. HUD (s3d/hud/overlay.h): the crosshair, placed by an Embree ray cast along the aim (seed 4.6.2), and
+  // the static panels, each drawn after stereo synthesis into every view at the parallax of its depth and
+  // faded out where the weapon mask (the eyes' alpha) covers an element that lies behind the weapon. Not part
+  // of the 3D scene: synthesized eyes and references get the same overlay, after the comparison so it
+  // cannot flatter the error.
   const comfort::CrosshairPlacement placement =
       comfort::placeCrosshair(world, job.scene.camera, options.crosshair.distance.value_or(job.scene.crosshairDistance),
                               options.crosshair.margin);
   // Not in front of the screen plane unless allowed (the plane is never beyond the aimed-at surface).
-  const float crosshairDepth =
-      options.allowNegativeParallax ? placement.depth : std::max(placement.depth, parameters.zeroParallaxDistance);
-  const float leftOffset = hud::crosshairEyeOffsetPx(parameters, crosshairDepth, width, stereo::Eye::Left);
+  auto notInFront = [&](float depth) {
+    return options.allowNegativeParallax ? depth : std::max(depth, parameters.zeroParallaxDistance);
+  };
+  const float crosshairDepth = notInFront(placement.depth);
   const float rightOffset = hud::crosshairEyeOffsetPx(parameters, crosshairDepth, width, stereo::Eye::Right);
   report.crosshair = {crosshairDepth, placement.hitWorld, rightOffset};
   const hud::CrosshairStyle crosshairStyle = hud::crosshairStyleForHeight(height);
-  // The image center in pixel indices ((W - 1) / 2, rounded half up by drawCrosshair), plus the eye's offset.
-  auto withCrosshair = [&](ImageRGBA8 image, float offsetPx) {
-    hud::drawCrosshair(image, 0.5f * float(width - 1) + offsetPx, 0.5f * float(height - 1), crosshairStyle);
-    return image;
+
+  struct HudElement {
+    std::string name;
+    float depth;
+    std::function<ImageRGBA8(float offsetPx)> layer;  // the element alone, shifted by offsetPx
   };
-  const ImageRGBA8 centerHud = withCrosshair(centerColor, 0.0f);
-  const stereo::StereoPair eyesHud{withCrosshair(synthesized.left, leftOffset), withCrosshair(synthesized.right, rightOffset)};
-  const stereo::StereoPair referenceHud{withCrosshair(leftReference, leftOffset), withCrosshair(rightReference, rightOffset)};
+  std::vector<HudElement> elements;
+  for (const hud::Panel& panel : hud::defaultPanels(width, height))
+    elements.push_back({panel.name, notInFront(panel.depth),
+                        [&, panel](float offsetPx) { return hud::panelLayer(width, height, panel, offsetPx); }});
+  // The crosshair last, on top. Its center in pixel indices ((W - 1) / 2, rounded half up) plus the offset.
+  elements.push_back({"crosshair", crosshairDepth, [&](float offsetPx) {
+                        ImageRGBA8 layer(width, height);
+                        hud::drawCrosshair(layer, 0.5f * float(width - 1) + offsetPx, 0.5f * float(height - 1),
+                                           crosshairStyle);
+                        return layer;
+                      }});
+  // The weapon's nearest pushed point: an element deeper than it lies behind the weapon where they overlap.
+  const float weaponNearestPushed = weaponDepths ? parameters.weaponDepthOffset + parameters.weaponDepthScale * weaponDepths->x
+                                                 : std::numeric_limits<float>::infinity();
+  ImageRGBA8 centerHud = centerColor;
+  stereo::StereoPair eyesHud = synthesized;
+  stereo::StereoPair referenceHud{leftReference, rightReference};
+  for (const HudElement& element : elements) {
+    HudElementReport entry{element.name, element.depth, element.depth > weaponNearestPushed};
+    const ImageRGBA8 centerLayer = element.layer(0.0f);
+    entry.conflictPixels = hud::countDepthConflicts(centerLayer, element.depth, centerDepth, firstPersonMask, entry.behindWeapon);
+    (void)hud::blendLayer(centerHud, centerLayer, entry.behindWeapon);
+    for (const stereo::Eye eye : {stereo::Eye::Left, stereo::Eye::Right}) {
+      const std::size_t side = eye == stereo::Eye::Left ? 0 : 1;
+      const ImageRGBA8 layer = element.layer(hud::crosshairEyeOffsetPx(parameters, element.depth, width, eye));
+      const hud::BlendCounts counts =
+          hud::blendLayer(side == 0 ? eyesHud.left : eyesHud.right, layer, entry.behindWeapon);
+      entry.drawnPixels[side] = counts.drawnPixels;
+      entry.fadedPixels[side] = counts.fadedPixels;
+      (void)hud::blendLayer(side == 0 ? referenceHud.left : referenceHud.right, layer, entry.behindWeapon);
+    }
+    report.hudConflictPixels += entry.conflictPixels;
+    report.hud.push_back(std::move(entry));
+  }
+  // The weapon mask has served the HUD: every written image is opaque.
+  for (ImageRGBA8* image : {&centerHud, &eyesHud.left, &eyesHud.right, &referenceHud.left, &referenceHud.right})
+    hud::makeOpaque(*image);
 
   // 7. Outputs, each written atomically by s3d::io; report.json last so it lists everything before it.
   const fs::path& folder = options.outputFolder;
@@ -278,12 +319,24 @@ nlohmann::json toJson(const RenderReport& report) {
              comfort["zeroParallaxLimited"] = report.zeroParallaxLimited;
              comfort["crosshairDepth"] = finiteOrNull(tidy(report.crosshair.depth));
              comfort["weaponConflictPixels"] = report.weaponConflictPixels;
+             comfort["hudConflictPixels"] = report.hudConflictPixels;
              return comfort;
            }()},
           {"crosshair",
            {{"depth", finiteOrNull(tidy(report.crosshair.depth))},
             {"hitWorld", report.crosshair.hitWorld},
             {"parallaxPx", finiteOrNull(tidy(report.crosshair.parallaxPx))}}},
+          {"hud", [&] {
+             nlohmann::json elements = nlohmann::json::array();
+             for (const HudElementReport& e : report.hud)
+               elements.push_back({{"name", e.name},
+                                   {"depth", finiteOrNull(tidy(e.depth))},
+                                   {"behindWeapon", e.behindWeapon},
+                                   {"drawnPixels", {{"left", e.drawnPixels[0]}, {"right", e.drawnPixels[1]}}},
+                                   {"fadedPixels", {{"left", e.fadedPixels[0]}, {"right", e.fadedPixels[1]}}},
+                                   {"conflictPixels", e.conflictPixels}});
+             return elements;
+           }()},
           {"files", report.filesWritten}};
 }
 

@@ -66,6 +66,16 @@ struct CrosshairReport {
   float parallaxPx = 0.0f;  // per-eye displacement in pixels (left eye: -parallaxPx, right eye: +parallaxPx)
 };
 
+// One HUD element (s3d/hud/overlay.h) as drawn into the synthesized eyes.
+struct HudElementReport {
+  std::string name;            // "health", "ammo", "crosshair"
+  float depth = 0.0f;          // linear view depth it is shown at
+  bool behindWeapon = false;   // deeper than the weapon's nearest pushed point: fades where the weapon covers it
+  std::array<std::uint64_t, 2> drawnPixels{};  // left, right
+  std::array<std::uint64_t, 2> fadedPixels{};  // left, right: pixels the weapon mask faded
+  std::uint64_t conflictPixels = 0;  // visible pixels deeper than the scene surface they cover (center view)
+};
+
 struct RenderReport {
   std::string deviceName;
   std::string scene;
@@ -84,6 +94,8 @@ struct RenderReport {
   comfort::FrameComfort comfort;  // of the stereo pass's depth on that display
   bool zeroParallaxLimited = false;    // lowered to the frame's nearest depth (negative parallax disallowed)
   std::uint64_t weaponConflictPixels = 0;  // weapon pixels whose pushed depth lies behind the world surface there
+  std::vector<HudElementReport> hud;       // panels, then the crosshair
+  std::uint64_t hudConflictPixels = 0;     // sum over the HUD elements
   std::array<std::uint64_t, 2> filledPixels{};  // left, right: disoccluded pixels filled (iterative method)
   std::vector<std::string> filesWritten;  // file names relative to the output folder, in write order
 };
@@ -112,8 +124,9 @@ RenderReport runRenderJob(vk::Context& context, const RenderJobOptions& options)
 //   "error": {"left": {"psnrDb", "meanAbsoluteError", "shareAbove8", "pixelCount"}, "right": {...}},
 //   "comfort": {comfortJson (comfort_json.h): parallax range in px / % / arcmin, shares beyond 1 degree, in front
 //               of the screen and outside the Shibata zone, windowViolations; "display" (with its comfort zone),
-//               "zeroParallaxDistance", "zeroParallaxLimited", "crosshairDepth", "weaponConflictPixels"},
+//               "zeroParallaxDistance", "zeroParallaxLimited", "crosshairDepth", "weaponConflictPixels", "hudConflictPixels"},
 //   "crosshair": {"depth", "hitWorld", "parallaxPx"},              (the HUD crosshair, see CrosshairReport)
+//   "hud": [{"name", "depth", "behindWeapon", "drawnPixels": {"left", "right"}, "fadedPixels": {...}, "conflictPixels"}],
 //   "files": [...] }
 // Every number is finite (a non-finite value would be written as null).
 nlohmann::json toJson(const RenderReport& report);
