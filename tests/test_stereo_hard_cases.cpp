@@ -176,6 +176,7 @@ TEST_F(StereoNumericsRender, ARenderJobReportsTheClampedZeroParallaxDistanceInIt
   options.height = 16;
   options.outputs = {};
   options.stereo.zeroParallaxDistance = 5000.0f;  // the courtyard's far plane is 1000
+  options.allowNegativeParallax = true;  // else the comfort rule lowers it further, to the nearest surface
   const app::RenderReport report = app::runRenderJob(context(), options);
   EXPECT_EQ(report.stereo.zeroParallaxDistance, 500.0f);
   ASSERT_EQ(report.warnings.size(), 1u);

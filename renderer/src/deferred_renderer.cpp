@@ -286,7 +286,8 @@ struct DeferredRenderer::Impl {
     const VkDescriptorSetLayoutBinding skyBindings[] = {binding(0, ubo, fragment)};
     skyLayout = vk::createPushDescriptorLayout(context, skyBindings, 0, 0);
     const VkDescriptorSetLayoutBinding tonemapBindings[] = {binding(0, ubo, compute), binding(1, storage, compute),
-                                                            binding(2, storage, compute), binding(3, storage, compute)};
+                                                            binding(2, storage, compute), binding(3, storage, compute),
+                                                            binding(4, sampled, compute)};
     tonemapLayout = vk::createPushDescriptorLayout(context, tonemapBindings, sizeof(gpu::ResolveConstants), compute);
     const VkDescriptorSetLayoutBinding linearDepthBindings[] = {binding(0, ubo, compute), binding(1, sampled, compute),
                                                                 binding(2, storage, compute)};
@@ -679,15 +680,17 @@ struct DeferredRenderer::Impl {
     VkDescriptorImageInfo hdrInfo{VK_NULL_HANDLE, hdr.view, VK_IMAGE_LAYOUT_GENERAL};
     VkDescriptorImageInfo displayInfo{VK_NULL_HANDLE, display.view, VK_IMAGE_LAYOUT_GENERAL};
     VkDescriptorImageInfo resolvedHdrInfo{VK_NULL_HANDLE, resolvedHdr.view, VK_IMAGE_LAYOUT_GENERAL};
+    // The depth goes to tone mapping too: the weapon mask is written into the display image's alpha.
+    VkDescriptorImageInfo depthInfo{nearestSampler, depth.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
     VkWriteDescriptorSet tonemapWrites[] = {vk::uniformBufferWrite(0, &frameInfo), vk::storageImageWrite(1, &hdrInfo),
                                             vk::storageImageWrite(2, &displayInfo),
-                                            vk::storageImageWrite(3, &resolvedHdrInfo)};
+                                            vk::storageImageWrite(3, &resolvedHdrInfo), vk::sampledImageWrite(4, &depthInfo)};
+    tonemapWrites[4].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, tonemapPipeline);
-    context.cmdPushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, tonemapLayout.layout, 0, 4, tonemapWrites);
+    context.cmdPushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, tonemapLayout.layout, 0, 5, tonemapWrites);
     vkCmdPushConstants(cmd, tonemapLayout.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(resolve), &resolve);
     vkCmdDispatch(cmd, groupsX, groupsY, 1);
 
-    VkDescriptorImageInfo depthInfo{nearestSampler, depth.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
     VkDescriptorImageInfo linearInfo{VK_NULL_HANDLE, linearDepth.view, VK_IMAGE_LAYOUT_GENERAL};
     VkWriteDescriptorSet depthWrites[] = {vk::uniformBufferWrite(0, &frameInfo), vk::sampledImageWrite(1, &depthInfo),
                                           vk::storageImageWrite(2, &linearInfo)};

@@ -106,6 +106,9 @@ class RenderCommand final : public Command {
     sequenceOptions.outputFolder = options_.outputFolder;
     sequenceOptions.stereo = options_.stereo;
     sequenceOptions.zeroParallax = zeroParallax_;
+    sequenceOptions.crosshair = options_.crosshair;
+    sequenceOptions.display = options_.display;
+    sequenceOptions.allowNegativeParallax = options_.allowNegativeParallax;
     vk::Context context(contextOptions_);
     const app::SequenceReport report = app::runSequenceJob(context, sequenceOptions);
     std::uint64_t conflicts = 0;
