@@ -1,4 +1,4 @@
-// `s3d render`: renders a built-in scene, synthesizes both eyes with the stereo pass, renders the two-pass
+// `s3d render`: renders a built-in scene or a glTF file, synthesizes both eyes with the stereo pass, renders the two-pass
 // reference eyes and writes images plus report.json (s3d/app/render_job.h); `--sequence` runs the scene's camera
 // path with the comfort controls (s3d/app/sequence_job.h).
 #include <cstdio>
@@ -33,7 +33,10 @@ class RenderCommand final : public Command {
         ->check(resolutionValidator(app::kMaxImageSize))
         ->excludes("--width")
         ->excludes("--height");
-    render.add_option("--scene", options_.scene, "Built-in scene: " + joined(renderer::builtInSceneNames(), ", "))
+    render
+        .add_option("--scene", options_.scene,
+                    "Built-in scene (" + joined(renderer::builtInSceneNames(), ", ") +
+                        ") or a glTF 2.0 file (.gltf/.glb, with an optional NAME.scene.json beside it)")
         ->capture_default_str();
     render.add_option("--output", options_.outputFolder, "Output folder (created if missing)")->capture_default_str();
     render

@@ -16,6 +16,7 @@
 #include "s3d/hud/crosshair.h"
 #include "s3d/io/image_io.h"
 #include "s3d/renderer/scene.h"
+#include "s3d/renderer/scene_file.h"
 #include "s3d/stereo/stereo_pass.h"
 #include "s3d/stereo/synthesis.h"
 #include "s3d/vk/resources.h"
@@ -61,7 +62,7 @@ ValidatedJob validateJob(const RenderJobOptions& options) {
 
   stereo::validate(options.stereo);
   (void)comfort::builtInDisplayProfile(options.display);  // throws naming the profile and the choices
-  ValidatedJob job{renderer::makeBuiltInScene(options.scene),  // throws naming the scene and the choices
+  ValidatedJob job{renderer::loadScene(options.scene),  // throws naming the scene (or file) and the choices
                    stereo::makeStereoConstants(options.stereo, options.width, options.height)};
   // The scene's camera at the requested frame of its path (throws naming the frame and the count).
   job.scene.camera = renderer::cameraForFrame(job.scene, options.frame);

@@ -9,6 +9,7 @@
 #include "s3d/comfort/world_queries.h"
 #include "s3d/io/image_io.h"
 #include "s3d/renderer/deferred_renderer.h"
+#include "s3d/renderer/scene_file.h"
 #include "s3d/stereo/metrics.h"
 #include "s3d/stereo/output_formats.h"
 #include "s3d/stereo/synthesis.h"
@@ -51,7 +52,7 @@ SequenceReport runSequenceJob(vk::Context& context, const SequenceJobOptions& op
   if (!(options.framesPerSecond > 0.0f) || options.framesPerSecond > 1000.0f)
     throw std::invalid_argument("sequence: frames per second must be in (0, 1000]");
   stereo::validate(options.stereo);
-  renderer::Scene scene = renderer::makeBuiltInScene(options.scene);
+  renderer::Scene scene = renderer::loadScene(options.scene);  // built-in name or .gltf/.glb file
   if (scene.cameraPath.empty()) throw std::invalid_argument("scene '" + options.scene + "' has no camera path");
   comfort::ZeroParallaxControlSettings settings = options.zeroParallax;
   settings.restDistance = options.stereo.zeroParallaxDistance;

@@ -42,7 +42,7 @@ inline constexpr std::uint32_t kMaxImageSize = 16384;
 struct RenderJobOptions {
   std::uint32_t width = 1280;
   std::uint32_t height = 720;
-  std::string scene = "courtyard";  // one of renderer::builtInSceneNames()
+  std::string scene = "courtyard";  // one of renderer::builtInSceneNames(), or a .gltf/.glb file
   std::size_t frame = 0;            // frame of the scene's camera path
   std::filesystem::path outputFolder = "out";
   // Which of kAllOutputs to write. The selection is honoured exactly: report.json is written only when
