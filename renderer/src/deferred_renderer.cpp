@@ -154,6 +154,17 @@ glm::mat4 vulkanPerspective(float verticalFovRadians, float aspect, float nearPl
   return projection;
 }
 
+glm::mat4 reversedDepthProjection(const glm::mat4& projection, float nearPlane, float farPlane) {
+  // A zero-to-one perspective with near and far swapped: z_ndc = n / (n - f) + n f / ((f - n) d), 1 at the near
+  // plane and 0 at the far plane. Only the depth row changes, so off-axis terms (P20, P21) stay; the two terms
+  // are computed in double from n and f (not as w - z from the matrix, which would cancel to ~1e-4 relative).
+  glm::mat4 reversed = projection;
+  const double n = nearPlane, f = farPlane;
+  reversed[2][2] = float(n / (f - n));
+  reversed[3][2] = float(n * f / (f - n));
+  return reversed;
+}
+
 glm::mat4 cameraView(const Camera& camera) {
   glm::vec3 forward(-std::sin(camera.yawRadians) * std::cos(camera.pitchRadians), std::sin(camera.pitchRadians),
                     -std::cos(camera.yawRadians) * std::cos(camera.pitchRadians));
@@ -193,6 +204,7 @@ struct DeferredRenderer::Impl {
   vk::Context& context;
   std::uint32_t width;
   std::uint32_t height;
+  RendererOptions options;
 
   // Render targets.
   vk::Image depth, normalGlossiness, diffuseLight, specularLight, hdr, display, linearDepth, ambientOcclusion;
@@ -215,8 +227,8 @@ struct DeferredRenderer::Impl {
 
   vk::TimestampQueries timestamps;
 
-  Impl(vk::Context& ctx, std::uint32_t w, std::uint32_t h)
-      : context(ctx), width(w), height(h), timestamps(ctx, kMaxPasses + 1) {
+  Impl(vk::Context& ctx, std::uint32_t w, std::uint32_t h, RendererOptions rendererOptions)
+      : context(ctx), width(w), height(h), options(rendererOptions), timestamps(ctx, kMaxPasses + 1) {
     if (w == 0 || h == 0 || w > 16384 || h > 16384)
       throw std::invalid_argument("renderer: resolution " + std::to_string(w) + "x" + std::to_string(h) +
                                   " is outside 1..16384");
@@ -315,7 +327,7 @@ struct DeferredRenderer::Impl {
     gbuffer.fragmentSpirv = spirv_gbuffer_frag;
     gbuffer.colorFormats = {kNormalFormat};
     gbuffer.depthWrite = true;
-    gbuffer.depthCompare = VK_COMPARE_OP_LESS;
+    gbuffer.depthCompare = nearer();
     gbufferPipeline = vk::createGraphicsPipeline(context, geometryLayout.layout, gbuffer);
 
     vk::GraphicsPipelineDesc shading = geometry;
@@ -327,7 +339,7 @@ struct DeferredRenderer::Impl {
     vk::GraphicsPipelineDesc transparent = geometry;
     transparent.fragmentSpirv = spirv_transparent_frag;
     transparent.colorFormats = {kHdrFormat};
-    transparent.depthCompare = VK_COMPARE_OP_LESS;  // behind opaque surfaces is hidden; no depth write
+    transparent.depthCompare = nearer();  // behind opaque surfaces is hidden; no depth write
     transparent.cullMode = VK_CULL_MODE_NONE;
     transparent.blend = vk::GraphicsPipelineDesc::Blend::Alpha;
     transparentPipeline = vk::createGraphicsPipeline(context, geometryLayout.layout, transparent);
@@ -345,12 +357,28 @@ struct DeferredRenderer::Impl {
     sky.colorFormats = {kHdrFormat};
     sky.depthFormat = kDepthFormat;
     sky.depthTest = true;
-    sky.depthCompare = VK_COMPARE_OP_LESS_OR_EQUAL;  // reaches only pixels still at the cleared far plane
+    // Reaches only pixels still at the cleared far plane (the sky's viewport puts it there: drawSky).
+    sky.depthCompare = options.reversedZ ? VK_COMPARE_OP_GREATER_OR_EQUAL : VK_COMPARE_OP_LESS_OR_EQUAL;
     skyPipeline = vk::createGraphicsPipeline(context, skyLayout.layout, sky);
 
     tonemapPipeline = vk::createComputePipeline(context, tonemapLayout.layout, spirv_tonemap_comp);
     linearDepthPipeline = vk::createComputePipeline(context, linearDepthLayout.layout, spirv_linear_depth_comp);
     ssaoPipeline = vk::createComputePipeline(context, ssaoLayout.layout, spirv_ssao_comp);
+  }
+
+  // Reversed-Z: nearer surfaces have greater device depth.
+  VkCompareOp nearer() const { return options.reversedZ ? VK_COMPARE_OP_GREATER : VK_COMPARE_OP_LESS; }
+  float clearedDepth() const { return options.reversedZ ? 0.0f : 1.0f; }  // the far plane: sky
+
+  // A layer's viewport depth range (Listing 4.3): first-person in [0, split], the world in [split, 1]; reversed-Z
+  // mirrors both (the world in [0, 1 - split], first-person in [1 - split, 1]).
+  void setLayerViewport(VkCommandBuffer cmd, Layer layer) const {
+    const bool firstPerson = layer == Layer::FirstPerson;
+    if (options.reversedZ)
+      setViewport(cmd, width, height, firstPerson ? 1.0f - kFirstPersonDeviceDepthMax : 0.0f,
+                  firstPerson ? 1.0f : 1.0f - kFirstPersonDeviceDepthMax);
+    else
+      setViewport(cmd, width, height, firstPerson ? 0.0f : kFirstPersonDeviceDepthMax, firstPerson ? kFirstPersonDeviceDepthMax : 1.0f);
   }
 
   void setScene(const Scene& newScene) {
@@ -444,16 +472,24 @@ struct DeferredRenderer::Impl {
   void writeFrameConstants(const ViewMatrices& view) {
     gpu::FrameConstants frame{};
     gpu::LayerConstants& world = frame.layers[S3D_LAYER_WORLD];
-    world.viewProjection = view.worldProjection * view.worldView;
+    // Reversed-Z swaps near and far in both layers' projections (the caller's matrices stay standard).
+    const glm::mat4 worldProjection =
+        options.reversedZ ? reversedDepthProjection(view.worldProjection, scene.camera.nearPlane, scene.camera.farPlane)
+                          : view.worldProjection;
+    const glm::mat4 firstPersonProjection =
+        options.reversedZ ? reversedDepthProjection(view.firstPersonProjection, scene.firstPerson.nearPlane,
+                                                    scene.firstPerson.farPlane)
+                          : view.firstPersonProjection;
+    world.viewProjection = worldProjection * view.worldView;
     world.worldFromView = glm::inverse(view.worldView);
-    world.projection = projectionTerms(view.worldProjection);
+    world.projection = projectionTerms(worldProjection);
     gpu::LayerConstants& firstPerson = frame.layers[S3D_LAYER_FIRST_PERSON];
-    firstPerson.viewProjection = view.firstPersonProjection * view.firstPersonView;
+    firstPerson.viewProjection = firstPersonProjection * view.firstPersonView;
     firstPerson.worldFromView = view.worldFromCamera * glm::inverse(view.firstPersonView);
-    firstPerson.projection = projectionTerms(view.firstPersonProjection);
-    frame.linearDepth = gpu::makeLinearDepthParams(scene.camera.nearPlane, scene.camera.farPlane,
-                                                   scene.firstPerson.nearPlane, scene.firstPerson.farPlane,
-                                                   kFirstPersonDeviceDepthMax);
+    firstPerson.projection = projectionTerms(firstPersonProjection);
+    frame.linearDepth = (options.reversedZ ? gpu::makeReversedLinearDepthParams : gpu::makeLinearDepthParams)(
+        scene.camera.nearPlane, scene.camera.farPlane, scene.firstPerson.nearPlane, scene.firstPerson.farPlane,
+        kFirstPersonDeviceDepthMax);
     frame.linearDepth.firstPersonDepthOffset = view.firstPersonDepthPush.offset;
     frame.linearDepth.firstPersonDepthScale = view.firstPersonDepthPush.scale;
     frame.directionToSun = glm::vec4(glm::normalize(scene.sun.directionToSun), 0.0f);
@@ -515,11 +551,7 @@ struct DeferredRenderer::Impl {
     for (std::uint32_t objectIndex : objects) {
       const Object& object = scene.objects[objectIndex];
       if (currentLayer != object.layer) {
-        // Listing 4.3's depth ranges: first-person in [0, split], the world in [split, 1].
-        if (object.layer == Layer::FirstPerson)
-          setViewport(cmd, width, height, 0.0f, kFirstPersonDeviceDepthMax);
-        else
-          setViewport(cmd, width, height, kFirstPersonDeviceDepthMax, 1.0f);
+        setLayerViewport(cmd, object.layer);
         currentLayer = object.layer;
       }
       pushGeometryDescriptors(cmd, layout, extra, object.material, textureBinding);  // per object: its textures
@@ -539,7 +571,7 @@ struct DeferredRenderer::Impl {
     depthAttachment.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
     depthAttachment.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
     depthAttachment.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-    depthAttachment.clearValue.depthStencil = {1.0f, 0};
+    depthAttachment.clearValue.depthStencil = {clearedDepth(), 0};
     beginRendering(cmd, width, height, std::span(&color, 1), &depthAttachment);
     setScissor(cmd, {{0, 0}, {width, height}});
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, gbufferPipeline);
@@ -660,7 +692,8 @@ struct DeferredRenderer::Impl {
     beginRendering(cmd, width, height, std::span(&color, 1), &depthAttachment);
     setScissor(cmd, {{0, 0}, {width, height}});
 
-    setViewport(cmd, width, height, 0.0f, 1.0f);
+    // The sky triangle sits at z = 1; the viewport maps it onto the cleared far plane (0 with reversed-Z).
+    setViewport(cmd, width, height, 0.0f, clearedDepth());
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, skyPipeline);
     VkDescriptorBufferInfo frameInfo{frameBuffer.buffer, 0, VK_WHOLE_SIZE};
     VkWriteDescriptorSet skyWrite = vk::uniformBufferWrite(0, &frameInfo);
@@ -776,14 +809,15 @@ struct DeferredRenderer::Impl {
   }
 };
 
-DeferredRenderer::DeferredRenderer(vk::Context& context, std::uint32_t width, std::uint32_t height)
-    : impl_(std::make_unique<Impl>(context, width, height)) {}
+DeferredRenderer::DeferredRenderer(vk::Context& context, std::uint32_t width, std::uint32_t height, RendererOptions options)
+    : impl_(std::make_unique<Impl>(context, width, height, options)) {}
 DeferredRenderer::~DeferredRenderer() = default;
 
 void DeferredRenderer::setScene(const Scene& scene) { impl_->setScene(scene); }
 FrameTimings DeferredRenderer::render(const ViewMatrices& view) { return impl_->render(view); }
 std::uint32_t DeferredRenderer::width() const { return impl_->width; }
 std::uint32_t DeferredRenderer::height() const { return impl_->height; }
+const RendererOptions& DeferredRenderer::options() const { return impl_->options; }
 const vk::Image& DeferredRenderer::displayColor() const { return impl_->display; }
 const vk::Image& DeferredRenderer::linearDepth() const { return impl_->linearDepth; }
 const vk::Image& DeferredRenderer::hdrColor() const { return impl_->hdr; }
@@ -807,7 +841,9 @@ std::vector<std::uint8_t> DeferredRenderer::readFirstPersonMask() {
   std::vector<float> deviceDepth(bytes.size() / sizeof(float));
   std::memcpy(deviceDepth.data(), bytes.data(), bytes.size());
   std::vector<std::uint8_t> mask(deviceDepth.size());
-  for (std::size_t i = 0; i < mask.size(); ++i) mask[i] = deviceDepth[i] <= kFirstPersonDeviceDepthMax ? 1 : 0;
+  const bool reversed = impl_->options.reversedZ;
+  for (std::size_t i = 0; i < mask.size(); ++i)
+    mask[i] = (reversed ? deviceDepth[i] >= 1.0f - kFirstPersonDeviceDepthMax : deviceDepth[i] <= kFirstPersonDeviceDepthMax) ? 1 : 0;
   return mask;
 }
 

@@ -70,6 +70,9 @@ class RenderCommand final : public Command {
         ->capture_default_str();
     render.add_option("--frame", options_.frame, "Frame of the scene's camera path to render (0: its first)")
         ->capture_default_str();
+    render.add_flag("--reversed-z", options_.reversedZ,
+                    "Reversed-Z depth buffer (cleared to 0, test GREATER, near/far swapped): more depth precision far "
+                    "away; the linear depth handed to the stereo pass is the same");
     render.add_flag("--sequence", sequence_,
                     "Render the scene's whole camera path with the comfort controls running (zero-parallax "
                     "control, weapon push, crosshair): anaglyph_NNNN.png per frame and a per-frame report.json");
@@ -100,6 +103,7 @@ class RenderCommand final : public Command {
     sequenceOptions.scene = options_.scene;
     sequenceOptions.outputFolder = options_.outputFolder;
     sequenceOptions.stereo = options_.stereo;
+    sequenceOptions.reversedZ = options_.reversedZ;
     vk::Context context(contextOptions_);
     const app::SequenceReport report = app::runSequenceJob(context, sequenceOptions);
     std::uint64_t conflicts = 0;

@@ -116,7 +116,7 @@ RenderReport runRenderJob(vk::Context& context, const RenderJobOptions& options)
   report.cropColumns = std::uint32_t(job.constants.cropBegin);
 
   // 2. The center view.
-  renderer::DeferredRenderer deferred(context, width, height);
+  renderer::DeferredRenderer deferred(context, width, height, {options.reversedZ});
   deferred.setScene(job.scene);
   const renderer::ViewMatrices center = renderer::centerViewMatrices(
       job.scene, float(width) / float(height), {options.stereo.weaponDepthOffset, options.stereo.weaponDepthScale});

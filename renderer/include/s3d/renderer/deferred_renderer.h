@@ -44,6 +44,16 @@ std::optional<glm::vec2> firstPersonDepthRange(const Scene& scene);
 // Throws std::invalid_argument for a negative/non-finite offset or a non-positive/non-finite scale.
 ViewMatrices centerViewMatrices(const Scene& scene, float aspect, FirstPersonDepthPush push = {});
 
+// Reversed-Z (near/far swapped in the projection): see reversedDepthProjection.
+glm::mat4 reversedDepthProjection(const glm::mat4& projection, float nearPlane, float farPlane);
+
+struct RendererOptions {
+  // Reversed-Z depth buffer: cleared to 0, depth test GREATER, near and far swapped in both layers'
+  // projections (the world in device depth [0, 0.9], first-person in [0.9, 1]). D32 float then keeps its
+  // precision at the far end, where standard Z spends it all near 1. Linear depth is the same either way.
+  bool reversedZ = false;
+};
+
 struct PassTiming {
   std::string name;
   double gpuMs = 0.0;
@@ -56,7 +66,7 @@ struct FrameTimings {
 
 class DeferredRenderer {
  public:
-  DeferredRenderer(vk::Context& context, std::uint32_t width, std::uint32_t height);
+  DeferredRenderer(vk::Context& context, std::uint32_t width, std::uint32_t height, RendererOptions options = {});
   ~DeferredRenderer();
   DeferredRenderer(const DeferredRenderer&) = delete;
   DeferredRenderer& operator=(const DeferredRenderer&) = delete;
@@ -68,6 +78,7 @@ class DeferredRenderer {
 
   std::uint32_t width() const;
   std::uint32_t height() const;
+  const RendererOptions& options() const;
 
   // Outputs of the last render(), left in VK_IMAGE_LAYOUT_GENERAL (vk::kComputeWrite state):
   const vk::Image& displayColor() const;  // RGBA8, tone-mapped, sRGB-encoded
@@ -80,7 +91,8 @@ class DeferredRenderer {
   // 1 where the last frame's visible surface belongs to the first-person layer (Listing 4.3's depth range).
   std::vector<std::uint8_t> readFirstPersonMask();
 
-  // Device depth values that separate the layers (Listing 4.3): first-person depth is in [0, split].
+  // Device depth values that separate the layers (Listing 4.3): first-person depth is in [0, split]
+  // ([1 - split, 1] with reversed-Z).
   static constexpr float kFirstPersonDeviceDepthMax = 0.1f;
 
  private:

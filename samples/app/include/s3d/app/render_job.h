@@ -52,6 +52,7 @@ struct RenderJobOptions {
   stereo::PackingMode topBottom = stereo::PackingMode::Half;
   stereo::StereoParameters stereo;
   std::string display = "tv55";  // comfort report: one of comfort::builtInDisplayProfileNames()
+  bool reversedZ = false;        // renderer::RendererOptions::reversedZ for every view
 };
 
 // EyeError (per-region error of one eye) lives in eye_comparison.h, shared with `s3d bench`.

@@ -24,6 +24,7 @@ struct SequenceJobOptions {
   float framesPerSecond = 12.0f;  // the built-in paths walk at about 2 m/s at this rate
   stereo::StereoParameters stereo;  // zeroParallaxDistance is the control's rest value
   comfort::ZeroParallaxControlSettings zeroParallax;  // its restDistance is taken from stereo
+  bool reversedZ = false;  // renderer::RendererOptions::reversedZ
 };
 
 struct SequenceFrame {
