@@ -4,11 +4,13 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
 #include <string>
 
+#include "s3d/io/image_io.h"
 #include "s3d/renderer/deferred_renderer.h"
 #include "s3d/renderer/scene_file.h"
 #include "vulkan_test.h"
@@ -107,6 +109,18 @@ TEST(GltfScene, LoadsTheQuadWithItsTexturesCameraAndSun) {
   EXPECT_FALSE(scene.ambientOcclusion);
 }
 
+TEST(GltfScene, TheGlbHoldsTheSameScene) {
+  // textured_quad.glb: the same JSON with the buffer and both PNGs in its binary chunk; the .scene.json beside
+  // it serves both (NAME.scene.json).
+  const Scene text = loadGltfScene(kTexturedQuad), binary = loadGltfScene(kDataDir / "textured_quad.glb");
+  ASSERT_EQ(binary.objects.size(), text.objects.size());
+  ASSERT_EQ(binary.textures.size(), text.textures.size());
+  for (std::size_t t = 0; t < text.textures.size(); ++t) EXPECT_EQ(binary.textures[t].rgba, text.textures[t].rgba);
+  EXPECT_EQ(binary.meshes.at(0).indices, text.meshes.at(0).indices);
+  EXPECT_EQ(binary.camera.position, text.camera.position);
+  EXPECT_EQ(binary.ambientColor, text.ambientColor);
+}
+
 TEST(GltfScene, MetallicRoughnessMapsToAlbedoF0AndGlossiness) {
   // Roughness 1 is the widest lobe (exponent 2, glossiness 0); smoother surfaces are glossier.
   EXPECT_NEAR(glossinessFromRoughness(1.0f), 0.0f, 1e-6f);
@@ -165,7 +179,45 @@ TEST(GltfScene, AnUnknownSceneDescriptionKeyIsNamed) {
   EXPECT_NE(message.find("exposrue"), std::string::npos) << message;
 }
 
-class GltfRenderTest : public test::VulkanTest {};
+class GltfRenderTest : public test::VulkanTest {
+ protected:
+  static constexpr std::uint32_t kSize = 64;
+
+  ImageRGBA8 render(const fs::path& file) {
+    const Scene scene = loadGltfScene(file);
+    DeferredRenderer renderer(context(), kSize, kSize);
+    renderer.setScene(scene);
+    renderer.render(centerViewMatrices(scene, 1.0f));
+    return renderer.readDisplayColor();
+  }
+};
+
+TEST_F(GltfRenderTest, TheNormalMapTiltsTheLightingTheWayGltfMeansIt) {
+  // The sun comes from 30 degrees above the view axis (dimmed to 0.5 so tone mapping does not flatten the
+  // differences). glTF normal maps point green up the image (+y on this quad): a map tilted 30 degrees towards
+  // green faces the sun (N.L 1 instead of 0.87), one tilted 64 degrees away turns from it (N.L < 0: ambient
+  // only). Red channel of the red quadrant; margins of 4 and 40 levels are a third of the differences these
+  // N.L values give after tone mapping (12 and 138 levels on lavapipe). A flipped bitangent swaps the two.
+  ScratchFolder scratch;
+  const fs::path file = scratch.copyOfTexturedQuad();
+  writeText(sceneDescriptionPath(file), R"({"sun": {"color": [0.5, 0.5, 0.5]}, "ambientOcclusion": false})");
+  auto redWithNormal = [&](glm::vec3 tangentSpaceNormal) {
+    ImageRGBA8 normalMap(8, 8);
+    for (std::uint32_t i = 0; i < 64; ++i) {
+      std::uint8_t* p = normalMap.at(i % 8, i / 8);
+      for (int c = 0; c < 3; ++c) p[c] = std::uint8_t(std::lround((tangentSpaceNormal[c] * 0.5f + 0.5f) * 255.0f));
+      p[3] = 255;
+    }
+    io::writePng(scratch.path() / "textured_quad_normal.png", normalMap);
+    return float(render(file).at(21, 21)[0]);
+  };
+  const float flat = redWithNormal({0.0f, 0.0f, 1.0f});
+  const float towardsGreen = redWithNormal({0.0f, 0.5f, 0.866f});
+  const float awayFromGreen = redWithNormal({0.0f, -0.9f, 0.436f});
+  EXPECT_GT(towardsGreen, flat + 4.0f);
+  EXPECT_LT(awayFromGreen, flat - 40.0f);
+  std::printf("red quadrant: flat normal map %.0f, tilted up %.0f, tilted down %.0f\n", flat, towardsGreen, awayFromGreen);
+}
 
 TEST_F(GltfRenderTest, TheTexturedQuadShowsItsQuadrantColoursWhereTheyBelong) {
   // 64x64, the quad 3 m away fills the middle; each quadrant's centre (uv 0.25/0.75) lands near pixel 21 / 43.
@@ -173,12 +225,7 @@ TEST_F(GltfRenderTest, TheTexturedQuadShowsItsQuadrantColoursWhereTheyBelong) {
   // texture makes one channel stand out. Its ~220-vs-~40 texels must leave the texture's strong channels at
   // least 80 of 255 levels above its weak ones after lighting and tone mapping (untextured, all three match).
   // The fixture fails the test on any validation message.
-  constexpr std::uint32_t kSize = 64;
-  const Scene scene = loadGltfScene(kTexturedQuad);
-  DeferredRenderer renderer(context(), kSize, kSize);
-  renderer.setScene(scene);
-  renderer.render(centerViewMatrices(scene, 1.0f));
-  const ImageRGBA8 image = renderer.readDisplayColor();
+  const ImageRGBA8 image = render(kTexturedQuad);
   auto pixel = [&](std::uint32_t x, std::uint32_t y) {
     const auto* p = image.at(x, y);
     return glm::vec3(p[0], p[1], p[2]);

@@ -1,5 +1,6 @@
 #!/usr/bin/env python3
-"""Writes the glTF test asset textured_quad.gltf (+ .bin, two PNGs, .scene.json) into this folder.
+"""Writes the glTF test asset textured_quad.gltf (+ .bin, two PNGs, .scene.json, and all of it but the scene
+description as one textured_quad.glb) into this folder.
 
 A 2 m x 2 m quad facing +Z, its base-color texture split into four coloured quadrants (red top left, green top
 right, blue bottom left, yellow bottom right), a flat normal map (tangents left to the loader to generate), a
@@ -26,6 +27,22 @@ def png(width, height, pixel):
     return b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", header) + chunk(b"IDAT", zlib.compress(rows, 9)) + chunk(b"IEND", b"")
 
 
+def write_glb(gltf, blob):
+    """The same scene as one binary file (textured_quad.glb): buffer and both PNGs in its BIN chunk."""
+    gltf = json.loads(json.dumps(gltf))
+    data = bytearray(blob)
+    for index, image in enumerate(gltf["images"]):
+        png_bytes = (HERE / image.pop("uri")).read_bytes()
+        gltf["bufferViews"].append({"buffer": 0, "byteOffset": len(data), "byteLength": len(png_bytes)})
+        image.update({"bufferView": len(gltf["bufferViews"]) - 1, "mimeType": "image/png"})
+        data += png_bytes + b"\0" * (-len(png_bytes) % 4)  # chunk and views 4-byte aligned
+    gltf["buffers"] = [{"byteLength": len(data)}]
+    text = json.dumps(gltf, separators=(",", ":")).encode()
+    text += b" " * (-len(text) % 4)
+    body = struct.pack("<I4s", len(text), b"JSON") + text + struct.pack("<I4s", len(data), b"BIN\0") + bytes(data)
+    (HERE / "textured_quad.glb").write_bytes(struct.pack("<4sII", b"glTF", 2, 12 + len(body)) + body)
+
+
 def main():
     size = 8
     (HERE / "textured_quad_base_color.png").write_bytes(
@@ -40,7 +57,7 @@ def main():
     blob = b"".join(struct.pack("<3f", *p) for p in positions)
     blob += b"".join(struct.pack("<3f", *n) for n in normals)
     blob += b"".join(struct.pack("<2f", *t) for t in uvs)
-    blob += struct.pack("<6H", *indices) + b"\0\0"  # padded to a multiple of 4
+    blob += struct.pack("<6H", *indices)  # 140 bytes: a multiple of 4 as GLB chunks need
     (HERE / "textured_quad.bin").write_bytes(blob)
 
     gltf = {
@@ -80,6 +97,7 @@ def main():
         ],
     }
     (HERE / "textured_quad.gltf").write_text(json.dumps(gltf, indent=1) + "\n")
+    write_glb(gltf, blob)
     # What glTF does not carry: ambient light, sky and exposure.
     description = {"ambient": [0.2, 0.2, 0.2], "exposure": 1.0, "ambientOcclusion": False,
                    "sky": {"zenith": [0.02, 0.02, 0.02], "horizon": [0.02, 0.02, 0.02], "ground": [0.02, 0.02, 0.02]}}
