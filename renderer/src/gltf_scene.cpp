@@ -238,9 +238,13 @@ class SceneBuilder {
       Object object;
       object.mesh = cached->second;
       object.material = material(primitives[p].material);
+      const Mesh& mesh = scene_.meshes[object.mesh];
+      if ((object.material.baseColorTexture != kNoTexture || object.material.normalTexture != kNoTexture) &&
+          mesh.texCoords.empty())
+        reader_.corrupt("a textured primitive of mesh " + std::to_string(meshIndex) + " has no TEXCOORD_0");
       object.transform = world;
       scene_.objects.push_back(object);
-      for (const Vertex& v : scene_.meshes[object.mesh].vertices) {
+      for (const Vertex& v : mesh.vertices) {
         const glm::vec3 position(world * glm::vec4(v.position, 1.0f));
         boundsMin_ = glm::min(boundsMin_, position);
         boundsMax_ = glm::max(boundsMax_, position);
