@@ -36,7 +36,7 @@ void main() {
       hdrSum += hdr;
       toneMappedSum += filmic(hdr.rgb * frame.exposure.x);
       // A pixel any of whose samples is first-person is a weapon pixel (its linear depth is the weapon's too).
-      weapon = max(weapon, step(texelFetch(deviceDepth, sampleTexel, 0).r, frame.linearDepth.firstPersonDeviceDepthMax));
+      if (isFirstPersonDeviceDepth(frame.linearDepth, texelFetch(deviceDepth, sampleTexel, 0).r)) weapon = 1.0;
     }
   float sampleCount = float(resolve.supersample * resolve.supersample);
   // Seed 4.6.2: the weapon mask rides in alpha (0 on the first-person layer, 1 elsewhere); the stereo pass

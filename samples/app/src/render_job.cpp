@@ -20,6 +20,7 @@
 #include "s3d/hud/overlay.h"
 #include "s3d/io/image_io.h"
 #include "s3d/renderer/scene.h"
+#include "s3d/renderer/scene_file.h"
 #include "s3d/stereo/hdr_gather.h"
 #include "s3d/stereo/sanitize.h"
 #include "s3d/stereo/stereo_pass.h"
@@ -73,7 +74,7 @@ ValidatedJob validateJob(const RenderJobOptions& options) {
 
   stereo::validate(options.stereo);
   comfort::validate(options.display);
-  ValidatedJob job{renderer::makeBuiltInScene(options.scene),  // throws naming the scene and the choices
+  ValidatedJob job{renderer::loadScene(options.scene),  // throws naming the scene (or file) and the choices
                    stereo::makeStereoConstants(options.stereo, options.width, options.height), options.stereo, {}};
   // Issue #4: a zero-parallax plane at or beyond the far plane, or near zero, is clamped with a warning.
   const stereo::ClampedZeroParallax zpp = stereo::clampZeroParallaxDistance(
@@ -139,7 +140,7 @@ RenderReport runRenderJob(vk::Context& context, const RenderJobOptions& options)
     parameters = comfort::pushWeaponBehindScreen(parameters, weaponDepths->x, weaponDepths->y);
 
   // 2. The center view.
-  renderer::DeferredRenderer deferred(context, width, height, {options.supersample});
+  renderer::DeferredRenderer deferred(context, width, height, {options.supersample, options.reversedZ});
   deferred.setScene(job.scene);
   const renderer::ViewMatrices center = renderer::centerViewMatrices(
       job.scene, float(width) / float(height), {parameters.weaponDepthOffset, parameters.weaponDepthScale});

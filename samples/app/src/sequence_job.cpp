@@ -10,6 +10,7 @@
 #include "s3d/comfort/world_queries.h"
 #include "s3d/io/image_io.h"
 #include "s3d/renderer/deferred_renderer.h"
+#include "s3d/renderer/scene_file.h"
 #include "s3d/stereo/metrics.h"
 #include "s3d/stereo/output_formats.h"
 #include "s3d/stereo/synthesis.h"
@@ -28,7 +29,7 @@ SequenceReport runSequenceJob(vk::Context& context, const SequenceJobOptions& op
   if (!(options.framesPerSecond > 0.0f) || options.framesPerSecond > 1000.0f)
     throw std::invalid_argument("sequence: frames per second must be in (0, 1000]");
   stereo::validate(options.stereo);
-  renderer::Scene scene = renderer::makeBuiltInScene(options.scene);
+  renderer::Scene scene = renderer::loadScene(options.scene);  // built-in name or .gltf/.glb file
   if (scene.cameraPath.empty()) throw std::invalid_argument("scene '" + options.scene + "' has no camera path");
   comfort::ZeroParallaxControlSettings settings = options.zeroParallax;
   settings.restDistance = options.stereo.zeroParallaxDistance;
@@ -39,7 +40,7 @@ SequenceReport runSequenceJob(vk::Context& context, const SequenceJobOptions& op
   const float crosshairDistance = options.crosshair.distance.value_or(scene.crosshairDistance);
 
   const comfort::WorldQueries world(scene);
-  renderer::DeferredRenderer deferred(context, options.width, options.height, {options.supersample});
+  renderer::DeferredRenderer deferred(context, options.width, options.height, {options.supersample, options.reversedZ});
   deferred.setScene(scene);
   const float aspect = float(options.width) / float(options.height);
   const glm::vec2 weaponDepths = renderer::firstPersonDepthRange(scene).value_or(glm::vec2(0.0f));

@@ -44,7 +44,7 @@ inline constexpr std::uint32_t kMaxImageSize = 16384;
 struct RenderJobOptions {
   std::uint32_t width = 1280;
   std::uint32_t height = 720;
-  std::string scene = "courtyard";  // one of renderer::builtInSceneNames()
+  std::string scene = "courtyard";  // one of renderer::builtInSceneNames(), or a .gltf/.glb file
   std::size_t frame = 0;            // frame of the scene's camera path
   std::filesystem::path outputFolder = "out";
   // Which of kAllOutputs to write. The selection is honoured exactly: report.json is written only when
@@ -57,6 +57,7 @@ struct RenderJobOptions {
   comfort::CrosshairSettings crosshair;  // distance (nullopt: the scene's) and margin in front of a hit
   bool allowNegativeParallax = false;    // off: nothing in the frame is given negative parallax
   std::uint32_t supersample = 1;  // renderer anti-aliasing, 1..4 (center view and reference eyes alike)
+  bool reversedZ = false;         // renderer::RendererOptions::reversedZ for every view
 };
 
 // EyeError (per-region error of one eye) lives in eye_comparison.h, shared with `s3d bench`.

@@ -30,6 +30,7 @@ struct SequenceJobOptions {
   comfort::CrosshairSettings crosshair;               // distance (nullopt: the scene's), margin, smoothing
   comfort::DisplayProfile display = comfort::builtInDisplayProfile("tv55");  // of the per-frame comfort report
   bool allowNegativeParallax = false;  // off: the zero-parallax distance never exceeds the frame's nearest depth
+  bool reversedZ = false;  // renderer::RendererOptions::reversedZ
 };
 
 struct SequenceFrame {
