@@ -21,15 +21,16 @@ using test::largestChannelDifference;
 using test::SyntheticView;
 
 // Random color; depth in blocks of 1-9 columns, a quarter sky, some in front of the zero-parallax plane (whose
-// seed parallax points beyond the margin, so the tiles' fallback fetches run too).
+// seed parallax points beyond the margin, so the tiles' fallback color fetches run too).
 SyntheticView makeView(std::uint32_t width, std::uint32_t height, unsigned seed) {
   return test::makeBlockView(width, height, seed, 0.6f, 9, 1, true);
 }
 
 // Widths around the tile (256): not a multiple of it, narrower than it, one pixel; the last separation's margin
-// (0.25 * 1100 = 275 px) is wider than the tile and than the shared arrays hold.
+// (0.25 * 1100 = 275 px, 277 with the filter) is wider than the tile, and the last one (527) does not fit the
+// shared arrays, so RowTiles runs per pixel there.
 const std::tuple<std::uint32_t, std::uint32_t, float> kCases[] = {
-    {300, 3, 0.05f}, {37, 2, 0.1f}, {1, 1, 0.02f}, {513, 2, 0.02f}, {1100, 2, 0.25f}};
+    {300, 3, 0.05f}, {37, 2, 0.1f}, {1, 1, 0.02f}, {513, 2, 0.02f}, {1100, 2, 0.25f}, {2100, 1, 0.25f}};
 
 TEST(StereoRowTiles, TheMarginCoversTheTapsAndTheSkysDisplacementWithTheFilterTexel) {
   StereoParameters parameters{0.02f, 1.0f, -1.0f};  // 38.4 px at 1920
@@ -40,11 +41,13 @@ TEST(StereoRowTiles, TheMarginCoversTheTapsAndTheSkysDisplacementWithTheFilterTe
   EXPECT_EQ(rowTileMargin(c), 60);
 }
 
-TEST(StereoRowTiles, AutoUsesRowTilesOnlyWhereTheMarginFitsTheSharedArrays) {
-  EXPECT_TRUE(usesRowTiles(StereoKernel::Auto, S3D_STEREO_ROW_TILE_MARGIN));
-  EXPECT_FALSE(usesRowTiles(StereoKernel::Auto, S3D_STEREO_ROW_TILE_MARGIN + 1));
-  EXPECT_TRUE(usesRowTiles(StereoKernel::RowTiles, S3D_STEREO_ROW_TILE_MARGIN + 1));
-  EXPECT_FALSE(usesRowTiles(StereoKernel::PerPixel, 1));
+TEST(StereoRowTiles, AutoUsesRowTilesOnGpusAndOnlyWhereTheMarginFitsTheSharedArrays) {
+  EXPECT_TRUE(usesRowTiles(StereoKernel::Auto, S3D_STEREO_ROW_TILE_MARGIN, false));
+  EXPECT_FALSE(usesRowTiles(StereoKernel::Auto, S3D_STEREO_ROW_TILE_MARGIN, true));  // lavapipe: per pixel
+  EXPECT_FALSE(usesRowTiles(StereoKernel::Auto, S3D_STEREO_ROW_TILE_MARGIN + 1, false));
+  EXPECT_TRUE(usesRowTiles(StereoKernel::RowTiles, S3D_STEREO_ROW_TILE_MARGIN, true));
+  EXPECT_FALSE(usesRowTiles(StereoKernel::RowTiles, S3D_STEREO_ROW_TILE_MARGIN + 1, false));
+  EXPECT_FALSE(usesRowTiles(StereoKernel::PerPixel, 1, false));
   EXPECT_EQ(parseStereoKernel("tiles"), StereoKernel::RowTiles);
   EXPECT_THROW(parseStereoKernel("blocks"), std::invalid_argument);
 }

@@ -16,7 +16,7 @@ float minDepthOverTaps(int x, int y, int direction) {
   float minDepth = S3D_INFINITY;
   for (int i = 0; i < S3D_STEREO_TAP_CAPACITY; ++i)
     if (i < c.tapCount)
-      minDepth = min(minDepth, tileDepthAt(clamp(x + direction * c.tapOffsetPx[i], 0, c.width - 1), y, c.zeroParallaxDistance));
+      minDepth = min(minDepth, tileDepthAt(clamp(x + direction * c.tapOffsetPx[i], 0, c.width - 1)));
   return minDepth;
 }
 

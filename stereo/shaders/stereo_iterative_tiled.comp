@@ -14,7 +14,7 @@ layout(push_constant) uniform Push { IterativeConstants c; };
 #include "stereo_row_tile.glsl"
 
 float depthAtTexel(float position, int y) {
-  return tileDepthAt(iterativeDepthTexel(c, position), y, c.zeroParallaxDistance);
+  return tileDepthAt(iterativeDepthTexel(c, position));
 }
 
 // The eye's color at the target pixel; direction +1 is the left eye, -1 the right (same order as the C++).

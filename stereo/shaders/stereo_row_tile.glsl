@@ -1,6 +1,6 @@
 // Row tiles (row_tile_shared.h): the workgroup's run of one row plus a margin each side, in shared memory.
-// Included by the tiled passes after they declare centerColor and linearDepth. Every fetch outside the loaded
-// columns falls back to the image, so a tiled pass returns what its per-pixel twin returns for any margin.
+// Included by the tiled passes after they declare centerColor and linearDepth. The host runs them only where
+// the margin fits (usesRowTiles), so every depth fetch is loaded; a color fetch beyond it reads the image.
 #include "s3d/stereo/row_tile_shared.h"
 #include "s3d/stereo/stereo_shared.h"
 
@@ -37,11 +37,10 @@ bool loadRowTile(int interiorBegin, int interiorEnd, int y, int margin, int widt
   return tileDepthVaries == 0u;
 }
 
-// Sanitized depth at column x (already clamped to the image).
-float tileDepthAt(int x, int y, float zeroParallaxDistance) {
-  int i = x - tileBegin;
-  if (i >= 0 && x < tileEnd) return tileDepth[i];
-  return sanitizedDepth(imageLoad(linearDepth, ivec2(x, y)).r, zeroParallaxDistance);
+// Sanitized depth at column x (already clamped to the image, and within the margin of a tile pixel; the index
+// clamp only keeps a broken caller inside the array).
+float tileDepthAt(int x) {
+  return tileDepth[clamp(x - tileBegin, 0, S3D_STEREO_ROW_TILE_SPAN - 1)];
 }
 
 // Color at column x (already clamped to the image).

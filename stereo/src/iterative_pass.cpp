@@ -29,7 +29,7 @@ void IterativeStereoPass::record(VkCommandBuffer cmd, const vk::Image& centerCol
   if (constants.iterations < 1 || constants.iterations > S3D_ITERATIVE_MAX_ITERATIONS ||
       constants.startTapCount < 0 || constants.startTapCount > S3D_ITERATIVE_START_TAPS)
     throw std::invalid_argument("IterativeStereoPass: iterations or start taps out of range (use makeIterativeConstants)");
-  const detail::LazyEyePairPipeline& pipeline = usesRowTiles(kernel_, rowTileMargin(constants)) ? rowTiles_ : perPixel_;
+  const detail::LazyEyePairPipeline& pipeline = usesRowTiles(kernel_, rowTileMargin(constants), context_->isCpuDevice()) ? rowTiles_ : perPixel_;
   detail::recordEyePairDispatch(cmd, *context_, pipeline.get(*context_), centerColor, linearDepth, leftEye, rightEye, &constants,
                                 constants.width, constants.height, "IterativeStereoPass");
 }

@@ -41,7 +41,7 @@ void StereoPass::record(VkCommandBuffer cmd, const vk::Image& centerColor, const
   if (constants.tapCount < 0 || constants.tapCount > S3D_STEREO_MAX_TAPS)
     throw std::invalid_argument("StereoPass: tap count out of range (use makeStereoConstants)");
   const bool shortTaps = constants.tapCount <= S3D_STEREO_SMALL_TAP_CAPACITY;
-  const detail::LazyEyePairPipeline& pipeline = usesRowTiles(kernel_, rowTileMargin(constants))
+  const detail::LazyEyePairPipeline& pipeline = usesRowTiles(kernel_, rowTileMargin(constants), context_->isCpuDevice())
                                                     ? (shortTaps ? shortTapsTiled_ : allTapsTiled_)
                                                     : (shortTaps ? shortTaps_ : allTaps_);
   detail::recordEyePairDispatch(cmd, *context_, pipeline.get(*context_), centerColor, linearDepth, leftEye, rightEye, &constants,

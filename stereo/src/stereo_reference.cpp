@@ -89,9 +89,9 @@ int rowTileMargin(const gpu::StereoConstants& c) {
   return gpu::rowTileMarginPx(c.maxSeparation * float(c.width), largestTap);
 }
 
-bool usesRowTiles(StereoKernel kernel, int rowTileMarginPx) {
-  if (kernel == StereoKernel::Auto) return rowTileMarginPx <= S3D_STEREO_ROW_TILE_MARGIN;
-  return kernel == StereoKernel::RowTiles;
+bool usesRowTiles(StereoKernel kernel, int rowTileMarginPx, bool cpuDevice) {
+  if (rowTileMarginPx > S3D_STEREO_ROW_TILE_MARGIN) return false;
+  return kernel == StereoKernel::RowTiles || (kernel == StereoKernel::Auto && !cpuDevice);
 }
 
 namespace {

@@ -363,7 +363,7 @@ void runSweep(vk::Context& context, const BenchOptions& options, const Validated
         row.right = compareEye(synthesis.eyes.right, eyes.rightColor, row.cropColumns, halo, unseenRight);
         row.filledLeft = synthesis.filledLeft;
         row.filledRight = synthesis.filledRight;
-        row.traffic = stereoPassTraffic(methodParameters, options.width, options.height);
+        row.traffic = stereoPassTraffic(methodParameters, options.width, options.height, context.isCpuDevice());
         report.rows.push_back(std::move(row));
         ++done;
       }
@@ -718,7 +718,8 @@ MethodSetting defaultMethodSetting() {
   return {};
 }
 
-StereoTraffic stereoPassTraffic(const stereo::StereoParameters& parameters, std::uint32_t width, std::uint32_t height) {
+StereoTraffic stereoPassTraffic(const stereo::StereoParameters& parameters, std::uint32_t width, std::uint32_t height,
+                                bool cpuDevice) {
   constexpr std::uint64_t kTexelBytes = 4;  // RGBA8 color, R32F depth, RGBA8 eyes
   int depthLoadsPerEye = 0;
   int margin = 0;
@@ -738,17 +739,16 @@ StereoTraffic stereoPassTraffic(const stereo::StereoParameters& parameters, std:
   const std::uint64_t pixels = std::uint64_t(width) * height;
   const std::uint64_t colorLoadsPerEye = 2;  // sampleRow's two texels
   StereoTraffic traffic;
-  traffic.rowTiles = stereo::usesRowTiles(parameters.kernel, margin);
+  traffic.rowTiles = stereo::usesRowTiles(parameters.kernel, margin, cpuDevice);
   if (traffic.rowTiles) {
     // stereo_row_tile.glsl: each tile with interior columns [begin, end) loads [begin - margin, end + margin)
     // (clipped to the image, margin at most the shared arrays') once, a depth and a color texel per column.
-    const int loadMargin = std::min(margin, S3D_STEREO_ROW_TILE_MARGIN);
     std::uint64_t loadedColumns = 0;
     for (int tile = 0; tile < int(width); tile += S3D_STEREO_ROW_TILE) {
       const int begin = std::max(tile, crop.cropBegin);
       const int end = std::min({tile + S3D_STEREO_ROW_TILE, crop.cropEnd, int(width)});
       if (begin < end)
-        loadedColumns += std::uint64_t(std::min(end + loadMargin, int(width)) - std::max(begin - loadMargin, 0));
+        loadedColumns += std::uint64_t(std::min(end + margin, int(width)) - std::max(begin - margin, 0));
     }
     traffic.bytesRead = loadedColumns * height * 2 * kTexelBytes;
   } else {

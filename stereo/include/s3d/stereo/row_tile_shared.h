@@ -16,13 +16,14 @@ using glm::ceil;
 S3D_GPU_BEGIN
 
 #define S3D_STEREO_ROW_TILE 256        // pixels (and invocations) per workgroup, one row
-#define S3D_STEREO_ROW_TILE_MARGIN 256  // largest margin the shared arrays hold each side
+#define S3D_STEREO_ROW_TILE_MARGIN 512  // largest margin the shared arrays hold each side (10 KiB in all)
 #define S3D_STEREO_ROW_TILE_SPAN (S3D_STEREO_ROW_TILE + 2 * S3D_STEREO_ROW_TILE_MARGIN)
 
 // Columns each side of a pixel whose depth or color its pass may read: the taps (largestTapPx), and the sky's
 // displacement maxParallaxPx rounded up, plus one for the nearest-texel rounding and one for the filter's
-// second texel. A nearer-than-screen surface of the seed / search can point further (its parallax is not
-// bounded); such fetches fall back to the image, so the margin is a speed, never a correctness, property.
+// second texel. Every depth fetch of every method lies within it; only the color fetch of a seed / search
+// pixel whose nearest tap is in front of the screen can point further (its parallax is not bounded), and
+// falls back to the image.
 S3D_INLINE int rowTileMarginPx(float maxParallaxPx, int largestTapPx) {
   int sky = int(ceil(maxParallaxPx)) + 2;
   return sky > largestTapPx ? sky : largestTapPx;

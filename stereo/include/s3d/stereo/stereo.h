@@ -23,9 +23,10 @@ StereoMethod parseStereoMethod(const std::string& name);  // throws std::invalid
 
 // How a method's shader walks the image (same results either way, docs/DESIGN.md "Row tiles").
 enum class StereoKernel {
-  Auto,      // RowTiles when its margin fits the shared arrays (row_tile_shared.h), else PerPixel
+  Auto,      // RowTiles on a GPU, PerPixel on a CPU device (lavapipe: row tiles measured 1.3-3x slower there)
   PerPixel,  // 8x8 workgroups, every tap and filter texel an image load
-  RowTiles,  // a workgroup per run of one row, read once into shared memory (any margin: wider fetches fall back)
+  RowTiles,  // a workgroup per run of one row, read once into shared memory; PerPixel where the margin does not
+             // fit the shared arrays (above S3D_STEREO_ROW_TILE_MARGIN columns, e.g. 25 % of 2100)
 };
 
 const char* kernelName(StereoKernel kernel);
@@ -60,9 +61,9 @@ gpu::StereoConstants makeStereoConstants(const StereoParameters& parameters, std
 gpu::StereoConstants makeSeedConstants(const StereoParameters& parameters, std::uint32_t width, std::uint32_t height);
 
 // Columns each side of a pixel the pass may read (row_tile_shared.h), and whether `kernel` runs on row tiles
-// for it: Auto does when the margin fits the shared arrays.
+// for that margin on a CPU (lavapipe) or GPU device.
 int rowTileMargin(const gpu::StereoConstants& constants);
-bool usesRowTiles(StereoKernel kernel, int rowTileMarginPx);
+bool usesRowTiles(StereoKernel kernel, int rowTileMarginPx, bool cpuDevice);
 
 enum class Eye { Left, Right };
 

@@ -76,7 +76,9 @@ struct StereoTraffic {
   std::uint64_t compulsoryBytes = 0;  // each input texel read once and each eye written once: 16 B per pixel
   std::uint64_t total() const { return bytesRead + bytesWritten; }
 };
-StereoTraffic stereoPassTraffic(const stereo::StereoParameters& parameters, std::uint32_t width, std::uint32_t height);
+// cpuDevice: the kernel Auto picks on a CPU device (stereo::usesRowTiles).
+StereoTraffic stereoPassTraffic(const stereo::StereoParameters& parameters, std::uint32_t width, std::uint32_t height,
+                                bool cpuDevice = false);
 
 struct BenchRow {
   std::string scene;
