@@ -18,6 +18,7 @@ namespace s3d::stereo {
 IterativeStereoPass::IterativeStereoPass(const vk::Context& context, StereoKernel kernel)
     : context_(&context),
       kernel_(kernel),
+      deviceRunsRowTiles_(detail::deviceRunsRowTiles(context)),
       perPixel_(spirv_stereo_iterative_comp, sizeof(gpu::IterativeConstants), S3D_ITERATIVE_GROUP_SIZE,
                 S3D_ITERATIVE_GROUP_SIZE),
       rowTiles_(spirv_stereo_iterative_tiled_comp, sizeof(gpu::IterativeConstants), S3D_STEREO_ROW_TILE, 1) {}
@@ -29,7 +30,9 @@ void IterativeStereoPass::record(VkCommandBuffer cmd, const vk::Image& centerCol
   if (constants.iterations < 1 || constants.iterations > S3D_ITERATIVE_MAX_ITERATIONS ||
       constants.startTapCount < 0 || constants.startTapCount > S3D_ITERATIVE_START_TAPS)
     throw std::invalid_argument("IterativeStereoPass: iterations or start taps out of range (use makeIterativeConstants)");
-  const detail::LazyEyePairPipeline& pipeline = usesRowTiles(kernel_, rowTileMargin(constants), context_->isCpuDevice()) ? rowTiles_ : perPixel_;
+  const bool rowTiles =
+      deviceRunsRowTiles_ && usesRowTiles(kernel_, rowTileMargin(constants), context_->isCpuDevice());
+  const detail::LazyEyePairPipeline& pipeline = rowTiles ? rowTiles_ : perPixel_;
   detail::recordEyePairDispatch(cmd, *context_, pipeline.get(*context_), centerColor, linearDepth, leftEye, rightEye, &constants,
                                 constants.width, constants.height, "IterativeStereoPass");
 }

@@ -29,6 +29,7 @@ static_assert(pushBytesFor(S3D_STEREO_MAX_TAPS) == sizeof(gpu::StereoConstants))
 StereoPass::StereoPass(const vk::Context& context, StereoKernel kernel)
     : context_(&context),
       kernel_(kernel),
+      deviceRunsRowTiles_(detail::deviceRunsRowTiles(context)),
       shortTaps_(spirv_stereo_seed_comp, pushBytesFor(S3D_STEREO_SMALL_TAP_CAPACITY), S3D_STEREO_GROUP_SIZE,
                  S3D_STEREO_GROUP_SIZE),
       allTaps_(spirv_stereo_search_comp, pushBytesFor(S3D_STEREO_MAX_TAPS), S3D_STEREO_GROUP_SIZE, S3D_STEREO_GROUP_SIZE),
@@ -41,9 +42,10 @@ void StereoPass::record(VkCommandBuffer cmd, const vk::Image& centerColor, const
   if (constants.tapCount < 0 || constants.tapCount > S3D_STEREO_MAX_TAPS)
     throw std::invalid_argument("StereoPass: tap count out of range (use makeStereoConstants)");
   const bool shortTaps = constants.tapCount <= S3D_STEREO_SMALL_TAP_CAPACITY;
-  const detail::LazyEyePairPipeline& pipeline = usesRowTiles(kernel_, rowTileMargin(constants), context_->isCpuDevice())
-                                                    ? (shortTaps ? shortTapsTiled_ : allTapsTiled_)
-                                                    : (shortTaps ? shortTaps_ : allTaps_);
+  const bool rowTiles =
+      deviceRunsRowTiles_ && usesRowTiles(kernel_, rowTileMargin(constants), context_->isCpuDevice());
+  const detail::LazyEyePairPipeline& pipeline =
+      rowTiles ? (shortTaps ? shortTapsTiled_ : allTapsTiled_) : (shortTaps ? shortTaps_ : allTaps_);
   detail::recordEyePairDispatch(cmd, *context_, pipeline.get(*context_), centerColor, linearDepth, leftEye, rightEye, &constants,
                                 constants.width, constants.height, "StereoPass");
 }

@@ -22,6 +22,7 @@ class IterativeStereoPass {
  private:
   const vk::Context* context_;
   StereoKernel kernel_;
+  bool deviceRunsRowTiles_;
   detail::LazyEyePairPipeline perPixel_;
   detail::LazyEyePairPipeline rowTiles_;
 };

@@ -32,6 +32,7 @@ class StereoPass {
  private:
   const vk::Context* context_;
   StereoKernel kernel_;
+  bool deviceRunsRowTiles_;  // per pixel wherever the device's workgroup limits are too small
   detail::LazyEyePairPipeline shortTaps_;  // up to S3D_STEREO_SMALL_TAP_CAPACITY taps (the seed)
   detail::LazyEyePairPipeline allTaps_;    // up to S3D_STEREO_MAX_TAPS
   detail::LazyEyePairPipeline shortTapsTiled_;

@@ -9,6 +9,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "s3d/stereo/row_tile_shared.h"
 #include "s3d/stereo/stereo.h"
 #include "s3d/vk/context.h"
 #include "s3d/vk/pipeline.h"
@@ -37,6 +38,17 @@ inline EyePairPipeline createEyePairPipeline(const vk::Context& context, std::sp
   result.groupWidth = groupWidth;
   result.groupHeight = groupHeight;
   return result;
+}
+
+// Whether the device runs the row-tile shaders: Vulkan guarantees only 128 invocations per workgroup and
+// 16 KiB of shared memory, and a row tile needs S3D_STEREO_ROW_TILE invocations and its shared arrays.
+inline bool deviceRunsRowTiles(const vk::Context& context) {
+  VkPhysicalDeviceProperties properties;
+  vkGetPhysicalDeviceProperties(context.physicalDevice(), &properties);
+  const VkPhysicalDeviceLimits& limits = properties.limits;
+  const std::uint32_t sharedBytes = 2 * 4 * S3D_STEREO_ROW_TILE_SPAN + 4;  // depth, color, the flat flag
+  return limits.maxComputeWorkGroupInvocations >= S3D_STEREO_ROW_TILE &&
+         limits.maxComputeWorkGroupSize[0] >= S3D_STEREO_ROW_TILE && limits.maxComputeSharedMemorySize >= sharedBytes;
 }
 
 // A pipeline created at first use: a pass that can run either kernel compiles (lavapipe compiles at
