@@ -1,6 +1,7 @@
 #include "s3d/stereo/synthesis.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cstring>
 #include <string>
 #include <stdexcept>
@@ -39,8 +40,18 @@ SynthesisResult run(vk::Context& context, const Pass& pass, const Constants& con
   vk::Image right = vk::createImage(context, StereoPass::kColorFormat, color.width, color.height, usage);
   vk::TimestampQueries timestamps(context, 2);
   std::vector<double> gpuMsRuns;
-  for (int run = 0; run <= timedRuns; ++run) {
-    const bool timed = run > 0;  // run 0 is the untimed warm-up
+  // Untimed warm-up: once (pipeline compilation), and with several timed runs (a benchmark) for at least
+  // kWarmUp of wall time, so a GPU that idled while the host computed metrics is back at its clocks
+  // (seen on an H100: a pass timed right after seconds of host work ran 5x slower).
+  constexpr std::chrono::milliseconds kWarmUp{50};
+  const auto warmUpStart = std::chrono::steady_clock::now();
+  int warmUpRuns = 0;
+  auto warmingUp = [&] {
+    return warmUpRuns == 0 || (timedRuns > 1 && std::chrono::steady_clock::now() - warmUpStart < kWarmUp);
+  };
+  for (int run = 0; run < timedRuns;) {
+    const bool timed = !warmingUp();
+    if (!timed) ++warmUpRuns;
     context.submitAndWait([&](VkCommandBuffer cmd) {
       StereoPass::recordInputBarriers(cmd, color, depth, left, right);
       if (timed && timestamps.supported()) {
@@ -51,8 +62,10 @@ SynthesisResult run(vk::Context& context, const Pass& pass, const Constants& con
       if (timed && timestamps.supported()) timestamps.write(cmd, 1, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT);
       StereoPass::recordInputRelease(cmd, color, depth);
     });
-    if (timed)
+    if (timed) {
       if (std::optional<double> ms = timestamps.elapsedMs(0, 1)) gpuMsRuns.push_back(*ms);
+      ++run;
+    }
   }
   SynthesisResult result{{readEye(context, left), readEye(context, right)}, medianMs(gpuMsRuns), gpuMsRuns, 0, 0};
   return result;
