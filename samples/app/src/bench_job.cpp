@@ -343,17 +343,24 @@ void runSweep(vk::Context& context, const BenchOptions& options, const Validated
       parameters.maxSeparation = bench.separations[s];
       parameters.edgeCrop = -1.0f;  // the crop follows the separation, as in `s3d render`
       const EyeReferences& eyes = references[s];
+      // Every setting is timed back to back before any error is computed: seconds of host-side metrics
+      // between two timings let the GPU drop its clocks (an H100 then timed the next pass 4-6x slow).
+      std::vector<stereo::SynthesisResult> syntheses;
+      for (const MethodSetting& setting : bench.settings) {
+        progress(sceneName + " " + setting.name() + " sep " + percentText(parameters.maxSeparation) + "%");
+        syntheses.push_back(stereo::synthesizeTimed(context, deferred.displayColor(), deferred.linearDepth(),
+                                                    setting.applyTo(parameters), options.repeat));
+        ++done;
+      }
       const std::vector<std::uint8_t> halo = haloMaskFor(centerDepth, parameters);
       const std::vector<std::uint8_t> unseenLeft =
           disocclusionMaskFor(eyes.leftDepth, centerDepth, parameters, stereo::Eye::Left);
       const std::vector<std::uint8_t> unseenRight =
           disocclusionMaskFor(eyes.rightDepth, centerDepth, parameters, stereo::Eye::Right);
-      for (const MethodSetting& setting : bench.settings) {
-        progress(sceneName + " " + setting.name() + " sep " + percentText(parameters.maxSeparation) + "%");
+      for (std::size_t i = 0; i < bench.settings.size(); ++i) {
+        const MethodSetting& setting = bench.settings[i];
         const stereo::StereoParameters methodParameters = setting.applyTo(parameters);
-        stereo::SynthesisResult synthesis = stereo::synthesizeTimed(context, deferred.displayColor(),
-                                                                    deferred.linearDepth(), methodParameters,
-                                                                    options.repeat);
+        const stereo::SynthesisResult& synthesis = syntheses[i];
         BenchRow row;
         row.scene = sceneName;
         row.setting = setting;
@@ -370,7 +377,6 @@ void runSweep(vk::Context& context, const BenchOptions& options, const Validated
         row.filledRight = synthesis.filledRight;
         row.traffic = stereoPassTraffic(methodParameters, options.width, options.height, context.isCpuDevice());
         report.rows.push_back(std::move(row));
-        ++done;
       }
     }
   }
