@@ -263,5 +263,36 @@ TEST_F(TuneSessionTest, ReferenceNumbersAndTheComfortControlRunWhenAskedFor) {
   EXPECT_EQ(frame.view.width, 48u);
 }
 
+TEST_F(TuneSessionTest, ScriptCommandsSwitchSceneFrameViewAndRoundTripAProfile) {
+  TuneSession session(context(), 32, 24);
+  TuneState state;
+  session.loadScene(state);
+  const fs::path profile = scratchFolder("script_profile") / "p.json";
+  WindowRequests requests;
+  for (const ScriptCommand& command :
+       parseScript("scene cover\nframe 20\nview parallax\nset maxSeparation 0.04\nsave-profile " + profile.string() +
+                   "\nset maxSeparation 0.01\nload-profile " + profile.string() + "\nscreenshot s.png\nquit\n"))
+    runScriptCommand(session, state, command, requests);
+  EXPECT_EQ(state.scene, "cover");
+  EXPECT_EQ(state.pathFrame, 20u);
+  EXPECT_EQ(state.camera.position, renderer::cameraForFrame(renderer::makeBuiltInScene("cover"), 20).position);
+  EXPECT_EQ(state.view, ViewMode::ParallaxHeatMap);
+  EXPECT_FLOAT_EQ(state.settings.stereo.maxSeparation, 0.04f);  // the saved value, loaded back
+  EXPECT_EQ(requests.screenshot, fs::path("s.png"));
+  EXPECT_TRUE(requests.quit);
+  fs::remove_all(profile.parent_path());
+}
+
+TEST_F(TuneSessionTest, AFailingScriptCommandNamesItsLine) {
+  TuneSession session(context(), 32, 24);
+  TuneState state;
+  session.loadScene(state);
+  WindowRequests requests;
+  const std::vector<ScriptCommand> commands = parseScript("view left\nset zeroParallaxDistance 0\n");
+  runScriptCommand(session, state, commands[0], requests);
+  const std::string message = errorOf([&] { runScriptCommand(session, state, commands[1], requests); });
+  EXPECT_EQ(message.rfind("script line 2 (set): zeroParallaxDistance", 0), 0u) << message;
+}
+
 }  // namespace
 }  // namespace s3d::tune

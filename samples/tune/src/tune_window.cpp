@@ -680,7 +680,8 @@ TuneWindowResult runTuneWindow(const TuneWindowOptions& options) {
     glm::dvec2 lastCursor(0.0);
     glfwGetCursorPos(rawWindow, &lastCursor.x, &lastCursor.y);
     auto last = std::chrono::steady_clock::now();
-    float frameSeconds = kScriptedFrameSeconds;
+    float frameSeconds = kScriptedFrameSeconds;  // wall time of the last frame, at most 0.25 s for the camera
+    float measuredSeconds = 0.0f;                 // the same, unclamped, for the panel
 
     while (!glfwWindowShouldClose(rawWindow)) {
       glfwPollEvents();
@@ -698,7 +699,7 @@ TuneWindowResult runTuneWindow(const TuneWindowOptions& options) {
       ImGui_ImplVulkan_NewFrame();
       ImGui_ImplGlfw_NewFrame();
       ImGui::NewFrame();
-      drawPanel(session, state, frame.numbers, panel, result.deviceName, frameSeconds);
+      drawPanel(session, state, frame.numbers, panel, result.deviceName, measuredSeconds);
       ImGui::Render();
       const std::optional<ImageRGBA8> shot = presenter.draw(frame.view, ImGui::GetDrawData(), requests.screenshot.has_value());
       if (requests.screenshot) {
@@ -707,7 +708,8 @@ TuneWindowResult runTuneWindow(const TuneWindowOptions& options) {
       }
       ++result.frames;
       const auto now = std::chrono::steady_clock::now();
-      frameSeconds = std::min(0.25f, std::chrono::duration<float>(now - last).count());
+      measuredSeconds = std::chrono::duration<float>(now - last).count();
+      frameSeconds = std::min(0.25f, measuredSeconds);
       last = now;
       if (requests.quit || lastFrame) break;
     }
