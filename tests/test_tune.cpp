@@ -6,6 +6,7 @@
 #include <cmath>
 #include <functional>
 #include <filesystem>
+#include <fstream>
 #include <unistd.h>
 
 #include "s3d/app/render_job.h"
@@ -52,60 +53,67 @@ TEST(TuneParameters, EveryNamedParameterCanBeSet) {
       {"weaponDepthOffset", "0.5"},   {"weaponDepthScale", "1.5"},     {"zppControl", "on"},
       {"zppEngageDistance", "3"},     {"zppReleaseMargin", "0.5"},     {"zppMinimumDistance", "0.3"},
       {"zppResponseSeconds", "0.5"},  {"zppMaxChangePerSecond", "2"},  {"crosshairDistance", "6"},
-      {"display", "monitor27"}};
+      {"crosshairMargin", "0.5"},     {"display", "monitor27"}};
   ASSERT_EQ(values.size(), parameterNames().size());
   for (const auto& [name, value] : values) setParameter(settings, name, value);
-  EXPECT_FLOAT_EQ(settings.stereo.maxSeparation, 0.03f);
-  EXPECT_FLOAT_EQ(settings.stereo.zeroParallaxDistance, 2.5f);
-  EXPECT_FLOAT_EQ(settings.stereo.edgeCrop, 0.01f);
-  EXPECT_EQ(settings.stereo.method, stereo::StereoMethod::Search);
-  EXPECT_EQ(settings.stereo.searchTaps, 12);
-  EXPECT_EQ(settings.stereo.iterations, 4);
-  EXPECT_FLOAT_EQ(settings.stereo.weaponDepthOffset, 0.5f);
-  EXPECT_FLOAT_EQ(settings.stereo.weaponDepthScale, 1.5f);
+  EXPECT_FLOAT_EQ(settings.profile.stereo.maxSeparation, 0.03f);
+  EXPECT_FLOAT_EQ(settings.profile.stereo.zeroParallaxDistance, 2.5f);
+  EXPECT_FLOAT_EQ(settings.profile.stereo.edgeCrop, 0.01f);
+  EXPECT_EQ(settings.profile.stereo.method, stereo::StereoMethod::Search);
+  EXPECT_EQ(settings.profile.stereo.searchTaps, 12);
+  EXPECT_EQ(settings.profile.stereo.iterations, 4);
+  EXPECT_FLOAT_EQ(settings.profile.stereo.weaponDepthOffset, 0.5f);
+  EXPECT_FLOAT_EQ(settings.profile.stereo.weaponDepthScale, 1.5f);
   EXPECT_TRUE(settings.zeroParallaxControl);
-  EXPECT_FLOAT_EQ(settings.zeroParallax.engageDistance, 3.0f);
-  EXPECT_FLOAT_EQ(settings.zeroParallax.releaseMargin, 0.5f);
-  EXPECT_FLOAT_EQ(settings.zeroParallax.minimumDistance, 0.3f);
-  EXPECT_FLOAT_EQ(settings.zeroParallax.responseSeconds, 0.5f);
-  EXPECT_FLOAT_EQ(settings.zeroParallax.maxChangePerSecond, 2.0f);
-  EXPECT_FLOAT_EQ(settings.crosshairDistance, 6.0f);
-  EXPECT_EQ(settings.display, "monitor27");
+  EXPECT_FLOAT_EQ(settings.profile.zeroParallax.engageDistance, 3.0f);
+  EXPECT_FLOAT_EQ(settings.profile.zeroParallax.releaseMargin, 0.5f);
+  EXPECT_FLOAT_EQ(settings.profile.zeroParallax.minimumDistance, 0.3f);
+  EXPECT_FLOAT_EQ(settings.profile.zeroParallax.responseSeconds, 0.5f);
+  EXPECT_FLOAT_EQ(settings.profile.zeroParallax.maxChangePerSecond, 2.0f);
+  EXPECT_FLOAT_EQ(settings.profile.crosshair.distance.value_or(0.0f), 6.0f);
+  EXPECT_FLOAT_EQ(settings.profile.crosshair.margin, 0.5f);
+  EXPECT_EQ(settings.profile.display.name, "monitor27");
 }
 
 TEST(TuneParameters, AnInvalidValueNamesTheParameterAndChangesNothing) {
   TuneSettings settings;
   const std::string message = errorOf([&] { setParameter(settings, "maxSeparation", "-0.1"); });
   EXPECT_EQ(message.rfind("maxSeparation", 0), 0u) << message;
-  EXPECT_FLOAT_EQ(settings.stereo.maxSeparation, TuneSettings{}.stereo.maxSeparation);
+  EXPECT_FLOAT_EQ(settings.profile.stereo.maxSeparation, TuneSettings{}.profile.stereo.maxSeparation);
   EXPECT_NE(errorOf([&] { setParameter(settings, "taps", "2.5"); }).find("whole number"), std::string::npos);
   EXPECT_NE(errorOf([&] { setParameter(settings, "display", "cinema"); }).find("cinema"), std::string::npos);
   EXPECT_NE(errorOf([&] { setParameter(settings, "separation", "0.1"); }).find("unknown parameter 'separation'"),
             std::string::npos);
-  EXPECT_EQ(settings.display, "tv55");
+  EXPECT_EQ(settings.profile.display.name, "tv55");
 }
 
-TEST(TuneProfiles, SaveAndLoadRoundTripEveryParameter) {
+TEST(TuneProfiles, SaveAndLoadRoundTripTheComfortProfileAndKeepTheToolsSwitches) {
   TuneSettings settings;
   setParameter(settings, "maxSeparation", "0.035");
   setParameter(settings, "method", "iterative");
   setParameter(settings, "iterations", "9");
-  setParameter(settings, "zppControl", "on");
   setParameter(settings, "zppEngageDistance", "2.75");
+  setParameter(settings, "crosshairDistance", "5");
   setParameter(settings, "display", "hmd");
   const fs::path file = scratchFolder("profile") / "comfort.json";
   saveProfile(file, settings);
-  const TuneSettings loaded = loadProfile(file);
-  EXPECT_EQ(profileJson(loaded), profileJson(settings));
+  TuneSettings base;
+  base.zeroParallaxControl = true;
+  const TuneSettings loaded = loadProfile(file, base);
+  EXPECT_EQ(comfort::toJson(loaded.profile), comfort::toJson(settings.profile));
+  EXPECT_TRUE(loaded.zeroParallaxControl);  // a tool switch, not part of the profile
   fs::remove_all(file.parent_path());
 }
 
-TEST(TuneProfiles, AnUnknownKeyOrBadValueIsAnErrorNamingIt) {
-  EXPECT_NE(errorOf([] { (void)settingsFromProfile({{"maxSeperation", 0.02}}); }).find("'maxSeperation'"),
-            std::string::npos);
-  EXPECT_NE(errorOf([] { (void)settingsFromProfile({{"zeroParallaxDistance", -1.0}}); }).find("zeroParallaxDistance"),
-            std::string::npos);
-  EXPECT_NE(errorOf([] { (void)settingsFromProfile(nlohmann::json::array()); }).find("JSON object"), std::string::npos);
+TEST(TuneProfiles, AnUnknownKeyIsAnErrorNamingItAndTheFile) {
+  const fs::path file = scratchFolder("bad_profile") / "bad.json";
+  {
+    std::ofstream(file) << R"({"stereo": {"maxSeperation": 0.02}})";
+  }
+  const std::string message = errorOf([&] { (void)loadProfile(file); });
+  EXPECT_NE(message.find("maxSeperation"), std::string::npos) << message;
+  EXPECT_NE(message.find("bad.json"), std::string::npos) << message;
+  fs::remove_all(file.parent_path());
 }
 
 TEST(TuneScript, ParseErrorsNameTheLine) {
@@ -259,7 +267,7 @@ TEST_F(TuneSessionTest, ReferenceNumbersAndTheComfortControlRunWhenAskedFor) {
   ASSERT_TRUE(frame.numbers.errorLeft.has_value());
   EXPECT_GT(frame.numbers.errorLeft->psnrDb, 15.0);  // a sanity floor: the eyes match their references roughly
   ASSERT_TRUE(frame.numbers.nearestSurface.has_value());
-  EXPECT_LT(frame.numbers.zeroParallaxDistance, state.settings.stereo.zeroParallaxDistance);
+  EXPECT_LT(frame.numbers.zeroParallaxDistance, state.settings.profile.stereo.zeroParallaxDistance);
   EXPECT_EQ(frame.view.width, 48u);
 }
 
@@ -277,7 +285,7 @@ TEST_F(TuneSessionTest, ScriptCommandsSwitchSceneFrameViewAndRoundTripAProfile) 
   EXPECT_EQ(state.pathFrame, 20u);
   EXPECT_EQ(state.camera.position, renderer::cameraForFrame(renderer::makeBuiltInScene("cover"), 20).position);
   EXPECT_EQ(state.view, ViewMode::ParallaxHeatMap);
-  EXPECT_FLOAT_EQ(state.settings.stereo.maxSeparation, 0.04f);  // the saved value, loaded back
+  EXPECT_FLOAT_EQ(state.settings.profile.stereo.maxSeparation, 0.04f);  // the saved value, loaded back
   EXPECT_EQ(requests.screenshot, fs::path("s.png"));
   EXPECT_TRUE(requests.quit);
   fs::remove_all(profile.parent_path());

@@ -3,6 +3,7 @@
 #include <iostream>
 
 #include "cli_support.h"
+#include "profile_options.h"
 #include "s3d/app/render_job.h"
 #include "s3d/renderer/scene.h"
 #include "s3d/tune/tune_window.h"
@@ -42,11 +43,7 @@ class TuneCommand final : public Command {
                     "First-person weapon: depth scale applied before the offset")
         ->check(floatRange(0.0, 1.0e4, true, "a positive factor"))
         ->capture_default_str();
-    tune.add_option("--display", options_.state.settings.display, "Display profile of the comfort numbers")
-        ->check(CLI::IsMember({"tv55", "monitor27", "hmd"}))
-        ->capture_default_str();
-    tune.add_option("--profile", profile_, "Comfort profile (JSON) to start from; options given here override it")
-        ->check(CLI::ExistingFile);
+    profile_.add(tune);  // --profile, --save-profile, --allow-negative-parallax, --display (as `s3d render`)
     tune.add_option("--set", sets_, "NAME=VALUE for any panel parameter (" + joined(tune::parameterNames(), ", ") +
                                         "); repeatable, applied last")
         ->type_name("NAME=VALUE");
@@ -63,16 +60,15 @@ class TuneCommand final : public Command {
     parseResolution(resolution_, app::kMaxImageSize, options_.width, options_.height);
     stereo_.finish();
     tune::TuneSettings& settings = options_.state.settings;
-    if (profile_) settings = tune::loadProfile(*profile_, settings);
-    // Options on the command line override the profile only where given.
-    for (const char* name : {"--max-separation", "--zero-parallax-distance", "--edge-crop", "--method", "--taps",
-                             "--iterations", "--weapon-depth-offset", "--weapon-depth-scale"})
-      if (!profile_ || subcommand->count(name) > 0) overrideStereo(settings.stereo, name);
+    settings.profile = profile_.resolve(*subcommand, stereo_);  // the profile, with the options given here over it
     for (const std::string& assignment : sets_) {
       const std::size_t equals = assignment.find('=');
       if (equals == std::string::npos) return fail("--set expects NAME=VALUE (got '" + assignment + "')");
       tune::setParameter(settings, assignment.substr(0, equals), assignment.substr(equals + 1));
     }
+    if (!profile_.save.empty()) tune::saveProfile(profile_.save, settings);
+    if (!profile_.save.empty()) options_.profileFile = profile_.save;
+    else if (!profile_.load.empty()) options_.profileFile = profile_.load;
     options_.state.view = tune::parseViewMode(view_);
     options_.state.reference = !noReference_;
     options_.state.pathFrame = frame_;
@@ -95,24 +91,12 @@ class TuneCommand final : public Command {
   }
 
  private:
-  void overrideStereo(stereo::StereoParameters& target, const std::string& name) const {
-    const stereo::StereoParameters& given = stereo_.parameters;
-    if (name == "--max-separation") target.maxSeparation = given.maxSeparation;
-    else if (name == "--zero-parallax-distance") target.zeroParallaxDistance = given.zeroParallaxDistance;
-    else if (name == "--edge-crop") target.edgeCrop = given.edgeCrop;
-    else if (name == "--method") target.method = given.method;
-    else if (name == "--taps") target.searchTaps = given.searchTaps;
-    else if (name == "--iterations") target.iterations = given.iterations;
-    else if (name == "--weapon-depth-offset") target.weaponDepthOffset = given.weaponDepthOffset;
-    else if (name == "--weapon-depth-scale") target.weaponDepthScale = given.weaponDepthScale;
-  }
-
   tune::TuneWindowOptions options_;
   StereoOptions stereo_;
   std::string resolution_ = "960x540";
   std::size_t frame_ = 0;
   std::string view_ = "anaglyph";
-  std::optional<std::string> profile_;
+  ProfileOptions profile_;
   std::vector<std::string> sets_;
   bool noReference_ = false;
   std::string script_;

@@ -48,13 +48,16 @@ void TuneSession::loadScene(TuneState& state) {
   else loaded->deferred = std::make_unique<renderer::DeferredRenderer>(context_, width_, height_);
   loaded->deferred->setScene(loaded->scene);
   loaded_ = std::move(loaded);
-  state.settings.crosshairDistance = loaded_->scene.crosshairDistance;
   state.pathFrame = std::min(state.pathFrame, pathLength() - 1);
   setPathFrame(state, state.pathFrame);
 }
 
 std::size_t TuneSession::pathLength() const {
   return loaded_ ? std::max<std::size_t>(loaded_->scene.cameraPath.size(), 1) : 0;
+}
+
+float TuneSession::sceneCrosshairDistance() const {
+  return loaded_ ? loaded_->scene.crosshairDistance : renderer::Scene{}.crosshairDistance;
 }
 
 void TuneSession::setPathFrame(TuneState& state, std::size_t frame) {
@@ -75,13 +78,12 @@ TuneFrame TuneSession::renderFrame(TuneState& state, const FrameInput& input, fl
 
   TuneFrame frame;
   FrameNumbers& numbers = frame.numbers;
-  stereo::StereoParameters parameters = state.settings.stereo;
+  const comfort::ComfortProfile& profile = state.settings.profile;
+  stereo::StereoParameters parameters = profile.stereo;
 
   // Zero-parallax control and weapon push, as `s3d render --sequence` runs them (sequence_job.cpp).
   if (state.settings.zeroParallaxControl) {
-    comfort::ZeroParallaxControlSettings settings = state.settings.zeroParallax;
-    settings.restDistance = parameters.zeroParallaxDistance;
-    settings.minimumDistance = std::min(settings.minimumDistance, settings.restDistance);
+    const comfort::ZeroParallaxControlSettings settings = profile.zeroParallaxSettings();
     if (!loaded.control || !sameControl(settings, loaded.controlSettings)) {
       loaded.control = std::make_unique<comfort::ZeroParallaxController>(settings);
       loaded.controlSettings = settings;
@@ -139,14 +141,15 @@ TuneFrame TuneSession::renderFrame(TuneState& state, const FrameInput& input, fl
   }
 
   // Comfort numbers on the chosen display.
-  images.display = comfort::builtInDisplayProfile(state.settings.display);
+  images.display = profile.display;
   numbers.parallax = comfort::parallaxStatistics(images.stereoDepth, parameters, images.display);
   const std::vector<std::uint8_t> beyond = comfortViolationMask(images.stereoDepth, parameters, images.display);
   numbers.shareBeyondComfort = double(std::count(beyond.begin(), beyond.end(), std::uint8_t(1))) / double(beyond.size());
 
   // HUD crosshair: an Embree ray cast along the aim (seed 4.6.2), drawn into each eye at its depth's parallax.
   const comfort::CrosshairPlacement placement =
-      comfort::placeCrosshair(*loaded.world, scene.camera, state.settings.crosshairDistance);
+      comfort::placeCrosshair(*loaded.world, scene.camera, profile.crosshair.distance.value_or(scene.crosshairDistance),
+                              profile.crosshair.margin);
   numbers.crosshairDepth = placement.depth;
   numbers.crosshairHitWorld = placement.hitWorld;
   images.crosshairOffsetPx = {hud::crosshairEyeOffsetPx(parameters, placement.depth, width_, stereo::Eye::Left),

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <iostream>
 #include <memory>
@@ -521,7 +522,8 @@ void drawPanel(TuneSession& session, TuneState& state, const FrameNumbers& numbe
   ImGui::PushItemWidth(150.0f);
 
   TuneSettings edited = state.settings;
-  stereo::StereoParameters& s = edited.stereo;
+  comfort::ComfortProfile& profile = edited.profile;
+  stereo::StereoParameters& s = profile.stereo;
   if (ImGui::CollapsingHeader("Stereo", ImGuiTreeNodeFlags_DefaultOpen)) {
     ImGui::SliderFloat("max separation", &s.maxSeparation, 0.0f, 0.08f, "%.4f");
     ImGui::SliderFloat("zero-parallax dist", &s.zeroParallaxDistance, 0.1f, 20.0f, "%.2f m", ImGuiSliderFlags_Logarithmic);
@@ -538,15 +540,20 @@ void drawPanel(TuneSession& session, TuneState& state, const FrameNumbers& numbe
     ImGui::SliderFloat("weapon scale", &s.weaponDepthScale, 0.05f, 4.0f, "%.2f");
     ImGui::Checkbox("zero-parallax control", &edited.zeroParallaxControl);
     if (edited.zeroParallaxControl) {
-      comfort::ZeroParallaxControlSettings& z = edited.zeroParallax;
+      comfort::ZeroParallaxControlSettings& z = profile.zeroParallax;
       ImGui::SliderFloat("engage distance", &z.engageDistance, 0.1f, 10.0f, "%.2f m");
       ImGui::SliderFloat("release margin", &z.releaseMargin, 0.0f, 2.0f, "%.2f m");
       ImGui::SliderFloat("minimum distance", &z.minimumDistance, 0.05f, 5.0f, "%.2f m");
       ImGui::SliderFloat("response", &z.responseSeconds, 0.01f, 2.0f, "%.2f s");
       ImGui::SliderFloat("max change", &z.maxChangePerSecond, 0.05f, 10.0f, "%.2f m/s");
     }
-    ImGui::SliderFloat("crosshair distance", &edited.crosshairDistance, 0.25f, 50.0f, "%.2f m", ImGuiSliderFlags_Logarithmic);
-    comboOfNames("display", edited.display, comfort::builtInDisplayProfileNames());
+    float crosshairDistance = profile.crosshair.distance.value_or(session.sceneCrosshairDistance());
+    if (ImGui::SliderFloat("crosshair distance", &crosshairDistance, 0.25f, 50.0f, "%.2f m", ImGuiSliderFlags_Logarithmic))
+      profile.crosshair.distance = crosshairDistance;
+    ImGui::SliderFloat("crosshair margin", &profile.crosshair.margin, 0.0f, 2.0f, "%.2f m");
+    std::string display = profile.display.name;  // a custom display from a profile shows its name
+    if (comboOfNames("display", display, comfort::builtInDisplayProfileNames()))
+      profile.display = comfort::builtInDisplayProfile(display);
   }
   try {
     validate(edited);
@@ -673,10 +680,9 @@ TuneWindowResult runTuneWindow(const TuneWindowOptions& options) {
     ImGuiLayer imgui(context, rawWindow, presenter);
     TuneSession session(context, options.width, options.height);
     TuneState state = options.state;
-    const TuneSettings initialSettings = state.settings;
     session.loadScene(state);
-    state.settings = initialSettings;  // the options' parameters over the scene's defaults
     PanelState panel;
+    std::snprintf(panel.profilePath, sizeof(panel.profilePath), "%s", options.profileFile.string().c_str());
     glm::dvec2 lastCursor(0.0);
     glfwGetCursorPos(rawWindow, &lastCursor.x, &lastCursor.y);
     auto last = std::chrono::steady_clock::now();

@@ -49,12 +49,13 @@ class TuneSession {
   std::uint32_t width() const { return width_; }
   std::uint32_t height() const { return height_; }
 
-  // Loads state.scene (throws naming the choices), puts the camera at state.pathFrame of its path, takes the
-  // scene's crosshair distance and restarts the zero-parallax control.
+  // Loads state.scene (throws naming the choices), puts the camera at state.pathFrame of its path and restarts
+  // the zero-parallax control.
   void loadScene(TuneState& state);
   // The camera of this frame of the scene's path (throws std::out_of_range naming the frame count).
   void setPathFrame(TuneState& state, std::size_t frame);
   std::size_t pathLength() const;
+  float sceneCrosshairDistance() const;  // the loaded scene's default crosshair depth
 
   // One frame: playing, the camera is the path's current frame and the path advances after it; otherwise the
   // input moves the camera by `seconds`. Loads the scene first when state.scene changed.

@@ -7,8 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "s3d/comfort/zero_parallax_control.h"
-#include "s3d/stereo/stereo.h"
+#include "s3d/comfort/comfort_profile.h"
 
 namespace s3d::tune {
 
@@ -31,12 +30,12 @@ ViewMode parseViewMode(const std::string& name);  // throws std::invalid_argumen
 bool viewNeedsReference(ViewMode mode);          // the view shows the two-pass reference eyes or their error
 
 struct TuneSettings {
-  stereo::StereoParameters stereo;  // maxSeparation, zeroParallaxDistance, edgeCrop, method, taps, weapon push
-  // Seed 4.6.2's zero-parallax control on the live camera; its restDistance is stereo.zeroParallaxDistance.
+  // Every stereo and comfort parameter (stereo, weapon push, zero-parallax control, crosshair, display): what a
+  // comfort profile holds (comfort_profile.h).
+  comfort::ComfortProfile profile;
+  // Seed 4.6.2's zero-parallax control on the live camera, resting at profile.stereo.zeroParallaxDistance: a
+  // switch of the tool (`s3d render --sequence` always runs it), so not part of the profile.
   bool zeroParallaxControl = false;
-  comfort::ZeroParallaxControlSettings zeroParallax;
-  float crosshairDistance = 8.0f;  // HUD crosshair depth without a hit (world units; the scenes' default)
-  std::string display = "tv55";    // comfort numbers: one of comfort::builtInDisplayProfileNames()
 };
 
 // Throws std::invalid_argument naming the first invalid value.
@@ -44,19 +43,18 @@ void validate(const TuneSettings& settings);
 
 // The parameter names, in panel order: maxSeparation, zeroParallaxDistance, edgeCrop, method, taps, iterations,
 // weaponDepthOffset, weaponDepthScale, zppControl, zppEngageDistance, zppReleaseMargin, zppMinimumDistance,
-// zppResponseSeconds, zppMaxChangePerSecond, crosshairDistance, display.
+// zppResponseSeconds, zppMaxChangePerSecond, crosshairDistance, crosshairMargin, display.
 const std::vector<std::string>& parameterNames();
 
-// Sets one parameter from its text form (numbers; method and display by name; zppControl on/off/true/false).
+// Sets one parameter from its text form (numbers; method by name; display by built-in name or a .json display
+// profile's path; zppControl on/off/true/false).
 // Throws std::invalid_argument naming the parameter (unknown name, unparsable or invalid value); the settings
 // are left unchanged then.
 void setParameter(TuneSettings& settings, const std::string& name, const std::string& value);
 
-// Comfort profile: a flat JSON object of parameterNames() -> value. Until the comfort module's profile format
-// lands in main, the tool saves and loads through these two functions only (one place to swap).
-nlohmann::json profileJson(const TuneSettings& settings);
-TuneSettings settingsFromProfile(const nlohmann::json& profile, TuneSettings base = {});  // unknown key: throws
-void saveProfile(const std::filesystem::path& path, const TuneSettings& settings);  // atomic (s3d::io)
-TuneSettings loadProfile(const std::filesystem::path& path, const TuneSettings& base = {});
+// Comfort profiles (comfort::saveComfortProfile / loadComfortProfile): loading replaces settings.profile (keys a
+// profile leaves out take their defaults) and keeps the tool's own switches. Errors name the file and the key.
+void saveProfile(const std::filesystem::path& path, const TuneSettings& settings);
+TuneSettings loadProfile(const std::filesystem::path& path, TuneSettings base = {});
 
 }  // namespace s3d::tune

@@ -30,6 +30,7 @@ struct TuneWindowOptions {
   std::optional<std::filesystem::path> script;      // tune_script.h
   std::optional<std::size_t> frames;                // quit after this many frames
   std::optional<std::filesystem::path> screenshot;  // of the last frame (with frames), or at quit
+  std::filesystem::path profileFile = "comfort_profile.json";  // the panel's Save / Load file
   vk::ContextOptions context;  // device and validation; presentation is added by the window
 };
 
