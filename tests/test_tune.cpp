@@ -124,6 +124,7 @@ TEST(TuneScript, ParseErrorsNameTheLine) {
             std::string::npos);
   EXPECT_NE(errorOf([] { (void)parseScript("view 3d\n", "s.txt"); }).find("unknown view '3d'"), std::string::npos);
   EXPECT_NE(errorOf([] { (void)parseScript("quit now\n", "s.txt"); }).find("takes 0 argument(s)"), std::string::npos);
+  EXPECT_NE(errorOf([] { (void)parseScript("supersample 5\n", "s.txt"); }).find("1, 2, 3 or 4"), std::string::npos);
 }
 
 TEST(TuneScript, CommandsRunBeforeTheFirstFrameOfTheirWait) {

@@ -27,10 +27,10 @@ TEST(TuneWindow, ScreenshotViewMatchesTheOffscreenAnaglyphOfTheSameFrame) {
   const fs::path shot = folder / "shot.png";
   {
     // Walks and turns for two frames in another view, then jumps back onto the camera path (courtyard frame 3)
-    // in the anaglyph view: the screenshot shows a frame `s3d render --frame 3` can render too.
+    // in the anaglyph view with 2x2 supersampling: a frame `s3d render --frame 3 --supersample 2` renders too.
     std::ofstream script(folder / "script.txt");
     script << "set maxSeparation 0.03\nset zeroParallaxDistance 2\nview sbs\nhold w 2\nlook 30 -5\nwait 2\n"
-              "view anaglyph\nframe 3\nscreenshot "
+              "view anaglyph\nframe 3\nsupersample 2\nscreenshot "
            << shot.string() << "\nquit\n";
   }
   const std::string command = std::string("'") + S3D_TOOL + "' tune --resolution 64x48 --no-reference --validation "
@@ -47,6 +47,7 @@ TEST(TuneWindow, ScreenshotViewMatchesTheOffscreenAnaglyphOfTheSameFrame) {
   options.width = 64;
   options.height = 48;
   options.frame = 3;
+  options.supersample = 2;
   options.stereo.maxSeparation = 0.03f;
   options.stereo.zeroParallaxDistance = 2.0f;
   options.outputs = {"anaglyph.png"};

@@ -47,6 +47,10 @@ class TuneCommand final : public Command {
     tune.add_option("--set", sets_, "NAME=VALUE for any panel parameter (" + joined(tune::parameterNames(), ", ") +
                                         "); repeatable, applied last")
         ->type_name("NAME=VALUE");
+    tune.add_option("--supersample", options_.state.supersample,
+                    "Renderer anti-aliasing: every pass before the resolve at N x the view size (1 to 4)")
+        ->check(CLI::Range(1, 4))
+        ->capture_default_str();
     tune.add_flag("--no-reference", noReference_,
                   "Do not render the two-pass reference every frame (only for the reference and error views)");
     tune.add_option("--script", script_, "Scripted input, one command per line (see docs/DESIGN.md, s3d tune)")

@@ -21,7 +21,7 @@ struct VerbShape {
 constexpr VerbShape kVerbs[] = {{"set", 2},          {"view", 1},         {"scene", 1},      {"frame", 1},
                                 {"play", 1},         {"reference", 1},    {"hold", 2},       {"look", 2},
                                 {"wait", 1},         {"save-profile", 1}, {"load-profile", 1}, {"screenshot", 1},
-                                {"quit", 0}};
+                                {"supersample", 1},  {"quit", 0}};
 
 bool parseWhole(const std::string& text, long long& value) {
   auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
@@ -55,6 +55,9 @@ void checkCommand(const ScriptCommand& command) {
     if (!parseWhole(a[0], whole) || whole < (command.verb == "wait" ? 1 : 0) || whole > 1000000)
       throw std::invalid_argument("'" + command.verb + "' expects a whole number" +
                                   (command.verb == "wait" ? " >= 1" : " >= 0") + " (got '" + a[0] + "')");
+  } else if (command.verb == "supersample") {
+    if (!parseWhole(a[0], whole) || whole < 1 || whole > 4)
+      throw std::invalid_argument("'supersample' expects 1, 2, 3 or 4 (got '" + a[0] + "')");
   } else if (command.verb == "play" || command.verb == "reference") {
     if (a[0] != "on" && a[0] != "off") throw std::invalid_argument("'" + command.verb + "' expects on or off");
   } else if (command.verb == "hold") {

@@ -27,6 +27,7 @@ struct TuneSession::Loaded {
   renderer::Scene scene;
   std::unique_ptr<comfort::WorldQueries> world;
   std::unique_ptr<renderer::DeferredRenderer> deferred;
+  std::uint32_t supersample = 0;  // of `deferred`
   comfort::ZeroParallaxControlSettings controlSettings;
   std::unique_ptr<comfort::ZeroParallaxController> control;
 };
@@ -44,8 +45,14 @@ void TuneSession::loadScene(TuneState& state) {
   loaded->sceneName = state.scene;
   loaded->scene = renderer::makeBuiltInScene(state.scene);
   loaded->world = std::make_unique<comfort::WorldQueries>(loaded->scene);
-  if (loaded_ && loaded_->deferred) loaded->deferred = std::move(loaded_->deferred);
-  else loaded->deferred = std::make_unique<renderer::DeferredRenderer>(context_, width_, height_);
+  if (loaded_ && loaded_->deferred && loaded_->supersample == state.supersample) {
+    loaded->deferred = std::move(loaded_->deferred);
+    loaded->supersample = loaded_->supersample;
+  } else {
+    loaded->deferred = std::make_unique<renderer::DeferredRenderer>(context_, width_, height_,
+                                                                    renderer::RendererOptions{state.supersample});
+    loaded->supersample = state.supersample;
+  }
   loaded->deferred->setScene(loaded->scene);
   loaded_ = std::move(loaded);
   state.pathFrame = std::min(state.pathFrame, pathLength() - 1);
@@ -71,6 +78,13 @@ TuneFrame TuneSession::renderFrame(TuneState& state, const FrameInput& input, fl
   validate(state.settings);
   if (!loaded_ || loaded_->sceneName != state.scene) loadScene(state);
   Loaded& loaded = *loaded_;
+  if (loaded.supersample != state.supersample) {  // a new renderer (its images are sized by the factor)
+    auto deferred = std::make_unique<renderer::DeferredRenderer>(context_, width_, height_,
+                                                                 renderer::RendererOptions{state.supersample});
+    deferred->setScene(loaded.scene);
+    loaded.deferred = std::move(deferred);
+    loaded.supersample = state.supersample;
+  }
   if (state.playPath) state.camera = renderer::cameraForFrame(loaded.scene, state.pathFrame);
   else moveCamera(state.camera, input, seconds);
   renderer::Scene& scene = loaded.scene;
@@ -175,6 +189,7 @@ void runScriptCommand(TuneSession& session, TuneState& state, const ScriptComman
     } else if (command.verb == "frame") session.setPathFrame(state, std::stoul(a[0]));
     else if (command.verb == "play") state.playPath = a[0] == "on";
     else if (command.verb == "reference") state.reference = a[0] == "on";
+    else if (command.verb == "supersample") state.supersample = std::uint32_t(std::stoul(a[0]));
     else if (command.verb == "save-profile") saveProfile(a[0], state.settings);
     else if (command.verb == "load-profile") state.settings = loadProfile(a[0], state.settings);
     else if (command.verb == "screenshot") requests.screenshot = a[0];

@@ -566,6 +566,8 @@ void drawPanel(TuneSession& session, TuneState& state, const FrameNumbers& numbe
     std::string view = viewModeName(state.view);
     if (comboOfNames("view", view, viewModeNames())) state.view = parseViewMode(view);
     ImGui::Checkbox("reference every frame", &state.reference);
+    int supersample = int(state.supersample);
+    if (ImGui::SliderInt("supersample", &supersample, 1, 4)) state.supersample = std::uint32_t(supersample);
     std::string scene = state.scene;
     if (comboOfNames("scene", scene, renderer::builtInSceneNames())) {
       state.scene = scene;

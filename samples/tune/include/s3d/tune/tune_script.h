@@ -6,6 +6,7 @@
 //   frame N               the camera of frame N of the scene's path
 //   play on|off           play the scene's camera path
 //   reference on|off      render the two-pass reference every frame (error numbers)
+//   supersample N         renderer anti-aliasing factor 1..4 (as `s3d render --supersample`)
 //   hold KEY N            hold a movement key (w a s d: walk, q e: down/up) for the next N frames
 //   look DX DY            mouse-look by DX, DY pixels on the next frame
 //   wait N                let N frames pass (the commands above apply to the first of them)

@@ -2,6 +2,7 @@
 // `s3d tune`'s state besides the parameters: scene, camera, view, playback; and the camera control
 // (mouse look, WASD) as a pure function of one frame's input.
 #include <cstddef>
+#include <cstdint>
 #include <string>
 
 #include <glm/glm.hpp>
@@ -33,6 +34,7 @@ struct TuneState {
   ViewMode view = ViewMode::Anaglyph;
   bool playPath = false;      // advance along the scene's camera path one frame per frame
   bool reference = true;      // render the two-pass reference eyes (error numbers); forced by the views needing it
+  std::uint32_t supersample = 1;  // renderer anti-aliasing, 1..4 (renderer::RendererOptions), as `s3d render`
 };
 
 }  // namespace s3d::tune
