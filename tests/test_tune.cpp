@@ -222,6 +222,27 @@ TEST(TuneViews, AnaglyphViewIsTheDuboisAnaglyphOfTheEyes) {
   EXPECT_EQ(composeView(ViewMode::Right, frame).pixels, frame.eyes.right.pixels);
 }
 
+TEST(TuneViews, ComfortOverlayMarksOnlyPixelsBeyondTheLimit) {
+  FrameImages frame = syntheticFrame();
+  frame.parameters.maxSeparation = 0.2f;  // 8 px wide on tv55: infinity lies 0.49 m apart, far beyond 1 degree
+  frame.stereoDepth.pixels[0] = INFINITY;
+  const ImageRGBA8 anaglyph = composeView(ViewMode::Anaglyph, frame);
+  const ImageRGBA8 overlay = composeView(ViewMode::ComfortOverlay, frame);
+  EXPECT_NE(std::vector<std::uint8_t>(overlay.at(0, 0), overlay.at(0, 0) + 3),
+            std::vector<std::uint8_t>(anaglyph.at(0, 0), anaglyph.at(0, 0) + 3));
+  EXPECT_EQ(std::vector<std::uint8_t>(overlay.pixels.begin() + 4, overlay.pixels.end()),
+            std::vector<std::uint8_t>(anaglyph.pixels.begin() + 4, anaglyph.pixels.end()));
+}
+
+TEST(TuneViews, SideBySideViewKeepsTheEyeSize) {
+  const FrameImages frame = syntheticFrame();
+  const ImageRGBA8 view = composeView(ViewMode::SideBySide, frame);
+  EXPECT_EQ(view.width, 8u);
+  EXPECT_EQ(view.height, 6u);
+  EXPECT_EQ(view.at(0, 0)[0], 200);  // left half: the left eye
+  EXPECT_EQ(view.at(7, 0)[0], 60);
+}
+
 TEST(TuneViews, ReferenceViewsNeedTheReferenceEyes) {
   FrameImages frame = syntheticFrame();
   EXPECT_NE(errorOf([&] { (void)composeView(ViewMode::ErrorHeatMap, frame); }).find("reference"), std::string::npos);
@@ -290,6 +311,24 @@ TEST_F(TuneSessionTest, ScriptCommandsSwitchSceneFrameViewAndRoundTripAProfile) 
   EXPECT_EQ(requests.screenshot, fs::path("s.png"));
   EXPECT_TRUE(requests.quit);
   fs::remove_all(profile.parent_path());
+}
+
+TEST_F(TuneSessionTest, PlayingFollowsTheCameraPathAndWrapsAround) {
+  TuneSession session(context(), 16, 16);
+  TuneState state;
+  state.reference = false;
+  session.loadScene(state);
+  const renderer::Scene scene = renderer::makeBuiltInScene(state.scene);
+  session.setPathFrame(state, scene.cameraPath.size() - 1);
+  state.playPath = true;
+  FrameInput walk;
+  walk.forward = true;  // ignored while playing
+  (void)session.renderFrame(state, walk, 1.0f);
+  EXPECT_EQ(state.camera.position, scene.cameraPath.back().position);
+  EXPECT_EQ(state.pathFrame, 0u);
+  (void)session.renderFrame(state, walk, 1.0f);
+  EXPECT_EQ(state.camera.position, scene.cameraPath.front().position);
+  EXPECT_EQ(state.pathFrame, 1u);
 }
 
 TEST_F(TuneSessionTest, AFailingScriptCommandNamesItsLine) {

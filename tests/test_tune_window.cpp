@@ -3,7 +3,9 @@
 // Its own binary, so ctest can run it under xvfb-run and read exit status 77 as "skipped" (no display).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdlib>
+#include <iterator>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -70,6 +72,22 @@ TEST(TuneWindow, ScreenshotViewMatchesTheOffscreenAnaglyphOfTheSameFrame) {
           break;
         }
   EXPECT_EQ(differing, 0u) << "of " << offscreen.pixelCount() << " view pixels";
+  fs::remove_all(folder);
+}
+
+TEST(TuneNoDisplay, ExitsWithStatus77AndOneErrorLine) {
+  const fs::path folder = fs::temp_directory_path() / ("s3d_tune_nodisplay_" + std::to_string(::getpid()));
+  fs::create_directories(folder);
+  const fs::path log = folder / "stderr.txt";
+  const std::string command = std::string("env -u DISPLAY -u WAYLAND_DISPLAY '") + S3D_TOOL +
+                              "' tune --resolution 16x16 --frames 1 2> '" + log.string() + "'";
+  const int status = std::system(command.c_str());
+  ASSERT_TRUE(WIFEXITED(status)) << command;
+  EXPECT_EQ(WEXITSTATUS(status), kSkipExitCode);
+  std::ifstream file(log);
+  const std::string text((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(text.rfind("s3d: error: cannot open a window: ", 0), 0u) << text;
+  EXPECT_EQ(std::count(text.begin(), text.end(), '\n'), 1) << text;
   fs::remove_all(folder);
 }
 
