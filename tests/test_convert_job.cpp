@@ -110,17 +110,23 @@ TEST_F(ConvertJob, AMissingColorFileIsNamedAndNothingIsWritten) {
   EXPECT_TRUE(outputFolderIsEmpty());
 }
 
-TEST_F(ConvertJob, NanDepthIsRejectedWithItsPixel) {
+TEST_F(ConvertJob, NanDepthAndNonFiniteColorAreSanitizedAndCounted) {
+  // Issue #4: NaN or inf input is replaced (depth by the zero-parallax plane, color by 0) and counted in
+  // report.json, never propagated into the eyes.
   *depth_.at(7, 3) = NAN;
+  *depth_.at(8, 3) = NAN;
   writeInputs(depth_);
-  try {
-    runConvertJob(context(), options_);
-    FAIL() << "no exception";
-  } catch (const std::invalid_argument& error) {
-    EXPECT_NE(std::string(error.what()).find("(7, 3)"), std::string::npos) << error.what();
-    EXPECT_NE(std::string(error.what()).find("NaN"), std::string::npos) << error.what();
-  }
-  EXPECT_TRUE(outputFolderIsEmpty());
+  ImageRGBA32F color(48, 20, 0.5f);
+  color.at(3, 2)[0] = NAN;
+  color.at(4, 2)[1] = INFINITY;
+  io::writeExr(folder_ / "color.exr", color, nullptr);
+  options_.color = folder_ / "color.exr";
+  const ConvertReport report = runConvertJob(context(), options_);
+  EXPECT_EQ(report.sanitizedDepthPixels, 2u);
+  EXPECT_EQ(report.sanitizedColorValues, 2u);
+  const nlohmann::json json = toJson(report);
+  EXPECT_EQ(json.at("sanitized").at("depthPixels"), 2);
+  EXPECT_EQ(json.at("sanitized").at("colorValues"), 2);
 }
 
 TEST_F(ConvertJob, NegativeDepthIsRejected) {

@@ -40,6 +40,7 @@ constexpr VkFormat kHdrFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
 constexpr VkFormat kDisplayFormat = VK_FORMAT_R8G8B8A8_UNORM;     // sRGB-encoded by the tone-map pass
 constexpr VkFormat kLinearDepthFormat = VK_FORMAT_R32_SFLOAT;
 constexpr VkFormat kAmbientOcclusionFormat = VK_FORMAT_R16_SFLOAT;
+constexpr VkFormat kCoverageFormat = VK_FORMAT_R8G8B8A8_UNORM;  // red: transparent coverage (the metrics' mask)
 
 constexpr vk::ImageState kDepthSampled{VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
                                        VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
@@ -191,6 +192,7 @@ struct DeferredRenderer::Impl {
 
   // Render targets (render size), then the resolve's outputs (output size).
   vk::Image depth, normalGlossiness, diffuseLight, specularLight, hdr, ambientOcclusion;
+  vk::Image transparentCoverage;  // written by the transparent pass only (scenes with transparent objects)
   vk::Image display, linearDepth, resolvedHdr;
   vk::Unique<VkSampler> nearestSampler;
 
@@ -244,6 +246,8 @@ struct DeferredRenderer::Impl {
     display = vk::createImage(context, kDisplayFormat, outputWidth, outputHeight, computeOutput);
     linearDepth = vk::createImage(context, kLinearDepthFormat, outputWidth, outputHeight, computeOutput);
     resolvedHdr = vk::createImage(context, kHdrFormat, outputWidth, outputHeight, computeOutput);
+    transparentCoverage = vk::createImage(context, kCoverageFormat, width, height,
+                                          VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
     ambientOcclusion = vk::createImage(context, kAmbientOcclusionFormat, width, height,
                                        VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
                                            VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
@@ -310,7 +314,7 @@ struct DeferredRenderer::Impl {
 
     vk::GraphicsPipelineDesc transparent = geometry;
     transparent.fragmentSpirv = spirv_transparent_frag;
-    transparent.colorFormats = {kHdrFormat};
+    transparent.colorFormats = {kHdrFormat, kCoverageFormat};  // coverage blends to 1 - prod(1 - opacity)
     transparent.depthCompare = VK_COMPARE_OP_LESS;  // behind opaque surfaces is hidden; no depth write
     transparent.cullMode = VK_CULL_MODE_NONE;
     transparent.blend = vk::GraphicsPipelineDesc::Blend::Alpha;
@@ -607,9 +611,10 @@ struct DeferredRenderer::Impl {
   // Transparent surfaces over the shaded image, back to front, depth-tested against the opaque depth.
   void recordTransparent(VkCommandBuffer cmd, const std::vector<std::uint32_t>& backToFront) {
     vk::transition(cmd, hdr, vk::kColorAttachment, vk::kColorAttachment);  // after the shading pass's writes
-    VkRenderingAttachmentInfo color = colorAttachment(hdr, false);
+    vk::transition(cmd, transparentCoverage, vk::kUndefined, vk::kColorAttachment);
+    VkRenderingAttachmentInfo colors[] = {colorAttachment(hdr, false), colorAttachment(transparentCoverage, true)};
     const VkRenderingAttachmentInfo depthAttachment = readOnlyDepthAttachment(depth);
-    beginRendering(cmd, width, height, std::span(&color, 1), &depthAttachment);
+    beginRendering(cmd, width, height, colors, &depthAttachment);
     setScissor(cmd, {{0, 0}, {width, height}});
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, transparentPipeline);
     pushGeometryDescriptors(cmd, geometryLayout.layout, {});
@@ -748,6 +753,19 @@ std::vector<std::uint8_t> DeferredRenderer::readFirstPersonMask() {
   for (std::uint32_t y = 0; y < r.height; ++y)
     for (std::uint32_t x = 0; x < r.width; ++x)
       if (deviceDepth[std::size_t(y) * r.width + x] <= kFirstPersonDeviceDepthMax)
+        mask[std::size_t(y / r.supersample) * r.outputWidth + x / r.supersample] = 1;
+  return mask;
+}
+
+std::vector<std::uint8_t> DeferredRenderer::readTransparentMask() {
+  const Impl& r = *impl_;
+  std::vector<std::uint8_t> mask(std::size_t(r.outputWidth) * r.outputHeight, 0);
+  if (r.transparentOrder.empty()) return mask;  // the transparent pass did not run
+  std::vector<std::byte> bytes = vk::readbackImage(impl_->context, impl_->transparentCoverage, vk::kColorAttachment);
+  // With supersampling, an output pixel is transparent where any of its samples is.
+  for (std::uint32_t y = 0; y < r.height; ++y)
+    for (std::uint32_t x = 0; x < r.width; ++x)
+      if (bytes[4 * (std::size_t(y) * r.width + x)] != std::byte{0})
         mask[std::size_t(y / r.supersample) * r.outputWidth + x / r.supersample] = 1;
   return mask;
 }

@@ -8,6 +8,7 @@
 
 #include "s3d/gpu/linear_depth.h"
 #include "s3d/io/image_io.h"
+#include "s3d/stereo/sanitize.h"
 #include "s3d/stereo/srgb.h"
 #include "s3d/stereo/stereo_pass.h"
 #include "s3d/stereo/synthesis.h"
@@ -28,25 +29,27 @@ void requireFile(const fs::path& file, const char* what) {
   if (!fs::is_regular_file(file)) throw std::invalid_argument(std::string(what) + " file '" + file.string() + "' does not exist");
 }
 
-// Display-encoded RGBA8 from a PNG as is, or from an EXR's linear color clamped to [0, 1] and sRGB-encoded.
-ImageRGBA8 readColor(const fs::path& file) {
+// Display-encoded RGBA8 from a PNG as is, or from an EXR's linear color clamped to [0, 1] and sRGB-encoded;
+// NaN or inf channel values are made 0 (stereo::sanitizeColor) and added to *sanitizedValues.
+ImageRGBA8 readColor(const fs::path& file, std::uint64_t* sanitizedValues = nullptr) {
   requireFile(file, "color");
   const std::string extension = lowerExtension(file);
   if (extension == ".png") return io::readPng(file);
   if (extension != ".exr") throw std::invalid_argument("color file '" + file.string() + "': expected .png or .exr");
-  const io::ExrFrame frame = io::readExr(file);
+  io::ExrFrame frame = io::readExr(file);
+  const std::uint64_t sanitized = stereo::sanitizeColor(frame.color);
+  if (sanitizedValues) *sanitizedValues += sanitized;
   ImageRGBA8 color(frame.color.width, frame.color.height);
   for (std::size_t i = 0; i < frame.color.pixels.size(); ++i) {
     const float value = frame.color.pixels[i];
-    if (!std::isfinite(value))
-      throw std::invalid_argument("color file '" + file.string() + "': non-finite value at pixel " + std::to_string(i / 4));
     color.pixels[i] = i % 4 == 3 ? std::uint8_t(std::lround(std::clamp(value, 0.0f, 1.0f) * 255.0f))
                                  : stereo::encodeSrgb8(value);
   }
   return color;
 }
 
-DepthImage readLinearDepth(const ConvertJobOptions& options) {
+// NaN (and -inf) depth is replaced by the zero-parallax distance, as the stereo pass reads it, and counted.
+DepthImage readLinearDepth(const ConvertJobOptions& options, std::uint64_t& sanitizedPixels) {
   requireFile(options.depth, "depth");
   if (lowerExtension(options.depth) != ".exr")
     throw std::invalid_argument("depth file '" + options.depth.string() + "': expected an .exr with a Z channel");
@@ -70,7 +73,11 @@ DepthImage readLinearDepth(const ConvertJobOptions& options) {
     const std::uint32_t x = std::uint32_t(i % depth.width), y = std::uint32_t(i / depth.width);
     const std::string where = "depth file '" + options.depth.string() + "' at pixel (" + std::to_string(x) + ", " +
                               std::to_string(y) + ")";
-    if (std::isnan(value)) throw std::invalid_argument(where + " is NaN");
+    if (std::isnan(value) || value == -INFINITY) {
+      value = options.stereo.zeroParallaxDistance;  // gpu::sanitizedDepth's reading
+      ++sanitizedPixels;
+      continue;
+    }
     if (options.depthKind == DepthKind::Hardware) {
       if (value < 0.0f || value > 1.0f) throw std::invalid_argument(where + " is outside [0, 1] for hardware depth");
       value = gpu::linearDepthFromDevice(hardware, value);
@@ -114,8 +121,9 @@ nlohmann::json statsJson(const std::optional<stereo::ErrorStats>& stats) {
 
 ConvertReport runConvertJob(vk::Context& context, const ConvertJobOptions& options) {
   // Every input is read and checked before any output exists.
-  const ImageRGBA8 color = readColor(options.color);
-  const DepthImage depth = readLinearDepth(options);
+  ConvertReport report;
+  const ImageRGBA8 color = readColor(options.color, &report.sanitizedColorValues);
+  const DepthImage depth = readLinearDepth(options, report.sanitizedDepthPixels);
   if (depth.width != color.width || depth.height != color.height)
     throw std::invalid_argument("depth '" + options.depth.string() + "' is " + std::to_string(depth.width) + "x" +
                                 std::to_string(depth.height) + ", color '" + options.color.string() + "' is " +
@@ -124,7 +132,6 @@ ConvertReport runConvertJob(vk::Context& context, const ConvertJobOptions& optio
   const std::optional<ImageRGBA8> referenceRight = readReference(options.referenceRight, color, "right");
   const gpu::StereoConstants constants = stereo::makeStereoConstants(options.stereo, color.width, color.height);
 
-  ConvertReport report;
   report.deviceName = context.deviceName();
   report.width = color.width;
   report.height = color.height;
@@ -157,6 +164,7 @@ nlohmann::json toJson(const ConvertReport& report) {
           {"cropColumns", report.cropColumns},
           {"gpuTimeMs", {{"stereoPass", report.stereoPassGpuMs ? nlohmann::json(*report.stereoPassGpuMs) : nullptr}}},
           {"error", {{"left", statsJson(report.left)}, {"right", statsJson(report.right)}}},
+          {"sanitized", {{"colorValues", report.sanitizedColorValues}, {"depthPixels", report.sanitizedDepthPixels}}},
           {"files", report.filesWritten}};
 }
 

@@ -39,11 +39,13 @@ struct ConvertReport {
   std::uint32_t cropColumns = 0;
   std::optional<double> stereoPassGpuMs;
   std::optional<stereo::ErrorStats> left, right;  // only with --reference-left / --reference-right
+  std::uint64_t sanitizedColorValues = 0;  // NaN / inf channel values of an EXR color input, made 0
+  std::uint64_t sanitizedDepthPixels = 0;  // NaN / -inf depths, read as the zero-parallax plane
   std::vector<std::string> filesWritten;
 };
 
 // Reads and checks every input first (missing, unreadable or truncated file, missing channel, mismatched
-// sizes, negative / NaN / zero depth, bad near/far) and throws std::invalid_argument or std::runtime_error
+// sizes, negative / zero depth, bad near/far; NaN or inf color and NaN depth are sanitized and counted instead) and throws std::invalid_argument or std::runtime_error
 // naming the file and the problem before anything is written. Then runs the stereo pass on the GPU and
 // writes left.png, right.png, anaglyph.png, sbs.png, tab.png and report.json (each atomically).
 ConvertReport runConvertJob(vk::Context& context, const ConvertJobOptions& options);
