@@ -12,6 +12,7 @@
 #include "s3d/app/render_job.h"
 #include "s3d/io/image_io.h"
 #include "s3d/stereo/output_formats.h"
+#include "s3d/stereo/sanitize.h"
 #include "s3d/tune/tune_script.h"
 #include "s3d/tune/tune_session.h"
 #include "s3d/tune/tune_views.h"
@@ -329,6 +330,17 @@ TEST_F(TuneSessionTest, PlayingFollowsTheCameraPathAndWrapsAround) {
   (void)session.renderFrame(state, walk, 1.0f);
   EXPECT_EQ(state.camera.position, scene.cameraPath.front().position);
   EXPECT_EQ(state.pathFrame, 1u);
+}
+
+TEST_F(TuneSessionTest, AZeroParallaxPlaneBeyondTheFarPlaneIsClampedWithAWarningAsInSRender) {
+  TuneSession session(context(), 16, 16);
+  TuneState state;
+  state.reference = false;
+  session.loadScene(state);
+  setParameter(state.settings, "zeroParallaxDistance", "5000");  // the scenes' far plane is 1000 m
+  const TuneFrame frame = session.renderFrame(state, {}, 0.0f);
+  EXPECT_FLOAT_EQ(frame.numbers.zeroParallaxDistance, stereo::kMaxZppFractionOfFar * state.camera.farPlane);
+  ASSERT_TRUE(frame.numbers.warning.has_value());
 }
 
 TEST_F(TuneSessionTest, AFailingScriptCommandNamesItsLine) {

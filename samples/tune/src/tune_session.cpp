@@ -8,6 +8,7 @@
 #include "s3d/app/render_job.h"
 #include "s3d/comfort/crosshair.h"
 #include "s3d/hud/crosshair.h"
+#include "s3d/stereo/sanitize.h"
 #include "s3d/stereo/synthesis.h"
 
 namespace s3d::tune {
@@ -115,6 +116,11 @@ TuneFrame TuneSession::renderFrame(TuneState& state, const FrameInput& input, fl
   } else {
     loaded.control.reset();
   }
+  // As `s3d render`: a zero-parallax plane outside the camera's depth range is clamped, with a warning (issue #4).
+  const stereo::ClampedZeroParallax clamped = stereo::clampZeroParallaxDistance(
+      parameters.zeroParallaxDistance, scene.camera.nearPlane, scene.camera.farPlane);
+  parameters.zeroParallaxDistance = clamped.zeroParallaxDistance;
+  numbers.warning = clamped.warning;
   numbers.zeroParallaxDistance = parameters.zeroParallaxDistance;
   numbers.weaponDepthOffset = parameters.weaponDepthOffset;
   numbers.weaponDepthScale = parameters.weaponDepthScale;
@@ -128,6 +134,8 @@ TuneFrame TuneSession::renderFrame(TuneState& state, const FrameInput& input, fl
   numbers.centerPasses = std::move(timings.passes);
   FrameImages images;
   images.stereoDepth = deferred.readLinearDepth();
+  // Invalid depth reads as the zero-parallax plane, as in the stereo pass, for the views and comfort numbers.
+  numbers.sanitizedDepthPixels = stereo::sanitizeDepth(images.stereoDepth, parameters.zeroParallaxDistance);
   stereo::SynthesisResult synthesis =
       stereo::synthesizeTimed(context_, deferred.displayColor(), deferred.linearDepth(), parameters);
   numbers.stereoPassGpuMs = synthesis.gpuMs;

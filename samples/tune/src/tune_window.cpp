@@ -587,7 +587,8 @@ void drawPanel(TuneSession& session, TuneState& state, const FrameNumbers& numbe
     ImGui::Text("GPU stereo pass %s", formatMs(numbers.stereoPassGpuMs).c_str());
     ImGui::Text("GPU reference eyes %s", formatMs(numbers.referenceEyesGpuMs).c_str());
     if (numbers.errorLeft && numbers.errorRight)
-      ImGui::Text("vs reference: L %.2f dB, R %.2f dB", numbers.errorLeft->psnrDb, numbers.errorRight->psnrDb);
+      ImGui::Text("vs reference: L %.2f dB, R %.2f dB, SSIM %.3f / %.3f", numbers.errorLeft->psnrDb,
+                  numbers.errorRight->psnrDb, numbers.errorLeft->ssim, numbers.errorRight->ssim);
     const comfort::ParallaxStatistics& p = numbers.parallax;
     ImGui::Text("parallax %.1f .. %.1f px (%.2f .. %.2f %%)", p.minParallaxPx, p.maxParallaxPx, p.minParallaxPercent,
                 p.maxParallaxPercent);
@@ -599,6 +600,9 @@ void drawPanel(TuneSession& session, TuneState& state, const FrameNumbers& numbe
       ImGui::Text("zero parallax %.2f m", numbers.zeroParallaxDistance);
     ImGui::Text("weapon push %.2f + %.2f d, crosshair %.2f m%s", numbers.weaponDepthOffset, numbers.weaponDepthScale,
                 numbers.crosshairDepth, numbers.crosshairHitWorld ? " (hit)" : "");
+    if (numbers.sanitizedDepthPixels > 0)
+      ImGui::Text("%llu invalid depth pixels read as the screen plane", (unsigned long long)numbers.sanitizedDepthPixels);
+    if (numbers.warning) ImGui::TextWrapped("warning: %s", numbers.warning->c_str());
   }
   if (ImGui::CollapsingHeader("Comfort profile", ImGuiTreeNodeFlags_DefaultOpen)) {
     ImGui::InputText("file", panel.profilePath, sizeof(panel.profilePath));

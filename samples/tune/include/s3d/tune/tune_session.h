@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <memory>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "s3d/comfort/display_profile.h"
@@ -34,6 +35,8 @@ struct FrameNumbers {
   float weaponDepthOffset = 0.0f, weaponDepthScale = 0.0f;  // the push as used
   float crosshairDepth = 0.0f;
   bool crosshairHitWorld = false;
+  std::uint64_t sanitizedDepthPixels = 0;  // NaN / non-positive depths read as the zero-parallax plane
+  std::optional<std::string> warning;      // e.g. the zero-parallax distance clamped into the camera's range
 };
 
 struct TuneFrame {
