@@ -54,7 +54,7 @@ TEST(TuneParameters, EveryNamedParameterCanBeSet) {
       {"weaponDepthOffset", "0.5"},   {"weaponDepthScale", "1.5"},     {"zppControl", "on"},
       {"zppEngageDistance", "3"},     {"zppReleaseMargin", "0.5"},     {"zppMinimumDistance", "0.3"},
       {"zppResponseSeconds", "0.5"},  {"zppMaxChangePerSecond", "2"},  {"crosshairDistance", "6"},
-      {"crosshairMargin", "0.5"},     {"display", "monitor27"}};
+      {"crosshairMargin", "0.5"},     {"display", "monitor27"},        {"allowNegativeParallax", "on"}};
   ASSERT_EQ(values.size(), parameterNames().size());
   for (const auto& [name, value] : values) setParameter(settings, name, value);
   EXPECT_FLOAT_EQ(settings.profile.stereo.maxSeparation, 0.03f);
@@ -74,6 +74,7 @@ TEST(TuneParameters, EveryNamedParameterCanBeSet) {
   EXPECT_FLOAT_EQ(settings.profile.crosshair.distance.value_or(0.0f), 6.0f);
   EXPECT_FLOAT_EQ(settings.profile.crosshair.margin, 0.5f);
   EXPECT_EQ(settings.profile.display.name, "monitor27");
+  EXPECT_TRUE(settings.profile.allowNegativeParallax);
 }
 
 TEST(TuneParameters, AnInvalidValueNamesTheParameterAndChangesNothing) {
@@ -210,7 +211,6 @@ FrameImages syntheticFrame() {
   frame.eyes.left = ImageRGBA8(8, 6, 200);
   frame.eyes.right = ImageRGBA8(8, 6, 60);
   frame.stereoDepth = DepthImage(8, 6, 1.0f);
-  frame.crosshairOffsetPx = {NAN, NAN};
   frame.display = comfort::builtInDisplayProfile("tv55");
   return frame;
 }
@@ -233,6 +233,44 @@ TEST(TuneViews, ComfortOverlayMarksOnlyPixelsBeyondTheLimit) {
             std::vector<std::uint8_t>(anaglyph.at(0, 0), anaglyph.at(0, 0) + 3));
   EXPECT_EQ(std::vector<std::uint8_t>(overlay.pixels.begin() + 4, overlay.pixels.end()),
             std::vector<std::uint8_t>(anaglyph.pixels.begin() + 4, anaglyph.pixels.end()));
+}
+
+TEST(TuneViews, ComfortOverlayMarksWindowViolationsAndTheComfortZoneInTheirOwnColours) {
+  // monitor27 (0.60 m wide at 0.7 m, zone of comfort 0.50 .. 1.14 m), maxSeparation 0.03, no crop, 8 x 1:
+  // depth 0.9 at the left edge is a crossed 4 mm run touching the edge (window violation, 20 arcmin);
+  // depth 3 gives 24 mm uncrossed (117 arcmin, beyond 1 degree, vergence 1.13 m: inside the zone);
+  // infinity gives 36 mm (vergence 1.63 m: outside the zone). Depth 1 is the screen plane: unmarked.
+  FrameImages frame;
+  frame.eyes.left = ImageRGBA8(8, 1, 200);
+  frame.eyes.right = ImageRGBA8(8, 1, 60);
+  frame.stereoDepth = DepthImage(8, 1, 1.0f);
+  frame.stereoDepth.pixels[0] = 0.9f;
+  frame.stereoDepth.pixels[3] = 3.0f;
+  frame.stereoDepth.pixels[5] = INFINITY;
+  frame.parameters = {0.03f, 1.0f, 0.0f};
+  frame.display = comfort::builtInDisplayProfile("monitor27");
+  const ImageRGBA8 anaglyph = composeView(ViewMode::Anaglyph, frame);
+  const ImageRGBA8 overlay = composeView(ViewMode::ComfortOverlay, frame);
+  auto marked = [&](std::uint32_t x, const std::array<int, 3>& color) {
+    std::vector<int> expected;
+    for (std::size_t c = 0; c < 3; ++c) expected.push_back((int(anaglyph.at(x, 0)[c]) + color[c] + 1) / 2);
+    return expected;
+  };
+  auto rgb = [&](std::uint32_t x) { return std::vector<int>(overlay.at(x, 0), overlay.at(x, 0) + 3); };
+  EXPECT_EQ(rgb(0), marked(0, kWindowViolationColor));
+  EXPECT_EQ(rgb(3), marked(3, kBeyondLimitColor));
+  EXPECT_EQ(rgb(5), marked(5, kOutsideComfortZoneColor));
+  for (std::uint32_t x : {1u, 2u, 4u, 6u, 7u}) EXPECT_EQ(rgb(x), std::vector<int>(anaglyph.at(x, 0), anaglyph.at(x, 0) + 3)) << x;
+}
+
+TEST(TuneViews, ViewsShowTheEyesWithTheHudButTheErrorHeatMapMeasuresWithout) {
+  FrameImages frame = syntheticFrame();
+  frame.reference = frame.eyes;
+  frame.eyesWithHud = frame.eyes;
+  frame.eyesWithHud->left.at(4, 3)[0] = 255;  // a HUD pixel in the left eye only
+  EXPECT_EQ(composeView(ViewMode::Left, frame).pixels, frame.eyesWithHud->left.pixels);
+  const ImageRGBA8 heat = composeView(ViewMode::ErrorHeatMap, frame);
+  for (std::size_t i = 0; i < heat.pixels.size(); i += 4) EXPECT_EQ(heat.pixels[i], 0) << i;
 }
 
 TEST(TuneViews, SideBySideViewKeepsTheEyeSize) {
@@ -276,6 +314,36 @@ TEST_F(TuneSessionTest, AnaglyphOfTheFirstFrameEqualsTheOffscreenRender) {
   ASSERT_EQ(frame.view.width, 64u);
   EXPECT_EQ(frame.view.pixels, offscreen.pixels);
   EXPECT_FALSE(frame.numbers.errorLeft.has_value());
+}
+
+TEST_F(TuneSessionTest, AllowingNegativeParallaxMatchesTheOffscreenRenderThatAllowsIt) {
+  // The cover scene at its wall (frame 23): the no-negative-parallax rules change the frame there.
+  app::RenderJobOptions options;
+  options.width = 48;
+  options.height = 32;
+  options.scene = "cover";
+  options.frame = 23;
+  options.allowNegativeParallax = true;
+  options.outputs = {"left.png"};
+  options.outputFolder = scratchFolder("offscreen_negative");
+  const app::RenderReport report = app::runRenderJob(context(), options);
+  const ImageRGBA8 offscreen = io::readPng(options.outputFolder / "left.png");
+  fs::remove_all(options.outputFolder);
+
+  TuneSession session(context(), 48, 32);
+  TuneState state;
+  state.scene = "cover";
+  state.reference = false;
+  state.view = ViewMode::Left;
+  session.loadScene(state);
+  session.setPathFrame(state, 23);
+  setParameter(state.settings, "allowNegativeParallax", "on");
+  const TuneFrame frame = session.renderFrame(state, {}, 0.0f);
+  EXPECT_EQ(frame.view.pixels, offscreen.pixels);
+  EXPECT_FALSE(frame.numbers.zeroParallaxLimited);
+  EXPECT_GT(frame.numbers.comfort.parallax.shareNegative, 0.0);  // what the rules would have prevented
+  EXPECT_EQ(frame.numbers.comfort.windowViolationPixels, report.comfort.windowViolationPixels);
+  EXPECT_EQ(frame.numbers.hudConflictPixels, report.hudConflictPixels);
 }
 
 TEST_F(TuneSessionTest, ReferenceNumbersAndTheComfortControlRunWhenAskedFor) {
@@ -338,6 +406,8 @@ TEST_F(TuneSessionTest, AZeroParallaxPlaneBeyondTheFarPlaneIsClampedWithAWarning
   state.reference = false;
   session.loadScene(state);
   setParameter(state.settings, "zeroParallaxDistance", "5000");  // the scenes' far plane is 1000 m
+  // Negative parallax allowed: otherwise the plane is then held at the frame's nearest depth, as in `s3d render`.
+  setParameter(state.settings, "allowNegativeParallax", "on");
   const TuneFrame frame = session.renderFrame(state, {}, 0.0f);
   EXPECT_FLOAT_EQ(frame.numbers.zeroParallaxDistance, stereo::kMaxZppFractionOfFar * state.camera.farPlane);
   ASSERT_TRUE(frame.numbers.warning.has_value());

@@ -5,9 +5,10 @@
 #include <cstring>
 #include <stdexcept>
 
+#include "s3d/app/frame_rules.h"
 #include "s3d/app/render_job.h"
 #include "s3d/comfort/crosshair.h"
-#include "s3d/hud/crosshair.h"
+#include "s3d/comfort/comfort_report.h"
 #include "s3d/stereo/sanitize.h"
 #include "s3d/stereo/synthesis.h"
 
@@ -121,9 +122,11 @@ TuneFrame TuneSession::renderFrame(TuneState& state, const FrameInput& input, fl
       parameters.zeroParallaxDistance, scene.camera.nearPlane, scene.camera.farPlane);
   parameters.zeroParallaxDistance = clamped.zeroParallaxDistance;
   numbers.warning = clamped.warning;
-  numbers.zeroParallaxDistance = parameters.zeroParallaxDistance;
-  numbers.weaponDepthOffset = parameters.weaponDepthOffset;
-  numbers.weaponDepthScale = parameters.weaponDepthScale;
+  // The no-negative-parallax rules as runRenderJob applies them (frame_rules.h): the weapon pushed to the
+  // screen plane before the center view, the plane held at the frame's nearest depth after it.
+  const bool allowNegativeParallax = profile.allowNegativeParallax;
+  const std::optional<glm::vec2> weaponDepths = renderer::firstPersonDepthRange(scene);
+  parameters = app::pushWeaponUnlessNegativeParallaxAllowed(parameters, weaponDepths, allowNegativeParallax);
 
   // The center view and both synthesized eyes (as runRenderJob).
   renderer::DeferredRenderer& deferred = *loaded.deferred;
@@ -136,6 +139,13 @@ TuneFrame TuneSession::renderFrame(TuneState& state, const FrameInput& input, fl
   images.stereoDepth = deferred.readLinearDepth();
   // Invalid depth reads as the zero-parallax plane, as in the stereo pass, for the views and comfort numbers.
   numbers.sanitizedDepthPixels = stereo::sanitizeDepth(images.stereoDepth, parameters.zeroParallaxDistance);
+  const std::vector<std::uint8_t> firstPersonMask = deferred.readFirstPersonMask();  // weapon and HUD conflicts
+  numbers.zeroParallaxLimited = app::holdZeroParallaxAtNearestDepth(parameters, images.stereoDepth, allowNegativeParallax);
+  if (numbers.zeroParallaxLimited && loaded.control)  // the control goes on smoothly from the limit
+    parameters.zeroParallaxDistance = loaded.control->limit(parameters.zeroParallaxDistance);
+  numbers.zeroParallaxDistance = parameters.zeroParallaxDistance;
+  numbers.weaponDepthOffset = parameters.weaponDepthOffset;
+  numbers.weaponDepthScale = parameters.weaponDepthScale;
   stereo::SynthesisResult synthesis =
       stereo::synthesizeTimed(context_, deferred.displayColor(), deferred.linearDepth(), parameters);
   numbers.stereoPassGpuMs = synthesis.gpuMs;
@@ -162,20 +172,27 @@ TuneFrame TuneSession::renderFrame(TuneState& state, const FrameInput& input, fl
     images.reference = std::move(reference);
   }
 
-  // Comfort numbers on the chosen display.
+  // Comfort numbers on the chosen display (the comfort report of `s3d render`, comfort_report.h).
   images.display = profile.display;
-  numbers.parallax = comfort::parallaxStatistics(images.stereoDepth, parameters, images.display);
+  numbers.comfort = comfort::frameComfort(images.stereoDepth, parameters, images.display);
   const std::vector<std::uint8_t> beyond = comfortViolationMask(images.stereoDepth, parameters, images.display);
   numbers.shareBeyondComfort = double(std::count(beyond.begin(), beyond.end(), std::uint8_t(1))) / double(beyond.size());
+  numbers.weaponConflictPixels =
+      comfort::countWeaponConflicts(*loaded.world, scene.camera, center, images.stereoDepth, firstPersonMask).conflictPixels;
 
-  // HUD crosshair: an Embree ray cast along the aim (seed 4.6.2), drawn into each eye at its depth's parallax.
+  // HUD: the crosshair, placed by an Embree ray cast along the aim (seed 4.6.2), and the panels, drawn into
+  // each eye at its depth's parallax with the weapon-mask fade, by the same code as `s3d render` (drawHud).
   const comfort::CrosshairPlacement placement =
       comfort::placeCrosshair(*loaded.world, scene.camera, profile.crosshair.distance.value_or(scene.crosshairDistance),
                               profile.crosshair.margin);
-  numbers.crosshairDepth = placement.depth;
+  images.eyesWithHud = images.eyes;
+  if (images.reference) images.referenceWithHud = images.reference;
+  const app::HudFrame overlay =
+      app::drawHud({parameters, placement.depth, weaponDepths, allowNegativeParallax, &images.stereoDepth, &firstPersonMask},
+                   *images.eyesWithHud, nullptr, images.referenceWithHud ? &*images.referenceWithHud : nullptr);
+  numbers.crosshairDepth = overlay.crosshairDepth;
   numbers.crosshairHitWorld = placement.hitWorld;
-  images.crosshairOffsetPx = {hud::crosshairEyeOffsetPx(parameters, placement.depth, width_, stereo::Eye::Left),
-                              hud::crosshairEyeOffsetPx(parameters, placement.depth, width_, stereo::Eye::Right)};
+  numbers.hudConflictPixels = overlay.conflictPixels;
 
   frame.view = composeView(state.view, images);
   if (state.playPath) {

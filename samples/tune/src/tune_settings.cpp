@@ -64,7 +64,8 @@ const std::vector<std::string>& parameterNames() {
       "maxSeparation",     "zeroParallaxDistance", "edgeCrop",           "method",
       "taps",              "iterations",           "weaponDepthOffset",  "weaponDepthScale",
       "zppControl",        "zppEngageDistance",    "zppReleaseMargin",   "zppMinimumDistance",
-      "zppResponseSeconds", "zppMaxChangePerSecond", "crosshairDistance", "crosshairMargin", "display"};
+      "zppResponseSeconds", "zppMaxChangePerSecond", "crosshairDistance", "crosshairMargin", "display",
+      "allowNegativeParallax"};
   return names;
 }
 
@@ -94,6 +95,7 @@ void assignParameter(TuneSettings& settings, const std::string& name, const std:
   else if (name == "zppMaxChangePerSecond") next.zeroParallax.maxChangePerSecond = number();
   else if (name == "crosshairDistance") next.crosshair.distance = number();
   else if (name == "crosshairMargin") next.crosshair.margin = number();
+  else if (name == "allowNegativeParallax") next.allowNegativeParallax = parseSwitchOf(name, value);
   else if (name == "display") {
     try {
       next.display = comfort::resolveDisplayProfile(value);

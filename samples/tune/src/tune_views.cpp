@@ -4,15 +4,12 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "s3d/hud/crosshair.h"
+#include "s3d/comfort/comfort_report.h"
 #include "s3d/stereo/metrics.h"
 #include "s3d/stereo/output_formats.h"
 
 namespace s3d::tune {
 namespace {
-
-// Marked pixels of the comfort overlay: the anaglyph mixed half-way to this colour.
-constexpr std::array<int, 3> kViolationColor{255, 220, 0};
 
 // The stereo pass's parallax between the eyes in pixels (sky and invalid depth: infinity / screen plane).
 float parallaxBetweenEyesPx(float depth, const stereo::StereoParameters& parameters, std::uint32_t width) {
@@ -21,16 +18,6 @@ float parallaxBetweenEyesPx(float depth, const stereo::StereoParameters& paramet
 }
 
 }  // namespace
-
-stereo::StereoPair withCrosshair(const stereo::StereoPair& eyes, const std::array<float, 2>& offsetPx) {
-  stereo::StereoPair result = eyes;
-  if (std::isnan(offsetPx[0]) || std::isnan(offsetPx[1])) return result;
-  const std::uint32_t width = eyes.left.width, height = eyes.left.height;
-  const hud::CrosshairStyle style = hud::crosshairStyleForHeight(height);
-  hud::drawCrosshair(result.left, 0.5f * float(width - 1) + offsetPx[0], 0.5f * float(height - 1), style);
-  hud::drawCrosshair(result.right, 0.5f * float(width - 1) + offsetPx[1], 0.5f * float(height - 1), style);
-  return result;
-}
 
 ImageRGBA8 makeParallaxHeatMap(const DepthImage& stereoDepth, const stereo::StereoParameters& parameters) {
   ImageRGBA8 image(stereoDepth.width, stereoDepth.height);
@@ -69,20 +56,16 @@ ImageRGBA8 composeView(ViewMode mode, const FrameImages& frame) {
       throw std::invalid_argument(std::string("the ") + viewModeName(mode) + " view needs the two-pass reference eyes");
     return *frame.reference;
   };
+  const stereo::StereoPair& eyes = frame.eyesWithHud ? *frame.eyesWithHud : frame.eyes;  // as shown
   switch (mode) {
-    case ViewMode::Anaglyph: {
-      const stereo::StereoPair eyes = withCrosshair(frame.eyes, frame.crosshairOffsetPx);
-      return stereo::makeAnaglyphDubois(eyes.left, eyes.right);
-    }
-    case ViewMode::SideBySide: {
-      const stereo::StereoPair eyes = withCrosshair(frame.eyes, frame.crosshairOffsetPx);
-      return stereo::makeSideBySide(eyes.left, eyes.right, stereo::PackingMode::Half);
-    }
-    case ViewMode::Left: return withCrosshair(frame.eyes, frame.crosshairOffsetPx).left;
-    case ViewMode::Right: return withCrosshair(frame.eyes, frame.crosshairOffsetPx).right;
+    case ViewMode::Anaglyph: return stereo::makeAnaglyphDubois(eyes.left, eyes.right);
+    case ViewMode::SideBySide: return stereo::makeSideBySide(eyes.left, eyes.right, stereo::PackingMode::Half);
+    case ViewMode::Left: return eyes.left;
+    case ViewMode::Right: return eyes.right;
     case ViewMode::Reference: {
-      const stereo::StereoPair eyes = withCrosshair(requireReference(), frame.crosshairOffsetPx);
-      return stereo::makeAnaglyphDubois(eyes.left, eyes.right);
+      const stereo::StereoPair& reference = requireReference();
+      const stereo::StereoPair& shown = frame.referenceWithHud ? *frame.referenceWithHud : reference;
+      return stereo::makeAnaglyphDubois(shown.left, shown.right);
     }
     case ViewMode::ErrorHeatMap: {  // as measured: without the HUD, border strips black
       const stereo::StereoPair& reference = requireReference();
@@ -92,15 +75,19 @@ ImageRGBA8 composeView(ViewMode mode, const FrameImages& frame) {
     }
     case ViewMode::ParallaxHeatMap: return makeParallaxHeatMap(frame.stereoDepth, frame.parameters);
     case ViewMode::ComfortOverlay: {
-      const stereo::StereoPair eyes = withCrosshair(frame.eyes, frame.crosshairOffsetPx);
       ImageRGBA8 image = stereo::makeAnaglyphDubois(eyes.left, eyes.right);
-      const std::vector<std::uint8_t> mask = comfortViolationMask(frame.stereoDepth, frame.parameters, frame.display);
-      for (std::uint32_t y = 0; y < image.height; ++y)
-        for (std::uint32_t x = 0; x < image.width; ++x)
-          if (mask[std::size_t(y) * image.width + x]) {
-            std::uint8_t* pixel = image.at(x, y);
-            for (int c = 0; c < 3; ++c) pixel[c] = std::uint8_t((int(pixel[c]) + kViolationColor[std::size_t(c)] + 1) / 2);
-          }
+      const std::vector<std::uint8_t> beyond = comfortViolationMask(frame.stereoDepth, frame.parameters, frame.display);
+      std::vector<std::uint8_t> violations;  // comfort::kWindowViolation and kOutsideComfortZone flags
+      (void)comfort::frameComfort(frame.stereoDepth, frame.parameters, frame.display, &violations);
+      for (std::size_t i = 0; i < image.pixelCount(); ++i) {
+        const std::array<int, 3>* color = violations[i] & comfort::kWindowViolation      ? &kWindowViolationColor
+                                          : violations[i] & comfort::kOutsideComfortZone ? &kOutsideComfortZoneColor
+                                          : beyond[i]                                    ? &kBeyondLimitColor
+                                                                                         : nullptr;
+        if (!color) continue;
+        std::uint8_t* pixel = &image.pixels[i * 4];
+        for (std::size_t c = 0; c < 3; ++c) pixel[c] = std::uint8_t((int(pixel[c]) + (*color)[c] + 1) / 2);
+      }
       return image;
     }
   }

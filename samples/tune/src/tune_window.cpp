@@ -554,6 +554,8 @@ void drawPanel(TuneSession& session, TuneState& state, const FrameNumbers& numbe
     std::string display = profile.display.name;  // a custom display from a profile shows its name
     if (comboOfNames("display", display, comfort::builtInDisplayProfileNames()))
       profile.display = comfort::builtInDisplayProfile(display);
+    // Off: as `s3d render`, nothing in the frame gets negative parallax (weapon push, screen plane, HUD).
+    ImGui::Checkbox("allow negative parallax", &profile.allowNegativeParallax);
   }
   try {
     validate(edited);
@@ -589,15 +591,22 @@ void drawPanel(TuneSession& session, TuneState& state, const FrameNumbers& numbe
     if (numbers.errorLeft && numbers.errorRight)
       ImGui::Text("vs reference: L %.2f dB, R %.2f dB, SSIM %.3f / %.3f", numbers.errorLeft->psnrDb,
                   numbers.errorRight->psnrDb, numbers.errorLeft->ssim, numbers.errorRight->ssim);
-    const comfort::ParallaxStatistics& p = numbers.parallax;
+    const comfort::ParallaxStatistics& p = numbers.comfort.parallax;
     ImGui::Text("parallax %.1f .. %.1f px (%.2f .. %.2f %%)", p.minParallaxPx, p.maxParallaxPx, p.minParallaxPercent,
                 p.maxParallaxPercent);
     ImGui::Text("disparity %.1f .. %.1f arcmin", p.minDisparityArcmin, p.maxDisparityArcmin);
     ImGui::Text("beyond 1 deg %.1f %%, in front %.1f %%", 100.0 * numbers.shareBeyondComfort, 100.0 * p.shareNegative);
+    ImGui::Text("outside comfort zone %.1f %%", 100.0 * numbers.comfort.shareOutsideComfortZone);
+    ImGui::Text("window violations %llu px (widest %u columns)",
+                (unsigned long long)numbers.comfort.windowViolationPixels, numbers.comfort.windowViolationColumns);
+    ImGui::Text("conflicts: weapon %llu px, HUD %llu px", (unsigned long long)numbers.weaponConflictPixels,
+                (unsigned long long)numbers.hudConflictPixels);
+    const char* limited = numbers.zeroParallaxLimited ? " (held at nearest depth)" : "";
     if (numbers.nearestSurface)
-      ImGui::Text("zero parallax %.2f m, nearest surface %.2f m", numbers.zeroParallaxDistance, *numbers.nearestSurface);
+      ImGui::Text("zero parallax %.2f m%s, nearest surface %.2f m", numbers.zeroParallaxDistance, limited,
+                  *numbers.nearestSurface);
     else
-      ImGui::Text("zero parallax %.2f m", numbers.zeroParallaxDistance);
+      ImGui::Text("zero parallax %.2f m%s", numbers.zeroParallaxDistance, limited);
     ImGui::Text("weapon push %.2f + %.2f d, crosshair %.2f m%s", numbers.weaponDepthOffset, numbers.weaponDepthScale,
                 numbers.crosshairDepth, numbers.crosshairHitWorld ? " (hit)" : "");
     if (numbers.sanitizedDepthPixels > 0)

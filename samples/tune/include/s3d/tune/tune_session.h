@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "s3d/comfort/comfort_report.h"
 #include "s3d/comfort/display_profile.h"
 #include "s3d/comfort/world_queries.h"
 #include "s3d/comfort/zero_parallax_control.h"
@@ -28,12 +29,17 @@ struct FrameNumbers {
   std::optional<double> stereoPassGpuMs;     // the stereo dispatch producing both eyes
   std::optional<double> referenceEyesGpuMs;  // both two-pass reference eyes (when rendered)
   std::optional<stereo::ErrorStats> errorLeft, errorRight;  // synthesized vs reference (when rendered)
-  comfort::ParallaxStatistics parallax;      // on the display profile
+  // On the display profile, as `s3d render`'s comfort report: parallax range, share outside Shibata et al.'s
+  // zone of comfort, stereo window violations (comfort_report.h).
+  comfort::FrameComfort comfort;
   double shareBeyondComfort = 0.0;           // pixels beyond kComfortLimitArcmin
-  float zeroParallaxDistance = 0.0f;         // as used (the control's output when it runs)
+  std::uint64_t weaponConflictPixels = 0;    // weapon pixels pushed behind the world surface there
+  std::uint64_t hudConflictPixels = 0;       // HUD pixels deeper than the surface they cover
+  float zeroParallaxDistance = 0.0f;         // as used (the control's output when it runs, the rules applied)
+  bool zeroParallaxLimited = false;          // held at the frame's nearest depth (negative parallax disallowed)
   std::optional<float> nearestSurface;       // what the control's ray casts saw
   float weaponDepthOffset = 0.0f, weaponDepthScale = 0.0f;  // the push as used
-  float crosshairDepth = 0.0f;
+  float crosshairDepth = 0.0f;              // as drawn (not in front of the screen plane unless allowed)
   bool crosshairHitWorld = false;
   std::uint64_t sanitizedDepthPixels = 0;  // NaN / non-positive depths read as the zero-parallax plane
   std::optional<std::string> warning;      // e.g. the zero-parallax distance clamped into the camera's range

@@ -43,11 +43,11 @@ void validate(const TuneSettings& settings);
 
 // The parameter names, in panel order: maxSeparation, zeroParallaxDistance, edgeCrop, method, taps, iterations,
 // weaponDepthOffset, weaponDepthScale, zppControl, zppEngageDistance, zppReleaseMargin, zppMinimumDistance,
-// zppResponseSeconds, zppMaxChangePerSecond, crosshairDistance, crosshairMargin, display.
+// zppResponseSeconds, zppMaxChangePerSecond, crosshairDistance, crosshairMargin, display, allowNegativeParallax.
 const std::vector<std::string>& parameterNames();
 
 // Sets one parameter from its text form (numbers; method by name; display by built-in name or a .json display
-// profile's path; zppControl on/off/true/false).
+// profile's path; zppControl and allowNegativeParallax on/off/true/false).
 // Throws std::invalid_argument naming the parameter (unknown name, unparsable or invalid value); the settings
 // are left unchanged then.
 void setParameter(TuneSettings& settings, const std::string& name, const std::string& value);

@@ -16,17 +16,16 @@ namespace s3d::tune {
 inline constexpr double kComfortLimitArcmin = 60.0;
 
 struct FrameImages {
-  stereo::StereoPair eyes;                      // synthesized by the stereo pass, before the HUD
+  stereo::StereoPair eyes;                      // synthesized by the stereo pass, before the HUD (as measured)
   std::optional<stereo::StereoPair> reference;  // the two-pass reference eyes, before the HUD (when rendered)
+  // The same with the HUD drawn (app::drawHud), as `s3d render` writes them: the views show these where given;
+  // the error heat map never does (as measured).
+  std::optional<stereo::StereoPair> eyesWithHud, referenceWithHud;
   DepthImage stereoDepth;                       // the stereo pass's linear depth (weapon pushed)
-  stereo::StereoParameters parameters;          // as used for this frame (zero-parallax control applied)
+  stereo::StereoParameters parameters;          // as used for this frame (zero-parallax control and rules applied)
   std::uint32_t cropColumns = 0;
-  std::array<float, 2> crosshairOffsetPx{};     // left, right eye (hud::crosshairEyeOffsetPx); NaN: no crosshair
   comfort::DisplayProfile display;
 };
-
-// Both eyes with the HUD crosshair drawn as `s3d render` draws it (at the image center plus each eye's offset).
-stereo::StereoPair withCrosshair(const stereo::StereoPair& eyes, const std::array<float, 2>& offsetPx);
 
 // Per pixel the parallax the stereo pass gives it between the eyes, 2 p(depth) W: white on the screen plane,
 // towards blue behind it and towards red in front of it, full colour at the parallax of infinity
@@ -37,6 +36,13 @@ ImageRGBA8 makeParallaxHeatMap(const DepthImage& stereoDepth, const stereo::Ster
 std::vector<std::uint8_t> comfortViolationMask(const DepthImage& stereoDepth, const stereo::StereoParameters& parameters,
                                                const comfort::DisplayProfile& display,
                                                double limitArcmin = kComfortLimitArcmin);
+
+// The comfort overlay's marks (the rules of `s3d render`'s comfort report), each mixing the anaglyph half-way
+// to its colour; a pixel breaking several rules takes the first: a stereo window violation, outside Shibata et
+// al.'s zone of comfort (comfort::frameComfort), beyond 1 degree of disparity (kComfortLimitArcmin).
+inline constexpr std::array<int, 3> kWindowViolationColor{255, 0, 255};
+inline constexpr std::array<int, 3> kOutsideComfortZoneColor{255, 110, 0};
+inline constexpr std::array<int, 3> kBeyondLimitColor{255, 220, 0};
 
 // The image the view area shows. Throws std::invalid_argument for a reference view without reference eyes.
 ImageRGBA8 composeView(ViewMode mode, const FrameImages& frame);
