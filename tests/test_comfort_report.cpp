@@ -57,6 +57,28 @@ TEST(FrameComfort, WindowViolationsAreNegativeParallaxRunsTouchingTheLeftOrRight
   EXPECT_EQ(comfort.windowViolationColumns, 3u);
 }
 
+TEST(FrameComfort, ViolationFlagsMarkThePixelsItCounts) {
+  // The window-violation layout above in one row: the edge runs are flagged, the near block in the middle is
+  // not; on tv55 (comfort zone beyond infinity, near limit 0.97 m) nothing here leaves the zone.
+  DepthImage depth(20, 1, 2.0f);
+  for (std::uint32_t x : {0u, 1u, 2u, 18u, 19u, 9u, 10u}) *depth.at(x, 0) = 0.5f;
+  stereo::StereoParameters parameters{0.02f, 1.0f, 0.0f};
+  std::vector<std::uint8_t> violations;
+  const FrameComfort comfort = frameComfort(depth, parameters, builtInDisplayProfile("tv55"), &violations);
+  ASSERT_EQ(violations.size(), 20u);
+  for (std::uint32_t x = 0; x < 20; ++x)
+    EXPECT_EQ(violations[x], (x <= 2 || x >= 18) ? kWindowViolation : 0) << x;
+  EXPECT_EQ(comfort.windowViolationPixels, 5u);
+  // The monitor layout of the zone test: the near row is flagged outside the zone, the screen-plane row is not.
+  DepthImage nearRow(4, 2, 1.0f);
+  for (std::uint32_t x = 0; x < 4; ++x) *nearRow.at(x, 1) = 0.25f;
+  (void)frameComfort(nearRow, {0.05f, 1.0f, 0.0f}, builtInDisplayProfile("monitor27"), &violations);
+  for (std::uint32_t x = 0; x < 4; ++x) {
+    EXPECT_EQ(violations[x] & kOutsideComfortZone, 0) << x;
+    EXPECT_EQ(violations[4 + x] & kOutsideComfortZone, kOutsideComfortZone) << x;
+  }
+}
+
 TEST(FrameComfort, WindowViolationsStartInsideTheEdgeCrop) {
   // edgeCrop 0.1 of 20 columns: columns 0-1 and 18-19 are black; the near run at columns 2-3 touches the edge.
   DepthImage depth(20, 1, 2.0f);

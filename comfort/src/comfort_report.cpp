@@ -34,7 +34,7 @@ ComfortZone shibataComfortZone(const DisplayProfile& display) {
 }
 
 FrameComfort frameComfort(const DepthImage& stereoDepth, const stereo::StereoParameters& parameters,
-                          const DisplayProfile& display) {
+                          const DisplayProfile& display, std::vector<std::uint8_t>* violations) {
   FrameComfort comfort;
   comfort.parallax = parallaxStatistics(stereoDepth, parameters, display);  // throws on an empty image
   const std::uint32_t width = stereoDepth.width;
@@ -47,18 +47,31 @@ FrameComfort frameComfort(const DepthImage& stereoDepth, const stereo::StereoPar
     return 2.0 * double(gpu::parallaxFromDepth(parameters.maxSeparation, parameters.zeroParallaxDistance, depth)) *
            double(width);
   };
+  if (violations) violations->assign(stereoDepth.pixelCount(), 0);
+  auto flag = [&](std::uint32_t x, std::uint32_t y, std::uint8_t rule) {
+    if (violations) (*violations)[std::size_t(y) * width + x] |= rule;
+  };
   std::uint64_t outside = 0;
   for (std::uint32_t y = 0; y < stereoDepth.height; ++y) {
     for (std::uint32_t x = 0; x < width; ++x) {
       const double distance =
           vergenceDistanceMeters(display, parallaxPxAt(x, y) / double(width) * display.screenWidthMeters);
-      if (distance < zone.nearMeters || distance > zone.farMeters) ++outside;
+      if (distance < zone.nearMeters || distance > zone.farMeters) {
+        ++outside;
+        flag(x, y, kOutsideComfortZone);
+      }
     }
     // Runs of negative parallax from each visible edge inward.
     std::uint32_t fromLeft = 0, fromRight = 0;
-    for (std::uint32_t x = visibleBegin; x < visibleEnd && parallaxPxAt(x, y) < 0.0; ++x) ++fromLeft;
+    for (std::uint32_t x = visibleBegin; x < visibleEnd && parallaxPxAt(x, y) < 0.0; ++x) {
+      ++fromLeft;
+      flag(x, y, kWindowViolation);
+    }
     if (fromLeft < visibleEnd - visibleBegin)
-      for (std::uint32_t x = visibleEnd; x > visibleBegin && parallaxPxAt(x - 1, y) < 0.0; --x) ++fromRight;
+      for (std::uint32_t x = visibleEnd; x > visibleBegin && parallaxPxAt(x - 1, y) < 0.0; --x) {
+        ++fromRight;
+        flag(x - 1, y, kWindowViolation);
+      }
     comfort.windowViolationPixels += fromLeft + fromRight;
     comfort.windowViolationColumns = std::max({comfort.windowViolationColumns, fromLeft, fromRight});
   }

@@ -24,6 +24,7 @@ int main(int argc, char** argv) {
   commands.push_back(addConvertCommand(app));
   commands.push_back(addBenchCommand(app));
   commands.push_back(addRegressCommand(app));
+  commands.push_back(addTuneCommand(app));
 
   try {
     app.parse(argc, argv);

@@ -40,7 +40,8 @@ std::uint32_t findComputeGraphicsQueue(VkPhysicalDevice device) {
   return UINT32_MAX;
 }
 
-PhysicalDeviceInfo describe(VkPhysicalDevice device, std::uint32_t index) {
+// With a surface (presentation), the device must also present to it from the graphics+compute queue.
+PhysicalDeviceInfo describe(VkPhysicalDevice device, std::uint32_t index, VkSurfaceKHR surface = VK_NULL_HANDLE) {
   VkPhysicalDeviceProperties properties{};
   vkGetPhysicalDeviceProperties(device, &properties);
   PhysicalDeviceInfo info;
@@ -61,28 +62,40 @@ PhysicalDeviceInfo describe(VkPhysicalDevice device, std::uint32_t index) {
     info.unusableReason = "dynamicRendering, synchronization2 or maintenance4 missing";
   else if (findComputeGraphicsQueue(device) == UINT32_MAX)
     info.unusableReason = "no graphics+compute queue";
+  else if (surface && !hasDeviceExtension(device, VK_KHR_SWAPCHAIN_EXTENSION_NAME))
+    info.unusableReason = "VK_KHR_swapchain missing (needed to show a window)";
   else
     info.usable = true;
+  if (info.usable && surface) {
+    VkBool32 presents = VK_FALSE;
+    S3D_VK_CHECK(vkGetPhysicalDeviceSurfaceSupportKHR(device, findComputeGraphicsQueue(device), surface, &presents));
+    if (!presents) {
+      info.usable = false;
+      info.unusableReason = "its graphics+compute queue cannot present to the window";
+    }
+  }
   return info;
 }
 
-VkInstance createInstance(bool validation) {
+VkInstance createInstance(bool validation, const std::vector<std::string>& extraExtensions = {}) {
   VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
   app.pApplicationName = "s3d";
   app.apiVersion = VK_API_VERSION_1_3;
   VkInstanceCreateInfo info{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO};
   info.pApplicationInfo = &app;
   const char* layers[] = {kValidationLayer};
-  const char* extensions[] = {VK_EXT_DEBUG_UTILS_EXTENSION_NAME};
+  std::vector<const char*> extensions;
+  for (const std::string& name : extraExtensions) extensions.push_back(name.c_str());
   if (validation) {
     if (!hasLayer(kValidationLayer))
       throw std::runtime_error(std::string("validation requested but ") + kValidationLayer +
                                " is not installed (Debian package vulkan-validationlayers)");
     info.enabledLayerCount = 1;
     info.ppEnabledLayerNames = layers;
-    info.enabledExtensionCount = 1;
-    info.ppEnabledExtensionNames = extensions;
+    extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
   }
+  info.enabledExtensionCount = std::uint32_t(extensions.size());
+  info.ppEnabledExtensionNames = extensions.data();
   VkInstance instance = VK_NULL_HANDLE;
   VkResult result = vkCreateInstance(&info, nullptr, &instance);
   if (result == VK_ERROR_INCOMPATIBLE_DRIVER)
@@ -158,7 +171,7 @@ std::vector<PhysicalDeviceInfo> listPhysicalDevices() {
 }
 
 Context::Context(const ContextOptions& options) {
-  instance_ = createInstance(options.validation);
+  instance_ = createInstance(options.validation, options.instanceExtensions);
   try {
     if (options.validation) {
       VkDebugUtilsMessengerCreateInfoEXT info{VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
@@ -174,9 +187,13 @@ Context::Context(const ContextOptions& options) {
       S3D_VK_CHECK(create(instance_, &info, nullptr, &messenger_));
     }
 
+    if (options.createSurface) {
+      surface_ = options.createSurface(instance_);
+      if (!surface_) throw std::runtime_error("creating the window surface failed");
+    }
     std::vector<VkPhysicalDevice> devices = physicalDevices(instance_);
     std::vector<PhysicalDeviceInfo> infos;
-    for (std::uint32_t i = 0; i < devices.size(); ++i) infos.push_back(describe(devices[i], i));
+    for (std::uint32_t i = 0; i < devices.size(); ++i) infos.push_back(describe(devices[i], i, surface_));
     std::uint32_t chosen = chooseDevice(infos, options.device);
     physicalDevice_ = devices[chosen];
     deviceName_ = infos[chosen].name;
@@ -202,12 +219,13 @@ Context::Context(const ContextOptions& options) {
     features13.synchronization2 = VK_TRUE;
     features13.maintenance4 = VK_TRUE;  // glslang emits LocalSizeId for SPIR-V 1.6 compute shaders
     VkPhysicalDeviceFeatures2 features{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &features13};
-    const char* extensions[] = {VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME};
+    std::vector<const char*> extensions = {VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME};
+    if (surface_) extensions.push_back(VK_KHR_SWAPCHAIN_EXTENSION_NAME);
     VkDeviceCreateInfo deviceInfo{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO, &features};
     deviceInfo.queueCreateInfoCount = 1;
     deviceInfo.pQueueCreateInfos = &queueInfo;
-    deviceInfo.enabledExtensionCount = 1;
-    deviceInfo.ppEnabledExtensionNames = extensions;
+    deviceInfo.enabledExtensionCount = std::uint32_t(extensions.size());
+    deviceInfo.ppEnabledExtensionNames = extensions.data();
     S3D_VK_CHECK(vkCreateDevice(physicalDevice_, &deviceInfo, nullptr, &device_));
     vkGetDeviceQueue(device_, queueFamily_, 0, &queue_);
 
@@ -238,10 +256,12 @@ void Context::release() {
         vkGetInstanceProcAddr(instance_, "vkDestroyDebugUtilsMessengerEXT"));
     if (destroy) destroy(instance_, messenger_, nullptr);
   }
+  if (surface_) vkDestroySurfaceKHR(instance_, surface_, nullptr);
   if (instance_) vkDestroyInstance(instance_, nullptr);
   commandPool_ = VK_NULL_HANDLE;
   device_ = VK_NULL_HANDLE;
   messenger_ = VK_NULL_HANDLE;
+  surface_ = VK_NULL_HANDLE;
   instance_ = VK_NULL_HANDLE;
 }
 

@@ -5,8 +5,6 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
-#include <functional>
-#include <limits>
 #include <stdexcept>
 #include <string>
 #include <system_error>
@@ -14,10 +12,10 @@
 #include <utility>
 
 #include "s3d/app/comfort_json.h"
+#include "s3d/app/frame_rules.h"
 #include "s3d/comfort/crosshair.h"
 #include "s3d/comfort/world_queries.h"
 #include "s3d/hud/crosshair.h"
-#include "s3d/hud/overlay.h"
 #include "s3d/io/image_io.h"
 #include "s3d/renderer/scene.h"
 #include "s3d/renderer/scene_file.h"
@@ -134,10 +132,10 @@ RenderReport runRenderJob(vk::Context& context, const RenderJobOptions& options)
   // Without negative parallax allowed, the weapon push reaches at least the screen plane
   // (comfort::pushWeaponBehindScreen) and, once the frame's depth is known, the zero-parallax distance is
   // held at its nearest surface: every pixel gets zero or positive parallax.
-  stereo::StereoParameters parameters = job.stereo;  // the zero-parallax distance clamped
+  // (frame_rules.h, shared with `s3d tune`)
   const std::optional<glm::vec2> weaponDepths = renderer::firstPersonDepthRange(job.scene);
-  if (!options.allowNegativeParallax && weaponDepths)
-    parameters = comfort::pushWeaponBehindScreen(parameters, weaponDepths->x, weaponDepths->y);
+  stereo::StereoParameters parameters =  // the zero-parallax distance clamped
+      pushWeaponUnlessNegativeParallaxAllowed(job.stereo, weaponDepths, options.allowNegativeParallax);
 
   // 2. The center view.
   renderer::DeferredRenderer deferred(context, width, height, {options.supersample, options.reversedZ});
@@ -159,11 +157,7 @@ RenderReport runRenderJob(vk::Context& context, const RenderJobOptions& options)
   report.sanitized.depthPixels = stereo::sanitizeDepth(centerDepth, parameters.zeroParallaxDistance);
   report.sanitized.colorValues = stereo::sanitizeColor(centerHdr);
   const std::vector<std::uint8_t> firstPersonMask = deferred.readFirstPersonMask();  // weapon conflicts
-  if (const std::optional<float> nearest = comfort::nearestDepth(centerDepth);
-      !options.allowNegativeParallax && nearest && *nearest < parameters.zeroParallaxDistance) {
-    parameters.zeroParallaxDistance = *nearest;
-    report.zeroParallaxLimited = true;
-  }
+  report.zeroParallaxLimited = holdZeroParallaxAtNearestDepth(parameters, centerDepth, options.allowNegativeParallax);
   report.stereo = parameters;
   if (report.stereo.edgeCrop < 0.0f) report.stereo.edgeCrop = report.stereo.maxSeparation;
 
@@ -209,65 +203,25 @@ RenderReport runRenderJob(vk::Context& context, const RenderJobOptions& options)
   report.weaponConflictPixels =
       comfort::countWeaponConflicts(world, job.scene.camera, center, centerDepth, firstPersonMask).conflictPixels;
 
-  // 6. HUD (s3d/hud/overlay.h): the crosshair, placed by an Embree ray cast along the aim (seed 4.6.2), and
-  // the static panels, each drawn after stereo synthesis into every view at the parallax of its depth and
-  // faded out where the weapon mask (the eyes' alpha) covers an element that lies behind the weapon. Not part
+  // 6. HUD (s3d/hud/overlay.h, drawn by frame_rules.h's drawHud): the crosshair, placed by an Embree ray cast
+  // along the aim (seed 4.6.2), and the static panels, each drawn after stereo synthesis into every view at the
+  // parallax of its depth and faded out where the weapon mask (the eyes' alpha) covers an element that lies
+  // behind the weapon. Not part
   // of the 3D scene: synthesized eyes and references get the same overlay, after the comparison so it
   // cannot flatter the error.
   const comfort::CrosshairPlacement placement =
       comfort::placeCrosshair(world, job.scene.camera, options.crosshair.distance.value_or(job.scene.crosshairDistance),
                               options.crosshair.margin);
-  // Not in front of the screen plane unless allowed (the plane is never beyond the aimed-at surface).
-  auto notInFront = [&](float depth) {
-    return options.allowNegativeParallax ? depth : std::max(depth, parameters.zeroParallaxDistance);
-  };
-  const float crosshairDepth = notInFront(placement.depth);
-  const float rightOffset = hud::crosshairEyeOffsetPx(parameters, crosshairDepth, width, stereo::Eye::Right);
-  report.crosshair = {crosshairDepth, placement.hitWorld, rightOffset};
-  const hud::CrosshairStyle crosshairStyle = hud::crosshairStyleForHeight(height);
-
-  struct HudElement {
-    std::string name;
-    float depth;
-    std::function<ImageRGBA8(float offsetPx)> layer;  // the element alone, shifted by offsetPx
-  };
-  std::vector<HudElement> elements;
-  for (const hud::Panel& panel : hud::defaultPanels(width, height))
-    elements.push_back({panel.name, notInFront(panel.depth),
-                        [&, panel](float offsetPx) { return hud::panelLayer(width, height, panel, offsetPx); }});
-  // The crosshair last, on top. Its center in pixel indices ((W - 1) / 2, rounded half up) plus the offset.
-  elements.push_back({"crosshair", crosshairDepth, [&](float offsetPx) {
-                        ImageRGBA8 layer(width, height);
-                        hud::drawCrosshair(layer, 0.5f * float(width - 1) + offsetPx, 0.5f * float(height - 1),
-                                           crosshairStyle);
-                        return layer;
-                      }});
-  // The weapon's nearest pushed point: an element deeper than it lies behind the weapon where they overlap.
-  const float weaponNearestPushed = weaponDepths ? parameters.weaponDepthOffset + parameters.weaponDepthScale * weaponDepths->x
-                                                 : std::numeric_limits<float>::infinity();
   ImageRGBA8 centerHud = centerColor;
   stereo::StereoPair eyesHud = synthesized;
   stereo::StereoPair referenceHud{leftReference, rightReference};
-  for (const HudElement& element : elements) {
-    HudElementReport entry{element.name, element.depth, element.depth > weaponNearestPushed};
-    const ImageRGBA8 centerLayer = element.layer(0.0f);
-    entry.conflictPixels = hud::countDepthConflicts(centerLayer, element.depth, centerDepth, firstPersonMask, entry.behindWeapon);
-    (void)hud::blendLayer(centerHud, centerLayer, entry.behindWeapon);
-    for (const stereo::Eye eye : {stereo::Eye::Left, stereo::Eye::Right}) {
-      const std::size_t side = eye == stereo::Eye::Left ? 0 : 1;
-      const ImageRGBA8 layer = element.layer(hud::crosshairEyeOffsetPx(parameters, element.depth, width, eye));
-      const hud::BlendCounts counts =
-          hud::blendLayer(side == 0 ? eyesHud.left : eyesHud.right, layer, entry.behindWeapon);
-      entry.drawnPixels[side] = counts.drawnPixels;
-      entry.fadedPixels[side] = counts.fadedPixels;
-      (void)hud::blendLayer(side == 0 ? referenceHud.left : referenceHud.right, layer, entry.behindWeapon);
-    }
-    report.hudConflictPixels += entry.conflictPixels;
-    report.hud.push_back(std::move(entry));
-  }
-  // The weapon mask has served the HUD: every written image is opaque.
-  for (ImageRGBA8* image : {&centerHud, &eyesHud.left, &eyesHud.right, &referenceHud.left, &referenceHud.right})
-    hud::makeOpaque(*image);
+  HudFrame overlay = drawHud({parameters, placement.depth, weaponDepths, options.allowNegativeParallax, &centerDepth,
+                          &firstPersonMask},
+                         eyesHud, &centerHud, &referenceHud);
+  const float rightOffset = hud::crosshairEyeOffsetPx(parameters, overlay.crosshairDepth, width, stereo::Eye::Right);
+  report.crosshair = {overlay.crosshairDepth, placement.hitWorld, rightOffset};
+  report.hud = std::move(overlay.elements);
+  report.hudConflictPixels = overlay.conflictPixels;
 
   // 7. Outputs, each written atomically by s3d::io; report.json last so it lists everything before it.
   const fs::path& folder = options.outputFolder;

@@ -35,9 +35,14 @@ struct FrameComfort {
   std::uint32_t windowViolationColumns = 0;  // the widest such run, in columns
 };
 
-// Over the stereo pass's linear depth (weapon pushed), as parallaxStatistics does.
+// The rules of FrameComfort a pixel breaks, as bit flags (frameComfort's `violations`).
+inline constexpr std::uint8_t kOutsideComfortZone = 1;  // counted in shareOutsideComfortZone
+inline constexpr std::uint8_t kWindowViolation = 2;     // counted in windowViolationPixels
+
+// Over the stereo pass's linear depth (weapon pushed), as parallaxStatistics does. When `violations` is
+// given it receives, per pixel (row-major), the flags above (for overlays such as `s3d tune`'s comfort view).
 FrameComfort frameComfort(const DepthImage& stereoDepth, const stereo::StereoParameters& parameters,
-                          const DisplayProfile& display);
+                          const DisplayProfile& display, std::vector<std::uint8_t>* violations = nullptr);
 
 // With negative parallax disallowed, the weapon push (pushed = offset + scale * d over the weapon's unpushed
 // depth range [weaponNearest, weaponFarthest]) made to keep the whole weapon at or behind the zero-parallax

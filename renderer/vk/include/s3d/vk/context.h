@@ -15,6 +15,12 @@ struct ContextOptions {
   std::string device = "auto";
   // Turn on VK_LAYER_KHRONOS_validation; every message it reports is recorded (see validationMessages()).
   bool validation = false;
+  // Presentation, for windowed tools (s3d tune); offscreen users leave both empty and get no surface, no
+  // VK_KHR_swapchain and the same device choice as before. instanceExtensions are enabled on the instance (for
+  // a window: glfwGetRequiredInstanceExtensions); createSurface is called once with the new instance, the
+  // context owns the surface it returns, and only a device that can present to it from its queue is chosen.
+  std::vector<std::string> instanceExtensions;
+  std::function<VkSurfaceKHR(VkInstance)> createSurface;
 };
 
 struct PhysicalDeviceInfo {
@@ -40,6 +46,7 @@ class Context {
   VkPhysicalDevice physicalDevice() const { return physicalDevice_; }
   VkDevice device() const { return device_; }
   VkQueue queue() const { return queue_; }
+  VkSurfaceKHR surface() const { return surface_; }  // VK_NULL_HANDLE without ContextOptions::createSurface
   std::uint32_t queueFamily() const { return queueFamily_; }
   const std::string& deviceName() const { return deviceName_; }
   bool isCpuDevice() const { return deviceType_ == VK_PHYSICAL_DEVICE_TYPE_CPU; }
@@ -68,6 +75,7 @@ class Context {
 
   VkInstance instance_ = VK_NULL_HANDLE;
   VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;
+  VkSurfaceKHR surface_ = VK_NULL_HANDLE;
   VkPhysicalDevice physicalDevice_ = VK_NULL_HANDLE;
   VkDevice device_ = VK_NULL_HANDLE;
   VkQueue queue_ = VK_NULL_HANDLE;

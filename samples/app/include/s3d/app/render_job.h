@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "s3d/app/eye_comparison.h"
+#include "s3d/app/frame_rules.h"
 #include "s3d/comfort/comfort_profile.h"
 #include "s3d/comfort/comfort_report.h"
 #include "s3d/comfort/display_profile.h"
@@ -68,15 +69,7 @@ struct CrosshairReport {
   float parallaxPx = 0.0f;  // per-eye displacement in pixels (left eye: -parallaxPx, right eye: +parallaxPx)
 };
 
-// One HUD element (s3d/hud/overlay.h) as drawn into the synthesized eyes.
-struct HudElementReport {
-  std::string name;            // "health", "ammo", "crosshair"
-  float depth = 0.0f;          // linear view depth it is shown at
-  bool behindWeapon = false;   // deeper than the weapon's nearest pushed point: fades where the weapon covers it
-  std::array<std::uint64_t, 2> drawnPixels{};  // left, right
-  std::array<std::uint64_t, 2> fadedPixels{};  // left, right: pixels the weapon mask faded
-  std::uint64_t conflictPixels = 0;  // visible pixels deeper than the scene surface they cover (center view)
-};
+// HudElementReport (one HUD element as drawn) lives in frame_rules.h, shared with `s3d tune`.
 
 struct RenderReport {
   std::string deviceName;

@@ -1,0 +1,63 @@
+#pragma once
+// The per-frame rules `s3d render` (render_job.h) and `s3d tune` (tune_session.h) share, so the tool shows
+// what the offscreen render writes: the no-negative-parallax rules (comfort_report.h) and the HUD overlay
+// (s3d/hud/overlay.h) with its per-element report.
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "s3d/image.h"
+#include "s3d/stereo/stereo.h"
+
+namespace s3d::app {
+
+// Before the center view: without negative parallax allowed, the weapon push reaches at least the screen
+// plane (comfort::pushWeaponBehindScreen). weaponDepths: renderer::firstPersonDepthRange (none: no weapon).
+stereo::StereoParameters pushWeaponUnlessNegativeParallaxAllowed(stereo::StereoParameters parameters,
+                                                                 const std::optional<glm::vec2>& weaponDepths,
+                                                                 bool allowNegativeParallax);
+
+// Once the frame's depth is known: without negative parallax allowed, the zero-parallax distance is held at
+// the nearest surface (comfort::nearestDepth), so every pixel gets zero or positive parallax. Returns
+// whether it was lowered.
+bool holdZeroParallaxAtNearestDepth(stereo::StereoParameters& parameters, const DepthImage& stereoDepth,
+                                    bool allowNegativeParallax);
+
+// One HUD element (s3d/hud/overlay.h) as drawn into the synthesized eyes.
+struct HudElementReport {
+  std::string name;            // "health", "ammo", "crosshair"
+  float depth = 0.0f;          // linear view depth it is shown at
+  bool behindWeapon = false;   // deeper than the weapon's nearest pushed point: fades where the weapon covers it
+  std::array<std::uint64_t, 2> drawnPixels{};  // left, right
+  std::array<std::uint64_t, 2> fadedPixels{};  // left, right: pixels the weapon mask faded
+  std::uint64_t conflictPixels = 0;  // visible pixels deeper than the scene surface they cover (center view)
+};
+
+// What the HUD of one frame is drawn from.
+struct HudFrameInput {
+  stereo::StereoParameters parameters;    // as the stereo pass used them (push and zero-parallax rules applied)
+  float crosshairDepth = 0.0f;            // comfort::placeCrosshair's depth, before the screen-plane rule
+  std::optional<glm::vec2> weaponDepths;  // the weapon's unpushed depth range (renderer::firstPersonDepthRange)
+  bool allowNegativeParallax = false;     // off: no element is shown in front of the screen plane
+  const DepthImage* stereoDepth = nullptr;                   // the center view's linear depth (weapon pushed)
+  const std::vector<std::uint8_t>* firstPersonMask = nullptr;  // the renderer's weapon mask of the center view
+};
+
+struct HudFrame {
+  std::vector<HudElementReport> elements;  // panels, then the crosshair
+  std::uint64_t conflictPixels = 0;        // sum over the elements
+  float crosshairDepth = 0.0f;             // as drawn (the screen-plane rule applied)
+};
+
+// The HUD (seed 4.6.2): the static panels (hud::defaultPanels) and the crosshair on top, each drawn after
+// stereo synthesis into every view at the parallax of its depth and faded out where the weapon mask (the eyes'
+// alpha) covers an element that lies behind the weapon. Drawn into `eyes` (counted in the report) and into
+// `center` and `reference` when given; then every one of them is made opaque (the mask has served).
+HudFrame drawHud(const HudFrameInput& input, stereo::StereoPair& eyes, ImageRGBA8* center = nullptr,
+                 stereo::StereoPair* reference = nullptr);
+
+}  // namespace s3d::app
