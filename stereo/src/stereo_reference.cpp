@@ -91,7 +91,8 @@ int rowTileMargin(const gpu::StereoConstants& c) {
 
 bool usesRowTiles(StereoKernel kernel, int rowTileMarginPx, bool cpuDevice) {
   if (rowTileMarginPx > S3D_STEREO_ROW_TILE_MARGIN) return false;
-  return kernel == StereoKernel::RowTiles || (kernel == StereoKernel::Auto && !cpuDevice);
+  (void)cpuDevice;  // Auto is PerPixel on every device measured so far (stereo.h)
+  return kernel == StereoKernel::RowTiles;
 }
 
 namespace {

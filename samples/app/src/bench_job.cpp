@@ -343,8 +343,10 @@ void runSweep(vk::Context& context, const BenchOptions& options, const Validated
       parameters.maxSeparation = bench.separations[s];
       parameters.edgeCrop = -1.0f;  // the crop follows the separation, as in `s3d render`
       const EyeReferences& eyes = references[s];
-      // Every setting is timed back to back before any error is computed: seconds of host-side metrics
-      // between two timings let the GPU drop its clocks (an H100 then timed the next pass 4-6x slow).
+      // Every setting is timed back to back before any error is computed, right after rendering the center
+      // view for 50 ms (timeFrames' warm-up): seconds of host-side metrics let the GPU drop its clocks, and
+      // tiny stereo dispatches alone did not bring them back (an H100 timed them 4-6x slow).
+      (void)timeFrames(deferred, center, 1);  // leaves the center view in displayColor / linearDepth
       std::vector<stereo::SynthesisResult> syntheses;
       for (const MethodSetting& setting : bench.settings) {
         progress(sceneName + " " + setting.name() + " sep " + percentText(parameters.maxSeparation) + "%");

@@ -23,7 +23,8 @@ StereoMethod parseStereoMethod(const std::string& name);  // throws std::invalid
 
 // How a method's shader walks the image (same results either way, docs/DESIGN.md "Row tiles").
 enum class StereoKernel {
-  Auto,      // RowTiles on a GPU, PerPixel on a CPU device (lavapipe: row tiles measured 1.3-3x slower there)
+  Auto,      // PerPixel: row tiles measured slower on lavapipe (1.3-3x) and on an H100 at 1920x1080 (seed 0.045 vs
+             // 0.029 ms, iterative-2 0.095 vs 0.084 ms; docs/RESULTS.md), so they stay opt-in
   PerPixel,  // 8x8 workgroups, every tap and filter texel an image load
   RowTiles,  // a workgroup per run of one row, read once into shared memory; PerPixel where the margin does not
              // fit the shared arrays (above S3D_STEREO_ROW_TILE_MARGIN columns, e.g. 25 % of 2100)
