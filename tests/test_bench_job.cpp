@@ -290,7 +290,8 @@ TEST(BenchProgressBar, ShowsFilledCellsCountAndLabel) {
 
 // Counted from stereo_gather.glsl: per interior pixel and eye 3 depth taps + 2 color texels read, 1 texel written.
 TEST(BenchTraffic, SeedReadsItsTapsAndTwoColorTexelsPerInteriorPixelAndEye) {
-  stereo::StereoParameters parameters;  // seed, maxSeparation 0.02: 2 columns cropped on each side of 100
+  stereo::StereoParameters parameters;  // maxSeparation 0.02: 2 columns cropped on each side of 100
+  parameters.method = stereo::StereoMethod::Seed;
   parameters.kernel = stereo::StereoKernel::PerPixel;
   const StereoTraffic traffic = stereoPassTraffic(parameters, 100, 10);
   EXPECT_FALSE(traffic.rowTiles);

@@ -136,7 +136,8 @@ TEST_F(RenderJob, ReportJsonHasEveryFieldAndOnlyFiniteNumbers) {
   const nlohmann::json& stereo = report.at("stereo");
   for (const char* key : {"maxSeparation", "zeroParallaxDistance", "edgeCrop", "cropColumns"})
     expectFiniteNumber(stereo, key, "stereo");
-  EXPECT_EQ(stereo.at("method"), "seed");
+  EXPECT_EQ(stereo.at("method"), "search");  // the default: 4 taps
+  EXPECT_EQ(stereo.at("searchTaps"), 4);
   EXPECT_DOUBLE_EQ(stereo.at("maxSeparation").get<double>(), 0.02);
   EXPECT_DOUBLE_EQ(stereo.at("edgeCrop").get<double>(), 0.02);  // resolved: defaults to maxSeparation
   EXPECT_EQ(stereo.at("cropColumns"), 7);                      // ceil(0.02 * 320)
