@@ -125,6 +125,14 @@ void appendToByteVector(void* context, void* data, int size) {
 
 constexpr int kRgbaChannels = 4;
 
+// Called with the size a file's header claims, before the pixels are allocated.
+void requireReadableSize(const char* operation, const fs::path& file, std::int64_t width, std::int64_t height) {
+  if (width > kMaxImageSide || height > kMaxImageSide || std::uint64_t(width) * std::uint64_t(height) > kMaxImagePixels)
+    failRead(operation, file, "image is " + std::to_string(width) + "x" + std::to_string(height) +
+                                  ", beyond the readers' limit of " + std::to_string(kMaxImageSide) + " pixels a side and " +
+                                  std::to_string(kMaxImagePixels) + " pixels in all");
+}
+
 }  // namespace
 
 void writePng(const fs::path& file, const ImageRGBA8& image) {
@@ -148,6 +156,10 @@ ImageRGBA8 readPng(const fs::path& file) {
   int width = 0;
   int height = 0;
   int channelsInFile = 0;
+  // The header alone first: stb would allocate whatever size the header claims before finding the data short.
+  if (stbi_info_from_memory(reinterpret_cast<const stbi_uc*>(bytes.data()), static_cast<int>(bytes.size()), &width,
+                            &height, &channelsInFile) != 0)
+    requireReadableSize("readPng", file, width, height);
   std::unique_ptr<stbi_uc, void (*)(void*)> decoded(
       stbi_load_from_memory(reinterpret_cast<const stbi_uc*>(bytes.data()), static_cast<int>(bytes.size()), &width,
                             &height, &channelsInFile, kRgbaChannels),
@@ -218,6 +230,7 @@ ExrFrame readExr(const fs::path& file) {
     const std::int64_t height = std::int64_t(dataWindow.max.y) - dataWindow.min.y + 1;
     if (width <= 0 || height <= 0 || width > INT_MAX / (kRgbaChannels * int(sizeof(float))) || height > INT_MAX)
       failRead("readExr", file, "invalid data window");
+    requireReadableSize("readExr", file, width, height);
 
     const Imf::ChannelList& channels = header.channels();
     for (const char* required : {"R", "G", "B"})
