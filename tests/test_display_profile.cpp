@@ -1,7 +1,11 @@
 // The comfort report's viewing geometry: on-screen parallax to angular disparity, per display.
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 
 #include "s3d/comfort/display_profile.h"
 
@@ -52,6 +56,35 @@ TEST(ParallaxStatistics, TheOneDegreeRuleCountsOnlyPixelsBeyondIt) {
   for (std::uint32_t x = 0; x < 100; ++x) *depth.at(x, 1) = INFINITY;
   ParallaxStatistics stats = parallaxStatistics(depth, {0.02f, 1.0f, -1.0f}, builtInDisplayProfile("monitor27"));
   EXPECT_DOUBLE_EQ(stats.shareBeyondOneDegree, 0.5);
+}
+
+TEST(DisplayProfile, TheHeadMountedDisplayHasItsFocalDistanceAndFieldOfView) {
+  const DisplayProfile hmd = builtInDisplayProfile("hmd");
+  EXPECT_EQ(hmd.viewingDistanceMeters, 1.3f);  // the focal distance
+  EXPECT_EQ(hmd.fieldOfViewDegrees, 90.0f);
+  EXPECT_EQ(builtInDisplayProfile("tv55").fieldOfViewDegrees, 0.0f);  // a flat screen
+}
+
+TEST(DisplayProfile, LoadsFromAJsonFileWithTheDefaultInterocularDistance) {
+  namespace fs = std::filesystem;
+  const fs::path file = fs::temp_directory_path() / ("s3d_display_" + std::to_string(::getpid()) + ".json");
+  std::ofstream(file) << R"({"name": "projector", "screenWidthMeters": 2.4, "viewingDistanceMeters": 3.5})";
+  const DisplayProfile display = resolveDisplayProfile(file.string());
+  fs::remove(file);
+  EXPECT_EQ(display.name, "projector");
+  EXPECT_EQ(display.screenWidthMeters, 2.4f);
+  EXPECT_EQ(display.viewingDistanceMeters, 3.5f);
+  EXPECT_EQ(display.interocularMeters, 0.063f);
+}
+
+TEST(DisplayProfile, AJsonProfileWithAnUnknownKeyOrABadValueIsRefused) {
+  EXPECT_THROW(displayProfileFromJson(nlohmann::json::parse(
+                   R"({"screenWidthMeters": 1, "viewingDistanceMeters": 2, "diagonalInches": 40})")),
+               std::invalid_argument);
+  EXPECT_THROW(displayProfileFromJson(nlohmann::json::parse(R"({"screenWidthMeters": -1, "viewingDistanceMeters": 2})")),
+               std::invalid_argument);
+  EXPECT_THROW(displayProfileFromJson(nlohmann::json::parse(R"({"focalDistanceMeters": 2, "fieldOfViewDegrees": 180})")),
+               std::invalid_argument);  // tan(90 deg): no finite virtual screen
 }
 
 }  // namespace

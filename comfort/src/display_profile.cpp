@@ -5,10 +5,26 @@
 #include <limits>
 #include <stdexcept>
 
+#include "json_fields.h"
+
 namespace s3d::comfort {
 namespace {
 
-constexpr double kArcminutesPerRadian = 180.0 * 60.0 / 3.14159265358979323846;
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kArcminutesPerRadian = 180.0 * 60.0 / kPi;
+
+// Ranges of the profile's fields (checked by validate and by the JSON reader alike).
+constexpr detail::Range kLengthRange{0.0, 100.0, true};        // metres: any real screen or focal distance
+constexpr detail::Range kInterocularRange{0.04, 0.08};         // metres: the adult range with margin
+constexpr detail::Range kFieldOfViewRange{0.0, 170.0, true, true};  // degrees: tan(fov / 2) stays finite
+
+void requireIn(float value, detail::Range range, const char* name) {
+  const bool below = range.lowOpen ? !(value > range.low) : !(value >= range.low);
+  const bool above = range.highOpen ? !(value < range.high) : !(value <= range.high);
+  if (!std::isfinite(value) || below || above)
+    throw std::invalid_argument(std::string("display profile: ") + name + " = " + std::to_string(value) +
+                                " is outside " + detail::describe(range));
+}
 
 }  // namespace
 
@@ -19,10 +35,91 @@ DisplayProfile builtInDisplayProfile(const std::string& name) {
   auto widthOfDiagonal = [](double inches) { return float(inches * 0.0254 * 16.0 / std::sqrt(337.0)); };
   if (name == "tv55") return {name, widthOfDiagonal(55.0), 2.5f, 0.063f};
   if (name == "monitor27") return {name, widthOfDiagonal(27.0), 0.7f, 0.063f};
-  if (name == "hmd") return {name, float(2.0 * 1.3 * std::tan(0.5 * 3.14159265358979323846 / 2.0)), 1.3f, 0.063f};
+  if (name == "hmd") return headMountedDisplay(name, 1.3f, 90.0f);
   std::string choices;
   for (const std::string& n : builtInDisplayProfileNames()) choices += (choices.empty() ? "" : ", ") + n;
-  throw std::invalid_argument("unknown display profile '" + name + "' (choices: " + choices + ")");
+  throw std::invalid_argument("unknown display profile '" + name + "' (choices: " + choices + ", or a .json display profile)");
+}
+
+DisplayProfile headMountedDisplay(std::string name, float focalDistanceMeters, float fieldOfViewDegrees,
+                                  float interocularMeters) {
+  DisplayProfile display;
+  display.name = std::move(name);
+  display.viewingDistanceMeters = focalDistanceMeters;
+  display.fieldOfViewDegrees = fieldOfViewDegrees;
+  display.interocularMeters = interocularMeters;
+  // The virtual screen at the focal distance spans the field of view.
+  display.screenWidthMeters = float(2.0 * focalDistanceMeters * std::tan(0.5 * fieldOfViewDegrees * kPi / 180.0));
+  return display;
+}
+
+void validate(const DisplayProfile& display) {
+  requireIn(display.screenWidthMeters, kLengthRange, "screenWidthMeters");
+  requireIn(display.viewingDistanceMeters, kLengthRange, "viewingDistanceMeters");
+  requireIn(display.interocularMeters, kInterocularRange, "interocularMeters");
+  if (display.fieldOfViewDegrees != 0.0f) requireIn(display.fieldOfViewDegrees, kFieldOfViewRange, "fieldOfViewDegrees");
+}
+
+DisplayProfile displayProfileFromJson(const nlohmann::json& document) {
+  detail::ObjectReader reader(document, "display");
+  DisplayProfile display;
+  display.name = "custom";
+  if (const nlohmann::json* name = reader.find("name")) {
+    if (!name->is_string() || name->get<std::string>().empty())
+      throw std::invalid_argument("'display.name' must be a non-empty string");
+    display.name = name->get<std::string>();
+  }
+  reader.number("interocularMeters", display.interocularMeters, kInterocularRange);
+  const bool headMounted = document.contains("fieldOfViewDegrees") || document.contains("focalDistanceMeters");
+  auto require = [&](const char* key) {
+    if (!document.contains(key))
+      throw std::invalid_argument("'" + reader.pathOf(key) + "' is missing (" +
+                                  (headMounted ? "a head-mounted display needs focalDistanceMeters and fieldOfViewDegrees"
+                                               : "a screen needs screenWidthMeters and viewingDistanceMeters") +
+                                  ")");
+  };
+  if (headMounted) {
+    require("focalDistanceMeters");
+    require("fieldOfViewDegrees");
+    float focal = 0.0f, fieldOfView = 0.0f;
+    reader.number("focalDistanceMeters", focal, kLengthRange);
+    reader.number("fieldOfViewDegrees", fieldOfView, kFieldOfViewRange);
+    display = headMountedDisplay(display.name, focal, fieldOfView, display.interocularMeters);
+  } else {
+    require("screenWidthMeters");
+    require("viewingDistanceMeters");
+    reader.number("screenWidthMeters", display.screenWidthMeters, kLengthRange);
+    reader.number("viewingDistanceMeters", display.viewingDistanceMeters, kLengthRange);
+  }
+  reader.finish();
+  return display;
+}
+
+nlohmann::json toJson(const DisplayProfile& display) {
+  nlohmann::json document{{"name", display.name}, {"interocularMeters", detail::shortest(display.interocularMeters)}};
+  if (display.fieldOfViewDegrees > 0.0f) {
+    document["focalDistanceMeters"] = detail::shortest(display.viewingDistanceMeters);
+    document["fieldOfViewDegrees"] = detail::shortest(display.fieldOfViewDegrees);
+  } else {
+    document["screenWidthMeters"] = detail::shortest(display.screenWidthMeters);
+    document["viewingDistanceMeters"] = detail::shortest(display.viewingDistanceMeters);
+  }
+  return document;
+}
+
+DisplayProfile loadDisplayProfile(const std::filesystem::path& file) {
+  const nlohmann::json document = detail::readJsonFile(file, "display profile");
+  try {
+    return displayProfileFromJson(document);
+  } catch (const std::invalid_argument& error) {
+    throw std::invalid_argument("display profile '" + file.string() + "': " + error.what());
+  }
+}
+
+DisplayProfile resolveDisplayProfile(const std::string& nameOrFile) {
+  const bool isFile = nameOrFile.size() > 5 && nameOrFile.compare(nameOrFile.size() - 5, 5, ".json") == 0;
+  if (isFile) return loadDisplayProfile(nameOrFile);
+  return builtInDisplayProfile(nameOrFile);  // throws listing the built-in names
 }
 
 double disparityArcminutes(const DisplayProfile& display, double parallaxMeters) {

@@ -1,5 +1,7 @@
 #version 450
-// HDR -> display: exposure, a filmic curve, then sRGB encoding (linear space until here).
+// HDR -> display: exposure, a filmic curve, then sRGB encoding (linear space until here). With
+// supersampling, the samples of an output pixel are averaged after the tone curve (a bright sample cannot
+// swamp the pixel) and before sRGB encoding (averaging stays linear).
 #extension GL_GOOGLE_include_directive : require
 #include "s3d/renderer/renderer_shared.h"
 
@@ -7,6 +9,8 @@ layout(local_size_x = S3D_COMPUTE_GROUP_SIZE, local_size_y = S3D_COMPUTE_GROUP_S
 layout(binding = 0) uniform Frame { FrameConstants frame; };
 layout(binding = 1, rgba16f) uniform readonly image2D hdrColor;
 layout(binding = 2, rgba8) uniform writeonly image2D displayColor;
+layout(binding = 3, rgba16f) uniform writeonly image2D resolvedHdrColor;
+layout(push_constant) uniform Push { ResolveConstants resolve; };
 
 // Krzysztof Narkowicz's fit of the ACES filmic tone curve (2016).
 vec3 filmic(vec3 x) { return clamp(x * (2.51 * x + 0.03) / (x * (2.43 * x + 0.59) + 0.14), 0.0, 1.0); }
@@ -17,7 +21,16 @@ vec3 encodeSrgb(vec3 linear) {
 
 void main() {
   ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
-  if (pixel.x >= int(frame.screen.x) || pixel.y >= int(frame.screen.y)) return;
-  vec3 hdr = imageLoad(hdrColor, pixel).rgb * frame.exposure.x;
-  imageStore(displayColor, pixel, vec4(encodeSrgb(filmic(hdr)), 1.0));
+  if (pixel.x >= resolve.outputWidth || pixel.y >= resolve.outputHeight) return;
+  vec4 hdrSum = vec4(0.0);
+  vec3 toneMappedSum = vec3(0.0);
+  for (int sy = 0; sy < resolve.supersample; ++sy)
+    for (int sx = 0; sx < resolve.supersample; ++sx) {
+      vec4 hdr = imageLoad(hdrColor, pixel * resolve.supersample + ivec2(sx, sy));
+      hdrSum += hdr;
+      toneMappedSum += filmic(hdr.rgb * frame.exposure.x);
+    }
+  float sampleCount = float(resolve.supersample * resolve.supersample);
+  imageStore(displayColor, pixel, vec4(encodeSrgb(toneMappedSum / sampleCount), 1.0));
+  imageStore(resolvedHdrColor, pixel, hdrSum / sampleCount);
 }

@@ -183,11 +183,15 @@ ViewMatrices centerViewMatrices(const Scene& scene, float aspect, FirstPersonDep
 
 struct DeferredRenderer::Impl {
   vk::Context& context;
-  std::uint32_t width;
+  std::uint32_t outputWidth;   // display colour, linear depth, resolved HDR
+  std::uint32_t outputHeight;
+  std::uint32_t supersample;   // every pass before the resolve runs at supersample x the output size
+  std::uint32_t width;         // render size of those passes
   std::uint32_t height;
 
-  // Render targets.
-  vk::Image depth, normalGlossiness, diffuseLight, specularLight, hdr, display, linearDepth, ambientOcclusion;
+  // Render targets (render size), then the resolve's outputs (output size).
+  vk::Image depth, normalGlossiness, diffuseLight, specularLight, hdr, ambientOcclusion;
+  vk::Image display, linearDepth, resolvedHdr;
   vk::Unique<VkSampler> nearestSampler;
 
   // Passes: layouts and pipelines.
@@ -204,11 +208,20 @@ struct DeferredRenderer::Impl {
 
   vk::TimestampQueries timestamps;
 
-  Impl(vk::Context& ctx, std::uint32_t w, std::uint32_t h)
-      : context(ctx), width(w), height(h), timestamps(ctx, kMaxPasses + 1) {
-    if (w == 0 || h == 0 || w > 16384 || h > 16384)
+  Impl(vk::Context& ctx, std::uint32_t w, std::uint32_t h, RendererOptions options)
+      : context(ctx),
+        outputWidth(w),
+        outputHeight(h),
+        supersample(options.supersample),
+        width(w * options.supersample),
+        height(h * options.supersample),
+        timestamps(ctx, kMaxPasses + 1) {
+    if (options.supersample < 1 || options.supersample > 4)
+      throw std::invalid_argument("renderer: supersample " + std::to_string(options.supersample) + " is outside 1..4");
+    if (w == 0 || h == 0 || width > 16384 || height > 16384)
       throw std::invalid_argument("renderer: resolution " + std::to_string(w) + "x" + std::to_string(h) +
-                                  " is outside 1..16384");
+                                  (supersample > 1 ? " at supersample " + std::to_string(supersample) : std::string()) +
+                                  " renders outside 1..16384");
     createTargets();
     createPipelines();
     frameBuffer = vk::createBuffer(context, sizeof(gpu::FrameConstants), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
@@ -228,8 +241,9 @@ struct DeferredRenderer::Impl {
     hdr = vk::createImage(context, kHdrFormat, width, height,
                           VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
     const VkImageUsageFlags computeOutput = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
-    display = vk::createImage(context, kDisplayFormat, width, height, computeOutput);
-    linearDepth = vk::createImage(context, kLinearDepthFormat, width, height, computeOutput);
+    display = vk::createImage(context, kDisplayFormat, outputWidth, outputHeight, computeOutput);
+    linearDepth = vk::createImage(context, kLinearDepthFormat, outputWidth, outputHeight, computeOutput);
+    resolvedHdr = vk::createImage(context, kHdrFormat, outputWidth, outputHeight, computeOutput);
     ambientOcclusion = vk::createImage(context, kAmbientOcclusionFormat, width, height,
                                        VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
                                            VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
@@ -263,11 +277,11 @@ struct DeferredRenderer::Impl {
     const VkDescriptorSetLayoutBinding skyBindings[] = {binding(0, ubo, fragment)};
     skyLayout = vk::createPushDescriptorLayout(context, skyBindings, 0, 0);
     const VkDescriptorSetLayoutBinding tonemapBindings[] = {binding(0, ubo, compute), binding(1, storage, compute),
-                                                            binding(2, storage, compute)};
-    tonemapLayout = vk::createPushDescriptorLayout(context, tonemapBindings, 0, 0);
+                                                            binding(2, storage, compute), binding(3, storage, compute)};
+    tonemapLayout = vk::createPushDescriptorLayout(context, tonemapBindings, sizeof(gpu::ResolveConstants), compute);
     const VkDescriptorSetLayoutBinding linearDepthBindings[] = {binding(0, ubo, compute), binding(1, sampled, compute),
                                                                 binding(2, storage, compute)};
-    linearDepthLayout = vk::createPushDescriptorLayout(context, linearDepthBindings, 0, 0);
+    linearDepthLayout = vk::createPushDescriptorLayout(context, linearDepthBindings, sizeof(gpu::ResolveConstants), compute);
     const VkDescriptorSetLayoutBinding ssaoBindings[] = {binding(0, ubo, compute), binding(1, sampled, compute),
                                                          binding(2, sampled, compute), binding(3, storage, compute)};
     ssaoLayout = vk::createPushDescriptorLayout(context, ssaoBindings, 0, 0);
@@ -619,16 +633,21 @@ struct DeferredRenderer::Impl {
     vk::transition(cmd, depth, kDepthReadOnlyAttachment, kComputeSampled);
     vk::transition(cmd, display, vk::kUndefined, vk::kComputeWrite);
     vk::transition(cmd, linearDepth, vk::kUndefined, vk::kComputeWrite);
-    const std::uint32_t groupsX = (width + S3D_COMPUTE_GROUP_SIZE - 1) / S3D_COMPUTE_GROUP_SIZE;
-    const std::uint32_t groupsY = (height + S3D_COMPUTE_GROUP_SIZE - 1) / S3D_COMPUTE_GROUP_SIZE;
+    vk::transition(cmd, resolvedHdr, vk::kUndefined, vk::kComputeWrite);
+    const std::uint32_t groupsX = (outputWidth + S3D_COMPUTE_GROUP_SIZE - 1) / S3D_COMPUTE_GROUP_SIZE;
+    const std::uint32_t groupsY = (outputHeight + S3D_COMPUTE_GROUP_SIZE - 1) / S3D_COMPUTE_GROUP_SIZE;
+    const gpu::ResolveConstants resolve{int(supersample), int(outputWidth), int(outputHeight), 0};
     VkDescriptorBufferInfo frameInfo{frameBuffer.buffer, 0, VK_WHOLE_SIZE};
 
     VkDescriptorImageInfo hdrInfo{VK_NULL_HANDLE, hdr.view, VK_IMAGE_LAYOUT_GENERAL};
     VkDescriptorImageInfo displayInfo{VK_NULL_HANDLE, display.view, VK_IMAGE_LAYOUT_GENERAL};
+    VkDescriptorImageInfo resolvedHdrInfo{VK_NULL_HANDLE, resolvedHdr.view, VK_IMAGE_LAYOUT_GENERAL};
     VkWriteDescriptorSet tonemapWrites[] = {vk::uniformBufferWrite(0, &frameInfo), vk::storageImageWrite(1, &hdrInfo),
-                                            vk::storageImageWrite(2, &displayInfo)};
+                                            vk::storageImageWrite(2, &displayInfo),
+                                            vk::storageImageWrite(3, &resolvedHdrInfo)};
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, tonemapPipeline);
-    context.cmdPushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, tonemapLayout.layout, 0, 3, tonemapWrites);
+    context.cmdPushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, tonemapLayout.layout, 0, 4, tonemapWrites);
+    vkCmdPushConstants(cmd, tonemapLayout.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(resolve), &resolve);
     vkCmdDispatch(cmd, groupsX, groupsY, 1);
 
     VkDescriptorImageInfo depthInfo{nearestSampler, depth.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
@@ -638,6 +657,7 @@ struct DeferredRenderer::Impl {
     depthWrites[1].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, linearDepthPipeline);
     context.cmdPushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, linearDepthLayout.layout, 0, 3, depthWrites);
+    vkCmdPushConstants(cmd, linearDepthLayout.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(resolve), &resolve);
     vkCmdDispatch(cmd, groupsX, groupsY, 1);
   }
 
@@ -691,27 +711,29 @@ struct DeferredRenderer::Impl {
   }
 };
 
-DeferredRenderer::DeferredRenderer(vk::Context& context, std::uint32_t width, std::uint32_t height)
-    : impl_(std::make_unique<Impl>(context, width, height)) {}
+DeferredRenderer::DeferredRenderer(vk::Context& context, std::uint32_t width, std::uint32_t height,
+                                   RendererOptions options)
+    : impl_(std::make_unique<Impl>(context, width, height, options)) {}
 DeferredRenderer::~DeferredRenderer() = default;
 
 void DeferredRenderer::setScene(const Scene& scene) { impl_->setScene(scene); }
 FrameTimings DeferredRenderer::render(const ViewMatrices& view) { return impl_->render(view); }
-std::uint32_t DeferredRenderer::width() const { return impl_->width; }
-std::uint32_t DeferredRenderer::height() const { return impl_->height; }
+std::uint32_t DeferredRenderer::width() const { return impl_->outputWidth; }
+std::uint32_t DeferredRenderer::height() const { return impl_->outputHeight; }
+std::uint32_t DeferredRenderer::supersample() const { return impl_->supersample; }
 const vk::Image& DeferredRenderer::displayColor() const { return impl_->display; }
 const vk::Image& DeferredRenderer::linearDepth() const { return impl_->linearDepth; }
-const vk::Image& DeferredRenderer::hdrColor() const { return impl_->hdr; }
+const vk::Image& DeferredRenderer::hdrColor() const { return impl_->resolvedHdr; }
 
 ImageRGBA8 DeferredRenderer::readDisplayColor() {
-  ImageRGBA8 image(impl_->width, impl_->height);
+  ImageRGBA8 image(impl_->outputWidth, impl_->outputHeight);
   std::vector<std::byte> bytes = vk::readbackImage(impl_->context, impl_->display, vk::kComputeWrite);
   std::memcpy(image.pixels.data(), bytes.data(), bytes.size());
   return image;
 }
 
 DepthImage DeferredRenderer::readLinearDepth() {
-  DepthImage image(impl_->width, impl_->height);
+  DepthImage image(impl_->outputWidth, impl_->outputHeight);
   std::vector<std::byte> bytes = vk::readbackImage(impl_->context, impl_->linearDepth, vk::kComputeWrite);
   std::memcpy(image.pixels.data(), bytes.data(), bytes.size());
   return image;
@@ -721,15 +743,19 @@ std::vector<std::uint8_t> DeferredRenderer::readFirstPersonMask() {
   std::vector<std::byte> bytes = vk::readbackImage(impl_->context, impl_->depth, kComputeSampled);
   std::vector<float> deviceDepth(bytes.size() / sizeof(float));
   std::memcpy(deviceDepth.data(), bytes.data(), bytes.size());
-  std::vector<std::uint8_t> mask(deviceDepth.size());
-  for (std::size_t i = 0; i < mask.size(); ++i) mask[i] = deviceDepth[i] <= kFirstPersonDeviceDepthMax ? 1 : 0;
+  const Impl& r = *impl_;
+  std::vector<std::uint8_t> mask(std::size_t(r.outputWidth) * r.outputHeight, 0);
+  for (std::uint32_t y = 0; y < r.height; ++y)
+    for (std::uint32_t x = 0; x < r.width; ++x)
+      if (deviceDepth[std::size_t(y) * r.width + x] <= kFirstPersonDeviceDepthMax)
+        mask[std::size_t(y / r.supersample) * r.outputWidth + x / r.supersample] = 1;
   return mask;
 }
 
 ImageRGBA32F DeferredRenderer::readHdrColor() {
   // The shading target holds half floats; the exposure is applied here so center.exr matches the display.
-  std::vector<std::byte> bytes = vk::readbackImage(impl_->context, impl_->hdr, vk::kComputeRead);
-  ImageRGBA32F image(impl_->width, impl_->height);
+  std::vector<std::byte> bytes = vk::readbackImage(impl_->context, impl_->resolvedHdr, vk::kComputeWrite);
+  ImageRGBA32F image(impl_->outputWidth, impl_->outputHeight);
   std::vector<std::uint16_t> halves(bytes.size() / 2);
   std::memcpy(halves.data(), bytes.data(), bytes.size());
   for (std::size_t i = 0; i < halves.size(); ++i) {

@@ -51,6 +51,10 @@ class BenchCommand final : public Command {
     bench.add_option("--repeat", options_.repeat, "GPU timings per number; the median is reported")
         ->check(CLI::Range(1, 1000))
         ->capture_default_str();
+    bench.add_option("--supersample", options_.supersample,
+                     "Anti-aliasing of the center view and the reference eyes: N x N samples per pixel")
+        ->check(CLI::Range(1, 4))
+        ->capture_default_str();
     bench.add_flag("--renderer", options_.rendererOnly,
                    "Time the center frame and each renderer pass per scene (issue #3) instead of the stereo sweep");
     bench

@@ -7,6 +7,7 @@
 #include <set>
 
 #include "cli_support.h"
+#include "profile_options.h"
 #include "s3d/app/render_job.h"
 #include "s3d/app/sequence_job.h"
 #include "s3d/renderer/scene.h"
@@ -59,12 +60,12 @@ class RenderCommand final : public Command {
                     "First-person weapon: depth scale applied before the offset (pushed = offset + scale * depth)")
         ->check(floatRange(0.0, 1.0e4, true, "a positive factor"))
         ->capture_default_str();
-    render
-        .add_option("--display", options_.display,
-                    "Display profile of the comfort report: tv55 (55-inch at 2.5 m), monitor27 (27-inch at 0.7 m) or "
-                    "hmd (90-degree field of view focused at 1.3 m)")
-        ->check(CLI::IsMember({"tv55", "monitor27", "hmd"}))
+    render.add_option("--supersample", options_.supersample,
+                      "Anti-aliasing: render at N x N samples per pixel and average them (center view and reference "
+                      "eyes alike; the stereo pass sees the nearest sample's depth)")
+        ->check(CLI::Range(1, 4))
         ->capture_default_str();
+    profile_.add(render);
     render.add_option("--frame", options_.frame, "Frame of the scene's camera path to render (0: its first)")
         ->capture_default_str();
     render.add_flag("--sequence", sequence_,
@@ -85,7 +86,13 @@ class RenderCommand final : public Command {
     options_.sideBySide = stereo::parsePackingMode(sideBySide_);
     options_.topBottom = stereo::parsePackingMode(topBottom_);
     stereo_.finish();
-    options_.stereo = stereo_.parameters;
+    const comfort::ComfortProfile profile = profile_.resolve(*subcommand, stereo_);
+    if (!profile_.save.empty()) comfort::saveComfortProfile(profile_.save, profile);
+    options_.stereo = profile.stereo;
+    options_.display = profile.display;
+    options_.crosshair = profile.crosshair;
+    options_.allowNegativeParallax = profile.allowNegativeParallax;
+    zeroParallax_ = profile.zeroParallaxSettings();
     return sequence_ ? runSequence() : runSingleFrame();
   }
 
@@ -95,8 +102,10 @@ class RenderCommand final : public Command {
     sequenceOptions.width = options_.width;
     sequenceOptions.height = options_.height;
     sequenceOptions.scene = options_.scene;
+    sequenceOptions.supersample = options_.supersample;
     sequenceOptions.outputFolder = options_.outputFolder;
     sequenceOptions.stereo = options_.stereo;
+    sequenceOptions.zeroParallax = zeroParallax_;
     vk::Context context(contextOptions_);
     const app::SequenceReport report = app::runSequenceJob(context, sequenceOptions);
     std::uint64_t conflicts = 0;
@@ -151,6 +160,8 @@ class RenderCommand final : public Command {
 
   app::RenderJobOptions options_;
   StereoOptions stereo_;
+  ProfileOptions profile_;
+  comfort::ZeroParallaxControlSettings zeroParallax_;
   vk::ContextOptions contextOptions_;
   std::string resolution_;
   std::vector<std::string> outputs_{app::kAllOutputs};

@@ -172,6 +172,10 @@ std::string readTextFile(const fs::path& file) {
 }
 
 ValidatedBench validateBench(const BenchOptions& options) {
+  if (options.supersample < 1 || options.supersample > 4 ||
+      std::max(options.width, options.height) * options.supersample > kMaxImageSize)
+    throw std::invalid_argument("supersample must be in [1, 4] and keep the render size within " +
+                                std::to_string(kMaxImageSize) + " (got " + std::to_string(options.supersample) + ")");
   for (auto [value, name] : {std::pair{options.width, "width"}, std::pair{options.height, "height"}})
     if (value == 0 || value > kMaxImageSize)
       throw std::invalid_argument(std::string(name) + " must be in [1, " + std::to_string(kMaxImageSize) + "] (got " +
@@ -276,7 +280,7 @@ struct EyeReferences {
 };
 
 void runSweep(vk::Context& context, const BenchOptions& options, const ValidatedBench& bench, BenchReport& report) {
-  renderer::DeferredRenderer deferred(context, options.width, options.height);
+  renderer::DeferredRenderer deferred(context, options.width, options.height, {options.supersample});
   const std::size_t total = bench.scenes.size() * bench.separations.size() * bench.settings.size();
   std::size_t done = 0;
   auto progress = [&](const std::string& label) {
@@ -352,7 +356,7 @@ void runSweep(vk::Context& context, const BenchOptions& options, const Validated
 
 void runRendererTimings(vk::Context& context, const BenchOptions& options, const ValidatedBench& bench,
                         BenchReport& report) {
-  renderer::DeferredRenderer deferred(context, options.width, options.height);
+  renderer::DeferredRenderer deferred(context, options.width, options.height, {options.supersample});
   std::size_t done = 0;
   for (const std::string& sceneName : bench.scenes) {
     if (options.progress) options.progress({done, bench.scenes.size(), sceneName + " center frame"});

@@ -49,6 +49,10 @@ void requireImageSize(std::uint32_t value, const char* name) {
 // Everything runRenderJob checks before touching the GPU or the file system; returns what it built on the way.
 ValidatedJob validateJob(const RenderJobOptions& options) {
   requireImageSize(options.width, "width");
+  if (options.supersample < 1 || options.supersample > 4)
+    throw std::invalid_argument("supersample must be in [1, 4] (got " + std::to_string(options.supersample) + ")");
+  if (std::max(options.width, options.height) * options.supersample > kMaxImageSize)
+    throw std::invalid_argument("width and height times supersample must stay within " + std::to_string(kMaxImageSize));
   requireImageSize(options.height, "height");
   for (const std::string& name : options.outputs)
     if (std::find(kAllOutputs.begin(), kAllOutputs.end(), name) == kAllOutputs.end())
@@ -60,7 +64,7 @@ ValidatedJob validateJob(const RenderJobOptions& options) {
     throw std::invalid_argument("output folder '" + options.outputFolder.string() + "' exists and is not a folder");
 
   stereo::validate(options.stereo);
-  (void)comfort::builtInDisplayProfile(options.display);  // throws naming the profile and the choices
+  comfort::validate(options.display);
   ValidatedJob job{renderer::makeBuiltInScene(options.scene),  // throws naming the scene and the choices
                    stereo::makeStereoConstants(options.stereo, options.width, options.height)};
   // The scene's camera at the requested frame of its path (throws naming the frame and the count).
@@ -115,7 +119,7 @@ RenderReport runRenderJob(vk::Context& context, const RenderJobOptions& options)
   report.cropColumns = std::uint32_t(job.constants.cropBegin);
 
   // 2. The center view.
-  renderer::DeferredRenderer deferred(context, width, height);
+  renderer::DeferredRenderer deferred(context, width, height, {options.supersample});
   deferred.setScene(job.scene);
   const renderer::ViewMatrices center = renderer::centerViewMatrices(
       job.scene, float(width) / float(height), {options.stereo.weaponDepthOffset, options.stereo.weaponDepthScale});
@@ -157,7 +161,7 @@ RenderReport runRenderJob(vk::Context& context, const RenderJobOptions& options)
   }
 
   // Comfort report: the parallax the stereo pass gave every pixel, as angles on the chosen display.
-  report.display = comfort::builtInDisplayProfile(options.display);
+  report.display = options.display;
   report.parallax = comfort::parallaxStatistics(centerDepth, options.stereo, report.display);
 
   // 6. HUD: the crosshair, placed by an Embree ray cast along the aim (seed 4.6.2), drawn after stereo
@@ -165,7 +169,8 @@ RenderReport runRenderJob(vk::Context& context, const RenderJobOptions& options)
   // eyes and references get the same overlay, after the comparison so it cannot flatter the error.
   const comfort::WorldQueries world(job.scene);  // once per job: the world does not change between views
   const comfort::CrosshairPlacement placement =
-      comfort::placeCrosshair(world, job.scene.camera, job.scene.crosshairDistance);
+      comfort::placeCrosshair(world, job.scene.camera, options.crosshair.distance.value_or(job.scene.crosshairDistance),
+                              options.crosshair.margin);
   const float leftOffset = hud::crosshairEyeOffsetPx(options.stereo, placement.depth, width, stereo::Eye::Left);
   const float rightOffset = hud::crosshairEyeOffsetPx(options.stereo, placement.depth, width, stereo::Eye::Right);
   report.crosshair = {placement.depth, placement.hitWorld, rightOffset};

@@ -59,7 +59,7 @@ SequenceReport runSequenceJob(vk::Context& context, const SequenceJobOptions& op
   comfort::ZeroParallaxController control(settings);  // validates the settings
 
   const comfort::WorldQueries world(scene);
-  renderer::DeferredRenderer deferred(context, options.width, options.height);
+  renderer::DeferredRenderer deferred(context, options.width, options.height, {options.supersample});
   deferred.setScene(scene);
   const float aspect = float(options.width) / float(options.height);
   const glm::vec2 weaponDepths = renderer::firstPersonDepthRange(scene).value_or(glm::vec2(0.0f));

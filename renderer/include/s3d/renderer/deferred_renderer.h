@@ -54,9 +54,18 @@ struct FrameTimings {
   std::vector<PassTiming> passes;    // every pass that ran, in order (gpuMs 0 without timestamps)
 };
 
+struct RendererOptions {
+  // Supersampling anti-aliasing: every pass before the resolve runs at supersample x the output size; the
+  // resolve averages the samples of each output pixel (seed 4.6's "edge sampling" flaw: aliased edges in the
+  // center view cannot be displaced by a fraction of a pixel). 1 (default) to 4.
+  std::uint32_t supersample = 1;
+};
+
 class DeferredRenderer {
  public:
-  DeferredRenderer(vk::Context& context, std::uint32_t width, std::uint32_t height);
+  // width x height is the output size (display colour, linear depth, HDR colour, masks). Throws
+  // std::invalid_argument for a zero size, a supersample outside 1..4, or a render size above 16384.
+  DeferredRenderer(vk::Context& context, std::uint32_t width, std::uint32_t height, RendererOptions options = {});
   ~DeferredRenderer();
   DeferredRenderer(const DeferredRenderer&) = delete;
   DeferredRenderer& operator=(const DeferredRenderer&) = delete;
@@ -66,18 +75,20 @@ class DeferredRenderer {
   // Renders one view; the results stay on the GPU until read back.
   FrameTimings render(const ViewMatrices& view);
 
-  std::uint32_t width() const;
+  std::uint32_t width() const;   // output size
   std::uint32_t height() const;
+  std::uint32_t supersample() const;
 
   // Outputs of the last render(), left in VK_IMAGE_LAYOUT_GENERAL (vk::kComputeWrite state):
   const vk::Image& displayColor() const;  // RGBA8, tone-mapped, sRGB-encoded
   const vk::Image& linearDepth() const;   // R32F, view depth in world units, +inf for sky (Listing 4.3), weapon pushed
-  const vk::Image& hdrColor() const;      // RGBA32F, exposed linear HDR before tone mapping
+  const vk::Image& hdrColor() const;      // RGBA16F, linear HDR before exposure and tone mapping (resolved)
 
   ImageRGBA8 readDisplayColor();
   DepthImage readLinearDepth();
   ImageRGBA32F readHdrColor();
-  // 1 where the last frame's visible surface belongs to the first-person layer (Listing 4.3's depth range).
+  // 1 where the last frame's visible surface belongs to the first-person layer (Listing 4.3's depth range);
+  // with supersampling, where any sample of the output pixel does (its linear depth is the weapon's then).
   std::vector<std::uint8_t> readFirstPersonMask();
 
   // Device depth values that separate the layers (Listing 4.3): first-person depth is in [0, split].

@@ -58,6 +58,16 @@ struct LightConstants {  // push constants of the light-accumulation pass
   uint padding2;
 };
 
+// Push constants of the resolve pass: the G-buffer and lights run at supersample x the output size; the
+// resolve averages each output pixel's supersample^2 samples (colour after tone mapping) and keeps the
+// nearest of their linear depths, so a pixel half-covered by an occluder moves with the occluder.
+struct ResolveConstants {
+  int supersample;  // 1: no supersampling
+  int outputWidth;
+  int outputHeight;
+  int padding0;
+};
+
 // Glossiness 0..1 -> Blinn-Phong exponent 2..2048.
 S3D_INLINE float blinnPhongExponent(float glossiness) { return exp2(10.0f * glossiness + 1.0f); }
 

@@ -52,6 +52,7 @@ struct BenchOptions {
   std::vector<std::string> methods = kDefaultBenchMethods;
   std::vector<double> separationsPercent = kDefaultSeparationsPercent;  // maxSeparation in % of the width, (0, 25]
   int repeat = 5;                 // GPU timings per number (median), [1, 1000]
+  std::uint32_t supersample = 1;  // renderer anti-aliasing for the center view and the reference eyes, 1..4
   bool rendererOnly = false;      // issue #3: center frame and pass timings per scene, no stereo sweep
   std::optional<double> bandwidthGBs;  // memory bandwidth for the traffic target; no guess when absent
   std::string targetSetting;      // the setting the targets judge; empty: defaultMethodSetting()

@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "s3d/app/eye_comparison.h"
+#include "s3d/comfort/comfort_profile.h"
 #include "s3d/comfort/display_profile.h"
 #include "s3d/renderer/deferred_renderer.h"
 #include "s3d/stereo/metrics.h"
@@ -51,7 +52,10 @@ struct RenderJobOptions {
   stereo::PackingMode sideBySide = stereo::PackingMode::Half;
   stereo::PackingMode topBottom = stereo::PackingMode::Half;
   stereo::StereoParameters stereo;
-  std::string display = "tv55";  // comfort report: one of comfort::builtInDisplayProfileNames()
+  comfort::DisplayProfile display = comfort::builtInDisplayProfile("tv55");  // of the comfort report
+  comfort::CrosshairSettings crosshair;  // distance (nullopt: the scene's) and margin in front of a hit
+  bool allowNegativeParallax = false;    // off: nothing in the frame is given negative parallax
+  std::uint32_t supersample = 1;  // renderer anti-aliasing, 1..4 (center view and reference eyes alike)
 };
 
 // EyeError (per-region error of one eye) lives in eye_comparison.h, shared with `s3d bench`.

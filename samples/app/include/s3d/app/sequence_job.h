@@ -21,6 +21,7 @@ struct SequenceJobOptions {
   std::string scene = "cover";
   std::filesystem::path outputFolder = "out";
   bool writeFrames = true;          // anaglyph_NNNN.png per frame besides report.json
+  std::uint32_t supersample = 1;  // renderer anti-aliasing, 1..4
   float framesPerSecond = 12.0f;  // the built-in paths walk at about 2 m/s at this rate
   stereo::StereoParameters stereo;  // zeroParallaxDistance is the control's rest value
   comfort::ZeroParallaxControlSettings zeroParallax;  // its restDistance is taken from stereo

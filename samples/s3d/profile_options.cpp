@@ -1,0 +1,49 @@
+#include "profile_options.h"
+
+#include <algorithm>
+
+namespace s3d::cli {
+
+void ProfileOptions::add(CLI::App& command) {
+  command.add_option("--profile", load,
+                     "Comfort profile (JSON) with the stereo and comfort parameters; options given on the command "
+                     "line override its values");
+  command.add_option("--save-profile", save,
+                     "Write the effective comfort profile (the --profile file, or the defaults, with the command "
+                     "line's options applied) to this JSON file");
+  command.add_flag("--allow-negative-parallax", allowNegativeParallax,
+                   "Allow negative parallax (in front of the screen); by default the weapon push and the "
+                   "zero-parallax distance keep everything at or behind the screen plane");
+  command
+      .add_option("--display", display,
+                  "Display profile of the comfort report: tv55 (55-inch at 2.5 m), monitor27 (27-inch at 0.7 m), "
+                  "hmd (90-degree field of view focused at 1.3 m) or a JSON display profile FILE.json")
+      ->check([](const std::string& text) -> std::string {
+        const std::vector<std::string> names = comfort::builtInDisplayProfileNames();
+        const bool isFile = text.size() > 5 && text.compare(text.size() - 5, 5, ".json") == 0;
+        if (isFile || std::find(names.begin(), names.end(), text) != names.end()) return {};
+        return "expected " + joined(names, ", ") + " or a .json display profile (got '" + text + "')";
+      })
+      ->capture_default_str();
+}
+
+comfort::ComfortProfile ProfileOptions::resolve(const CLI::App& command, const StereoOptions& stereo) const {
+  comfort::ComfortProfile profile = load.empty() ? comfort::ComfortProfile{} : comfort::loadComfortProfile(load);
+  auto given = [&](const char* name) { return command.count(name) > 0; };
+  const stereo::StereoParameters& cli = stereo.parameters;
+  stereo::StereoParameters& p = profile.stereo;
+  if (given("--max-separation")) p.maxSeparation = cli.maxSeparation;
+  if (given("--zero-parallax-distance")) p.zeroParallaxDistance = cli.zeroParallaxDistance;
+  if (given("--edge-crop")) p.edgeCrop = cli.edgeCrop;
+  if (given("--method")) p.method = cli.method;
+  if (given("--taps")) p.searchTaps = cli.searchTaps;
+  if (given("--iterations")) p.iterations = cli.iterations;
+  if (given("--weapon-depth-offset")) p.weaponDepthOffset = cli.weaponDepthOffset;
+  if (given("--weapon-depth-scale")) p.weaponDepthScale = cli.weaponDepthScale;
+  if (given("--display")) profile.display = comfort::resolveDisplayProfile(display);
+  if (given("--allow-negative-parallax")) profile.allowNegativeParallax = allowNegativeParallax;
+  comfort::validate(profile);  // the overrides may combine into something the profile's rules refuse
+  return profile;
+}
+
+}  // namespace s3d::cli

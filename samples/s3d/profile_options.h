@@ -1,0 +1,27 @@
+#pragma once
+// Comfort profiles on the command line: --profile FILE loads one, --save-profile FILE writes the effective
+// one, and every stereo/comfort option given explicitly on the command line overrides the profile's value.
+#include <CLI/CLI.hpp>
+
+#include <filesystem>
+#include <string>
+
+#include "cli_support.h"
+#include "s3d/comfort/comfort_profile.h"
+
+namespace s3d::cli {
+
+struct ProfileOptions {
+  std::filesystem::path load;
+  std::filesystem::path save;
+  bool allowNegativeParallax = false;
+  std::string display = "tv55";
+
+  // --profile, --save-profile, --allow-negative-parallax and --display on `command`.
+  void add(CLI::App& command);
+  // After parsing (and stereo.finish()): the loaded profile, or the defaults, with every option that was
+  // given on `command` (the StereoOptions', --weapon-depth-*, --display, --allow-negative-parallax) applied.
+  comfort::ComfortProfile resolve(const CLI::App& command, const StereoOptions& stereo) const;
+};
+
+}  // namespace s3d::cli
