@@ -8,6 +8,7 @@
 
 #include "s3d/app/convert_job.h"
 #include "s3d/gpu/linear_depth.h"
+#include "s3d/io/depth_io.h"
 #include "s3d/io/image_io.h"
 #include "vulkan_test.h"
 
@@ -62,6 +63,26 @@ int largestDifference(const ImageRGBA8& a, const ImageRGBA8& b) {
   return largest;
 }
 
+// The eyes the C++ reference makes from the test's own linear depth, for loaders that must reproduce it.
+void expectEyesOfLinearDepth(const ConvertJobOptions& options, const ImageRGBA8& color, const DepthImage& depth) {
+  stereo::StereoPair expected =
+      stereo::synthesizeStereoReference(color, depth, stereo::makeStereoConstants(options.stereo, 48, 20));
+  // Tolerance 1 level: the GPU pass against its C++ reference, as in test_stereo_pass.cpp.
+  EXPECT_LE(largestDifference(io::readPng(options.outputFolder / "left.png"), expected.left), 1);
+  EXPECT_LE(largestDifference(io::readPng(options.outputFolder / "right.png"), expected.right), 1);
+}
+
+template <typename Exception = std::exception, typename Call>
+std::string errorOf(Call call) {
+  try {
+    call();
+  } catch (const Exception& error) {
+    return error.what();
+  }
+  ADD_FAILURE() << "no exception";
+  return {};
+}
+
 TEST_F(ConvertJob, EyesMatchTheCppStereoReference) {
   // Tolerance 1 level: the GPU pass against its C++ reference, as in test_stereo_pass.cpp.
   runConvertJob(context(), options_);
@@ -110,15 +131,28 @@ TEST_F(ConvertJob, AMissingColorFileIsNamedAndNothingIsWritten) {
   EXPECT_TRUE(outputFolderIsEmpty());
 }
 
-TEST_F(ConvertJob, NanDepthIsRejectedWithItsPixel) {
+TEST_F(ConvertJob, NonFiniteColorIsSanitizedAndCounted) {
+  // Issue #4: NaN or inf color is replaced by 0 and counted in report.json, never propagated into the eyes.
+  writeInputs(depth_);
+  ImageRGBA32F color(48, 20, 0.5f);
+  color.at(3, 2)[0] = NAN;
+  color.at(4, 2)[1] = INFINITY;
+  io::writeExr(folder_ / "color.exr", color, nullptr);
+  options_.color = folder_ / "color.exr";
+  const ConvertReport report = runConvertJob(context(), options_);
+  EXPECT_EQ(report.sanitizedColorValues, 2u);
+  EXPECT_EQ(toJson(report).at("sanitized").at("colorValues"), 2);
+}
+
+TEST_F(ConvertJob, NanDepthIsRejectedNamingThePixel) {
+  // Issue #6: a depth file with NaN is bad input (the renderer's own NaN depth is sanitized instead).
   *depth_.at(7, 3) = NAN;
   writeInputs(depth_);
   try {
     runConvertJob(context(), options_);
     FAIL() << "no exception";
   } catch (const std::invalid_argument& error) {
-    EXPECT_NE(std::string(error.what()).find("(7, 3)"), std::string::npos) << error.what();
-    EXPECT_NE(std::string(error.what()).find("NaN"), std::string::npos) << error.what();
+    EXPECT_NE(std::string(error.what()).find("(7, 3) is NaN"), std::string::npos) << error.what();
   }
   EXPECT_TRUE(outputFolderIsEmpty());
 }
@@ -145,7 +179,7 @@ TEST_F(ConvertJob, MismatchedSizesAreRejectedWithBothSizes) {
 
 TEST_F(ConvertJob, AnExrWithoutDepthIsRejected) {
   io::writeExr(folder_ / "depth.exr", ImageRGBA32F(48, 20, 0.5f), nullptr);
-  EXPECT_THROW(runConvertJob(context(), options_), std::invalid_argument);
+  EXPECT_NE(errorOf([&] { runConvertJob(context(), options_); }).find("no channel 'Z'"), std::string::npos);
   EXPECT_TRUE(outputFolderIsEmpty());
 }
 
@@ -153,6 +187,149 @@ TEST_F(ConvertJob, HardwareDepthWithoutNearAndFarIsRejected) {
   options_.depthKind = DepthKind::Hardware;
   EXPECT_THROW(runConvertJob(context(), options_), std::invalid_argument);
   EXPECT_TRUE(outputFolderIsEmpty());
+}
+
+TEST_F(ConvertJob, PfmDepthGivesTheSameEyes) {
+  io::PfmImage pfm{48, 20, 1, depth_.pixels};
+  io::writePfm(folder_ / "depth.pfm", pfm, /*bigEndian=*/true);
+  options_.depth = folder_ / "depth.pfm";
+  runConvertJob(context(), options_);
+  expectEyesOfLinearDepth(options_, color_, depth_);
+}
+
+TEST_F(ConvertJob, Scaled16BitPngDepthGivesTheSameEyes) {
+  io::Gray16Image png(48, 20);
+  for (std::size_t i = 0; i < png.pixels.size(); ++i)
+    png.pixels[i] = std::isinf(depth_.pixels[i]) ? 65535 : std::uint16_t(depth_.pixels[i] * 1000.0f);  // mm steps
+  io::writePngGray16(folder_ / "depth.png", png);
+  options_.depth = folder_ / "depth.png";
+  options_.depthScale = 0.001f;
+  runConvertJob(context(), options_);
+  expectEyesOfLinearDepth(options_, color_, depth_);
+}
+
+TEST_F(ConvertJob, DepthIsReadFromTheNamedExrChannel) {
+  ImageRGBA32F frame(48, 20, 0.5f);
+  for (std::size_t i = 0; i < depth_.pixels.size(); ++i) frame.pixels[i * 4] = depth_.pixels[i];  // R: exact in half
+  io::writeExr(folder_ / "depth.exr", frame, nullptr);
+  options_.depthChannel = "R";
+  runConvertJob(context(), options_);
+  expectEyesOfLinearDepth(options_, color_, depth_);
+}
+
+TEST_F(ConvertJob, AMissingExrChannelIsNamed) {
+  options_.depthChannel = "depth";
+  EXPECT_NE(errorOf([&] { runConvertJob(context(), options_); }).find("no channel 'depth'"), std::string::npos);
+  EXPECT_TRUE(outputFolderIsEmpty());
+}
+
+TEST_F(ConvertJob, DistanceAlongTheRayIsConvertedToPlanarDepth) {
+  const float focal = 30.0f;
+  DepthImage distance = depth_;
+  for (std::uint32_t y = 0; y < 20; ++y)
+    for (std::uint32_t x = 0; x < 48; ++x) {
+      const float dx = (float(x) + 0.5f - 24.0f) / focal, dy = (float(y) + 0.5f - 10.0f) / focal;
+      *distance.at(x, y) *= std::sqrt(1.0f + dx * dx + dy * dy);
+    }
+  writeInputs(distance);
+  options_.depthKind = DepthKind::Distance;
+  options_.focalLengthPx = focal;
+  runConvertJob(context(), options_);
+  expectEyesOfLinearDepth(options_, color_, depth_);
+}
+
+TEST_F(ConvertJob, DistanceDepthWithoutIntrinsicsIsRejected) {
+  options_.depthKind = DepthKind::Distance;
+  EXPECT_NE(errorOf([&] { runConvertJob(context(), options_); }).find("intrinsics"), std::string::npos);
+  EXPECT_TRUE(outputFolderIsEmpty());
+}
+
+TEST_F(ConvertJob, ADisparityMapGivesTheRightViewAtXMinusD) {
+  // Uniform d = 4 px: the right view at x shows the input's x + 4; the left view is the input itself.
+  io::writePfm(folder_ / "disparity.pfm", io::PfmImage{48, 20, 1, std::vector<float>(48 * 20, 4.0f)});
+  options_.depth = folder_ / "disparity.pfm";
+  options_.disparity = DisparityOutput::Right;
+  options_.stereo.edgeCrop = 0.0f;
+  const ConvertReport report = runConvertJob(context(), options_);
+  EXPECT_FLOAT_EQ(report.stereo.maxSeparation, 4.0f / 48.0f);
+  EXPECT_EQ(io::readPng(options_.outputFolder / "left.png").pixels, color_.pixels);
+  const ImageRGBA8 right = io::readPng(options_.outputFolder / "right.png");
+  for (std::uint32_t y = 0; y < 20; ++y)
+    for (std::uint32_t x = 0; x + 4 < 48; ++x)
+      for (int c = 0; c < 3; ++c) ASSERT_EQ(right.at(x, y)[c], color_.at(x + 4, y)[c]) << x << ", " << y;
+}
+
+TEST_F(ConvertJob, ADisparityMapGivesTheLeftViewAtXPlusD) {
+  io::writePfm(folder_ / "disparity.pfm", io::PfmImage{48, 20, 1, std::vector<float>(48 * 20, 4.0f)});
+  options_.depth = folder_ / "disparity.pfm";
+  options_.disparity = DisparityOutput::Left;
+  options_.stereo.edgeCrop = 0.0f;
+  runConvertJob(context(), options_);
+  EXPECT_EQ(io::readPng(options_.outputFolder / "right.png").pixels, color_.pixels);
+  const ImageRGBA8 left = io::readPng(options_.outputFolder / "left.png");
+  for (std::uint32_t y = 0; y < 20; ++y)
+    for (std::uint32_t x = 4; x < 48; ++x)
+      for (int c = 0; c < 3; ++c) ASSERT_EQ(left.at(x, y)[c], color_.at(x - 4, y)[c]) << x << ", " << y;
+}
+
+TEST_F(ConvertJob, NonFiniteDisparityIsRejectedWithItsPixel) {
+  std::vector<float> values(48 * 20, 1.0f);
+  values[2 * 48 + 5] = INFINITY;
+  io::writePfm(folder_ / "disparity.pfm", io::PfmImage{48, 20, 1, values});
+  options_.depth = folder_ / "disparity.pfm";
+  options_.disparity = DisparityOutput::Right;
+  EXPECT_NE(errorOf([&] { runConvertJob(context(), options_); }).find("(5, 2) is not finite"), std::string::npos);
+  EXPECT_TRUE(outputFolderIsEmpty());
+}
+
+TEST_F(ConvertJob, DisparityBeyondTheSeparationLimitIsRejected) {
+  io::writePfm(folder_ / "disparity.pfm", io::PfmImage{48, 20, 1, std::vector<float>(48 * 20, 20.0f)});  // > 48/4
+  options_.depth = folder_ / "disparity.pfm";
+  options_.disparity = DisparityOutput::Right;
+  EXPECT_THROW(runConvertJob(context(), options_), std::invalid_argument);
+  EXPECT_TRUE(outputFolderIsEmpty());
+}
+
+TEST_F(ConvertJob, ATruncatedPfmDepthIsRejected) {
+  io::writePfm(folder_ / "depth.pfm", io::PfmImage{48, 20, 1, depth_.pixels});
+  fs::resize_file(folder_ / "depth.pfm", fs::file_size(folder_ / "depth.pfm") - 8);
+  options_.depth = folder_ / "depth.pfm";
+  EXPECT_NE(errorOf([&] { runConvertJob(context(), options_); }).find("truncated"), std::string::npos);
+  EXPECT_TRUE(outputFolderIsEmpty());
+}
+
+TEST_F(ConvertJob, A3ChannelPfmIsNotTakenForDepth) {
+  io::writePfm(folder_ / "depth.pfm", io::PfmImage{48, 20, 3, std::vector<float>(48 * 20 * 3, 2.0f)});
+  options_.depth = folder_ / "depth.pfm";
+  EXPECT_NE(errorOf([&] { runConvertJob(context(), options_); }).find("3-channel"), std::string::npos);
+  EXPECT_TRUE(outputFolderIsEmpty());
+}
+
+TEST_F(ConvertJob, FramesArePairedByTheirKey) {
+  for (const char* key : {"0002", "0001"}) {
+    io::writePng(folder_ / ("color_" + std::string(key) + ".png"), color_);
+    io::writePfm(folder_ / ("depth_" + std::string(key) + ".pfm"), io::PfmImage{48, 20, 1, depth_.pixels});
+  }
+  const std::vector<ConvertFrame> frames = pairFrames(folder_, "color_*.png", "depth_*.pfm");
+  ASSERT_EQ(frames.size(), 2u);
+  EXPECT_EQ(frames[0].key, "0001");
+  EXPECT_EQ(frames[0].depth.filename(), "depth_0001.pfm");
+  options_.outputFolder = folder_ / "sequence";
+  std::size_t progressCalls = 0;
+  runConvertFolder(context(), options_, frames, [&](std::size_t, std::size_t, const std::string&) { ++progressCalls; });
+  EXPECT_EQ(progressCalls, 2u);
+  for (const char* name : {"left_0001.png", "right_0002.png", "sbs_0002.png", "report.json"})
+    EXPECT_TRUE(fs::exists(options_.outputFolder / name)) << name;
+}
+
+TEST_F(ConvertJob, AColorFrameWithoutItsDepthIsNamed) {
+  io::writePng(folder_ / "color_0007.png", color_);
+  EXPECT_NE(errorOf<std::invalid_argument>([&] { pairFrames(folder_, "color_*.png", "depth_*.pfm"); }).find("depth_0007.pfm"),
+            std::string::npos);
+}
+
+TEST_F(ConvertJob, APatternNeedsExactlyOneStar) {
+  EXPECT_THROW(pairFrames(folder_, "color.png", "depth_*.pfm"), std::invalid_argument);
 }
 
 }  // namespace

@@ -180,5 +180,88 @@ TEST(DisocclusionMask, EverythingOnTheZeroParallaxPlaneIsSeen) {
   for (std::uint8_t value : mask) EXPECT_EQ(value, 0);
 }
 
+
+ImageRGBA8 grayImage(std::uint32_t width, std::uint32_t height, std::uint8_t level) {
+  ImageRGBA8 image(width, height, level);
+  for (std::size_t i = 3; i < image.pixels.size(); i += 4) image.pixels[i] = 255;
+  return image;
+}
+
+TEST(Ssim, IdenticalImagesGiveExactlyOne) {
+  // x = y makes the two factors of SSIM equal numerator and denominator term by term: exactly 1, even with
+  // rounding in the moments. Gradient display image, cropped and not, and an HDR image with highlights.
+  const ImageRGBA8 image = gradientImage(13, 9);
+  for (std::uint32_t crop : {0u, 3u}) {
+    EXPECT_EQ(compareDisplayImages(image, image, crop).ssim, 1.0) << crop;
+    for (float value : ssimMap(image, image, crop)) EXPECT_TRUE(value == 1.0f || value == 0.0f);
+  }
+  ImageRGBA32F hdr(7, 5);
+  for (std::size_t i = 0; i < hdr.pixels.size(); ++i) hdr.pixels[i] = float(i % 11) * 0.7f;
+  EXPECT_EQ(compareHdrImages(hdr, hdr, 1).ssim, 1.0);
+}
+
+TEST(Ssim, UniformOffsetMatchesTheLuminanceTerm) {
+  // Gray 100 against gray 110: no variance, so SSIM = (2 * 100 * 110 + C1) / (100^2 + 110^2 + C1) with
+  // C1 = (0.01 * 255)^2 = 6.5025: 22006.5025 / 22106.5025 = 0.995476444. Tolerance 1e-7: the SSIM map is
+  // stored as float (6e-8 relative); the moments themselves are double.
+  const ErrorStats stats = compareDisplayImages(grayImage(6, 4, 110), grayImage(6, 4, 100), 0);
+  EXPECT_NEAR(stats.ssim, 22006.5025 / 22106.5025, 1e-7);
+}
+
+TEST(Ssim, SwappedPairMatchesTheHandComputedWindowMoments) {
+  // A 2x1 image [a, b] against [b, a] (a = 50, b = 200): the window is cut to the two pixels, weights 1
+  // (self) and w = exp(-1 / (2 * 1.5^2)) (neighbour), renormalized to p = 1 / (1 + w), q = w / (1 + w).
+  // Then mu_x = p a + q b, mu_y = p b + q a, sigma_x^2 = sigma_y^2 = p q (a - b)^2 = -sigma_xy, and
+  // SSIM = (2 mu_x mu_y + C1)(C2 - 2 p q (a - b)^2) / ((mu_x^2 + mu_y^2 + C1)(C2 + 2 p q (a - b)^2))
+  // = -0.98083843 at both pixels (perfect anti-correlation). Tolerance 1e-7: the map is stored as float.
+  const double a = 50.0, b = 200.0, w = std::exp(-1.0 / 4.5), p = 1.0 / (1.0 + w), q = w / (1.0 + w);
+  const double c1 = 6.5025, c2 = 58.5225, variance = p * q * (a - b) * (a - b);
+  const double muX = p * a + q * b, muY = p * b + q * a;
+  const double expected = (2.0 * muX * muY + c1) * (c2 - 2.0 * variance) / ((muX * muX + muY * muY + c1) * (c2 + 2.0 * variance));
+  ImageRGBA8 x = grayImage(2, 1, 50), y = grayImage(2, 1, 200);
+  for (int c = 0; c < 3; ++c) x.at(1, 0)[c] = 200, y.at(1, 0)[c] = 50;
+  EXPECT_NEAR(compareDisplayImages(x, y, 0).ssim, expected, 1e-7);
+  EXPECT_NEAR(expected, -0.98083843, 1e-8);  // the value written above, from the formula
+}
+
+TEST(Ssim, WorksOnAOneByOneImage) {
+  // The window cut to one pixel: the luminance term alone, as for the uniform offset.
+  EXPECT_NEAR(compareDisplayImages(grayImage(1, 1, 110), grayImage(1, 1, 100), 0).ssim, 22006.5025 / 22106.5025, 1e-7);
+}
+
+TEST(CompareHdrImages, KnownOffsetGivesItsPsnrAndMeanAbsoluteError) {
+  // Every R, G, B 0.01 above the reference: MSE = 1e-4, PSNR = 10 log10(1 / 1e-4) = 40 dB against the peak
+  // 1.0; MAE 0.01. Tolerance 1e-4 dB / 1e-7: 0.51f - 0.5f is 0.01 only to float precision.
+  ImageRGBA32F reference(5, 3, 0.5f), synthesized(5, 3, 0.51f);
+  for (std::size_t i = 3; i < reference.pixels.size(); i += 4) reference.pixels[i] = 1.0f, synthesized.pixels[i] = 7.0f;
+  const HdrErrorStats stats = compareHdrImages(synthesized, reference, 1);
+  EXPECT_NEAR(stats.psnrDb, 40.0, 1e-4);
+  EXPECT_NEAR(stats.meanAbsoluteError, 0.01, 1e-7);
+  EXPECT_EQ(stats.pixelCount, 9u);  // 3 of 5 columns after cropping 1 each side, alpha ignored
+  EXPECT_EQ(compareHdrImages(reference, reference, 0).psnrDb, kMaxPsnrDb);
+}
+
+TEST(CompareByRegion, RestIsThePixelsInNoRegionAndAnEmptyMaskIsAnEmptyRegion) {
+  // 4x1: pixel 0 halo, pixel 1 disocclusion and transparent, pixels 2 and 3 the rest.
+  const ImageRGBA8 reference = gradientImage(4, 1);
+  const RegionMasks masks{{1, 0, 0, 0}, {0, 1, 0, 0}, {0, 1, 0, 0}};
+  const ErrorsByRegion<ErrorStats> display = compareDisplayByRegion(reference, reference, 0, masks);
+  EXPECT_EQ(display.all.pixelCount, 4u);
+  EXPECT_EQ(display.halo.pixelCount, 1u);
+  EXPECT_EQ(display.disocclusion.pixelCount, 1u);
+  EXPECT_EQ(display.transparent.pixelCount, 1u);
+  EXPECT_EQ(display.rest.pixelCount, 2u);
+  const ErrorsByRegion<ErrorStats> noTransparent =
+      compareDisplayByRegion(reference, reference, 0, RegionMasks{masks.halo, masks.disocclusion, {}});
+  EXPECT_EQ(noTransparent.transparent.pixelCount, 0u);
+  EXPECT_EQ(noTransparent.rest.pixelCount, 2u);
+  ImageRGBA32F hdr(4, 1, 0.25f), brighter(4, 1, 0.25f);
+  brighter.at(3, 0)[0] = 1.25f;  // one rest pixel off by 1 in red
+  const ErrorsByRegion<HdrErrorStats> hdrErrors = compareHdrByRegion(brighter, hdr, 0, masks);
+  EXPECT_EQ(hdrErrors.halo.psnrDb, kMaxPsnrDb);
+  EXPECT_NEAR(hdrErrors.rest.meanAbsoluteError, 1.0 / 6.0, 1e-12);  // 1 of 6 samples
+  EXPECT_LT(hdrErrors.rest.ssim, 1.0);
+}
+
 }  // namespace
 }  // namespace s3d::stereo

@@ -154,10 +154,21 @@ TEST_F(RenderJob, ReportJsonHasEveryFieldAndOnlyFiniteNumbers) {
 
   for (const char* eye : {"left", "right"}) {
     const nlohmann::json& error = report.at("error").at(eye);
-    for (const char* key : {"psnrDb", "meanAbsoluteError", "shareAbove8", "pixelCount"})
+    for (const char* key : {"psnrDb", "ssim", "meanAbsoluteError", "shareAbove8", "pixelCount"})
       expectFiniteNumber(error, key, std::string("error.") + eye);
     EXPECT_EQ(error.at("pixelCount"), std::uint64_t(kWidth - 2 * 7) * kHeight);
+    for (const char* region : {"halo", "disocclusion", "transparent", "rest"})
+      expectFiniteNumber(error.at(region), "ssim", std::string("error.") + eye + "." + region);
+    EXPECT_EQ(error.at("transparent").at("pixelCount"), 0);  // the courtyard has no transparent objects
+    const nlohmann::json& hdr = error.at("hdr");
+    for (const char* key : {"psnrDb", "ssim", "meanAbsoluteError", "pixelCount"})
+      expectFiniteNumber(hdr, key, std::string("error.") + eye + ".hdr");
+    for (const char* region : {"halo", "disocclusion", "transparent", "rest"})
+      expectFiniteNumber(hdr.at(region), "psnrDb", std::string("error.") + eye + ".hdr." + region);
   }
+  EXPECT_EQ(report.at("sanitized").at("colorValues"), 0);  // the renderer writes no NaN or inf
+  EXPECT_EQ(report.at("sanitized").at("depthPixels"), 0);
+  EXPECT_TRUE(report.at("warnings").is_array() && report.at("warnings").empty());
   EXPECT_EQ(report.at("files").get<std::vector<std::string>>(), kAllOutputs);
 }
 

@@ -247,3 +247,32 @@ TEST_F(DeferredRendererTest, DisabledAmbientOcclusionDoesNotRunItsPass) {
 
 }  // namespace
 }  // namespace s3d::renderer
+
+namespace s3d::renderer {
+namespace {
+
+TEST_F(DeferredRendererTest, TransparentMaskCoversTheTransparentPaneOnly) {
+  // The wall scene plus a half-opaque pane in front of the left half of the view: the mask (the error
+  // metrics' transparent region) is set on the left, clear on the right, and all clear without the pane.
+  Scene scene = makeWallScene(5.0f, false);
+  DeferredRenderer renderer(context(), kWidth, kHeight);
+  renderer.setScene(scene);
+  renderer.render(centerViewMatrices(scene, float(kWidth) / float(kHeight)));
+  const std::vector<std::uint8_t> none = renderer.readTransparentMask();
+  EXPECT_EQ(std::count(none.begin(), none.end(), std::uint8_t(1)), 0);
+
+  Object pane;
+  pane.transform = glm::translate(glm::mat4(1.0f), glm::vec3(-2.0f, 0.0f, -2.0f)) *
+                   glm::scale(glm::mat4(1.0f), glm::vec3(4.0f, 8.0f, 0.02f));  // x in [-4, 0] at 2 m
+  pane.material.opacity = 0.3f;
+  scene.objects.push_back(pane);
+  renderer.setScene(scene);
+  renderer.render(centerViewMatrices(scene, float(kWidth) / float(kHeight)));
+  const std::vector<std::uint8_t> mask = renderer.readTransparentMask();
+  ASSERT_EQ(mask.size(), std::size_t(kWidth) * kHeight);
+  EXPECT_EQ(mask[std::size_t(kHeight / 2) * kWidth + 4], 1);           // left: behind the pane
+  EXPECT_EQ(mask[std::size_t(kHeight / 2) * kWidth + kWidth - 5], 0);  // right: open
+}
+
+}  // namespace
+}  // namespace s3d::renderer

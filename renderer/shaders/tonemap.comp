@@ -27,6 +27,9 @@ void main() {
   for (int sy = 0; sy < resolve.supersample; ++sy)
     for (int sx = 0; sx < resolve.supersample; ++sx) {
       vec4 hdr = imageLoad(hdrColor, pixel * resolve.supersample + ivec2(sx, sy));
+      // NaN or inf (a broken shader or input) is black, as stereo::sanitizeColor makes it: the curve would turn
+      // it into NaN and the unorm store into an undefined level that the stereo pass would then displace.
+      if (any(isnan(hdr)) || any(isinf(hdr))) hdr = vec4(0.0);
       hdrSum += hdr;
       toneMappedSum += filmic(hdr.rgb * frame.exposure.x);
     }

@@ -12,6 +12,7 @@ layout(push_constant) uniform Push { uint objectIndex; };
 layout(location = 0) in vec3 worldNormal;
 layout(location = 1) in vec3 worldPosition;
 layout(location = 0) out vec4 hdrColor;
+layout(location = 1) out vec4 coverage;  // alpha-blended 1: the transparent region of the error metrics
 
 void main() {
   ObjectConstants object = objects[objectIndex];
@@ -27,4 +28,5 @@ void main() {
   vec3 fresnel = object.specular.rgb + (1.0 - object.specular.rgb) * pow(1.0 - nDotV, 5.0);  // Schlick
   // Specular is not dimmed by the opacity: glass reflects even where it lets most light through.
   hdrColor = vec4(object.albedo.rgb * diffuse + fresnel * specular / max(object.albedo.a, 1e-3), object.albedo.a);
+  coverage = vec4(1.0, 1.0, 1.0, object.albedo.a);
 }

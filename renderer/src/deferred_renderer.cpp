@@ -11,6 +11,7 @@
 #include <glm/gtc/packing.hpp>
 
 #include "s3d/renderer/renderer_shared.h"
+#include "shadow_maps.h"
 #include "s3d/vk/check.h"
 #include "s3d/vk/pipeline.h"
 #include "s3d/vk/timestamps.h"
@@ -40,6 +41,7 @@ constexpr VkFormat kHdrFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
 constexpr VkFormat kDisplayFormat = VK_FORMAT_R8G8B8A8_UNORM;     // sRGB-encoded by the tone-map pass
 constexpr VkFormat kLinearDepthFormat = VK_FORMAT_R32_SFLOAT;
 constexpr VkFormat kAmbientOcclusionFormat = VK_FORMAT_R16_SFLOAT;
+constexpr VkFormat kCoverageFormat = VK_FORMAT_R8G8B8A8_UNORM;  // red: transparent coverage (the metrics' mask)
 
 constexpr vk::ImageState kDepthSampled{VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
                                        VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
@@ -56,7 +58,7 @@ constexpr vk::ImageState kOcclusionSampled = kNormalSampled;
 constexpr vk::ImageState kComputeSampled{VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
                                          VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT};
 
-constexpr std::uint32_t kMaxPasses = 8;  // timestamps: one before the first pass and one after each
+constexpr std::uint32_t kMaxPasses = 64;  // timestamps: one before the first pass and one after each (shadow maps: up to 53)
 
 VkDescriptorSetLayoutBinding binding(std::uint32_t index, VkDescriptorType type, VkShaderStageFlags stages) {
   return {index, type, 1, stages, nullptr};
@@ -191,6 +193,7 @@ struct DeferredRenderer::Impl {
 
   // Render targets (render size), then the resolve's outputs (output size).
   vk::Image depth, normalGlossiness, diffuseLight, specularLight, hdr, ambientOcclusion;
+  vk::Image transparentCoverage;  // written by the transparent pass only (scenes with transparent objects)
   vk::Image display, linearDepth, resolvedHdr;
   vk::Unique<VkSampler> nearestSampler;
 
@@ -207,6 +210,7 @@ struct DeferredRenderer::Impl {
   std::vector<std::uint32_t> transparentOrder;   // transparent objects, sorted back to front per frame
 
   vk::TimestampQueries timestamps;
+  std::unique_ptr<detail::ShadowMaps> shadows;  // sun cascades + mask, point/spot shadow maps (shadow_maps.cpp)
 
   Impl(vk::Context& ctx, std::uint32_t w, std::uint32_t h, RendererOptions options)
       : context(ctx),
@@ -224,6 +228,7 @@ struct DeferredRenderer::Impl {
                                   " renders outside 1..16384");
     createTargets();
     createPipelines();
+    shadows = std::make_unique<detail::ShadowMaps>(context, width, height);
     frameBuffer = vk::createBuffer(context, sizeof(gpu::FrameConstants), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
                                    vk::MemoryLocation::HostVisible);
   }
@@ -244,6 +249,8 @@ struct DeferredRenderer::Impl {
     display = vk::createImage(context, kDisplayFormat, outputWidth, outputHeight, computeOutput);
     linearDepth = vk::createImage(context, kLinearDepthFormat, outputWidth, outputHeight, computeOutput);
     resolvedHdr = vk::createImage(context, kHdrFormat, outputWidth, outputHeight, computeOutput);
+    transparentCoverage = vk::createImage(context, kCoverageFormat, width, height,
+                                          VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
     ambientOcclusion = vk::createImage(context, kAmbientOcclusionFormat, width, height,
                                        VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
                                            VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
@@ -271,8 +278,10 @@ struct DeferredRenderer::Impl {
     const VkDescriptorSetLayoutBinding shadingBindings[] = {binding(0, ubo, graphics), binding(1, ssbo, graphics),
                                                             binding(2, sampled, fragment), binding(3, sampled, fragment)};
     shadingLayout = vk::createPushDescriptorLayout(context, shadingBindings, sizeof(std::uint32_t), graphics);
-    const VkDescriptorSetLayoutBinding lightBindings[] = {binding(0, ubo, fragment), binding(1, sampled, fragment),
-                                                          binding(2, sampled, fragment), binding(3, sampled, fragment)};
+    const VkDescriptorSetLayoutBinding lightBindings[] = {binding(0, ubo, fragment),     binding(1, sampled, fragment),
+                                                          binding(2, sampled, fragment), binding(3, sampled, fragment),
+                                                          binding(4, sampled, fragment), binding(5, sampled, fragment),
+                                                          binding(6, ubo, fragment)};
     lightLayout = vk::createPushDescriptorLayout(context, lightBindings, sizeof(gpu::LightConstants), fragment);
     const VkDescriptorSetLayoutBinding skyBindings[] = {binding(0, ubo, fragment)};
     skyLayout = vk::createPushDescriptorLayout(context, skyBindings, 0, 0);
@@ -310,7 +319,7 @@ struct DeferredRenderer::Impl {
 
     vk::GraphicsPipelineDesc transparent = geometry;
     transparent.fragmentSpirv = spirv_transparent_frag;
-    transparent.colorFormats = {kHdrFormat};
+    transparent.colorFormats = {kHdrFormat, kCoverageFormat};  // coverage blends to 1 - prod(1 - opacity)
     transparent.depthCompare = VK_COMPARE_OP_LESS;  // behind opaque surfaces is hidden; no depth write
     transparent.cullMode = VK_CULL_MODE_NONE;
     transparent.blend = vk::GraphicsPipelineDesc::Blend::Alpha;
@@ -352,7 +361,8 @@ struct DeferredRenderer::Impl {
       if (object.mesh >= newScene.meshes.size())
         throw std::invalid_argument("scene '" + newScene.name + "': object refers to missing mesh " + std::to_string(object.mesh));
     if (vertices.empty() || indices.empty()) throw std::invalid_argument("scene '" + newScene.name + "' has no geometry");
-    if (newScene.pointLights.size() > 256) throw std::invalid_argument("scene has more than 256 point lights");
+    if (newScene.pointLights.size() + newScene.spotLights.size() > 256)
+      throw std::invalid_argument("scene has more than 256 point and spot lights");
     if (newScene.ambientOcclusion && !(newScene.ambientOcclusionRadius > 0.0f && newScene.ambientOcclusionRadius < 1e4f))
       throw std::invalid_argument("scene '" + newScene.name + "': ambient-occlusion radius must be in (0, 1e4) world units");
 
@@ -381,6 +391,9 @@ struct DeferredRenderer::Impl {
         if (newScene.objects[i].layer == layer && newScene.objects[i].material.opacity >= 1.0f) drawOrder.push_back(i);
     for (std::uint32_t i = 0; i < newScene.objects.size(); ++i)
       if (newScene.objects[i].material.opacity < 1.0f) transparentOrder.push_back(i);
+    std::vector<detail::ShadowMeshRange> shadowRanges;
+    for (const MeshRange& range : meshRanges) shadowRanges.push_back({range.firstIndex, range.indexCount, range.vertexOffset});
+    shadows->setScene(newScene, vertexBuffer.buffer, indexBuffer.buffer, std::move(shadowRanges));
     scene = newScene;
   }
 
@@ -472,6 +485,7 @@ struct DeferredRenderer::Impl {
     pushGeometryDescriptors(cmd, geometryLayout.layout, {});
     drawObjects(cmd, geometryLayout.layout, drawOrder);
     vkCmdEndRendering(cmd);
+    recordGBufferReadable(cmd);  // SSAO, the shadow mask and the light pass read depth and normals
   }
 
   void pushLightDescriptors(VkCommandBuffer cmd) {
@@ -479,11 +493,15 @@ struct DeferredRenderer::Impl {
     VkDescriptorImageInfo depthInfo{nearestSampler, depth.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
     VkDescriptorImageInfo normalInfo{nearestSampler, normalGlossiness.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
     VkDescriptorImageInfo occlusionInfo{nearestSampler, ambientOcclusion.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
-    VkWriteDescriptorSet writes[] = {vk::uniformBufferWrite(0, &frameInfo), vk::sampledImageWrite(1, &depthInfo),
-                                     vk::sampledImageWrite(2, &normalInfo), vk::sampledImageWrite(3, &occlusionInfo)};
-    writes[1].descriptorType = writes[2].descriptorType = writes[3].descriptorType =
-        VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-    context.cmdPushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, lightLayout.layout, 0, 4, writes);
+    VkDescriptorImageInfo maskInfo = shadows->maskDescriptor();
+    VkDescriptorImageInfo localShadowInfo = shadows->localAtlasDescriptor();
+    VkDescriptorBufferInfo shadowInfo = shadows->constantsDescriptor();
+    VkWriteDescriptorSet writes[] = {vk::uniformBufferWrite(0, &frameInfo),     vk::sampledImageWrite(1, &depthInfo),
+                                     vk::sampledImageWrite(2, &normalInfo),     vk::sampledImageWrite(3, &occlusionInfo),
+                                     vk::sampledImageWrite(4, &maskInfo),       vk::sampledImageWrite(5, &localShadowInfo),
+                                     vk::uniformBufferWrite(6, &shadowInfo)};
+    for (int i = 1; i <= 5; ++i) writes[i].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+    context.cmdPushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, lightLayout.layout, 0, 7, writes);
   }
 
   // Starts a light-accumulation render pass instance over the diffuse and specular light buffers.
@@ -503,7 +521,6 @@ struct DeferredRenderer::Impl {
 
   // SSAO into the ambient-occlusion image (left readable by the light pass).
   void recordAmbientOcclusion(VkCommandBuffer cmd) {
-    recordGBufferReadable(cmd);
     vk::transition(cmd, ambientOcclusion, vk::kUndefined, vk::kComputeWrite);
     VkDescriptorBufferInfo frameInfo{frameBuffer.buffer, 0, VK_WHOLE_SIZE};
     VkDescriptorImageInfo depthInfo{nearestSampler, depth.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
@@ -530,15 +547,14 @@ struct DeferredRenderer::Impl {
 
   // Hemisphere ambient and the sun: one fullscreen triangle; clears the light buffers.
   void recordSunAndAmbient(VkCommandBuffer cmd, bool withAmbientOcclusion) {
-    if (!withAmbientOcclusion) {
-      recordGBufferReadable(cmd);
-      recordNoAmbientOcclusion(cmd);
-    }
+    if (!withAmbientOcclusion) recordNoAmbientOcclusion(cmd);
+    shadows->recordReadableForLighting(cmd);
     vk::transition(cmd, diffuseLight, vk::kUndefined, vk::kColorAttachment);
     vk::transition(cmd, specularLight, vk::kUndefined, vk::kColorAttachment);
     beginLightAccumulation(cmd, true);
     gpu::LightConstants sun{};
     sun.kind = S3D_LIGHT_AMBIENT_AND_SUN;
+    sun.shadowView = shadows->sunShadowView();
     setScissor(cmd, {{0, 0}, {width, height}});
     vkCmdPushConstants(cmd, lightLayout.layout, VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(sun), &sun);
     vkCmdDraw(cmd, 3, 1, 0, 0);
@@ -546,17 +562,40 @@ struct DeferredRenderer::Impl {
   }
 
   struct VisibleLight {
-    const PointLight* light;
+    gpu::LightConstants constants;
     VkRect2D screenRect;
   };
 
-  // Point lights whose sphere reaches the screen, with the rectangle each can touch.
+  // Point and spot lights whose sphere reaches the screen, with the rectangle each can touch (call after the
+  // shadow maps are scheduled: a light uses its shadow map only when one renders this frame).
   std::vector<VisibleLight> visiblePointLights(const ViewMatrices& view) const {
     std::vector<VisibleLight> visible;
     const glm::mat4 viewProjection = view.worldProjection * view.worldView;
-    for (const PointLight& pointLight : scene.pointLights)
-      if (std::optional<VkRect2D> rect = lightScissor(pointLight, viewProjection, width, height))
-        visible.push_back({&pointLight, *rect});
+    for (std::size_t i = 0; i < scene.pointLights.size(); ++i) {
+      const PointLight& pointLight = scene.pointLights[i];
+      if (std::optional<VkRect2D> rect = lightScissor(pointLight, viewProjection, width, height)) {
+        gpu::LightConstants constants{};
+        constants.kind = S3D_LIGHT_POINT;
+        constants.positionRadius = glm::vec4(pointLight.position, pointLight.radius);
+        constants.color = glm::vec4(pointLight.color, 0.0f);
+        constants.shadowView = shadows->pointLightShadowView(i);
+        visible.push_back({constants, *rect});
+      }
+    }
+    for (std::size_t i = 0; i < scene.spotLights.size(); ++i) {
+      const SpotLight& spot = scene.spotLights[i];
+      if (std::optional<VkRect2D> rect =
+              lightScissor(PointLight{spot.position, spot.color, spot.radius}, viewProjection, width, height)) {
+        gpu::LightConstants constants{};
+        constants.kind = S3D_LIGHT_SPOT;
+        constants.positionRadius = glm::vec4(spot.position, spot.radius);
+        constants.color = glm::vec4(spot.color, 0.0f);
+        constants.spotDirection = glm::vec4(glm::normalize(spot.direction), 0.0f);
+        constants.spotCone = glm::vec4(std::cos(spot.outerConeRadians), std::cos(spot.innerConeRadians), 0.0f, 0.0f);
+        constants.shadowView = shadows->spotLightShadowView(i);
+        visible.push_back({constants, *rect});
+      }
+    }
     return visible;
   }
 
@@ -566,12 +605,9 @@ struct DeferredRenderer::Impl {
     vk::transition(cmd, specularLight, vk::kColorAttachment, vk::kColorAttachment);
     beginLightAccumulation(cmd, false);
     for (const VisibleLight& visible : lights) {
-      gpu::LightConstants constants{};
-      constants.kind = S3D_LIGHT_POINT;
-      constants.positionRadius = glm::vec4(visible.light->position, visible.light->radius);
-      constants.color = glm::vec4(visible.light->color, 0.0f);
       setScissor(cmd, visible.screenRect);
-      vkCmdPushConstants(cmd, lightLayout.layout, VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(constants), &constants);
+      vkCmdPushConstants(cmd, lightLayout.layout, VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(visible.constants),
+                         &visible.constants);
       vkCmdDraw(cmd, 3, 1, 0, 0);
     }
     vkCmdEndRendering(cmd);
@@ -607,9 +643,10 @@ struct DeferredRenderer::Impl {
   // Transparent surfaces over the shaded image, back to front, depth-tested against the opaque depth.
   void recordTransparent(VkCommandBuffer cmd, const std::vector<std::uint32_t>& backToFront) {
     vk::transition(cmd, hdr, vk::kColorAttachment, vk::kColorAttachment);  // after the shading pass's writes
-    VkRenderingAttachmentInfo color = colorAttachment(hdr, false);
+    vk::transition(cmd, transparentCoverage, vk::kUndefined, vk::kColorAttachment);
+    VkRenderingAttachmentInfo colors[] = {colorAttachment(hdr, false), colorAttachment(transparentCoverage, true)};
     const VkRenderingAttachmentInfo depthAttachment = readOnlyDepthAttachment(depth);
-    beginRendering(cmd, width, height, std::span(&color, 1), &depthAttachment);
+    beginRendering(cmd, width, height, colors, &depthAttachment);
     setScissor(cmd, {{0, 0}, {width, height}});
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, transparentPipeline);
     pushGeometryDescriptors(cmd, geometryLayout.layout, {});
@@ -662,7 +699,7 @@ struct DeferredRenderer::Impl {
   }
 
   struct ScheduledPass {
-    const char* name;
+    std::string name;
     std::function<void(VkCommandBuffer)> record;
   };
 
@@ -672,6 +709,8 @@ struct DeferredRenderer::Impl {
     passes.push_back({"gbuffer", [this](VkCommandBuffer cmd) { recordGBuffer(cmd); }});
     const bool withAmbientOcclusion = scene.ambientOcclusion;
     if (withAmbientOcclusion) passes.push_back({"ssao", [this](VkCommandBuffer cmd) { recordAmbientOcclusion(cmd); }});
+    for (detail::ShadowPass& shadowPass : shadows->schedule(view, depth, normalGlossiness, frameBuffer.buffer))
+      passes.push_back({std::move(shadowPass.name), std::move(shadowPass.record)});
     passes.push_back({"sun-and-ambient", [this, withAmbientOcclusion](VkCommandBuffer cmd) {
                         recordSunAndAmbient(cmd, withAmbientOcclusion);
                       }});
@@ -748,6 +787,19 @@ std::vector<std::uint8_t> DeferredRenderer::readFirstPersonMask() {
   for (std::uint32_t y = 0; y < r.height; ++y)
     for (std::uint32_t x = 0; x < r.width; ++x)
       if (deviceDepth[std::size_t(y) * r.width + x] <= kFirstPersonDeviceDepthMax)
+        mask[std::size_t(y / r.supersample) * r.outputWidth + x / r.supersample] = 1;
+  return mask;
+}
+
+std::vector<std::uint8_t> DeferredRenderer::readTransparentMask() {
+  const Impl& r = *impl_;
+  std::vector<std::uint8_t> mask(std::size_t(r.outputWidth) * r.outputHeight, 0);
+  if (r.transparentOrder.empty()) return mask;  // the transparent pass did not run
+  std::vector<std::byte> bytes = vk::readbackImage(impl_->context, impl_->transparentCoverage, vk::kColorAttachment);
+  // With supersampling, an output pixel is transparent where any of its samples is.
+  for (std::uint32_t y = 0; y < r.height; ++y)
+    for (std::uint32_t x = 0; x < r.width; ++x)
+      if (bytes[4 * (std::size_t(y) * r.width + x)] != std::byte{0})
         mask[std::size_t(y / r.supersample) * r.outputWidth + x / r.supersample] = 1;
   return mask;
 }

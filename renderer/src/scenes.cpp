@@ -204,9 +204,15 @@ Scene makeCourtyardScene() {
   // Lighting.
   scene.sun.directionToSun = glm::normalize(glm::vec3(-0.45f, 0.75f, 0.5f));
   scene.sun.color = glm::vec3(3.0f, 2.75f, 2.4f);
+  // Sun shadows over the courtyard's depth (back wall at 32 m): three 1024-texel cascades out to 40 m.
+  scene.sun.castsShadows = true;
+  scene.sun.shadowDistance = 40.0f;
+  scene.sun.cascadeCount = 3;
+  scene.sun.shadowMapSize = 1024;
   scene.ambientColor = glm::vec3(0.26f, 0.30f, 0.36f);
   scene.pointLights.push_back({{-4.0f, 1.4f, -1.2f}, {2.0f, 1.1f, 0.4f}, 6.0f});   // warm, on the pale panel
-  scene.pointLights.push_back({{3.4f, 1.2f, -3.2f}, {0.3f, 0.8f, 1.6f}, 5.0f});    // cyan, between pillars
+  // Cyan, between pillars; its six shadow views throw the pillars' shadows on the ground and walls.
+  scene.pointLights.push_back({{3.4f, 1.2f, -3.2f}, {0.3f, 0.8f, 1.6f}, 5.0f, true});
   scene.pointLights.push_back({{0.0f, 2.2f, -21.0f}, {1.2f, 0.4f, 1.0f}, 8.0f});   // magenta, near the back
 
   // Camera.
@@ -386,9 +392,24 @@ Scene makeCoverScene() {
 
   scene.sun.directionToSun = glm::normalize(glm::vec3(0.7f, 0.6f, 0.35f));  // grazing the wall from the right
   scene.sun.color = glm::vec3(3.0f, 2.75f, 2.4f);
+  scene.sun.castsShadows = true;  // the wall's shadow, the truck's and the building's (out to 30 m)
+  scene.sun.shadowDistance = 30.0f;
+  scene.sun.cascadeCount = 3;
+  scene.sun.shadowMapSize = 1024;
   scene.ambientColor = glm::vec3(0.26f, 0.30f, 0.36f);
   scene.pointLights.push_back({{2.4f, 1.5f, -4.0f}, {2.0f, 1.1f, 0.4f}, 5.0f});   // warm, by the crates
   scene.pointLights.push_back({{4.4f, 5.8f, -15.6f}, {1.2f, 1.2f, 1.6f}, 8.0f});  // the lamp
+  // A shadowed floodlight aimed past the barrel, on ground seen past the wall's edge (over the sunlit ground its
+  // light and the barrel's shadow in it are faint after tone mapping).
+  SpotLight flood;
+  flood.position = glm::vec3(-0.5f, 3.5f, -5.0f);
+  flood.direction = glm::normalize(glm::vec3(1.4f, 0.0f, -8.0f) - flood.position);
+  flood.color = glm::vec3(6.0f, 5.2f, 4.0f);
+  flood.radius = 9.0f;
+  flood.innerConeRadians = 0.35f;
+  flood.outerConeRadians = 0.55f;
+  flood.castsShadows = true;
+  scene.spotLights.push_back(flood);
 
   addFirstPersonWeapon(scene, meshes, WeaponPose::Raised);
 

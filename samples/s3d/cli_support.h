@@ -25,6 +25,7 @@ class Command {
 std::unique_ptr<Command> addRenderCommand(CLI::App& app);
 std::unique_ptr<Command> addConvertCommand(CLI::App& app);
 std::unique_ptr<Command> addBenchCommand(CLI::App& app);
+std::unique_ptr<Command> addRegressCommand(CLI::App& app);
 
 std::string oneLine(std::string text);
 // Prints "s3d: error: <message>" as one line on stderr and returns the failing exit status (1).

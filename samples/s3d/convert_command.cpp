@@ -1,4 +1,8 @@
-// `s3d convert`: synthesizes the eyes of an external color + depth frame (s3d/app/convert_job.h).
+// `s3d convert`: synthesizes the eyes of an external color + depth (or disparity) frame, or of a folder of
+// frames (s3d/app/convert_job.h).
+#include <unistd.h>
+
+#include <cstdio>
 #include <iostream>
 
 #include "cli_support.h"
@@ -8,57 +12,144 @@
 namespace s3d::cli {
 namespace {
 
+// One line redrawn in place on a terminal ("[#####.....] 12/40 frame 0012"); nothing when stderr is a file.
+void drawProgress(std::size_t done, std::size_t total, const std::string& key) {
+  if (!::isatty(STDERR_FILENO)) return;
+  constexpr std::size_t kBarWidth = 30;
+  const std::size_t filled = total ? done * kBarWidth / total : kBarWidth;
+  std::cerr << "\r[" << std::string(filled, '#') << std::string(kBarWidth - filled, '.') << "] " << done << '/' << total
+            << " frame " << key << (done == total ? "\n" : "") << std::flush;
+}
+
 class ConvertCommand final : public Command {
  public:
   explicit ConvertCommand(CLI::App& app) {
     subcommand = app.add_subcommand(
         "convert",
         "Synthesize a stereo pair from an existing frame: a color image and its depth (from any renderer or "
-        "capture). Writes left.png, right.png, anaglyph.png, sbs.png, tab.png and report.json. Sign convention: "
-        "the left eye shows a point of parallax p (maxSeparation * (1 - zeroParallaxDistance / depth), a "
-        "fraction of the width) p * width pixels left of where the input shows it, the right eye as far right");
+        "capture), or a color image and its disparity map. Writes left.png, right.png, anaglyph.png, sbs.png, "
+        "tab.png and report.json. Depth sign convention: the left eye shows a point of parallax p (maxSeparation * "
+        "(1 - zeroParallaxDistance / depth), a fraction of the width) p * width pixels left of where the input shows "
+        "it, the right eye as far right. Disparity sign convention: d = xLeft - xRight in pixels (>= 0 for parallel "
+        "cameras); with --disparity-output right the input is the left view and the right view shows each pixel at "
+        "x - d; with left the input is the right view and the left view shows each pixel at x + d");
     CLI::App& convert = *subcommand;
+    convert.add_option("--color", options_.color,
+                       "Color image: .png (display-encoded) or .exr (linear; clamped and sRGB-encoded)");
+    auto* depth = convert.add_option(
+        "--depth", options_.depth,
+        "Depth: .exr (channel --depth-channel; may be the color file), 16-bit grey .png (see --depth-scale) or "
+        "1-channel .pfm");
+    auto* disparity = convert.add_option(
+        "--disparity", disparityFile_,
+        "Disparity map in pixels instead of depth (.exr channel, 16-bit .png times --depth-scale, or .pfm); the "
+        "output is the other view of the stereo pair (see the sign convention above)");
+    disparity->excludes(depth);
+    convert.add_option("--disparity-output", disparityOutput_,
+                       "With a disparity map: right (the input is the left view) or left (the input is the right view)")
+        ->check(CLI::IsMember({"right", "left"}))
+        ->capture_default_str();
+    convert.add_option("--depth-channel", options_.depthChannel, "EXR channel holding depth or disparity")
+        ->capture_default_str();
     convert
-        .add_option("--color", options_.color,
-                    "Color image: .png (display-encoded) or .exr (linear; clamped and sRGB-encoded)")
-        ->required();
-    convert.add_option("--depth", options_.depth, "Depth: an .exr with a Z channel (may be the color file)")
-        ->required();
+        .add_option("--depth-scale", options_.depthScale,
+                    "16-bit PNG: world units (or disparity pixels) per step; 65535 is sky, 0 is rejected. Hardware "
+                    "depth PNGs are read as value / 65535 instead")
+        ->check(floatRange(0.0, 1.0e9, true, "units per step"))
+        ->capture_default_str();
     convert
         .add_option("--depth-kind", depthKind_,
-                    "linear (view depth in world units; >= 1e30 or inf is sky) or hardware "
-                    "(zero-to-one perspective depth; needs --near and --far; 1 is sky)")
-        ->check(CLI::IsMember({"linear", "hardware"}))
+                    "linear (planar view depth in world units; >= 1e30 or inf is sky), distance (distance from the "
+                    "camera centre along each ray; needs --fov-y or --focal-px) or hardware (zero-to-one perspective "
+                    "depth; needs --near and --far; 1 is sky)")
+        ->check(CLI::IsMember({"linear", "distance", "hardware"}))
         ->capture_default_str();
     convert.add_option("--near", options_.nearPlane, "Near plane of the projection, for --depth-kind hardware");
     convert.add_option("--far", options_.farPlane, "Far plane of the projection, for --depth-kind hardware");
+    auto* fov = convert.add_option("--fov-y", fovY_, "Vertical field of view in degrees, for --depth-kind distance")
+                    ->check(floatRange(0.0, 180.0, true, "degrees"));
+    convert.add_option("--focal-px", focalPx_, "Focal length in pixels, for --depth-kind distance")
+        ->check(floatRange(0.0, 1.0e7, true, "pixels"))
+        ->excludes(fov);
+    convert.add_option("--input-folder", inputFolder_,
+                       "Folder mode: convert every frame of a sequence (pairs files by --color-pattern and "
+                       "--depth-pattern / --disparity-pattern); outputs are left_KEY.png, ... and one report.json")
+        ->excludes("--color")
+        ->excludes(depth)
+        ->excludes(disparity);
+    convert.add_option("--color-pattern", colorPattern_, "Folder mode: color file names, '*' is the frame key")
+        ->capture_default_str();
+    auto* depthPattern =
+        convert.add_option("--depth-pattern", depthPattern_, "Folder mode: depth file names, '*' is the frame key")
+            ->capture_default_str();
+    convert.add_option("--disparity-pattern", disparityPattern_, "Folder mode: disparity file names instead of depth")
+        ->excludes(depthPattern);
     convert.add_option("--output", options_.outputFolder, "Output folder (created if missing)")->capture_default_str();
     convert.add_option("--reference-left", referenceLeft_, "A real left view to measure the synthesized left eye against");
     convert.add_option("--reference-right", referenceRight_,
                        "A real right view to measure the synthesized right eye against");
     stereo_.add(convert, "in the depth file's units");
+    for (const char* derived : {"--max-separation", "--zero-parallax-distance"})
+      convert.get_option(derived)->excludes(disparity);
     convert.add_option("--sbs", sideBySide_, "Side-by-side packing: half or full")->check(CLI::IsMember({"half", "full"}));
     convert.add_option("--tab", topBottom_, "Top-and-bottom packing: half or full")->check(CLI::IsMember({"half", "full"}));
     addDeviceOptions(convert, contextOptions_);
   }
 
   int run() override {
-    options_.depthKind = depthKind_ == "hardware" ? app::DepthKind::Hardware : app::DepthKind::Linear;
+    const bool folderMode = !inputFolder_.empty();
+    if (!folderMode && options_.color.empty()) return fail("convert needs --color (or --input-folder)");
+    if (!folderMode && options_.depth.empty() && disparityFile_.empty())
+      return fail("convert needs --depth or --disparity (or --input-folder)");
+    if (folderMode && (!referenceLeft_.empty() || !referenceRight_.empty()))
+      return fail("--reference-left/--reference-right measure one frame: not available with --input-folder");
+    if (!disparityPattern_.empty())
+      for (const char* derived : {"--max-separation", "--zero-parallax-distance"})
+        if (subcommand->count(derived) > 0)
+          return fail(std::string(derived) + " is derived from the disparity: not available with --disparity-pattern");
+    if (!disparityFile_.empty()) options_.depth = disparityFile_;
+    if (!disparityFile_.empty() || !disparityPattern_.empty())
+      options_.disparity = disparityOutput_ == "left" ? app::DisparityOutput::Left : app::DisparityOutput::Right;
+    options_.depthKind = depthKind_ == "hardware"   ? app::DepthKind::Hardware
+                         : depthKind_ == "distance" ? app::DepthKind::Distance
+                                                    : app::DepthKind::Linear;
+    if (fovY_ > 0.0f) options_.verticalFovDegrees = fovY_;
+    if (focalPx_ > 0.0f) options_.focalLengthPx = focalPx_;
     options_.sideBySide = stereo::parsePackingMode(sideBySide_);
     options_.topBottom = stereo::parsePackingMode(topBottom_);
     stereo_.finish();
     options_.stereo = stereo_.parameters;
     if (!referenceLeft_.empty()) options_.referenceLeft = referenceLeft_;
     if (!referenceRight_.empty()) options_.referenceRight = referenceRight_;
+    // Pairing problems surface before a Vulkan start-up and before any output.
+    const std::vector<app::ConvertFrame> frames =
+        folderMode ? app::pairFrames(inputFolder_, colorPattern_, disparityPattern_.empty() ? depthPattern_ : disparityPattern_)
+                   : std::vector<app::ConvertFrame>();
     vk::Context context(contextOptions_);
-    const app::ConvertReport report = app::runConvertJob(context, options_);
+    std::size_t filesWritten = 0;
+    std::uint32_t width = 0, height = 0;
+    std::optional<double> gpuMs;
+    if (folderMode) {
+      const std::vector<app::ConvertReport> reports = app::runConvertFolder(context, options_, frames, drawProgress);
+      for (const app::ConvertReport& report : reports) filesWritten += report.filesWritten.size();
+      filesWritten += 1;  // report.json
+      width = reports.front().width;
+      height = reports.front().height;
+      gpuMs = reports.front().stereoPassGpuMs;
+    } else {
+      const app::ConvertReport report = app::runConvertJob(context, options_);
+      filesWritten = report.filesWritten.size();
+      width = report.width;
+      height = report.height;
+      gpuMs = report.stereoPassGpuMs;
+    }
     const std::vector<std::string> messages = context.validationMessages();
     for (const std::string& message : messages) std::cerr << "s3d: validation: " << oneLine(message) << '\n';
     if (!messages.empty())
       return fail("the Vulkan validation layer reported " + std::to_string(messages.size()) + " message(s)");
-    std::cout << "s3d convert: " << report.width << "x" << report.height << " on " << report.deviceName
-              << ", stereo pass " << formatMs(report.stereoPassGpuMs) << ", wrote " << report.filesWritten.size()
-              << " files to " << options_.outputFolder.string() << '\n';
+    std::cout << "s3d convert: " << (folderMode ? std::to_string(frames.size()) + " frames of " : std::string()) << width
+              << "x" << height << " on " << context.deviceName() << ", stereo pass " << formatMs(gpuMs) << ", wrote "
+              << filesWritten << " files to " << options_.outputFolder.string() << '\n';
     return 0;
   }
 
@@ -70,6 +161,13 @@ class ConvertCommand final : public Command {
   std::string sideBySide_ = "half";
   std::string topBottom_ = "half";
   std::string referenceLeft_, referenceRight_;
+  std::string disparityFile_;
+  std::string disparityOutput_ = "right";
+  float fovY_ = 0.0f, focalPx_ = 0.0f;
+  std::string inputFolder_;
+  std::string colorPattern_ = "color_*.png";
+  std::string depthPattern_ = "depth_*.exr";
+  std::string disparityPattern_;
 };
 
 }  // namespace

@@ -23,6 +23,7 @@ int main(int argc, char** argv) {
   commands.push_back(addRenderCommand(app));
   commands.push_back(addConvertCommand(app));
   commands.push_back(addBenchCommand(app));
+  commands.push_back(addRegressCommand(app));
 
   try {
     app.parse(argc, argv);

@@ -131,6 +131,7 @@ class RenderCommand final : public Command {
     const std::vector<std::string> messages = context.validationMessages();
     for (const std::string& message : messages) std::cerr << "s3d: validation: " << oneLine(message) << '\n';
     if (!report) return fail(jobError);
+    for (const std::string& warning : report->warnings) warn(warning);
     printSummary(*report);
     if (!messages.empty())
       return fail("the Vulkan validation layer reported " + std::to_string(messages.size()) + " message(s)");

@@ -12,7 +12,10 @@ layout(binding = 3, rgba8) uniform writeonly image2D rightEye;
 
 layout(push_constant) uniform Push { IterativeConstants c; };
 
-float depthAtTexel(float position, int y) { return imageLoad(linearDepth, ivec2(iterativeDepthTexel(c, position), y)).r; }
+// NaN, zero and negative depth read as the zero-parallax plane, as in the seed (sanitizedDepth).
+float depthAtTexel(float position, int y) {
+  return sanitizedDepth(imageLoad(linearDepth, ivec2(iterativeDepthTexel(c, position), y)).r, c.zeroParallaxDistance);
+}
 
 // Horizontal linear filter at texel coordinate u (texel centers at integers), clamped to the edge; the
 // seed's sampleRow, so maxSeparation = 0 returns the center view bit for bit.

@@ -12,7 +12,9 @@ namespace {
 using detail::sampleRow;
 
 float depthAtTexel(const DepthImage& depth, const gpu::IterativeConstants& c, float position, int y) {
-  return *depth.at(std::uint32_t(gpu::iterativeDepthTexel(c, position)), std::uint32_t(y));
+  // NaN, zero and negative depth read as the zero-parallax plane, as in the seed (gpu::sanitizedDepth).
+  return gpu::sanitizedDepth(*depth.at(std::uint32_t(gpu::iterativeDepthTexel(c, position)), std::uint32_t(y)),
+                             c.zeroParallaxDistance);
 }
 
 }  // namespace

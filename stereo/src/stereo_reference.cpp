@@ -110,13 +110,20 @@ gpu::StereoConstants makeStereoConstants(const StereoParameters& p, std::uint32_
   return c;
 }
 
+float gatherSourceColumn(const DepthImage& linearDepth, int x, int y, Eye eye, const gpu::StereoConstants& c) {
+  const int direction = eye == Eye::Left ? +1 : -1;
+  const float minDepth = minDepthOverTaps(linearDepth, x, y, direction, c);
+  const float parallax = gpu::parallaxFromDepth(c.maxSeparation, c.zeroParallaxDistance, minDepth);
+  // The left eye adds the parallax, the right eye subtracts it.
+  return eye == Eye::Left ? float(x) + parallax * float(c.width) : float(x) - parallax * float(c.width);
+}
+
 StereoPair synthesizeStereoReference(const ImageRGBA8& center, const DepthImage& linearDepth,
                                      const gpu::StereoConstants& c) {
   requireSameSize(center, linearDepth, "stereo pass (color vs depth)");
   if (int(center.width) != c.width || int(center.height) != c.height)
     throw std::invalid_argument("stereo pass: constants were made for another image size");
   StereoPair pair{ImageRGBA8(center.width, center.height), ImageRGBA8(center.width, center.height)};
-  const float width = float(c.width);
   for (int y = 0; y < c.height; ++y) {
     for (int x = 0; x < c.width; ++x) {
       std::uint8_t* left = pair.left.at(std::uint32_t(x), std::uint32_t(y));
@@ -127,13 +134,8 @@ StereoPair synthesizeStereoReference(const ImageRGBA8& center, const DepthImage&
         left[3] = right[3] = 255;
         continue;
       }
-      float minDepthLeft = minDepthOverTaps(linearDepth, x, y, +1, c);
-      float minDepthRight = minDepthOverTaps(linearDepth, x, y, -1, c);
-      float parallaxLeft = gpu::parallaxFromDepth(c.maxSeparation, c.zeroParallaxDistance, minDepthLeft);
-      float parallaxRight = gpu::parallaxFromDepth(c.maxSeparation, c.zeroParallaxDistance, minDepthRight);
-      // The left eye adds the parallax, the right eye subtracts it.
-      sampleRow(center, y, float(x) + parallaxLeft * width, left);
-      sampleRow(center, y, float(x) - parallaxRight * width, right);
+      sampleRow(center, y, gatherSourceColumn(linearDepth, x, y, Eye::Left, c), left);
+      sampleRow(center, y, gatherSourceColumn(linearDepth, x, y, Eye::Right, c), right);
     }
   }
   return pair;

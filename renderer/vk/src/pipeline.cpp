@@ -81,6 +81,9 @@ Unique<VkPipeline> createGraphicsPipeline(const Context& context, VkPipelineLayo
   raster.cullMode = desc.cullMode;
   raster.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
   raster.lineWidth = 1.0f;
+  raster.depthBiasEnable = desc.depthBiasConstant != 0.0f || desc.depthBiasSlope != 0.0f;
+  raster.depthBiasConstantFactor = desc.depthBiasConstant;
+  raster.depthBiasSlopeFactor = desc.depthBiasSlope;
   VkPipelineMultisampleStateCreateInfo multisample{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
   multisample.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
   VkPipelineDepthStencilStateCreateInfo depth{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};

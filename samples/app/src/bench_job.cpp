@@ -89,6 +89,7 @@ struct ErrorMeasure {
   const char* pattern;
 };
 const ErrorMeasure kErrorMeasures[] = {
+    {"SSIM", [](const stereo::ErrorStats& s) { return s.ssim; }, "%.4f"},
     {"mean abs. error", [](const stereo::ErrorStats& s) { return s.meanAbsoluteError; }, "%.2f"},
     {"error > 8 levels %", [](const stereo::ErrorStats& s) { return 100.0 * s.shareAbove8; }, "%.1f"},
 };
@@ -494,8 +495,8 @@ std::string sweepMarkdown(const BenchReport& report) {
         "are rendered once and every setting runs on that center view. Stereo: both eyes in one dispatch; eye: one\n"
         "two-pass reference eye (the left). PSNR left / right in dB against the two-pass reference over the cropped\n"
         "area (maxSeparation columns each side) and its regions: halo (within maxSeparation of a center-view depth\n"
-        "edge), disocclusion (reference pixels the center view never saw), rest (not halo); the last columns are\n"
-        "over the whole cropped area.\n";
+        "edge), disocclusion (reference pixels the center view never saw), rest (neither); the last columns are\n"
+        "over the whole cropped area (SSIM: 11x11 Gaussian window on luma, Wang et al. 2004).\n";
 
   std::vector<std::string> scenes;
   for (const BenchRow& row : report.rows)

@@ -4,10 +4,15 @@
 #include <cctype>
 #include <cmath>
 #include <cstring>
+#include <map>
+#include <numbers>
 #include <stdexcept>
+#include <utility>
 
 #include "s3d/gpu/linear_depth.h"
+#include "s3d/io/depth_io.h"
 #include "s3d/io/image_io.h"
+#include "s3d/stereo/sanitize.h"
 #include "s3d/stereo/srgb.h"
 #include "s3d/stereo/stereo_pass.h"
 #include "s3d/stereo/synthesis.h"
@@ -28,32 +33,91 @@ void requireFile(const fs::path& file, const char* what) {
   if (!fs::is_regular_file(file)) throw std::invalid_argument(std::string(what) + " file '" + file.string() + "' does not exist");
 }
 
-// Display-encoded RGBA8 from a PNG as is, or from an EXR's linear color clamped to [0, 1] and sRGB-encoded.
-ImageRGBA8 readColor(const fs::path& file) {
+std::string sizeText(std::uint32_t width, std::uint32_t height) {
+  return std::to_string(width) + "x" + std::to_string(height);
+}
+
+// Display-encoded RGBA8 from a PNG as is, or from an EXR's linear color clamped to [0, 1] and sRGB-encoded;
+// NaN or inf channel values are made 0 (stereo::sanitizeColor) and added to *sanitizedValues.
+ImageRGBA8 readColor(const fs::path& file, std::uint64_t* sanitizedValues = nullptr) {
   requireFile(file, "color");
   const std::string extension = lowerExtension(file);
   if (extension == ".png") return io::readPng(file);
   if (extension != ".exr") throw std::invalid_argument("color file '" + file.string() + "': expected .png or .exr");
-  const io::ExrFrame frame = io::readExr(file);
+  io::ExrFrame frame = io::readExr(file);
+  const std::uint64_t sanitized = stereo::sanitizeColor(frame.color);
+  if (sanitizedValues) *sanitizedValues += sanitized;
   ImageRGBA8 color(frame.color.width, frame.color.height);
   for (std::size_t i = 0; i < frame.color.pixels.size(); ++i) {
     const float value = frame.color.pixels[i];
-    if (!std::isfinite(value))
-      throw std::invalid_argument("color file '" + file.string() + "': non-finite value at pixel " + std::to_string(i / 4));
     color.pixels[i] = i % 4 == 3 ? std::uint8_t(std::lround(std::clamp(value, 0.0f, 1.0f) * 255.0f))
                                  : stereo::encodeSrgb8(value);
   }
   return color;
 }
 
+constexpr float kPngSky = 65535.0f;
+
+// The depth or disparity file's values as stored: an EXR channel, a 16-bit PNG (scaled, or normalized for
+// hardware depth), or a 1-channel PFM.
+DepthImage readScalarFile(const ConvertJobOptions& options, const char* what) {
+  const fs::path& file = options.depth;
+  requireFile(file, what);
+  const std::string extension = lowerExtension(file);
+  if (extension == ".exr") return io::readExrChannel(file, options.depthChannel);
+  if (extension == ".pfm") {
+    io::PfmImage pfm = io::readPfm(file);
+    if (pfm.channels != 1)
+      throw std::invalid_argument(std::string(what) + " file '" + file.string() +
+                                  "' is a 3-channel PFM (PF): expected 1 channel (Pf)");
+    DepthImage image(pfm.width, pfm.height);
+    image.pixels = std::move(pfm.values);
+    return image;
+  }
+  if (extension == ".png") {
+    if (!(options.depthScale > 0.0f) || !std::isfinite(options.depthScale))
+      throw std::invalid_argument("--depth-scale must be a positive number (got " + std::to_string(options.depthScale) + ")");
+    const io::Gray16Image png = io::readPngGray16(file);
+    DepthImage image(png.width, png.height);
+    const bool normalized = !options.disparity && options.depthKind == DepthKind::Hardware;
+    for (std::size_t i = 0; i < png.pixels.size(); ++i) {
+      const float value = float(png.pixels[i]);
+      if (normalized)
+        image.pixels[i] = value / kPngSky;
+      else if (!options.disparity && value == kPngSky)
+        image.pixels[i] = INFINITY;  // the largest step is sky
+      else
+        image.pixels[i] = value * options.depthScale;
+    }
+    return image;
+  }
+  throw std::invalid_argument(std::string(what) + " file '" + file.string() + "': expected .exr, .png (16-bit) or .pfm");
+}
+
+std::string pixelText(const char* what, const fs::path& file, std::size_t index, std::uint32_t width) {
+  return std::string(what) + " file '" + file.string() + "' at pixel (" + std::to_string(index % width) + ", " +
+         std::to_string(index / width) + ")";
+}
+
+// Focal length in pixels for Distance depth: given, or from the vertical field of view and the height.
+float focalLengthPx(const ConvertJobOptions& options, std::uint32_t height) {
+  if (options.focalLengthPx && options.verticalFovDegrees)
+    throw std::invalid_argument("give either the vertical field of view or the focal length, not both");
+  if (options.focalLengthPx) {
+    if (!(*options.focalLengthPx > 0.0f) || !std::isfinite(*options.focalLengthPx))
+      throw std::invalid_argument("the focal length must be a positive number of pixels");
+    return *options.focalLengthPx;
+  }
+  if (options.verticalFovDegrees) {
+    const float fov = *options.verticalFovDegrees;
+    if (!(fov > 0.0f && fov < 180.0f)) throw std::invalid_argument("the vertical field of view must be in (0, 180) degrees");
+    return 0.5f * float(height) / std::tan(0.5f * fov * std::numbers::pi_v<float> / 180.0f);
+  }
+  throw std::invalid_argument("distance depth needs the camera intrinsics: --fov-y or --focal-px");
+}
+
 DepthImage readLinearDepth(const ConvertJobOptions& options) {
-  requireFile(options.depth, "depth");
-  if (lowerExtension(options.depth) != ".exr")
-    throw std::invalid_argument("depth file '" + options.depth.string() + "': expected an .exr with a Z channel");
-  io::ExrFrame frame = io::readExr(options.depth);
-  if (!frame.hasDepth)
-    throw std::invalid_argument("depth file '" + options.depth.string() + "' has no Z channel");
-  DepthImage depth = std::move(frame.linearDepth);
+  DepthImage depth = readScalarFile(options, "depth");
   gpu::LinearDepthParams hardware{};
   if (options.depthKind == DepthKind::Hardware) {
     if (!(options.nearPlane > 0.0f) || !(options.farPlane > options.nearPlane) || !std::isfinite(options.farPlane))
@@ -65,21 +129,57 @@ DepthImage readLinearDepth(const ConvertJobOptions& options) {
     hardware.skyDeviceDepth = 1.0f;
     hardware.firstPersonDepthScale = 1.0f;
   }
+  const float focal = options.depthKind == DepthKind::Distance ? focalLengthPx(options, depth.height) : 0.0f;
   for (std::size_t i = 0; i < depth.pixels.size(); ++i) {
     float& value = depth.pixels[i];
-    const std::uint32_t x = std::uint32_t(i % depth.width), y = std::uint32_t(i / depth.width);
-    const std::string where = "depth file '" + options.depth.string() + "' at pixel (" + std::to_string(x) + ", " +
-                              std::to_string(y) + ")";
-    if (std::isnan(value)) throw std::invalid_argument(where + " is NaN");
+    if (std::isnan(value)) throw std::invalid_argument(pixelText("depth", options.depth, i, depth.width) + " is NaN");
     if (options.depthKind == DepthKind::Hardware) {
-      if (value < 0.0f || value > 1.0f) throw std::invalid_argument(where + " is outside [0, 1] for hardware depth");
+      if (value < 0.0f || value > 1.0f)
+        throw std::invalid_argument(pixelText("depth", options.depth, i, depth.width) + " is outside [0, 1] for hardware depth");
       value = gpu::linearDepthFromDevice(hardware, value);
-    } else {
-      if (!(value > 0.0f)) throw std::invalid_argument(where + " is not positive (" + std::to_string(value) + ")");
-      if (value >= 1e30f) value = INFINITY;  // sky
+      continue;
+    }
+    if (!(value > 0.0f))
+      throw std::invalid_argument(pixelText("depth", options.depth, i, depth.width) + " is not positive (" +
+                                  std::to_string(value) + ")");
+    if (value >= 1e30f) {
+      value = INFINITY;  // sky
+    } else if (options.depthKind == DepthKind::Distance) {
+      // Planar depth from the ray length: the ray through the pixel centre has direction (dx, dy, 1) / |.|.
+      const float dx = (float(i % depth.width) + 0.5f - 0.5f * float(depth.width)) / focal;
+      const float dy = (float(i / depth.width) + 0.5f - 0.5f * float(depth.height)) / focal;
+      value /= std::sqrt(1.0f + dx * dx + dy * dy);
     }
   }
   return depth;
+}
+
+// Disparity mode: a pseudo-depth whose parallax reproduces the disparity exactly. With zeroParallaxDistance 1
+// and maxSeparation m = max|d| / W, p(depth) = m (1 - 1 / depth) = d / W for depth = 1 / (1 - d / (m W)).
+DepthImage depthFromDisparity(const ConvertJobOptions& options, stereo::StereoParameters& parameters) {
+  DepthImage disparity = readScalarFile(options, "disparity");
+  float largest = 0.0f;
+  for (std::size_t i = 0; i < disparity.pixels.size(); ++i) {
+    const float d = disparity.pixels[i];
+    if (!std::isfinite(d))
+      throw std::invalid_argument(pixelText("disparity", options.depth, i, disparity.width) + " is not finite");
+    largest = std::max(largest, std::abs(d));
+  }
+  const float width = float(disparity.width);
+  const float separation = std::max(largest / width, 1.0f / (4.0f * width));  // > 0 even for an all-zero map
+  if (separation > stereo::kMaxSeparationLimit)
+    throw std::invalid_argument("disparity file '" + options.depth.string() + "' reaches " + std::to_string(largest) +
+                                " px, beyond " + std::to_string(stereo::kMaxSeparationLimit) + " of the width (" +
+                                std::to_string(stereo::kMaxSeparationLimit * width) + " px)");
+  parameters.maxSeparation = separation;
+  parameters.zeroParallaxDistance = 1.0f;
+  // The pass's left eye shows a point at x - p W, its right eye at x + p W (stereo.h). Right output (x - d):
+  // the left eye with p = d / W. Left output (x + d): the right eye with the same p.
+  for (float& value : disparity.pixels) {
+    const float share = value / (separation * width);
+    value = share >= 1.0f ? INFINITY : 1.0f / (1.0f - share);
+  }
+  return disparity;
 }
 
 // Uploads the frame and runs the parameters' method on it (untimed once, then timed).
@@ -99,8 +199,8 @@ std::optional<ImageRGBA8> readReference(const std::optional<fs::path>& file, con
   ImageRGBA8 reference = readColor(*file);
   if (reference.width != color.width || reference.height != color.height)
     throw std::invalid_argument(std::string(which) + " reference '" + file->string() + "' is " +
-                                std::to_string(reference.width) + "x" + std::to_string(reference.height) +
-                                ", the color is " + std::to_string(color.width) + "x" + std::to_string(color.height));
+                                sizeText(reference.width, reference.height) + ", the color is " +
+                                sizeText(color.width, color.height));
   return reference;
 }
 
@@ -110,54 +210,145 @@ nlohmann::json statsJson(const std::optional<stereo::ErrorStats>& stats) {
           {"shareAbove8", stats->shareAbove8}, {"pixelCount", stats->pixelCount}};
 }
 
+bool matchesPattern(const std::string& name, const std::string& prefix, const std::string& suffix, std::string& key) {
+  if (name.size() <= prefix.size() + suffix.size()) return false;
+  if (name.compare(0, prefix.size(), prefix) != 0) return false;
+  if (name.compare(name.size() - suffix.size(), suffix.size(), suffix) != 0) return false;
+  key = name.substr(prefix.size(), name.size() - prefix.size() - suffix.size());
+  return true;
+}
+
+std::pair<std::string, std::string> splitPattern(const std::string& pattern, const char* option) {
+  const std::size_t star = pattern.find('*');
+  if (star == std::string::npos || pattern.find('*', star + 1) != std::string::npos ||
+      pattern.find('/') != std::string::npos)
+    throw std::invalid_argument(std::string(option) + " '" + pattern + "' must be a file name with exactly one '*'");
+  return {pattern.substr(0, star), pattern.substr(star + 1)};
+}
+
 }  // namespace
 
 ConvertReport runConvertJob(vk::Context& context, const ConvertJobOptions& options) {
   // Every input is read and checked before any output exists.
-  const ImageRGBA8 color = readColor(options.color);
-  const DepthImage depth = readLinearDepth(options);
+  ConvertReport report;
+  const ImageRGBA8 color = readColor(options.color, &report.sanitizedColorValues);
+  stereo::StereoParameters parameters = options.stereo;
+  const DepthImage depth = options.disparity ? depthFromDisparity(options, parameters) : readLinearDepth(options);
   if (depth.width != color.width || depth.height != color.height)
-    throw std::invalid_argument("depth '" + options.depth.string() + "' is " + std::to_string(depth.width) + "x" +
-                                std::to_string(depth.height) + ", color '" + options.color.string() + "' is " +
-                                std::to_string(color.width) + "x" + std::to_string(color.height));
+    throw std::invalid_argument(std::string(options.disparity ? "disparity" : "depth") + " '" + options.depth.string() +
+                                "' is " + sizeText(depth.width, depth.height) + ", color '" + options.color.string() +
+                                "' is " + sizeText(color.width, color.height));
   const std::optional<ImageRGBA8> referenceLeft = readReference(options.referenceLeft, color, "left");
   const std::optional<ImageRGBA8> referenceRight = readReference(options.referenceRight, color, "right");
-  const gpu::StereoConstants constants = stereo::makeStereoConstants(options.stereo, color.width, color.height);
+  stereo::validate(parameters);
+  const gpu::StereoConstants constants = stereo::makeStereoConstants(parameters, color.width, color.height);
 
-  ConvertReport report;
   report.deviceName = context.deviceName();
+  report.color = options.color.string();
+  report.depth = options.depth.string();
   report.width = color.width;
   report.height = color.height;
+  report.stereo = parameters;
   report.cropColumns = std::uint32_t(constants.cropBegin);
-  stereo::SynthesisResult synthesis = synthesize(context, color, depth, options.stereo);
+  stereo::SynthesisResult synthesis = synthesize(context, color, depth, parameters);
   report.stereoPassGpuMs = synthesis.gpuMs;
-  const stereo::StereoPair eyes = std::move(synthesis.eyes);
+  stereo::StereoPair eyes = std::move(synthesis.eyes);
+  if (options.disparity == DisparityOutput::Right) eyes.right = std::exchange(eyes.left, color);
+  if (options.disparity == DisparityOutput::Left) eyes.left = std::exchange(eyes.right, color);
   if (referenceLeft) report.left = stereo::compareDisplayImages(eyes.left, *referenceLeft, report.cropColumns);
   if (referenceRight) report.right = stereo::compareDisplayImages(eyes.right, *referenceRight, report.cropColumns);
 
   const fs::path& folder = options.outputFolder;
   auto write = [&](const std::string& name, const ImageRGBA8& image) {
-    io::writePng(folder / name, image);
-    report.filesWritten.push_back(name);
+    const std::string file = name + options.fileSuffix + ".png";
+    io::writePng(folder / file, image);
+    report.filesWritten.push_back(file);
   };
-  write("left.png", eyes.left);
-  write("right.png", eyes.right);
-  write("anaglyph.png", stereo::makeAnaglyphDubois(eyes.left, eyes.right));
-  write("sbs.png", stereo::makeSideBySide(eyes.left, eyes.right, options.sideBySide));
-  write("tab.png", stereo::makeTopAndBottom(eyes.left, eyes.right, options.topBottom));
-  report.filesWritten.push_back("report.json");
-  io::writeTextFile(folder / "report.json", toJson(report).dump(2) + "\n");
+  write("left", eyes.left);
+  write("right", eyes.right);
+  write("anaglyph", stereo::makeAnaglyphDubois(eyes.left, eyes.right));
+  write("sbs", stereo::makeSideBySide(eyes.left, eyes.right, options.sideBySide));
+  write("tab", stereo::makeTopAndBottom(eyes.left, eyes.right, options.topBottom));
+  if (options.writeReport) {
+    const std::string file = "report" + options.fileSuffix + ".json";
+    report.filesWritten.push_back(file);
+    io::writeTextFile(folder / file, toJson(report).dump(2) + "\n");
+  }
   return report;
 }
 
 nlohmann::json toJson(const ConvertReport& report) {
   return {{"device", report.deviceName},
+          {"color", report.color},
+          {"depth", report.depth},
           {"width", report.width},
           {"height", report.height},
+          {"stereo",
+           {{"maxSeparation", report.stereo.maxSeparation},
+            {"zeroParallaxDistance", report.stereo.zeroParallaxDistance},
+            {"method", stereo::methodName(report.stereo.method)}}},
           {"cropColumns", report.cropColumns},
           {"gpuTimeMs", {{"stereoPass", report.stereoPassGpuMs ? nlohmann::json(*report.stereoPassGpuMs) : nullptr}}},
           {"error", {{"left", statsJson(report.left)}, {"right", statsJson(report.right)}}},
+          {"sanitized", {{"colorValues", report.sanitizedColorValues}}},
           {"files", report.filesWritten}};
+}
+
+std::vector<ConvertFrame> pairFrames(const fs::path& folder, const std::string& colorPattern,
+                                     const std::string& depthPattern) {
+  const auto [colorPrefix, colorSuffix] = splitPattern(colorPattern, "--color-pattern");
+  const auto [depthPrefix, depthSuffix] = splitPattern(depthPattern, "--depth-pattern");
+  if (!fs::is_directory(folder)) throw std::invalid_argument("input folder '" + folder.string() + "' does not exist");
+  std::map<std::string, ConvertFrame> frames;
+  std::map<std::string, fs::path> depths;
+  for (const fs::directory_entry& entry : fs::directory_iterator(folder)) {
+    if (!entry.is_regular_file()) continue;
+    const std::string name = entry.path().filename().string();
+    std::string key;
+    if (matchesPattern(name, colorPrefix, colorSuffix, key)) frames[key] = {key, entry.path(), {}};
+    else if (matchesPattern(name, depthPrefix, depthSuffix, key)) depths[key] = entry.path();
+  }
+  if (frames.empty())
+    throw std::invalid_argument("no file in '" + folder.string() + "' matches --color-pattern '" + colorPattern + "'");
+  for (auto& [key, frame] : frames) {
+    const auto depth = depths.find(key);
+    if (depth == depths.end())
+      throw std::invalid_argument("color frame '" + frame.color.filename().string() + "' has no depth file '" +
+                                  depthPrefix + key + depthSuffix + "'");
+    frame.depth = depth->second;
+    depths.erase(depth);
+  }
+  if (!depths.empty())
+    throw std::invalid_argument("depth file '" + depths.begin()->second.filename().string() + "' has no color frame '" +
+                                colorPrefix + depths.begin()->first + colorSuffix + "'");
+  std::vector<ConvertFrame> sorted;
+  for (auto& entry : frames) sorted.push_back(std::move(entry.second));
+  return sorted;
+}
+
+std::vector<ConvertReport> runConvertFolder(vk::Context& context, const ConvertJobOptions& options,
+                                            const std::vector<ConvertFrame>& frames,
+                                            const std::function<void(std::size_t, std::size_t, const std::string&)>& progress) {
+  std::vector<ConvertReport> reports;
+  nlohmann::json frameJson = nlohmann::json::array();
+  for (const ConvertFrame& frame : frames) {
+    ConvertJobOptions frameOptions = options;
+    frameOptions.color = frame.color;
+    frameOptions.depth = frame.depth;
+    frameOptions.fileSuffix = "_" + frame.key;
+    frameOptions.writeReport = false;
+    try {
+      reports.push_back(runConvertJob(context, frameOptions));
+    } catch (const std::exception& error) {
+      throw std::runtime_error("frame '" + frame.key + "': " + error.what());
+    }
+    nlohmann::json json = toJson(reports.back());
+    json["frame"] = frame.key;
+    frameJson.push_back(std::move(json));
+    if (progress) progress(reports.size(), frames.size(), frame.key);
+  }
+  io::writeTextFile(options.outputFolder / "report.json", nlohmann::json{{"frames", frameJson}}.dump(2) + "\n");
+  return reports;
 }
 
 }  // namespace s3d::app

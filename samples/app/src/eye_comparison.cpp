@@ -18,10 +18,19 @@ std::vector<std::uint8_t> disocclusionMaskFor(const DepthImage& referenceDepth, 
 }
 
 EyeError compareEye(const ImageRGBA8& synthesized, const ImageRGBA8& reference, std::uint32_t cropColumns,
+                    const stereo::RegionMasks& masks, const ImageRGBA32F* synthesizedHdr,
+                    const ImageRGBA32F* referenceHdr) {
+  const stereo::ErrorsByRegion<stereo::ErrorStats> display =
+      stereo::compareDisplayByRegion(synthesized, reference, cropColumns, masks);
+  EyeError error{display.all, display.halo, display.rest, display.disocclusion, display.transparent, std::nullopt};
+  if (synthesizedHdr && referenceHdr)
+    error.hdr = stereo::compareHdrByRegion(*synthesizedHdr, *referenceHdr, cropColumns, masks);
+  return error;
+}
+
+EyeError compareEye(const ImageRGBA8& synthesized, const ImageRGBA8& reference, std::uint32_t cropColumns,
                     const std::vector<std::uint8_t>& halo, const std::vector<std::uint8_t>& disocclusion) {
-  const stereo::RegionErrors regions = stereo::compareByRegion(synthesized, reference, cropColumns, halo);
-  return {regions.all, regions.halo, regions.rest,
-          stereo::compareWithinMask(synthesized, reference, cropColumns, disocclusion)};
+  return compareEye(synthesized, reference, cropColumns, stereo::RegionMasks{halo, disocclusion, {}});
 }
 
 double tidy(float value) {
@@ -41,8 +50,16 @@ nlohmann::json optionalMs(const std::optional<double>& value) {
 
 nlohmann::json statsJson(const stereo::ErrorStats& stats) {
   return {{"psnrDb", finiteOrNull(stats.psnrDb)},
+          {"ssim", finiteOrNull(stats.ssim)},
           {"meanAbsoluteError", finiteOrNull(stats.meanAbsoluteError)},
           {"shareAbove8", finiteOrNull(stats.shareAbove8)},
+          {"pixelCount", stats.pixelCount}};
+}
+
+nlohmann::json statsJson(const stereo::HdrErrorStats& stats) {
+  return {{"psnrDb", finiteOrNull(stats.psnrDb)},
+          {"ssim", finiteOrNull(stats.ssim)},
+          {"meanAbsoluteError", finiteOrNull(stats.meanAbsoluteError)},
           {"pixelCount", stats.pixelCount}};
 }
 
@@ -51,6 +68,15 @@ nlohmann::json errorJson(const EyeError& error) {
   json["halo"] = statsJson(error.halo);
   json["rest"] = statsJson(error.rest);
   json["disocclusion"] = statsJson(error.disocclusion);
+  json["transparent"] = statsJson(error.transparent);
+  if (error.hdr) {
+    nlohmann::json hdr = statsJson(error.hdr->all);
+    hdr["halo"] = statsJson(error.hdr->halo);
+    hdr["rest"] = statsJson(error.hdr->rest);
+    hdr["disocclusion"] = statsJson(error.hdr->disocclusion);
+    hdr["transparent"] = statsJson(error.hdr->transparent);
+    json["hdr"] = std::move(hdr);
+  }
   return json;
 }
 

@@ -16,6 +16,8 @@
 #include "s3d/hud/crosshair.h"
 #include "s3d/io/image_io.h"
 #include "s3d/renderer/scene.h"
+#include "s3d/stereo/hdr_gather.h"
+#include "s3d/stereo/sanitize.h"
 #include "s3d/stereo/stereo_pass.h"
 #include "s3d/stereo/synthesis.h"
 #include "s3d/vk/resources.h"
@@ -29,6 +31,8 @@ namespace {
 struct ValidatedJob {
   renderer::Scene scene;
   gpu::StereoConstants constants;
+  stereo::StereoParameters stereo;    // options.stereo with the zero-parallax distance clamped
+  std::vector<std::string> warnings;  // why it was clamped
 };
 
 std::string joined(const std::vector<std::string>& names) {
@@ -66,7 +70,13 @@ ValidatedJob validateJob(const RenderJobOptions& options) {
   stereo::validate(options.stereo);
   comfort::validate(options.display);
   ValidatedJob job{renderer::makeBuiltInScene(options.scene),  // throws naming the scene and the choices
-                   stereo::makeStereoConstants(options.stereo, options.width, options.height)};
+                   stereo::makeStereoConstants(options.stereo, options.width, options.height), options.stereo, {}};
+  // Issue #4: a zero-parallax plane at or beyond the far plane, or near zero, is clamped with a warning.
+  const stereo::ClampedZeroParallax zpp = stereo::clampZeroParallaxDistance(
+      options.stereo.zeroParallaxDistance, job.scene.camera.nearPlane, job.scene.camera.farPlane);
+  job.stereo.zeroParallaxDistance = zpp.zeroParallaxDistance;
+  if (zpp.warning) job.warnings.push_back(*zpp.warning);
+  job.constants = stereo::makeStereoConstants(job.stereo, options.width, options.height);
   // The scene's camera at the requested frame of its path (throws naming the frame and the count).
   job.scene.camera = renderer::cameraForFrame(job.scene, options.frame);
   if (job.constants.cropEnd <= job.constants.cropBegin)
@@ -114,15 +124,17 @@ RenderReport runRenderJob(vk::Context& context, const RenderJobOptions& options)
   report.scene = options.scene;
   report.width = width;
   report.height = height;
-  report.stereo = options.stereo;
+  report.stereo = job.stereo;
+  report.warnings = job.warnings;
   if (report.stereo.edgeCrop < 0.0f) report.stereo.edgeCrop = report.stereo.maxSeparation;
   report.cropColumns = std::uint32_t(job.constants.cropBegin);
 
   // 2. The center view.
   renderer::DeferredRenderer deferred(context, width, height, {options.supersample});
   deferred.setScene(job.scene);
+  const stereo::StereoParameters& parameters = job.stereo;
   const renderer::ViewMatrices center = renderer::centerViewMatrices(
-      job.scene, float(width) / float(height), {options.stereo.weaponDepthOffset, options.stereo.weaponDepthScale});
+      job.scene, float(width) / float(height), {parameters.weaponDepthOffset, parameters.weaponDepthScale});
   // The first frame on fresh pipelines includes shader compilation (lavapipe compiles at first use):
   // render it once untimed so the center frame, the stereo pass and the reference eye are all warm.
   (void)deferred.render(center);
@@ -131,38 +143,50 @@ RenderReport runRenderJob(vk::Context& context, const RenderJobOptions& options)
   report.centerPasses = std::move(centerTimings.passes);
   const ImageRGBA8 centerColor = deferred.readDisplayColor();
   const bool wantsExr = selected("center.exr");
-  const DepthImage centerDepth = deferred.readLinearDepth();  // for center.exr and the halo region
-  const ImageRGBA32F centerHdr = wantsExr ? deferred.readHdrColor() : ImageRGBA32F();
+  // For center.exr, the regions and the HDR error; NaN or inf is sanitized and counted (the GPU pass reads
+  // invalid depth as the zero-parallax plane too, and the tone map writes non-finite color as black).
+  DepthImage centerDepth = deferred.readLinearDepth();
+  ImageRGBA32F centerHdr = deferred.readHdrColor();
+  report.sanitized.depthPixels = stereo::sanitizeDepth(centerDepth, parameters.zeroParallaxDistance);
+  report.sanitized.colorValues = stereo::sanitizeColor(centerHdr);
 
   // 3. Both eyes synthesized on the GPU from the renderer's own images.
   stereo::SynthesisResult synthesis =
-      stereo::synthesizeTimed(context, deferred.displayColor(), deferred.linearDepth(), options.stereo);
+      stereo::synthesizeTimed(context, deferred.displayColor(), deferred.linearDepth(), parameters);
   report.stereoPassGpuMs = synthesis.gpuMs;
   report.filledPixels = {synthesis.filledLeft, synthesis.filledRight};
   const stereo::StereoPair synthesized = std::move(synthesis.eyes);
+  // The same gather on the linear HDR center view, by the C++ reference of the method (hdr_gather.h).
+  const stereo::HdrStereoPair synthesizedHdr = stereo::synthesizeHdrReference(centerHdr, centerDepth, parameters);
 
   // 4. The two-pass reference: each eye rendered with its off-axis camera.
-  const renderer::FrameTimings leftTimings = deferred.render(referenceEyeView(job.scene, center, stereo::Eye::Left, options.stereo));
+  const renderer::FrameTimings leftTimings = deferred.render(referenceEyeView(job.scene, center, stereo::Eye::Left, parameters));
   const ImageRGBA8 leftReference = deferred.readDisplayColor();
   const DepthImage leftReferenceDepth = deferred.readLinearDepth();
-  (void)deferred.render(referenceEyeView(job.scene, center, stereo::Eye::Right, options.stereo));
+  const ImageRGBA32F leftReferenceHdr = deferred.readHdrColor();
+  const std::vector<std::uint8_t> leftTransparent = deferred.readTransparentMask();
+  (void)deferred.render(referenceEyeView(job.scene, center, stereo::Eye::Right, parameters));
   const ImageRGBA8 rightReference = deferred.readDisplayColor();
   const DepthImage rightReferenceDepth = deferred.readLinearDepth();
+  const ImageRGBA32F rightReferenceHdr = deferred.readHdrColor();
+  const std::vector<std::uint8_t> rightTransparent = deferred.readTransparentMask();
   report.referenceEyeGpuMs = leftTimings.totalGpuMs;
 
   // 5. Synthesized vs reference, without the border strips that view synthesis cannot know.
   // (region masks and comparison: eye_comparison.h, shared with s3d bench)
-  const std::vector<std::uint8_t> halo = haloMaskFor(centerDepth, options.stereo);
-  for (auto [eyeError, eye, reference, referenceDepth, side] :
-       {std::tuple{&report.left, &synthesized.left, &leftReference, &leftReferenceDepth, stereo::Eye::Left},
-        std::tuple{&report.right, &synthesized.right, &rightReference, &rightReferenceDepth, stereo::Eye::Right}}) {
-    *eyeError = compareEye(*eye, *reference, report.cropColumns, halo,
-                           disocclusionMaskFor(*referenceDepth, centerDepth, options.stereo, side));
+  const std::vector<std::uint8_t> halo = haloMaskFor(centerDepth, parameters);
+  for (auto [eyeError, eye, reference, referenceDepth, side, eyeHdr, referenceHdr, transparent] :
+       {std::tuple{&report.left, &synthesized.left, &leftReference, &leftReferenceDepth, stereo::Eye::Left,
+                   &synthesizedHdr.left, &leftReferenceHdr, &leftTransparent},
+        std::tuple{&report.right, &synthesized.right, &rightReference, &rightReferenceDepth, stereo::Eye::Right,
+                   &synthesizedHdr.right, &rightReferenceHdr, &rightTransparent}}) {
+    const stereo::RegionMasks masks{halo, disocclusionMaskFor(*referenceDepth, centerDepth, parameters, side), *transparent};
+    *eyeError = compareEye(*eye, *reference, report.cropColumns, masks, eyeHdr, referenceHdr);
   }
 
   // Comfort report: the parallax the stereo pass gave every pixel, as angles on the chosen display.
   report.display = options.display;
-  report.parallax = comfort::parallaxStatistics(centerDepth, options.stereo, report.display);
+  report.parallax = comfort::parallaxStatistics(centerDepth, parameters, report.display);
 
   // 6. HUD: the crosshair, placed by an Embree ray cast along the aim (seed 4.6.2), drawn after stereo
   // synthesis into every view at the parallax of its depth. It is not part of the 3D scene, so synthesized
@@ -171,8 +195,8 @@ RenderReport runRenderJob(vk::Context& context, const RenderJobOptions& options)
   const comfort::CrosshairPlacement placement =
       comfort::placeCrosshair(world, job.scene.camera, options.crosshair.distance.value_or(job.scene.crosshairDistance),
                               options.crosshair.margin);
-  const float leftOffset = hud::crosshairEyeOffsetPx(options.stereo, placement.depth, width, stereo::Eye::Left);
-  const float rightOffset = hud::crosshairEyeOffsetPx(options.stereo, placement.depth, width, stereo::Eye::Right);
+  const float leftOffset = hud::crosshairEyeOffsetPx(parameters, placement.depth, width, stereo::Eye::Left);
+  const float rightOffset = hud::crosshairEyeOffsetPx(parameters, placement.depth, width, stereo::Eye::Right);
   report.crosshair = {placement.depth, placement.hitWorld, rightOffset};
   const hud::CrosshairStyle crosshairStyle = hud::crosshairStyleForHeight(height);
   // The image center in pixel indices ((W - 1) / 2, rounded half up by drawCrosshair), plus the eye's offset.
@@ -272,6 +296,8 @@ nlohmann::json toJson(const RenderReport& report) {
            {{"depth", finiteOrNull(tidy(report.crosshair.depth))},
             {"hitWorld", report.crosshair.hitWorld},
             {"parallaxPx", finiteOrNull(tidy(report.crosshair.parallaxPx))}}},
+          {"sanitized", {{"colorValues", report.sanitized.colorValues}, {"depthPixels", report.sanitized.depthPixels}}},
+          {"warnings", report.warnings},
           {"files", report.filesWritten}};
 }
 

@@ -1,5 +1,7 @@
 #include "s3d/io/image_io.h"
 
+#include "file_access.h"
+
 // Third-party headers are silenced here because pkg-config exposes them with -I, not -isystem
 // (Imath's half.h trips -Wconversion); our own code below keeps the full warning set.
 #pragma GCC diagnostic push
@@ -267,5 +269,12 @@ ExrFrame readExr(const fs::path& file) {
 }
 
 void writeTextFile(const fs::path& file, std::string_view text) { writeFileAtomically("writeTextFile", file, text); }
+
+namespace detail {
+std::string readWholeFile(const char* operation, const fs::path& file) { return readFileBytes(operation, file); }
+void writeWholeFileAtomically(const char* operation, const fs::path& file, std::string_view bytes) {
+  writeFileAtomically(operation, file, bytes);
+}
+}  // namespace detail
 
 }  // namespace s3d::io

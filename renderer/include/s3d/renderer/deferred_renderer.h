@@ -90,6 +90,9 @@ class DeferredRenderer {
   // 1 where the last frame's visible surface belongs to the first-person layer (Listing 4.3's depth range);
   // with supersampling, where any sample of the output pixel does (its linear depth is the weapon's then).
   std::vector<std::uint8_t> readFirstPersonMask();
+  // 1 where a transparent surface covers the last frame's pixel (its blended coverage is above 0); all 0 when
+  // the scene has no transparent objects (the error metrics' transparent region).
+  std::vector<std::uint8_t> readTransparentMask();
 
   // Device depth values that separate the layers (Listing 4.3): first-person depth is in [0, split].
   static constexpr float kFirstPersonDeviceDepthMax = 0.1f;

@@ -11,6 +11,7 @@ S3D_GPU_BEGIN
 #define S3D_LAYER_FIRST_PERSON 1
 #define S3D_LIGHT_AMBIENT_AND_SUN 0
 #define S3D_LIGHT_POINT 1
+#define S3D_LIGHT_SPOT 2
 #define S3D_COMPUTE_GROUP_SIZE 8
 
 // Per layer (world, first-person): how its geometry is projected and how its depth is turned back into a
@@ -50,10 +51,12 @@ struct ObjectConstants {  // storage buffer, std430, one per object
 };
 
 struct LightConstants {  // push constants of the light-accumulation pass
-  vec4 positionRadius;   // point light: world position, radius of influence
+  vec4 positionRadius;   // point/spot light: world position, radius of influence
   vec4 color;            // linear radiance scale
+  vec4 spotDirection;    // spot light: unit direction it points to (world)
+  vec4 spotCone;         // spot light: x cos(outer cone angle), y cos(inner cone angle)
   uint kind;             // S3D_LIGHT_*
-  uint padding0;
+  int shadowView;        // -1: unshadowed; sun: reads the shadow mask; point: first of six atlas views; spot: its view
   uint padding1;
   uint padding2;
 };
@@ -66,6 +69,22 @@ struct ResolveConstants {
   int outputWidth;
   int outputHeight;
   int padding0;
+};
+
+// Shadows (seed 003 section 8.5.3, 000 section 4.3.3): sun cascades in one depth atlas, read by the deferred
+// shadow-mask pass; point (six views) and spot (one view) shadow maps in a second atlas, read by the light pass.
+#define S3D_MAX_SUN_CASCADES 4
+#define S3D_MAX_LOCAL_SHADOW_VIEWS 48
+
+struct ShadowConstants {  // uniform buffer, std140
+  mat4 cascadeViewProjection[S3D_MAX_SUN_CASCADES];  // world -> cascade clip (x, y in -1..1, z in 0..1)
+  vec4 cascadeAtlasRect[S3D_MAX_SUN_CASCADES];       // the cascade's tile in atlas uv: offset xy, size zw
+  vec4 cascadeParams[S3D_MAX_SUN_CASCADES];          // x: world size of a texel, y: 1 when rendered (else lit)
+  vec4 sunShadow;  // x: cascade count, y: 1 / atlas width, z: 1 / atlas height, w: receiver depth bias
+  mat4 localViewProjection[S3D_MAX_LOCAL_SHADOW_VIEWS];  // world -> clip of each point-light face / spot light
+  vec4 localAtlasRect[S3D_MAX_LOCAL_SHADOW_VIEWS];       // offset xy, size zw in atlas uv
+  vec4 localParams[S3D_MAX_LOCAL_SHADOW_VIEWS];          // x: texel size per metre of distance (2 tan(fov/2) / tile)
+  vec4 localShadow;  // x: 1 / atlas width, y: 1 / atlas height
 };
 
 // Glossiness 0..1 -> Blinn-Phong exponent 2..2048.
@@ -82,6 +101,12 @@ S3D_INLINE float pointLightFalloff(float distanceToLight, float radius) {
   float ratio = min(distanceToLight / radius, 1.0f);
   float window = 1.0f - ratio * ratio;
   return window * window / (1.0f + distanceToLight * distanceToLight);
+}
+
+// Spot light cone: 1 inside the inner cone, 0 outside the outer one, a smooth ramp between.
+S3D_INLINE float spotConeFalloff(float cosAngle, float cosOuter, float cosInner) {
+  float t = min(max((cosAngle - cosOuter) / max(cosInner - cosOuter, 1e-4f), 0.0f), 1.0f);
+  return t * t * (3.0f - 2.0f * t);
 }
 
 S3D_GPU_END

@@ -37,17 +37,37 @@ struct Object {
   Material material;
   glm::mat4 transform{1.0f};  // World: object -> world. FirstPerson: object -> camera (view) space.
   Layer layer = Layer::World;
+  bool castsShadow = true;  // opaque world-layer objects only: the first-person layer and glass never cast
 };
 
 struct SunLight {
   glm::vec3 directionToSun{0.0f, 1.0f, 0.0f};  // unit vector
   glm::vec3 color{1.0f};                       // linear radiance scale
+  // Cascaded shadow maps (seed 003 8.5.3.5): `cascadeCount` square maps of `shadowMapSize` texels covering
+  // the view from the near plane to `shadowDistance` (clamped to the far plane); beyond it the sun is unshadowed.
+  // Map sizes (this and Scene::localShadowMapSize) are capped at twice the image's longer side (at least 256).
+  bool castsShadows = false;
+  float shadowDistance = 60.0f;  // world units
+  std::uint32_t cascadeCount = 3;  // 1..4
+  std::uint32_t shadowMapSize = 1024;
 };
 
 struct PointLight {
   glm::vec3 position{0.0f};
   glm::vec3 color{1.0f};
   float radius = 5.0f;  // light reaches zero at this distance
+  bool castsShadows = false;  // six 90-degree shadow views (seed 000 4.3.3: "six projected light sources")
+};
+
+// A projector: a point light limited to a cone, with a smooth edge between the inner and outer angles.
+struct SpotLight {
+  glm::vec3 position{0.0f};
+  glm::vec3 direction{0.0f, -1.0f, 0.0f};  // where it points, unit vector
+  glm::vec3 color{1.0f};
+  float radius = 8.0f;               // light reaches zero at this distance
+  float innerConeRadians = 0.35f;    // half angle of full intensity
+  float outerConeRadians = 0.5f;     // half angle where it reaches zero, < pi/2
+  bool castsShadows = false;         // one shadow view covering the outer cone
 };
 
 struct Camera {
@@ -83,6 +103,8 @@ struct Scene {
   bool ambientOcclusion = true;
   float ambientOcclusionRadius = 0.5f;  // world units
   std::vector<PointLight> pointLights;
+  std::vector<SpotLight> spotLights;
+  std::uint32_t localShadowMapSize = 512;  // texels per point-light face / spot light shadow view
   Sky sky;
   Camera camera;
   std::vector<Camera> cameraPath;  // one camera per frame of the scene's sequence; empty: only `camera`

@@ -17,7 +17,32 @@ struct ErrorStats {
   double meanAbsoluteError;  // mean |difference| in levels over R, G, B of the compared pixels
   double shareAbove8;        // fraction of compared pixels whose largest R/G/B |difference| exceeds 8 levels
   std::uint64_t pixelCount;  // number of pixels compared (after cropping)
+  double ssim = 1.0;         // mean SSIM of luma over the compared pixels (ssimMap)
 };
+
+// SSIM (Wang, Bovik, Sheikh, Simoncelli 2004) per pixel on luma: an 11x11 Gaussian window with sigma 1.5 and
+// the paper's constants C1 = (0.01 L)^2, C2 = (0.03 L)^2. Display images use BT.601 luma of the 8-bit sRGB
+// codes (L = 255, as the paper's reference code); HDR images the BT.709 luminance of the linear color with
+// L = kHdrPeak. The window is cut at the borders of the compared area (columns [cropColumns, W - cropColumns),
+// all rows) and renormalized, so every pixel has a value down to a 1x1 image. Values outside the area are 0.
+constexpr int kSsimWindowRadius = 5;      // 11x11
+constexpr double kSsimGaussianSigma = 1.5;
+constexpr double kSsimK1 = 0.01;
+constexpr double kSsimK2 = 0.03;
+std::vector<float> ssimMap(const ImageRGBA8& synthesized, const ImageRGBA8& reference, std::uint32_t cropColumns);
+std::vector<float> ssimMap(const ImageRGBA32F& synthesized, const ImageRGBA32F& reference, std::uint32_t cropColumns);
+
+// Linear-HDR differences over R, G, B of the exposed scene-referred color (the tone curve's input), against a
+// fixed peak of 1.0: an exposed white; brighter highlights may give errors above the peak.
+constexpr double kHdrPeak = 1.0;
+struct HdrErrorStats {
+  double psnrDb = kMaxPsnrDb;       // 10*log10(kHdrPeak^2 / MSE), capped at kMaxPsnrDb
+  double ssim = 1.0;                // mean SSIM of luminance (ssimMap)
+  double meanAbsoluteError = 0.0;   // mean |difference| over R, G, B, in linear units
+  std::uint64_t pixelCount = 0;
+};
+HdrErrorStats compareHdrImages(const ImageRGBA32F& synthesized, const ImageRGBA32F& reference,
+                               std::uint32_t cropColumns);
 
 // Compares columns [cropColumns, W - cropColumns) of all rows: view synthesis cannot know what lies
 // beyond the image edge, so the disoccluded border strips are excluded by the caller's choice of crop.
@@ -36,7 +61,7 @@ std::vector<std::uint8_t> haloMask(const DepthImage& centerDepth, std::uint32_t 
 struct RegionErrors {
   ErrorStats all;
   ErrorStats halo;  // pixels of the halo mask
-  ErrorStats rest;  // the others
+  ErrorStats rest;  // the others (not halo; compareDisplayByRegion's rest also leaves out its other regions)
 };
 RegionErrors compareByRegion(const ImageRGBA8& synthesized, const ImageRGBA8& reference, std::uint32_t cropColumns,
                              const std::vector<std::uint8_t>& halo);
@@ -53,6 +78,22 @@ ErrorStats compareWithinMask(const ImageRGBA8& synthesized, const ImageRGBA8& re
 constexpr float kSameSurfaceRelativeDepth = 0.02f;
 std::vector<std::uint8_t> disocclusionMask(const DepthImage& referenceDepth, const DepthImage& centerDepth,
                                            float maxSeparation, float zeroParallaxDistance, Eye eye);
+
+// The regions of issue #4 as masks over the image (1: in the region); an empty mask is a region without
+// pixels. Regions may overlap; `rest` is every compared pixel in none of them.
+struct RegionMasks {
+  std::vector<std::uint8_t> halo;          // haloMask
+  std::vector<std::uint8_t> disocclusion;  // disocclusionMask
+  std::vector<std::uint8_t> transparent;   // reference pixels covered by transparent surfaces
+};
+template <typename Stats>
+struct ErrorsByRegion {
+  Stats all, halo, disocclusion, transparent, rest;
+};
+ErrorsByRegion<ErrorStats> compareDisplayByRegion(const ImageRGBA8& synthesized, const ImageRGBA8& reference,
+                                                  std::uint32_t cropColumns, const RegionMasks& masks);
+ErrorsByRegion<HdrErrorStats> compareHdrByRegion(const ImageRGBA32F& synthesized, const ImageRGBA32F& reference,
+                                                 std::uint32_t cropColumns, const RegionMasks& masks);
 
 // Error heat map (issue #4): per pixel the largest R/G/B difference, black at 0 through blue, red and
 // yellow to white at fullScaleLevels and above; the cropped border columns stay black.

@@ -48,6 +48,12 @@ gpu::StereoConstants makeStereoConstants(const StereoParameters& parameters, std
 // Listing 4.5's constants whatever parameters.method says.
 gpu::StereoConstants makeSeedConstants(const StereoParameters& parameters, std::uint32_t width, std::uint32_t height);
 
+enum class Eye { Left, Right };
+
+// The fractional center-view column the seed / search pass filters pixel (x, y) of an eye from: x plus (left
+// eye) or minus (right eye) the parallax of the nearest depth over the taps. x must be inside the crop.
+float gatherSourceColumn(const DepthImage& linearDepth, int x, int y, Eye eye, const gpu::StereoConstants& constants);
+
 struct StereoPair {
   ImageRGBA8 left;
   ImageRGBA8 right;
@@ -57,7 +63,6 @@ struct StereoPair {
 StereoPair synthesizeStereoReference(const ImageRGBA8& center, const DepthImage& linearDepth,
                                      const gpu::StereoConstants& constants);
 
-enum class Eye { Left, Right };
 
 template <typename T>
 struct EyeCameraT {

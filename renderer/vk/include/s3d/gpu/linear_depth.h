@@ -34,6 +34,14 @@ S3D_INLINE float stereoDepthFromDevice(LinearDepthParams p, float deviceDepth) {
   return depth;
 }
 
+// Reversed Z (near plane at device depth 1, far plane at 0, cleared to 0 for sky): its device depth is a
+// standard zero-to-one projection's with near and far swapped, so Listing 4.2's d = y / (z - x) holds
+// unchanged with the swapped ratio (reversedProjectionRatio). Device depth <= 0 is sky.
+S3D_INLINE float linearDepthFromReversedDevice(vec2 reversedRatio, float deviceDepth) {
+  if (deviceDepth <= 0.0f) return S3D_INFINITY;
+  return reversedRatio.y / (deviceDepth - reversedRatio.x);
+}
+
 #ifdef __cplusplus
 // Listing 4.2's ProjRatio for a zero-to-one perspective projection (near n, far f, world units) whose depth
 // is written into the viewport depth range [rangeBegin, rangeEnd].
@@ -41,6 +49,11 @@ inline vec2 projectionRatio(float n, float f, float rangeBegin, float rangeEnd) 
   float x = f / (f - n);
   float y = n * f / (n - f);
   return {rangeBegin + x * (rangeEnd - rangeBegin), y * (rangeEnd - rangeBegin)};
+}
+
+// ProjRatio of a reversed-Z projection (near n -> rangeEnd, far f -> rangeBegin): the standard one, swapped.
+inline vec2 reversedProjectionRatio(float n, float f, float rangeBegin, float rangeEnd) {
+  return projectionRatio(f, n, rangeBegin, rangeEnd);
 }
 
 // World depth lives in [firstPersonDeviceDepthMax, 1], first-person depth in [0, firstPersonDeviceDepthMax].

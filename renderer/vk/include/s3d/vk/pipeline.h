@@ -39,6 +39,9 @@ struct GraphicsPipelineDesc {
   enum class Blend { None, Additive, Alpha };
   Blend blend = Blend::None;  // Additive: one + one; Alpha: src alpha over (1 - src alpha)
   VkCullModeFlags cullMode = VK_CULL_MODE_NONE;
+  // Rasterizer depth bias (shadow maps): constant in the format's depth units plus slope * max depth slope.
+  float depthBiasConstant = 0.0f;
+  float depthBiasSlope = 0.0f;
 };
 Unique<VkPipeline> createGraphicsPipeline(const Context& context, VkPipelineLayout layout,
                                           const GraphicsPipelineDesc& desc);

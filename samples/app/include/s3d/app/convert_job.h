@@ -1,6 +1,8 @@
 #pragma once
-// `s3d convert`: stereo pairs from frames another program rendered or captured (color + depth files).
+// `s3d convert`: stereo pairs from frames another program rendered or captured (color + depth, or color +
+// disparity files), one frame or a folder of frames.
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -15,39 +17,82 @@
 namespace s3d::app {
 
 enum class DepthKind {
-  Linear,    // view depth in world units (+inf or any value >= 1e30: sky)
+  Linear,    // planar view depth in world units, along the view axis (+inf or any value >= 1e30: sky)
+  Distance,  // distance from the camera centre along each pixel's ray (a ray tracer's "range"): needs intrinsics
   Hardware,  // zero-to-one device depth of a perspective projection with --near/--far (1.0: sky)
 };
 
+// Disparity mode: d = xLeft - xRight in pixels, per pixel of the input view (the usual stereo-matching sign:
+// >= 0 for parallel cameras). Right: the input is the left view and the output (right view) shows each pixel at
+// x - d. Left: the input is the right view and the output (left view) shows each pixel at x + d.
+enum class DisparityOutput { Right, Left };
+
 struct ConvertJobOptions {
-  std::filesystem::path color;       // PNG (display-encoded) or EXR (linear HDR: clamped, sRGB-encoded)
-  std::filesystem::path depth;       // EXR with a Z (or R) channel; may be the same file as color
+  std::filesystem::path color;  // PNG (display-encoded) or EXR (linear HDR: clamped, sRGB-encoded)
+  // Depth (or, with `disparity`, the disparity map): .exr (channel depthChannel; may be the color file),
+  // .png (16-bit grey), .pfm (1 channel).
+  std::filesystem::path depth;
+  std::string depthChannel = "Z";  // EXR only
+  // 16-bit PNG only: world units (or disparity pixels) per step for Linear / Distance / disparity; Hardware
+  // depth reads value / 65535 instead. For Linear and Distance, 65535 is sky and 0 is rejected as no depth.
+  float depthScale = 1.0f;
   DepthKind depthKind = DepthKind::Linear;
-  float nearPlane = 0.0f;            // Hardware only
-  float farPlane = 0.0f;             // Hardware only
+  float nearPlane = 0.0f;  // Hardware only
+  float farPlane = 0.0f;   // Hardware only
+  // Distance only, exactly one of them: the principal point is the image centre.
+  std::optional<float> verticalFovDegrees;
+  std::optional<float> focalLengthPx;
+  // When set, `depth` holds disparity in pixels (scaled by depthScale for PNG) and the output is the other view.
+  std::optional<DisparityOutput> disparity;
   std::filesystem::path outputFolder = "out";
-  std::optional<std::filesystem::path> referenceLeft;   // a real second view to measure against
+  std::optional<std::filesystem::path> referenceLeft;  // a real second view to measure against
   std::optional<std::filesystem::path> referenceRight;
   stereo::PackingMode sideBySide = stereo::PackingMode::Half;
   stereo::PackingMode topBottom = stereo::PackingMode::Half;
-  stereo::StereoParameters stereo;
+  stereo::StereoParameters stereo;  // disparity mode: maxSeparation and zeroParallaxDistance are derived
+  std::string fileSuffix;           // folder mode: "_0001" makes left_0001.png, ...
+  bool writeReport = true;          // report<suffix>.json
 };
 
 struct ConvertReport {
   std::string deviceName;
+  std::string color, depth;  // the input files
   std::uint32_t width = 0, height = 0;
   std::uint32_t cropColumns = 0;
+  stereo::StereoParameters stereo;  // as used (disparity mode: the derived separation)
   std::optional<double> stereoPassGpuMs;
   std::optional<stereo::ErrorStats> left, right;  // only with --reference-left / --reference-right
+  std::uint64_t sanitizedColorValues = 0;  // NaN / inf channel values of an EXR color input, made 0
   std::vector<std::string> filesWritten;
 };
 
 // Reads and checks every input first (missing, unreadable or truncated file, missing channel, mismatched
-// sizes, negative / NaN / zero depth, bad near/far) and throws std::invalid_argument or std::runtime_error
-// naming the file and the problem before anything is written. Then runs the stereo pass on the GPU and
-// writes left.png, right.png, anaglyph.png, sbs.png, tab.png and report.json (each atomically).
+// sizes, negative / NaN / zero depth, bad near/far or intrinsics, disparity beyond the separation limit) and
+// throws std::invalid_argument or std::runtime_error naming the file and the problem before anything is written
+// (NaN or inf in an EXR color input is sanitized and counted instead). Then runs the stereo pass on the GPU and
+// writes left, right, anaglyph, sbs, tab (.png) and report.json, each with options.fileSuffix and each
+// atomically. Disparity mode: left/right are the input view and the other view.
 ConvertReport runConvertJob(vk::Context& context, const ConvertJobOptions& options);
 
 nlohmann::json toJson(const ConvertReport& report);
+
+// Folder mode: one frame of a sequence, named by what the patterns' '*' matched.
+struct ConvertFrame {
+  std::string key;
+  std::filesystem::path color, depth;
+};
+
+// Pairs the files of `folder` matching colorPattern and depthPattern (file names, each with exactly one '*')
+// by what the '*' matched, sorted by that key. Throws std::invalid_argument for a missing folder, a pattern
+// without exactly one '*', no matching color file, or a color frame without its depth file (and vice versa).
+std::vector<ConvertFrame> pairFrames(const std::filesystem::path& folder, const std::string& colorPattern,
+                                     const std::string& depthPattern);
+
+// Converts every frame with `options` (its color/depth replaced, fileSuffix "_<key>", no per-frame report) and
+// writes one report.json listing the frames. progress(done, total, key) is called after each frame.
+// A bad frame stops the run with an error naming it; frames before it keep their (complete) outputs.
+std::vector<ConvertReport> runConvertFolder(vk::Context& context, const ConvertJobOptions& options,
+                                            const std::vector<ConvertFrame>& frames,
+                                            const std::function<void(std::size_t, std::size_t, const std::string&)>& progress = {});
 
 }  // namespace s3d::app

@@ -71,7 +71,7 @@ struct RenderReport {
   std::string scene;
   std::uint32_t width = 0;
   std::uint32_t height = 0;
-  stereo::StereoParameters stereo;  // edgeCrop resolved (never < 0)
+  stereo::StereoParameters stereo;  // edgeCrop resolved (never < 0), zeroParallaxDistance as clamped
   std::uint32_t cropColumns = 0;    // columns blacked out on each side (and excluded from the error)
   std::optional<double> centerFrameGpuMs;   // whole deferred frame of the center view
   std::optional<double> stereoPassGpuMs;    // the stereo compute dispatch producing both eyes
@@ -83,6 +83,11 @@ struct RenderReport {
   comfort::DisplayProfile display;
   comfort::ParallaxStatistics parallax;  // of the stereo pass's depth on that display
   std::array<std::uint64_t, 2> filledPixels{};  // left, right: disoccluded pixels filled (iterative method)
+  struct {
+    std::uint64_t colorValues = 0;  // non-finite HDR channel values of the center view, made 0
+    std::uint64_t depthPixels = 0;  // NaN / -inf / non-positive center depths, read as the zero-parallax plane
+  } sanitized;
+  std::vector<std::string> warnings;  // e.g. a clamped zero-parallax distance; also printed on stderr by the CLI
   std::vector<std::string> filesWritten;  // file names relative to the output folder, in write order
 };
 
@@ -107,7 +112,12 @@ RenderReport runRenderJob(vk::Context& context, const RenderJobOptions& options)
 //   "gpuTimeMs": {"centerFrame", "stereoPass", "referenceEye"},   (null when the device has no timestamps)
 //   "centerPasses": [{"name", "gpuMs"}],
 //   "ratios": {"stereoPassToReferenceEye"},                        (null when a time is missing)
-//   "error": {"left": {"psnrDb", "meanAbsoluteError", "shareAbove8", "pixelCount"}, "right": {...}},
+//   "error": {"left": {"psnrDb", "ssim", "meanAbsoluteError", "shareAbove8", "pixelCount",
+//                      "halo"|"disocclusion"|"transparent"|"rest": {same fields},
+//                      "hdr": {"psnrDb", "ssim", "meanAbsoluteError", "pixelCount", and the same regions}},
+//             "right": {...}},
+//   "sanitized": {"colorValues", "depthPixels"},                  (non-finite input replaced, see RenderReport)
+//   "warnings": [...],
 //   "crosshair": {"depth", "hitWorld", "parallaxPx"},              (the HUD crosshair, see CrosshairReport)
 //   "files": [...] }
 // Every number is finite (a non-finite value would be written as null).

@@ -1,0 +1,345 @@
+#include "shadow_maps.h"
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <cstring>
+#include <stdexcept>
+
+#include <glm/gtc/constants.hpp>
+
+#include "s3d/vk/check.h"
+
+// clang-format off
+#include <cstdint>
+#include <s3d_spirv/shadow_depth_frag.h>
+#include <s3d_spirv/shadow_depth_vert.h>
+#include <s3d_spirv/shadow_mask_comp.h>
+// clang-format on
+
+namespace s3d::renderer::detail {
+namespace {
+
+constexpr VkFormat kShadowDepthFormat = VK_FORMAT_D32_SFLOAT;
+constexpr VkFormat kShadowMaskFormat = VK_FORMAT_R16_SFLOAT;
+constexpr std::uint32_t kLocalAtlasColumns = 8;
+// Receiver-side constant bias of the sun lookup (seed 000 4.3.3: "a constant depth bias was used during deferred
+// shadow passes"), in world units along the sunlight.
+constexpr float kSunReceiverBias = 0.02f;
+// Slope-scaled rasterizer bias in units of the depth slope per texel: sun casters render their front faces, so
+// lit surfaces compare against their own depth; local lights render back faces and need less.
+constexpr float kSunSlopeBias = 2.0f;
+constexpr float kLocalSlopeBias = 1.0f;
+
+constexpr vk::ImageState kShadowSampledByCompute{VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+                                                 VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                                                 VK_ACCESS_2_SHADER_SAMPLED_READ_BIT};
+constexpr vk::ImageState kSampledByLightPass{VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+                                             VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
+                                             VK_ACCESS_2_SHADER_SAMPLED_READ_BIT};
+
+VkDescriptorSetLayoutBinding binding(std::uint32_t index, VkDescriptorType type, VkShaderStageFlags stages) {
+  return {index, type, 1, stages, nullptr};
+}
+
+vk::Unique<VkSampler> createSampler(const vk::Context& context, bool compare) {
+  VkSamplerCreateInfo info{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
+  info.magFilter = info.minFilter = compare ? VK_FILTER_LINEAR : VK_FILTER_NEAREST;
+  info.addressModeU = info.addressModeV = info.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+  info.compareEnable = compare ? VK_TRUE : VK_FALSE;
+  info.compareOp = VK_COMPARE_OP_LESS_OR_EQUAL;  // lit where the receiver is no farther than the nearest caster
+  info.maxLod = 0.0f;
+  VkSampler sampler = VK_NULL_HANDLE;
+  S3D_VK_CHECK(vkCreateSampler(context.device(), &info, nullptr, &sampler));
+  return vk::Unique<VkSampler>(context.device(), sampler, vkDestroySampler);
+}
+
+// The shadow-map size actually used: the requested one, but no more than about two texels per screen pixel
+// along the longer screen side (never under 256), so tiny test images do not pay for megapixel maps.
+std::uint32_t effectiveShadowMapSize(std::uint32_t requested, std::uint32_t width, std::uint32_t height) {
+  return std::min(requested, std::max(256u, std::bit_ceil(2u * std::max(width, height))));
+}
+
+// Depth per world unit of an orthographic light view-projection (its third row).
+float depthPerWorldUnit(const glm::mat4& viewProjection) {
+  return glm::length(glm::vec3(viewProjection[0][2], viewProjection[1][2], viewProjection[2][2]));
+}
+
+}  // namespace
+
+ShadowMaps::ShadowMaps(vk::Context& context, std::uint32_t width, std::uint32_t height)
+    : context_(context), width_(width), height_(height) {
+  constexpr VkDescriptorType ubo = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+  constexpr VkDescriptorType sampled = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+  constexpr VkShaderStageFlags compute = VK_SHADER_STAGE_COMPUTE_BIT;
+  depthLayout_ = vk::createPushDescriptorLayout(context_, {}, sizeof(glm::mat4), VK_SHADER_STAGE_VERTEX_BIT);
+  const VkDescriptorSetLayoutBinding maskBindings[] = {
+      binding(0, ubo, compute),     binding(1, sampled, compute), binding(2, sampled, compute),
+      binding(3, sampled, compute), binding(4, ubo, compute),     binding(5, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, compute)};
+  maskLayout_ = vk::createPushDescriptorLayout(context_, maskBindings, 0, 0);
+
+  vk::GraphicsPipelineDesc depth;
+  depth.vertexSpirv = spirv_shadow_depth_vert;
+  depth.fragmentSpirv = spirv_shadow_depth_frag;
+  depth.vertexBindings = {{0, sizeof(Vertex), VK_VERTEX_INPUT_RATE_VERTEX}};
+  depth.vertexAttributes = {{0, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, position)}};
+  depth.depthFormat = kShadowDepthFormat;
+  depth.depthTest = true;
+  depth.depthWrite = true;
+  depth.depthCompare = VK_COMPARE_OP_LESS;
+  // Seed 000 4.3.3 ("shadow acne"): the sun renders front faces with slope-scaled bias, local lights back faces.
+  vk::GraphicsPipelineDesc sun = depth;
+  sun.cullMode = VK_CULL_MODE_BACK_BIT;
+  sun.depthBiasSlope = kSunSlopeBias;
+  sunDepthPipeline_ = vk::createGraphicsPipeline(context_, depthLayout_.layout, sun);
+  vk::GraphicsPipelineDesc local = depth;
+  local.cullMode = VK_CULL_MODE_FRONT_BIT;
+  local.depthBiasSlope = kLocalSlopeBias;
+  localDepthPipeline_ = vk::createGraphicsPipeline(context_, depthLayout_.layout, local);
+  maskPipeline_ = vk::createComputePipeline(context_, maskLayout_.layout, spirv_shadow_mask_comp);
+
+  nearestSampler_ = createSampler(context_, false);
+  compareSampler_ = createSampler(context_, true);
+  mask_ = vk::createImage(context_, kShadowMaskFormat, width_, height_,
+                          VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
+  localAtlas_ = vk::createImage(context_, kShadowDepthFormat, 1, 1,
+                                VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT);
+  constants_ = vk::createBuffer(context_, sizeof(gpu::ShadowConstants), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
+                                vk::MemoryLocation::HostVisible);
+}
+
+void ShadowMaps::setScene(const Scene& scene, VkBuffer vertexBuffer, VkBuffer indexBuffer,
+                          std::vector<ShadowMeshRange> meshRanges) {
+  const std::string prefix = "scene '" + scene.name + "': ";
+  const SunLight& sun = scene.sun;
+  if (sun.castsShadows) {
+    if (sun.cascadeCount < 1 || sun.cascadeCount > S3D_MAX_SUN_CASCADES)
+      throw std::invalid_argument(prefix + "sun cascade count must be 1..4 (got " + std::to_string(sun.cascadeCount) + ")");
+    if (sun.shadowMapSize < 16 || sun.shadowMapSize > 4096)
+      throw std::invalid_argument(prefix + "sun shadow-map size must be 16..4096 (got " +
+                                  std::to_string(sun.shadowMapSize) + ")");
+    if (!(sun.shadowDistance > 0.0f && std::isfinite(sun.shadowDistance)))
+      throw std::invalid_argument(prefix + "sun shadow distance must be finite and > 0");
+  }
+  for (const SpotLight& spot : scene.spotLights)
+    if (!(spot.innerConeRadians >= 0.0f && spot.innerConeRadians <= spot.outerConeRadians &&
+          spot.outerConeRadians > 0.0f && spot.outerConeRadians < 0.5f * glm::pi<float>() && spot.radius > 0.0f &&
+          glm::length(spot.direction) > 0.0f))
+      throw std::invalid_argument(prefix + "a spot light needs 0 <= inner <= outer < pi/2 cone angles, a radius > 0 "
+                                           "and a direction");
+
+  localShadows_.clear();
+  std::uint32_t views = 0;
+  for (std::size_t i = 0; i < scene.pointLights.size(); ++i)
+    if (scene.pointLights[i].castsShadows) {
+      localShadows_.push_back({scene.pointLights[i].position, scene.pointLights[i].radius, views, 6, true, i});
+      views += 6;
+    }
+  for (std::size_t i = 0; i < scene.spotLights.size(); ++i)
+    if (scene.spotLights[i].castsShadows) {
+      localShadows_.push_back({scene.spotLights[i].position, scene.spotLights[i].radius, views, 1, false, i});
+      views += 1;
+    }
+  if (views > S3D_MAX_LOCAL_SHADOW_VIEWS)
+    throw std::invalid_argument(prefix + "shadowed point and spot lights need " + std::to_string(views) +
+                                " shadow views, at most " + std::to_string(S3D_MAX_LOCAL_SHADOW_VIEWS) +
+                                " (a point light takes 6, a spot light 1)");
+  if (views > 0 && (scene.localShadowMapSize < 16 || scene.localShadowMapSize > 2048))
+    throw std::invalid_argument(prefix + "local shadow-map size must be 16..2048 (got " +
+                                std::to_string(scene.localShadowMapSize) + ")");
+  sunMapSize_ = effectiveShadowMapSize(sun.shadowMapSize, width_, height_);
+  localTileSize_ = effectiveShadowMapSize(scene.localShadowMapSize, width_, height_);
+  const std::uint32_t tile = localTileSize_;
+
+  // Allocate only what the scene can use; a later setScene with the same sizes keeps the images.
+  if (sun.castsShadows) {
+    const std::uint32_t w = sun.cascadeCount * sunMapSize_, h = sunMapSize_;
+    if (sunAtlas_.width != w || sunAtlas_.height != h)
+      sunAtlas_ = vk::createImage(context_, kShadowDepthFormat, w, h,
+                                  VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT);
+  }
+  localColumns_ = std::max(1u, std::min(views, kLocalAtlasColumns));
+  const std::uint32_t atlasWidth = views > 0 ? localColumns_ * tile : 1;
+  const std::uint32_t atlasHeight = views > 0 ? (views + localColumns_ - 1) / localColumns_ * tile : 1;
+  if (localAtlas_.width != atlasWidth || localAtlas_.height != atlasHeight)
+    localAtlas_ = vk::createImage(context_, kShadowDepthFormat, atlasWidth, atlasHeight,
+                                  VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT);
+
+  // Casters: opaque world-layer objects (the weapon's world position follows the camera; glass would need
+  // translucency maps, seed 000 4.3.3, left out).
+  casters_.clear();
+  casterBounds_.clear();
+  for (std::uint32_t i = 0; i < scene.objects.size(); ++i) {
+    const Object& object = scene.objects[i];
+    if (!object.castsShadow || object.layer != Layer::World || object.material.opacity < 1.0f) continue;
+    casters_.push_back(i);
+    casterBounds_.push_back(objectBounds(scene.meshes.at(object.mesh), object.transform));
+  }
+  scene_ = scene;
+  vertexBuffer_ = vertexBuffer;
+  indexBuffer_ = indexBuffer;
+  meshRanges_ = std::move(meshRanges);
+}
+
+std::vector<ShadowPass> ShadowMaps::schedule(const ViewMatrices& view, const vk::Image& depth,
+                                             const vk::Image& normalGlossiness, VkBuffer frameBuffer) {
+  gpu::ShadowConstants constants{};
+  std::vector<ShadowPass> passes;
+  sunMaskThisFrame_ = false;
+  localAtlasWritten_ = false;
+  pointViewsThisFrame_.assign(scene_.pointLights.size(), -1);
+  spotViewsThisFrame_.assign(scene_.spotLights.size(), -1);
+
+  auto castersIn = [this](const glm::mat4& viewProjection) {
+    std::vector<std::uint32_t> inView;
+    for (std::size_t i = 0; i < casters_.size(); ++i)
+      if (sphereTouchesFrustum(viewProjection, casterBounds_[i])) inView.push_back(casters_[i]);
+    return inView;
+  };
+
+  // Sun cascades: only with casters, and a cascade only with a caster in its box.
+  const SunLight& sun = scene_.sun;
+  const float shadowFar = std::min(sun.shadowDistance, scene_.camera.farPlane);
+  const bool sunLit = glm::length(sun.color) > 0.0f;
+  if (sun.castsShadows && sunLit && !casters_.empty() && shadowFar > scene_.camera.nearPlane) {
+    const std::vector<float> splits = cascadeSplitDistances(scene_.camera.nearPlane, shadowFar, sun.cascadeCount);
+    const std::vector<SunCascade> cascades = sunCascades(view.worldView, view.worldProjection, splits,
+                                                         sun.directionToSun, sunMapSize_, casterBounds_);
+    const float count = float(cascades.size());
+    constants.sunShadow = glm::vec4(count, 1.0f / float(sunAtlas_.width), 1.0f / float(sunAtlas_.height), 0.0f);
+    bool first = true;
+    for (std::uint32_t i = 0; i < cascades.size(); ++i) {
+      ViewDraws draws{cascades[i].viewProjection,
+                      {{std::int32_t(i * sunMapSize_), 0}, {sunMapSize_, sunMapSize_}},
+                      castersIn(cascades[i].viewProjection)};
+      const bool rendered = !draws.casters.empty();
+      constants.cascadeViewProjection[i] = cascades[i].viewProjection;
+      constants.cascadeAtlasRect[i] = glm::vec4(float(i) / count, 0.0f, 1.0f / count, 1.0f);
+      constants.cascadeParams[i] = glm::vec4(cascades[i].texelWorldSize, rendered ? 1.0f : 0.0f,
+                                             kSunReceiverBias * depthPerWorldUnit(cascades[i].viewProjection), 0.0f);
+      if (!rendered) continue;
+      passes.push_back({"shadow-sun-cascade-" + std::to_string(i), [this, draws, first](VkCommandBuffer cmd) {
+                          recordDepthViews(cmd, sunAtlas_, sunDepthPipeline_, {draws}, first);
+                        }});
+      first = false;
+    }
+    if (!first) {
+      sunMaskThisFrame_ = true;
+      passes.push_back({"shadow-mask", [this, &depth, &normalGlossiness, frameBuffer](VkCommandBuffer cmd) {
+                          recordMask(cmd, depth, normalGlossiness, frameBuffer);
+                        }});
+    }
+  }
+
+  // Point and spot lights on screen, each only with a caster in one of its views.
+  const glm::mat4 cameraViewProjection = view.worldProjection * view.worldView;
+  const std::uint32_t tile = localTileSize_;
+  constants.localShadow = glm::vec4(1.0f / float(localAtlas_.width), 1.0f / float(localAtlas_.height), 0.0f, 0.0f);
+  for (const LocalShadow& local : localShadows_) {
+    if (!sphereTouchesFrustum(cameraViewProjection, {local.position, local.radius})) continue;
+    std::vector<ViewDraws> views;
+    bool anyCaster = false;
+    for (std::uint32_t v = 0; v < local.viewCount; ++v) {
+      const std::uint32_t index = local.firstView + v;
+      const glm::mat4 viewProjection = local.isPoint
+                                           ? pointLightFaceViewProjection(scene_.pointLights[local.lightIndex], v)
+                                           : spotLightViewProjection(scene_.spotLights[local.lightIndex]);
+      const float halfAngle = local.isPoint ? 0.25f * glm::pi<float>() : scene_.spotLights[local.lightIndex].outerConeRadians;
+      const std::uint32_t column = index % localColumns_, row = index / localColumns_;
+      views.push_back({viewProjection,
+                       {{std::int32_t(column * tile), std::int32_t(row * tile)}, {tile, tile}},
+                       castersIn(viewProjection)});
+      anyCaster = anyCaster || !views.back().casters.empty();
+      constants.localViewProjection[index] = viewProjection;
+      constants.localAtlasRect[index] =
+          glm::vec4(float(column * tile) / float(localAtlas_.width), float(row * tile) / float(localAtlas_.height),
+                    float(tile) / float(localAtlas_.width), float(tile) / float(localAtlas_.height));
+      constants.localParams[index] = glm::vec4(2.0f * std::tan(halfAngle) / float(tile), 0.0f, 0.0f, 0.0f);
+    }
+    if (!anyCaster) continue;  // nothing can shadow it: lit as an unshadowed light
+    (local.isPoint ? pointViewsThisFrame_ : spotViewsThisFrame_)[local.lightIndex] = int(local.firstView);
+    const bool first = !localAtlasWritten_;
+    localAtlasWritten_ = true;
+    const std::string name = std::string(local.isPoint ? "shadow-point-" : "shadow-spot-") + std::to_string(local.lightIndex);
+    passes.push_back({name, [this, views, first](VkCommandBuffer cmd) {
+                        recordDepthViews(cmd, localAtlas_, localDepthPipeline_, views, first);
+                      }});
+  }
+  std::memcpy(constants_.mapped, &constants, sizeof(constants));
+  return passes;
+}
+
+void ShadowMaps::recordDepthViews(VkCommandBuffer cmd, const vk::Image& atlas, VkPipeline pipeline,
+                                  const std::vector<ViewDraws>& views, bool firstUse) {
+  vk::transition(cmd, atlas, firstUse ? vk::kUndefined : vk::kDepthAttachment, vk::kDepthAttachment);
+  VkRenderingAttachmentInfo depthAttachment{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+  depthAttachment.imageView = atlas.view;
+  depthAttachment.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
+  depthAttachment.loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;  // other tiles keep what earlier passes wrote
+  depthAttachment.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+  VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
+  info.renderArea = {{0, 0}, {atlas.width, atlas.height}};
+  info.layerCount = 1;
+  info.pDepthAttachment = &depthAttachment;
+  vkCmdBeginRendering(cmd, &info);
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline);
+  VkDeviceSize offset = 0;
+  vkCmdBindVertexBuffers(cmd, 0, 1, &vertexBuffer_, &offset);
+  vkCmdBindIndexBuffer(cmd, indexBuffer_, 0, VK_INDEX_TYPE_UINT32);
+  for (const ViewDraws& draws : views) {
+    VkClearAttachment clear{VK_IMAGE_ASPECT_DEPTH_BIT, 0, {}};
+    clear.clearValue.depthStencil = {1.0f, 0};
+    VkClearRect rect{draws.tile, 0, 1};
+    vkCmdClearAttachments(cmd, 1, &clear, 1, &rect);
+    VkViewport viewport{float(draws.tile.offset.x), float(draws.tile.offset.y), float(draws.tile.extent.width),
+                        float(draws.tile.extent.height), 0.0f, 1.0f};
+    vkCmdSetViewport(cmd, 0, 1, &viewport);
+    vkCmdSetScissor(cmd, 0, 1, &draws.tile);
+    for (std::uint32_t objectIndex : draws.casters) {
+      const Object& object = scene_.objects[objectIndex];
+      const glm::mat4 objectToClip = draws.viewProjection * object.transform;
+      vkCmdPushConstants(cmd, depthLayout_.layout, VK_SHADER_STAGE_VERTEX_BIT, 0, sizeof(objectToClip), &objectToClip);
+      const ShadowMeshRange& range = meshRanges_[object.mesh];
+      vkCmdDrawIndexed(cmd, range.indexCount, 1, range.firstIndex, range.vertexOffset, 0);
+    }
+  }
+  vkCmdEndRendering(cmd);
+}
+
+void ShadowMaps::recordMask(VkCommandBuffer cmd, const vk::Image& depth, const vk::Image& normalGlossiness,
+                            VkBuffer frameBuffer) {
+  vk::transition(cmd, sunAtlas_, vk::kDepthAttachment, kShadowSampledByCompute);
+  vk::transition(cmd, mask_, vk::kUndefined, vk::kComputeWrite);
+  VkDescriptorBufferInfo frameInfo{frameBuffer, 0, VK_WHOLE_SIZE};
+  VkDescriptorImageInfo depthInfo{nearestSampler_, depth.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+  VkDescriptorImageInfo normalInfo{nearestSampler_, normalGlossiness.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+  VkDescriptorImageInfo atlasInfo{compareSampler_, sunAtlas_.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+  VkDescriptorBufferInfo shadowInfo = constantsDescriptor();
+  VkDescriptorImageInfo maskInfo{VK_NULL_HANDLE, mask_.view, VK_IMAGE_LAYOUT_GENERAL};
+  VkWriteDescriptorSet writes[] = {vk::uniformBufferWrite(0, &frameInfo), vk::sampledImageWrite(1, &depthInfo),
+                                   vk::sampledImageWrite(2, &normalInfo), vk::sampledImageWrite(3, &atlasInfo),
+                                   vk::uniformBufferWrite(4, &shadowInfo), vk::storageImageWrite(5, &maskInfo)};
+  writes[1].descriptorType = writes[2].descriptorType = writes[3].descriptorType =
+      VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, maskPipeline_);
+  context_.cmdPushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, maskLayout_.layout, 0, 6, writes);
+  vkCmdDispatch(cmd, (width_ + S3D_COMPUTE_GROUP_SIZE - 1) / S3D_COMPUTE_GROUP_SIZE,
+                (height_ + S3D_COMPUTE_GROUP_SIZE - 1) / S3D_COMPUTE_GROUP_SIZE, 1);
+}
+
+void ShadowMaps::recordReadableForLighting(VkCommandBuffer cmd) {
+  vk::transition(cmd, mask_, sunMaskThisFrame_ ? vk::kComputeWrite : vk::kUndefined, kSampledByLightPass);
+  vk::transition(cmd, localAtlas_, localAtlasWritten_ ? vk::kDepthAttachment : vk::kUndefined, kSampledByLightPass);
+}
+
+VkDescriptorImageInfo ShadowMaps::maskDescriptor() const {
+  return {nearestSampler_, mask_.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+}
+
+VkDescriptorImageInfo ShadowMaps::localAtlasDescriptor() const {
+  return {compareSampler_, localAtlas_.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+}
+
+VkDescriptorBufferInfo ShadowMaps::constantsDescriptor() const { return {constants_.buffer, 0, VK_WHOLE_SIZE}; }
+
+}  // namespace s3d::renderer::detail

@@ -1,0 +1,102 @@
+#pragma once
+// The deferred renderer's shadow passes (seed 003 8.5.3, 000 4.3.3): sun cascades into one depth atlas and a
+// screen-space shadow mask from them; point-light faces and spot views into a second atlas that the light pass
+// reads. Planned per frame: a shadow map without a caster in its view does not render.
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "s3d/renderer/deferred_renderer.h"
+#include "s3d/renderer/renderer_shared.h"
+#include "s3d/renderer/shadows.h"
+#include "s3d/vk/context.h"
+#include "s3d/vk/pipeline.h"
+#include "s3d/vk/resources.h"
+
+namespace s3d::renderer::detail {
+
+struct ShadowMeshRange {
+  std::uint32_t firstIndex = 0;
+  std::uint32_t indexCount = 0;
+  std::int32_t vertexOffset = 0;
+};
+
+struct ShadowPass {
+  std::string name;
+  std::function<void(VkCommandBuffer)> record;
+};
+
+class ShadowMaps {
+ public:
+  ShadowMaps(vk::Context& context, std::uint32_t width, std::uint32_t height);
+
+  // Validates the scene's shadow settings and sizes the atlases. The buffers stay owned by the renderer.
+  void setScene(const Scene& scene, VkBuffer vertexBuffer, VkBuffer indexBuffer, std::vector<ShadowMeshRange> meshRanges);
+
+  // Plans the frame: which shadow maps have a caster in reach, their matrices (written to the shadow constants),
+  // and the passes that render them, in order, ending with the sun's shadow mask. G-buffer depth and normals
+  // must be readable (kDepthSampled-like) when the mask pass runs.
+  std::vector<ShadowPass> schedule(const ViewMatrices& view, const vk::Image& depth, const vk::Image& normalGlossiness,
+                                   VkBuffer frameBuffer);
+
+  // Before light accumulation: the mask and the local atlas readable by the light pass (also when not written).
+  void recordReadableForLighting(VkCommandBuffer cmd);
+
+  // Light constants' shadowView for this frame (-1: unshadowed).
+  int sunShadowView() const { return sunMaskThisFrame_ ? 0 : -1; }
+  int pointLightShadowView(std::size_t light) const { return pointViewsThisFrame_.at(light); }
+  int spotLightShadowView(std::size_t light) const { return spotViewsThisFrame_.at(light); }
+
+  // Light-pass descriptors (bindings 4, 5, 6 of light.frag).
+  VkDescriptorImageInfo maskDescriptor() const;
+  VkDescriptorImageInfo localAtlasDescriptor() const;
+  VkDescriptorBufferInfo constantsDescriptor() const;
+
+ private:
+  struct LocalShadow {
+    glm::vec3 position;
+    float radius;
+    std::uint32_t firstView;  // in the local atlas
+    std::uint32_t viewCount;  // 6 for a point light, 1 for a spot
+    bool isPoint;
+    std::size_t lightIndex;
+  };
+  struct ViewDraws {
+    glm::mat4 viewProjection;
+    VkRect2D tile;
+    std::vector<std::uint32_t> casters;  // object indices
+  };
+
+  void recordDepthViews(VkCommandBuffer cmd, const vk::Image& atlas, VkPipeline pipeline,
+                        const std::vector<ViewDraws>& views, bool firstUse);
+  void recordMask(VkCommandBuffer cmd, const vk::Image& depth, const vk::Image& normalGlossiness, VkBuffer frameBuffer);
+
+  vk::Context& context_;
+  std::uint32_t width_, height_;
+  vk::PipelineLayout depthLayout_, maskLayout_;
+  vk::Unique<VkPipeline> sunDepthPipeline_, localDepthPipeline_, maskPipeline_;
+  vk::Unique<VkSampler> nearestSampler_, compareSampler_;
+  vk::Image mask_;         // R16F sun shadow factor per pixel
+  vk::Image sunAtlas_;     // cascades side by side (only when the sun casts shadows)
+  vk::Image localAtlas_;   // local-light views in a grid (1x1 when no light casts)
+  vk::Buffer constants_;   // gpu::ShadowConstants
+
+  Scene scene_;
+  VkBuffer vertexBuffer_ = VK_NULL_HANDLE, indexBuffer_ = VK_NULL_HANDLE;
+  std::vector<ShadowMeshRange> meshRanges_;
+  std::vector<std::uint32_t> casters_;            // opaque world-layer objects that cast
+  std::vector<BoundingSphere> casterBounds_;      // same order
+  std::vector<LocalShadow> localShadows_;
+  std::uint32_t localColumns_ = 1;
+  std::uint32_t sunMapSize_ = 0, localTileSize_ = 0;  // the sizes in use (see effectiveShadowMapSize)
+
+  // This frame's plan.
+  bool sunMaskThisFrame_ = false;
+  bool localAtlasWritten_ = false;
+  std::vector<int> pointViewsThisFrame_, spotViewsThisFrame_;
+};
+
+}  // namespace s3d::renderer::detail

@@ -1,0 +1,14 @@
+#pragma once
+// Internal to s3d_io: image_io.cpp's whole-file reader and atomic writer, for the other format files.
+#include <filesystem>
+#include <string>
+#include <string_view>
+
+namespace s3d::io::detail {
+
+// Throws std::runtime_error "<operation>: cannot read '<file>': <reason>" (missing, not a regular file, I/O).
+std::string readWholeFile(const char* operation, const std::filesystem::path& file);
+// Temporary file in the same folder, then rename; the parent folder is created if missing.
+void writeWholeFileAtomically(const char* operation, const std::filesystem::path& file, std::string_view bytes);
+
+}  // namespace s3d::io::detail
