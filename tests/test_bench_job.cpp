@@ -291,11 +291,36 @@ TEST(BenchProgressBar, ShowsFilledCellsCountAndLabel) {
 // Counted from stereo_gather.glsl: per interior pixel and eye 3 depth taps + 2 color texels read, 1 texel written.
 TEST(BenchTraffic, SeedReadsItsTapsAndTwoColorTexelsPerInteriorPixelAndEye) {
   stereo::StereoParameters parameters;  // seed, maxSeparation 0.02: 2 columns cropped on each side of 100
+  parameters.kernel = stereo::StereoKernel::PerPixel;
   const StereoTraffic traffic = stereoPassTraffic(parameters, 100, 10);
+  EXPECT_FALSE(traffic.rowTiles);
   const std::uint64_t interior = 96 * 10;
   EXPECT_EQ(traffic.bytesRead, 2 * interior * (3 + 2) * 4);
   EXPECT_EQ(traffic.bytesWritten, 2u * 100 * 10 * 4);
   EXPECT_EQ(traffic.compulsoryBytes, 16u * 100 * 10);
+}
+
+// Counted from stereo_row_tile.glsl: each 256-column tile loads its interior columns plus the margin each side
+// (clipped to the image) once, a depth and a color texel (8 B) per column; the eyes are written as before.
+TEST(BenchTraffic, RowTilesReadEachTilesRunAndMarginOnce) {
+  stereo::StereoParameters parameters;  // seed, maxSeparation 0.02 of 600: 12 px, margin 14, 12 columns cropped
+  const StereoTraffic traffic = stereoPassTraffic(parameters, 600, 10);
+  EXPECT_TRUE(traffic.rowTiles);  // Auto on a GPU: the margin fits
+  EXPECT_FALSE(stereoPassTraffic(parameters, 600, 10, true).rowTiles);  // Auto on lavapipe: per pixel
+  // Tiles [0, 256), [256, 512), [512, 600) with interiors [12, 256), [256, 512), [512, 588).
+  const std::uint64_t columns = (270 - 0) + (526 - 242) + (600 - 498);
+  EXPECT_EQ(traffic.bytesRead, columns * 10 * 8);
+  EXPECT_EQ(traffic.bytesWritten, 2u * 600 * 10 * 4);
+}
+
+TEST(BenchOptions, AKernelSuffixForcesTheKernelOfEverySettingItNames) {
+  std::vector<std::string> names;
+  for (const MethodSetting& setting : parseMethodSettings({"seed/pixel", "search/tiles", "seed", "iterative-2/pixel"}))
+    names.push_back(setting.name());
+  EXPECT_EQ(names, (std::vector<std::string>{"seed/pixel", "search-4/tiles", "search-8/tiles", "search-16/tiles", "seed",
+                                              "iterative-2/pixel"}));
+  EXPECT_EQ(parseMethodSettings({"search-4/pixel"}).front().applyTo({}).kernel, stereo::StereoKernel::PerPixel);
+  EXPECT_THROW(parseMethodSettings({"seed/blocks"}), std::invalid_argument);
 }
 
 }  // namespace

@@ -340,5 +340,39 @@ TEST_F(RenderJobMethods, TheIterativeMethodRunsEndToEndAndReportsFilledPixels) {
   fs::remove_all(folder, ignored);
 }
 
+TEST_F(RenderJob, NegativeParallaxAppearsOnlyWhenAllowed) {
+  // A zero-parallax plane 3 m out puts the weapon (pushed to 1.27-1.6 m) and the near courtyard in front of
+  // the screen; disallowed, the weapon is pushed onto the plane and the plane held at the nearest surface.
+  RenderJobOptions options;
+  options.width = 64;
+  options.height = 36;
+  options.outputs = {};
+  options.stereo.zeroParallaxDistance = 3.0f;
+  options.allowNegativeParallax = true;
+  const RenderReport allowed = runRenderJob(context(), options);
+  EXPECT_GT(allowed.comfort.parallax.shareNegative, 0.0);
+  EXPECT_LT(allowed.comfort.parallax.minParallaxPx, 0.0);
+  options.allowNegativeParallax = false;
+  const RenderReport disallowed = runRenderJob(context(), options);
+  EXPECT_EQ(disallowed.comfort.parallax.shareNegative, 0.0);
+  EXPECT_GE(disallowed.comfort.parallax.minParallaxPx, 0.0);
+  EXPECT_EQ(disallowed.comfort.windowViolationPixels, 0u);
+  EXPECT_GE(disallowed.crosshair.depth, disallowed.stereo.zeroParallaxDistance);
+}
+
+TEST_F(RenderJob, TheHudFadesBehindTheWeaponAndTheOutputsAreOpaque) {
+  // Courtyard: the weapon covers the lower right, where the ammo panel (2.5 m, behind the weapon) sits.
+  const DefaultRun& run = defaultRun(context());
+  ASSERT_EQ(run.report.hud.size(), 3u);  // health, ammo, crosshair
+  const HudElementReport& ammo = run.report.hud[1];
+  EXPECT_EQ(ammo.name, "ammo");
+  EXPECT_TRUE(ammo.behindWeapon);
+  EXPECT_GT(ammo.fadedPixels[0], 0u);
+  EXPECT_GT(ammo.fadedPixels[1], 0u);
+  EXPECT_EQ(run.report.hud[0].fadedPixels[0], 0u);  // health, lower left: nothing of the weapon there
+  const ImageRGBA8 left = io::readPng(run.folder / "left.png");
+  for (std::size_t i = 0; i < left.pixelCount(); ++i) ASSERT_EQ(left.pixels[4 * i + 3], 255) << "pixel " << i;
+}
+
 }  // namespace
 }  // namespace s3d::app

@@ -1,10 +1,14 @@
 // The cover sequence with the comfort controls running: the player walks up to a wall and back.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <unistd.h>
 
 #include "s3d/app/sequence_job.h"
+#include "s3d/comfort/world_queries.h"
+#include "s3d/renderer/deferred_renderer.h"
+#include "s3d/renderer/scene.h"
 #include "vulkan_test.h"
 
 namespace s3d::app {
@@ -60,6 +64,60 @@ TEST_F(CoverSequence, ThePushedWeaponNeverLandsBehindTheWall) {
     weaponPixels += frame.weaponPixels;
   }
   EXPECT_GT(weaponPixels, 0u);  // the check saw the weapon at all
+}
+
+TEST_F(CoverSequence, TheCrosshairIsNeverBehindTheSurfaceItAimsAt) {
+  // Checked with rays of its own along each frame's aim, not with what the job reports it saw.
+  const SequenceReport& report = coverSequence(context());
+  const renderer::Scene scene = renderer::makeBuiltInScene("cover");
+  const comfort::WorldQueries world(scene);
+  std::size_t framesWithAWall = 0;
+  for (const SequenceFrame& frame : report.frames) {
+    const renderer::Camera camera = renderer::cameraForFrame(scene, frame.index);
+    const glm::mat4 worldFromView = glm::inverse(renderer::cameraView(camera));
+    const std::optional<float> hit = world.castRay(glm::vec3(worldFromView[3]), -glm::vec3(worldFromView[2]), 1000.0f);
+    if (!hit) continue;
+    ++framesWithAWall;
+    EXPECT_LE(frame.crosshairDepth, *hit) << "frame " << frame.index;
+  }
+  EXPECT_GT(framesWithAWall, 0u);  // the path does aim at the wall
+}
+
+TEST_F(CoverSequence, NothingHasNegativeParallaxWhenItIsDisallowed) {
+  const SequenceReport& report = coverSequence(context());
+  for (const SequenceFrame& frame : report.frames) {
+    EXPECT_GE(frame.comfort.parallax.minParallaxPx, 0.0) << "frame " << frame.index;
+    EXPECT_EQ(frame.comfort.parallax.shareNegative, 0.0) << "frame " << frame.index;
+    EXPECT_EQ(frame.comfort.windowViolationPixels, 0u) << "frame " << frame.index;
+    EXPECT_GE(frame.crosshairDepth, frame.zeroParallaxDistance) << "frame " << frame.index;
+  }
+}
+
+TEST_F(CoverSequence, TheComfortNumbersOfTheFirstFrameMatchAHandComputation) {
+  // Frame 0 at rest: zero-parallax distance 1 m, weapon pushed by 1 m at scale 1, sky in view. At 160 px and
+  // maxSeparation 0.02 the sky is 2 * 0.02 * 160 = 6.4 px apart, the weapon's nearest point (its nearest vertex,
+  // 0.27 m, pushed to 1.27 m) 6.4 * (1 - 1 / 1.27) px. On the 55-inch TV (16:9, 1.2177 m wide at 2.5 m,
+  // 63 mm eyes) a parallax P in metres is 2 atan(e / 2v) - 2 atan((e - P) / 2v) of disparity.
+  const SequenceReport& report = coverSequence(context());
+  const SequenceFrame& frame = report.frames.front();
+  ASSERT_EQ(frame.zeroParallaxDistance, 1.0f);
+  const float weaponNearest = renderer::firstPersonDepthRange(renderer::makeBuiltInScene("cover"))->x;
+  const double skyPx = 2.0 * 0.02 * 160.0;
+  const double weaponPx = skyPx * (1.0 - 1.0 / (1.0 + double(weaponNearest)));
+  const double screenWidth = 55.0 * 0.0254 * 16.0 / std::sqrt(16.0 * 16.0 + 9.0 * 9.0);
+  auto arcmin = [&](double px) {
+    const double p = px / 160.0 * screenWidth, e = 0.063, v = 2.5;
+    return (2.0 * std::atan(e / (2.0 * v)) - 2.0 * std::atan((e - p) / (2.0 * v))) * 60.0 * 180.0 / 3.14159265358979;
+  };
+  const comfort::ParallaxStatistics& p = frame.comfort.parallax;
+  EXPECT_NEAR(p.maxParallaxPx, skyPx, 1e-5);  // float parallax: 1e-5 px
+  // The nearest vertex is the barrel's tip; pixel centers sample it within a millimetre: 0.01 px.
+  EXPECT_NEAR(p.minParallaxPx, weaponPx, 0.01);
+  EXPECT_NEAR(p.maxParallaxPercent, 4.0, 1e-5);
+  EXPECT_NEAR(p.minParallaxPercent, weaponPx / 160.0 * 100.0, 0.01);
+  EXPECT_NEAR(p.maxDisparityArcmin, arcmin(skyPx), 1e-3);  // float screen width: 1e-3 arcmin
+  EXPECT_NEAR(p.minDisparityArcmin, arcmin(weaponPx), 0.02);
+  EXPECT_EQ(frame.comfort.shareOutsideComfortZone, 0.0);  // at 2.5 m everything behind 1 m is comfortable
 }
 
 }  // namespace

@@ -72,6 +72,16 @@ gpu::LinearDepthParams standardZ() {
   return p;
 }
 
+// The same world projection with reversed Z (no first-person layer): cleared to 0 for sky.
+gpu::LinearDepthParams reversedZ() {
+  gpu::LinearDepthParams p = standardZ();
+  p.worldRatio = gpu::reversedProjectionRatio(0.1f, 1000.0f, 0.0f, 1.0f);
+  p.firstPersonDeviceDepthMax = -1.0f;  // 1 - (-1) = 2: no device depth reads as first-person
+  p.skyDeviceDepth = 0.0f;
+  p.reversedZ = 1.0f;
+  return p;
+}
+
 // GPU against C++ for every method: 1 level of 8 bits, because the GPU may fuse the filter's multiply-add and
 // round the unorm store differently from std::lround; every tap, texel pick and crop is integer-exact.
 class StereoNumericsGpu : public test::VulkanTest {
@@ -176,6 +186,7 @@ TEST_F(StereoNumericsRender, ARenderJobReportsTheClampedZeroParallaxDistanceInIt
   options.height = 16;
   options.outputs = {};
   options.stereo.zeroParallaxDistance = 5000.0f;  // the courtyard's far plane is 1000
+  options.allowNegativeParallax = true;  // else the comfort rule lowers it further, to the nearest surface
   const app::RenderReport report = app::runRenderJob(context(), options);
   EXPECT_EQ(report.stereo.zeroParallaxDistance, 500.0f);
   ASSERT_EQ(report.warnings.size(), 1u);
@@ -227,16 +238,16 @@ TEST(StereoNumerics, ReversedAndStandardZGiveTheSameLinearDepth) {
   // it (float is dense near 0): tolerance 2e-3 relative between the two, 1e-5 for reversed against exact.
   const double n = 0.1, f = 1000.0;
   const gpu::LinearDepthParams standard = standardZ();
-  const gpu::vec2 reversedRatio = gpu::reversedProjectionRatio(0.1f, 1000.0f, 0.0f, 1.0f);
+  const gpu::LinearDepthParams reversed = reversedZ();
   for (double d : {0.1, 0.1001, 0.5, 1.0, 7.0, 50.0, 300.0, 999.0}) {
     const float standardDevice = float(f / (f - n) - f * n / ((f - n) * d));
     const float reversedDevice = float(n / (f - n) * (f / d - 1.0));
     const float fromStandard = gpu::linearDepthFromDevice(standard, standardDevice);
-    const float fromReversed = gpu::linearDepthFromReversedDevice(reversedRatio, reversedDevice);
+    const float fromReversed = gpu::linearDepthFromReversedDevice(reversed, reversedDevice);
     EXPECT_NEAR(fromReversed, d, d * 1e-5) << d;
     EXPECT_NEAR(fromStandard, fromReversed, d * 2e-3) << d;
   }
-  EXPECT_TRUE(std::isinf(gpu::linearDepthFromReversedDevice(reversedRatio, 0.0f)));  // cleared: sky
+  EXPECT_TRUE(std::isinf(gpu::linearDepthFromReversedDevice(reversed, 0.0f)));  // cleared: sky
   EXPECT_TRUE(std::isinf(gpu::linearDepthFromDevice(standard, 1.0f)));
 }
 
@@ -245,7 +256,7 @@ TEST(StereoNumerics, ReversedAndStandardZGiveTheSameEyes) {
   // which moves a source column by m zpp W 2e-3 / d <= 0.03 px here: the eyes agree within 1 level.
   const double n = 0.1, f = 1000.0;
   const gpu::LinearDepthParams standard = standardZ();
-  const gpu::vec2 reversedRatio = gpu::reversedProjectionRatio(0.1f, 1000.0f, 0.0f, 1.0f);
+  const gpu::LinearDepthParams reversed = reversedZ();
   SyntheticView view = test::makeBlockView(120, 6, 9, 0.5f, 9, 2, true);
   DepthImage fromStandard = view.depth, fromReversed = view.depth;
   for (std::size_t i = 0; i < view.depth.pixels.size(); ++i) {
@@ -253,7 +264,7 @@ TEST(StereoNumerics, ReversedAndStandardZGiveTheSameEyes) {
     const float standardDevice = std::isinf(d) ? 1.0f : float(f / (f - n) - f * n / ((f - n) * d));
     const float reversedDevice = std::isinf(d) ? 0.0f : float(n / (f - n) * (f / d - 1.0));
     fromStandard.pixels[i] = gpu::linearDepthFromDevice(standard, standardDevice);
-    fromReversed.pixels[i] = gpu::linearDepthFromReversedDevice(reversedRatio, reversedDevice);
+    fromReversed.pixels[i] = gpu::linearDepthFromReversedDevice(reversed, reversedDevice);
   }
   for (StereoMethod method : kMethods) {
     const StereoParameters p = parametersFor(method, 0.05f, 2.0f);

@@ -28,7 +28,25 @@ CrosshairPlacement placeCrosshair(const WorldQueries& world, const renderer::Cam
   const std::optional<float> hit = world.castRay(eye, aim, defaultDistance);
   if (!hit || *hit >= defaultDistance) return {defaultDistance, false};
   const float nearest = std::max(camera.nearPlane, kMinCrosshairDepth);
-  return {std::max(*hit - margin, nearest), true};
+  return {std::max(*hit - margin, nearest), true, *hit};
+}
+
+CrosshairSmoother::CrosshairSmoother(float responseSeconds) : responseSeconds_(responseSeconds) {
+  if (!(responseSeconds >= 0.0f) || !std::isfinite(responseSeconds))
+    throw std::invalid_argument("crosshair smoothing: responseSeconds must be >= 0 and finite");
+}
+
+float CrosshairSmoother::update(const CrosshairPlacement& placement, float seconds) {
+  if (!(seconds > 0.0f) || !std::isfinite(seconds))
+    throw std::invalid_argument("crosshair smoothing: frame time must be positive and finite");
+  if (current_ <= 0.0f || responseSeconds_ == 0.0f) {
+    current_ = placement.depth;
+  } else {
+    // First-order approach solved exactly over the frame: monotonic, no overshoot for any frame time.
+    current_ = placement.depth + (current_ - placement.depth) * std::exp(-seconds / responseSeconds_);
+  }
+  current_ = std::min(current_, placement.surfaceDistance);  // never behind the surface it is aimed at
+  return current_;
 }
 
 }  // namespace s3d::comfort

@@ -94,4 +94,12 @@ float ZeroParallaxController::update(std::optional<float> nearestSurface, float 
   return current_;
 }
 
+float ZeroParallaxController::limit(float ceiling) {
+  if (ceiling < current_) {
+    current_ = std::max(ceiling, 0.0f);
+    velocity_ = 0.0f;
+  }
+  return current_;
+}
+
 }  // namespace s3d::comfort

@@ -5,6 +5,8 @@
 
 layout(location = 0) in vec3 position;
 layout(location = 1) in vec3 normal;
+layout(location = 2) in vec2 texCoord;  // second stream: SurfaceVertex
+layout(location = 3) in vec4 tangent;
 
 layout(binding = 0) uniform Frame { FrameConstants frame; };
 layout(std430, binding = 1) readonly buffer Objects { ObjectConstants objects[]; };
@@ -12,6 +14,8 @@ layout(push_constant) uniform Push { uint objectIndex; };
 
 layout(location = 0) out vec3 worldNormal;
 layout(location = 1) out vec3 worldPosition;
+layout(location = 2) out vec2 surfaceTexCoord;
+layout(location = 3) out vec4 worldTangent;
 
 void main() {
   ObjectConstants object = objects[objectIndex];
@@ -20,4 +24,6 @@ void main() {
   gl_Position = clipPosition;
   worldNormal = mat3(object.normalToWorld) * normal;
   worldPosition = (object.objectToWorld * vec4(position, 1.0)).xyz;
+  surfaceTexCoord = texCoord;
+  worldTangent = vec4(mat3(object.objectToWorld) * tangent.xyz, tangent.w);  // tangents follow the surface
 }

@@ -46,11 +46,11 @@ layout(location = 1) out vec4 specularLight;
 void main() {
   ivec2 pixel = ivec2(gl_FragCoord.xy);
   float depth = texelFetch(deviceDepth, pixel, 0).r;
-  if (depth >= frame.linearDepth.skyDeviceDepth) discard;  // sky: no surface to light
+  if (isSkyDeviceDepth(frame.linearDepth, depth)) discard;  // sky: no surface to light
 
   // Listing 4.3, then the view position from the layer's (possibly off-axis) projection.
-  uint layer = depth <= frame.linearDepth.firstPersonDeviceDepthMax ? S3D_LAYER_FIRST_PERSON : S3D_LAYER_WORLD;
-  float linearDepth = linearDepthFromDevice(frame.linearDepth, depth);
+  uint layer = isFirstPersonDeviceDepth(frame.linearDepth, depth) ? S3D_LAYER_FIRST_PERSON : S3D_LAYER_WORLD;
+  float linearDepth = linearDepthFromDepthBuffer(frame.linearDepth, depth);
   vec2 ndc = gl_FragCoord.xy * frame.screen.zw * 2.0 - 1.0;
   vec4 p = frame.layers[layer].projection;
   vec3 viewPosition = vec3((ndc.x + p.z) * linearDepth / p.x, (ndc.y + p.w) * linearDepth / p.y, -linearDepth);

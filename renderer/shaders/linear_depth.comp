@@ -19,7 +19,7 @@ void main() {
   for (int sy = 0; sy < resolve.supersample; ++sy)
     for (int sx = 0; sx < resolve.supersample; ++sx) {
       float device = texelFetch(deviceDepth, pixel * resolve.supersample + ivec2(sx, sy), 0).r;
-      float depth = linearDepthFromDevice(frame.linearDepth, device);  // nearest by true depth, before the push
+      float depth = linearDepthFromDepthBuffer(frame.linearDepth, device);  // nearest by true depth, before the push
       if (depth < nearestDepth) {
         nearestDepth = depth;
         nearestDevice = device;

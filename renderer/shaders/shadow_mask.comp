@@ -30,13 +30,13 @@ void main() {
   ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
   if (pixel.x >= int(frame.screen.x) || pixel.y >= int(frame.screen.y)) return;
   float depth = texelFetch(deviceDepth, pixel, 0).r;
-  if (depth >= frame.linearDepth.skyDeviceDepth) {
+  if (isSkyDeviceDepth(frame.linearDepth, depth)) {
     imageStore(shadowMask, pixel, vec4(1.0));
     return;
   }
   // World position as in the light pass (Listing 4.3, then the layer's projection).
-  uint layer = depth <= frame.linearDepth.firstPersonDeviceDepthMax ? S3D_LAYER_FIRST_PERSON : S3D_LAYER_WORLD;
-  float linearDepth = linearDepthFromDevice(frame.linearDepth, depth);
+  uint layer = isFirstPersonDeviceDepth(frame.linearDepth, depth) ? S3D_LAYER_FIRST_PERSON : S3D_LAYER_WORLD;
+  float linearDepth = linearDepthFromDepthBuffer(frame.linearDepth, depth);
   vec2 ndc = (vec2(pixel) + 0.5) * frame.screen.zw * 2.0 - 1.0;
   vec4 p = frame.layers[layer].projection;
   vec3 viewPosition = vec3((ndc.x + p.z) * linearDepth / p.x, (ndc.y + p.w) * linearDepth / p.y, -linearDepth);

@@ -13,7 +13,7 @@ layout(binding = 3, r16f) uniform writeonly image2D ambientOcclusion;
 
 // World position of a pixel of the world layer from its device depth (as in the light pass).
 vec3 worldPositionAt(vec2 pixelCenter, float depth) {
-  float linearDepth = linearDepthFromDevice(frame.linearDepth, depth);
+  float linearDepth = linearDepthFromDepthBuffer(frame.linearDepth, depth);
   vec2 ndc = pixelCenter * frame.screen.zw * 2.0 - 1.0;
   vec4 p = frame.layers[S3D_LAYER_WORLD].projection;
   vec3 viewPosition = vec3((ndc.x + p.z) * linearDepth / p.x, (ndc.y + p.w) * linearDepth / p.y, -linearDepth);
@@ -24,7 +24,7 @@ void main() {
   ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
   if (pixel.x >= int(frame.screen.x) || pixel.y >= int(frame.screen.y)) return;
   float depth = texelFetch(deviceDepth, pixel, 0).r;
-  if (depth >= frame.linearDepth.skyDeviceDepth || depth <= frame.linearDepth.firstPersonDeviceDepthMax) {
+  if (isSkyDeviceDepth(frame.linearDepth, depth) || isFirstPersonDeviceDepth(frame.linearDepth, depth)) {
     imageStore(ambientOcclusion, pixel, vec4(1.0));  // sky and weapon: unoccluded
     return;
   }
@@ -50,8 +50,8 @@ void main() {
     vec2 samplePixel = (clip.xy / clip.w * 0.5 + 0.5) * frame.screen.xy;
     if (any(lessThan(samplePixel, vec2(0.0))) || any(greaterThanEqual(samplePixel, frame.screen.xy))) continue;
     float sceneDepth = texelFetch(deviceDepth, ivec2(samplePixel), 0).r;
-    if (sceneDepth >= frame.linearDepth.skyDeviceDepth || sceneDepth <= frame.linearDepth.firstPersonDeviceDepthMax) continue;
-    float sceneLinear = linearDepthFromDevice(frame.linearDepth, sceneDepth);
+    if (isSkyDeviceDepth(frame.linearDepth, sceneDepth) || isFirstPersonDeviceDepth(frame.linearDepth, sceneDepth)) continue;
+    float sceneLinear = linearDepthFromDepthBuffer(frame.linearDepth, sceneDepth);
     float sampleLinear = clip.w;  // view depth of the sample point
     // Occluded when a surface lies in front of the sample, but not one far in front (a range check).
     float inFront = sampleLinear - sceneLinear;

@@ -10,6 +10,7 @@ layout(binding = 0) uniform Frame { FrameConstants frame; };
 layout(binding = 1, rgba16f) uniform readonly image2D hdrColor;
 layout(binding = 2, rgba8) uniform writeonly image2D displayColor;
 layout(binding = 3, rgba16f) uniform writeonly image2D resolvedHdrColor;
+layout(binding = 4) uniform sampler2D deviceDepth;
 layout(push_constant) uniform Push { ResolveConstants resolve; };
 
 // Krzysztof Narkowicz's fit of the ACES filmic tone curve (2016).
@@ -24,16 +25,22 @@ void main() {
   if (pixel.x >= resolve.outputWidth || pixel.y >= resolve.outputHeight) return;
   vec4 hdrSum = vec4(0.0);
   vec3 toneMappedSum = vec3(0.0);
+  float weapon = 0.0;
   for (int sy = 0; sy < resolve.supersample; ++sy)
     for (int sx = 0; sx < resolve.supersample; ++sx) {
-      vec4 hdr = imageLoad(hdrColor, pixel * resolve.supersample + ivec2(sx, sy));
+      ivec2 sampleTexel = pixel * resolve.supersample + ivec2(sx, sy);
+      vec4 hdr = imageLoad(hdrColor, sampleTexel);
       // NaN or inf (a broken shader or input) is black, as stereo::sanitizeColor makes it: the curve would turn
       // it into NaN and the unorm store into an undefined level that the stereo pass would then displace.
       if (any(isnan(hdr)) || any(isinf(hdr))) hdr = vec4(0.0);
       hdrSum += hdr;
       toneMappedSum += filmic(hdr.rgb * frame.exposure.x);
+      // A pixel any of whose samples is first-person is a weapon pixel (its linear depth is the weapon's too).
+      if (isFirstPersonDeviceDepth(frame.linearDepth, texelFetch(deviceDepth, sampleTexel, 0).r)) weapon = 1.0;
     }
   float sampleCount = float(resolve.supersample * resolve.supersample);
-  imageStore(displayColor, pixel, vec4(encodeSrgb(toneMappedSum / sampleCount), 1.0));
+  // Seed 4.6.2: the weapon mask rides in alpha (0 on the first-person layer, 1 elsewhere); the stereo pass
+  // carries it into both eyes, where HUD elements behind the weapon fade out (s3d/hud/overlay.h).
+  imageStore(displayColor, pixel, vec4(encodeSrgb(toneMappedSum / sampleCount), 1.0 - weapon));
   imageStore(resolvedHdrColor, pixel, hdrSum / sampleCount);
 }

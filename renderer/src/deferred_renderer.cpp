@@ -43,6 +43,14 @@ constexpr VkFormat kLinearDepthFormat = VK_FORMAT_R32_SFLOAT;
 constexpr VkFormat kAmbientOcclusionFormat = VK_FORMAT_R16_SFLOAT;
 constexpr VkFormat kCoverageFormat = VK_FORMAT_R8G8B8A8_UNORM;  // red: transparent coverage (the metrics' mask)
 
+// Material textures (section 4.3's "sRGB textures read as linear"): colour through an sRGB format, data not.
+VkFormat textureFormat(Texture::Encoding encoding) {
+  return encoding == Texture::Encoding::Srgb ? VK_FORMAT_R8G8B8A8_SRGB : VK_FORMAT_R8G8B8A8_UNORM;
+}
+// Descriptor bindings of an object's textures in the passes that draw geometry: base color, then normal map.
+constexpr std::uint32_t kGeometryTextureBinding = 2;  // G-buffer and transparent pass (geometry layout)
+constexpr std::uint32_t kShadingTextureBinding = 4;   // shading pass (after the two light buffers)
+
 constexpr vk::ImageState kDepthSampled{VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
                                        VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                                        VK_ACCESS_2_SHADER_SAMPLED_READ_BIT};
@@ -148,6 +156,17 @@ glm::mat4 vulkanPerspective(float verticalFovRadians, float aspect, float nearPl
   return projection;
 }
 
+glm::mat4 reversedDepthProjection(const glm::mat4& projection, float nearPlane, float farPlane) {
+  // A zero-to-one perspective with near and far swapped: z_ndc = n / (n - f) + n f / ((f - n) d), 1 at the near
+  // plane and 0 at the far plane. Only the depth row changes, so off-axis terms (P20, P21) stay; the two terms
+  // are computed in double from n and f (not as w - z from the matrix, which would cancel to ~1e-4 relative).
+  glm::mat4 reversed = projection;
+  const double n = nearPlane, f = farPlane;
+  reversed[2][2] = float(n / (f - n));
+  reversed[3][2] = float(n * f / (f - n));
+  return reversed;
+}
+
 glm::mat4 cameraView(const Camera& camera) {
   glm::vec3 forward(-std::sin(camera.yawRadians) * std::cos(camera.pitchRadians), std::sin(camera.pitchRadians),
                     -std::cos(camera.yawRadians) * std::cos(camera.pitchRadians));
@@ -190,12 +209,15 @@ struct DeferredRenderer::Impl {
   std::uint32_t supersample;   // every pass before the resolve runs at supersample x the output size
   std::uint32_t width;         // render size of those passes
   std::uint32_t height;
+  RendererOptions options;
 
   // Render targets (render size), then the resolve's outputs (output size).
   vk::Image depth, normalGlossiness, diffuseLight, specularLight, hdr, ambientOcclusion;
   vk::Image transparentCoverage;  // written by the transparent pass only (scenes with transparent objects)
   vk::Image display, linearDepth, resolvedHdr;
   vk::Unique<VkSampler> nearestSampler;
+  vk::Unique<VkSampler> textureSampler;  // bilinear, repeating, no mipmaps
+  vk::Image whiteTexture, flatNormalTexture;  // what untextured objects sample: albedo x 1, normal (0, 0, 1)
 
   // Passes: layouts and pipelines.
   vk::PipelineLayout geometryLayout, lightLayout, shadingLayout, skyLayout, tonemapLayout, linearDepthLayout, ssaoLayout;
@@ -204,7 +226,8 @@ struct DeferredRenderer::Impl {
 
   // Scene data.
   Scene scene;
-  vk::Buffer vertexBuffer, indexBuffer, objectBuffer, frameBuffer;
+  vk::Buffer vertexBuffer, surfaceBuffer, indexBuffer, objectBuffer, frameBuffer;
+  std::vector<vk::Image> textures;  // Scene::textures, uploaded
   std::vector<MeshRange> meshRanges;
   std::vector<std::uint32_t> drawOrder;          // opaque object indices, world layer first
   std::vector<std::uint32_t> transparentOrder;   // transparent objects, sorted back to front per frame
@@ -212,13 +235,14 @@ struct DeferredRenderer::Impl {
   vk::TimestampQueries timestamps;
   std::unique_ptr<detail::ShadowMaps> shadows;  // sun cascades + mask, point/spot shadow maps (shadow_maps.cpp)
 
-  Impl(vk::Context& ctx, std::uint32_t w, std::uint32_t h, RendererOptions options)
+  Impl(vk::Context& ctx, std::uint32_t w, std::uint32_t h, RendererOptions rendererOptions)
       : context(ctx),
         outputWidth(w),
         outputHeight(h),
-        supersample(options.supersample),
-        width(w * options.supersample),
-        height(h * options.supersample),
+        supersample(rendererOptions.supersample),
+        width(w * rendererOptions.supersample),
+        height(h * rendererOptions.supersample),
+        options(rendererOptions),
         timestamps(ctx, kMaxPasses + 1) {
     if (options.supersample < 1 || options.supersample > 4)
       throw std::invalid_argument("renderer: supersample " + std::to_string(options.supersample) + " is outside 1..4");
@@ -262,6 +286,20 @@ struct DeferredRenderer::Impl {
     VkSampler sampler = VK_NULL_HANDLE;
     S3D_VK_CHECK(vkCreateSampler(context.device(), &samplerInfo, nullptr, &sampler));
     nearestSampler = vk::Unique<VkSampler>(context.device(), sampler, vkDestroySampler);
+
+    samplerInfo.magFilter = samplerInfo.minFilter = VK_FILTER_LINEAR;
+    samplerInfo.addressModeU = samplerInfo.addressModeV = samplerInfo.addressModeW = VK_SAMPLER_ADDRESS_MODE_REPEAT;
+    S3D_VK_CHECK(vkCreateSampler(context.device(), &samplerInfo, nullptr, &sampler));
+    textureSampler = vk::Unique<VkSampler>(context.device(), sampler, vkDestroySampler);
+    whiteTexture = uploadTexture({1, 1, {255, 255, 255, 255}, Texture::Encoding::Srgb});
+    flatNormalTexture = uploadTexture({1, 1, {128, 128, 255, 255}, Texture::Encoding::Linear});
+  }
+
+  vk::Image uploadTexture(const Texture& texture) {
+    vk::Image image = vk::createImage(context, textureFormat(texture.encoding), texture.width, texture.height,
+                                      VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
+    vk::uploadImage(context, image, std::as_bytes(std::span(texture.rgba)), vk::kFragmentRead);
+    return image;
   }
 
   void createPipelines() {
@@ -273,10 +311,12 @@ struct DeferredRenderer::Impl {
     constexpr VkShaderStageFlags fragment = VK_SHADER_STAGE_FRAGMENT_BIT;
     constexpr VkShaderStageFlags compute = VK_SHADER_STAGE_COMPUTE_BIT;
 
-    const VkDescriptorSetLayoutBinding geometryBindings[] = {binding(0, ubo, graphics), binding(1, ssbo, graphics)};
+    const VkDescriptorSetLayoutBinding geometryBindings[] = {binding(0, ubo, graphics), binding(1, ssbo, graphics),
+                                                             binding(2, sampled, fragment), binding(3, sampled, fragment)};
     geometryLayout = vk::createPushDescriptorLayout(context, geometryBindings, sizeof(std::uint32_t), graphics);
-    const VkDescriptorSetLayoutBinding shadingBindings[] = {binding(0, ubo, graphics), binding(1, ssbo, graphics),
-                                                            binding(2, sampled, fragment), binding(3, sampled, fragment)};
+    const VkDescriptorSetLayoutBinding shadingBindings[] = {binding(0, ubo, graphics),      binding(1, ssbo, graphics),
+                                                            binding(2, sampled, fragment), binding(3, sampled, fragment),
+                                                            binding(4, sampled, fragment), binding(5, sampled, fragment)};
     shadingLayout = vk::createPushDescriptorLayout(context, shadingBindings, sizeof(std::uint32_t), graphics);
     const VkDescriptorSetLayoutBinding lightBindings[] = {binding(0, ubo, fragment),     binding(1, sampled, fragment),
                                                           binding(2, sampled, fragment), binding(3, sampled, fragment),
@@ -286,7 +326,8 @@ struct DeferredRenderer::Impl {
     const VkDescriptorSetLayoutBinding skyBindings[] = {binding(0, ubo, fragment)};
     skyLayout = vk::createPushDescriptorLayout(context, skyBindings, 0, 0);
     const VkDescriptorSetLayoutBinding tonemapBindings[] = {binding(0, ubo, compute), binding(1, storage, compute),
-                                                            binding(2, storage, compute), binding(3, storage, compute)};
+                                                            binding(2, storage, compute), binding(3, storage, compute),
+                                                            binding(4, sampled, compute)};
     tonemapLayout = vk::createPushDescriptorLayout(context, tonemapBindings, sizeof(gpu::ResolveConstants), compute);
     const VkDescriptorSetLayoutBinding linearDepthBindings[] = {binding(0, ubo, compute), binding(1, sampled, compute),
                                                                 binding(2, storage, compute)};
@@ -297,9 +338,12 @@ struct DeferredRenderer::Impl {
 
     vk::GraphicsPipelineDesc geometry;
     geometry.vertexSpirv = spirv_geometry_vert;
-    geometry.vertexBindings = {{0, sizeof(Vertex), VK_VERTEX_INPUT_RATE_VERTEX}};
+    geometry.vertexBindings = {{0, sizeof(Vertex), VK_VERTEX_INPUT_RATE_VERTEX},
+                               {1, sizeof(gpu::SurfaceVertex), VK_VERTEX_INPUT_RATE_VERTEX}};
     geometry.vertexAttributes = {{0, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, position)},
-                                 {1, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, normal)}};
+                                 {1, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, normal)},
+                                 {2, 1, VK_FORMAT_R32G32_SFLOAT, offsetof(gpu::SurfaceVertex, texCoord)},
+                                 {3, 1, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(gpu::SurfaceVertex, tangent)}};
     geometry.depthFormat = kDepthFormat;
     geometry.depthTest = true;
     geometry.cullMode = VK_CULL_MODE_BACK_BIT;
@@ -308,7 +352,7 @@ struct DeferredRenderer::Impl {
     gbuffer.fragmentSpirv = spirv_gbuffer_frag;
     gbuffer.colorFormats = {kNormalFormat};
     gbuffer.depthWrite = true;
-    gbuffer.depthCompare = VK_COMPARE_OP_LESS;
+    gbuffer.depthCompare = nearer();
     gbufferPipeline = vk::createGraphicsPipeline(context, geometryLayout.layout, gbuffer);
 
     vk::GraphicsPipelineDesc shading = geometry;
@@ -320,7 +364,7 @@ struct DeferredRenderer::Impl {
     vk::GraphicsPipelineDesc transparent = geometry;
     transparent.fragmentSpirv = spirv_transparent_frag;
     transparent.colorFormats = {kHdrFormat, kCoverageFormat};  // coverage blends to 1 - prod(1 - opacity)
-    transparent.depthCompare = VK_COMPARE_OP_LESS;  // behind opaque surfaces is hidden; no depth write
+    transparent.depthCompare = nearer();  // behind opaque surfaces is hidden; no depth write
     transparent.cullMode = VK_CULL_MODE_NONE;
     transparent.blend = vk::GraphicsPipelineDesc::Blend::Alpha;
     transparentPipeline = vk::createGraphicsPipeline(context, geometryLayout.layout, transparent);
@@ -338,7 +382,8 @@ struct DeferredRenderer::Impl {
     sky.colorFormats = {kHdrFormat};
     sky.depthFormat = kDepthFormat;
     sky.depthTest = true;
-    sky.depthCompare = VK_COMPARE_OP_LESS_OR_EQUAL;  // reaches only pixels still at the cleared far plane
+    // Reaches only pixels still at the cleared far plane (the sky's viewport puts it there: drawSky).
+    sky.depthCompare = options.reversedZ ? VK_COMPARE_OP_GREATER_OR_EQUAL : VK_COMPARE_OP_LESS_OR_EQUAL;
     skyPipeline = vk::createGraphicsPipeline(context, skyLayout.layout, sky);
 
     tonemapPipeline = vk::createComputePipeline(context, tonemapLayout.layout, spirv_tonemap_comp);
@@ -346,20 +391,39 @@ struct DeferredRenderer::Impl {
     ssaoPipeline = vk::createComputePipeline(context, ssaoLayout.layout, spirv_ssao_comp);
   }
 
+  // Reversed-Z: nearer surfaces have greater device depth.
+  VkCompareOp nearer() const { return options.reversedZ ? VK_COMPARE_OP_GREATER : VK_COMPARE_OP_LESS; }
+  float clearedDepth() const { return options.reversedZ ? 0.0f : 1.0f; }  // the far plane: sky
+
+  // A layer's viewport depth range (Listing 4.3): first-person in [0, split], the world in [split, 1]; reversed-Z
+  // mirrors both (the world in [0, 1 - split], first-person in [1 - split, 1]).
+  void setLayerViewport(VkCommandBuffer cmd, Layer layer) const {
+    const bool firstPerson = layer == Layer::FirstPerson;
+    if (options.reversedZ)
+      setViewport(cmd, width, height, firstPerson ? 1.0f - kFirstPersonDeviceDepthMax : 0.0f,
+                  firstPerson ? 1.0f : 1.0f - kFirstPersonDeviceDepthMax);
+    else
+      setViewport(cmd, width, height, firstPerson ? 0.0f : kFirstPersonDeviceDepthMax, firstPerson ? kFirstPersonDeviceDepthMax : 1.0f);
+  }
+
   void setScene(const Scene& newScene) {
     std::vector<Vertex> vertices;
+    std::vector<gpu::SurfaceVertex> surface;
     std::vector<std::uint32_t> indices;
     meshRanges.clear();
     for (const Mesh& mesh : newScene.meshes) {
       meshRanges.push_back({std::uint32_t(indices.size()), std::uint32_t(mesh.indices.size()), std::int32_t(vertices.size())});
       for (std::uint32_t index : mesh.indices)
         if (index >= mesh.vertices.size()) throw std::invalid_argument("scene '" + newScene.name + "': mesh index out of range");
+      appendSurfaceVertices(newScene, mesh, surface);
       vertices.insert(vertices.end(), mesh.vertices.begin(), mesh.vertices.end());
       indices.insert(indices.end(), mesh.indices.begin(), mesh.indices.end());
     }
-    for (const Object& object : newScene.objects)
+    for (const Object& object : newScene.objects) {
       if (object.mesh >= newScene.meshes.size())
         throw std::invalid_argument("scene '" + newScene.name + "': object refers to missing mesh " + std::to_string(object.mesh));
+      validateTextures(newScene, object);
+    }
     if (vertices.empty() || indices.empty()) throw std::invalid_argument("scene '" + newScene.name + "' has no geometry");
     if (newScene.pointLights.size() + newScene.spotLights.size() > 256)
       throw std::invalid_argument("scene has more than 256 point and spot lights");
@@ -370,6 +434,12 @@ struct DeferredRenderer::Impl {
                                     VK_BUFFER_USAGE_VERTEX_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                                     vk::MemoryLocation::Device);
     vk::uploadBuffer(context, vertexBuffer, std::as_bytes(std::span(vertices)));
+    surfaceBuffer = vk::createBuffer(context, surface.size() * sizeof(gpu::SurfaceVertex),
+                                     VK_BUFFER_USAGE_VERTEX_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                     vk::MemoryLocation::Device);
+    vk::uploadBuffer(context, surfaceBuffer, std::as_bytes(std::span(surface)));
+    textures.clear();
+    for (const Texture& texture : newScene.textures) textures.push_back(uploadTexture(texture));
     indexBuffer = vk::createBuffer(context, indices.size() * sizeof(std::uint32_t),
                                    VK_BUFFER_USAGE_INDEX_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                                    vk::MemoryLocation::Device);
@@ -383,33 +453,72 @@ struct DeferredRenderer::Impl {
       if (!(opacity > 0.0f && opacity <= 1.0f))
         throw std::invalid_argument("scene '" + newScene.name + "': object " + std::to_string(i) + " has opacity " +
                                     std::to_string(opacity) + " outside (0, 1]");
-      if (opacity < 1.0f && newScene.objects[i].layer == Layer::FirstPerson)
+      if (newScene.objects[i].material.isTransparent() && newScene.objects[i].layer == Layer::FirstPerson)
         throw std::invalid_argument("scene '" + newScene.name + "': transparent first-person objects are not supported");
     }
     for (Layer layer : {Layer::World, Layer::FirstPerson})
       for (std::uint32_t i = 0; i < newScene.objects.size(); ++i)
-        if (newScene.objects[i].layer == layer && newScene.objects[i].material.opacity >= 1.0f) drawOrder.push_back(i);
+        if (newScene.objects[i].layer == layer && !newScene.objects[i].material.isTransparent()) drawOrder.push_back(i);
     for (std::uint32_t i = 0; i < newScene.objects.size(); ++i)
-      if (newScene.objects[i].material.opacity < 1.0f) transparentOrder.push_back(i);
+      if (newScene.objects[i].material.isTransparent()) transparentOrder.push_back(i);
     std::vector<detail::ShadowMeshRange> shadowRanges;
     for (const MeshRange& range : meshRanges) shadowRanges.push_back({range.firstIndex, range.indexCount, range.vertexOffset});
     shadows->setScene(newScene, vertexBuffer.buffer, indexBuffer.buffer, std::move(shadowRanges));
     scene = newScene;
   }
 
+  // The mesh's texture coordinates and tangents as the second vertex stream (zeros where it has none).
+  static void appendSurfaceVertices(const Scene& scene, const Mesh& mesh, std::vector<gpu::SurfaceVertex>& surface) {
+    const std::size_t count = mesh.vertices.size();
+    if ((!mesh.texCoords.empty() && mesh.texCoords.size() != count) || (!mesh.tangents.empty() && mesh.tangents.size() != count))
+      throw std::invalid_argument("scene '" + scene.name + "': a mesh's texture coordinates or tangents do not match its " +
+                                  std::to_string(count) + " vertices");
+    for (std::size_t v = 0; v < count; ++v)
+      surface.push_back({mesh.texCoords.empty() ? glm::vec2(0.0f) : mesh.texCoords[v],
+                         mesh.tangents.empty() ? glm::vec4(0.0f) : mesh.tangents[v]});
+  }
+
+  // A texture reference must name a texture of the right encoding, on a mesh that can place it.
+  static void validateTextures(const Scene& scene, const Object& object) {
+    const Mesh& mesh = scene.meshes[object.mesh];
+    auto check = [&](std::int32_t index, Texture::Encoding encoding, const char* role, bool needsTangents) {
+      if (index == kNoTexture) return;
+      const std::string where = "scene '" + scene.name + "': " + role + " texture " + std::to_string(index);
+      if (index < 0 || std::size_t(index) >= scene.textures.size())
+        throw std::invalid_argument(where + " does not exist (" + std::to_string(scene.textures.size()) + " textures)");
+      const Texture& texture = scene.textures[std::size_t(index)];
+      if (texture.width == 0 || texture.height == 0 || texture.rgba.size() != std::size_t(texture.width) * texture.height * 4)
+        throw std::invalid_argument(where + " is empty or its pixel data does not match its size");
+      if (texture.encoding != encoding)
+        throw std::invalid_argument(where + (encoding == Texture::Encoding::Srgb ? " must be sRGB-encoded" : " must be linear"));
+      if (mesh.texCoords.empty() || (needsTangents && mesh.tangents.empty()))
+        throw std::invalid_argument(where + " is on a mesh without texture coordinates" + (needsTangents ? " or tangents" : ""));
+    };
+    check(object.material.baseColorTexture, Texture::Encoding::Srgb, "base color", false);
+    check(object.material.normalTexture, Texture::Encoding::Linear, "normal", true);
+  }
+
   void writeFrameConstants(const ViewMatrices& view) {
     gpu::FrameConstants frame{};
     gpu::LayerConstants& world = frame.layers[S3D_LAYER_WORLD];
-    world.viewProjection = view.worldProjection * view.worldView;
+    // Reversed-Z swaps near and far in both layers' projections (the caller's matrices stay standard).
+    const glm::mat4 worldProjection =
+        options.reversedZ ? reversedDepthProjection(view.worldProjection, scene.camera.nearPlane, scene.camera.farPlane)
+                          : view.worldProjection;
+    const glm::mat4 firstPersonProjection =
+        options.reversedZ ? reversedDepthProjection(view.firstPersonProjection, scene.firstPerson.nearPlane,
+                                                    scene.firstPerson.farPlane)
+                          : view.firstPersonProjection;
+    world.viewProjection = worldProjection * view.worldView;
     world.worldFromView = glm::inverse(view.worldView);
-    world.projection = projectionTerms(view.worldProjection);
+    world.projection = projectionTerms(worldProjection);
     gpu::LayerConstants& firstPerson = frame.layers[S3D_LAYER_FIRST_PERSON];
-    firstPerson.viewProjection = view.firstPersonProjection * view.firstPersonView;
+    firstPerson.viewProjection = firstPersonProjection * view.firstPersonView;
     firstPerson.worldFromView = view.worldFromCamera * glm::inverse(view.firstPersonView);
-    firstPerson.projection = projectionTerms(view.firstPersonProjection);
-    frame.linearDepth = gpu::makeLinearDepthParams(scene.camera.nearPlane, scene.camera.farPlane,
-                                                   scene.firstPerson.nearPlane, scene.firstPerson.farPlane,
-                                                   kFirstPersonDeviceDepthMax);
+    firstPerson.projection = projectionTerms(firstPersonProjection);
+    frame.linearDepth = (options.reversedZ ? gpu::makeReversedLinearDepthParams : gpu::makeLinearDepthParams)(
+        scene.camera.nearPlane, scene.camera.farPlane, scene.firstPerson.nearPlane, scene.firstPerson.farPlane,
+        kFirstPersonDeviceDepthMax);
     frame.linearDepth.firstPersonDepthOffset = view.firstPersonDepthPush.offset;
     frame.linearDepth.firstPersonDepthScale = view.firstPersonDepthPush.scale;
     frame.directionToSun = glm::vec4(glm::normalize(scene.sun.directionToSun), 0.0f);
@@ -434,34 +543,47 @@ struct DeferredRenderer::Impl {
       constants.albedo = glm::vec4(object.material.albedo, object.material.opacity);
       constants.specular = glm::vec4(object.material.specularColor, object.material.glossiness);
       constants.layer = object.layer == Layer::FirstPerson ? S3D_LAYER_FIRST_PERSON : S3D_LAYER_WORLD;
+      constants.normalScale = object.material.normalTexture == kNoTexture ? 0.0f : object.material.normalScale;
     }
   }
 
-  void pushGeometryDescriptors(VkCommandBuffer cmd, VkPipelineLayout layout, std::span<VkWriteDescriptorSet> extra) {
+  // The frame and object buffers, the pass's own descriptors (`extra`) and, at textureBinding and the one after
+  // it, the object's base-color and normal textures (the 1x1 defaults when it has none).
+  void pushGeometryDescriptors(VkCommandBuffer cmd, VkPipelineLayout layout, std::span<VkWriteDescriptorSet> extra,
+                               const Material& material, std::uint32_t textureBinding) {
     VkDescriptorBufferInfo frameInfo{frameBuffer.buffer, 0, VK_WHOLE_SIZE};
     VkDescriptorBufferInfo objectInfo{objectBuffer.buffer, 0, VK_WHOLE_SIZE};
     std::vector<VkWriteDescriptorSet> writes = {vk::uniformBufferWrite(0, &frameInfo), vk::uniformBufferWrite(1, &objectInfo)};
     writes[1].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
     writes.insert(writes.end(), extra.begin(), extra.end());
+    auto view = [this](std::int32_t index, const vk::Image& fallback) -> VkImageView {
+      return index == kNoTexture ? fallback.view : textures[std::size_t(index)].view;
+    };
+    VkDescriptorImageInfo baseColorInfo{textureSampler, view(material.baseColorTexture, whiteTexture),
+                                        VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+    VkDescriptorImageInfo normalInfo{textureSampler, view(material.normalTexture, flatNormalTexture),
+                                     VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+    for (const VkDescriptorImageInfo* info : {&baseColorInfo, &normalInfo}) {
+      writes.push_back(vk::sampledImageWrite(textureBinding + std::uint32_t(info == &normalInfo), info));
+      writes.back().descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+    }
     context.cmdPushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 0, std::uint32_t(writes.size()), writes.data());
   }
 
-  void drawObjects(VkCommandBuffer cmd, VkPipelineLayout layout, const std::vector<std::uint32_t>& objects) {
-    VkDeviceSize offset = 0;
-    VkBuffer vertex = vertexBuffer.buffer;
-    vkCmdBindVertexBuffers(cmd, 0, 1, &vertex, &offset);
+  void drawObjects(VkCommandBuffer cmd, VkPipelineLayout layout, const std::vector<std::uint32_t>& objects,
+                   std::span<VkWriteDescriptorSet> extra, std::uint32_t textureBinding) {
+    const VkDeviceSize offsets[] = {0, 0};
+    const VkBuffer streams[] = {vertexBuffer.buffer, surfaceBuffer.buffer};
+    vkCmdBindVertexBuffers(cmd, 0, 2, streams, offsets);
     vkCmdBindIndexBuffer(cmd, indexBuffer.buffer, 0, VK_INDEX_TYPE_UINT32);
     std::optional<Layer> currentLayer;
     for (std::uint32_t objectIndex : objects) {
       const Object& object = scene.objects[objectIndex];
       if (currentLayer != object.layer) {
-        // Listing 4.3's depth ranges: first-person in [0, split], the world in [split, 1].
-        if (object.layer == Layer::FirstPerson)
-          setViewport(cmd, width, height, 0.0f, kFirstPersonDeviceDepthMax);
-        else
-          setViewport(cmd, width, height, kFirstPersonDeviceDepthMax, 1.0f);
+        setLayerViewport(cmd, object.layer);
         currentLayer = object.layer;
       }
+      pushGeometryDescriptors(cmd, layout, extra, object.material, textureBinding);  // per object: its textures
       vkCmdPushConstants(cmd, layout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
                          sizeof(std::uint32_t), &objectIndex);
       const MeshRange& range = meshRanges[object.mesh];
@@ -478,12 +600,11 @@ struct DeferredRenderer::Impl {
     depthAttachment.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
     depthAttachment.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
     depthAttachment.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-    depthAttachment.clearValue.depthStencil = {1.0f, 0};
+    depthAttachment.clearValue.depthStencil = {clearedDepth(), 0};
     beginRendering(cmd, width, height, std::span(&color, 1), &depthAttachment);
     setScissor(cmd, {{0, 0}, {width, height}});
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, gbufferPipeline);
-    pushGeometryDescriptors(cmd, geometryLayout.layout, {});
-    drawObjects(cmd, geometryLayout.layout, drawOrder);
+    drawObjects(cmd, geometryLayout.layout, drawOrder, {}, kGeometryTextureBinding);
     vkCmdEndRendering(cmd);
     recordGBufferReadable(cmd);  // SSAO, the shadow mask and the light pass read depth and normals
   }
@@ -623,7 +744,8 @@ struct DeferredRenderer::Impl {
     beginRendering(cmd, width, height, std::span(&color, 1), &depthAttachment);
     setScissor(cmd, {{0, 0}, {width, height}});
 
-    setViewport(cmd, width, height, 0.0f, 1.0f);
+    // The sky triangle sits at z = 1; the viewport maps it onto the cleared far plane (0 with reversed-Z).
+    setViewport(cmd, width, height, 0.0f, clearedDepth());
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, skyPipeline);
     VkDescriptorBufferInfo frameInfo{frameBuffer.buffer, 0, VK_WHOLE_SIZE};
     VkWriteDescriptorSet skyWrite = vk::uniformBufferWrite(0, &frameInfo);
@@ -635,8 +757,7 @@ struct DeferredRenderer::Impl {
     VkDescriptorImageInfo specularInfo{nearestSampler, specularLight.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
     VkWriteDescriptorSet extra[] = {vk::sampledImageWrite(2, &diffuseInfo), vk::sampledImageWrite(3, &specularInfo)};
     extra[0].descriptorType = extra[1].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-    pushGeometryDescriptors(cmd, shadingLayout.layout, extra);
-    drawObjects(cmd, shadingLayout.layout, drawOrder);
+    drawObjects(cmd, shadingLayout.layout, drawOrder, extra, kShadingTextureBinding);
     vkCmdEndRendering(cmd);
   }
 
@@ -649,8 +770,7 @@ struct DeferredRenderer::Impl {
     beginRendering(cmd, width, height, colors, &depthAttachment);
     setScissor(cmd, {{0, 0}, {width, height}});
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, transparentPipeline);
-    pushGeometryDescriptors(cmd, geometryLayout.layout, {});
-    drawObjects(cmd, geometryLayout.layout, backToFront);
+    drawObjects(cmd, geometryLayout.layout, backToFront, {}, kGeometryTextureBinding);
     vkCmdEndRendering(cmd);
   }
 
@@ -679,15 +799,17 @@ struct DeferredRenderer::Impl {
     VkDescriptorImageInfo hdrInfo{VK_NULL_HANDLE, hdr.view, VK_IMAGE_LAYOUT_GENERAL};
     VkDescriptorImageInfo displayInfo{VK_NULL_HANDLE, display.view, VK_IMAGE_LAYOUT_GENERAL};
     VkDescriptorImageInfo resolvedHdrInfo{VK_NULL_HANDLE, resolvedHdr.view, VK_IMAGE_LAYOUT_GENERAL};
+    // The depth goes to tone mapping too: the weapon mask is written into the display image's alpha.
+    VkDescriptorImageInfo depthInfo{nearestSampler, depth.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
     VkWriteDescriptorSet tonemapWrites[] = {vk::uniformBufferWrite(0, &frameInfo), vk::storageImageWrite(1, &hdrInfo),
                                             vk::storageImageWrite(2, &displayInfo),
-                                            vk::storageImageWrite(3, &resolvedHdrInfo)};
+                                            vk::storageImageWrite(3, &resolvedHdrInfo), vk::sampledImageWrite(4, &depthInfo)};
+    tonemapWrites[4].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, tonemapPipeline);
-    context.cmdPushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, tonemapLayout.layout, 0, 4, tonemapWrites);
+    context.cmdPushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, tonemapLayout.layout, 0, 5, tonemapWrites);
     vkCmdPushConstants(cmd, tonemapLayout.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(resolve), &resolve);
     vkCmdDispatch(cmd, groupsX, groupsY, 1);
 
-    VkDescriptorImageInfo depthInfo{nearestSampler, depth.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
     VkDescriptorImageInfo linearInfo{VK_NULL_HANDLE, linearDepth.view, VK_IMAGE_LAYOUT_GENERAL};
     VkWriteDescriptorSet depthWrites[] = {vk::uniformBufferWrite(0, &frameInfo), vk::sampledImageWrite(1, &depthInfo),
                                           vk::storageImageWrite(2, &linearInfo)};
@@ -760,6 +882,7 @@ FrameTimings DeferredRenderer::render(const ViewMatrices& view) { return impl_->
 std::uint32_t DeferredRenderer::width() const { return impl_->outputWidth; }
 std::uint32_t DeferredRenderer::height() const { return impl_->outputHeight; }
 std::uint32_t DeferredRenderer::supersample() const { return impl_->supersample; }
+const RendererOptions& DeferredRenderer::options() const { return impl_->options; }
 const vk::Image& DeferredRenderer::displayColor() const { return impl_->display; }
 const vk::Image& DeferredRenderer::linearDepth() const { return impl_->linearDepth; }
 const vk::Image& DeferredRenderer::hdrColor() const { return impl_->resolvedHdr; }
@@ -783,11 +906,14 @@ std::vector<std::uint8_t> DeferredRenderer::readFirstPersonMask() {
   std::vector<float> deviceDepth(bytes.size() / sizeof(float));
   std::memcpy(deviceDepth.data(), bytes.data(), bytes.size());
   const Impl& r = *impl_;
+  const bool reversed = r.options.reversedZ;
   std::vector<std::uint8_t> mask(std::size_t(r.outputWidth) * r.outputHeight, 0);
   for (std::uint32_t y = 0; y < r.height; ++y)
-    for (std::uint32_t x = 0; x < r.width; ++x)
-      if (deviceDepth[std::size_t(y) * r.width + x] <= kFirstPersonDeviceDepthMax)
+    for (std::uint32_t x = 0; x < r.width; ++x) {
+      const float device = deviceDepth[std::size_t(y) * r.width + x];
+      if (reversed ? device >= 1.0f - kFirstPersonDeviceDepthMax : device <= kFirstPersonDeviceDepthMax)
         mask[std::size_t(y / r.supersample) * r.outputWidth + x / r.supersample] = 1;
+    }
   return mask;
 }
 

@@ -38,7 +38,8 @@ class BenchCommand final : public Command {
     bench
         .add_option("--methods", options_.methods,
                     "Comma-separated method settings: seed, search-N (N taps), iterative-K (K iterations); search and "
-                    "iterative alone sweep taps 4,8,16 and iterations 2,4,6,8")
+                    "iterative alone sweep taps 4,8,16 and iterations 2,4,6,8; a /pixel or /tiles suffix (search-4/pixel) "
+                    "forces the per-pixel or the row-tiled kernel (default: row tiles where their margin fits)")
         ->delimiter(',')
         ->type_name("LIST")
         ->capture_default_str();

@@ -1,4 +1,4 @@
-// `s3d render`: renders a built-in scene, synthesizes both eyes with the stereo pass, renders the two-pass
+// `s3d render`: renders a built-in scene or a glTF file, synthesizes both eyes with the stereo pass, renders the two-pass
 // reference eyes and writes images plus report.json (s3d/app/render_job.h); `--sequence` runs the scene's camera
 // path with the comfort controls (s3d/app/sequence_job.h).
 #include <cstdio>
@@ -34,7 +34,10 @@ class RenderCommand final : public Command {
         ->check(resolutionValidator(app::kMaxImageSize))
         ->excludes("--width")
         ->excludes("--height");
-    render.add_option("--scene", options_.scene, "Built-in scene: " + joined(renderer::builtInSceneNames(), ", "))
+    render
+        .add_option("--scene", options_.scene,
+                    "Built-in scene (" + joined(renderer::builtInSceneNames(), ", ") +
+                        ") or a glTF 2.0 file (.gltf/.glb, with an optional NAME.scene.json beside it)")
         ->capture_default_str();
     render.add_option("--output", options_.outputFolder, "Output folder (created if missing)")->capture_default_str();
     render
@@ -68,6 +71,9 @@ class RenderCommand final : public Command {
     profile_.add(render);
     render.add_option("--frame", options_.frame, "Frame of the scene's camera path to render (0: its first)")
         ->capture_default_str();
+    render.add_flag("--reversed-z", options_.reversedZ,
+                    "Reversed-Z depth buffer (cleared to 0, test GREATER, near/far swapped): more depth precision far "
+                    "away; the linear depth handed to the stereo pass is the same");
     render.add_flag("--sequence", sequence_,
                     "Render the scene's whole camera path with the comfort controls running (zero-parallax "
                     "control, weapon push, crosshair): anaglyph_NNNN.png per frame and a per-frame report.json");
@@ -106,6 +112,10 @@ class RenderCommand final : public Command {
     sequenceOptions.outputFolder = options_.outputFolder;
     sequenceOptions.stereo = options_.stereo;
     sequenceOptions.zeroParallax = zeroParallax_;
+    sequenceOptions.crosshair = options_.crosshair;
+    sequenceOptions.display = options_.display;
+    sequenceOptions.allowNegativeParallax = options_.allowNegativeParallax;
+    sequenceOptions.reversedZ = options_.reversedZ;
     vk::Context context(contextOptions_);
     const app::SequenceReport report = app::runSequenceJob(context, sequenceOptions);
     std::uint64_t conflicts = 0;

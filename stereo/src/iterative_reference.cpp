@@ -5,6 +5,7 @@
 
 #include "row_sampling.h"
 #include "s3d/stereo/iterative.h"
+#include "s3d/stereo/row_tile_shared.h"
 
 namespace s3d::stereo {
 namespace {
@@ -44,6 +45,12 @@ gpu::IterativeConstants makeIterativeConstants(const StereoParameters& parameter
     if (c.startTapCount == 0 || offset != c.startTapOffsetPx[c.startTapCount - 1]) c.startTapOffsetPx[c.startTapCount++] = offset;
   }
   return c;
+}
+
+int rowTileMargin(const gpu::IterativeConstants& c) {
+  int largestTap = 0;
+  for (int i = 0; i < c.startTapCount; ++i) largestTap = std::max(largestTap, c.startTapOffsetPx[i]);
+  return gpu::rowTileMarginPx(c.maxParallaxPx, largestTap);
 }
 
 IterativeSample solveIterativePixel(const DepthImage& linearDepth, int x, int y, Eye eye, const gpu::IterativeConstants& c) {

@@ -1,5 +1,7 @@
 #include "s3d/stereo/stereo_pass.h"
 
+#include "s3d/stereo/row_tile_shared.h"
+
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
@@ -7,7 +9,9 @@
 
 // clang-format off
 #include <s3d_spirv/stereo_search_comp.h>
+#include <s3d_spirv/stereo_search_tiled_comp.h>
 #include <s3d_spirv/stereo_seed_comp.h>
+#include <s3d_spirv/stereo_seed_tiled_comp.h>
 // clang-format on
 
 namespace s3d::stereo {
@@ -22,20 +26,27 @@ static_assert(pushBytesFor(S3D_STEREO_MAX_TAPS) == sizeof(gpu::StereoConstants))
 
 }  // namespace
 
-StereoPass::StereoPass(const vk::Context& context)
+StereoPass::StereoPass(const vk::Context& context, StereoKernel kernel)
     : context_(&context),
-      shortTaps_(detail::createEyePairPipeline(context, spirv_stereo_seed_comp, pushBytesFor(S3D_STEREO_SMALL_TAP_CAPACITY),
-                                               S3D_STEREO_GROUP_SIZE)),
-      allTaps_(detail::createEyePairPipeline(context, spirv_stereo_search_comp, pushBytesFor(S3D_STEREO_MAX_TAPS),
-                                             S3D_STEREO_GROUP_SIZE)) {}
+      kernel_(kernel),
+      deviceRunsRowTiles_(detail::deviceRunsRowTiles(context)),
+      shortTaps_(spirv_stereo_seed_comp, pushBytesFor(S3D_STEREO_SMALL_TAP_CAPACITY), S3D_STEREO_GROUP_SIZE,
+                 S3D_STEREO_GROUP_SIZE),
+      allTaps_(spirv_stereo_search_comp, pushBytesFor(S3D_STEREO_MAX_TAPS), S3D_STEREO_GROUP_SIZE, S3D_STEREO_GROUP_SIZE),
+      shortTapsTiled_(spirv_stereo_seed_tiled_comp, pushBytesFor(S3D_STEREO_SMALL_TAP_CAPACITY), S3D_STEREO_ROW_TILE, 1),
+      allTapsTiled_(spirv_stereo_search_tiled_comp, pushBytesFor(S3D_STEREO_MAX_TAPS), S3D_STEREO_ROW_TILE, 1) {}
 
 void StereoPass::record(VkCommandBuffer cmd, const vk::Image& centerColor, const vk::Image& linearDepth,
                         const vk::Image& leftEye, const vk::Image& rightEye,
                         const gpu::StereoConstants& constants) const {
   if (constants.tapCount < 0 || constants.tapCount > S3D_STEREO_MAX_TAPS)
     throw std::invalid_argument("StereoPass: tap count out of range (use makeStereoConstants)");
-  const detail::EyePairPipeline& pipeline = constants.tapCount <= S3D_STEREO_SMALL_TAP_CAPACITY ? shortTaps_ : allTaps_;
-  detail::recordEyePairDispatch(cmd, *context_, pipeline, centerColor, linearDepth, leftEye, rightEye, &constants,
+  const bool shortTaps = constants.tapCount <= S3D_STEREO_SMALL_TAP_CAPACITY;
+  const bool rowTiles =
+      deviceRunsRowTiles_ && usesRowTiles(kernel_, rowTileMargin(constants), context_->isCpuDevice());
+  const detail::LazyEyePairPipeline& pipeline =
+      rowTiles ? (shortTaps ? shortTapsTiled_ : allTapsTiled_) : (shortTaps ? shortTaps_ : allTaps_);
+  detail::recordEyePairDispatch(cmd, *context_, pipeline.get(*context_), centerColor, linearDepth, leftEye, rightEye, &constants,
                                 constants.width, constants.height, "StereoPass");
 }
 
@@ -53,8 +64,8 @@ void StereoPass::recordInputRelease(VkCommandBuffer cmd, const vk::Image& center
 }
 
 StereoPair synthesizeStereoOnGpu(vk::Context& context, const ImageRGBA8& center, const DepthImage& linearDepth,
-                                 const gpu::StereoConstants& constants) {
-  return detail::runOnCpuImages(context, StereoPass(context), center, linearDepth, constants);
+                                 const gpu::StereoConstants& constants, StereoKernel kernel) {
+  return detail::runOnCpuImages(context, StereoPass(context, kernel), center, linearDepth, constants);
 }
 
 }  // namespace s3d::stereo

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "row_sampling.h"
+#include "s3d/stereo/row_tile_shared.h"
 #include "s3d/stereo/stereo.h"
 
 namespace s3d::stereo {
@@ -65,6 +66,32 @@ StereoMethod parseStereoMethod(const std::string& name) {
   for (StereoMethod method : {StereoMethod::Seed, StereoMethod::Search, StereoMethod::Iterative})
     if (name == methodName(method)) return method;
   throw std::invalid_argument("unknown stereo method '" + name + "' (expected seed, search or iterative)");
+}
+
+const char* kernelName(StereoKernel kernel) {
+  switch (kernel) {
+    case StereoKernel::Auto: return "auto";
+    case StereoKernel::PerPixel: return "pixel";
+    case StereoKernel::RowTiles: return "tiles";
+  }
+  return "unknown";
+}
+
+StereoKernel parseStereoKernel(const std::string& name) {
+  for (StereoKernel kernel : {StereoKernel::Auto, StereoKernel::PerPixel, StereoKernel::RowTiles})
+    if (name == kernelName(kernel)) return kernel;
+  throw std::invalid_argument("unknown stereo kernel '" + name + "' (expected auto, pixel or tiles)");
+}
+
+int rowTileMargin(const gpu::StereoConstants& c) {
+  int largestTap = 0;
+  for (int i = 0; i < c.tapCount; ++i) largestTap = std::max(largestTap, c.tapOffsetPx[i]);
+  return gpu::rowTileMarginPx(c.maxSeparation * float(c.width), largestTap);
+}
+
+bool usesRowTiles(StereoKernel kernel, int rowTileMarginPx, bool cpuDevice) {
+  if (rowTileMarginPx > S3D_STEREO_ROW_TILE_MARGIN) return false;
+  return kernel == StereoKernel::RowTiles || (kernel == StereoKernel::Auto && !cpuDevice);
 }
 
 namespace {

@@ -77,7 +77,7 @@ SynthesisResult synthesizeTimed(vk::Context& context, const vk::Image& centerCol
   if (centerColor.format != StereoPass::kColorFormat || linearDepth.format != StereoPass::kDepthFormat)
     throw std::invalid_argument("stereo synthesis needs RGBA8 unorm color and R32 float linear depth");
   if (parameters.method == StereoMethod::Iterative) {
-    const IterativeStereoPass pass(context);
+    const IterativeStereoPass pass(context, parameters.kernel);
     const gpu::IterativeConstants constants =
         makeIterativeConstants(parameters, parameters.iterations, centerColor.width, centerColor.height);
     SynthesisResult result = run(context, pass, constants, centerColor, linearDepth, timedRuns);
@@ -85,7 +85,7 @@ SynthesisResult synthesizeTimed(vk::Context& context, const vk::Image& centerCol
     result.filledRight = countAndClearFillMarks(result.eyes.right);
     return result;
   }
-  const StereoPass pass(context);
+  const StereoPass pass(context, parameters.kernel);
   return run(context, pass, makeStereoConstants(parameters, centerColor.width, centerColor.height), centerColor,
              linearDepth, timedRuns);
 }

@@ -104,6 +104,11 @@ void timeStereoDispatches(benchmark::State& state, Setup& setup, const Pass& pas
   reportDevice(state);
 }
 
+// The fourth argument picks the kernel: 0 per pixel, 1 row tiles (docs/DESIGN.md "Row tiles").
+stereo::StereoKernel kernelArgument(const benchmark::State& state) {
+  return state.range(3) == 0 ? stereo::StereoKernel::PerPixel : stereo::StereoKernel::RowTiles;
+}
+
 // Seed or search (third argument: the search's tap count, 0 for the seed, Listing 4.5).
 void StereoPass(benchmark::State& state) {
   Setup& setup = setupFor(std::uint32_t(state.range(0)), std::uint32_t(state.range(1)));
@@ -112,14 +117,14 @@ void StereoPass(benchmark::State& state) {
     parameters.method = stereo::StereoMethod::Search;
     parameters.searchTaps = int(state.range(2));
   }
-  timeStereoDispatches(state, setup, stereo::StereoPass(benchContext()),
+  timeStereoDispatches(state, setup, stereo::StereoPass(benchContext(), kernelArgument(state)),
                        stereo::makeStereoConstants(parameters, setup.deferred.width(), setup.deferred.height()));
 }
 
 // The iterative method (third argument: iterations).
 void IterativePass(benchmark::State& state) {
   Setup& setup = setupFor(std::uint32_t(state.range(0)), std::uint32_t(state.range(1)));
-  timeStereoDispatches(state, setup, stereo::IterativeStereoPass(benchContext()),
+  timeStereoDispatches(state, setup, stereo::IterativeStereoPass(benchContext(), kernelArgument(state)),
                        stereo::makeIterativeConstants(setup.parameters, int(state.range(2)), setup.deferred.width(),
                                                       setup.deferred.height()));
 }
@@ -129,18 +134,22 @@ void resolutions(benchmark::internal::Benchmark* benchmark) {
 }
 
 void methods(benchmark::internal::Benchmark* benchmark) {
-  for (std::int64_t taps : {0, 8, 16}) benchmark->Args({1280, 720, taps})->Args({1920, 1080, taps});
-  benchmark->ArgNames({"width", "height", "searchTaps"})->UseManualTime()->Unit(benchmark::kMillisecond);
+  for (std::int64_t kernel : {0, 1})
+    for (std::int64_t taps : {0, 8, 16}) benchmark->Args({1280, 720, taps, kernel})->Args({1920, 1080, taps, kernel});
+  benchmark->ArgNames({"width", "height", "searchTaps", "rowTiles"})->UseManualTime()->Unit(benchmark::kMillisecond);
 }
 
 BENCHMARK(CenterFrame)->Apply(resolutions)->MinTime(0.2);
 BENCHMARK(ReferenceEye)->Apply(resolutions)->MinTime(0.2);
 BENCHMARK(StereoPass)->Apply(methods)->MinTime(0.2);
 BENCHMARK(IterativePass)
-    ->Args({1280, 720, 6})
-    ->Args({1920, 1080, 6})
-    ->Args({1920, 1080, 4})
-    ->ArgNames({"width", "height", "iterations"})
+    ->Args({1280, 720, 6, 0})
+    ->Args({1920, 1080, 6, 0})
+    ->Args({1920, 1080, 4, 0})
+    ->Args({1920, 1080, 2, 0})
+    ->Args({1920, 1080, 6, 1})
+    ->Args({1920, 1080, 2, 1})
+    ->ArgNames({"width", "height", "iterations", "rowTiles"})
     ->UseManualTime()
     ->Unit(benchmark::kMillisecond)
     ->MinTime(0.2);

@@ -17,6 +17,7 @@
 #include "s3d/io/image_io.h"
 #include "s3d/renderer/scene.h"
 #include "s3d/stereo/iterative.h"
+#include "s3d/stereo/row_tile_shared.h"
 #include "s3d/stereo/synthesis.h"
 
 namespace s3d::app {
@@ -120,6 +121,22 @@ MethodSetting parseOneSetting(const std::string& item, std::vector<MethodSetting
     if (std::find(settings.begin(), settings.end(), setting) == settings.end()) settings.push_back(setting);
     return setting;
   };
+  if (const std::size_t slash = item.find('/'); slash != std::string::npos) {  // "search-4/tiles": a kernel
+    stereo::StereoKernel kernel = stereo::StereoKernel::Auto;
+    try {
+      kernel = stereo::parseStereoKernel(item.substr(slash + 1));
+    } catch (const std::invalid_argument&) {
+      throw std::invalid_argument("unknown kernel in method setting '" + item + "' (expected /pixel, /tiles or /auto)");
+    }
+    std::vector<MethodSetting> bases;
+    parseOneSetting(item.substr(0, slash), bases);
+    MethodSetting last;
+    for (MethodSetting setting : bases) {
+      setting.kernel = kernel;
+      last = add(setting);
+    }
+    return last;
+  }
   if (item == "seed") return add({stereo::StereoMethod::Seed, 0});
   if (item == "search") {
     for (int taps : kDefaultSweepTaps) add({stereo::StereoMethod::Search, taps});
@@ -135,7 +152,7 @@ MethodSetting parseOneSetting(const std::string& item, std::vector<MethodSetting
     return add({stereo::StereoMethod::Iterative, *iterations});
   throw std::invalid_argument("unknown method setting '" + item + "' (expected seed, search, search-N with N in [1, " +
                               std::to_string(S3D_STEREO_MAX_TAPS) + "], iterative, or iterative-K with K in [1, " +
-                              std::to_string(S3D_ITERATIVE_MAX_ITERATIONS) + "])");
+                              std::to_string(S3D_ITERATIVE_MAX_ITERATIONS) + "], each optionally followed by /pixel or /tiles)");
 }
 
 MethodSetting parseSingleSetting(const std::string& item, const char* what) {
@@ -346,7 +363,7 @@ void runSweep(vk::Context& context, const BenchOptions& options, const Validated
         row.right = compareEye(synthesis.eyes.right, eyes.rightColor, row.cropColumns, halo, unseenRight);
         row.filledLeft = synthesis.filledLeft;
         row.filledRight = synthesis.filledRight;
-        row.traffic = stereoPassTraffic(methodParameters, options.width, options.height);
+        row.traffic = stereoPassTraffic(methodParameters, options.width, options.height, context.isCpuDevice());
         report.rows.push_back(std::move(row));
         ++done;
       }
@@ -477,10 +494,13 @@ std::string verdict(const TargetResult& target) {
 std::string passText(const std::optional<bool>& pass) { return pass ? (*pass ? "pass" : "fail") : "n/a"; }
 
 std::string settingDetail(const MethodSetting& setting) {
+  const std::string kernel = setting.kernel == stereo::StereoKernel::PerPixel   ? ", per pixel"
+                             : setting.kernel == stereo::StereoKernel::RowTiles ? ", row tiles"
+                                                                                : "";
   switch (setting.method) {
-    case stereo::StereoMethod::Seed: return "Listing 4.5 (3 taps)";
-    case stereo::StereoMethod::Search: return std::to_string(setting.parameter) + " taps";
-    case stereo::StereoMethod::Iterative: return std::to_string(setting.parameter) + " iterations";
+    case stereo::StereoMethod::Seed: return "Listing 4.5 (3 taps)" + kernel;
+    case stereo::StereoMethod::Search: return std::to_string(setting.parameter) + " taps" + kernel;
+    case stereo::StereoMethod::Iterative: return std::to_string(setting.parameter) + " iterations" + kernel;
   }
   return "";
 }
@@ -568,12 +588,16 @@ std::string sweepMarkdown(const BenchReport& report) {
   }
 
   md << "\n#### Memory traffic of the stereo pass (counted from stereo/shaders/)\n\n"
-        "Per interior pixel and eye: the depth imageLoads (4 B each; seed/search: one per tap, iterative: 8 start taps\n"
-        "+ 2 x iterations), two color imageLoads (4 B, the horizontal filter) and one imageStore (4 B); a cropped pixel\n"
-        "stores both eyes only. Compulsory: color and depth read once, both eyes written once (16 B per pixel).\n\n";
-  md << "| setting | sep % | read MB | written MB | B / pixel | compulsory MB |";
+        "Per pixel kernel, per interior pixel and eye: the depth imageLoads (4 B each; seed/search: one per tap,\n"
+        "iterative: 8 start taps + 2 x iterations), two color imageLoads (4 B, the horizontal filter) and one\n"
+        "imageStore (4 B); a cropped pixel stores both eyes only. Row tiles: each tile loads its run of a row plus the\n"
+        "margin each side once (a depth and a color texel, 8 B a column) into shared memory; neighbouring tiles'\n"
+        "margins overlap, so DRAM sees between the compulsory bytes (overlap served by the L2 cache) and the counted\n"
+        "ones; seed/search fetches of near surfaces beyond the margin are data-dependent and not counted. Compulsory:\n"
+        "color and depth read once, both eyes written once (16 B per pixel).\n\n";
+  md << "| setting | kernel | sep % | read MB | written MB | B / pixel | compulsory MB |";
   if (report.bandwidthGBs) md << " limit ms | compulsory limit ms | stereo ms (median of scenes) | stereo / limit |";
-  md << "\n|---|---|---|---|---|---|";
+  md << "\n|---|---|---|---|---|---|---|";
   if (report.bandwidthGBs) md << "---|---|---|---|";
   md << '\n';
   std::vector<std::pair<MethodSetting, float>> seen;
@@ -582,8 +606,8 @@ std::string sweepMarkdown(const BenchReport& report) {
     if (std::find(seen.begin(), seen.end(), key) != seen.end()) continue;
     seen.push_back(key);
     const double pixels = double(report.width) * double(report.height);
-    md << "| " << row.setting.name() << " | " << percentText(row.maxSeparation) << " | "
-       << format("%.1f", double(row.traffic.bytesRead) / 1e6) << " | "
+    md << "| " << row.setting.name() << " | " << (row.traffic.rowTiles ? "row tiles" : "per pixel") << " | "
+       << percentText(row.maxSeparation) << " | " << format("%.1f", double(row.traffic.bytesRead) / 1e6) << " | "
        << format("%.1f", double(row.traffic.bytesWritten) / 1e6) << " | "
        << format("%.1f", double(row.traffic.total()) / pixels) << " | "
        << format("%.1f", double(row.traffic.compulsoryBytes) / 1e6) << " |";
@@ -651,6 +675,7 @@ nlohmann::json rowJson(const BenchRow& row) {
             {"stereoPassToReferenceEye", optionalMs(ratio(row.stereoGpuMs, row.referenceEyeGpuMs))}}},
           {"error", {{"left", errorJson(row.left)}, {"right", errorJson(row.right)}}},
           {"filledPixels", {{"left", row.filledLeft}, {"right", row.filledRight}}},
+          {"kernel", row.traffic.rowTiles ? "tiles" : "pixel"},
           {"traffic",
            {{"bytesRead", row.traffic.bytesRead},
             {"bytesWritten", row.traffic.bytesWritten},
@@ -660,16 +685,18 @@ nlohmann::json rowJson(const BenchRow& row) {
 }  // namespace
 
 std::string MethodSetting::name() const {
+  const std::string suffix = kernel == stereo::StereoKernel::Auto ? "" : std::string("/") + stereo::kernelName(kernel);
   switch (method) {
-    case stereo::StereoMethod::Seed: return "seed";
-    case stereo::StereoMethod::Search: return "search-" + std::to_string(parameter);
-    case stereo::StereoMethod::Iterative: return "iterative-" + std::to_string(parameter);
+    case stereo::StereoMethod::Seed: return "seed" + suffix;
+    case stereo::StereoMethod::Search: return "search-" + std::to_string(parameter) + suffix;
+    case stereo::StereoMethod::Iterative: return "iterative-" + std::to_string(parameter) + suffix;
   }
   return "unknown";
 }
 
 stereo::StereoParameters MethodSetting::applyTo(stereo::StereoParameters parameters) const {
   parameters.method = method;
+  parameters.kernel = kernel;
   if (method == stereo::StereoMethod::Search) parameters.searchTaps = parameter;
   if (method == stereo::StereoMethod::Iterative) parameters.iterations = parameter;
   return parameters;
@@ -691,24 +718,42 @@ MethodSetting defaultMethodSetting() {
   return {};
 }
 
-StereoTraffic stereoPassTraffic(const stereo::StereoParameters& parameters, std::uint32_t width, std::uint32_t height) {
+StereoTraffic stereoPassTraffic(const stereo::StereoParameters& parameters, std::uint32_t width, std::uint32_t height,
+                                bool cpuDevice) {
   constexpr std::uint64_t kTexelBytes = 4;  // RGBA8 color, R32F depth, RGBA8 eyes
   int depthLoadsPerEye = 0;
+  int margin = 0;
   gpu::StereoConstants crop{};
   if (parameters.method == stereo::StereoMethod::Iterative) {
     const gpu::IterativeConstants c = stereo::makeIterativeConstants(parameters, parameters.iterations, width, height);
     depthLoadsPerEye = c.startTapCount + 2 * c.iterations;  // stereo_iterative.comp: taps, then two starts x K
+    margin = stereo::rowTileMargin(c);
     crop.cropBegin = c.cropBegin;
     crop.cropEnd = c.cropEnd;
   } else {
     crop = stereo::makeStereoConstants(parameters, width, height);
     depthLoadsPerEye = crop.tapCount;  // stereo_gather.glsl: minDepthOverTaps
+    margin = stereo::rowTileMargin(crop);
   }
   const std::uint64_t interior = std::uint64_t(crop.cropEnd - crop.cropBegin) * height;
   const std::uint64_t pixels = std::uint64_t(width) * height;
   const std::uint64_t colorLoadsPerEye = 2;  // sampleRow's two texels
   StereoTraffic traffic;
-  traffic.bytesRead = 2 * interior * (std::uint64_t(depthLoadsPerEye) + colorLoadsPerEye) * kTexelBytes;
+  traffic.rowTiles = stereo::usesRowTiles(parameters.kernel, margin, cpuDevice);
+  if (traffic.rowTiles) {
+    // stereo_row_tile.glsl: each tile with interior columns [begin, end) loads [begin - margin, end + margin)
+    // (clipped to the image, margin at most the shared arrays') once, a depth and a color texel per column.
+    std::uint64_t loadedColumns = 0;
+    for (int tile = 0; tile < int(width); tile += S3D_STEREO_ROW_TILE) {
+      const int begin = std::max(tile, crop.cropBegin);
+      const int end = std::min({tile + S3D_STEREO_ROW_TILE, crop.cropEnd, int(width)});
+      if (begin < end)
+        loadedColumns += std::uint64_t(std::min(end + margin, int(width)) - std::max(begin - margin, 0));
+    }
+    traffic.bytesRead = loadedColumns * height * 2 * kTexelBytes;
+  } else {
+    traffic.bytesRead = 2 * interior * (std::uint64_t(depthLoadsPerEye) + colorLoadsPerEye) * kTexelBytes;
+  }
   traffic.bytesWritten = 2 * pixels * kTexelBytes;  // both eyes, cropped columns too (black)
   traffic.compulsoryBytes = pixels * 4 * kTexelBytes;
   return traffic;

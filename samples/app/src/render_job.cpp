@@ -5,17 +5,22 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
+#include <functional>
+#include <limits>
 #include <stdexcept>
 #include <string>
 #include <system_error>
 #include <tuple>
 #include <utility>
 
+#include "s3d/app/comfort_json.h"
 #include "s3d/comfort/crosshair.h"
 #include "s3d/comfort/world_queries.h"
 #include "s3d/hud/crosshair.h"
+#include "s3d/hud/overlay.h"
 #include "s3d/io/image_io.h"
 #include "s3d/renderer/scene.h"
+#include "s3d/renderer/scene_file.h"
 #include "s3d/stereo/hdr_gather.h"
 #include "s3d/stereo/sanitize.h"
 #include "s3d/stereo/stereo_pass.h"
@@ -69,7 +74,7 @@ ValidatedJob validateJob(const RenderJobOptions& options) {
 
   stereo::validate(options.stereo);
   comfort::validate(options.display);
-  ValidatedJob job{renderer::makeBuiltInScene(options.scene),  // throws naming the scene and the choices
+  ValidatedJob job{renderer::loadScene(options.scene),  // throws naming the scene (or file) and the choices
                    stereo::makeStereoConstants(options.stereo, options.width, options.height), options.stereo, {}};
   // Issue #4: a zero-parallax plane at or beyond the far plane, or near zero, is clamped with a warning.
   const stereo::ClampedZeroParallax zpp = stereo::clampZeroParallaxDistance(
@@ -124,15 +129,19 @@ RenderReport runRenderJob(vk::Context& context, const RenderJobOptions& options)
   report.scene = options.scene;
   report.width = width;
   report.height = height;
-  report.stereo = job.stereo;
   report.warnings = job.warnings;
-  if (report.stereo.edgeCrop < 0.0f) report.stereo.edgeCrop = report.stereo.maxSeparation;
   report.cropColumns = std::uint32_t(job.constants.cropBegin);
+  // Without negative parallax allowed, the weapon push reaches at least the screen plane
+  // (comfort::pushWeaponBehindScreen) and, once the frame's depth is known, the zero-parallax distance is
+  // held at its nearest surface: every pixel gets zero or positive parallax.
+  stereo::StereoParameters parameters = job.stereo;  // the zero-parallax distance clamped
+  const std::optional<glm::vec2> weaponDepths = renderer::firstPersonDepthRange(job.scene);
+  if (!options.allowNegativeParallax && weaponDepths)
+    parameters = comfort::pushWeaponBehindScreen(parameters, weaponDepths->x, weaponDepths->y);
 
   // 2. The center view.
-  renderer::DeferredRenderer deferred(context, width, height, {options.supersample});
+  renderer::DeferredRenderer deferred(context, width, height, {options.supersample, options.reversedZ});
   deferred.setScene(job.scene);
-  const stereo::StereoParameters& parameters = job.stereo;
   const renderer::ViewMatrices center = renderer::centerViewMatrices(
       job.scene, float(width) / float(height), {parameters.weaponDepthOffset, parameters.weaponDepthScale});
   // The first frame on fresh pipelines includes shader compilation (lavapipe compiles at first use):
@@ -149,6 +158,14 @@ RenderReport runRenderJob(vk::Context& context, const RenderJobOptions& options)
   ImageRGBA32F centerHdr = deferred.readHdrColor();
   report.sanitized.depthPixels = stereo::sanitizeDepth(centerDepth, parameters.zeroParallaxDistance);
   report.sanitized.colorValues = stereo::sanitizeColor(centerHdr);
+  const std::vector<std::uint8_t> firstPersonMask = deferred.readFirstPersonMask();  // weapon conflicts
+  if (const std::optional<float> nearest = comfort::nearestDepth(centerDepth);
+      !options.allowNegativeParallax && nearest && *nearest < parameters.zeroParallaxDistance) {
+    parameters.zeroParallaxDistance = *nearest;
+    report.zeroParallaxLimited = true;
+  }
+  report.stereo = parameters;
+  if (report.stereo.edgeCrop < 0.0f) report.stereo.edgeCrop = report.stereo.maxSeparation;
 
   // 3. Both eyes synthesized on the GPU from the renderer's own images.
   stereo::SynthesisResult synthesis =
@@ -184,29 +201,73 @@ RenderReport runRenderJob(vk::Context& context, const RenderJobOptions& options)
     *eyeError = compareEye(*eye, *reference, report.cropColumns, masks, eyeHdr, referenceHdr);
   }
 
-  // Comfort report: the parallax the stereo pass gave every pixel, as angles on the chosen display.
-  report.display = options.display;
-  report.parallax = comfort::parallaxStatistics(centerDepth, parameters, report.display);
-
-  // 6. HUD: the crosshair, placed by an Embree ray cast along the aim (seed 4.6.2), drawn after stereo
-  // synthesis into every view at the parallax of its depth. It is not part of the 3D scene, so synthesized
-  // eyes and references get the same overlay, after the comparison so it cannot flatter the error.
+  // Comfort report: the parallax the stereo pass gave every pixel, as angles on the chosen display, and
+  // weapon pixels whose pushed depth lies behind the world surface there (Embree rays).
   const comfort::WorldQueries world(job.scene);  // once per job: the world does not change between views
+  report.display = options.display;
+  report.comfort = comfort::frameComfort(centerDepth, parameters, report.display);
+  report.weaponConflictPixels =
+      comfort::countWeaponConflicts(world, job.scene.camera, center, centerDepth, firstPersonMask).conflictPixels;
+
+  // 6. HUD (s3d/hud/overlay.h): the crosshair, placed by an Embree ray cast along the aim (seed 4.6.2), and
+  // the static panels, each drawn after stereo synthesis into every view at the parallax of its depth and
+  // faded out where the weapon mask (the eyes' alpha) covers an element that lies behind the weapon. Not part
+  // of the 3D scene: synthesized eyes and references get the same overlay, after the comparison so it
+  // cannot flatter the error.
   const comfort::CrosshairPlacement placement =
       comfort::placeCrosshair(world, job.scene.camera, options.crosshair.distance.value_or(job.scene.crosshairDistance),
                               options.crosshair.margin);
-  const float leftOffset = hud::crosshairEyeOffsetPx(parameters, placement.depth, width, stereo::Eye::Left);
-  const float rightOffset = hud::crosshairEyeOffsetPx(parameters, placement.depth, width, stereo::Eye::Right);
-  report.crosshair = {placement.depth, placement.hitWorld, rightOffset};
-  const hud::CrosshairStyle crosshairStyle = hud::crosshairStyleForHeight(height);
-  // The image center in pixel indices ((W - 1) / 2, rounded half up by drawCrosshair), plus the eye's offset.
-  auto withCrosshair = [&](ImageRGBA8 image, float offsetPx) {
-    hud::drawCrosshair(image, 0.5f * float(width - 1) + offsetPx, 0.5f * float(height - 1), crosshairStyle);
-    return image;
+  // Not in front of the screen plane unless allowed (the plane is never beyond the aimed-at surface).
+  auto notInFront = [&](float depth) {
+    return options.allowNegativeParallax ? depth : std::max(depth, parameters.zeroParallaxDistance);
   };
-  const ImageRGBA8 centerHud = withCrosshair(centerColor, 0.0f);
-  const stereo::StereoPair eyesHud{withCrosshair(synthesized.left, leftOffset), withCrosshair(synthesized.right, rightOffset)};
-  const stereo::StereoPair referenceHud{withCrosshair(leftReference, leftOffset), withCrosshair(rightReference, rightOffset)};
+  const float crosshairDepth = notInFront(placement.depth);
+  const float rightOffset = hud::crosshairEyeOffsetPx(parameters, crosshairDepth, width, stereo::Eye::Right);
+  report.crosshair = {crosshairDepth, placement.hitWorld, rightOffset};
+  const hud::CrosshairStyle crosshairStyle = hud::crosshairStyleForHeight(height);
+
+  struct HudElement {
+    std::string name;
+    float depth;
+    std::function<ImageRGBA8(float offsetPx)> layer;  // the element alone, shifted by offsetPx
+  };
+  std::vector<HudElement> elements;
+  for (const hud::Panel& panel : hud::defaultPanels(width, height))
+    elements.push_back({panel.name, notInFront(panel.depth),
+                        [&, panel](float offsetPx) { return hud::panelLayer(width, height, panel, offsetPx); }});
+  // The crosshair last, on top. Its center in pixel indices ((W - 1) / 2, rounded half up) plus the offset.
+  elements.push_back({"crosshair", crosshairDepth, [&](float offsetPx) {
+                        ImageRGBA8 layer(width, height);
+                        hud::drawCrosshair(layer, 0.5f * float(width - 1) + offsetPx, 0.5f * float(height - 1),
+                                           crosshairStyle);
+                        return layer;
+                      }});
+  // The weapon's nearest pushed point: an element deeper than it lies behind the weapon where they overlap.
+  const float weaponNearestPushed = weaponDepths ? parameters.weaponDepthOffset + parameters.weaponDepthScale * weaponDepths->x
+                                                 : std::numeric_limits<float>::infinity();
+  ImageRGBA8 centerHud = centerColor;
+  stereo::StereoPair eyesHud = synthesized;
+  stereo::StereoPair referenceHud{leftReference, rightReference};
+  for (const HudElement& element : elements) {
+    HudElementReport entry{element.name, element.depth, element.depth > weaponNearestPushed};
+    const ImageRGBA8 centerLayer = element.layer(0.0f);
+    entry.conflictPixels = hud::countDepthConflicts(centerLayer, element.depth, centerDepth, firstPersonMask, entry.behindWeapon);
+    (void)hud::blendLayer(centerHud, centerLayer, entry.behindWeapon);
+    for (const stereo::Eye eye : {stereo::Eye::Left, stereo::Eye::Right}) {
+      const std::size_t side = eye == stereo::Eye::Left ? 0 : 1;
+      const ImageRGBA8 layer = element.layer(hud::crosshairEyeOffsetPx(parameters, element.depth, width, eye));
+      const hud::BlendCounts counts =
+          hud::blendLayer(side == 0 ? eyesHud.left : eyesHud.right, layer, entry.behindWeapon);
+      entry.drawnPixels[side] = counts.drawnPixels;
+      entry.fadedPixels[side] = counts.fadedPixels;
+      (void)hud::blendLayer(side == 0 ? referenceHud.left : referenceHud.right, layer, entry.behindWeapon);
+    }
+    report.hudConflictPixels += entry.conflictPixels;
+    report.hud.push_back(std::move(entry));
+  }
+  // The weapon mask has served the HUD: every written image is opaque.
+  for (ImageRGBA8* image : {&centerHud, &eyesHud.left, &eyesHud.right, &referenceHud.left, &referenceHud.right})
+    hud::makeOpaque(*image);
 
   // 7. Outputs, each written atomically by s3d::io; report.json last so it lists everything before it.
   const fs::path& folder = options.outputFolder;
@@ -279,25 +340,33 @@ nlohmann::json toJson(const RenderReport& report) {
           {"centerPasses", passes},
           {"ratios", {{"stereoPassToReferenceEye", ratio}}},
           {"error", {{"left", errorJson(report.left)}, {"right", errorJson(report.right)}}},
-          {"comfort",
-           {{"display",
-             {{"name", report.display.name},
-              {"screenWidthMeters", tidy(report.display.screenWidthMeters)},
-              {"viewingDistanceMeters", tidy(report.display.viewingDistanceMeters)},
-              {"interocularMeters", tidy(report.display.interocularMeters)}}},
-            {"parallaxPx", {{"min", finiteOrNull(report.parallax.minParallaxPx)}, {"max", finiteOrNull(report.parallax.maxParallaxPx)}}},
-            {"parallaxPercent",
-             {{"min", finiteOrNull(report.parallax.minParallaxPercent)}, {"max", finiteOrNull(report.parallax.maxParallaxPercent)}}},
-            {"disparityArcmin",
-             {{"min", finiteOrNull(report.parallax.minDisparityArcmin)}, {"max", finiteOrNull(report.parallax.maxDisparityArcmin)}}},
-            {"shareBeyondOneDegree", finiteOrNull(report.parallax.shareBeyondOneDegree)},
-            {"shareInFrontOfScreen", finiteOrNull(report.parallax.shareNegative)}}},
+          {"comfort", [&] {
+             nlohmann::json comfort = comfortJson(report.comfort);
+             comfort["display"] = displayJson(report.display);
+             comfort["zeroParallaxDistance"] = finiteOrNull(tidy(report.stereo.zeroParallaxDistance));
+             comfort["zeroParallaxLimited"] = report.zeroParallaxLimited;
+             comfort["crosshairDepth"] = finiteOrNull(tidy(report.crosshair.depth));
+             comfort["weaponConflictPixels"] = report.weaponConflictPixels;
+             comfort["hudConflictPixels"] = report.hudConflictPixels;
+             return comfort;
+           }()},
           {"crosshair",
            {{"depth", finiteOrNull(tidy(report.crosshair.depth))},
             {"hitWorld", report.crosshair.hitWorld},
             {"parallaxPx", finiteOrNull(tidy(report.crosshair.parallaxPx))}}},
           {"sanitized", {{"colorValues", report.sanitized.colorValues}, {"depthPixels", report.sanitized.depthPixels}}},
           {"warnings", report.warnings},
+          {"hud", [&] {
+             nlohmann::json elements = nlohmann::json::array();
+             for (const HudElementReport& e : report.hud)
+               elements.push_back({{"name", e.name},
+                                   {"depth", finiteOrNull(tidy(e.depth))},
+                                   {"behindWeapon", e.behindWeapon},
+                                   {"drawnPixels", {{"left", e.drawnPixels[0]}, {"right", e.drawnPixels[1]}}},
+                                   {"fadedPixels", {{"left", e.fadedPixels[0]}, {"right", e.fadedPixels[1]}}},
+                                   {"conflictPixels", e.conflictPixels}});
+             return elements;
+           }()},
           {"files", report.filesWritten}};
 }
 

@@ -4,11 +4,13 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include "s3d/app/comfort_json.h"
 #include "s3d/app/render_job.h"
 #include "s3d/comfort/crosshair.h"
 #include "s3d/comfort/world_queries.h"
 #include "s3d/io/image_io.h"
 #include "s3d/renderer/deferred_renderer.h"
+#include "s3d/renderer/scene_file.h"
 #include "s3d/stereo/metrics.h"
 #include "s3d/stereo/output_formats.h"
 #include "s3d/stereo/synthesis.h"
@@ -19,30 +21,6 @@ namespace {
 // The pushed weapon's farthest point stays within this share of the distance to the nearest surface.
 constexpr float kWeaponClearance = 0.9f;
 
-// Weapon pixels whose pushed depth lies behind the world surface along the same pixel ray: the pushed
-// weapon would appear behind a wall it is in front of.
-void countWeaponConflicts(const comfort::WorldQueries& world, const renderer::Camera& camera,
-                          const renderer::ViewMatrices& center, const DepthImage& pushed,
-                          const std::vector<std::uint8_t>& weaponMask, SequenceFrame& frame) {
-  const glm::mat4 worldFromView = glm::inverse(center.worldView);
-  const glm::mat4& projection = center.worldProjection;
-  for (std::uint32_t y = 0; y < pushed.height; ++y)
-    for (std::uint32_t x = 0; x < pushed.width; ++x) {
-      if (!weaponMask[std::size_t(y) * pushed.width + x]) continue;
-      const float depth = *pushed.at(x, y);
-      ++frame.weaponPixels;
-      // The world camera's ray through this pixel, at unit view depth.
-      const float ndcX = (float(x) + 0.5f) / float(pushed.width) * 2.0f - 1.0f;
-      const float ndcY = (float(y) + 0.5f) / float(pushed.height) * 2.0f - 1.0f;
-      const glm::vec3 viewDirection((ndcX + projection[2][0]) / projection[0][0],
-                                    (ndcY + projection[2][1]) / projection[1][1], -1.0f);
-      const glm::vec3 direction = glm::mat3(worldFromView) * viewDirection;
-      const float lengthPerDepth = glm::length(viewDirection);
-      if (std::optional<float> hit = world.castRay(camera.position, direction, depth * lengthPerDepth))
-        if (*hit / lengthPerDepth < depth) ++frame.weaponConflictPixels;
-    }
-}
-
 }  // namespace
 
 SequenceReport runSequenceJob(vk::Context& context, const SequenceJobOptions& options) {
@@ -51,15 +29,18 @@ SequenceReport runSequenceJob(vk::Context& context, const SequenceJobOptions& op
   if (!(options.framesPerSecond > 0.0f) || options.framesPerSecond > 1000.0f)
     throw std::invalid_argument("sequence: frames per second must be in (0, 1000]");
   stereo::validate(options.stereo);
-  renderer::Scene scene = renderer::makeBuiltInScene(options.scene);
+  renderer::Scene scene = renderer::loadScene(options.scene);  // built-in name or .gltf/.glb file
   if (scene.cameraPath.empty()) throw std::invalid_argument("scene '" + options.scene + "' has no camera path");
   comfort::ZeroParallaxControlSettings settings = options.zeroParallax;
   settings.restDistance = options.stereo.zeroParallaxDistance;
   settings.minimumDistance = std::min(settings.minimumDistance, settings.restDistance);
   comfort::ZeroParallaxController control(settings);  // validates the settings
+  comfort::CrosshairSmoother crosshair(options.crosshair.responseSeconds);
+  comfort::validate(options.display);
+  const float crosshairDistance = options.crosshair.distance.value_or(scene.crosshairDistance);
 
   const comfort::WorldQueries world(scene);
-  renderer::DeferredRenderer deferred(context, options.width, options.height, {options.supersample});
+  renderer::DeferredRenderer deferred(context, options.width, options.height, {options.supersample, options.reversedZ});
   deferred.setScene(scene);
   const float aspect = float(options.width) / float(options.height);
   const glm::vec2 weaponDepths = renderer::firstPersonDepthRange(scene).value_or(glm::vec2(0.0f));
@@ -74,7 +55,8 @@ SequenceReport runSequenceJob(vk::Context& context, const SequenceJobOptions& op
     scene.camera = renderer::cameraForFrame(scene, index);
     frame.nearestSurface = comfort::nearestSurfaceAhead(world, scene.camera, settings,
                                                         settings.engageDistance + settings.releaseMargin + 1.0f);
-    frame.zeroParallaxDistance = control.update(frame.nearestSurface, 1.0f / options.framesPerSecond);
+    const float seconds = 1.0f / options.framesPerSecond;
+    frame.zeroParallaxDistance = control.update(frame.nearestSurface, seconds);
     // The weapon push shrinks with the zero-parallax distance (pushed = ratio * (offset + scale * depth)),
     // and at once, not smoothed, whenever its farthest pushed point would otherwise reach the nearest
     // surface: the pushed weapon must never appear behind a wall it is in front of.
@@ -84,18 +66,48 @@ SequenceReport runSequenceJob(vk::Context& context, const SequenceJobOptions& op
       ratio = std::min(ratio, kWeaponClearance * *frame.nearestSurface / farthestPushed);
     }
     stereo::StereoParameters parameters = options.stereo;
-    parameters.zeroParallaxDistance = frame.zeroParallaxDistance;
     parameters.weaponDepthOffset = options.stereo.weaponDepthOffset * ratio;
     parameters.weaponDepthScale = options.stereo.weaponDepthScale * ratio;
+    parameters.zeroParallaxDistance = frame.zeroParallaxDistance;
+    // No negative parallax: the weapon's nearest pushed point may not come in front of the screen plane. The
+    // push is squeezed between the plane and its (wall-capped) farthest point; only when the wall leaves no
+    // room behind the plane does the zero-parallax distance give way, at once.
+    auto limitZeroParallax = [&](float limit) {
+      if (options.allowNegativeParallax || !(limit < frame.zeroParallaxDistance)) return;
+      frame.zeroParallaxDistance = control.limit(limit);
+      parameters.zeroParallaxDistance = frame.zeroParallaxDistance;
+      frame.zeroParallaxLimited = true;
+    };
+    if (!options.allowNegativeParallax && weaponDepths.x > 0.0f) {
+      const float pushedFarthest = parameters.weaponDepthOffset + parameters.weaponDepthScale * weaponDepths.y;
+      if (pushedFarthest < frame.zeroParallaxDistance) limitZeroParallax(parameters.weaponDepthOffset + parameters.weaponDepthScale * weaponDepths.x);
+      parameters = comfort::pushWeaponBehindScreen(parameters, weaponDepths.x, weaponDepths.y);
+    }
     frame.weaponDepthOffset = parameters.weaponDepthOffset;
     frame.weaponDepthScale = parameters.weaponDepthScale;
-    frame.crosshairDepth = comfort::placeCrosshair(world, scene.camera, scene.crosshairDistance).depth;
+    const comfort::CrosshairPlacement placement =
+        comfort::placeCrosshair(world, scene.camera, crosshairDistance, options.crosshair.margin);
+    if (placement.hitWorld) frame.aimSurface = placement.surfaceDistance;
+    frame.crosshairDepth = crosshair.update(placement, seconds);
 
     const renderer::ViewMatrices center =
         renderer::centerViewMatrices(scene, aspect, {parameters.weaponDepthOffset, parameters.weaponDepthScale});
     deferred.render(center);
     const DepthImage pushed = deferred.readLinearDepth();
-    countWeaponConflicts(world, scene.camera, center, pushed, deferred.readFirstPersonMask(), frame);
+    // ... and no world surface may be nearer than the screen plane either (the control's rays see only a few
+    // directions; the depth image sees every pixel).
+    if (const std::optional<float> nearest = comfort::nearestDepth(pushed)) {
+      frame.nearestDepth = *nearest;
+      limitZeroParallax(*nearest);
+    }
+    parameters.zeroParallaxDistance = frame.zeroParallaxDistance;
+    // The crosshair not in front of the screen plane either (the plane is never beyond the aimed-at surface).
+    if (!options.allowNegativeParallax) frame.crosshairDepth = std::max(frame.crosshairDepth, frame.zeroParallaxDistance);
+    frame.comfort = comfort::frameComfort(pushed, parameters, options.display);
+    const comfort::WeaponConflicts conflicts =
+        comfort::countWeaponConflicts(world, scene.camera, center, pushed, deferred.readFirstPersonMask());
+    frame.weaponPixels = conflicts.weaponPixels;
+    frame.weaponConflictPixels = conflicts.conflictPixels;
     stereo::SynthesisResult eyes = stereo::synthesizeTimed(context, deferred.displayColor(), deferred.linearDepth(), parameters);
 
     deferred.render(referenceEyeView(scene, center, stereo::Eye::Left, parameters));
@@ -122,7 +134,11 @@ nlohmann::json toJson(const SequenceReport& report) {
     frames.push_back({{"frame", frame.index},
                       {"zeroParallaxDistance", frame.zeroParallaxDistance},
                       {"nearestSurface", frame.nearestSurface ? nlohmann::json(*frame.nearestSurface) : nullptr},
+                      {"zeroParallaxLimited", frame.zeroParallaxLimited},
+                      {"nearestDepth", frame.nearestDepth},
                       {"crosshairDepth", frame.crosshairDepth},
+                      {"aimSurface", frame.aimSurface ? nlohmann::json(*frame.aimSurface) : nullptr},
+                      {"comfort", comfortJson(frame.comfort)},
                       {"weaponDepthOffset", frame.weaponDepthOffset},
                       {"weaponDepthScale", frame.weaponDepthScale},
                       {"weaponPixels", frame.weaponPixels},

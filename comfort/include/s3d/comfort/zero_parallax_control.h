@@ -40,6 +40,10 @@ class ZeroParallaxController {
   // Advances one frame of `seconds` toward target(nearestSurface) and returns the new zero-parallax distance.
   float update(std::optional<float> nearestSurface, float seconds);
 
+  // A hard rule (no negative parallax): lowers the value to at most `ceiling` at once, leaving no velocity
+  // that would carry it further; the next update() continues smoothly from there. Returns the value.
+  float limit(float ceiling);
+
   float current() const { return current_; }
   bool engaged() const { return engaged_; }
 

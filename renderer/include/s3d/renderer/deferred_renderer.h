@@ -44,6 +44,9 @@ std::optional<glm::vec2> firstPersonDepthRange(const Scene& scene);
 // Throws std::invalid_argument for a negative/non-finite offset or a non-positive/non-finite scale.
 ViewMatrices centerViewMatrices(const Scene& scene, float aspect, FirstPersonDepthPush push = {});
 
+// Reversed-Z (near/far swapped in the projection): see reversedDepthProjection.
+glm::mat4 reversedDepthProjection(const glm::mat4& projection, float nearPlane, float farPlane);
+
 struct PassTiming {
   std::string name;
   double gpuMs = 0.0;
@@ -59,6 +62,10 @@ struct RendererOptions {
   // resolve averages the samples of each output pixel (seed 4.6's "edge sampling" flaw: aliased edges in the
   // center view cannot be displaced by a fraction of a pixel). 1 (default) to 4.
   std::uint32_t supersample = 1;
+  // Reversed-Z depth buffer: cleared to 0, depth test GREATER, near and far swapped in both layers'
+  // projections (the world in device depth [0, 0.9], first-person in [0.9, 1]). D32 float then keeps its
+  // precision at the far end, where standard Z spends it all near 1. Linear depth is the same either way.
+  bool reversedZ = false;
 };
 
 class DeferredRenderer {
@@ -78,6 +85,7 @@ class DeferredRenderer {
   std::uint32_t width() const;   // output size
   std::uint32_t height() const;
   std::uint32_t supersample() const;
+  const RendererOptions& options() const;
 
   // Outputs of the last render(), left in VK_IMAGE_LAYOUT_GENERAL (vk::kComputeWrite state):
   const vk::Image& displayColor() const;  // RGBA8, tone-mapped, sRGB-encoded
@@ -94,7 +102,8 @@ class DeferredRenderer {
   // the scene has no transparent objects (the error metrics' transparent region).
   std::vector<std::uint8_t> readTransparentMask();
 
-  // Device depth values that separate the layers (Listing 4.3): first-person depth is in [0, split].
+  // Device depth values that separate the layers (Listing 4.3): first-person depth is in [0, split]
+  // ([1 - split, 1] with reversed-Z).
   static constexpr float kFirstPersonDeviceDepthMax = 0.1f;
 
  private:

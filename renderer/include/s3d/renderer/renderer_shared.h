@@ -45,9 +45,15 @@ struct ObjectConstants {  // storage buffer, std430, one per object
   vec4 albedo;         // linear diffuse reflectance
   vec4 specular;       // rgb: F0, a: glossiness
   uint layer;
-  uint padding0;
+  float normalScale;   // tangent-space normal map x/y scale; 0: no normal map (the interpolated normal as is)
   uint padding1;
   uint padding2;
+};
+
+// Per-vertex surface parameterization: the renderer's second vertex stream (zeros for meshes without it).
+struct SurfaceVertex {
+  vec2 texCoord;
+  vec4 tangent;  // xyz: +u direction in object space, w: handedness (+-1)
 };
 
 struct LightConstants {  // push constants of the light-accumulation pass

@@ -18,13 +18,39 @@ struct Vertex {
 struct Mesh {
   std::vector<Vertex> vertices;
   std::vector<std::uint32_t> indices;  // triangle list, counter-clockwise seen from outside
+  // Optional per-vertex texture coordinates and tangents (both empty, or one per vertex). Tangents are
+  // glTF-style: xyz the direction of +u, w = +-1 the handedness (bitangent = w * cross(normal, tangent)).
+  std::vector<glm::vec2> texCoords;
+  std::vector<glm::vec4> tangents;
 };
+
+// An 8-bit RGBA texture, rows top to bottom (texture coordinate v = 0 is the first row).
+struct Texture {
+  enum class Encoding : std::uint32_t {
+    Srgb,    // colour (base color): sampled through an sRGB format, so shaders read linear values
+    Linear,  // data (normal maps)
+  };
+  std::uint32_t width = 0;
+  std::uint32_t height = 0;
+  std::vector<std::uint8_t> rgba;  // width * height * 4 bytes
+  Encoding encoding = Encoding::Srgb;
+};
+
+constexpr std::int32_t kNoTexture = -1;
 
 struct Material {
   glm::vec3 albedo{0.5f};          // linear diffuse reflectance
   glm::vec3 specularColor{0.04f};  // Fresnel reflectance at normal incidence (F0)
   float glossiness = 0.3f;         // 0..1, mapped to a Blinn-Phong exponent
   float opacity = 1.0f;            // < 1: glass-like, drawn alpha-blended after shading and writing no depth
+  bool alphaBlend = false;         // drawn in the transparent pass even at opacity 1 (texture alpha, glTF BLEND)
+  // Indices into Scene::textures (kNoTexture: none). Base color multiplies albedo (and opacity by its alpha);
+  // the normal map is tangent space and needs the mesh's texCoords and tangents.
+  std::int32_t baseColorTexture = kNoTexture;
+  std::int32_t normalTexture = kNoTexture;
+  float normalScale = 1.0f;  // scales the normal map's x and y (glTF normalTexture.scale)
+
+  bool isTransparent() const { return opacity < 1.0f || alphaBlend; }
 };
 
 enum class Layer : std::uint32_t {
@@ -97,6 +123,7 @@ struct Scene {
   std::string name;
   std::vector<Mesh> meshes;
   std::vector<Object> objects;
+  std::vector<Texture> textures;
   SunLight sun;
   glm::vec3 ambientColor{0.2f};  // hemisphere ambient, scaled by (N.y * 0.7 + 0.3)
   // Screen-space ambient occlusion on the ambient light only; off: the pass does not run.

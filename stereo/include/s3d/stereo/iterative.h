@@ -20,6 +20,9 @@ inline constexpr int kDefaultIterations = 6;
 gpu::IterativeConstants makeIterativeConstants(const StereoParameters& parameters, int iterations, std::uint32_t width,
                                                std::uint32_t height);
 
+// Columns each side of a pixel the iterative pass reads (row_tile_shared.h): every fetch is within it.
+int rowTileMargin(const gpu::IterativeConstants& constants);
+
 // Solution for one target pixel of one eye.
 struct IterativeSample {
   float sourcePosition;  // fractional column of the center view the color is filtered at

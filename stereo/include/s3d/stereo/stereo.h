@@ -21,6 +21,17 @@ enum class StereoMethod {
 const char* methodName(StereoMethod method);
 StereoMethod parseStereoMethod(const std::string& name);  // throws std::invalid_argument listing the choices
 
+// How a method's shader walks the image (same results either way, docs/DESIGN.md "Row tiles").
+enum class StereoKernel {
+  Auto,      // RowTiles on a GPU, PerPixel on a CPU device (lavapipe: row tiles measured 1.3-3x slower there)
+  PerPixel,  // 8x8 workgroups, every tap and filter texel an image load
+  RowTiles,  // a workgroup per run of one row, read once into shared memory; PerPixel where the margin does not
+             // fit the shared arrays (above S3D_STEREO_ROW_TILE_MARGIN columns, e.g. 25 % of 2100)
+};
+
+const char* kernelName(StereoKernel kernel);
+StereoKernel parseStereoKernel(const std::string& name);  // throws std::invalid_argument listing the choices
+
 struct StereoParameters {
   float maxSeparation = 0.02f;        // per-eye displacement at infinity, fraction of the screen width
   float zeroParallaxDistance = 1.0f;  // world units: depth that stays on the screen plane
@@ -28,6 +39,7 @@ struct StereoParameters {
   StereoMethod method = StereoMethod::Seed;
   int searchTaps = 8;  // StereoMethod::Search only, 1..S3D_STEREO_MAX_TAPS
   int iterations = 6;  // StereoMethod::Iterative only, 1..16
+  StereoKernel kernel = StereoKernel::Auto;
   // Seed 4.6.2: the first-person weapon's depth as the stereo pass sees it is offset + scale * depth, so it
   // sits behind the screen plane instead of popping out (applied where linear depth is produced).
   float weaponDepthOffset = 1.0f;  // world units
@@ -47,6 +59,11 @@ inline constexpr float kSeedTaps[3] = {0.5f, 0.66f, 1.0f};
 gpu::StereoConstants makeStereoConstants(const StereoParameters& parameters, std::uint32_t width, std::uint32_t height);
 // Listing 4.5's constants whatever parameters.method says.
 gpu::StereoConstants makeSeedConstants(const StereoParameters& parameters, std::uint32_t width, std::uint32_t height);
+
+// Columns each side of a pixel the pass may read (row_tile_shared.h), and whether `kernel` runs on row tiles
+// for that margin on a CPU (lavapipe) or GPU device.
+int rowTileMargin(const gpu::StereoConstants& constants);
+bool usesRowTiles(StereoKernel kernel, int rowTileMarginPx, bool cpuDevice);
 
 enum class Eye { Left, Right };
 

@@ -16,6 +16,12 @@ struct LinearDepthParams {
   float skyDeviceDepth;             // device depth >= this is sky at infinite distance (the cleared far plane)
   float firstPersonDepthOffset;     // seed 4.6.2 weapon push, for stereoDepthFromDevice only
   float firstPersonDepthScale;
+  // 1: reversed-Z depth buffer (makeReversedLinearDepthParams): near at 1, far and sky at 0, the world in
+  // [0, 1 - firstPersonDeviceDepthMax] and the first-person layer in [1 - firstPersonDeviceDepthMax, 1].
+  float reversedZ;
+  float padding0;
+  float padding1;
+  float padding2;
 };
 
 S3D_INLINE float linearDepthFromDevice(LinearDepthParams p, float deviceDepth) {
@@ -26,20 +32,35 @@ S3D_INLINE float linearDepthFromDevice(LinearDepthParams p, float deviceDepth) {
   return ratio.y / (deviceDepth - ratio.x);
 }
 
+// Reversed-Z: each layer's projection has near and far swapped, so its ratio is projectionRatio(far, near, ...)
+// and Listing 4.3's ratio.y / (d - ratio.x) holds unchanged; only the sky (cleared to 0) and the layer split
+// (first-person above 1 - split) read the other way. Far depths land near 0, where floats are densest.
+S3D_INLINE float linearDepthFromReversedDevice(LinearDepthParams p, float deviceDepth) {
+  if (deviceDepth <= p.skyDeviceDepth) return S3D_INFINITY;
+  // step(edge, x) is 1 when x >= edge: first-person when deviceDepth >= 1 - firstPersonDeviceDepthMax.
+  float isFirstPerson = step(1.0f - p.firstPersonDeviceDepthMax, deviceDepth);
+  vec2 ratio = mix(p.worldRatio, p.firstPersonRatio, isFirstPerson);
+  return ratio.y / (deviceDepth - ratio.x);
+}
+
+// Either depth convention, as p says: what the renderer's passes call.
+S3D_INLINE bool isSkyDeviceDepth(LinearDepthParams p, float deviceDepth) {
+  return p.reversedZ != 0.0f ? deviceDepth <= p.skyDeviceDepth : deviceDepth >= p.skyDeviceDepth;
+}
+S3D_INLINE bool isFirstPersonDeviceDepth(LinearDepthParams p, float deviceDepth) {
+  return p.reversedZ != 0.0f ? deviceDepth >= 1.0f - p.firstPersonDeviceDepthMax
+                             : deviceDepth <= p.firstPersonDeviceDepthMax;
+}
+S3D_INLINE float linearDepthFromDepthBuffer(LinearDepthParams p, float deviceDepth) {
+  return p.reversedZ != 0.0f ? linearDepthFromReversedDevice(p, deviceDepth) : linearDepthFromDevice(p, deviceDepth);
+}
+
 // The depth the stereo pass sees: linear depth, with the first-person layer pushed into the screen by
 // offsetting and scaling its depth (seed 4.6.2). Per pixel, so the weapon's own visibility is untouched.
 S3D_INLINE float stereoDepthFromDevice(LinearDepthParams p, float deviceDepth) {
-  float depth = linearDepthFromDevice(p, deviceDepth);
-  if (deviceDepth <= p.firstPersonDeviceDepthMax) depth = p.firstPersonDepthOffset + p.firstPersonDepthScale * depth;
+  float depth = linearDepthFromDepthBuffer(p, deviceDepth);
+  if (isFirstPersonDeviceDepth(p, deviceDepth)) depth = p.firstPersonDepthOffset + p.firstPersonDepthScale * depth;
   return depth;
-}
-
-// Reversed Z (near plane at device depth 1, far plane at 0, cleared to 0 for sky): its device depth is a
-// standard zero-to-one projection's with near and far swapped, so Listing 4.2's d = y / (z - x) holds
-// unchanged with the swapped ratio (reversedProjectionRatio). Device depth <= 0 is sky.
-S3D_INLINE float linearDepthFromReversedDevice(vec2 reversedRatio, float deviceDepth) {
-  if (deviceDepth <= 0.0f) return S3D_INFINITY;
-  return reversedRatio.y / (deviceDepth - reversedRatio.x);
 }
 
 #ifdef __cplusplus
@@ -66,6 +87,20 @@ inline LinearDepthParams makeLinearDepthParams(float worldNear, float worldFar, 
   p.skyDeviceDepth = 1.0f;
   p.firstPersonDepthOffset = 0.0f;
   p.firstPersonDepthScale = 1.0f;
+  return p;
+}
+
+// Reversed-Z: the world in [0, 1 - split] and first-person depth in [1 - split, 1], near planes at the top of
+// each range; the cleared 0 is the sky. firstPersonDeviceDepthMax keeps the split (the first-person share).
+inline LinearDepthParams makeReversedLinearDepthParams(float worldNear, float worldFar, float firstPersonNear,
+                                                       float firstPersonFar, float firstPersonDeviceDepthMax) {
+  LinearDepthParams p = makeLinearDepthParams(worldNear, worldFar, firstPersonNear, firstPersonFar,
+                                              firstPersonDeviceDepthMax);
+  const float split = 1.0f - firstPersonDeviceDepthMax;
+  p.worldRatio = projectionRatio(worldFar, worldNear, 0.0f, split);
+  p.firstPersonRatio = projectionRatio(firstPersonFar, firstPersonNear, split, 1.0f);
+  p.skyDeviceDepth = 0.0f;
+  p.reversedZ = 1.0f;
   return p;
 }
 #endif

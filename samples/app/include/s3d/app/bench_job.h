@@ -24,13 +24,15 @@ namespace s3d::app {
 struct MethodSetting {
   stereo::StereoMethod method = stereo::StereoMethod::Seed;
   int parameter = 0;  // searchTaps (search), iterations (iterative), 0 (seed)
+  stereo::StereoKernel kernel = stereo::StereoKernel::Auto;  // a "/pixel" or "/tiles" suffix
   std::string name() const;
   stereo::StereoParameters applyTo(stereo::StereoParameters parameters) const;
   bool operator==(const MethodSetting&) const = default;
 };
 
 // Parses --methods items: "seed", "search-N" (N in [1, S3D_STEREO_MAX_TAPS]), "iterative-K" (K in [1, 16]), and
-// "search" / "iterative" for their default sweeps (taps 4, 8, 16; iterations 2, 4, 6, 8). Repeats are dropped.
+// "search" / "iterative" for their default sweeps (taps 4, 8, 16; iterations 2, 4, 6, 8), each optionally
+// followed by "/pixel" or "/tiles" to force a kernel (stereo::StereoKernel; none: Auto). Repeats are dropped.
 // Throws std::invalid_argument naming the bad item and the accepted forms.
 std::vector<MethodSetting> parseMethodSettings(const std::vector<std::string>& items);
 // The library's default stereo method (StereoParameters{}) as a setting: what the issue #4 targets judge.
@@ -62,16 +64,21 @@ struct BenchOptions {
   std::function<void(const BenchProgress&)> progress;  // called before each step and once at the end
 };
 
-// What the stereo pass moves per frame, counted from the shaders (stereo/shaders/): per interior pixel and eye
-// the depth imageLoads (4 B each: seed/search tapCount, iterative startTapCount + 2 x iterations), two color
-// imageLoads (4 B, the horizontal filter) and one imageStore (4 B); a cropped pixel only stores both eyes.
+// What the stereo pass moves per frame, counted from the shaders (stereo/shaders/). Per-pixel kernel: per
+// interior pixel and eye the depth imageLoads (4 B each: seed/search tapCount, iterative startTapCount + 2 x
+// iterations), two color imageLoads (4 B, the horizontal filter) and one imageStore (4 B); a cropped pixel only
+// stores both eyes. Row tiles: each tile's run plus its margin each side, a depth and a color texel per column,
+// once (shared memory serves every tap); fetches of near surfaces beyond the margin are not counted.
 struct StereoTraffic {
+  bool rowTiles = false;  // the kernel the parameters run on
   std::uint64_t bytesRead = 0;
   std::uint64_t bytesWritten = 0;
   std::uint64_t compulsoryBytes = 0;  // each input texel read once and each eye written once: 16 B per pixel
   std::uint64_t total() const { return bytesRead + bytesWritten; }
 };
-StereoTraffic stereoPassTraffic(const stereo::StereoParameters& parameters, std::uint32_t width, std::uint32_t height);
+// cpuDevice: the kernel Auto picks on a CPU device (stereo::usesRowTiles).
+StereoTraffic stereoPassTraffic(const stereo::StereoParameters& parameters, std::uint32_t width, std::uint32_t height,
+                                bool cpuDevice = false);
 
 struct BenchRow {
   std::string scene;

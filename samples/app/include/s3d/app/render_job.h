@@ -14,6 +14,7 @@
 
 #include "s3d/app/eye_comparison.h"
 #include "s3d/comfort/comfort_profile.h"
+#include "s3d/comfort/comfort_report.h"
 #include "s3d/comfort/display_profile.h"
 #include "s3d/renderer/deferred_renderer.h"
 #include "s3d/stereo/metrics.h"
@@ -43,7 +44,7 @@ inline constexpr std::uint32_t kMaxImageSize = 16384;
 struct RenderJobOptions {
   std::uint32_t width = 1280;
   std::uint32_t height = 720;
-  std::string scene = "courtyard";  // one of renderer::builtInSceneNames()
+  std::string scene = "courtyard";  // one of renderer::builtInSceneNames(), or a .gltf/.glb file
   std::size_t frame = 0;            // frame of the scene's camera path
   std::filesystem::path outputFolder = "out";
   // Which of kAllOutputs to write. The selection is honoured exactly: report.json is written only when
@@ -56,6 +57,7 @@ struct RenderJobOptions {
   comfort::CrosshairSettings crosshair;  // distance (nullopt: the scene's) and margin in front of a hit
   bool allowNegativeParallax = false;    // off: nothing in the frame is given negative parallax
   std::uint32_t supersample = 1;  // renderer anti-aliasing, 1..4 (center view and reference eyes alike)
+  bool reversedZ = false;         // renderer::RendererOptions::reversedZ for every view
 };
 
 // EyeError (per-region error of one eye) lives in eye_comparison.h, shared with `s3d bench`.
@@ -66,12 +68,22 @@ struct CrosshairReport {
   float parallaxPx = 0.0f;  // per-eye displacement in pixels (left eye: -parallaxPx, right eye: +parallaxPx)
 };
 
+// One HUD element (s3d/hud/overlay.h) as drawn into the synthesized eyes.
+struct HudElementReport {
+  std::string name;            // "health", "ammo", "crosshair"
+  float depth = 0.0f;          // linear view depth it is shown at
+  bool behindWeapon = false;   // deeper than the weapon's nearest pushed point: fades where the weapon covers it
+  std::array<std::uint64_t, 2> drawnPixels{};  // left, right
+  std::array<std::uint64_t, 2> fadedPixels{};  // left, right: pixels the weapon mask faded
+  std::uint64_t conflictPixels = 0;  // visible pixels deeper than the scene surface they cover (center view)
+};
+
 struct RenderReport {
   std::string deviceName;
   std::string scene;
   std::uint32_t width = 0;
   std::uint32_t height = 0;
-  stereo::StereoParameters stereo;  // edgeCrop resolved (never < 0), zeroParallaxDistance as clamped
+  stereo::StereoParameters stereo;  // as used: edgeCrop resolved (never < 0), zeroParallaxDistance clamped, the no-negative-parallax rules applied
   std::uint32_t cropColumns = 0;    // columns blacked out on each side (and excluded from the error)
   std::optional<double> centerFrameGpuMs;   // whole deferred frame of the center view
   std::optional<double> stereoPassGpuMs;    // the stereo compute dispatch producing both eyes
@@ -81,7 +93,11 @@ struct RenderReport {
   EyeError right{};
   CrosshairReport crosshair;
   comfort::DisplayProfile display;
-  comfort::ParallaxStatistics parallax;  // of the stereo pass's depth on that display
+  comfort::FrameComfort comfort;  // of the stereo pass's depth on that display
+  bool zeroParallaxLimited = false;    // lowered to the frame's nearest depth (negative parallax disallowed)
+  std::uint64_t weaponConflictPixels = 0;  // weapon pixels whose pushed depth lies behind the world surface there
+  std::vector<HudElementReport> hud;       // panels, then the crosshair
+  std::uint64_t hudConflictPixels = 0;     // sum over the HUD elements
   std::array<std::uint64_t, 2> filledPixels{};  // left, right: disoccluded pixels filled (iterative method)
   struct {
     std::uint64_t colorValues = 0;  // non-finite HDR channel values of the center view, made 0
@@ -118,7 +134,11 @@ RenderReport runRenderJob(vk::Context& context, const RenderJobOptions& options)
 //             "right": {...}},
 //   "sanitized": {"colorValues", "depthPixels"},                  (non-finite input replaced, see RenderReport)
 //   "warnings": [...],
+//   "comfort": {comfortJson (comfort_json.h): parallax range in px / % / arcmin, shares beyond 1 degree, in front
+//               of the screen and outside the Shibata zone, windowViolations; "display" (with its comfort zone),
+//               "zeroParallaxDistance", "zeroParallaxLimited", "crosshairDepth", "weaponConflictPixels", "hudConflictPixels"},
 //   "crosshair": {"depth", "hitWorld", "parallaxPx"},              (the HUD crosshair, see CrosshairReport)
+//   "hud": [{"name", "depth", "behindWeapon", "drawnPixels": {"left", "right"}, "fadedPixels": {...}, "conflictPixels"}],
 //   "files": [...] }
 // Every number is finite (a non-finite value would be written as null).
 nlohmann::json toJson(const RenderReport& report);

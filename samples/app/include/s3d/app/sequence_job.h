@@ -9,6 +9,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "s3d/comfort/comfort_profile.h"
+#include "s3d/comfort/comfort_report.h"
 #include "s3d/comfort/zero_parallax_control.h"
 #include "s3d/stereo/stereo.h"
 #include "s3d/vk/context.h"
@@ -25,13 +27,21 @@ struct SequenceJobOptions {
   float framesPerSecond = 12.0f;  // the built-in paths walk at about 2 m/s at this rate
   stereo::StereoParameters stereo;  // zeroParallaxDistance is the control's rest value
   comfort::ZeroParallaxControlSettings zeroParallax;  // its restDistance is taken from stereo
+  comfort::CrosshairSettings crosshair;               // distance (nullopt: the scene's), margin, smoothing
+  comfort::DisplayProfile display = comfort::builtInDisplayProfile("tv55");  // of the per-frame comfort report
+  bool allowNegativeParallax = false;  // off: the zero-parallax distance never exceeds the frame's nearest depth
+  bool reversedZ = false;  // renderer::RendererOptions::reversedZ
 };
 
 struct SequenceFrame {
   std::size_t index = 0;
   float zeroParallaxDistance = 0.0f;
   std::optional<float> nearestSurface;  // what the control's ray casts saw
-  float crosshairDepth = 0.0f;
+  float crosshairDepth = 0.0f;          // smoothed over frames (comfort::CrosshairSmoother)
+  std::optional<float> aimSurface;      // depth of the surface the aim ray hits within the crosshair distance
+  bool zeroParallaxLimited = false;     // the no-negative-parallax rule cut the controller's value this frame
+  float nearestDepth = 0.0f;            // nearest finite depth of the stereo pass's input (weapon pushed)
+  comfort::FrameComfort comfort;        // parallax range, comfort-zone shares, window violations
   float weaponDepthOffset = 0.0f;       // the push, shrunk with the zero-parallax distance
   float weaponDepthScale = 0.0f;
   std::uint64_t weaponPixels = 0;

@@ -4,10 +4,12 @@
 // runs a pass on CPU images (tests, tools).
 #include <cstdint>
 #include <cstring>
+#include <optional>
 #include <span>
 #include <stdexcept>
 #include <string>
 
+#include "s3d/stereo/row_tile_shared.h"
 #include "s3d/stereo/stereo.h"
 #include "s3d/vk/context.h"
 #include "s3d/vk/pipeline.h"
@@ -19,11 +21,12 @@ struct EyePairPipeline {
   vk::PipelineLayout layout;
   vk::Unique<VkPipeline> pipeline;
   std::uint32_t pushConstantBytes = 0;
-  int groupSize = 8;
+  int groupWidth = 8;  // the shader's local size
+  int groupHeight = 8;
 };
 
 inline EyePairPipeline createEyePairPipeline(const vk::Context& context, std::span<const std::uint32_t> spirv,
-                                             std::uint32_t pushConstantBytes, int groupSize) {
+                                             std::uint32_t pushConstantBytes, int groupWidth, int groupHeight) {
   auto storageImage = [](std::uint32_t binding) {
     return VkDescriptorSetLayoutBinding{binding, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr};
   };
@@ -32,9 +35,40 @@ inline EyePairPipeline createEyePairPipeline(const vk::Context& context, std::sp
   result.layout = vk::createPushDescriptorLayout(context, bindings, pushConstantBytes, VK_SHADER_STAGE_COMPUTE_BIT);
   result.pipeline = vk::createComputePipeline(context, result.layout.layout, spirv);
   result.pushConstantBytes = pushConstantBytes;
-  result.groupSize = groupSize;
+  result.groupWidth = groupWidth;
+  result.groupHeight = groupHeight;
   return result;
 }
+
+// Whether the device runs the row-tile shaders: Vulkan guarantees only 128 invocations per workgroup and
+// 16 KiB of shared memory, and a row tile needs S3D_STEREO_ROW_TILE invocations and its shared arrays.
+inline bool deviceRunsRowTiles(const vk::Context& context) {
+  VkPhysicalDeviceProperties properties;
+  vkGetPhysicalDeviceProperties(context.physicalDevice(), &properties);
+  const VkPhysicalDeviceLimits& limits = properties.limits;
+  const std::uint32_t sharedBytes = 2 * 4 * S3D_STEREO_ROW_TILE_SPAN + 4;  // depth, color, the flat flag
+  return limits.maxComputeWorkGroupInvocations >= S3D_STEREO_ROW_TILE &&
+         limits.maxComputeWorkGroupSize[0] >= S3D_STEREO_ROW_TILE && limits.maxComputeSharedMemorySize >= sharedBytes;
+}
+
+// A pipeline created at first use: a pass that can run either kernel compiles (lavapipe compiles at
+// creation) only the ones it runs.
+class LazyEyePairPipeline {
+ public:
+  LazyEyePairPipeline(std::span<const std::uint32_t> spirv, std::uint32_t pushConstantBytes, int groupWidth,
+                      int groupHeight)
+      : spirv_(spirv), pushConstantBytes_(pushConstantBytes), groupWidth_(groupWidth), groupHeight_(groupHeight) {}
+  const EyePairPipeline& get(const vk::Context& context) const {
+    if (!pipeline_) pipeline_ = createEyePairPipeline(context, spirv_, pushConstantBytes_, groupWidth_, groupHeight_);
+    return *pipeline_;
+  }
+
+ private:
+  std::span<const std::uint32_t> spirv_;
+  std::uint32_t pushConstantBytes_;
+  int groupWidth_, groupHeight_;
+  mutable std::optional<EyePairPipeline> pipeline_;
+};
 
 // Binds the four images, pushes the constants and dispatches one invocation per pixel.
 inline void recordEyePairDispatch(VkCommandBuffer cmd, const vk::Context& context, const EyePairPipeline& pass,
@@ -53,8 +87,8 @@ inline void recordEyePairDispatch(VkCommandBuffer cmd, const vk::Context& contex
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pass.pipeline);
   context.cmdPushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pass.layout.layout, 0, 4, writes);
   vkCmdPushConstants(cmd, pass.layout.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, pass.pushConstantBytes, constants);
-  auto groups = [&](int size) { return std::uint32_t((size + pass.groupSize - 1) / pass.groupSize); };
-  vkCmdDispatch(cmd, groups(width), groups(height), 1);
+  auto groups = [](int size, int group) { return std::uint32_t((size + group - 1) / group); };
+  vkCmdDispatch(cmd, groups(width, pass.groupWidth), groups(height, pass.groupHeight), 1);
 }
 
 // Uploads CPU images, runs the pass once and reads both eyes back.

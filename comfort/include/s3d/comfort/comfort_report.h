@@ -1,0 +1,66 @@
+#pragma once
+// The per-frame comfort report beyond the parallax range (display_profile.h): Shibata et al. 2011's zone of
+// comfort, stereo window violations, and the rules that keep every pixel at or behind the screen plane.
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "s3d/comfort/display_profile.h"
+#include "s3d/comfort/world_queries.h"
+#include "s3d/renderer/deferred_renderer.h"
+#include "s3d/image.h"
+#include "s3d/stereo/stereo.h"
+
+namespace s3d::comfort {
+
+// Distance from the eyes at which the lines of sight through two image points `parallaxMeters` apart cross
+// (e v / (e - P)); +inf when they are parallel or diverge (P >= e).
+double vergenceDistanceMeters(const DisplayProfile& display, double parallaxMeters);
+
+// Shibata, Kim, Hoffman & Banks 2011, "The zone of comfort: Predicting visual discomfort with stereo
+// displays" (Journal of Vision 11(8):11): the range of vergence distances comfortable at the display's focal
+// distance. farMeters is +inf where the far limit lies beyond optical infinity.
+struct ComfortZone {
+  double nearMeters = 0.0;
+  double farMeters = 0.0;
+};
+ComfortZone shibataComfortZone(const DisplayProfile& display);
+
+struct FrameComfort {
+  ParallaxStatistics parallax;
+  double shareOutsideComfortZone = 0.0;  // pixels whose vergence distance lies outside shibataComfortZone
+  // Stereo window violations: negative-parallax pixels in horizontal runs that touch the left or right edge
+  // of the visible image (inside the edge crop). The frame's edge cuts off an object in front of it.
+  std::uint64_t windowViolationPixels = 0;
+  std::uint32_t windowViolationColumns = 0;  // the widest such run, in columns
+};
+
+// Over the stereo pass's linear depth (weapon pushed), as parallaxStatistics does.
+FrameComfort frameComfort(const DepthImage& stereoDepth, const stereo::StereoParameters& parameters,
+                          const DisplayProfile& display);
+
+// With negative parallax disallowed, the weapon push (pushed = offset + scale * d over the weapon's unpushed
+// depth range [weaponNearest, weaponFarthest]) made to keep the whole weapon at or behind the zero-parallax
+// plane. A weapon whose nearest pushed point is in front of the plane is squeezed: that point moves onto the
+// plane while the farthest pushed point stays where it was (it may be capped to stay in front of a wall);
+// when the farthest point is itself in front of the plane, the whole weapon is shifted back instead.
+stereo::StereoParameters pushWeaponBehindScreen(stereo::StereoParameters parameters, float weaponNearest,
+                                                float weaponFarthest);
+
+// The nearest finite positive depth of the frame, if any: the zero-parallax distance may not exceed it when
+// negative parallax is disallowed.
+std::optional<float> nearestDepth(const DepthImage& stereoDepth);
+
+struct WeaponConflicts {
+  std::uint64_t weaponPixels = 0;
+  std::uint64_t conflictPixels = 0;  // weapon pixels whose pushed depth lies behind the world surface there
+};
+
+// For every weapon pixel (weaponMask, the renderer's first-person mask), casts the world camera's ray through
+// the pixel center into the Embree world: a world hit nearer than the pixel's pushed depth means the pushed
+// weapon would appear behind a wall it is in front of.
+WeaponConflicts countWeaponConflicts(const WorldQueries& world, const renderer::Camera& camera,
+                                     const renderer::ViewMatrices& center, const DepthImage& pushedDepth,
+                                     const std::vector<std::uint8_t>& weaponMask);
+
+}  // namespace s3d::comfort

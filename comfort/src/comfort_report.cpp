@@ -1,0 +1,117 @@
+#include "s3d/comfort/comfort_report.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+namespace s3d::comfort {
+namespace {
+
+// Shibata et al. 2011, the fit of their zone of comfort (their Figure 23 and equations for the near and far
+// limits): vergence limits in diopters as a linear function of the focal distance in diopters,
+//   far limit  D_vergence = (D_focal - kFarIntercept) / kFarSlope,
+//   near limit D_vergence = (D_focal - kNearIntercept) / kNearSlope.
+// The constants are the paper's fit as recalled from it (m_far 1.129, T_far 0.442 D, m_near 1.035,
+// T_near -0.626 D); they could NOT be verified against the paper's text with the search tool available here
+// (only its abstract was reachable), so check them before relying on this share.
+constexpr double kFarSlope = 1.129, kFarIntercept = 0.442;
+constexpr double kNearSlope = 1.035, kNearIntercept = -0.626;
+
+}  // namespace
+
+double vergenceDistanceMeters(const DisplayProfile& display, double parallaxMeters) {
+  const double e = display.interocularMeters;
+  if (parallaxMeters >= e) return std::numeric_limits<double>::infinity();
+  return e * display.viewingDistanceMeters / (e - parallaxMeters);
+}
+
+ComfortZone shibataComfortZone(const DisplayProfile& display) {
+  const double focalDiopters = 1.0 / display.viewingDistanceMeters;
+  const double farDiopters = (focalDiopters - kFarIntercept) / kFarSlope;
+  const double nearDiopters = (focalDiopters - kNearIntercept) / kNearSlope;
+  return {1.0 / nearDiopters, farDiopters > 0.0 ? 1.0 / farDiopters : std::numeric_limits<double>::infinity()};
+}
+
+FrameComfort frameComfort(const DepthImage& stereoDepth, const stereo::StereoParameters& parameters,
+                          const DisplayProfile& display) {
+  FrameComfort comfort;
+  comfort.parallax = parallaxStatistics(stereoDepth, parameters, display);  // throws on an empty image
+  const std::uint32_t width = stereoDepth.width;
+  const gpu::StereoConstants constants = stereo::makeStereoConstants(parameters, width, stereoDepth.height);
+  const std::uint32_t visibleBegin = std::uint32_t(std::max(constants.cropBegin, 0));
+  const std::uint32_t visibleEnd = std::uint32_t(std::clamp(constants.cropEnd, 0, int(width)));
+  const ComfortZone zone = shibataComfortZone(display);
+  auto parallaxPxAt = [&](std::uint32_t x, std::uint32_t y) {
+    const float depth = gpu::sanitizedDepth(*stereoDepth.at(x, y), parameters.zeroParallaxDistance);
+    return 2.0 * double(gpu::parallaxFromDepth(parameters.maxSeparation, parameters.zeroParallaxDistance, depth)) *
+           double(width);
+  };
+  std::uint64_t outside = 0;
+  for (std::uint32_t y = 0; y < stereoDepth.height; ++y) {
+    for (std::uint32_t x = 0; x < width; ++x) {
+      const double distance =
+          vergenceDistanceMeters(display, parallaxPxAt(x, y) / double(width) * display.screenWidthMeters);
+      if (distance < zone.nearMeters || distance > zone.farMeters) ++outside;
+    }
+    // Runs of negative parallax from each visible edge inward.
+    std::uint32_t fromLeft = 0, fromRight = 0;
+    for (std::uint32_t x = visibleBegin; x < visibleEnd && parallaxPxAt(x, y) < 0.0; ++x) ++fromLeft;
+    if (fromLeft < visibleEnd - visibleBegin)
+      for (std::uint32_t x = visibleEnd; x > visibleBegin && parallaxPxAt(x - 1, y) < 0.0; --x) ++fromRight;
+    comfort.windowViolationPixels += fromLeft + fromRight;
+    comfort.windowViolationColumns = std::max({comfort.windowViolationColumns, fromLeft, fromRight});
+  }
+  comfort.shareOutsideComfortZone = double(outside) / double(stereoDepth.pixelCount());
+  return comfort;
+}
+
+stereo::StereoParameters pushWeaponBehindScreen(stereo::StereoParameters parameters, float weaponNearest,
+                                                float weaponFarthest) {
+  if (!(weaponNearest > 0.0f) || !(weaponFarthest >= weaponNearest))
+    throw std::invalid_argument("pushWeaponBehindScreen: the weapon's depth range must be positive and ordered");
+  const float screen = parameters.zeroParallaxDistance;
+  const float pushedNearest = parameters.weaponDepthOffset + parameters.weaponDepthScale * weaponNearest;
+  const float pushedFarthest = parameters.weaponDepthOffset + parameters.weaponDepthScale * weaponFarthest;
+  if (pushedNearest >= screen) return parameters;
+  if (pushedFarthest > screen && weaponFarthest > weaponNearest) {
+    parameters.weaponDepthScale = (pushedFarthest - screen) / (weaponFarthest - weaponNearest);
+  }  // else: shifted back whole, at its own scale
+  parameters.weaponDepthOffset = screen - parameters.weaponDepthScale * weaponNearest;
+  return parameters;
+}
+
+std::optional<float> nearestDepth(const DepthImage& stereoDepth) {
+  std::optional<float> nearest;
+  for (float depth : stereoDepth.pixels)
+    if (depth > 0.0f && std::isfinite(depth) && (!nearest || depth < *nearest)) nearest = depth;
+  return nearest;
+}
+
+WeaponConflicts countWeaponConflicts(const WorldQueries& world, const renderer::Camera& camera,
+                                     const renderer::ViewMatrices& center, const DepthImage& pushedDepth,
+                                     const std::vector<std::uint8_t>& weaponMask) {
+  if (weaponMask.size() != pushedDepth.pixelCount())
+    throw std::invalid_argument("countWeaponConflicts: the mask and the depth image differ in size");
+  WeaponConflicts result;
+  const glm::mat4 worldFromView = glm::inverse(center.worldView);
+  const glm::mat4& projection = center.worldProjection;
+  for (std::uint32_t y = 0; y < pushedDepth.height; ++y)
+    for (std::uint32_t x = 0; x < pushedDepth.width; ++x) {
+      if (!weaponMask[std::size_t(y) * pushedDepth.width + x]) continue;
+      const float depth = *pushedDepth.at(x, y);
+      ++result.weaponPixels;
+      // The world camera's ray through this pixel, at unit view depth.
+      const float ndcX = (float(x) + 0.5f) / float(pushedDepth.width) * 2.0f - 1.0f;
+      const float ndcY = (float(y) + 0.5f) / float(pushedDepth.height) * 2.0f - 1.0f;
+      const glm::vec3 viewDirection((ndcX + projection[2][0]) / projection[0][0],
+                                    (ndcY + projection[2][1]) / projection[1][1], -1.0f);
+      const glm::vec3 direction = glm::mat3(worldFromView) * viewDirection;
+      const float lengthPerDepth = glm::length(viewDirection);
+      if (std::optional<float> hit = world.castRay(camera.position, direction, depth * lengthPerDepth))
+        if (*hit / lengthPerDepth < depth) ++result.conflictPixels;
+    }
+  return result;
+}
+
+}  // namespace s3d::comfort
