@@ -155,6 +155,17 @@ ImageRGBA8 readPng(const fs::path& file) {
   constexpr std::string_view kPngSignature("\x89PNG\r\n\x1a\n", 8);
   if (std::string_view(bytes).substr(0, kPngSignature.size()) != kPngSignature)
     failRead("readPng", file, "not a PNG file (bad signature)");
+  // Every chunk must fit in the file: stb grows its IDAT buffer to a chunk's declared length before reading it,
+  // so a 100-byte file declaring a 2 GB chunk made it allocate 2 GB (found by fuzz_png).
+  for (std::size_t at = kPngSignature.size(); at + 8 <= bytes.size();) {
+    const auto byte = [&](std::size_t i) { return std::uint32_t(static_cast<unsigned char>(bytes[at + i])); };
+    const std::uint64_t length = (byte(0) << 24) | (byte(1) << 16) | (byte(2) << 8) | byte(3);
+    if (length + 12 > bytes.size() - at)
+      failRead("readPng", file, "corrupt PNG: chunk '" + bytes.substr(at + 4, 4) + "' declares " +
+                                    std::to_string(length) + " bytes, more than the file holds");
+    if (bytes.compare(at + 4, 4, "IEND") == 0) break;
+    at += std::size_t(length) + 12;
+  }
   int width = 0;
   int height = 0;
   int channelsInFile = 0;
