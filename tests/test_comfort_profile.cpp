@@ -153,6 +153,14 @@ TEST_F(ComfortProfileFiles, ACorruptFileIsAnErrorNamingTheFile) {
   EXPECT_THROW(loadComfortProfile(folder_ / "missing.json"), std::runtime_error);
 }
 
+TEST_F(ComfortProfileFiles, ANumberBeyondDoubleRangeIsAnErrorNamingTheFile) {
+  // nlohmann::json reports this as out_of_range, not parse_error (found by tests/fuzz/fuzz_comfort_profile.cpp).
+  const fs::path file = write("overflow.json", "{\"stereo\": {\"maxSeparation\": 1e400}}");
+  const std::string message = messageOf([&] { loadComfortProfile(file); });
+  EXPECT_NE(message.find(file.string()), std::string::npos) << message;
+  EXPECT_NE(message.find("not valid JSON"), std::string::npos) << message;
+}
+
 TEST_F(ComfortProfileFiles, AnInvalidProfileIsNotSaved) {
   ComfortProfile profile;
   profile.stereo.maxSeparation = 0.9f;

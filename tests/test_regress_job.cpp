@@ -139,6 +139,20 @@ TEST(RegressSuite, AProfileFileIsReadRelativeToTheSuite) {
   fs::remove_all(folder);
 }
 
+TEST(RegressSuite, ANumberBeyondDoubleRangeInTheFileIsAnErrorNamingIt) {
+  // nlohmann::json reports this as out_of_range, not parse_error: it must still be the suite's clear error.
+  const fs::path file = fs::temp_directory_path() / ("s3d_regress_overflow_" + std::to_string(::getpid()) + ".json");
+  std::ofstream(file) << R"({"cases": [{"name": "a", "scene": "courtyard", "frames": [1e400]}]})";
+  try {
+    loadRegressSuite(file);
+    ADD_FAILURE() << "no error";
+  } catch (const std::invalid_argument& error) {
+    EXPECT_NE(std::string(error.what()).find(file.string()), std::string::npos) << error.what();
+    EXPECT_NE(std::string(error.what()).find("not valid JSON"), std::string::npos) << error.what();
+  }
+  fs::remove(file);
+}
+
 TEST(RegressSuite, AnUnknownProfileKeyIsNamed) {
   json suite = validSuite();
   suite["cases"][0]["profile"] = json::parse(R"({"stereo": {"separation": 0.05}})");

@@ -23,7 +23,8 @@ nlohmann::json readJsonFile(const std::filesystem::path& file, const char* what)
   if (stream.bad()) throw std::runtime_error(name + ": read failed");
   try {
     return nlohmann::json::parse(text);
-  } catch (const nlohmann::json::parse_error& parseError) {
+  } catch (const nlohmann::json::exception& parseError) {
+    // parse_error, and out_of_range for a number beyond double's range (e.g. 1e400; found by fuzz_comfort_profile).
     throw std::runtime_error(name + ": not valid JSON: " + parseError.what());
   }
 }

@@ -173,10 +173,7 @@ void writePfm(const fs::path& file, const PfmImage& image, bool bigEndian) {
 
 Gray16Image readPngGray16(const fs::path& file) {
   const std::string bytes = detail::readWholeFile("readPngGray16", file);
-  constexpr std::string_view kPngSignature("\x89PNG\r\n\x1a\n", 8);
-  if (bytes.size() > INT_MAX) failRead("readPngGray16", file, "file is too large");
-  if (std::string_view(bytes).substr(0, kPngSignature.size()) != kPngSignature)
-    failRead("readPngGray16", file, "not a PNG file (bad signature)");
+  detail::requirePngStructure("readPngGray16", file, bytes);
   const auto* data = reinterpret_cast<const stbi_uc*>(bytes.data());
   const int size = static_cast<int>(bytes.size());
   int width = 0, height = 0, channelsInFile = 0;

@@ -8,6 +8,10 @@ namespace s3d::io::detail {
 
 // Throws std::runtime_error "<operation>: cannot read '<file>': <reason>" (missing, not a regular file, I/O).
 std::string readWholeFile(const char* operation, const std::filesystem::path& file);
+// A PNG's signature and chunk lengths, checked before stb_image sees the bytes: stb grows its IDAT buffer to
+// a chunk's declared length before reading it, so a 100-byte file declaring a 2 GB chunk made it allocate
+// 2 GB (found by fuzz_png). Throws std::runtime_error "<operation>: cannot read '<file>': ...".
+void requirePngStructure(const char* operation, const std::filesystem::path& file, const std::string& bytes);
 // Temporary file in the same folder, then rename; the parent folder is created if missing.
 void writeWholeFileAtomically(const char* operation, const std::filesystem::path& file, std::string_view bytes);
 

@@ -127,6 +127,14 @@ void appendToByteVector(void* context, void* data, int size) {
 
 constexpr int kRgbaChannels = 4;
 
+// Called with the size a file's header claims, before the pixels are allocated.
+void requireReadableSize(const char* operation, const fs::path& file, std::int64_t width, std::int64_t height) {
+  if (width > kMaxImageSide || height > kMaxImageSide || std::uint64_t(width) * std::uint64_t(height) > kMaxImagePixels)
+    failRead(operation, file, "image is " + std::to_string(width) + "x" + std::to_string(height) +
+                                  ", beyond the readers' limit of " + std::to_string(kMaxImageSide) + " pixels a side and " +
+                                  std::to_string(kMaxImagePixels) + " pixels in all");
+}
+
 }  // namespace
 
 void writePng(const fs::path& file, const ImageRGBA8& image) {
@@ -142,14 +150,14 @@ void writePng(const fs::path& file, const ImageRGBA8& image) {
 
 ImageRGBA8 readPng(const fs::path& file) {
   const std::string bytes = readFileBytes("readPng", file);
-  if (bytes.size() > INT_MAX) failRead("readPng", file, "file is too large");
-  // stb_image accepts several formats; the signature check keeps this function honest about "PNG".
-  constexpr std::string_view kPngSignature("\x89PNG\r\n\x1a\n", 8);
-  if (std::string_view(bytes).substr(0, kPngSignature.size()) != kPngSignature)
-    failRead("readPng", file, "not a PNG file (bad signature)");
+  detail::requirePngStructure("readPng", file, bytes);
   int width = 0;
   int height = 0;
   int channelsInFile = 0;
+  // The header alone first: stb would allocate whatever size the header claims before finding the data short.
+  if (stbi_info_from_memory(reinterpret_cast<const stbi_uc*>(bytes.data()), static_cast<int>(bytes.size()), &width,
+                            &height, &channelsInFile) != 0)
+    requireReadableSize("readPng", file, width, height);
   std::unique_ptr<stbi_uc, void (*)(void*)> decoded(
       stbi_load_from_memory(reinterpret_cast<const stbi_uc*>(bytes.data()), static_cast<int>(bytes.size()), &width,
                             &height, &channelsInFile, kRgbaChannels),
@@ -220,6 +228,7 @@ ExrFrame readExr(const fs::path& file) {
     const std::int64_t height = std::int64_t(dataWindow.max.y) - dataWindow.min.y + 1;
     if (width <= 0 || height <= 0 || width > INT_MAX / (kRgbaChannels * int(sizeof(float))) || height > INT_MAX)
       failRead("readExr", file, "invalid data window");
+    requireReadableSize("readExr", file, width, height);
 
     const Imf::ChannelList& channels = header.channels();
     for (const char* required : {"R", "G", "B"})
@@ -259,6 +268,24 @@ void writeTextFile(const fs::path& file, std::string_view text) { writeFileAtomi
 
 namespace detail {
 std::string readWholeFile(const char* operation, const fs::path& file) { return readFileBytes(operation, file); }
+
+void requirePngStructure(const char* operation, const fs::path& file, const std::string& bytes) {
+  if (bytes.size() > INT_MAX) failRead(operation, file, "file is too large");
+  // stb_image accepts several formats; the signature check keeps the readers honest about "PNG".
+  constexpr std::string_view kPngSignature("\x89PNG\r\n\x1a\n", 8);
+  if (std::string_view(bytes).substr(0, kPngSignature.size()) != kPngSignature)
+    failRead(operation, file, "not a PNG file (bad signature)");
+  for (std::size_t at = kPngSignature.size(); at + 8 <= bytes.size();) {
+    const auto byte = [&](std::size_t i) { return std::uint32_t(static_cast<unsigned char>(bytes[at + i])); };
+    const std::uint64_t length = (byte(0) << 24) | (byte(1) << 16) | (byte(2) << 8) | byte(3);
+    if (length + 12 > bytes.size() - at)
+      failRead(operation, file, "corrupt PNG: chunk '" + bytes.substr(at + 4, 4) + "' declares " +
+                                    std::to_string(length) + " bytes, more than the file holds");
+    if (bytes.compare(at + 4, 4, "IEND") == 0) break;
+    at += std::size_t(length) + 12;
+  }
+}
+
 void writeWholeFileAtomically(const char* operation, const fs::path& file, std::string_view bytes) {
   writeFileAtomically(operation, file, bytes);
 }

@@ -1,0 +1,133 @@
+// The readers' size limit (kMaxImageSide / kMaxImagePixels): a header claiming a huge image is rejected
+// with a clear error before any pixel memory is allocated. Found by tests/fuzz/fuzz_exr.cpp: a 30 KB EXR
+// claiming 60000x60000 made readExr allocate 57 GB.
+#include <gtest/gtest.h>
+
+#include <unistd.h>  // getpid: keeps parallel test runs apart
+
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <iterator>
+#include <stdexcept>
+#include <string>
+
+#include "s3d/io/depth_io.h"
+#include "s3d/io/image_io.h"
+
+namespace s3d::io {
+namespace {
+namespace fs = std::filesystem;
+
+std::string readBytes(const fs::path& file) {
+  std::ifstream stream(file, std::ios::binary);
+  return {std::istreambuf_iterator<char>(stream), std::istreambuf_iterator<char>()};
+}
+
+void writeBytes(const fs::path& file, const std::string& bytes) {
+  std::ofstream(file, std::ios::binary).write(bytes.data(), std::streamsize(bytes.size()));
+}
+
+void putLittleEndian(std::string& bytes, std::size_t at, std::uint64_t value, int byteCount) {
+  for (int i = 0; i < byteCount; ++i) bytes[at + std::size_t(i)] = char((value >> (8 * i)) & 0xff);
+}
+
+std::string expectReadError(const std::function<void()>& read) {
+  try {
+    read();
+  } catch (const std::runtime_error& error) {
+    return error.what();
+  }
+  ADD_FAILURE() << "no error";
+  return {};
+}
+
+fs::path scratchFile(const std::string& name) {
+  return fs::temp_directory_path() / ("s3d_io_limits_" + std::to_string(::getpid()) + "_" + name);
+}
+
+// A valid EXR whose header claims side x side pixels: a real 4x16 ZIP file (one 16-line block) with its
+// data window enlarged and a line-offset table whose every entry points at that one block, so OpenEXR
+// opens it and only the pixel read would notice the data is missing.
+std::string exrClaiming(std::int32_t side) {
+  const fs::path small = scratchFile("small.exr");
+  ImageRGBA32F color(4, 16);
+  writeExr(small, color, nullptr);
+  std::string bytes = readBytes(small);
+  fs::remove(small);
+  const std::string key("dataWindow\0box2i\0", 17);
+  const std::size_t window = bytes.find(key) + key.size() + 4;  // after the attribute's 4-byte size
+  std::size_t table = 0;  // the one offset, which points just past itself
+  for (std::size_t at = window; at + 8 <= bytes.size(); ++at) {
+    std::uint64_t offset = 0;
+    std::memcpy(&offset, bytes.data() + at, 8);  // EXR is little-endian, like the test machines
+    if (offset == at + 8) {
+      table = at;
+      break;
+    }
+  }
+  EXPECT_NE(table, 0u) << "line-offset table not found";
+  std::string header = bytes.substr(0, table);
+  const std::string block = bytes.substr(table + 8);
+  putLittleEndian(header, window + 8, std::uint32_t(side - 1), 4);   // max.x
+  putLittleEndian(header, window + 12, std::uint32_t(side - 1), 4);  // max.y
+  const std::size_t blocks = (std::size_t(side) + 15) / 16;
+  std::string offsets(8 * blocks, '\0');
+  for (std::size_t i = 0; i < blocks; ++i) putLittleEndian(offsets, 8 * i, header.size() + offsets.size(), 8);
+  return header + offsets + block;
+}
+
+TEST(ImageReadLimits, ExrClaimingAHugeImageIsRejectedBeforeItsPixelsAreAllocated) {
+  const fs::path file = scratchFile("huge.exr");
+  writeBytes(file, exrClaiming(60000));  // 60000^2 RGBA floats would be 57 GB
+  const std::string message = expectReadError([&] { readExr(file); });
+  fs::remove(file);
+  EXPECT_NE(message.find("60000x60000"), std::string::npos) << message;
+  EXPECT_NE(message.find("beyond the readers' limit"), std::string::npos) << message;
+}
+
+TEST(ImageReadLimits, ExrWithinTheLimitGetsAsFarAsItsMissingPixelData) {
+  // Same construction at 64 pixels a side: the size passes, and the error is about the missing blocks.
+  const fs::path file = scratchFile("small_claim.exr");
+  writeBytes(file, exrClaiming(64));
+  const std::string message = expectReadError([&] { readExr(file); });
+  fs::remove(file);
+  EXPECT_EQ(message.find("beyond the readers' limit"), std::string::npos) << message;
+  EXPECT_NE(message.find("corrupt EXR"), std::string::npos) << message;
+}
+
+TEST(ImageReadLimits, PngClaimingMoreThanTheSideLimitIsRejected) {
+  // A PNG signature and an IHDR chunk for a 20000x4 RGBA image, without data; CRC is not checked by stb.
+  std::string bytes("\x89PNG\r\n\x1a\n", 8);
+  bytes += std::string("\0\0\0\x0dIHDR", 8);
+  std::string ihdr(13, '\0');
+  ihdr[0] = 0; ihdr[1] = 0; ihdr[2] = char(20000 >> 8); ihdr[3] = char(20000 & 0xff);  // width, big-endian
+  ihdr[7] = 4;                                                                         // height
+  ihdr[8] = 8; ihdr[9] = 6;                                                            // 8-bit RGBA
+  bytes += ihdr + std::string(4, '\0');
+  const fs::path file = scratchFile("wide.png");
+  writeBytes(file, bytes);
+  const std::string message = expectReadError([&] { readPng(file); });
+  fs::remove(file);
+  EXPECT_NE(message.find("20000x4"), std::string::npos) << message;
+  EXPECT_NE(message.find("beyond the readers' limit"), std::string::npos) << message;
+}
+
+TEST(ImageReadLimits, PngChunkDeclaringMoreBytesThanTheFileHoldsIsRejectedByBothPngReaders) {
+  // A signature and an IDAT chunk declaring 2 GB in a 24-byte file: stb would allocate the declared length
+  // before finding the data short (found by fuzz_png), so both readers refuse it first.
+  std::string bytes("\x89PNG\r\n\x1a\n", 8);
+  bytes += std::string("\x7f\xff\xff\xf0IDAT", 8) + std::string(8, '\0');
+  const fs::path file = scratchFile("long_chunk.png");
+  writeBytes(file, bytes);
+  const std::string colorMessage = expectReadError([&] { readPng(file); });
+  const std::string grayMessage = expectReadError([&] { readPngGray16(file); });
+  fs::remove(file);
+  for (const std::string& message : {colorMessage, grayMessage})
+    EXPECT_NE(message.find("chunk 'IDAT' declares 2147483632 bytes"), std::string::npos) << message;
+}
+
+}  // namespace
+}  // namespace s3d::io
