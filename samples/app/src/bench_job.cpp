@@ -277,15 +277,17 @@ std::optional<double> medianOf(const std::vector<std::optional<double>>& samples
 // Renders `view` `repeat` times; the median whole-frame time and the median time of each pass (first frame's order).
 std::pair<std::optional<double>, std::vector<renderer::PassTiming>> timeFrames(renderer::DeferredRenderer& deferred,
                                                                                const renderer::ViewMatrices& view,
-                                                                               int repeat) {
+                                                                               int repeat,
+                                                                               std::chrono::milliseconds warmUp =
+                                                                                   std::chrono::milliseconds(50)) {
   std::vector<std::optional<double>> totals;
   std::vector<renderer::PassTiming> order;
   std::map<std::string, std::vector<double>> passTimes;
-  // Untimed frames for at least 50 ms first: a GPU that idled while the host computed metrics ramps its
+  // Untimed frames for at least `warmUp` first: a GPU that idled while the host computed metrics ramps its
   // clocks back up (as synthesizeTimed does for the stereo pass).
   const auto warmUpStart = std::chrono::steady_clock::now();
   do (void)deferred.render(view);
-  while (std::chrono::steady_clock::now() - warmUpStart < std::chrono::milliseconds(50));
+  while (std::chrono::steady_clock::now() - warmUpStart < warmUp);
   for (int run = 0; run < repeat; ++run) {
     renderer::FrameTimings timings = deferred.render(view);
     totals.push_back(timings.totalGpuMs);
@@ -344,9 +346,9 @@ void runSweep(vk::Context& context, const BenchOptions& options, const Validated
       parameters.edgeCrop = -1.0f;  // the crop follows the separation, as in `s3d render`
       const EyeReferences& eyes = references[s];
       // Every setting is timed back to back before any error is computed, right after rendering the center
-      // view for 50 ms (timeFrames' warm-up): seconds of host-side metrics let the GPU drop its clocks, and
-      // tiny stereo dispatches alone did not bring them back (an H100 timed them 4-6x slow).
-      (void)timeFrames(deferred, center, 1);  // leaves the center view in displayColor / linearDepth
+      // view for 500 ms: seconds of host-side metrics let the GPU drop its clocks, and neither tiny stereo
+      // dispatches nor 50 ms of frames brought them back (an H100 timed the pass 4x slow).
+      (void)timeFrames(deferred, center, 1, std::chrono::milliseconds(500));  // leaves the center view in place
       std::vector<stereo::SynthesisResult> syntheses;
       for (const MethodSetting& setting : bench.settings) {
         progress(sceneName + " " + setting.name() + " sep " + percentText(parameters.maxSeparation) + "%");
