@@ -263,6 +263,7 @@ std::string commandLineOf(const BenchOptions& options, const ValidatedBench& ben
     if (!options.targetSetting.empty()) command += " --target-setting " + target.name();
   }
   command += " --repeat " + std::to_string(options.repeat);
+  if (options.supersample != 1) command += " --supersample " + std::to_string(options.supersample);
   if (options.bandwidthGBs) command += " --bandwidth-gbs " + format("%g", *options.bandwidthGBs);
   return command;
 }
@@ -279,12 +280,12 @@ std::pair<std::optional<double>, std::vector<renderer::PassTiming>> timeFrames(r
                                                                                const renderer::ViewMatrices& view,
                                                                                int repeat,
                                                                                std::chrono::milliseconds warmUp =
-                                                                                   std::chrono::milliseconds(50)) {
+                                                                                   std::chrono::milliseconds(500)) {
   std::vector<std::optional<double>> totals;
   std::vector<renderer::PassTiming> order;
   std::map<std::string, std::vector<double>> passTimes;
   // Untimed frames for at least `warmUp` first: a GPU that idled while the host computed metrics ramps its
-  // clocks back up (as synthesizeTimed does for the stereo pass).
+  // clocks back up (an H100 timed a reference eye at 25.7 ms instead of 4.7 ms after 50 ms of warm-up).
   const auto warmUpStart = std::chrono::steady_clock::now();
   do (void)deferred.render(view);
   while (std::chrono::steady_clock::now() - warmUpStart < warmUp);
@@ -348,7 +349,7 @@ void runSweep(vk::Context& context, const BenchOptions& options, const Validated
       // Every setting is timed back to back before any error is computed, right after rendering the center
       // view for 500 ms: seconds of host-side metrics let the GPU drop its clocks, and neither tiny stereo
       // dispatches nor 50 ms of frames brought them back (an H100 timed the pass 4x slow).
-      (void)timeFrames(deferred, center, 1, std::chrono::milliseconds(500));  // leaves the center view in place
+      (void)timeFrames(deferred, center, 1);  // leaves the center view in displayColor / linearDepth
       std::vector<stereo::SynthesisResult> syntheses;
       for (const MethodSetting& setting : bench.settings) {
         progress(sceneName + " " + setting.name() + " sep " + percentText(parameters.maxSeparation) + "%");

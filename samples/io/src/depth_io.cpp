@@ -31,19 +31,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// Our own failures already name the file: they pass through the library-error wrappers unchanged.
-struct FileError : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
-
-[[noreturn]] void failRead(const char* operation, const fs::path& file, const std::string& reason) {
-  std::string message(operation);
-  message += ": cannot read '";
-  message += file.string();
-  message += "': ";
-  message += reason;
-  throw FileError(message);
-}
+using detail::failRead;
+using detail::FileError;
 
 // Largest accepted side: keeps width * height * channels * 4 far from overflow on every platform.
 constexpr std::uint64_t kMaxSide = 1u << 16;

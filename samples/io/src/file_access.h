@@ -4,7 +4,17 @@
 #include <string>
 #include <string_view>
 
+#include <stdexcept>
+
 namespace s3d::io::detail {
+
+// The readers' own failures: they already name the file, so the wrappers around a library's errors let
+// them pass unchanged.
+struct FileError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+// Throws FileError "<operation>: cannot read '<file>': <reason>".
+[[noreturn]] void failRead(const char* operation, const std::filesystem::path& file, const std::string& reason);
 
 // Throws std::runtime_error "<operation>: cannot read '<file>': <reason>" (missing, not a regular file, I/O).
 std::string readWholeFile(const char* operation, const std::filesystem::path& file);

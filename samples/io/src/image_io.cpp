@@ -34,10 +34,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// Our own failures: already name the file, so they pass through the library-error wrappers unchanged.
-struct FileError : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
+using detail::FileError;
 
 // Built by appending: `"'" + std::string` trips GCC 12's -Wrestrict false positive at -O3.
 std::string quoted(const fs::path& file) {
@@ -51,9 +48,16 @@ std::string quoted(const fs::path& file) {
   throw FileError(std::string(operation) + ": cannot write " + quoted(file) + ": " + reason);
 }
 
+}  // namespace
+
+namespace detail {
 [[noreturn]] void failRead(const char* operation, const fs::path& file, const std::string& reason) {
   throw FileError(std::string(operation) + ": cannot read " + quoted(file) + ": " + reason);
 }
+}  // namespace detail
+
+namespace {
+using detail::failRead;
 
 // Write to "<file>.tmp" in the same folder, then rename over the target: rename within one file system
 // is atomic, so readers see either the old file or the complete new one, never a partial one.
