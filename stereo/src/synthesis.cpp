@@ -41,8 +41,8 @@ SynthesisResult run(vk::Context& context, const Pass& pass, const Constants& con
   vk::TimestampQueries timestamps(context, 2);
   std::vector<double> gpuMsRuns;
   // Untimed warm-up: once (pipeline compilation), and with several timed runs (a benchmark) for at least
-  // kWarmUp of wall time, so a GPU that idled while the host computed metrics is back at its clocks
-  // (seen on an H100: a pass timed right after seconds of host work ran 5x slower).
+  // kWarmUp of wall time. On an H100 that had idled through seconds of host work this alone did not bring the
+  // clocks back (the pass timed 4x slow); s3d bench also renders center frames for 500 ms first.
   constexpr std::chrono::milliseconds kWarmUp{50};
   const auto warmUpStart = std::chrono::steady_clock::now();
   int warmUpRuns = 0;
