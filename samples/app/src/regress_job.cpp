@@ -114,6 +114,21 @@ bool isCaseName(const std::string& name) {
   }) && name.front() != '.';
 }
 
+// The render job of one frame of a case: validated while the suite is parsed, run by runRegressSuite.
+RenderJobOptions renderOptionsFor(const RegressCase& entry, std::size_t frame) {
+  RenderJobOptions options;
+  options.width = entry.width;
+  options.height = entry.height;
+  options.scene = entry.scene;
+  options.frame = frame;
+  options.supersample = entry.supersample;
+  options.stereo = entry.profile.stereo;
+  options.display = entry.profile.display;
+  options.crosshair = entry.profile.crosshair;
+  options.allowNegativeParallax = entry.profile.allowNegativeParallax;
+  return options;
+}
+
 RegressCase parseCase(const json& object, const Where& where, const RegressTolerances& suiteTolerances,
                       const fs::path& suiteFolder) {
   requireKeys(object, where,
@@ -176,15 +191,8 @@ RegressCase parseCase(const json& object, const Where& where, const RegressToler
   if (object.contains("tolerances")) parseTolerances(object["tolerances"], where / "tolerances", entry.tolerances);
   // Scene, frame, size and crop: the render job's own validation, before anything runs.
   for (std::size_t frame : entry.frames) {
-    RenderJobOptions options;
-    options.width = entry.width;
-    options.height = entry.height;
-    options.scene = entry.scene;
-    options.frame = frame;
-    options.supersample = entry.supersample;
-    options.stereo = entry.profile.stereo;
     try {
-      validateRenderJobOptions(options);
+      validateRenderJobOptions(renderOptionsFor(entry, frame));
     } catch (const std::logic_error& error) {  // invalid_argument, and out_of_range for a frame beyond the path
       where.fail(error.what());
     }
@@ -449,16 +457,7 @@ RegressResult runRegressSuite(vk::Context& context, const RegressSuite& suite, c
       run.frame = frame;
       run.name = entry.name + "_f" + std::to_string(frame);
       const fs::path runFolder = options.outputFolder / run.name;
-      RenderJobOptions render;
-      render.width = entry.width;
-      render.height = entry.height;
-      render.scene = entry.scene;
-      render.frame = frame;
-      render.supersample = entry.supersample;
-      render.stereo = entry.profile.stereo;
-      render.display = entry.profile.display;
-      render.crosshair = entry.profile.crosshair;
-      render.allowNegativeParallax = entry.profile.allowNegativeParallax;
+      RenderJobOptions render = renderOptionsFor(entry, frame);
       render.outputFolder = runFolder;
       render.outputs = {"left.png", "right.png", "left_reference.png", "right_reference.png", "error_left.png",
                         "error_right.png", "report.json"};
