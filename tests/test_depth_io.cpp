@@ -13,6 +13,7 @@
 
 #include "s3d/io/depth_io.h"
 #include "s3d/io/image_io.h"
+#include "io_test_support.h"
 
 namespace s3d::io {
 namespace {
@@ -30,22 +31,8 @@ class DepthIoTest : public ::testing::Test {
     std::error_code ignored;
     fs::remove_all(folder_, ignored);
   }
-  void writeBytes(const fs::path& file, const std::string& bytes) {
-    std::ofstream(file, std::ios::binary).write(bytes.data(), std::streamsize(bytes.size()));
-  }
   fs::path folder_;
 };
-
-template <typename Call>
-std::string errorOf(Call call) {
-  try {
-    call();
-  } catch (const std::runtime_error& error) {
-    return error.what();
-  }
-  ADD_FAILURE() << "expected std::runtime_error";
-  return {};
-}
 
 PfmImage rampPfm(std::uint32_t width, std::uint32_t height, int channels) {
   PfmImage image{width, height, channels, {}};
@@ -75,30 +62,30 @@ TEST_F(DepthIoTest, PfmRowsAreStoredBottomRowFirst) {
     if constexpr (std::endian::native == std::endian::big) word = __builtin_bswap32(word);
     bytes.append(reinterpret_cast<const char*>(&word), 4);
   }
-  writeBytes(folder_ / "b.pfm", bytes);
+  test::writeFileBytes(folder_ / "b.pfm", bytes);
   const PfmImage loaded = readPfm(folder_ / "b.pfm");
   EXPECT_EQ(loaded.values, (std::vector<float>{9.0f, 7.0f}));  // top row first in memory
 }
 
 TEST_F(DepthIoTest, TruncatedPfmNamesTheMissingBytes) {
-  writeBytes(folder_ / "t.pfm", "Pf\n4 4\n-1.0\n" + std::string(60, '\0'));  // 64 bytes needed
-  const std::string message = errorOf([&] { readPfm(folder_ / "t.pfm"); });
+  test::writeFileBytes(folder_ / "t.pfm", "Pf\n4 4\n-1.0\n" + std::string(60, '\0'));  // 64 bytes needed
+  const std::string message = test::runtimeErrorMessage([&] { readPfm(folder_ / "t.pfm"); });
   EXPECT_NE(message.find("t.pfm"), std::string::npos) << message;
   EXPECT_NE(message.find("truncated"), std::string::npos) << message;
 }
 
 TEST_F(DepthIoTest, PfmWithABadMagicIsRejected) {
-  writeBytes(folder_ / "p.pfm", "P6\n1 1\n255\n\x01\x02\x03");
-  EXPECT_NE(errorOf([&] { readPfm(folder_ / "p.pfm"); }).find("not a PFM"), std::string::npos);
+  test::writeFileBytes(folder_ / "p.pfm", "P6\n1 1\n255\n\x01\x02\x03");
+  EXPECT_NE(test::runtimeErrorMessage([&] { readPfm(folder_ / "p.pfm"); }).find("not a PFM"), std::string::npos);
 }
 
 TEST_F(DepthIoTest, PfmWithAZeroScaleIsRejected) {
-  writeBytes(folder_ / "z.pfm", "Pf\n1 1\n0\n" + std::string(4, '\0'));
-  EXPECT_NE(errorOf([&] { readPfm(folder_ / "z.pfm"); }).find("bad scale"), std::string::npos);
+  test::writeFileBytes(folder_ / "z.pfm", "Pf\n1 1\n0\n" + std::string(4, '\0'));
+  EXPECT_NE(test::runtimeErrorMessage([&] { readPfm(folder_ / "z.pfm"); }).find("bad scale"), std::string::npos);
 }
 
 TEST_F(DepthIoTest, MissingPfmIsNamed) {
-  EXPECT_NE(errorOf([&] { readPfm(folder_ / "none.pfm"); }).find("does not exist"), std::string::npos);
+  EXPECT_NE(test::runtimeErrorMessage([&] { readPfm(folder_ / "none.pfm"); }).find("does not exist"), std::string::npos);
 }
 
 TEST_F(DepthIoTest, Gray16PngRoundTripsExactly) {
@@ -113,14 +100,14 @@ TEST_F(DepthIoTest, Gray16PngRoundTripsExactly) {
 
 TEST_F(DepthIoTest, An8BitPngIsNotTakenForDepth) {
   writePng(folder_ / "c.png", ImageRGBA8(2, 2, 7));
-  EXPECT_NE(errorOf([&] { readPngGray16(folder_ / "c.png"); }).find("8-bit"), std::string::npos);
+  EXPECT_NE(test::runtimeErrorMessage([&] { readPngGray16(folder_ / "c.png"); }).find("8-bit"), std::string::npos);
 }
 
 TEST_F(DepthIoTest, TruncatedGray16PngIsRejected) {
   Gray16Image original(16, 16, 1234);
   writePngGray16(folder_ / "d.png", original);
   fs::resize_file(folder_ / "d.png", fs::file_size(folder_ / "d.png") / 2);
-  EXPECT_NE(errorOf([&] { readPngGray16(folder_ / "d.png"); }).find("d.png"), std::string::npos);
+  EXPECT_NE(test::runtimeErrorMessage([&] { readPngGray16(folder_ / "d.png"); }).find("d.png"), std::string::npos);
 }
 
 TEST_F(DepthIoTest, ExrChannelIsReadByName) {
@@ -133,7 +120,7 @@ TEST_F(DepthIoTest, ExrChannelIsReadByName) {
 
 TEST_F(DepthIoTest, AMissingExrChannelListsTheChannelsThere) {
   writeExr(folder_ / "f.exr", ImageRGBA32F(2, 2, 0.5f), nullptr);
-  const std::string message = errorOf([&] { readExrChannel(folder_ / "f.exr", "depth"); });
+  const std::string message = test::runtimeErrorMessage([&] { readExrChannel(folder_ / "f.exr", "depth"); });
   EXPECT_NE(message.find("no channel 'depth'"), std::string::npos) << message;
   EXPECT_NE(message.find("R"), std::string::npos) << message;
 }
@@ -142,7 +129,7 @@ TEST_F(DepthIoTest, TruncatedExrIsRejected) {
   DepthImage depth(8, 8, 3.0f);
   writeExr(folder_ / "f.exr", ImageRGBA32F(8, 8, 0.5f), &depth);
   fs::resize_file(folder_ / "f.exr", fs::file_size(folder_ / "f.exr") - 40);
-  EXPECT_NE(errorOf([&] { readExrChannel(folder_ / "f.exr", "Z"); }).find("f.exr"), std::string::npos);
+  EXPECT_NE(test::runtimeErrorMessage([&] { readExrChannel(folder_ / "f.exr", "Z"); }).find("f.exr"), std::string::npos);
 }
 
 }  // namespace

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "s3d/io/image_io.h"
+#include "io_test_support.h"
 
 namespace s3d::io {
 namespace {
@@ -69,22 +70,6 @@ ImageRGBA32F hdrImage(std::uint32_t width, std::uint32_t height) {
   return image;
 }
 
-std::string readWholeFile(const fs::path& file) {
-  std::ifstream stream(file, std::ios::binary);
-  return std::string((std::istreambuf_iterator<char>(stream)), std::istreambuf_iterator<char>());
-}
-
-template <typename Call>
-std::string thrownRuntimeErrorMessage(Call call) {
-  try {
-    call();
-  } catch (const std::runtime_error& error) {
-    return error.what();
-  }
-  ADD_FAILURE() << "expected std::runtime_error";
-  return {};
-}
-
 TEST_F(ImageIoTest, PngRoundTripIsExact) {
   const ImageRGBA8 original = patternImage(7, 5);  // odd sizes catch stride mistakes
   const fs::path file = folder_ / "pattern.png";
@@ -125,42 +110,42 @@ TEST_F(ImageIoTest, WriteReplacesExistingFile) {
   const fs::path file = folder_ / "report.txt";
   writeTextFile(file, "old contents that are longer");
   writeTextFile(file, "new");
-  EXPECT_EQ(readWholeFile(file), "new");
+  EXPECT_EQ(test::readFileBytes(file), "new");
 }
 
 TEST_F(ImageIoTest, TextFileIsWrittenVerbatim) {
   const std::string text = std::string("line 1\r\nline 2\n\0binary", 22);
   writeTextFile(folder_ / "verbatim.txt", text);
-  EXPECT_EQ(readWholeFile(folder_ / "verbatim.txt"), text);
+  EXPECT_EQ(test::readFileBytes(folder_ / "verbatim.txt"), text);
 }
 
 TEST_F(ImageIoTest, ReadingMissingPngThrowsNamingTheFile) {
-  const std::string message = thrownRuntimeErrorMessage([&] { readPng(folder_ / "absent.png"); });
+  const std::string message = test::runtimeErrorMessage([&] { readPng(folder_ / "absent.png"); });
   EXPECT_NE(message.find("absent.png"), std::string::npos) << message;
 }
 
 TEST_F(ImageIoTest, ReadingMissingExrThrowsNamingTheFile) {
-  const std::string message = thrownRuntimeErrorMessage([&] { readExr(folder_ / "absent.exr"); });
+  const std::string message = test::runtimeErrorMessage([&] { readExr(folder_ / "absent.exr"); });
   EXPECT_NE(message.find("absent.exr"), std::string::npos) << message;
 }
 
 TEST_F(ImageIoTest, ReadingCorruptPngThrowsNamingTheFile) {
   writeTextFile(folder_ / "corrupt.png", "this is not a PNG");
-  const std::string message = thrownRuntimeErrorMessage([&] { readPng(folder_ / "corrupt.png"); });
+  const std::string message = test::runtimeErrorMessage([&] { readPng(folder_ / "corrupt.png"); });
   EXPECT_NE(message.find("corrupt.png"), std::string::npos) << message;
 }
 
 TEST_F(ImageIoTest, ReadingTruncatedPngThrowsNamingTheFile) {
   writePng(folder_ / "whole.png", patternImage(16, 16));
-  const std::string bytes = readWholeFile(folder_ / "whole.png");
+  const std::string bytes = test::readFileBytes(folder_ / "whole.png");
   writeTextFile(folder_ / "truncated.png", std::string_view(bytes).substr(0, bytes.size() / 2));
-  const std::string message = thrownRuntimeErrorMessage([&] { readPng(folder_ / "truncated.png"); });
+  const std::string message = test::runtimeErrorMessage([&] { readPng(folder_ / "truncated.png"); });
   EXPECT_NE(message.find("truncated.png"), std::string::npos) << message;
 }
 
 TEST_F(ImageIoTest, ReadingCorruptExrThrowsNamingTheFile) {
   writeTextFile(folder_ / "corrupt.exr", "this is not an OpenEXR file at all");
-  const std::string message = thrownRuntimeErrorMessage([&] { readExr(folder_ / "corrupt.exr"); });
+  const std::string message = test::runtimeErrorMessage([&] { readExr(folder_ / "corrupt.exr"); });
   EXPECT_NE(message.find("corrupt.exr"), std::string::npos) << message;
 }
 
@@ -169,7 +154,7 @@ TEST_F(ImageIoTest, WritingBelowARegularFileThrowsAndLeavesNothing) {
   // unlike permission bits).
   writeTextFile(folder_ / "blocker", "x");
   const fs::path file = folder_ / "blocker" / "out.png";
-  const std::string message = thrownRuntimeErrorMessage([&] { writePng(file, patternImage(2, 2)); });
+  const std::string message = test::runtimeErrorMessage([&] { writePng(file, patternImage(2, 2)); });
   EXPECT_NE(message.find("out.png"), std::string::npos) << message;
   EXPECT_EQ(folderEntries(), std::vector<std::string>{"blocker"});
 }
@@ -178,7 +163,7 @@ TEST_F(ImageIoTest, FailedRenameRemovesTemporaryFile) {
   // The target is an existing folder: the temporary file is written, then rename fails; it must be cleaned up.
   const fs::path file = folder_ / "occupied.exr";
   fs::create_directories(file / "inside");
-  const std::string message = thrownRuntimeErrorMessage([&] { writeExr(file, hdrImage(2, 2), nullptr); });
+  const std::string message = test::runtimeErrorMessage([&] { writeExr(file, hdrImage(2, 2), nullptr); });
   EXPECT_NE(message.find("occupied.exr"), std::string::npos) << message;
   EXPECT_EQ(folderEntries(), std::vector<std::string>{"occupied.exr"});
   EXPECT_TRUE(fs::is_directory(file));
@@ -189,7 +174,7 @@ TEST_F(ImageIoTest, FailedWriteKeepsPreviousFileIntact) {
   writeTextFile(file, "previous");
   fs::create_directories(folder_ / "keep.txt.tmp" / "x");  // make the temporary name impossible to create
   EXPECT_THROW(writeTextFile(file, "replacement"), std::runtime_error);
-  EXPECT_EQ(readWholeFile(file), "previous");
+  EXPECT_EQ(test::readFileBytes(file), "previous");
   EXPECT_TRUE(fs::is_directory(folder_ / "keep.txt.tmp"));  // not ours: must not be deleted
 }
 

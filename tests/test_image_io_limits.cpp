@@ -9,39 +9,20 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <functional>
 #include <iterator>
 #include <stdexcept>
 #include <string>
 
 #include "s3d/io/depth_io.h"
 #include "s3d/io/image_io.h"
+#include "io_test_support.h"
 
 namespace s3d::io {
 namespace {
 namespace fs = std::filesystem;
 
-std::string readBytes(const fs::path& file) {
-  std::ifstream stream(file, std::ios::binary);
-  return {std::istreambuf_iterator<char>(stream), std::istreambuf_iterator<char>()};
-}
-
-void writeBytes(const fs::path& file, const std::string& bytes) {
-  std::ofstream(file, std::ios::binary).write(bytes.data(), std::streamsize(bytes.size()));
-}
-
 void putLittleEndian(std::string& bytes, std::size_t at, std::uint64_t value, int byteCount) {
   for (int i = 0; i < byteCount; ++i) bytes[at + std::size_t(i)] = char((value >> (8 * i)) & 0xff);
-}
-
-std::string expectReadError(const std::function<void()>& read) {
-  try {
-    read();
-  } catch (const std::runtime_error& error) {
-    return error.what();
-  }
-  ADD_FAILURE() << "no error";
-  return {};
 }
 
 fs::path scratchFile(const std::string& name) {
@@ -55,7 +36,7 @@ std::string exrClaiming(std::int32_t side) {
   const fs::path small = scratchFile("small.exr");
   ImageRGBA32F color(4, 16);
   writeExr(small, color, nullptr);
-  std::string bytes = readBytes(small);
+  std::string bytes = test::readFileBytes(small);
   fs::remove(small);
   const std::string key("dataWindow\0box2i\0", 17);
   const std::size_t window = bytes.find(key) + key.size() + 4;  // after the attribute's 4-byte size
@@ -81,8 +62,8 @@ std::string exrClaiming(std::int32_t side) {
 
 TEST(ImageReadLimits, ExrClaimingAHugeImageIsRejectedBeforeItsPixelsAreAllocated) {
   const fs::path file = scratchFile("huge.exr");
-  writeBytes(file, exrClaiming(60000));  // 60000^2 RGBA floats would be 57 GB
-  const std::string message = expectReadError([&] { readExr(file); });
+  test::writeFileBytes(file, exrClaiming(60000));  // 60000^2 RGBA floats would be 57 GB
+  const std::string message = test::runtimeErrorMessage([&] { readExr(file); });
   fs::remove(file);
   EXPECT_NE(message.find("60000x60000"), std::string::npos) << message;
   EXPECT_NE(message.find("beyond the readers' limit"), std::string::npos) << message;
@@ -91,8 +72,8 @@ TEST(ImageReadLimits, ExrClaimingAHugeImageIsRejectedBeforeItsPixelsAreAllocated
 TEST(ImageReadLimits, ExrWithinTheLimitGetsAsFarAsItsMissingPixelData) {
   // Same construction at 64 pixels a side: the size passes, and the error is about the missing blocks.
   const fs::path file = scratchFile("small_claim.exr");
-  writeBytes(file, exrClaiming(64));
-  const std::string message = expectReadError([&] { readExr(file); });
+  test::writeFileBytes(file, exrClaiming(64));
+  const std::string message = test::runtimeErrorMessage([&] { readExr(file); });
   fs::remove(file);
   EXPECT_EQ(message.find("beyond the readers' limit"), std::string::npos) << message;
   EXPECT_NE(message.find("corrupt EXR"), std::string::npos) << message;
@@ -108,8 +89,8 @@ TEST(ImageReadLimits, PngClaimingMoreThanTheSideLimitIsRejected) {
   ihdr[8] = 8; ihdr[9] = 6;                                                            // 8-bit RGBA
   bytes += ihdr + std::string(4, '\0');
   const fs::path file = scratchFile("wide.png");
-  writeBytes(file, bytes);
-  const std::string message = expectReadError([&] { readPng(file); });
+  test::writeFileBytes(file, bytes);
+  const std::string message = test::runtimeErrorMessage([&] { readPng(file); });
   fs::remove(file);
   EXPECT_NE(message.find("20000x4"), std::string::npos) << message;
   EXPECT_NE(message.find("beyond the readers' limit"), std::string::npos) << message;
@@ -121,9 +102,9 @@ TEST(ImageReadLimits, PngChunkDeclaringMoreBytesThanTheFileHoldsIsRejectedByBoth
   std::string bytes("\x89PNG\r\n\x1a\n", 8);
   bytes += std::string("\x7f\xff\xff\xf0IDAT", 8) + std::string(8, '\0');
   const fs::path file = scratchFile("long_chunk.png");
-  writeBytes(file, bytes);
-  const std::string colorMessage = expectReadError([&] { readPng(file); });
-  const std::string grayMessage = expectReadError([&] { readPngGray16(file); });
+  test::writeFileBytes(file, bytes);
+  const std::string colorMessage = test::runtimeErrorMessage([&] { readPng(file); });
+  const std::string grayMessage = test::runtimeErrorMessage([&] { readPngGray16(file); });
   fs::remove(file);
   for (const std::string& message : {colorMessage, grayMessage})
     EXPECT_NE(message.find("chunk 'IDAT' declares 2147483632 bytes"), std::string::npos) << message;
