@@ -144,23 +144,23 @@ TEST_F(ConvertJob, NonFiniteColorIsSanitizedAndCounted) {
   EXPECT_EQ(toJson(report).at("sanitized").at("colorValues"), 2);
 }
 
-TEST_F(ConvertJob, NanDepthIsRejectedNamingThePixel) {
-  // Issue #6: a depth file with NaN is bad input (the renderer's own NaN depth is sanitized instead).
-  *depth_.at(7, 3) = NAN;
-  writeInputs(depth_);
-  try {
-    runConvertJob(context(), options_);
-    FAIL() << "no exception";
-  } catch (const std::invalid_argument& error) {
-    EXPECT_NE(std::string(error.what()).find("(7, 3) is NaN"), std::string::npos) << error.what();
-  }
-  EXPECT_TRUE(outputFolderIsEmpty());
+TEST_F(ConvertJob, UnknownDepthTakesTheBackgroundBesideItAndIsCounted) {
+  // Column 6 (depth 2) lies between 1 m (column 5) and 2 m (column 7): NaN, zero and negative there must
+  // become 2 m, the farther side, so the eyes equal those of the original depth.
+  DepthImage holes = depth_;
+  *holes.at(6, 3) = NAN;
+  *holes.at(6, 4) = 0.0f;
+  *holes.at(6, 5) = -1.0f;
+  writeInputs(holes);
+  const ConvertReport report = runConvertJob(context(), options_);
+  EXPECT_EQ(report.unknownDepthPixels, 3u);
+  EXPECT_EQ(toJson(report).at("sanitized").at("unknownDepthPixels"), 3);
+  expectEyesOfLinearDepth(options_, color_, depth_);
 }
 
-TEST_F(ConvertJob, NegativeDepthIsRejected) {
-  *depth_.at(0, 0) = -1.0f;
-  writeInputs(depth_);
-  EXPECT_THROW(runConvertJob(context(), options_), std::invalid_argument);
+TEST_F(ConvertJob, ADepthFileWithoutAKnownPixelIsRejected) {
+  writeInputs(DepthImage(48, 20, NAN));
+  EXPECT_NE(errorOf([&] { runConvertJob(context(), options_); }).find("has no known pixel"), std::string::npos);
   EXPECT_TRUE(outputFolderIsEmpty());
 }
 
@@ -272,14 +272,61 @@ TEST_F(ConvertJob, ADisparityMapGivesTheLeftViewAtXPlusD) {
       for (int c = 0; c < 3; ++c) ASSERT_EQ(left.at(x, y)[c], color_.at(x - 4, y)[c]) << x << ", " << y;
 }
 
-TEST_F(ConvertJob, NonFiniteDisparityIsRejectedWithItsPixel) {
-  std::vector<float> values(48 * 20, 1.0f);
-  values[2 * 48 + 5] = INFINITY;
-  io::writePfm(folder_ / "disparity.pfm", io::PfmImage{48, 20, 1, values});
+// Disparity of a foreground block (columns >= 24, d = 8) over a background (d = 2): in the right view the block
+// lands on columns 16..39 and covers the background's 16..21.
+DepthImage stepDisparity() {
+  DepthImage disparity(48, 20);
+  for (std::uint32_t y = 0; y < 20; ++y)
+    for (std::uint32_t x = 0; x < 48; ++x) *disparity.at(x, y) = x >= 24 ? 8.0f : 2.0f;
+  return disparity;
+}
+
+TEST_F(ConvertJob, TheLargerDisparityIsNearerAndCoversTheSmaller) {
+  io::writePfm(folder_ / "disparity.pfm", io::PfmImage{48, 20, 1, stepDisparity().pixels});
   options_.depth = folder_ / "disparity.pfm";
   options_.disparity = DisparityOutput::Right;
-  EXPECT_NE(errorOf([&] { runConvertJob(context(), options_); }).find("(5, 2) is not finite"), std::string::npos);
-  EXPECT_TRUE(outputFolderIsEmpty());
+  options_.stereo.edgeCrop = 0.0f;
+  options_.stereo.method = stereo::StereoMethod::Forward;
+  runConvertJob(context(), options_);
+  const ImageRGBA8 right = io::readPng(options_.outputFolder / "right.png");
+  for (std::uint32_t y = 0; y < 20; ++y)
+    for (std::uint32_t x = 16; x < 40; ++x)
+      for (int c = 0; c < 3; ++c) ASSERT_EQ(right.at(x, y)[c], color_.at(x + 8, y)[c]) << x << ", " << y;
+}
+
+TEST_F(ConvertJob, MethodAutoPicksForwardForFiles) {
+  options_.automaticMethod = true;
+  const ConvertReport report = runConvertJob(context(), options_);
+  EXPECT_EQ(report.stereo.method, stereo::StereoMethod::Forward);
+  EXPECT_EQ(toJson(report).at("stereo").at("methodChosenBy"), "auto");
+}
+
+TEST_F(ConvertJob, NonFiniteDisparityIsUnknownAndTakesTheBackground) {
+  // Foreground pixels (5, 2) and (30, 2) unknown: (30, 2) sits inside the block, (5, 2) in the background.
+  DepthImage disparity = stepDisparity();
+  *disparity.at(30, 2) = INFINITY;
+  *disparity.at(5, 2) = NAN;
+  io::writePfm(folder_ / "disparity.pfm", io::PfmImage{48, 20, 1, disparity.pixels});
+  options_.depth = folder_ / "disparity.pfm";
+  options_.disparity = DisparityOutput::Right;
+  options_.stereo.edgeCrop = 0.0f;
+  options_.stereo.method = stereo::StereoMethod::Forward;
+  const ConvertReport report = runConvertJob(context(), options_);
+  EXPECT_EQ(report.unknownDepthPixels, 2u);
+  const ImageRGBA8 right = io::readPng(options_.outputFolder / "right.png");
+  for (int c = 0; c < 3; ++c) EXPECT_EQ(right.at(3, 2)[c], color_.at(5, 2)[c]);  // background: d = 2
+}
+
+TEST_F(ConvertJob, ZeroIn16BitPngDisparityIsUnknown) {
+  io::Gray16Image png(48, 20, 4 * 256);
+  png.pixels[48 + 10] = 0;  // pixel (10, 1)
+  io::writePngGray16(folder_ / "disparity.png", png);
+  options_.depth = folder_ / "disparity.png";
+  options_.depthScale = 1.0f / 256.0f;
+  options_.disparity = DisparityOutput::Right;
+  const ConvertReport report = runConvertJob(context(), options_);
+  EXPECT_EQ(report.unknownDepthPixels, 1u);
+  EXPECT_FLOAT_EQ(report.stereo.maxSeparation, 4.0f / 48.0f);
 }
 
 TEST_F(ConvertJob, DisparityBeyondTheSeparationLimitIsRejected) {

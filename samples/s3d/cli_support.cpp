@@ -87,7 +87,7 @@ CLI::Validator resolutionValidator(std::uint32_t maxSize) {
       "WxH");
 }
 
-void StereoOptions::add(CLI::App& command, const std::string& depthUnits) {
+void StereoOptions::add(CLI::App& command, const std::string& depthUnits, bool offerAuto) {
   command
       .add_option("--max-separation", parameters.maxSeparation,
                   "Eye separation at infinity, as a fraction of the screen width")
@@ -105,9 +105,14 @@ void StereoOptions::add(CLI::App& command, const std::string& depthUnits) {
       ->check(floatRange(0.0, double(stereo::kMaxSeparationLimit), false, "a fraction of the screen width"));
   command
       .add_option("--method", method,
-                  "Stereo method: seed (Listing 4.5, taps at 0.5/0.66/1.0 of the separation), search (--taps taps "
-                  "spread over the separation) or iterative (fixed-point source search, --iterations)")
-      ->check(CLI::IsMember({"seed", "search", "iterative"}))
+                  std::string("Stereo method: seed (Listing 4.5, taps at 0.5/0.66/1.0 of the separation), search (--taps "
+                              "taps spread over the separation), iterative (fixed-point source search, --iterations) "
+                              "or forward (z-buffered scatter of every pixel, holes filled from the background)") +
+                      (offerAuto ? "; auto: forward for depth or disparity from files (measured on real photographs, "
+                                   "docs/RESULTS.md)"
+                                 : ""))
+      ->check(offerAuto ? CLI::IsMember({"auto", "seed", "search", "iterative", "forward"})
+                        : CLI::IsMember({"seed", "search", "iterative", "forward"}))
       ->capture_default_str();
   command.add_option("--taps", parameters.searchTaps, "Depth-search taps of --method search")
       ->check(CLI::Range(1, S3D_STEREO_MAX_TAPS))
@@ -118,7 +123,8 @@ void StereoOptions::add(CLI::App& command, const std::string& depthUnits) {
 }
 
 void StereoOptions::finish() {
-  parameters.method = stereo::parseStereoMethod(method);
+  automatic = method == "auto";
+  if (!automatic) parameters.method = stereo::parseStereoMethod(method);
   stereo::validate(parameters);
 }
 

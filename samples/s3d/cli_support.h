@@ -44,10 +44,12 @@ CLI::Validator resolutionValidator(std::uint32_t maxSize);
 
 // --max-separation, --zero-parallax-distance, --edge-crop, --method, --taps, --iterations on `command`;
 // call finish() after parsing to turn the method name into StereoParameters::method and validate.
+// With offerAuto, --method also takes "auto" (finish() then sets `automatic` and leaves parameters.method).
 struct StereoOptions {
   stereo::StereoParameters parameters;
   std::string method = "seed";
-  void add(CLI::App& command, const std::string& depthUnits);
+  bool automatic = false;
+  void add(CLI::App& command, const std::string& depthUnits, bool offerAuto = false);
   void finish();
 };
 

@@ -32,7 +32,10 @@ class ConvertCommand final : public Command {
         "(1 - zeroParallaxDistance / depth), a fraction of the width) p * width pixels left of where the input shows "
         "it, the right eye as far right. Disparity sign convention: d = xLeft - xRight in pixels (>= 0 for parallel "
         "cameras); with --disparity-output right the input is the left view and the right view shows each pixel at "
-        "x - d; with left the input is the right view and the left view shows each pixel at x + d");
+        "x - d; with left the input is the right view and the left view shows each pixel at x + d; a larger "
+        "disparity is nearer and wins where two pixels land on one. Unknown depth or disparity (NaN, zero or "
+        "negative depth, +-inf disparity, 0 in a 16-bit PNG) takes the background's value beside it on its row and "
+        "is counted in report.json (sanitized.unknownDepthPixels)");
     CLI::App& convert = *subcommand;
     convert.add_option("--color", options_.color,
                        "Color image: .png (display-encoded) or .exr (linear; clamped and sRGB-encoded)");
@@ -53,7 +56,7 @@ class ConvertCommand final : public Command {
         ->capture_default_str();
     convert
         .add_option("--depth-scale", options_.depthScale,
-                    "16-bit PNG: world units (or disparity pixels) per step; 65535 is sky, 0 is rejected. Hardware "
+                    "16-bit PNG: world units (or disparity pixels) per step; 65535 is sky, 0 is unknown. Hardware "
                     "depth PNGs are read as value / 65535 instead")
         ->check(floatRange(0.0, 1.0e9, true, "units per step"))
         ->capture_default_str();
@@ -88,7 +91,8 @@ class ConvertCommand final : public Command {
     convert.add_option("--reference-left", referenceLeft_, "A real left view to measure the synthesized left eye against");
     convert.add_option("--reference-right", referenceRight_,
                        "A real right view to measure the synthesized right eye against");
-    stereo_.add(convert, "in the depth file's units");
+    stereo_.method = "auto";
+    stereo_.add(convert, "in the depth file's units", true);
     for (const char* derived : {"--max-separation", "--zero-parallax-distance"})
       convert.get_option(derived)->excludes(disparity);
     convert.add_option("--sbs", sideBySide_, "Side-by-side packing: half or full")->check(CLI::IsMember({"half", "full"}));
@@ -119,6 +123,7 @@ class ConvertCommand final : public Command {
     options_.topBottom = stereo::parsePackingMode(topBottom_);
     stereo_.finish();
     options_.stereo = stereo_.parameters;
+    options_.automaticMethod = stereo_.automatic;
     if (!referenceLeft_.empty()) options_.referenceLeft = referenceLeft_;
     if (!referenceRight_.empty()) options_.referenceRight = referenceRight_;
     // Pairing problems surface before a Vulkan start-up and before any output.

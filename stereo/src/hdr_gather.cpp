@@ -13,6 +13,8 @@ SourceColumns referenceSourceColumns(const DepthImage& linearDepth, const Stereo
   const std::uint32_t width = linearDepth.width, height = linearDepth.height;
   SourceColumns columns{std::vector<float>(linearDepth.pixelCount(), std::numeric_limits<float>::quiet_NaN()),
                         std::vector<float>(linearDepth.pixelCount(), std::numeric_limits<float>::quiet_NaN())};
+  if (parameters.method == StereoMethod::Forward)  // no single source column: holes take a mean
+    throw std::invalid_argument("HDR eyes support the seed, search and iterative methods, not forward");
   if (parameters.method == StereoMethod::Iterative) {
     const gpu::IterativeConstants c = makeIterativeConstants(parameters, parameters.iterations, width, height);
     for (int y = 0; y < c.height; ++y)

@@ -29,6 +29,36 @@ std::uint64_t sanitizeColor(ImageRGBA32F& color) {
   return replaced;
 }
 
+std::uint64_t fillUnknownDepthFromBackground(DepthImage& linearDepth) {
+  float farthestKnown = -S3D_INFINITY;
+  for (float depth : linearDepth.pixels)
+    if (!isInvalidDepth(depth) && depth > farthestKnown) farthestKnown = depth;
+  if (farthestKnown == -S3D_INFINITY) farthestKnown = S3D_INFINITY;
+  std::uint64_t filled = 0;
+  const std::size_t width = linearDepth.width;
+  for (std::size_t row = 0; row < linearDepth.height; ++row) {
+    float* depth = linearDepth.pixels.data() + row * width;
+    std::size_t x = 0;
+    while (x < width) {
+      if (!isInvalidDepth(depth[x])) {
+        ++x;
+        continue;
+      }
+      std::size_t end = x;
+      while (end < width && isInvalidDepth(depth[end])) ++end;
+      // Known neighbours of the run [x, end); a missing side does not vote.
+      const float before = x > 0 ? depth[x - 1] : -S3D_INFINITY;
+      const float after = end < width ? depth[end] : -S3D_INFINITY;
+      float fill = before > after ? before : after;
+      if (fill == -S3D_INFINITY) fill = farthestKnown;
+      for (std::size_t i = x; i < end; ++i) depth[i] = fill;
+      filled += end - x;
+      x = end;
+    }
+  }
+  return filled;
+}
+
 std::uint64_t sanitizeDepth(DepthImage& linearDepth, float zeroParallaxDistance) {
   std::uint64_t replaced = 0;
   for (float& depth : linearDepth.pixels)

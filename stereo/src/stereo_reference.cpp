@@ -58,14 +58,19 @@ const char* methodName(StereoMethod method) {
     case StereoMethod::Seed: return "seed";
     case StereoMethod::Search: return "search";
     case StereoMethod::Iterative: return "iterative";
+    case StereoMethod::Forward: return "forward";
   }
   return "unknown";
 }
 
+StereoMethod automaticMethod(DepthSource source) {
+  return source == DepthSource::External ? StereoMethod::Forward : StereoParameters{}.method;
+}
+
 StereoMethod parseStereoMethod(const std::string& name) {
-  for (StereoMethod method : {StereoMethod::Seed, StereoMethod::Search, StereoMethod::Iterative})
+  for (StereoMethod method : {StereoMethod::Seed, StereoMethod::Search, StereoMethod::Iterative, StereoMethod::Forward})
     if (name == methodName(method)) return method;
-  throw std::invalid_argument("unknown stereo method '" + name + "' (expected seed, search or iterative)");
+  throw std::invalid_argument("unknown stereo method '" + name + "' (expected seed, search, iterative or forward)");
 }
 
 const char* kernelName(StereoKernel kernel) {

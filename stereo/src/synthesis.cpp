@@ -6,6 +6,7 @@
 #include <string>
 #include <stdexcept>
 
+#include "s3d/stereo/forward_pass.h"
 #include "s3d/stereo/iterative.h"
 #include "s3d/stereo/iterative_pass.h"
 #include "s3d/stereo/stereo_pass.h"
@@ -97,6 +98,11 @@ SynthesisResult synthesizeTimed(vk::Context& context, const vk::Image& centerCol
     result.filledLeft = countAndClearFillMarks(result.eyes.left);
     result.filledRight = countAndClearFillMarks(result.eyes.right);
     return result;
+  }
+  if (parameters.method == StereoMethod::Forward) {
+    const ForwardStereoPass pass(context);
+    return run(context, pass, makeForwardConstants(parameters, centerColor.width, centerColor.height), centerColor,
+               linearDepth, timedRuns);
   }
   const StereoPass pass(context, parameters.kernel);
   return run(context, pass, makeStereoConstants(parameters, centerColor.width, centerColor.height), centerColor,

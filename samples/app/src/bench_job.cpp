@@ -16,6 +16,7 @@
 #include "s3d/app/render_job.h"
 #include "s3d/io/image_io.h"
 #include "s3d/renderer/scene.h"
+#include "s3d/stereo/forward.h"
 #include "s3d/stereo/iterative.h"
 #include "s3d/stereo/row_tile_shared.h"
 #include "s3d/stereo/synthesis.h"
@@ -138,6 +139,7 @@ MethodSetting parseOneSetting(const std::string& item, std::vector<MethodSetting
     return last;
   }
   if (item == "seed") return add({stereo::StereoMethod::Seed, 0});
+  if (item == "forward") return add({stereo::StereoMethod::Forward, 0});
   if (item == "search") {
     for (int taps : kDefaultSweepTaps) add({stereo::StereoMethod::Search, taps});
     return settings.back();
@@ -150,7 +152,7 @@ MethodSetting parseOneSetting(const std::string& item, std::vector<MethodSetting
     return add({stereo::StereoMethod::Search, *taps});
   if (std::optional<int> iterations = numberAfter("iterative-", 1, S3D_ITERATIVE_MAX_ITERATIONS))
     return add({stereo::StereoMethod::Iterative, *iterations});
-  throw std::invalid_argument("unknown method setting '" + item + "' (expected seed, search, search-N with N in [1, " +
+  throw std::invalid_argument("unknown method setting '" + item + "' (expected seed, forward, search, search-N with N in [1, " +
                               std::to_string(S3D_STEREO_MAX_TAPS) + "], iterative, or iterative-K with K in [1, " +
                               std::to_string(S3D_ITERATIVE_MAX_ITERATIONS) + "], each optionally followed by /pixel or /tiles)");
 }
@@ -517,6 +519,7 @@ std::string settingDetail(const MethodSetting& setting) {
     case stereo::StereoMethod::Seed: return "Listing 4.5 (3 taps)" + kernel;
     case stereo::StereoMethod::Search: return std::to_string(setting.parameter) + " taps" + kernel;
     case stereo::StereoMethod::Iterative: return std::to_string(setting.parameter) + " iterations" + kernel;
+    case stereo::StereoMethod::Forward: return "z-buffered scatter";
   }
   return "";
 }
@@ -706,6 +709,7 @@ std::string MethodSetting::name() const {
     case stereo::StereoMethod::Seed: return "seed" + suffix;
     case stereo::StereoMethod::Search: return "search-" + std::to_string(parameter) + suffix;
     case stereo::StereoMethod::Iterative: return "iterative-" + std::to_string(parameter) + suffix;
+    case stereo::StereoMethod::Forward: return "forward";
   }
   return "unknown";
 }
@@ -730,6 +734,7 @@ MethodSetting defaultMethodSetting() {
     case stereo::StereoMethod::Seed: return {stereo::StereoMethod::Seed, 0};
     case stereo::StereoMethod::Search: return {stereo::StereoMethod::Search, defaults.searchTaps};
     case stereo::StereoMethod::Iterative: return {stereo::StereoMethod::Iterative, defaults.iterations};
+    case stereo::StereoMethod::Forward: return {stereo::StereoMethod::Forward, 0};
   }
   return {};
 }
@@ -740,6 +745,17 @@ StereoTraffic stereoPassTraffic(const stereo::StereoParameters& parameters, std:
   int depthLoadsPerEye = 0;
   int margin = 0;
   gpu::StereoConstants crop{};
+  if (parameters.method == stereo::StereoMethod::Forward) {
+    // stereo_forward_*.comp per pixel and eye: splat 4 depth loads and about one atomic; resolve the key, 2 depth
+    // and 2 color loads (holes more); clear and atomics write the 4-byte z-buffers, the resolve the eyes.
+    stereo::makeForwardConstants(parameters, width, height);  // throws for parameters the pass refuses
+    const std::uint64_t pixels = std::uint64_t(width) * height;
+    StereoTraffic traffic;
+    traffic.bytesRead = 2 * pixels * (4 + 1 + 1 + 2 + 2) * kTexelBytes;
+    traffic.bytesWritten = 2 * pixels * 3 * kTexelBytes;
+    traffic.compulsoryBytes = pixels * 4 * kTexelBytes;
+    return traffic;
+  }
   if (parameters.method == stereo::StereoMethod::Iterative) {
     const gpu::IterativeConstants c = stereo::makeIterativeConstants(parameters, parameters.iterations, width, height);
     depthLoadsPerEye = c.startTapCount + 2 * c.iterations;  // stereo_iterative.comp: taps, then two starts x K

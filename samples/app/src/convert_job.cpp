@@ -86,6 +86,8 @@ DepthImage readScalarFile(const ConvertJobOptions& options, const char* what) {
         image.pixels[i] = value / kPngSky;
       else if (!options.disparity && value == kPngSky)
         image.pixels[i] = INFINITY;  // the largest step is sky
+      else if (value == 0.0f)
+        image.pixels[i] = NAN;  // unknown (depth: no sample; disparity: the Middlebury / KITTI convention)
       else
         image.pixels[i] = value * options.depthScale;
     }
@@ -116,7 +118,15 @@ float focalLengthPx(const ConvertJobOptions& options, std::uint32_t height) {
   throw std::invalid_argument("distance depth needs the camera intrinsics: --fov-y or --focal-px");
 }
 
-DepthImage readLinearDepth(const ConvertJobOptions& options) {
+// Unknown pixels (NaN) take the background's depth; a file without one known pixel is rejected.
+std::uint64_t fillUnknown(DepthImage& depth, const ConvertJobOptions& options, const char* what) {
+  const std::uint64_t unknown = stereo::fillUnknownDepthFromBackground(depth);
+  if (unknown == depth.pixels.size())
+    throw std::invalid_argument(std::string(what) + " file '" + options.depth.string() + "' has no known pixel");
+  return unknown;
+}
+
+DepthImage readLinearDepth(const ConvertJobOptions& options, std::uint64_t& unknownPixels) {
   DepthImage depth = readScalarFile(options, "depth");
   gpu::LinearDepthParams hardware{};
   if (options.depthKind == DepthKind::Hardware) {
@@ -132,16 +142,17 @@ DepthImage readLinearDepth(const ConvertJobOptions& options) {
   const float focal = options.depthKind == DepthKind::Distance ? focalLengthPx(options, depth.height) : 0.0f;
   for (std::size_t i = 0; i < depth.pixels.size(); ++i) {
     float& value = depth.pixels[i];
-    if (std::isnan(value)) throw std::invalid_argument(pixelText("depth", options.depth, i, depth.width) + " is NaN");
+    if (std::isnan(value)) continue;  // unknown
     if (options.depthKind == DepthKind::Hardware) {
       if (value < 0.0f || value > 1.0f)
         throw std::invalid_argument(pixelText("depth", options.depth, i, depth.width) + " is outside [0, 1] for hardware depth");
       value = gpu::linearDepthFromDevice(hardware, value);
       continue;
     }
-    if (!(value > 0.0f))
-      throw std::invalid_argument(pixelText("depth", options.depth, i, depth.width) + " is not positive (" +
-                                  std::to_string(value) + ")");
+    if (!(value > 0.0f)) {
+      value = NAN;  // zero or negative: unknown
+      continue;
+    }
     if (value >= 1e30f) {
       value = INFINITY;  // sky
     } else if (options.depthKind == DepthKind::Distance) {
@@ -151,19 +162,22 @@ DepthImage readLinearDepth(const ConvertJobOptions& options) {
       value /= std::sqrt(1.0f + dx * dx + dy * dy);
     }
   }
+  unknownPixels = fillUnknown(depth, options, "depth");
   return depth;
 }
 
-// Disparity mode: a pseudo-depth whose parallax reproduces the disparity exactly. With zeroParallaxDistance 1
-// and maxSeparation m = max|d| / W, p(depth) = m (1 - 1 / depth) = d / W for depth = 1 / (1 - d / (m W)).
-DepthImage depthFromDisparity(const ConvertJobOptions& options, stereo::StereoParameters& parameters) {
+// Disparity mode: a pseudo-depth whose parallax reproduces the disparity exactly and whose order is the
+// scene's (a larger disparity is nearer). With zeroParallaxDistance 1 and maxSeparation m = max|d| / W,
+// p(depth) = m (1 - 1 / depth) = -d / W for depth = 1 / (1 + d / (m W)): the pass's right eye shows a pixel at
+// x + p W = x - d (the right view), its left eye at x + d (the left view). Unknown disparity (NaN, +-inf, 0 in a
+// PNG) takes the background's depth and is counted in unknownPixels.
+DepthImage depthFromDisparity(const ConvertJobOptions& options, stereo::StereoParameters& parameters,
+                              std::uint64_t& unknownPixels) {
   DepthImage disparity = readScalarFile(options, "disparity");
   float largest = 0.0f;
-  for (std::size_t i = 0; i < disparity.pixels.size(); ++i) {
-    const float d = disparity.pixels[i];
-    if (!std::isfinite(d))
-      throw std::invalid_argument(pixelText("disparity", options.depth, i, disparity.width) + " is not finite");
-    largest = std::max(largest, std::abs(d));
+  for (float& d : disparity.pixels) {
+    if (!std::isfinite(d)) d = NAN;
+    else largest = std::max(largest, std::abs(d));
   }
   const float width = float(disparity.width);
   const float separation = std::max(largest / width, 1.0f / (4.0f * width));  // > 0 even for an all-zero map
@@ -173,12 +187,12 @@ DepthImage depthFromDisparity(const ConvertJobOptions& options, stereo::StereoPa
                                 std::to_string(stereo::kMaxSeparationLimit * width) + " px)");
   parameters.maxSeparation = separation;
   parameters.zeroParallaxDistance = 1.0f;
-  // The pass's left eye shows a point at x - p W, its right eye at x + p W (stereo.h). Right output (x - d):
-  // the left eye with p = d / W. Left output (x + d): the right eye with the same p.
   for (float& value : disparity.pixels) {
+    if (std::isnan(value)) continue;
     const float share = value / (separation * width);
-    value = share >= 1.0f ? INFINITY : 1.0f / (1.0f - share);
+    value = share <= -1.0f ? INFINITY : 1.0f / (1.0f + share);
   }
+  unknownPixels = fillUnknown(disparity, options, "disparity");
   return disparity;
 }
 
@@ -233,7 +247,9 @@ ConvertReport runConvertJob(vk::Context& context, const ConvertJobOptions& optio
   ConvertReport report;
   const ImageRGBA8 color = readColor(options.color, &report.sanitizedColorValues);
   stereo::StereoParameters parameters = options.stereo;
-  const DepthImage depth = options.disparity ? depthFromDisparity(options, parameters) : readLinearDepth(options);
+  if (options.automaticMethod) parameters.method = stereo::automaticMethod(stereo::DepthSource::External);
+  const DepthImage depth = options.disparity ? depthFromDisparity(options, parameters, report.unknownDepthPixels)
+                                             : readLinearDepth(options, report.unknownDepthPixels);
   if (depth.width != color.width || depth.height != color.height)
     throw std::invalid_argument(std::string(options.disparity ? "disparity" : "depth") + " '" + options.depth.string() +
                                 "' is " + sizeText(depth.width, depth.height) + ", color '" + options.color.string() +
@@ -249,12 +265,14 @@ ConvertReport runConvertJob(vk::Context& context, const ConvertJobOptions& optio
   report.width = color.width;
   report.height = color.height;
   report.stereo = parameters;
+  report.automaticMethod = options.automaticMethod;
   report.cropColumns = std::uint32_t(constants.cropBegin);
   stereo::SynthesisResult synthesis = synthesize(context, color, depth, parameters);
   report.stereoPassGpuMs = synthesis.gpuMs;
   stereo::StereoPair eyes = std::move(synthesis.eyes);
-  if (options.disparity == DisparityOutput::Right) eyes.right = std::exchange(eyes.left, color);
-  if (options.disparity == DisparityOutput::Left) eyes.left = std::exchange(eyes.right, color);
+  // Disparity mode: the synthesized view is the eye the disparity points to (depthFromDisparity).
+  if (options.disparity == DisparityOutput::Right) eyes.left = color;
+  if (options.disparity == DisparityOutput::Left) eyes.right = color;
   if (referenceLeft) report.left = stereo::compareDisplayImages(eyes.left, *referenceLeft, report.cropColumns);
   if (referenceRight) report.right = stereo::compareDisplayImages(eyes.right, *referenceRight, report.cropColumns);
 
@@ -286,11 +304,12 @@ nlohmann::json toJson(const ConvertReport& report) {
           {"stereo",
            {{"maxSeparation", report.stereo.maxSeparation},
             {"zeroParallaxDistance", report.stereo.zeroParallaxDistance},
-            {"method", stereo::methodName(report.stereo.method)}}},
+            {"method", stereo::methodName(report.stereo.method)},
+            {"methodChosenBy", report.automaticMethod ? "auto" : "option"}}},
           {"cropColumns", report.cropColumns},
           {"gpuTimeMs", {{"stereoPass", report.stereoPassGpuMs ? nlohmann::json(*report.stereoPassGpuMs) : nullptr}}},
           {"error", {{"left", statsJson(report.left)}, {"right", statsJson(report.right)}}},
-          {"sanitized", {{"colorValues", report.sanitizedColorValues}}},
+          {"sanitized", {{"colorValues", report.sanitizedColorValues}, {"unknownDepthPixels", report.unknownDepthPixels}}},
           {"files", report.filesWritten}};
 }
 

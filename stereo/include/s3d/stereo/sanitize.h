@@ -21,6 +21,12 @@ std::uint64_t sanitizeDepth(DepthImage& linearDepth, float zeroParallaxDistance)
 // How many pixels sanitizeDepth would replace, without changing them.
 std::uint64_t countInvalidDepth(const DepthImage& linearDepth);
 
+// Input files' unknown depth (NaN, -inf, zero, negative; +inf is the sky and known) takes the farther of the
+// nearest known depths left and right on its row: a hole is the background's, never the zero-parallax plane's
+// nor the foreground's. A row without known depth takes the image's farthest known depth (the sky when none).
+// Returns how many pixels were filled.
+std::uint64_t fillUnknownDepthFromBackground(DepthImage& linearDepth);
+
 // The zero-parallax plane must lie inside the camera's depth range [nearPlane, farPlane] with room behind it:
 // at or beyond the far plane every surface pops out of the screen and the parallax near the camera grows as
 // zpp / depth without bound; in front of the near plane (near zero) no surface can come out of the screen and

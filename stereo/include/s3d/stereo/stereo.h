@@ -16,9 +16,20 @@ enum class StereoMethod {
   Seed,    // Listing 4.5 exactly: taps at 0.5, 0.66 and 1.0 of maxSeparation
   Search,  // searchTaps taps spread evenly over (0, maxSeparation]: no thin occluder falls between taps
   Iterative,  // fixed-point source search, nearest surface wins, holes filled from the background (iterative.h)
+  Forward,    // z-buffered scatter of every pixel with sub-pixel placement, holes filled from the background (forward.h)
 };
 
 const char* methodName(StereoMethod method);
+
+// Where the depth comes from, for --method auto.
+enum class DepthSource {
+  Renderer,  // s3d's own frames: the default method (the built-in scenes' measurements)
+  External,  // files: photographs' disparity, other programs' depth
+};
+// --method auto, from measurements (docs/RESULTS.md): forward for external depth or disparity (on the real
+// scenes at least the plain forward warp on visible pixels, where every gather method is below it: their
+// searches look behind the screen only, and disparity input is all in front of it); the default otherwise.
+StereoMethod automaticMethod(DepthSource source);
 StereoMethod parseStereoMethod(const std::string& name);  // throws std::invalid_argument listing the choices
 
 // How a method's shader walks the image (same results either way, docs/DESIGN.md "Row tiles").

@@ -34,7 +34,7 @@ struct ConvertJobOptions {
   std::filesystem::path depth;
   std::string depthChannel = "Z";  // EXR only
   // 16-bit PNG only: world units (or disparity pixels) per step for Linear / Distance / disparity; Hardware
-  // depth reads value / 65535 instead. For Linear and Distance, 65535 is sky and 0 is rejected as no depth.
+  // depth reads value / 65535 instead. For Linear and Distance, 65535 is sky; 0 is unknown (also for disparity).
   float depthScale = 1.0f;
   DepthKind depthKind = DepthKind::Linear;
   float nearPlane = 0.0f;  // Hardware only
@@ -50,6 +50,8 @@ struct ConvertJobOptions {
   stereo::PackingMode sideBySide = stereo::PackingMode::Half;
   stereo::PackingMode topBottom = stereo::PackingMode::Half;
   stereo::StereoParameters stereo;  // disparity mode: maxSeparation and zeroParallaxDistance are derived
+  // --method auto (the tool's default): stereo.method is replaced by stereo::automaticMethod(External).
+  bool automaticMethod = false;
   std::string fileSuffix;           // folder mode: "_0001" makes left_0001.png, ...
   bool writeReport = true;          // report<suffix>.json
 };
@@ -60,14 +62,18 @@ struct ConvertReport {
   std::uint32_t width = 0, height = 0;
   std::uint32_t cropColumns = 0;
   stereo::StereoParameters stereo;  // as used (disparity mode: the derived separation)
+  bool automaticMethod = false;     // stereo.method was chosen by --method auto
   std::optional<double> stereoPassGpuMs;
   std::optional<stereo::ErrorStats> left, right;  // only with --reference-left / --reference-right
   std::uint64_t sanitizedColorValues = 0;  // NaN / inf channel values of an EXR color input, made 0
+  // Depth or disparity pixels without a value (NaN; zero or negative depth; +-inf or PNG 0 disparity), given the
+  // depth of the background beside them on their row (stereo::fillUnknownDepthFromBackground).
+  std::uint64_t unknownDepthPixels = 0;
   std::vector<std::string> filesWritten;
 };
 
 // Reads and checks every input first (missing, unreadable or truncated file, missing channel, mismatched
-// sizes, negative / NaN / zero depth, bad near/far or intrinsics, disparity beyond the separation limit) and
+// sizes, no known depth at all, bad near/far or intrinsics, disparity beyond the separation limit) and
 // throws std::invalid_argument or std::runtime_error naming the file and the problem before anything is written
 // (NaN or inf in an EXR color input is sanitized and counted instead). Then runs the stereo pass on the GPU and
 // writes left, right, anaglyph, sbs, tab (.png) and report.json, each with options.fileSuffix and each
