@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "s3d/comfort/critically_damped.h"
 #include "s3d/renderer/deferred_renderer.h"
 
 namespace s3d::comfort {
@@ -75,22 +76,9 @@ float ZeroParallaxController::update(std::optional<float> nearestSurface, float 
   if (!(seconds > 0.0f) || !std::isfinite(seconds))
     throw std::invalid_argument("zero-parallax control: frame time must be positive and finite");
   const float goal = target(nearestSurface);
-  // Critically damped spring toward the goal, solved exactly over the frame (stable for any frame time).
-  const float omega = 2.0f / settings_.responseSeconds;
-  const float offset = current_ - goal;
-  const float decay = std::exp(-omega * seconds);
-  const float blend = (velocity_ + omega * offset) * seconds;
-  float next = goal + (offset + blend) * decay;
-  velocity_ = (velocity_ - omega * blend) * decay;
-  // Never past the goal (a moving goal can leave velocity that would overshoot), never faster than the bound.
-  if ((current_ - goal) * (next - goal) < 0.0f) {
-    next = goal;
-    velocity_ = 0.0f;
-  }
-  const float bound = settings_.maxChangePerSecond * seconds;
-  const float change = std::clamp(next - current_, -bound, bound);
-  if (change != next - current_) velocity_ = change / seconds;
-  current_ += change;
+  CriticallyDamped follower{current_, velocity_};
+  current_ = follower.step(goal, seconds, settings_.responseSeconds, settings_.maxChangePerSecond * seconds);
+  velocity_ = follower.velocity;
   return current_;
 }
 
