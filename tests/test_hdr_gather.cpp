@@ -5,7 +5,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <utility>
 
+#include "s3d/stereo/forward.h"
 #include "s3d/stereo/hdr_gather.h"
 #include "s3d/stereo/iterative.h"
 #include "stereo_test_views.h"
@@ -43,6 +45,20 @@ TEST(HdrGather, ReproducesEveryMethodsReferenceBitForBitOnDisplayColor) {
     EXPECT_EQ(gatherAsUnorm(view.color, columns.left).pixels, expected.left.pixels) << methodName(method);
     EXPECT_EQ(gatherAsUnorm(view.color, columns.right).pixels, expected.right.pixels) << methodName(method);
   }
+}
+
+TEST(HdrGather, TheForwardMethodMatchesItsDisplayReferenceWithinOneLevel) {
+  // Same samples (filter positions, hole means); a mean of unorm floats may round the other way: 1 level.
+  test::SyntheticView view = test::makeBlockView(53, 7, 11, 0.3f, 6, 3, true);
+  StereoParameters parameters{0.06f, 2.0f, -1.0f};
+  parameters.method = StereoMethod::Forward;
+  ImageRGBA32F asFloat(53, 7);
+  for (std::size_t i = 0; i < view.color.pixels.size(); ++i) asFloat.pixels[i] = float(view.color.pixels[i]) / 255.0f;
+  const HdrStereoPair hdr = synthesizeHdrReference(asFloat, view.depth, parameters);
+  const StereoPair expected = synthesizeForwardReference(view.color, view.depth, makeForwardConstants(parameters, 53, 7));
+  for (auto [eye, reference] : {std::pair{&hdr.left, &expected.left}, std::pair{&hdr.right, &expected.right}})
+    for (std::size_t i = 0; i < reference->pixels.size(); ++i)
+      ASSERT_LE(std::abs(int(std::lround(std::clamp(eye->pixels[i], 0.0f, 1.0f) * 255.0f)) - int(reference->pixels[i])), 1) << i;
 }
 
 TEST(HdrGather, KeepsValuesAboveOneAndCropsToBlack) {

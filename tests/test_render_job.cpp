@@ -341,6 +341,24 @@ TEST_F(RenderJobMethods, TheIterativeMethodRunsEndToEndAndReportsFilledPixels) {
   fs::remove_all(folder, ignored);
 }
 
+TEST_F(RenderJobMethods, TheForwardMethodRunsEndToEndWithItsHdrEyes) {
+  const fs::path folder = scratchFolder("forward");
+  RenderJobOptions options;
+  options.width = 96;
+  options.height = 54;
+  options.outputFolder = folder;
+  options.outputs = {"report.json"};
+  options.stereo.method = stereo::StereoMethod::Forward;
+  const RenderReport report = runRenderJob(context(), options);
+  std::ifstream stream(folder / "report.json");
+  EXPECT_EQ(nlohmann::json::parse(stream).at("stereo").at("method"), "forward");
+  EXPECT_GT(report.left.display.pixelCount, 0u);
+  ASSERT_TRUE(report.left.hdr.has_value());  // the HDR eyes use the same samples (test_hdr_gather.cpp)
+  EXPECT_GT(report.left.hdr->all.pixelCount, 0u);
+  std::error_code ignored;
+  fs::remove_all(folder, ignored);
+}
+
 TEST_F(RenderJob, NegativeParallaxAppearsOnlyWhenAllowed) {
   // A zero-parallax plane 3 m out puts the weapon (pushed to 1.27-1.6 m) and the near courtyard in front of
   // the screen; disallowed, the weapon is pushed onto the plane and the plane held at the nearest surface.

@@ -19,7 +19,7 @@ constexpr Range kDistance{0.0, 1.0e4};
 constexpr Range kPositiveSeconds{0.0, 60.0, true};
 constexpr Range kSeconds{0.0, 60.0};
 
-const std::vector<std::string> kMethods = {"seed", "search", "iterative"};
+const std::vector<std::string> kMethods = {"seed", "search", "iterative", "forward"};
 
 void readStereo(const nlohmann::json& section, stereo::StereoParameters& p) {
   ObjectReader reader(section, "stereo");

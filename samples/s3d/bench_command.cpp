@@ -37,7 +37,7 @@ class BenchCommand final : public Command {
         ->type_name("LIST");
     bench
         .add_option("--methods", options_.methods,
-                    "Comma-separated method settings: seed, search-N (N taps), iterative-K (K iterations); search and "
+                    "Comma-separated method settings: seed, forward, search-N (N taps), iterative-K (K iterations); search and "
                     "iterative alone sweep taps 4,8,16 and iterations 2,4,6,8; a /pixel or /tiles suffix (search-4/pixel) "
                     "forces the per-pixel or the row-tiled kernel (default: row tiles where their margin fits)")
         ->delimiter(',')

@@ -12,17 +12,18 @@ void splatKeys(bool leftEyeKeys, int y, float from, float to, float depth, int s
   }
 }
 
-void splatEye(ivec2 pixel, float direction) {
-  float here, previous, next;
-  if (!place(pixel.x, pixel.y, direction, here)) return;
-  float depth = depthAt(pixel.x, pixel.y);
+// The pixel and its row neighbours' depths (unknown outside the row) are read once for both eyes.
+void splatEye(ivec2 pixel, float direction, float previousDepth, float depth, float nextDepth) {
   bool leftEyeKeys = direction > 0.0;
-  bool previousKnown = place(pixel.x - 1, pixel.y, direction, previous);
-  bool nextKnown = place(pixel.x + 1, pixel.y, direction, next);
+  float here = forwardPosition(c, pixel.x, direction, depth);
+  bool previousKnown = forwardKnownDepth(previousDepth);
+  bool nextKnown = forwardKnownDepth(nextDepth);
+  float previous = previousKnown ? forwardPosition(c, pixel.x - 1, direction, previousDepth) : 0.0;
+  float next = nextKnown ? forwardPosition(c, pixel.x + 1, direction, nextDepth) : 0.0;
   if (!(previousKnown && forwardConnected(previous, here)))
     splatKeys(leftEyeKeys, pixel.y, here - 0.5, here, depth, pixel.x);  // open left end: half a pixel
   if (nextKnown && forwardConnected(here, next))
-    splatKeys(leftEyeKeys, pixel.y, here, next, min(depth, depthAt(pixel.x + 1, pixel.y)), pixel.x);
+    splatKeys(leftEyeKeys, pixel.y, here, next, min(depth, nextDepth), pixel.x);
   else
     splatKeys(leftEyeKeys, pixel.y, here, here + 0.5, depth, pixel.x);  // open right end
 }
@@ -30,6 +31,10 @@ void splatEye(ivec2 pixel, float direction) {
 void main() {
   ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
   if (pixel.x >= c.width || pixel.y >= c.height) return;
-  splatEye(pixel, 1.0);
-  splatEye(pixel, -1.0);
+  float depth = depthAt(pixel.x, pixel.y);
+  if (!forwardKnownDepth(depth)) return;  // unknown: never placed
+  float previousDepth = pixel.x > 0 ? depthAt(pixel.x - 1, pixel.y) : -1.0;
+  float nextDepth = pixel.x + 1 < c.width ? depthAt(pixel.x + 1, pixel.y) : -1.0;
+  splatEye(pixel, 1.0, previousDepth, depth, nextDepth);
+  splatEye(pixel, -1.0, previousDepth, depth, nextDepth);
 }

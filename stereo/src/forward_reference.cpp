@@ -37,45 +37,31 @@ void splat(std::vector<std::uint32_t>& keys, float from, float to, float depth, 
     keys[std::size_t(column)] = std::min(keys[std::size_t(column)], gpu::forwardKey(depth, source, column));
 }
 
-void writeColor(std::uint8_t* out, const float sum[4], int count) {
-  for (int channel = 0; channel < 4; ++channel)
-    out[channel] = std::uint8_t(std::lround(std::clamp(sum[channel] / float(count), 0.0f, 1.0f) * 255.0f));
-}
-
 // A hole pixel: the mean of a few center pixels on the far side of the hole (forward_shared.h).
-void fillHole(const ImageRGBA8& center, const DepthImage& depth, const std::vector<std::uint32_t>& keys, int column,
-              int y, const gpu::ForwardConstants& c, std::uint8_t* out) {
+ForwardSample fillHole(const DepthImage& depth, const std::vector<std::uint32_t>& keys, int column, int y,
+                       const gpu::ForwardConstants& c) {
   int left = -1, right = -1;
   for (int i = 1; i <= c.fillSearchPx && left < 0 && column - i >= 0; ++i)
     if (keys[std::size_t(column - i)] != S3D_FORWARD_EMPTY) left = column - i;
   for (int i = 1; i <= c.fillSearchPx && right < 0 && column + i < c.width; ++i)
     if (keys[std::size_t(column + i)] != S3D_FORWARD_EMPTY) right = column + i;
-  if (left < 0 && right < 0) {  // nothing lands near: the center pixel itself
-    std::copy_n(center.at(std::uint32_t(column), std::uint32_t(y)), 4, out);
-    return;
-  }
+  if (left < 0 && right < 0) return {0.0f, column, 1, 1};  // nothing lands near: the center pixel itself
   const bool useRight = left < 0 || (right >= 0 && gpu::forwardKeyDepth(keys[std::size_t(right)]) >
                                                        gpu::forwardKeyDepth(keys[std::size_t(left)]));
   const int edge = useRight ? right : left;
   const int source = gpu::forwardKeySource(keys[std::size_t(edge)], edge);
   const int away = useRight ? 1 : -1;
   const float edgeParallax = gpu::forwardParallaxPx(c, depthAt(depth, source, y));
-  float sum[4] = {0, 0, 0, 0};
-  int count = 0;
+  ForwardSample sample{0.0f, source + away * S3D_FORWARD_FILL_SKIP, 0, away};
   for (int k = S3D_FORWARD_FILL_SKIP; k < S3D_FORWARD_FILL_SKIP + S3D_FORWARD_FILL_TAPS; ++k) {
     const int x = source + away * k;
     if (x < 0 || x >= c.width) break;
     const float d = depthAt(depth, x, y);
     if (!gpu::forwardKnownDepth(d) || std::abs(gpu::forwardParallaxPx(c, d) - edgeParallax) > 1.0f) break;
-    const std::uint8_t* texel = center.at(std::uint32_t(x), std::uint32_t(y));
-    for (int channel = 0; channel < 4; ++channel) sum[channel] += float(texel[channel]) / 255.0f;
-    ++count;
+    ++sample.fillCount;
   }
-  if (count == 0) {
-    std::copy_n(center.at(std::uint32_t(source), std::uint32_t(y)), 4, out);
-    return;
-  }
-  writeColor(out, sum, count);
+  if (sample.fillCount == 0) return {0.0f, source, 1, 1};
+  return sample;
 }
 
 }  // namespace
@@ -116,6 +102,26 @@ std::vector<std::uint32_t> forwardSplatRow(const DepthImage& linearDepth, int y,
   return keys;
 }
 
+std::vector<ForwardSample> forwardRowSamples(const DepthImage& linearDepth, int y, float direction,
+                                             const gpu::ForwardConstants& c) {
+  const std::vector<std::uint32_t> keys = forwardSplatRow(linearDepth, y, direction, c);
+  std::vector<ForwardSample> samples(std::size_t(c.width));
+  for (int x = 0; x < c.width; ++x) {
+    const std::uint32_t key = keys[std::size_t(x)];
+    if (key == S3D_FORWARD_EMPTY) {
+      samples[std::size_t(x)] = fillHole(linearDepth, keys, x, y, c);
+      continue;
+    }
+    const int source = gpu::forwardKeySource(key, x);
+    const float position = gpu::forwardPosition(c, source, direction, depthAt(linearDepth, source, y));
+    const bool connected = connectedRight(linearDepth, source, y, direction, c);
+    const float nextPosition =
+        connected ? gpu::forwardPosition(c, source + 1, direction, depthAt(linearDepth, source + 1, y)) : 0.0f;
+    samples[std::size_t(x)].position = gpu::forwardSourcePosition(x, source, position, connected, nextPosition);
+  }
+  return samples;
+}
+
 StereoPair synthesizeForwardReference(const ImageRGBA8& center, const DepthImage& linearDepth,
                                       const gpu::ForwardConstants& c) {
   requireSameSize(center, linearDepth, "stereo pass (color vs depth)");
@@ -124,25 +130,25 @@ StereoPair synthesizeForwardReference(const ImageRGBA8& center, const DepthImage
   StereoPair pair{ImageRGBA8(center.width, center.height), ImageRGBA8(center.width, center.height)};
   for (int y = 0; y < c.height; ++y) {
     for (auto [eye, direction] : {std::pair{&pair.left, 1.0f}, std::pair{&pair.right, -1.0f}}) {
-      const std::vector<std::uint32_t> keys = forwardSplatRow(linearDepth, y, direction, c);
+      const std::vector<ForwardSample> samples = forwardRowSamples(linearDepth, y, direction, c);
       for (int x = 0; x < c.width; ++x) {
         std::uint8_t* out = eye->at(std::uint32_t(x), std::uint32_t(y));
+        const ForwardSample& sample = samples[std::size_t(x)];
         if (x < c.cropBegin || x >= c.cropEnd) {  // cropped edges, as in the seed
           std::fill(out, out + 3, std::uint8_t(0));
           out[3] = 255;
-          continue;
+        } else if (sample.fillCount == 0) {
+          sampleRow(center, y, sample.position, out);
+        } else {
+          float sum[4] = {0, 0, 0, 0};
+          for (int k = 0; k < sample.fillCount; ++k) {
+            const std::uint8_t* texel = center.at(std::uint32_t(sample.fillFirst + k * sample.fillStep), std::uint32_t(y));
+            for (int channel = 0; channel < 4; ++channel) sum[channel] += float(texel[channel]) / 255.0f;
+          }
+          for (int channel = 0; channel < 4; ++channel)
+            out[channel] = std::uint8_t(
+                std::lround(std::clamp(sum[channel] / float(sample.fillCount), 0.0f, 1.0f) * 255.0f));
         }
-        const std::uint32_t key = keys[std::size_t(x)];
-        if (key == S3D_FORWARD_EMPTY) {
-          fillHole(center, linearDepth, keys, x, y, c, out);
-          continue;
-        }
-        const int source = gpu::forwardKeySource(key, x);
-        const float position = gpu::forwardPosition(c, source, direction, depthAt(linearDepth, source, y));
-        const bool connected = connectedRight(linearDepth, source, y, direction, c);
-        const float nextPosition =
-            connected ? gpu::forwardPosition(c, source + 1, direction, depthAt(linearDepth, source + 1, y)) : 0.0f;
-        sampleRow(center, y, gpu::forwardSourcePosition(x, source, position, connected, nextPosition), out);
       }
     }
   }

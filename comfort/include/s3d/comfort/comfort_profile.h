@@ -6,7 +6,7 @@
 //
 // The JSON document (every key optional; defaults are those of the structs below):
 // { "stereo": {"maxSeparation", "zeroParallaxDistance", "edgeCrop" (null: = maxSeparation),
-//              "method": "seed"|"search"|"iterative", "searchTaps", "iterations"},
+//              "method": "seed"|"search"|"iterative"|"forward", "searchTaps", "iterations"},
 //   "weapon": {"depthOffset", "depthScale"},
 //   "zeroParallaxControl": {"engageDistance", "releaseMargin", "minimumDistance", "responseSeconds",
 //                           "maxChangePerSecond", "ringRays", "ringAngleRadians"},

@@ -22,6 +22,19 @@ gpu::ForwardConstants makeForwardConstants(const StereoParameters& parameters, s
 std::vector<std::uint32_t> forwardSplatRow(const DepthImage& linearDepth, int y, float direction,
                                            const gpu::ForwardConstants& constants);
 
+// What one eye pixel shows: the center row filtered at `position` (the seed's horizontal linear filter) when
+// fillCount is 0, else the mean of fillCount center texels from column fillFirst in steps of fillStep (a hole).
+struct ForwardSample {
+  float position = 0.0f;
+  int fillFirst = 0;
+  int fillCount = 0;
+  int fillStep = 1;
+};
+
+// One eye row's samples (the crop not applied), from forwardSplatRow's keys: the C++ twin of the resolve shader.
+std::vector<ForwardSample> forwardRowSamples(const DepthImage& linearDepth, int y, float direction,
+                                             const gpu::ForwardConstants& constants);
+
 // Both eyes, same math and order as the shaders (held to it pixel by pixel in the tests).
 StereoPair synthesizeForwardReference(const ImageRGBA8& center, const DepthImage& linearDepth,
                                       const gpu::ForwardConstants& constants);

@@ -8,9 +8,9 @@
 // s + the fraction of the way (sub-pixel placement, exact on flat and slanted surfaces). An open end (a depth
 // edge) covers half a pixel. Each covered eye pixel keeps the nearest surface: a 32-bit key of the depth's
 // upper float bits above the source's column offset, reduced with an atomic minimum (z-buffer). Eye pixels
-// no surface covers are disocclusions: they take the mean of a few center pixels on the far (background) side,
-// starting S3D_FORWARD_FILL_SKIP pixels behind the hole's edge, whose pixel mixes foreground into the
-// background in photographs. With maxSeparation 0 every pixel lands on itself: the center view bit for bit.
+// no surface covers are disocclusions: they take the mean of the first S3D_FORWARD_FILL_TAPS center pixels of
+// the surface on the far (background) side of the hole, from its edge on. With maxSeparation 0 every pixel lands
+// on itself: the center view bit for bit.
 #ifndef S3D_STEREO_FORWARD_SHARED_H
 #define S3D_STEREO_FORWARD_SHARED_H
 
@@ -35,8 +35,8 @@ S3D_GPU_BEGIN
 #define S3D_FORWARD_OFFSET_BITS 12u  // the key's low bits: source column - eye column + S3D_FORWARD_OFFSET_BIAS
 #define S3D_FORWARD_OFFSET_BIAS 2048
 #define S3D_FORWARD_EMPTY 0xffffffffu  // no surface landed here (yet)
-#define S3D_FORWARD_FILL_SKIP 1        // background pixels skipped at a hole's edge (measured on Aloe: RESULTS.md)
-#define S3D_FORWARD_FILL_TAPS 3        // background pixels averaged after those
+#define S3D_FORWARD_FILL_SKIP 0  // background pixels skipped at a hole's edge (skipping 1 or 2 measured worse: RESULTS.md)
+#define S3D_FORWARD_FILL_TAPS 3  // background pixels averaged (1: the plain warp's rule; 3 best SSIM, RESULTS.md)
 
 // Push constants of the forward pass; scalars only, so the std430 and C++ layouts agree.
 struct ForwardConstants {

@@ -10,7 +10,8 @@
 namespace s3d::stereo {
 
 // Per pixel of each eye, the fractional center-view column its color is filtered from, as
-// parameters.method's C++ reference computes it; NaN in the cropped border columns.
+// parameters.method's C++ reference computes it; NaN in the cropped border columns. Not for the forward
+// method (its holes take a mean of texels; std::invalid_argument), which synthesizeHdrReference handles itself.
 struct SourceColumns {
   std::vector<float> left;
   std::vector<float> right;
