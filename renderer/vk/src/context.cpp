@@ -50,17 +50,10 @@ PhysicalDeviceInfo describe(VkPhysicalDevice device, std::uint32_t index, VkSurf
   info.type = properties.deviceType;
   info.apiVersion = properties.apiVersion;
 
-  VkPhysicalDeviceVulkan13Features features13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
-  VkPhysicalDeviceFeatures2 features{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &features13};
-  if (properties.apiVersion >= VK_API_VERSION_1_3) vkGetPhysicalDeviceFeatures2(device, &features);
-
-  if (properties.apiVersion < VK_API_VERSION_1_3)
-    info.unusableReason = "Vulkan 1.3 not supported";
-  else if (!hasDeviceExtension(device, VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME))
-    info.unusableReason = "VK_KHR_push_descriptor missing";
-  else if (!features13.dynamicRendering || !features13.synchronization2 || !features13.maintenance4)
-    info.unusableReason = "dynamicRendering, synchronization2 or maintenance4 missing";
-  else if (findComputeGraphicsQueue(device) == UINT32_MAX)
+  if (std::vector<std::string> missing = missingDeviceSupport(device); !missing.empty()) {
+    for (const std::string& name : missing) info.unusableReason += (info.unusableReason.empty() ? "" : ", ") + name;
+    info.unusableReason += " missing";
+  } else if (findComputeGraphicsQueue(device) == UINT32_MAX)
     info.unusableReason = "no graphics+compute queue";
   else if (surface && !hasDeviceExtension(device, VK_KHR_SWAPCHAIN_EXTENSION_NAME))
     info.unusableReason = "VK_KHR_swapchain missing (needed to show a window)";
@@ -200,52 +193,90 @@ Context::Context(const ContextOptions& options) {
     deviceType_ = infos[chosen].type;
     queueFamily_ = findComputeGraphicsQueue(physicalDevice_);
 
-    VkPhysicalDeviceProperties properties{};
-    vkGetPhysicalDeviceProperties(physicalDevice_, &properties);
-    std::uint32_t familyCount = 0;
-    vkGetPhysicalDeviceQueueFamilyProperties(physicalDevice_, &familyCount, nullptr);
-    std::vector<VkQueueFamilyProperties> families(familyCount);
-    vkGetPhysicalDeviceQueueFamilyProperties(physicalDevice_, &familyCount, families.data());
-    if (families[queueFamily_].timestampValidBits > 0) timestampPeriodNs_ = properties.limits.timestampPeriod;
-    vkGetPhysicalDeviceMemoryProperties(physicalDevice_, &memoryProperties_);
-
     float priority = 1.0f;
     VkDeviceQueueCreateInfo queueInfo{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
     queueInfo.queueFamilyIndex = queueFamily_;
     queueInfo.queueCount = 1;
     queueInfo.pQueuePriorities = &priority;
-    VkPhysicalDeviceVulkan13Features features13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
-    features13.dynamicRendering = VK_TRUE;
-    features13.synchronization2 = VK_TRUE;
-    features13.maintenance4 = VK_TRUE;  // glslang emits LocalSizeId for SPIR-V 1.6 compute shaders
-    VkPhysicalDeviceFeatures2 features{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &features13};
-    std::vector<const char*> extensions = {VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME};
+    // The tools' own device goes through the same requirements a host enables.
+    std::vector<const char*> extensions;
     if (surface_) extensions.push_back(VK_KHR_SWAPCHAIN_EXTENSION_NAME);
-    VkDeviceCreateInfo deviceInfo{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO, &features};
+    VkDeviceCreateInfo deviceInfo{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
     deviceInfo.queueCreateInfoCount = 1;
     deviceInfo.pQueueCreateInfos = &queueInfo;
     deviceInfo.enabledExtensionCount = std::uint32_t(extensions.size());
     deviceInfo.ppEnabledExtensionNames = extensions.data();
+    DeviceRequirementsPatch requirements(physicalDevice_, deviceInfo);
     S3D_VK_CHECK(vkCreateDevice(physicalDevice_, &deviceInfo, nullptr, &device_));
     vkGetDeviceQueue(device_, queueFamily_, 0, &queue_);
-
-    cmdPushDescriptorSet =
-        reinterpret_cast<PFN_vkCmdPushDescriptorSetKHR>(vkGetDeviceProcAddr(device_, "vkCmdPushDescriptorSetKHR"));
-    if (!cmdPushDescriptorSet) throw std::runtime_error("vkCmdPushDescriptorSetKHR not available on " + deviceName_);
-
-    VkCommandPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
-    poolInfo.flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT | VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
-    poolInfo.queueFamilyIndex = queueFamily_;
-    S3D_VK_CHECK(vkCreateCommandPool(device_, &poolInfo, nullptr, &commandPool_));
+    initDeviceState();
   } catch (...) {
     release();  // a throwing constructor runs no destructor
     throw;
   }
 }
 
+Context::Context(const HostDevice& host) : ownsDevice_(false), allocator_(host.allocator), pipelineCache_(host.pipelineCache) {
+  if (!host.instance || !host.physicalDevice || !host.device || !host.queue)
+    throw std::invalid_argument("s3d: the host device needs its VkInstance, VkPhysicalDevice, VkDevice and VkQueue");
+  std::vector<std::string> missing = missingDeviceSupport(host.physicalDevice);
+  if (missing.empty() && host.createInfo) missing = missingEnabledRequirements(*host.createInfo);
+  if (!missing.empty()) {
+    std::string names;
+    for (const std::string& name : missing) names += (names.empty() ? "" : ", ") + name;
+    throw std::runtime_error("s3d cannot run on the host's device: it lacks " + names +
+                             " (enable s3d::vk::deviceRequirements() when creating it, e.g. with DeviceRequirementsPatch)");
+  }
+  std::uint32_t familyCount = 0;
+  vkGetPhysicalDeviceQueueFamilyProperties(host.physicalDevice, &familyCount, nullptr);
+  std::vector<VkQueueFamilyProperties> families(familyCount);
+  vkGetPhysicalDeviceQueueFamilyProperties(host.physicalDevice, &familyCount, families.data());
+  if (host.queueFamily >= familyCount || !(families[host.queueFamily].queueFlags & VK_QUEUE_COMPUTE_BIT))
+    throw std::runtime_error("s3d cannot run on the host's queue family " + std::to_string(host.queueFamily) +
+                             ": s3d records compute work and the family has no compute");
+  instance_ = host.instance;
+  physicalDevice_ = host.physicalDevice;
+  device_ = host.device;
+  queue_ = host.queue;
+  queueFamily_ = host.queueFamily;
+  try {
+    initDeviceState();
+  } catch (...) {
+    release();
+    throw;
+  }
+}
+
+void Context::initDeviceState() {
+  VkPhysicalDeviceProperties properties{};
+  vkGetPhysicalDeviceProperties(physicalDevice_, &properties);
+  deviceName_ = properties.deviceName;
+  deviceType_ = properties.deviceType;
+  std::uint32_t familyCount = 0;
+  vkGetPhysicalDeviceQueueFamilyProperties(physicalDevice_, &familyCount, nullptr);
+  std::vector<VkQueueFamilyProperties> families(familyCount);
+  vkGetPhysicalDeviceQueueFamilyProperties(physicalDevice_, &familyCount, families.data());
+  if (families[queueFamily_].timestampValidBits > 0) timestampPeriodNs_ = properties.limits.timestampPeriod;
+  vkGetPhysicalDeviceMemoryProperties(physicalDevice_, &memoryProperties_);
+
+  cmdPushDescriptorSet =
+      reinterpret_cast<PFN_vkCmdPushDescriptorSetKHR>(vkGetDeviceProcAddr(device_, "vkCmdPushDescriptorSetKHR"));
+  if (!cmdPushDescriptorSet) throw std::runtime_error("vkCmdPushDescriptorSetKHR not available on " + deviceName_);
+
+  VkCommandPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
+  poolInfo.flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT | VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
+  poolInfo.queueFamilyIndex = queueFamily_;
+  S3D_VK_CHECK(vkCreateCommandPool(device_, &poolInfo, allocator_, &commandPool_));
+}
+
 Context::~Context() { release(); }
 
 void Context::release() {
+  if (!ownsDevice_) {  // the host's device, instance and queue stay; only s3d's pool goes
+    if (commandPool_) vkDestroyCommandPool(device_, commandPool_, allocator_);
+    commandPool_ = VK_NULL_HANDLE;
+    return;
+  }
   if (device_) {
     vkDeviceWaitIdle(device_);
     if (commandPool_) vkDestroyCommandPool(device_, commandPool_, nullptr);
@@ -297,8 +328,8 @@ void Context::submitAndWait(const std::function<void(VkCommandBuffer)>& record) 
 
   VkFenceCreateInfo fenceInfo{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
   VkFence rawFence = VK_NULL_HANDLE;
-  S3D_VK_CHECK(vkCreateFence(device_, &fenceInfo, nullptr, &rawFence));
-  Unique<VkFence> fence(device_, rawFence, vkDestroyFence);
+  S3D_VK_CHECK(vkCreateFence(device_, &fenceInfo, allocator_, &rawFence));
+  Unique<VkFence> fence(device_, rawFence, vkDestroyFence, allocator_);
   VkCommandBufferSubmitInfo cmdInfo{VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO};
   cmdInfo.commandBuffer = cmd;
   VkSubmitInfo2 submit{VK_STRUCTURE_TYPE_SUBMIT_INFO_2};

@@ -9,8 +9,8 @@ Unique<VkShaderModule> createShaderModule(const Context& context, std::span<cons
   info.codeSize = spirv.size_bytes();
   info.pCode = spirv.data();
   VkShaderModule module = VK_NULL_HANDLE;
-  S3D_VK_CHECK(vkCreateShaderModule(context.device(), &info, nullptr, &module));
-  return {context.device(), module, vkDestroyShaderModule};
+  S3D_VK_CHECK(vkCreateShaderModule(context.device(), &info, context.allocator(), &module));
+  return {context.device(), module, vkDestroyShaderModule, context.allocator()};
 }
 
 PipelineLayout createPushDescriptorLayout(const Context& context,
@@ -22,9 +22,9 @@ PipelineLayout createPushDescriptorLayout(const Context& context,
   setInfo.bindingCount = static_cast<std::uint32_t>(bindings.size());
   setInfo.pBindings = bindings.data();
   VkDescriptorSetLayout setLayout = VK_NULL_HANDLE;
-  S3D_VK_CHECK(vkCreateDescriptorSetLayout(device, &setInfo, nullptr, &setLayout));
+  S3D_VK_CHECK(vkCreateDescriptorSetLayout(device, &setInfo, context.allocator(), &setLayout));
   PipelineLayout result;
-  result.setLayout = Unique<VkDescriptorSetLayout>(device, setLayout, vkDestroyDescriptorSetLayout);
+  result.setLayout = Unique<VkDescriptorSetLayout>(device, setLayout, vkDestroyDescriptorSetLayout, context.allocator());
 
   VkPushConstantRange range{pushConstantStages, 0, pushConstantBytes};
   VkPipelineLayoutCreateInfo layoutInfo{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
@@ -33,8 +33,8 @@ PipelineLayout createPushDescriptorLayout(const Context& context,
   layoutInfo.pushConstantRangeCount = pushConstantBytes > 0 ? 1 : 0;
   layoutInfo.pPushConstantRanges = &range;
   VkPipelineLayout layout = VK_NULL_HANDLE;
-  S3D_VK_CHECK(vkCreatePipelineLayout(device, &layoutInfo, nullptr, &layout));
-  result.layout = Unique<VkPipelineLayout>(device, layout, vkDestroyPipelineLayout);
+  S3D_VK_CHECK(vkCreatePipelineLayout(device, &layoutInfo, context.allocator(), &layout));
+  result.layout = Unique<VkPipelineLayout>(device, layout, vkDestroyPipelineLayout, context.allocator());
   return result;
 }
 
@@ -48,8 +48,8 @@ Unique<VkPipeline> createComputePipeline(const Context& context, VkPipelineLayou
   info.stage.pName = "main";
   info.layout = layout;
   VkPipeline pipeline = VK_NULL_HANDLE;
-  S3D_VK_CHECK(vkCreateComputePipelines(context.device(), VK_NULL_HANDLE, 1, &info, nullptr, &pipeline));
-  return {context.device(), pipeline, vkDestroyPipeline};
+  S3D_VK_CHECK(vkCreateComputePipelines(context.device(), context.pipelineCache(), 1, &info, context.allocator(), &pipeline));
+  return {context.device(), pipeline, vkDestroyPipeline, context.allocator()};
 }
 
 Unique<VkPipeline> createGraphicsPipeline(const Context& context, VkPipelineLayout layout,
@@ -133,8 +133,8 @@ Unique<VkPipeline> createGraphicsPipeline(const Context& context, VkPipelineLayo
   info.pDynamicState = &dynamic;
   info.layout = layout;
   VkPipeline pipeline = VK_NULL_HANDLE;
-  S3D_VK_CHECK(vkCreateGraphicsPipelines(context.device(), VK_NULL_HANDLE, 1, &info, nullptr, &pipeline));
-  return {context.device(), pipeline, vkDestroyPipeline};
+  S3D_VK_CHECK(vkCreateGraphicsPipelines(context.device(), context.pipelineCache(), 1, &info, context.allocator(), &pipeline));
+  return {context.device(), pipeline, vkDestroyPipeline, context.allocator()};
 }
 
 static VkWriteDescriptorSet imageWrite(std::uint32_t binding, VkDescriptorType type,

@@ -15,9 +15,9 @@ Buffer createBuffer(const Context& context, VkDeviceSize size, VkBufferUsageFlag
   info.usage = usage;
   info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
   VkBuffer rawBuffer = VK_NULL_HANDLE;
-  S3D_VK_CHECK(vkCreateBuffer(device, &info, nullptr, &rawBuffer));
+  S3D_VK_CHECK(vkCreateBuffer(device, &info, context.allocator(), &rawBuffer));
   Buffer buffer;
-  buffer.buffer = Unique<VkBuffer>(device, rawBuffer, vkDestroyBuffer);
+  buffer.buffer = Unique<VkBuffer>(device, rawBuffer, vkDestroyBuffer, context.allocator());
   buffer.size = size;
 
   VkMemoryRequirements requirements{};
@@ -31,8 +31,8 @@ Buffer createBuffer(const Context& context, VkDeviceSize size, VkBufferUsageFlag
                                    VK_MEMORY_PROPERTY_HOST_CACHED_BIT)
           : context.findMemoryType(requirements.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
   VkDeviceMemory rawMemory = VK_NULL_HANDLE;
-  S3D_VK_CHECK(vkAllocateMemory(device, &alloc, nullptr, &rawMemory));
-  buffer.memory = Unique<VkDeviceMemory>(device, rawMemory, vkFreeMemory);
+  S3D_VK_CHECK(vkAllocateMemory(device, &alloc, context.allocator(), &rawMemory));
+  buffer.memory = Unique<VkDeviceMemory>(device, rawMemory, vkFreeMemory, context.allocator());
   S3D_VK_CHECK(vkBindBufferMemory(device, rawBuffer, rawMemory, 0));
   if (location == MemoryLocation::HostVisible) S3D_VK_CHECK(vkMapMemory(device, rawMemory, 0, size, 0, &buffer.mapped));
   return buffer;
@@ -75,9 +75,9 @@ Image createImage(const Context& context, VkFormat format, std::uint32_t width, 
   info.usage = usage;
   info.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
   VkImage rawImage = VK_NULL_HANDLE;
-  S3D_VK_CHECK(vkCreateImage(device, &info, nullptr, &rawImage));
+  S3D_VK_CHECK(vkCreateImage(device, &info, context.allocator(), &rawImage));
   Image image;
-  image.image = Unique<VkImage>(device, rawImage, vkDestroyImage);
+  image.image = Unique<VkImage>(device, rawImage, vkDestroyImage, context.allocator());
   image.format = format;
   image.aspect = aspectOf(format);
   image.width = width;
@@ -89,8 +89,8 @@ Image createImage(const Context& context, VkFormat format, std::uint32_t width, 
   alloc.allocationSize = requirements.size;
   alloc.memoryTypeIndex = context.findMemoryType(requirements.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
   VkDeviceMemory rawMemory = VK_NULL_HANDLE;
-  S3D_VK_CHECK(vkAllocateMemory(device, &alloc, nullptr, &rawMemory));
-  image.memory = Unique<VkDeviceMemory>(device, rawMemory, vkFreeMemory);
+  S3D_VK_CHECK(vkAllocateMemory(device, &alloc, context.allocator(), &rawMemory));
+  image.memory = Unique<VkDeviceMemory>(device, rawMemory, vkFreeMemory, context.allocator());
   S3D_VK_CHECK(vkBindImageMemory(device, rawImage, rawMemory, 0));
 
   VkImageViewCreateInfo viewInfo{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
@@ -99,8 +99,8 @@ Image createImage(const Context& context, VkFormat format, std::uint32_t width, 
   viewInfo.format = format;
   viewInfo.subresourceRange = {image.aspect, 0, 1, 0, 1};
   VkImageView rawView = VK_NULL_HANDLE;
-  S3D_VK_CHECK(vkCreateImageView(device, &viewInfo, nullptr, &rawView));
-  image.view = Unique<VkImageView>(device, rawView, vkDestroyImageView);
+  S3D_VK_CHECK(vkCreateImageView(device, &viewInfo, context.allocator(), &rawView));
+  image.view = Unique<VkImageView>(device, rawView, vkDestroyImageView, context.allocator());
   return image;
 }
 

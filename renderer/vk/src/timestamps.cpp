@@ -12,8 +12,8 @@ TimestampQueries::TimestampQueries(const Context& context, std::uint32_t count)
   info.queryType = VK_QUERY_TYPE_TIMESTAMP;
   info.queryCount = count;
   VkQueryPool pool = VK_NULL_HANDLE;
-  S3D_VK_CHECK(vkCreateQueryPool(context.device(), &info, nullptr, &pool));
-  pool_ = Unique<VkQueryPool>(context.device(), pool, vkDestroyQueryPool);
+  S3D_VK_CHECK(vkCreateQueryPool(context.device(), &info, context.allocator(), &pool));
+  pool_ = Unique<VkQueryPool>(context.device(), pool, vkDestroyQueryPool, context.allocator());
 }
 
 void TimestampQueries::reset(VkCommandBuffer cmd) { vkCmdResetQueryPool(cmd, pool_, 0, count_); }

@@ -35,9 +35,61 @@ struct PhysicalDeviceInfo {
 // Lists every physical device the loader reports, with whether s3d can use it.
 std::vector<PhysicalDeviceInfo> listPhysicalDevices();
 
+// What s3d needs of a device; a host that creates its own device enables these (DeviceRequirementsPatch).
+struct DeviceRequirements {
+  std::uint32_t apiVersion = VK_API_VERSION_1_3;
+  std::vector<std::string> extensions;  // device extensions
+  std::vector<std::string> features;    // Vulkan 1.3 feature names (VkPhysicalDeviceVulkan13Features members)
+};
+DeviceRequirements deviceRequirements();
+
+// Each requirement `physicalDevice` does not support, named ("Vulkan 1.3", "synchronization2",
+// "VK_KHR_push_descriptor"); empty when s3d can run on it.
+std::vector<std::string> missingDeviceSupport(VkPhysicalDevice physicalDevice);
+
+// Each requirement a device made from `info` would not have enabled (extensions, and features found in its
+// pNext chain as VkPhysicalDeviceVulkan13Features or the per-feature structs).
+std::vector<std::string> missingEnabledRequirements(const VkDeviceCreateInfo& info);
+
+// Adds s3d's extensions and features to a host's VkDeviceCreateInfo before vkCreateDevice: sets the features
+// in the feature structs the chain already has, links its own structs otherwise, and points the extension list
+// at a copy with s3d's added. Keep the patch alive until vkCreateDevice returns. Throws std::runtime_error
+// naming every requirement the physical device does not support.
+class DeviceRequirementsPatch {
+ public:
+  DeviceRequirementsPatch(VkPhysicalDevice physicalDevice, VkDeviceCreateInfo& info);
+  DeviceRequirementsPatch(const DeviceRequirementsPatch&) = delete;
+  DeviceRequirementsPatch& operator=(const DeviceRequirementsPatch&) = delete;
+
+ private:
+  std::vector<const char*> extensions_;
+  VkPhysicalDeviceVulkan13Features vulkan13_{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
+  VkPhysicalDeviceSynchronization2Features synchronization2_{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SYNCHRONIZATION_2_FEATURES};
+  VkPhysicalDeviceDynamicRenderingFeatures dynamicRendering_{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DYNAMIC_RENDERING_FEATURES};
+  VkPhysicalDeviceMaintenance4Features maintenance4_{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MAINTENANCE_4_FEATURES};
+};
+
+// A host's device for s3d to run on. s3d destroys none of these handles; the host keeps them alive (and the
+// device idle of s3d's work) until every s3d object made from the context is gone.
+struct HostDevice {
+  VkInstance instance = VK_NULL_HANDLE;
+  VkPhysicalDevice physicalDevice = VK_NULL_HANDLE;
+  VkDevice device = VK_NULL_HANDLE;
+  std::uint32_t queueFamily = 0;  // must support compute; s3d records only into the host's command buffers
+  VkQueue queue = VK_NULL_HANDLE;  // used only by the context's uploads (submitAndWait), never per frame
+  const VkAllocationCallbacks* allocator = nullptr;  // passed to every s3d create/destroy
+  VkPipelineCache pipelineCache = VK_NULL_HANDLE;   // used for every s3d pipeline
+  // The create info the device was made with (read only during construction): when given, s3d checks that
+  // its features and extensions were enabled, not only supported.
+  const VkDeviceCreateInfo* createInfo = nullptr;
+};
+
 class Context {
  public:
+  // s3d's own instance and device (the tools, the tests).
   explicit Context(const ContextOptions& options = {});
+  // Adopts a host's device without owning it. Throws std::runtime_error naming each missing requirement.
+  explicit Context(const HostDevice& host);
   ~Context();
   Context(const Context&) = delete;
   Context& operator=(const Context&) = delete;
@@ -50,6 +102,9 @@ class Context {
   std::uint32_t queueFamily() const { return queueFamily_; }
   const std::string& deviceName() const { return deviceName_; }
   bool isCpuDevice() const { return deviceType_ == VK_PHYSICAL_DEVICE_TYPE_CPU; }
+  bool ownsDevice() const { return ownsDevice_; }
+  const VkAllocationCallbacks* allocator() const { return allocator_; }
+  VkPipelineCache pipelineCache() const { return pipelineCache_; }
   // Nanoseconds per timestamp tick; 0 when the queue has no timestamp support.
   double timestampPeriodNs() const { return timestampPeriodNs_; }
 
@@ -68,6 +123,7 @@ class Context {
 
  private:
   void release();
+  void initDeviceState();  // properties, memory types, entry points, command pool of the chosen device
   static VKAPI_ATTR VkBool32 VKAPI_CALL onValidationMessage(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
                                                             VkDebugUtilsMessageTypeFlagsEXT types,
                                                             const VkDebugUtilsMessengerCallbackDataEXT* data,
@@ -80,6 +136,9 @@ class Context {
   VkDevice device_ = VK_NULL_HANDLE;
   VkQueue queue_ = VK_NULL_HANDLE;
   VkCommandPool commandPool_ = VK_NULL_HANDLE;
+  bool ownsDevice_ = true;
+  const VkAllocationCallbacks* allocator_ = nullptr;
+  VkPipelineCache pipelineCache_ = VK_NULL_HANDLE;
   std::uint32_t queueFamily_ = 0;
   std::string deviceName_;
   VkPhysicalDeviceType deviceType_ = VK_PHYSICAL_DEVICE_TYPE_OTHER;

@@ -13,7 +13,9 @@ class Unique {
   using Destroy = void (*)(VkDevice, Handle, const VkAllocationCallbacks*);
 
   Unique() = default;
-  Unique(VkDevice device, Handle handle, Destroy destroy) : device_(device), handle_(handle), destroy_(destroy) {}
+  // `allocator`: the callbacks the handle was created with (a host's, when s3d runs on its device).
+  Unique(VkDevice device, Handle handle, Destroy destroy, const VkAllocationCallbacks* allocator = nullptr)
+      : device_(device), handle_(handle), destroy_(destroy), allocator_(allocator) {}
   Unique(const Unique&) = delete;
   Unique& operator=(const Unique&) = delete;
   Unique(Unique&& other) noexcept { swap(other); }
@@ -31,7 +33,7 @@ class Unique {
   explicit operator bool() const { return handle_ != VK_NULL_HANDLE; }
 
   void reset() {
-    if (handle_ != VK_NULL_HANDLE) destroy_(device_, handle_, nullptr);
+    if (handle_ != VK_NULL_HANDLE) destroy_(device_, handle_, allocator_);
     handle_ = VK_NULL_HANDLE;
   }
 
@@ -40,11 +42,13 @@ class Unique {
     std::swap(device_, other.device_);
     std::swap(handle_, other.handle_);
     std::swap(destroy_, other.destroy_);
+    std::swap(allocator_, other.allocator_);
   }
 
   VkDevice device_ = VK_NULL_HANDLE;
   Handle handle_ = VK_NULL_HANDLE;
   Destroy destroy_ = nullptr;
+  const VkAllocationCallbacks* allocator_ = nullptr;
 };
 
 }  // namespace s3d::vk
