@@ -2,12 +2,17 @@
 // Included by stereo_seed.comp and stereo_search.comp, which set S3D_STEREO_TAP_CAPACITY first.
 #include "s3d/stereo/stereo_shared.h"
 
+// The colour images' format: display RGBA8, or rgba16f for a host's HDR colour (stereo_*_hdr.comp).
+#ifndef S3D_STEREO_COLOR_FORMAT
+#define S3D_STEREO_COLOR_FORMAT rgba8
+#endif
+
 layout(local_size_x = S3D_STEREO_GROUP_SIZE, local_size_y = S3D_STEREO_GROUP_SIZE) in;
 
-layout(binding = 0, rgba8) uniform readonly image2D centerColor;
+layout(binding = 0, S3D_STEREO_COLOR_FORMAT) uniform readonly image2D centerColor;
 layout(binding = 1, r32f) uniform readonly image2D linearDepth;
-layout(binding = 2, rgba8) uniform writeonly image2D leftEye;
-layout(binding = 3, rgba8) uniform writeonly image2D rightEye;
+layout(binding = 2, S3D_STEREO_COLOR_FORMAT) uniform writeonly image2D leftEye;
+layout(binding = 3, S3D_STEREO_COLOR_FORMAT) uniform writeonly image2D rightEye;
 
 layout(push_constant) uniform Push { StereoConstants c; };
 

@@ -45,7 +45,13 @@ std::uint32_t texelSize(VkFormat format) {
     case VK_FORMAT_R32_SFLOAT:
     case VK_FORMAT_D32_SFLOAT:
     case VK_FORMAT_A2B10G10R10_UNORM_PACK32:
+    case VK_FORMAT_B8G8R8A8_UNORM:
+    case VK_FORMAT_B8G8R8A8_SRGB:
+    case VK_FORMAT_B10G11R11_UFLOAT_PACK32:
+    case VK_FORMAT_D24_UNORM_S8_UINT:  // depth aspect copies: 24 bits in the low bits of 32
       return 4;
+    case VK_FORMAT_D16_UNORM:
+      return 2;
     case VK_FORMAT_R16G16B16A16_SFLOAT:
     case VK_FORMAT_R32G32_SFLOAT:
       return 8;
@@ -57,7 +63,8 @@ std::uint32_t texelSize(VkFormat format) {
 }
 
 static VkImageAspectFlags aspectOf(VkFormat format) {
-  return format == VK_FORMAT_D32_SFLOAT ? VK_IMAGE_ASPECT_DEPTH_BIT : VK_IMAGE_ASPECT_COLOR_BIT;
+  const bool depth = format == VK_FORMAT_D32_SFLOAT || format == VK_FORMAT_D16_UNORM || format == VK_FORMAT_D24_UNORM_S8_UINT;
+  return depth ? VK_IMAGE_ASPECT_DEPTH_BIT : VK_IMAGE_ASPECT_COLOR_BIT;  // views and copies: the depth aspect
 }
 
 Image createImage(const Context& context, VkFormat format, std::uint32_t width, std::uint32_t height,
@@ -115,7 +122,10 @@ void transition(VkCommandBuffer cmd, const Image& image, const ImageState& from,
   barrier.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
   barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
   barrier.image = image.image;
-  barrier.subresourceRange = {image.aspect, 0, 1, 0, 1};
+  // A combined depth/stencil image changes layout in both aspects at once (no separateDepthStencilLayouts).
+  const VkImageAspectFlags aspect =
+      image.format == VK_FORMAT_D24_UNORM_S8_UINT ? VK_IMAGE_ASPECT_DEPTH_BIT | VK_IMAGE_ASPECT_STENCIL_BIT : image.aspect;
+  barrier.subresourceRange = {aspect, 0, 1, 0, 1};
   VkDependencyInfo dependency{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
   dependency.imageMemoryBarrierCount = 1;
   dependency.pImageMemoryBarriers = &barrier;

@@ -1,0 +1,49 @@
+// Push constants of the host pass's input conversion and output packing, shared by the shaders and C++.
+#ifndef S3D_STEREO_HOST_PASS_SHARED_H
+#define S3D_STEREO_HOST_PASS_SHARED_H
+
+#include "s3d/gpu/linear_depth.h"
+
+S3D_GPU_BEGIN
+
+#define S3D_HOST_GROUP_SIZE 8
+
+// How the sampled host colour becomes the stereo kernel's colour.
+#define S3D_HOST_COLOR_AS_STORED 0  // UNORM views (RGBA8, BGRA8) and HDR formats: the values as sampled
+#define S3D_HOST_COLOR_ENCODE_SRGB 1  // sRGB views sample as linear light: encode back to display values
+
+#define S3D_HOST_DEPTH_LINEAR 0  // R32F linear depth in world units (+inf or <= 0 as in the stereo pass)
+#define S3D_HOST_DEPTH_DEVICE 1  // a hardware depth buffer, linearized with LinearDepthParams
+
+struct HostInputConstants {
+  LinearDepthParams depth;
+  int width;
+  int height;
+  int colorTransfer;
+  int depthKind;
+};
+
+#define S3D_HOST_PACK_SIDE_BY_SIDE_HALF 0
+#define S3D_HOST_PACK_SIDE_BY_SIDE_FULL 1
+#define S3D_HOST_PACK_TOP_BOTTOM_HALF 2
+#define S3D_HOST_PACK_TOP_BOTTOM_FULL 3
+#define S3D_HOST_PACK_ANAGLYPH 4
+
+struct HostPackConstants {
+  int mode;
+  int eyeWidth;
+  int eyeHeight;
+  int eyesEncoded;  // 1: the eyes hold sRGB-encoded display values (mix in linear light), 0: linear (HDR)
+};
+
+// Display value <-> linear light (IEC 61966-2-1), for the packing's filters and mixes.
+S3D_INLINE float hostSrgbToLinear(float encoded) {
+  return encoded <= 0.04045f ? encoded / 12.92f : pow((encoded + 0.055f) / 1.055f, 2.4f);
+}
+S3D_INLINE float hostLinearToSrgb(float linear) {
+  return linear <= 0.0031308f ? linear * 12.92f : 1.055f * pow(linear, 1.0f / 2.4f) - 0.055f;
+}
+
+S3D_GPU_END
+
+#endif  // S3D_STEREO_HOST_PASS_SHARED_H

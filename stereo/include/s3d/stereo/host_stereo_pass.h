@@ -1,0 +1,101 @@
+#pragma once
+// The stereo pass inside a host's frame: the host's own colour and depth images in, its eye images or one
+// packed target out, recorded into the host's command buffer (docs/INTEGRATION.md).
+#include <cstdint>
+#include <optional>
+
+#include <vulkan/vulkan.h>
+
+#include "s3d/gpu/linear_depth.h"
+#include "s3d/stereo/detail/eye_pair_pipeline.h"
+#include "s3d/stereo/host_pass_shared.h"
+#include "s3d/stereo/stereo.h"
+#include "s3d/vk/context.h"
+#include "s3d/vk/resources.h"
+
+namespace s3d::stereo {
+
+// One of the host's images as it is when record() runs.
+struct HostImage {
+  VkImage image = VK_NULL_HANDLE;
+  VkImageView view = VK_NULL_HANDLE;  // 2D, mip 0, layer 0; for depth/stencil formats the depth aspect only
+  VkFormat format = VK_FORMAT_UNDEFINED;
+  VkImageLayout layout = VK_IMAGE_LAYOUT_UNDEFINED;  // current layout; record() leaves the image in it
+  // The host's last access. With a stage, record() adds the barriers (into the layout s3d needs and back);
+  // with VK_PIPELINE_STAGE_2_NONE the host has synchronized the image itself and `layout` must be one s3d can
+  // use as it is (inputs: GENERAL or a read-only layout; outputs: GENERAL).
+  VkPipelineStageFlags2 stage = VK_PIPELINE_STAGE_2_NONE;
+  VkAccessFlags2 access = VK_ACCESS_2_NONE;
+};
+
+// The host's depth buffer convention, for linear depth (Listings 4.2 and 4.3).
+struct HostProjection {
+  float nearPlane = 0.1f;  // world units
+  float farPlane = 1000.0f;  // ignored with infiniteFarPlane
+  bool reversedZ = false;  // near at device depth 1, far (and the cleared sky) at 0
+  bool infiniteFarPlane = false;
+  // The first-person layer (weapon, arms) drawn with its own projection into a slice of the depth range: device
+  // depth [0, firstPersonDepthRange] (reversed-Z: [1 - firstPersonDepthRange, 1]); 0 when the host has none.
+  float firstPersonDepthRange = 0.0f;
+  float firstPersonNear = 0.01f;
+  float firstPersonFar = 10.0f;
+};
+
+enum class HostColorFormat { Rgba8, Rgba8Srgb, Bgra8, Bgra8Srgb, Rgba16F, B10G11R11 };
+enum class HostDepthKind { Linear, Hardware };
+enum class HostOutput { TwoEyes, SideBySideHalf, SideBySideFull, TopBottomHalf, TopBottomFull, Anaglyph };
+
+// What the pass is set up for; everything it creates (pipelines, sampler, intermediate images) is made from this
+// at construction, so record() allocates nothing.
+struct HostStereoPassDesc {
+  std::uint32_t width = 0;  // the host's colour and depth images (the eyes have this size)
+  std::uint32_t height = 0;
+  VkFormat colorFormat = VK_FORMAT_R8G8B8A8_UNORM;  // RGBA8/BGRA8 UNORM or SRGB, RGBA16F, B10G11R11
+  VkFormat depthFormat = VK_FORMAT_D32_SFLOAT;      // D32, D24S8, D16 (hardware) or R32F (linear depth)
+  HostOutput output = HostOutput::TwoEyes;
+  // Skip the input conversion when the host's colour is RGBA8 UNORM and its depth R32F linear depth, both made
+  // with VK_IMAGE_USAGE_STORAGE_BIT: the stereo kernel reads them as they are.
+  bool inputsAreStorage = false;
+};
+
+// Per frame: the stereo parameters as push constants (makeStereoConstants; Seed or Search methods) and, for
+// hardware depth, the projection and the first-person push.
+struct HostFrame {
+  gpu::StereoConstants stereo{};
+  HostProjection projection;
+  float weaponDepthOffset = 1.0f;  // seed 4.6.2 (StereoParameters::weaponDepthOffset/Scale)
+  float weaponDepthScale = 1.0f;
+};
+
+// LinearDepthParams for a host's projection (infinite far planes and reversed-Z included).
+gpu::LinearDepthParams linearDepthParams(const HostProjection& projection, float weaponDepthOffset,
+                                         float weaponDepthScale);
+
+class HostStereoPass {
+ public:
+  // Throws std::invalid_argument naming an unsupported format or size.
+  HostStereoPass(vk::Context& context, const HostStereoPassDesc& desc);
+
+  // Records the input conversion (unless skipped), the stereo kernel and the output packing into `cmd`. Eyes:
+  // `left`/`right` (storage images in the pass's eye format, see eyeFormat()); packed outputs: `target`
+  // (storage image in eyeFormat(), packedWidth() x packedHeight()). No submit, no wait, no allocation.
+  void record(VkCommandBuffer cmd, const HostImage& color, const HostImage& depth, const HostFrame& frame,
+              const HostImage* left, const HostImage* right, const HostImage* target) const;
+
+  // RGBA8 UNORM (display colour) for 8-bit inputs, RGBA16F for RGBA16F and B10G11R11 (HDR) inputs.
+  VkFormat eyeFormat() const { return hdr_ ? VK_FORMAT_R16G16B16A16_SFLOAT : VK_FORMAT_R8G8B8A8_UNORM; }
+  std::uint32_t packedWidth() const;
+  std::uint32_t packedHeight() const;
+  bool convertsInputs() const { return !desc_.inputsAreStorage; }
+
+ private:
+  vk::Context* context_;
+  HostStereoPassDesc desc_;
+  bool hdr_ = false;
+  int colorTransfer_ = S3D_HOST_COLOR_AS_STORED;
+  vk::Unique<VkSampler> sampler_;
+  std::optional<detail::EyePairPipeline> input_, shortTaps_, allTaps_, pack_;
+  vk::Image centerColor_, linearDepth_, leftEye_, rightEye_;  // intermediates (unused ones stay empty)
+};
+
+}  // namespace s3d::stereo

@@ -1,0 +1,6 @@
+#version 450
+// The seed gather on half-float colour (a host's HDR input, before tone mapping).
+#extension GL_GOOGLE_include_directive : require
+#define S3D_STEREO_TAP_CAPACITY S3D_STEREO_SMALL_TAP_CAPACITY
+#define S3D_STEREO_COLOR_FORMAT rgba16f
+#include "stereo_gather.glsl"

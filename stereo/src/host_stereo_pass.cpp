@@ -1,0 +1,339 @@
+#include "s3d/stereo/host_stereo_pass.h"
+
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "s3d/vk/check.h"
+#include "s3d/vk/pipeline.h"
+
+// clang-format off
+#include <s3d_spirv/host_input_rgba8_comp.h>
+#include <s3d_spirv/host_input_rgba16f_comp.h>
+#include <s3d_spirv/host_pack_rgba8_comp.h>
+#include <s3d_spirv/host_pack_rgba16f_comp.h>
+#include <s3d_spirv/stereo_search_comp.h>
+#include <s3d_spirv/stereo_search_hdr_comp.h>
+#include <s3d_spirv/stereo_seed_comp.h>
+#include <s3d_spirv/stereo_seed_hdr_comp.h>
+// clang-format on
+
+namespace s3d::stereo {
+namespace {
+
+constexpr std::uint32_t pushBytesFor(int tapCapacity) {
+  return std::uint32_t(offsetof(gpu::StereoConstants, tapOffsetPx) + sizeof(int) * std::size_t(tapCapacity));
+}
+
+bool isColorFormat(VkFormat f) {
+  switch (f) {
+    case VK_FORMAT_R8G8B8A8_UNORM: case VK_FORMAT_R8G8B8A8_SRGB: case VK_FORMAT_B8G8R8A8_UNORM:
+    case VK_FORMAT_B8G8R8A8_SRGB: case VK_FORMAT_R16G16B16A16_SFLOAT: case VK_FORMAT_B10G11R11_UFLOAT_PACK32:
+      return true;
+    default:
+      return false;
+  }
+}
+bool isHardwareDepth(VkFormat f) {
+  return f == VK_FORMAT_D32_SFLOAT || f == VK_FORMAT_D24_UNORM_S8_UINT || f == VK_FORMAT_D16_UNORM;
+}
+VkImageAspectFlags barrierAspect(VkFormat f) {
+  if (f == VK_FORMAT_D24_UNORM_S8_UINT) return VK_IMAGE_ASPECT_DEPTH_BIT | VK_IMAGE_ASPECT_STENCIL_BIT;
+  return isHardwareDepth(f) ? VK_IMAGE_ASPECT_DEPTH_BIT : VK_IMAGE_ASPECT_COLOR_BIT;
+}
+bool sampledReadable(VkImageLayout l) {
+  return l == VK_IMAGE_LAYOUT_GENERAL || l == VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL ||
+         l == VK_IMAGE_LAYOUT_READ_ONLY_OPTIMAL || l == VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL ||
+         l == VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_OPTIMAL;
+}
+
+gpu::vec2 layerRatio(float nearPlane, float farPlane, bool infinite, bool reversed, float begin, float end) {
+  if (!infinite) return reversed ? gpu::reversedProjectionRatio(nearPlane, farPlane, begin, end)
+                                 : gpu::projectionRatio(nearPlane, farPlane, begin, end);
+  // The limits of Listing 4.2's ratio as far -> infinity: d = 1 - n/z (standard), d = n/z (reversed).
+  const float x = reversed ? 0.0f : 1.0f, y = reversed ? nearPlane : -nearPlane;
+  return {begin + x * (end - begin), y * (end - begin)};
+}
+
+detail::EyePairPipeline makePipeline(const vk::Context& context, std::span<const VkDescriptorSetLayoutBinding> bindings,
+                                     std::span<const std::uint32_t> spirv, std::uint32_t pushBytes, int group) {
+  detail::EyePairPipeline result;
+  result.layout = vk::createPushDescriptorLayout(context, bindings, pushBytes, VK_SHADER_STAGE_COMPUTE_BIT);
+  result.pipeline = vk::createComputePipeline(context, result.layout.layout, spirv);
+  result.pushConstantBytes = pushBytes;
+  result.groupWidth = group;
+  result.groupHeight = group;
+  return result;
+}
+
+VkDescriptorSetLayoutBinding binding(std::uint32_t index, VkDescriptorType type) {
+  return {index, type, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr};
+}
+
+struct BarrierList {
+  std::vector<VkImageMemoryBarrier2> images;
+  bool memory = false;  // a compute -> compute dependency for s3d's own intermediates (this and earlier frames)
+  void image(const HostImage& host, VkImageLayout fromLayout, VkPipelineStageFlags2 fromStage, VkAccessFlags2 fromAccess,
+             VkImageLayout toLayout, VkPipelineStageFlags2 toStage, VkAccessFlags2 toAccess) {
+    VkImageMemoryBarrier2 b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
+    b.srcStageMask = fromStage;
+    b.srcAccessMask = fromAccess;
+    b.dstStageMask = toStage;
+    b.dstAccessMask = toAccess;
+    b.oldLayout = fromLayout;
+    b.newLayout = toLayout;
+    b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+    b.image = host.image;
+    b.subresourceRange = {barrierAspect(host.format), 0, 1, 0, 1};
+    images.push_back(b);
+  }
+  void record(VkCommandBuffer cmd) const {
+    VkMemoryBarrier2 global{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
+    global.srcStageMask = global.dstStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
+    global.srcAccessMask = global.dstAccessMask = VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
+    VkDependencyInfo dependency{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+    dependency.memoryBarrierCount = memory ? 1 : 0;
+    dependency.pMemoryBarriers = &global;
+    dependency.imageMemoryBarrierCount = std::uint32_t(images.size());
+    dependency.pImageMemoryBarriers = images.data();
+    if (memory || !images.empty()) vkCmdPipelineBarrier2(cmd, &dependency);
+  }
+};
+
+// The layout s3d uses an input in, and whether it needs a barrier from the host's state.
+VkImageLayout inputLayout(const HostImage& image, bool storage, const char* what) {
+  if (storage) {
+    if (image.stage == VK_PIPELINE_STAGE_2_NONE && image.layout != VK_IMAGE_LAYOUT_GENERAL)
+      throw std::invalid_argument(std::string("HostStereoPass: the ") + what +
+                                  " image must be in VK_IMAGE_LAYOUT_GENERAL when the host synchronizes it itself");
+    return VK_IMAGE_LAYOUT_GENERAL;
+  }
+  if (sampledReadable(image.layout)) return image.layout;
+  if (image.stage == VK_PIPELINE_STAGE_2_NONE)
+    throw std::invalid_argument(std::string("HostStereoPass: the ") + what +
+                                " image is in a layout s3d cannot read and the host gave no access for a barrier");
+  return VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
+}
+
+void requireImage(const HostImage* image, const char* what) {
+  if (!image || !image->image || !image->view)
+    throw std::invalid_argument(std::string("HostStereoPass: the ") + what + " image is missing");
+}
+
+}  // namespace
+
+gpu::LinearDepthParams linearDepthParams(const HostProjection& p, float weaponDepthOffset, float weaponDepthScale) {
+  const float split = p.firstPersonDepthRange;
+  if (!(split >= 0.0f && split < 1.0f))
+    throw std::invalid_argument("HostProjection: firstPersonDepthRange must be in [0, 1)");
+  if (!(p.nearPlane > 0.0f) || (!p.infiniteFarPlane && !(p.farPlane > p.nearPlane)))
+    throw std::invalid_argument("HostProjection: needs 0 < near < far (or an infinite far plane)");
+  gpu::LinearDepthParams params =
+      p.reversedZ ? gpu::makeReversedLinearDepthParams(p.nearPlane, p.infiniteFarPlane ? 2 * p.nearPlane : p.farPlane,
+                                                       p.firstPersonNear, p.firstPersonFar, split)
+                  : gpu::makeLinearDepthParams(p.nearPlane, p.infiniteFarPlane ? 2 * p.nearPlane : p.farPlane,
+                                               p.firstPersonNear, p.firstPersonFar, split);
+  params.worldRatio = p.reversedZ ? layerRatio(p.nearPlane, p.farPlane, p.infiniteFarPlane, true, 0.0f, 1.0f - split)
+                                  : layerRatio(p.nearPlane, p.farPlane, p.infiniteFarPlane, false, split, 1.0f);
+  if (split == 0.0f) params.firstPersonDeviceDepthMax = -1.0f;  // no first-person layer: no depth belongs to it
+  params.firstPersonDepthOffset = weaponDepthOffset;
+  params.firstPersonDepthScale = weaponDepthScale;
+  return params;
+}
+
+HostStereoPass::HostStereoPass(vk::Context& context, const HostStereoPassDesc& desc) : context_(&context), desc_(desc) {
+  if (desc.width == 0 || desc.height == 0) throw std::invalid_argument("HostStereoPass: zero image size");
+  if (!isColorFormat(desc.colorFormat))
+    throw std::invalid_argument("HostStereoPass: colour format " + std::to_string(int(desc.colorFormat)) +
+                                " is not one of RGBA8/BGRA8 UNORM or SRGB, RGBA16F, B10G11R11");
+  if (!isHardwareDepth(desc.depthFormat) && desc.depthFormat != VK_FORMAT_R32_SFLOAT)
+    throw std::invalid_argument("HostStereoPass: depth format " + std::to_string(int(desc.depthFormat)) +
+                                " is not one of D32, D24S8, D16 or R32F linear depth");
+  if (desc.inputsAreStorage && (desc.colorFormat != VK_FORMAT_R8G8B8A8_UNORM || desc.depthFormat != VK_FORMAT_R32_SFLOAT))
+    throw std::invalid_argument("HostStereoPass: inputsAreStorage needs RGBA8 UNORM colour and R32F linear depth");
+  const bool halfWidth = desc.output == HostOutput::SideBySideHalf, halfHeight = desc.output == HostOutput::TopBottomHalf;
+  if ((halfWidth && desc.width < 2) || (halfHeight && desc.height < 2))
+    throw std::invalid_argument("HostStereoPass: half packing needs eyes at least 2 pixels across");
+  hdr_ = desc.colorFormat == VK_FORMAT_R16G16B16A16_SFLOAT || desc.colorFormat == VK_FORMAT_B10G11R11_UFLOAT_PACK32;
+  if (desc.colorFormat == VK_FORMAT_R8G8B8A8_SRGB || desc.colorFormat == VK_FORMAT_B8G8R8A8_SRGB)
+    colorTransfer_ = S3D_HOST_COLOR_ENCODE_SRGB;
+
+  VkSamplerCreateInfo samplerInfo{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
+  samplerInfo.magFilter = samplerInfo.minFilter = VK_FILTER_NEAREST;
+  samplerInfo.addressModeU = samplerInfo.addressModeV = samplerInfo.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+  VkSampler sampler = VK_NULL_HANDLE;
+  S3D_VK_CHECK(vkCreateSampler(context.device(), &samplerInfo, context.allocator(), &sampler));
+  sampler_ = vk::Unique<VkSampler>(context.device(), sampler, vkDestroySampler, context.allocator());
+
+  const VkDescriptorSetLayoutBinding storage4[] = {
+      binding(0, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE), binding(1, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE),
+      binding(2, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE), binding(3, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE)};
+  if (convertsInputs()) {
+    const VkDescriptorSetLayoutBinding bindings[] = {
+        binding(0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER), binding(1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER),
+        binding(2, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE), binding(3, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE)};
+    input_ = makePipeline(context, bindings, hdr_ ? std::span<const std::uint32_t>(spirv_host_input_rgba16f_comp)
+                                                  : std::span<const std::uint32_t>(spirv_host_input_rgba8_comp),
+                          sizeof(gpu::HostInputConstants), S3D_HOST_GROUP_SIZE);
+  }
+  shortTaps_ = makePipeline(context, storage4, hdr_ ? std::span<const std::uint32_t>(spirv_stereo_seed_hdr_comp)
+                                                    : std::span<const std::uint32_t>(spirv_stereo_seed_comp),
+                            pushBytesFor(S3D_STEREO_SMALL_TAP_CAPACITY), S3D_STEREO_GROUP_SIZE);
+  allTaps_ = makePipeline(context, storage4, hdr_ ? std::span<const std::uint32_t>(spirv_stereo_search_hdr_comp)
+                                                  : std::span<const std::uint32_t>(spirv_stereo_search_comp),
+                          pushBytesFor(S3D_STEREO_MAX_TAPS), S3D_STEREO_GROUP_SIZE);
+  if (desc.output != HostOutput::TwoEyes)
+    pack_ = makePipeline(context, std::span(storage4).first(3),
+                         hdr_ ? std::span<const std::uint32_t>(spirv_host_pack_rgba16f_comp)
+                              : std::span<const std::uint32_t>(spirv_host_pack_rgba8_comp),
+                         sizeof(gpu::HostPackConstants), S3D_HOST_GROUP_SIZE);
+
+  // Intermediates live in GENERAL from here on; each record() orders them after the previous frame's use.
+  auto intermediate = [&](VkFormat format) {
+    return vk::createImage(context, format, desc.width, desc.height, VK_IMAGE_USAGE_STORAGE_BIT);
+  };
+  if (convertsInputs()) {
+    centerColor_ = intermediate(eyeFormat());
+    linearDepth_ = intermediate(VK_FORMAT_R32_SFLOAT);
+  }
+  if (pack_) {
+    leftEye_ = intermediate(eyeFormat());
+    rightEye_ = intermediate(eyeFormat());
+  }
+  context.submitAndWait([&](VkCommandBuffer cmd) {
+    for (const vk::Image* image : {&centerColor_, &linearDepth_, &leftEye_, &rightEye_})
+      if (image->image) vk::transition(cmd, *image, vk::kUndefined, vk::kComputeWrite);
+  });
+}
+
+std::uint32_t HostStereoPass::packedWidth() const {
+  return desc_.output == HostOutput::SideBySideFull ? 2 * desc_.width : desc_.width;
+}
+std::uint32_t HostStereoPass::packedHeight() const {
+  return desc_.output == HostOutput::TopBottomFull ? 2 * desc_.height : desc_.height;
+}
+
+void HostStereoPass::record(VkCommandBuffer cmd, const HostImage& color, const HostImage& depth, const HostFrame& frame,
+                            const HostImage* left, const HostImage* right, const HostImage* target) const {
+  const gpu::StereoConstants& constants = frame.stereo;
+  if (constants.tapCount < 0 || constants.tapCount > S3D_STEREO_MAX_TAPS)
+    throw std::invalid_argument("HostStereoPass: tap count out of range (use makeStereoConstants)");
+  if (constants.width != int(desc_.width) || constants.height != int(desc_.height))
+    throw std::invalid_argument("HostStereoPass: the stereo constants are for another image size");
+  requireImage(&color, "colour");
+  requireImage(&depth, "depth");
+  if (color.format != desc_.colorFormat || depth.format != desc_.depthFormat)
+    throw std::invalid_argument("HostStereoPass: the colour or depth format differs from the one the pass was made for");
+  std::vector<const HostImage*> outputs;
+  if (desc_.output == HostOutput::TwoEyes) {
+    requireImage(left, "left eye");
+    requireImage(right, "right eye");
+    outputs = {left, right};
+  } else {
+    requireImage(target, "packed target");
+    outputs = {target};
+  }
+  for (const HostImage* output : outputs) {
+    if (output->format != eyeFormat())
+      throw std::invalid_argument(std::string("HostStereoPass: output images must be ") +
+                                  (hdr_ ? "RGBA16F" : "RGBA8 UNORM") + " storage images for this input");
+    if (output->stage == VK_PIPELINE_STAGE_2_NONE && output->layout != VK_IMAGE_LAYOUT_GENERAL)
+      throw std::invalid_argument("HostStereoPass: an output the host synchronizes itself must be in GENERAL");
+  }
+
+  const bool storageInputs = desc_.inputsAreStorage;
+  const VkImageLayout colorLayout = inputLayout(color, storageInputs, "colour");
+  const VkImageLayout depthLayout = inputLayout(depth, storageInputs, "depth");
+  const VkAccessFlags2 inputRead = storageInputs ? VK_ACCESS_2_SHADER_STORAGE_READ_BIT : VK_ACCESS_2_SHADER_SAMPLED_READ_BIT;
+  constexpr VkPipelineStageFlags2 compute = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
+
+  BarrierList before;
+  before.memory = true;
+  for (auto [image, layout] : {std::pair{&color, colorLayout}, std::pair{&depth, depthLayout}})
+    if (image->stage != VK_PIPELINE_STAGE_2_NONE)
+      before.image(*image, image->layout, image->stage, image->access, layout, compute, inputRead);
+  for (const HostImage* output : outputs)
+    if (output->stage != VK_PIPELINE_STAGE_2_NONE)
+      before.image(*output, output->layout, output->stage, output->access, VK_IMAGE_LAYOUT_GENERAL, compute,
+                   VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+  before.record(cmd);
+
+  auto dispatch = [&](const detail::EyePairPipeline& pass, std::span<const VkWriteDescriptorSet> writes,
+                      const void* push, std::uint32_t width, std::uint32_t height) {
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pass.pipeline);
+    context_->cmdPushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pass.layout.layout, 0,
+                                   std::uint32_t(writes.size()), writes.data());
+    vkCmdPushConstants(cmd, pass.layout.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, pass.pushConstantBytes, push);
+    vkCmdDispatch(cmd, (width + pass.groupWidth - 1) / pass.groupWidth, (height + pass.groupHeight - 1) / pass.groupHeight, 1);
+  };
+  BarrierList between;
+  between.memory = true;
+
+  VkImageView centerView = color.view, depthView = depth.view;
+  if (input_) {
+    gpu::HostInputConstants push{};
+    push.depth = linearDepthParams(frame.projection, frame.weaponDepthOffset, frame.weaponDepthScale);
+    push.width = int(desc_.width);
+    push.height = int(desc_.height);
+    push.colorTransfer = colorTransfer_;
+    push.depthKind = isHardwareDepth(desc_.depthFormat) ? S3D_HOST_DEPTH_DEVICE : S3D_HOST_DEPTH_LINEAR;
+    const VkDescriptorImageInfo infos[4] = {{sampler_, color.view, colorLayout},
+                                            {sampler_, depth.view, depthLayout},
+                                            {VK_NULL_HANDLE, centerColor_.view, VK_IMAGE_LAYOUT_GENERAL},
+                                            {VK_NULL_HANDLE, linearDepth_.view, VK_IMAGE_LAYOUT_GENERAL}};
+    VkWriteDescriptorSet writes[4];
+    for (std::uint32_t i = 0; i < 4; ++i)
+      writes[i] = i < 2 ? vk::sampledImageWrite(i, &infos[i]) : vk::storageImageWrite(i, &infos[i]);
+    for (std::uint32_t i = 0; i < 2; ++i) writes[i].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+    dispatch(*input_, writes, &push, desc_.width, desc_.height);
+    between.record(cmd);
+    centerView = centerColor_.view;
+    depthView = linearDepth_.view;
+  }
+
+  const VkImageView leftView = pack_ ? leftEye_.view.get() : left->view;
+  const VkImageView rightView = pack_ ? rightEye_.view.get() : right->view;
+  {
+    const VkDescriptorImageInfo infos[4] = {{VK_NULL_HANDLE, centerView, VK_IMAGE_LAYOUT_GENERAL},
+                                            {VK_NULL_HANDLE, depthView, VK_IMAGE_LAYOUT_GENERAL},
+                                            {VK_NULL_HANDLE, leftView, VK_IMAGE_LAYOUT_GENERAL},
+                                            {VK_NULL_HANDLE, rightView, VK_IMAGE_LAYOUT_GENERAL}};
+    VkWriteDescriptorSet writes[4];
+    for (std::uint32_t i = 0; i < 4; ++i) writes[i] = vk::storageImageWrite(i, &infos[i]);
+    dispatch(constants.tapCount <= S3D_STEREO_SMALL_TAP_CAPACITY ? *shortTaps_ : *allTaps_, writes, &constants,
+             desc_.width, desc_.height);
+  }
+
+  if (pack_) {
+    between.record(cmd);
+    gpu::HostPackConstants push{};
+    const HostOutput o = desc_.output;
+    push.mode = o == HostOutput::SideBySideHalf   ? S3D_HOST_PACK_SIDE_BY_SIDE_HALF
+                : o == HostOutput::SideBySideFull ? S3D_HOST_PACK_SIDE_BY_SIDE_FULL
+                : o == HostOutput::TopBottomHalf  ? S3D_HOST_PACK_TOP_BOTTOM_HALF
+                : o == HostOutput::TopBottomFull  ? S3D_HOST_PACK_TOP_BOTTOM_FULL
+                                                  : S3D_HOST_PACK_ANAGLYPH;
+    push.eyeWidth = int(desc_.width);
+    push.eyeHeight = int(desc_.height);
+    push.eyesEncoded = hdr_ ? 0 : 1;
+    const VkDescriptorImageInfo infos[3] = {{VK_NULL_HANDLE, leftEye_.view, VK_IMAGE_LAYOUT_GENERAL},
+                                            {VK_NULL_HANDLE, rightEye_.view, VK_IMAGE_LAYOUT_GENERAL},
+                                            {VK_NULL_HANDLE, target->view, VK_IMAGE_LAYOUT_GENERAL}};
+    VkWriteDescriptorSet writes[3];
+    for (std::uint32_t i = 0; i < 3; ++i) writes[i] = vk::storageImageWrite(i, &infos[i]);
+    dispatch(*pack_, writes, &push, packedWidth(), packedHeight());
+  }
+
+  // Back to the host's layouts, ordered before the stage and access it named.
+  BarrierList after;
+  for (auto [image, layout] : {std::pair{&color, colorLayout}, std::pair{&depth, depthLayout}})
+    if (image->stage != VK_PIPELINE_STAGE_2_NONE)
+      after.image(*image, layout, compute, inputRead, image->layout, image->stage, image->access);
+  for (const HostImage* output : outputs)
+    if (output->stage != VK_PIPELINE_STAGE_2_NONE)
+      after.image(*output, VK_IMAGE_LAYOUT_GENERAL, compute, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, output->layout,
+                  output->stage, output->access);
+  after.record(cmd);
+}
+
+}  // namespace s3d::stereo

@@ -1,0 +1,450 @@
+// The stereo pass inside a host's frame: the host's formats and layouts in, its eyes or one packed target out,
+// each held to the C++ reference; synchronization validation on (TestHost) for single frames, two recordings in
+// one command buffer and 2-3 frames in flight.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <glm/gtc/packing.hpp>
+
+#include "s3d/stereo/hdr_gather.h"
+#include "s3d/stereo/host_stereo_pass.h"
+#include "s3d/stereo/output_formats.h"
+#include "stereo_test_views.h"
+#include "test_host.h"
+
+namespace s3d::test {
+namespace {
+
+using stereo::HostImage;
+using stereo::HostOutput;
+using stereo::HostProjection;
+
+constexpr std::uint32_t kWidth = 48, kHeight = 32;
+constexpr vk::ImageState kShaderRead{VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
+                                     VK_ACCESS_2_SHADER_SAMPLED_READ_BIT};
+constexpr vk::ImageState kDepthWritten{VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL,
+                                       VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
+                                       VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT};
+// Eyes the host copies out next (to a swapchain, here to the test's readback).
+constexpr vk::ImageState kCopiedOut{VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_2_COPY_BIT,
+                                    VK_ACCESS_2_TRANSFER_READ_BIT};
+
+HostImage hostImage(const vk::Image& image, const vk::ImageState& state) {
+  return {image.image, image.view, image.format, state.layout, state.stage, state.access};
+}
+
+// The device depth the host's projection writes for linear depth z (Vulkan's 0..1 depth, +inf: the cleared sky).
+float deviceDepth(const HostProjection& p, float z) {
+  const bool weapon = p.firstPersonDepthRange > 0.0f && z < 2.0f;  // the test's nearest blocks are the weapon
+  const float n = weapon ? p.firstPersonNear : p.nearPlane, f = weapon ? p.firstPersonFar : p.farPlane;
+  float d;
+  if (std::isinf(z)) d = 1.0f;
+  else if (p.infiniteFarPlane && !weapon) d = 1.0f - n / z;
+  else d = f / (f - n) - f * n / ((f - n) * z);
+  if (p.reversedZ) d = 1.0f - d;  // the reversed projection: near at 1, far at 0 (exact for these linear maps)
+  const float split = p.firstPersonDepthRange;  // the layer's slice of the depth range
+  if (split > 0.0f) {
+    const float begin = p.reversedZ ? (weapon ? 1.0f - split : 0.0f) : (weapon ? 0.0f : split);
+    const float end = p.reversedZ ? (weapon ? 1.0f : 1.0f - split) : (weapon ? split : 1.0f);
+    d = begin + d * (end - begin);
+  }
+  return d;
+}
+
+struct DepthUpload {
+  std::vector<std::byte> bytes;
+  DepthImage expectedLinear;
+};
+
+// The device depth stored as `format` stores it, and the linear depth the pass must see for it.
+DepthUpload hardwareDepth(const DepthImage& linear, VkFormat format, const stereo::HostFrame& frame) {
+  const gpu::LinearDepthParams params =
+      stereo::linearDepthParams(frame.projection, frame.weaponDepthOffset, frame.weaponDepthScale);
+  DepthUpload upload{{}, DepthImage(linear.width, linear.height)};
+  for (std::size_t i = 0; i < linear.pixels.size(); ++i) {
+    float d = std::clamp(deviceDepth(frame.projection, linear.pixels[i]), 0.0f, 1.0f);
+    if (format == VK_FORMAT_D16_UNORM) {
+      const auto q = std::uint16_t(std::lround(d * 65535.0f));
+      d = float(q) / 65535.0f;
+      upload.bytes.insert(upload.bytes.end(), reinterpret_cast<const std::byte*>(&q), reinterpret_cast<const std::byte*>(&q) + 2);
+    } else if (format == VK_FORMAT_D24_UNORM_S8_UINT) {
+      const auto q = std::uint32_t(std::lround(double(d) * 16777215.0));
+      d = float(double(q) / 16777215.0);
+      upload.bytes.insert(upload.bytes.end(), reinterpret_cast<const std::byte*>(&q), reinterpret_cast<const std::byte*>(&q) + 4);
+    } else {
+      upload.bytes.insert(upload.bytes.end(), reinterpret_cast<const std::byte*>(&d), reinterpret_cast<const std::byte*>(&d) + 4);
+    }
+    upload.expectedLinear.pixels[i] = gpu::stereoDepthFromDevice(params, d);
+  }
+  return upload;
+}
+
+std::vector<std::byte> colorBytes(const ImageRGBA8& center, VkFormat format) {
+  std::vector<std::byte> bytes(center.pixels.size());
+  std::memcpy(bytes.data(), center.pixels.data(), bytes.size());
+  if (format == VK_FORMAT_B8G8R8A8_UNORM || format == VK_FORMAT_B8G8R8A8_SRGB)
+    for (std::size_t i = 0; i < bytes.size(); i += 4) std::swap(bytes[i], bytes[i + 2]);
+  return bytes;
+}
+
+ImageRGBA8 toImage(const std::vector<std::byte>& bytes, std::uint32_t width, std::uint32_t height) {
+  ImageRGBA8 image(width, height);
+  std::memcpy(image.pixels.data(), bytes.data(), bytes.size());
+  return image;
+}
+
+class HostStereoPassTest : public HostTest {
+ public:
+  void SetUp() override {
+    HostTest::SetUp();
+    context_ = std::make_unique<vk::Context>(host().hostDevice());
+    view_ = makeBlockView(kWidth, kHeight, 11, 0.6f, 7, 5, false);
+    parameters_.maxSeparation = 0.06f;
+    parameters_.zeroParallaxDistance = 3.0f;
+    frame_.stereo = stereo::makeStereoConstants(parameters_, kWidth, kHeight);
+    frame_.projection.nearPlane = 0.5f;
+    frame_.projection.farPlane = 100.0f;
+  }
+  void TearDown() override {
+    context_.reset();
+    HostTest::TearDown();
+  }
+  bool supports(VkFormat format, VkFormatFeatureFlags features) {
+    VkFormatProperties properties{};
+    vkGetPhysicalDeviceFormatProperties(host().physicalDevice, format, &properties);
+    return (properties.optimalTilingFeatures & features) == features;
+  }
+  vk::Image uploaded(VkFormat format, const std::vector<std::byte>& bytes, const vk::ImageState& state,
+                     VkImageUsageFlags extraUsage = 0) {
+    vk::Image image = vk::createImage(*context_, format, kWidth, kHeight,
+                                      VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT | extraUsage);
+    vk::uploadImage(*context_, image, bytes, state);
+    return image;
+  }
+  vk::Image output(VkFormat format, std::uint32_t width, std::uint32_t height) {
+    vk::Image image = vk::createImage(*context_, format, width, height,
+                                      VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
+    context_->submitAndWait([&](VkCommandBuffer cmd) { vk::transition(cmd, image, vk::kUndefined, kCopiedOut); });
+    return image;
+  }
+  // Runs the pass once in a command buffer of the host's pool, submitted on the host's queue.
+  void runOnHostQueue(const std::function<void(VkCommandBuffer)>& record) {
+    VkCommandBufferAllocateInfo info{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+    info.commandPool = host().commandPool;
+    info.commandBufferCount = 1;
+    VkCommandBuffer cmd = VK_NULL_HANDLE;
+    S3D_VK_CHECK(vkAllocateCommandBuffers(host().device, &info, &cmd));
+    VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+    S3D_VK_CHECK(vkBeginCommandBuffer(cmd, &begin));
+    record(cmd);
+    S3D_VK_CHECK(vkEndCommandBuffer(cmd));
+    VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+    submit.commandBufferCount = 1;
+    submit.pCommandBuffers = &cmd;
+    S3D_VK_CHECK(vkQueueSubmit(host().queue, 1, &submit, VK_NULL_HANDLE));
+    S3D_VK_CHECK(vkQueueWaitIdle(host().queue));
+    vkFreeCommandBuffers(host().device, host().commandPool, 1, &cmd);
+  }
+
+  // Both eyes of the pass for the given colour and depth formats (8-bit eyes).
+  stereo::StereoPair eyes(VkFormat colorFormat, VkFormat depthFormat, DepthImage* expectedLinear) {
+    DepthUpload depth = depthFormat == VK_FORMAT_R32_SFLOAT
+                            ? DepthUpload{{}, view_.depth}
+                            : hardwareDepth(view_.depth, depthFormat, frame_);
+    if (depthFormat == VK_FORMAT_R32_SFLOAT) {
+      depth.bytes.resize(view_.depth.pixels.size() * 4);
+      std::memcpy(depth.bytes.data(), view_.depth.pixels.data(), depth.bytes.size());
+    }
+    *expectedLinear = depth.expectedLinear;
+    const bool hardware = depthFormat != VK_FORMAT_R32_SFLOAT;
+    vk::Image color = uploaded(colorFormat, colorBytes(view_.color, colorFormat), kShaderRead);
+    vk::Image depthImage = uploaded(depthFormat, depth.bytes, hardware ? kDepthWritten : kShaderRead,
+                                    hardware ? VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT : 0);
+    stereo::HostStereoPass pass(*context_, {kWidth, kHeight, colorFormat, depthFormat, HostOutput::TwoEyes, false});
+    vk::Image left = output(pass.eyeFormat(), kWidth, kHeight), right = output(pass.eyeFormat(), kWidth, kHeight);
+    const HostImage leftHost = hostImage(left, kCopiedOut), rightHost = hostImage(right, kCopiedOut);
+    runOnHostQueue([&](VkCommandBuffer cmd) {
+      pass.record(cmd, hostImage(color, kShaderRead), hostImage(depthImage, hardware ? kDepthWritten : kShaderRead),
+                  frame_, &leftHost, &rightHost, nullptr);
+    });
+    return {toImage(vk::readbackImage(*context_, left, kCopiedOut), kWidth, kHeight),
+            toImage(vk::readbackImage(*context_, right, kCopiedOut), kWidth, kHeight)};
+  }
+
+  void expectReferenceEyes(VkFormat colorFormat, VkFormat depthFormat) {
+    DepthImage expectedLinear;
+    const stereo::StereoPair gpu = eyes(colorFormat, depthFormat, &expectedLinear);
+    const stereo::StereoPair cpu = stereo::synthesizeStereoReference(view_.color, expectedLinear, frame_.stereo);
+    // 1 level: the reference's rounding (test_stereo_pass); D16/D24 quantization is in the data both sides see.
+    EXPECT_LE(largestChannelDifference(gpu.left, cpu.left), 1);
+    EXPECT_LE(largestChannelDifference(gpu.right, cpu.right), 1);
+  }
+
+  friend void expectHdrEyes(HostStereoPassTest&, VkFormat);
+  friend void expectFramesInFlight(HostStereoPassTest&, int, bool);
+  std::unique_ptr<vk::Context> context_;
+  SyntheticView view_;
+  stereo::StereoParameters parameters_;
+  stereo::HostFrame frame_;
+};
+
+TEST(HostProjection, LinearDepthComesBackFromEveryDepthConvention) {
+  for (bool reversed : {false, true})
+    for (bool infinite : {false, true}) {
+      HostProjection p;
+      p.nearPlane = 0.5f;
+      p.farPlane = 100.0f;
+      p.reversedZ = reversed;
+      p.infiniteFarPlane = infinite;
+      const gpu::LinearDepthParams params = stereo::linearDepthParams(p, 0.0f, 1.0f);
+      for (float z : {0.7f, 3.0f, 40.0f})
+        EXPECT_NEAR(gpu::stereoDepthFromDevice(params, deviceDepth(p, z)), z, z * 1e-4f)
+            << "reversed " << reversed << " infinite " << infinite;
+      EXPECT_TRUE(std::isinf(gpu::stereoDepthFromDevice(params, reversed ? 0.0f : 1.0f)));  // the cleared sky
+    }
+}
+
+TEST(HostProjection, TheFirstPersonLayerIsLinearizedWithItsOwnProjectionAndPushed) {
+  HostProjection p;
+  p.nearPlane = 0.5f;
+  p.farPlane = 100.0f;
+  p.firstPersonDepthRange = 0.1f;
+  p.firstPersonNear = 0.05f;
+  p.firstPersonFar = 5.0f;
+  const gpu::LinearDepthParams params = stereo::linearDepthParams(p, 1.0f, 2.0f);
+  EXPECT_NEAR(gpu::stereoDepthFromDevice(params, deviceDepth(p, 0.8f)), 1.0f + 2.0f * 0.8f, 1e-3f);  // weapon, pushed
+  EXPECT_NEAR(gpu::stereoDepthFromDevice(params, deviceDepth(p, 30.0f)), 30.0f, 30.0f * 1e-4f);      // world
+}
+
+TEST_F(HostStereoPassTest, SynchronizationValidationIsOnAndReportsAMissingBarrier) {
+  // Two clears of one image without a barrier between them: a write-after-write hazard only sync validation sees.
+  vk::Image image = vk::createImage(*context_, VK_FORMAT_R8G8B8A8_UNORM, 8, 8, VK_IMAGE_USAGE_TRANSFER_DST_BIT);
+  runOnHostQueue([&](VkCommandBuffer cmd) {
+    vk::transition(cmd, image, vk::kUndefined, vk::kTransferDestination);
+    const VkClearColorValue black{};
+    const VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+    vkCmdClearColorImage(cmd, image.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &black, 1, &range);
+    vkCmdClearColorImage(cmd, image.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &black, 1, &range);
+  });
+  const std::vector<std::string> messages = host().messages();
+  EXPECT_TRUE(std::any_of(messages.begin(), messages.end(),
+                          [](const std::string& m) { return m.find("SYNC-HAZARD") != std::string::npos; }))
+      << messages.size() << " message(s)";
+  host().clearMessages();  // expected here
+}
+
+TEST_F(HostStereoPassTest, Rgba8ColourAndD32DepthGiveTheReferenceEyes) {
+  expectReferenceEyes(VK_FORMAT_R8G8B8A8_UNORM, VK_FORMAT_D32_SFLOAT);
+}
+TEST_F(HostStereoPassTest, SrgbColourIsReadAsItsDisplayValues) {
+  expectReferenceEyes(VK_FORMAT_R8G8B8A8_SRGB, VK_FORMAT_D32_SFLOAT);
+}
+TEST_F(HostStereoPassTest, Bgra8ColourIsReadInItsChannelOrder) {
+  expectReferenceEyes(VK_FORMAT_B8G8R8A8_UNORM, VK_FORMAT_R32_SFLOAT);
+}
+TEST_F(HostStereoPassTest, Bgra8SrgbColourIsReadAsItsDisplayValues) {
+  expectReferenceEyes(VK_FORMAT_B8G8R8A8_SRGB, VK_FORMAT_R32_SFLOAT);
+}
+TEST_F(HostStereoPassTest, D24S8DepthGivesTheReferenceEyesOfItsQuantizedDepth) {
+  if (!supports(VK_FORMAT_D24_UNORM_S8_UINT, VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT | VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT))
+    GTEST_SKIP() << "the device has no sampled D24S8";
+  expectReferenceEyes(VK_FORMAT_R8G8B8A8_UNORM, VK_FORMAT_D24_UNORM_S8_UINT);
+}
+TEST_F(HostStereoPassTest, D16DepthGivesTheReferenceEyesOfItsQuantizedDepth) {
+  expectReferenceEyes(VK_FORMAT_R8G8B8A8_UNORM, VK_FORMAT_D16_UNORM);
+}
+TEST_F(HostStereoPassTest, ReversedZWithAnInfiniteFarPlaneGivesTheReferenceEyes) {
+  frame_.projection.reversedZ = true;
+  frame_.projection.infiniteFarPlane = true;
+  expectReferenceEyes(VK_FORMAT_R8G8B8A8_UNORM, VK_FORMAT_D32_SFLOAT);
+}
+TEST_F(HostStereoPassTest, TheFirstPersonDepthRangeIsLinearizedAndPushed) {
+  frame_.projection.firstPersonDepthRange = 0.1f;
+  frame_.projection.firstPersonNear = 0.05f;
+  frame_.projection.firstPersonFar = 5.0f;
+  frame_.weaponDepthOffset = 1.0f;
+  frame_.weaponDepthScale = 1.5f;
+  expectReferenceEyes(VK_FORMAT_R8G8B8A8_UNORM, VK_FORMAT_D32_SFLOAT);
+}
+
+
+TEST_F(HostStereoPassTest, EveryPackedTargetIsOutputFormatsAppliedToThePassesOwnEyes) {
+  DepthImage unused;
+  const stereo::StereoPair own = eyes(VK_FORMAT_R8G8B8A8_UNORM, VK_FORMAT_R32_SFLOAT, &unused);
+  vk::Image color = uploaded(VK_FORMAT_R8G8B8A8_UNORM, colorBytes(view_.color, VK_FORMAT_R8G8B8A8_UNORM), kShaderRead);
+  std::vector<std::byte> depthBytes(view_.depth.pixels.size() * 4);
+  std::memcpy(depthBytes.data(), view_.depth.pixels.data(), depthBytes.size());
+  vk::Image depth = uploaded(VK_FORMAT_R32_SFLOAT, depthBytes, kShaderRead);
+  using stereo::PackingMode;
+  const std::pair<HostOutput, ImageRGBA8> cases[] = {
+      {HostOutput::SideBySideHalf, stereo::makeSideBySide(own.left, own.right, PackingMode::Half)},
+      {HostOutput::SideBySideFull, stereo::makeSideBySide(own.left, own.right, PackingMode::Full)},
+      {HostOutput::TopBottomHalf, stereo::makeTopAndBottom(own.left, own.right, PackingMode::Half)},
+      {HostOutput::TopBottomFull, stereo::makeTopAndBottom(own.left, own.right, PackingMode::Full)},
+      {HostOutput::Anaglyph, stereo::makeAnaglyphDubois(own.left, own.right)}};
+  for (const auto& [mode, expected] : cases) {
+    stereo::HostStereoPass pass(*context_, {kWidth, kHeight, VK_FORMAT_R8G8B8A8_UNORM, VK_FORMAT_R32_SFLOAT, mode, false});
+    ASSERT_EQ(pass.packedWidth(), expected.width);
+    ASSERT_EQ(pass.packedHeight(), expected.height);
+    vk::Image target = output(pass.eyeFormat(), pass.packedWidth(), pass.packedHeight());
+    const HostImage targetHost = hostImage(target, kCopiedOut);
+    runOnHostQueue([&](VkCommandBuffer cmd) {
+      pass.record(cmd, hostImage(color, kShaderRead), hostImage(depth, kShaderRead), frame_, nullptr, nullptr, &targetHost);
+    });
+    const ImageRGBA8 packed = toImage(vk::readbackImage(*context_, target, kCopiedOut), expected.width, expected.height);
+    // 1 level: float sRGB decode/encode on the GPU against the reference's tables and rounding.
+    EXPECT_LE(largestChannelDifference(packed, expected), 1) << "output " << int(mode);
+  }
+}
+
+// HDR colour before tone mapping: gathered in half floats at the reference's source columns.
+void expectHdrEyes(HostStereoPassTest& test, VkFormat format);
+
+TEST_F(HostStereoPassTest, Rgba16fColourGivesHalfFloatEyesAtTheReferenceColumns) {
+  expectHdrEyes(*this, VK_FORMAT_R16G16B16A16_SFLOAT);
+}
+TEST_F(HostStereoPassTest, B10G11R11ColourGivesHalfFloatEyesAtTheReferenceColumns) {
+  expectHdrEyes(*this, VK_FORMAT_B10G11R11_UFLOAT_PACK32);
+}
+
+TEST_F(HostStereoPassTest, StorageInputsSkipTheConversionAndGiveTheSameEyes) {
+  std::vector<std::byte> depthBytes(view_.depth.pixels.size() * 4);
+  std::memcpy(depthBytes.data(), view_.depth.pixels.data(), depthBytes.size());
+  const vk::ImageState computeWritten{VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                                      VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT};
+  vk::Image color = uploaded(VK_FORMAT_R8G8B8A8_UNORM, colorBytes(view_.color, VK_FORMAT_R8G8B8A8_UNORM), computeWritten,
+                             VK_IMAGE_USAGE_STORAGE_BIT);
+  vk::Image depth = uploaded(VK_FORMAT_R32_SFLOAT, depthBytes, computeWritten, VK_IMAGE_USAGE_STORAGE_BIT);
+  stereo::HostStereoPass pass(*context_, {kWidth, kHeight, VK_FORMAT_R8G8B8A8_UNORM, VK_FORMAT_R32_SFLOAT,
+                                          HostOutput::TwoEyes, true});
+  EXPECT_FALSE(pass.convertsInputs());
+  vk::Image left = output(pass.eyeFormat(), kWidth, kHeight), right = output(pass.eyeFormat(), kWidth, kHeight);
+  const HostImage leftHost = hostImage(left, kCopiedOut), rightHost = hostImage(right, kCopiedOut);
+  runOnHostQueue([&](VkCommandBuffer cmd) {
+    pass.record(cmd, hostImage(color, computeWritten), hostImage(depth, computeWritten), frame_, &leftHost, &rightHost, nullptr);
+  });
+  const stereo::StereoPair cpu = stereo::synthesizeStereoReference(view_.color, view_.depth, frame_.stereo);
+  EXPECT_LE(largestChannelDifference(toImage(vk::readbackImage(*context_, left, kCopiedOut), kWidth, kHeight), cpu.left), 1);
+  EXPECT_LE(largestChannelDifference(toImage(vk::readbackImage(*context_, right, kCopiedOut), kWidth, kHeight), cpu.right), 1);
+}
+
+// Frames in flight: one pass, per-frame host images, all frames submitted before any is waited for; then
+// two recordings into one command buffer. Each frame's eyes are its own reference's.
+void expectFramesInFlight(HostStereoPassTest& test, int frames, bool oneCommandBuffer);
+
+TEST_F(HostStereoPassTest, TwoFramesInFlightEachGiveTheirReferenceEyes) { expectFramesInFlight(*this, 2, false); }
+TEST_F(HostStereoPassTest, ThreeFramesInFlightEachGiveTheirReferenceEyes) { expectFramesInFlight(*this, 3, false); }
+TEST_F(HostStereoPassTest, TwoRecordingsInOneCommandBufferEachGiveTheirReferenceEyes) {
+  expectFramesInFlight(*this, 2, true);
+}
+
+TEST_F(HostStereoPassTest, AnUnsupportedColourFormatIsRefusedNamingTheChoices) {
+  try {
+    stereo::HostStereoPass pass(*context_, {kWidth, kHeight, VK_FORMAT_R5G6B5_UNORM_PACK16, VK_FORMAT_D32_SFLOAT,
+                                            HostOutput::TwoEyes, false});
+    FAIL() << "accepted R5G6B5";
+  } catch (const std::invalid_argument& error) {
+    EXPECT_NE(std::string(error.what()).find("RGBA16F"), std::string::npos) << error.what();
+  }
+}
+
+void expectHdrEyes(HostStereoPassTest& t, VkFormat format) {
+  // Linear HDR colour up to 8, stored as the format stores it; the reference gathers the stored values.
+  ImageRGBA32F center(kWidth, kHeight);
+  std::vector<std::byte> bytes;
+  for (std::size_t i = 0; i < center.pixelCount(); ++i) {
+    glm::vec4 c = glm::vec4(t.view_.color.pixels[i * 4], t.view_.color.pixels[i * 4 + 1], t.view_.color.pixels[i * 4 + 2],
+                            t.view_.color.pixels[i * 4 + 3]) / 32.0f;
+    if (format == VK_FORMAT_B10G11R11_UFLOAT_PACK32) {
+      const std::uint32_t packed = glm::packF2x11_1x10(glm::vec3(c));
+      c = glm::vec4(glm::unpackF2x11_1x10(packed), 1.0f);
+      bytes.insert(bytes.end(), reinterpret_cast<const std::byte*>(&packed), reinterpret_cast<const std::byte*>(&packed) + 4);
+    } else {
+      const glm::u16vec4 half = glm::packHalf(c);
+      c = glm::unpackHalf(half);
+      bytes.insert(bytes.end(), reinterpret_cast<const std::byte*>(&half), reinterpret_cast<const std::byte*>(&half) + 8);
+    }
+    std::memcpy(center.at(std::uint32_t(i % kWidth), std::uint32_t(i / kWidth)), &c, sizeof c);
+  }
+  std::vector<std::byte> depthBytes(t.view_.depth.pixels.size() * 4);
+  std::memcpy(depthBytes.data(), t.view_.depth.pixels.data(), depthBytes.size());
+  vk::Image color = t.uploaded(format, bytes, kShaderRead);
+  vk::Image depth = t.uploaded(VK_FORMAT_R32_SFLOAT, depthBytes, kShaderRead);
+  stereo::HostStereoPass pass(*t.context_, {kWidth, kHeight, format, VK_FORMAT_R32_SFLOAT, HostOutput::TwoEyes, false});
+  ASSERT_EQ(pass.eyeFormat(), VK_FORMAT_R16G16B16A16_SFLOAT);
+  vk::Image left = t.output(pass.eyeFormat(), kWidth, kHeight), right = t.output(pass.eyeFormat(), kWidth, kHeight);
+  const HostImage leftHost = hostImage(left, kCopiedOut), rightHost = hostImage(right, kCopiedOut);
+  t.runOnHostQueue([&](VkCommandBuffer cmd) {
+    pass.record(cmd, hostImage(color, kShaderRead), hostImage(depth, kShaderRead), t.frame_, &leftHost, &rightHost, nullptr);
+  });
+  const stereo::HdrStereoPair expected = stereo::synthesizeHdrReference(center, t.view_.depth, t.parameters_);
+  for (auto [image, reference] : {std::pair{&left, &expected.left}, std::pair{&right, &expected.right}}) {
+    const std::vector<std::byte> texels = vk::readbackImage(*t.context_, *image, kCopiedOut);
+    float largest = 0.0f;
+    for (std::size_t i = 0; i < reference->pixels.size(); ++i) {
+      std::uint16_t half;
+      std::memcpy(&half, texels.data() + i * 2, 2);
+      const float got = glm::unpackHalf1x16(half), want = reference->pixels[i];
+      largest = std::max(largest, std::abs(got - want) / std::max(1.0f, std::abs(want)));
+    }
+    // Half-float storage of the filtered result: 2^-11 relative, plus the filter's float rounding.
+    EXPECT_LE(largest, 1.5e-3f);
+  }
+}
+
+void expectFramesInFlight(HostStereoPassTest& t, int frames, bool oneCommandBuffer) {
+  stereo::HostStereoPass pass(*t.context_, {kWidth, kHeight, VK_FORMAT_R8G8B8A8_UNORM, VK_FORMAT_D32_SFLOAT,
+                                            HostOutput::TwoEyes, false});
+  struct Frame {
+    SyntheticView view;
+    DepthImage expectedLinear;
+    vk::Image color, depth, left, right;
+    HostImage leftHost, rightHost;
+  };
+  std::vector<Frame> all(frames);
+  for (int f = 0; f < frames; ++f) {
+    Frame& frame = all[f];
+    frame.view = makeBlockView(kWidth, kHeight, 100 + unsigned(f), 0.6f, 7, 5, false);
+    DepthUpload depth = hardwareDepth(frame.view.depth, VK_FORMAT_D32_SFLOAT, t.frame_);
+    frame.expectedLinear = depth.expectedLinear;
+    frame.color = t.uploaded(VK_FORMAT_R8G8B8A8_UNORM, colorBytes(frame.view.color, VK_FORMAT_R8G8B8A8_UNORM), kShaderRead);
+    frame.depth = t.uploaded(VK_FORMAT_D32_SFLOAT, depth.bytes, kDepthWritten, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT);
+    frame.left = t.output(pass.eyeFormat(), kWidth, kHeight);
+    frame.right = t.output(pass.eyeFormat(), kWidth, kHeight);
+    frame.leftHost = hostImage(frame.left, kCopiedOut);
+    frame.rightHost = hostImage(frame.right, kCopiedOut);
+  }
+  TestHost& host = t.host();
+  const int buffers = oneCommandBuffer ? 1 : frames;
+  std::vector<VkCommandBuffer> cmds(std::size_t(buffers), VK_NULL_HANDLE);
+  VkCommandBufferAllocateInfo info{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+  info.commandPool = host.commandPool;
+  info.commandBufferCount = std::uint32_t(buffers);
+  S3D_VK_CHECK(vkAllocateCommandBuffers(host.device, &info, cmds.data()));
+  for (int f = 0; f < frames; ++f) {
+    VkCommandBuffer cmd = cmds[oneCommandBuffer ? 0 : std::size_t(f)];
+    VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+    if (f == 0 || !oneCommandBuffer) S3D_VK_CHECK(vkBeginCommandBuffer(cmd, &begin));
+    pass.record(cmd, hostImage(all[f].color, kShaderRead), hostImage(all[f].depth, kDepthWritten), t.frame_,
+                &all[f].leftHost, &all[f].rightHost, nullptr);
+    if (f == frames - 1 || !oneCommandBuffer) S3D_VK_CHECK(vkEndCommandBuffer(cmd));
+  }
+  for (VkCommandBuffer cmd : cmds) {  // one submission per frame, none waited for before the last
+    VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+    submit.commandBufferCount = 1;
+    submit.pCommandBuffers = &cmd;
+    S3D_VK_CHECK(vkQueueSubmit(host.queue, 1, &submit, VK_NULL_HANDLE));
+  }
+  S3D_VK_CHECK(vkQueueWaitIdle(host.queue));
+  vkFreeCommandBuffers(host.device, host.commandPool, std::uint32_t(buffers), cmds.data());
+  for (Frame& frame : all) {
+    const stereo::StereoPair cpu = stereo::synthesizeStereoReference(frame.view.color, frame.expectedLinear, t.frame_.stereo);
+    EXPECT_LE(largestChannelDifference(toImage(vk::readbackImage(*t.context_, frame.left, kCopiedOut), kWidth, kHeight), cpu.left), 1);
+    EXPECT_LE(largestChannelDifference(toImage(vk::readbackImage(*t.context_, frame.right, kCopiedOut), kWidth, kHeight), cpu.right), 1);
+  }
+}
+
+}  // namespace
+}  // namespace s3d::test
