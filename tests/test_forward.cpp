@@ -120,6 +120,26 @@ TEST_F(ForwardPass, AStepEdgeKeepsEveryVisiblePixelAndNoForegroundInTheBackgroun
     }
 }
 
+TEST_F(ForwardPass, AGapBetweenTwoOccludersShowsTheBackgroundNotAnOccluder) {
+  // An occluder (parallax 10 px) on columns [80, 200) over the sky (60 px) with a 3-column gap at 130..132 (red
+  // 20). The left eye's pixels 120..122 look through the gap at background the center never saw (180..182 is
+  // occluder there): a hole between two occluder edges, to be filled with what the gap showed.
+  constexpr std::uint32_t width = 240;
+  ImageRGBA8 color(width, 1);
+  DepthImage depth(width, 1, INFINITY);
+  for (std::uint32_t x = 0; x < width; ++x) {
+    const bool occluder = x >= 80 && x < 200 && (x < 130 || x >= 133);
+    std::uint8_t* pixel = color.at(x, 0);
+    pixel[0] = occluder ? 200 : (x >= 130 && x < 133 ? 20 : 90);
+    pixel[1] = pixel[2] = 0;
+    pixel[3] = 255;
+    if (occluder) *depth.at(x, 0) = depthForParallax(10.0f, 0.25f, width);
+  }
+  const StereoPair eyes =
+      synthesizeForwardOnGpu(context(), color, depth, makeForwardConstants(separation(0.25f), width, 1));
+  for (std::uint32_t x = 120; x < 123; ++x) EXPECT_EQ(eyes.left.at(x, 0)[0], 20) << x;
+}
+
 TEST_F(ForwardPass, ADisparityRampIsResampledExactly) {
   // Parallax 5 + 0.1 x (a slanted surface): eye pixel t shows the center at u = (t + 5) / 0.9.
   constexpr std::uint32_t width = 160, height = 2;

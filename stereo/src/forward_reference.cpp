@@ -37,7 +37,21 @@ void splat(std::vector<std::uint32_t>& keys, float from, float to, float depth, 
     keys[std::size_t(column)] = std::min(keys[std::size_t(column)], gpu::forwardKey(depth, source, column));
 }
 
-// A hole pixel: the mean of a few center pixels on the far side of the hole (forward_shared.h).
+// How many pixels from `first` in steps of `step` (up to S3D_FORWARD_FILL_TAPS, before column `stop`) lie on
+// the surface of parallax `parallax` (within 1 px).
+int surfaceRun(const DepthImage& depth, int y, int first, int step, int stop, float parallax,
+               const gpu::ForwardConstants& c) {
+  int count = 0;
+  for (int x = first; count < S3D_FORWARD_FILL_TAPS && x >= 0 && x < c.width && x != stop; x += step) {
+    const float d = depthAt(depth, x, y);
+    if (!gpu::forwardKnownDepth(d) || std::abs(gpu::forwardParallaxPx(c, d) - parallax) > 1.0f) break;
+    ++count;
+  }
+  return count;
+}
+
+// A hole pixel (forward_shared.h): the background between the hole's two edges in the center row, else the
+// surface behind the farther edge.
 ForwardSample fillHole(const DepthImage& depth, const std::vector<std::uint32_t>& keys, int column, int y,
                        const gpu::ForwardConstants& c) {
   int left = -1, right = -1;
@@ -46,22 +60,34 @@ ForwardSample fillHole(const DepthImage& depth, const std::vector<std::uint32_t>
   for (int i = 1; i <= c.fillSearchPx && right < 0 && column + i < c.width; ++i)
     if (keys[std::size_t(column + i)] != S3D_FORWARD_EMPTY) right = column + i;
   if (left < 0 && right < 0) return {0.0f, column, 1, 1};  // nothing lands near: the center pixel itself
+  if (left >= 0 && right >= 0) {
+    // Center pixels between the edges' sources that lie behind both edges were hidden in this eye: a gap
+    // between two occluders shows the background the gap showed, not an occluder.
+    const int leftSource = gpu::forwardKeySource(keys[std::size_t(left)], left);
+    const int rightSource = gpu::forwardKeySource(keys[std::size_t(right)], right);
+    const int low = std::min(leftSource, rightSource), high = std::max(leftSource, rightSource);
+    float farthest = std::max(gpu::forwardParallaxPx(c, depthAt(depth, leftSource, y)),
+                              gpu::forwardParallaxPx(c, depthAt(depth, rightSource, y))) + 1.0f;
+    int background = -1;
+    for (int x = low + 1; x < high && x <= low + c.fillSearchPx; ++x) {
+      const float d = depthAt(depth, x, y);
+      if (gpu::forwardKnownDepth(d) && gpu::forwardParallaxPx(c, d) > farthest) {
+        farthest = gpu::forwardParallaxPx(c, d);
+        background = x;
+      }
+    }
+    if (background >= 0) return {0.0f, background, surfaceRun(depth, y, background, 1, high, farthest, c), 1};
+  }
   const bool useRight = left < 0 || (right >= 0 && gpu::forwardKeyDepth(keys[std::size_t(right)]) >
                                                        gpu::forwardKeyDepth(keys[std::size_t(left)]));
   const int edge = useRight ? right : left;
   const int source = gpu::forwardKeySource(keys[std::size_t(edge)], edge);
   const int away = useRight ? 1 : -1;
   const float edgeParallax = gpu::forwardParallaxPx(c, depthAt(depth, source, y));
-  ForwardSample sample{0.0f, source + away * S3D_FORWARD_FILL_SKIP, 0, away};
-  for (int k = S3D_FORWARD_FILL_SKIP; k < S3D_FORWARD_FILL_SKIP + S3D_FORWARD_FILL_TAPS; ++k) {
-    const int x = source + away * k;
-    if (x < 0 || x >= c.width) break;
-    const float d = depthAt(depth, x, y);
-    if (!gpu::forwardKnownDepth(d) || std::abs(gpu::forwardParallaxPx(c, d) - edgeParallax) > 1.0f) break;
-    ++sample.fillCount;
-  }
-  if (sample.fillCount == 0) return {0.0f, source, 1, 1};
-  return sample;
+  const int first = source + away * S3D_FORWARD_FILL_SKIP;
+  const int count = surfaceRun(depth, y, first, away, -1, edgeParallax, c);
+  if (count == 0) return {0.0f, source, 1, 1};
+  return {0.0f, first, count, away};
 }
 
 }  // namespace

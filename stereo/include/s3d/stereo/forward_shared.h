@@ -8,9 +8,11 @@
 // s + the fraction of the way (sub-pixel placement, exact on flat and slanted surfaces). An open end (a depth
 // edge) covers half a pixel. Each covered eye pixel keeps the nearest surface: a 32-bit key of the depth's
 // upper float bits above the source's column offset, reduced with an atomic minimum (z-buffer). Eye pixels
-// no surface covers are disocclusions: they take the mean of the first S3D_FORWARD_FILL_TAPS center pixels of
-// the surface on the far (background) side of the hole, from its edge on. With maxSeparation 0 every pixel lands
-// on itself: the center view bit for bit.
+// no surface covers are disocclusions. When the center row between the sources of the hole's two edges holds
+// pixels behind both edges (a gap between occluders, whose background the eye sees elsewhere), the hole takes
+// the mean of up to S3D_FORWARD_FILL_TAPS of the farthest of them; otherwise the mean of the first ones of the
+// surface on the far (background) side of the hole, from its edge on. With maxSeparation 0 every pixel lands on
+// itself: the center view bit for bit.
 #ifndef S3D_STEREO_FORWARD_SHARED_H
 #define S3D_STEREO_FORWARD_SHARED_H
 
