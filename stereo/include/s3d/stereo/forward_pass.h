@@ -1,6 +1,7 @@
 #pragma once
 // The forward method (forward.h) on the GPU: a drop-in for StereoPass with the same four bindings, plus two
-// z-buffers (R32UI, one per eye) it owns, created at the first record for the image size and reused.
+// z-buffers (R32UI, one per eye) it owns, created at the first record for the image size and reused (a record
+// at another size replaces them: finish command buffers using the old size first).
 #include <optional>
 
 #include <vulkan/vulkan.h>
