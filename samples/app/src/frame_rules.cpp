@@ -7,26 +7,31 @@
 #include <utility>
 
 #include "s3d/comfort/comfort_report.h"
+#include "s3d/comfort/frame_comfort_state.h"
 #include "s3d/hud/crosshair.h"
 #include "s3d/hud/overlay.h"
 
 namespace s3d::app {
+namespace {
+
+// The renderer's weapon depth range as the library's weapon mask statistics (no range: no weapon in view).
+comfort::WeaponMaskStats weaponStats(const std::optional<glm::vec2>& weaponDepths) {
+  if (!weaponDepths) return {};
+  return {1, weaponDepths->x, weaponDepths->y};
+}
+
+}  // namespace
 
 stereo::StereoParameters pushWeaponUnlessNegativeParallaxAllowed(stereo::StereoParameters parameters,
                                                                  const std::optional<glm::vec2>& weaponDepths,
                                                                  bool allowNegativeParallax) {
-  if (!allowNegativeParallax && weaponDepths)
-    parameters = comfort::pushWeaponBehindScreen(parameters, weaponDepths->x, weaponDepths->y);
-  return parameters;
+  const comfort::WeaponMaskStats weapon = weaponStats(weaponDepths);
+  return comfort::weaponPushForFrame(parameters, weapon, allowNegativeParallax);
 }
 
 bool holdZeroParallaxAtNearestDepth(stereo::StereoParameters& parameters, const DepthImage& stereoDepth,
                                     bool allowNegativeParallax) {
-  if (allowNegativeParallax) return false;
-  const std::optional<float> nearest = comfort::nearestDepth(stereoDepth);
-  if (!nearest || !(*nearest < parameters.zeroParallaxDistance)) return false;
-  parameters.zeroParallaxDistance = *nearest;
-  return true;
+  return comfort::holdZeroParallax(parameters, comfort::nearestDepth(stereoDepth), allowNegativeParallax);
 }
 
 HudFrame drawHud(const HudFrameInput& input, stereo::StereoPair& eyes, ImageRGBA8* center,
@@ -36,43 +41,40 @@ HudFrame drawHud(const HudFrameInput& input, stereo::StereoPair& eyes, ImageRGBA
   const std::uint32_t width = eyes.left.width;
   const std::uint32_t height = eyes.left.height;
   const stereo::StereoParameters& parameters = input.parameters;
-  // Not in front of the screen plane unless allowed (the plane is never beyond the aimed-at surface).
-  auto notInFront = [&](float depth) {
-    return input.allowNegativeParallax ? depth : std::max(depth, parameters.zeroParallaxDistance);
+  // Depth (not in front of the screen plane unless allowed) and fade behind the weapon: the library's rule.
+  const comfort::WeaponMaskStats weapon = weaponStats(input.weaponDepths);
+  auto state = [&](const std::string& name, float depth) {
+    return comfort::hudElementState(name, depth, parameters, weapon, width, input.allowNegativeParallax);
   };
   HudFrame hud;
-  hud.crosshairDepth = notInFront(input.crosshairDepth);
+  const comfort::HudElementState crosshair = state("crosshair", input.crosshairDepth);
+  hud.crosshairDepth = crosshair.depth;
   const hud::CrosshairStyle crosshairStyle = hud::crosshairStyleForHeight(height);
 
   struct HudElement {
-    std::string name;
-    float depth;
+    comfort::HudElementState state;
     std::function<ImageRGBA8(float offsetPx)> layer;  // the element alone, shifted by offsetPx
   };
   std::vector<HudElement> elements;
   for (const hud::Panel& panel : hud::defaultPanels(width, height))
-    elements.push_back({panel.name, notInFront(panel.depth),
+    elements.push_back({state(panel.name, panel.depth),
                         [&, panel](float offsetPx) { return hud::panelLayer(width, height, panel, offsetPx); }});
   // The crosshair last, on top. Its center in pixel indices ((W - 1) / 2, rounded half up) plus the offset.
-  elements.push_back({"crosshair", hud.crosshairDepth, [&](float offsetPx) {
+  elements.push_back({crosshair, [&](float offsetPx) {
                         ImageRGBA8 layer(width, height);
                         hud::drawCrosshair(layer, 0.5f * float(width - 1) + offsetPx, 0.5f * float(height - 1),
                                            crosshairStyle);
                         return layer;
                       }});
-  // The weapon's nearest pushed point: an element deeper than it lies behind the weapon where they overlap.
-  const float weaponNearestPushed = input.weaponDepths
-                                        ? parameters.weaponDepthOffset + parameters.weaponDepthScale * input.weaponDepths->x
-                                        : std::numeric_limits<float>::infinity();
   for (const HudElement& element : elements) {
-    HudElementReport entry{element.name, element.depth, element.depth > weaponNearestPushed};
+    HudElementReport entry{element.state.name, element.state.depth, element.state.fadesBehindWeapon};
     const ImageRGBA8 centerLayer = element.layer(0.0f);
     entry.conflictPixels =
-        hud::countDepthConflicts(centerLayer, element.depth, *input.stereoDepth, *input.firstPersonMask, entry.behindWeapon);
+        hud::countDepthConflicts(centerLayer, entry.depth, *input.stereoDepth, *input.firstPersonMask, entry.behindWeapon);
     if (center) (void)hud::blendLayer(*center, centerLayer, entry.behindWeapon);
     for (const stereo::Eye eye : {stereo::Eye::Left, stereo::Eye::Right}) {
       const std::size_t side = eye == stereo::Eye::Left ? 0 : 1;
-      const ImageRGBA8 layer = element.layer(hud::crosshairEyeOffsetPx(parameters, element.depth, width, eye));
+      const ImageRGBA8 layer = element.layer(hud::crosshairEyeOffsetPx(parameters, entry.depth, width, eye));
       const hud::BlendCounts counts = hud::blendLayer(side == 0 ? eyes.left : eyes.right, layer, entry.behindWeapon);
       entry.drawnPixels[side] = counts.drawnPixels;
       entry.fadedPixels[side] = counts.fadedPixels;

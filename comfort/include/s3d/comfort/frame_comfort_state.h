@@ -1,0 +1,101 @@
+#pragma once
+// The per-frame comfort rules in one call a host makes each frame, with no s3d renderer type: the weapon push
+// capped by the zero-parallax plane, the zero-parallax distance held at the nearest depth, the crosshair placed
+// by the host's ray cast, and each HUD element's depth, parallax and fade behind the weapon (seed 4.6.2).
+// s3d render and s3d tune apply the same rules (samples/app frame_rules.h calls these).
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "s3d/comfort/comfort_report.h"
+#include "s3d/comfort/display_profile.h"
+#include "s3d/image.h"
+#include "s3d/stereo/stereo.h"
+
+namespace s3d::comfort {
+
+// The host's ray cast: distance from origin along the normalized direction to the first world surface within
+// maxDistance, or nothing. The first-person layer is not part of the world.
+using RayCast = std::function<std::optional<float>(glm::vec3 origin, glm::vec3 direction, float maxDistance)>;
+
+class WorldQueries;
+// Embree's, for hosts without a physics engine; `world` must outlive the callback.
+RayCast embreeRayCast(const WorldQueries& world);
+
+struct FrameCamera {
+  glm::vec3 position{0.0f};
+  glm::vec3 aim{0.0f, 0.0f, -1.0f};  // the view axis (normalized), so a distance along it is a linear depth
+  float nearPlane = 0.1f;
+};
+
+// The weapon mask's linear depth range before the push (the host's first-person layer in view).
+struct WeaponMaskStats {
+  std::uint64_t pixels = 0;  // 0: no weapon in view
+  float nearestDepth = 0.0f;
+  float farthestDepth = 0.0f;
+};
+
+struct HudElementDepth {
+  std::string name;
+  float depth = 1.0f;  // linear view depth the element should be shown at
+};
+
+struct FrameComfortInput {
+  FrameCamera camera;
+  RayCast rayCast;  // empty: no world; the crosshair stays at crosshairDistance
+  stereo::StereoParameters parameters;  // the host's settings for this frame
+  std::uint32_t width = 0;  // of the eyes, in pixels (parallax in pixels)
+  float crosshairDistance = 10.0f;
+  float crosshairMargin = 0.25f;
+  WeaponMaskStats weapon;
+  // The frame's nearest world depth (not the weapon; e.g. from a depth-range reduction): the zero-parallax
+  // distance is held at min(it, the pushed weapon's nearest). Or the whole stereo depth (weapon pushed with
+  // `parameters`), from which it is taken, and which also gives `statistics` together with a display.
+  std::optional<float> nearestWorldDepth;
+  const DepthImage* stereoDepth = nullptr;
+  const DisplayProfile* display = nullptr;
+  std::vector<HudElementDepth> hud;
+  bool allowNegativeParallax = false;  // off: nothing is shown in front of the screen plane
+};
+
+struct HudElementState {
+  std::string name;
+  float depth = 0.0f;       // as shown: not in front of the zero-parallax plane unless allowed
+  float parallaxPx = 0.0f;  // the right eye's offset in pixels (the left eye's is minus this)
+  bool fadesBehindWeapon = false;  // deeper than the pushed weapon's nearest point: fade where the mask covers it
+};
+
+struct FrameComfortState {
+  stereo::StereoParameters parameters;  // for the stereo pass: weapon push and zero-parallax distance applied
+  bool weaponPushed = false;            // the push was changed to keep the weapon behind the screen plane
+  bool zeroParallaxLimited = false;     // the zero-parallax distance was lowered to the nearest depth
+  float crosshairDepth = 0.0f;
+  bool crosshairHitWorld = false;
+  HudElementState crosshair;            // the crosshair as a HUD element
+  std::vector<HudElementState> hud;     // in the order given
+  std::optional<FrameComfort> statistics;  // with stereoDepth and display
+};
+
+// Throws std::invalid_argument for a width of 0, a non-positive crosshair distance or HUD depth.
+FrameComfortState frameComfortState(const FrameComfortInput& input);
+
+// The pieces, for tools that apply them at different points of their frame.
+// Without negative parallax allowed and with a weapon in view, pushWeaponBehindScreen (comfort_report.h).
+stereo::StereoParameters weaponPushForFrame(stereo::StereoParameters parameters, const WeaponMaskStats& weapon,
+                                            bool allowNegativeParallax);
+// Without negative parallax allowed, the zero-parallax distance lowered to `nearest` when that is nearer.
+bool holdZeroParallax(stereo::StereoParameters& parameters, std::optional<float> nearest, bool allowNegativeParallax);
+// One HUD element at `depth` for the frame's final parameters.
+HudElementState hudElementState(const std::string& name, float depth, const stereo::StereoParameters& parameters,
+                                const WeaponMaskStats& weapon, std::uint32_t width, bool allowNegativeParallax);
+// The crosshair along the aim (the seed's ray cast): `margin` in front of a hit within defaultDistance, never
+// nearer than max(nearPlane, kMinCrosshairDepth); defaultDistance without a hit.
+struct CrosshairPlacement;
+CrosshairPlacement placeCrosshairAlongAim(const RayCast& rayCast, const FrameCamera& camera, float defaultDistance,
+                                          float margin);
+
+}  // namespace s3d::comfort

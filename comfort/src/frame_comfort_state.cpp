@@ -1,0 +1,85 @@
+#include "s3d/comfort/frame_comfort_state.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "s3d/comfort/crosshair.h"
+#include "s3d/comfort/world_queries.h"
+
+namespace s3d::comfort {
+
+RayCast embreeRayCast(const WorldQueries& world) {
+  return [&world](glm::vec3 origin, glm::vec3 direction, float maxDistance) {
+    return world.castRay(origin, direction, maxDistance);
+  };
+}
+
+CrosshairPlacement placeCrosshairAlongAim(const RayCast& rayCast, const FrameCamera& camera, float defaultDistance,
+                                          float margin) {
+  if (!(defaultDistance > 0.0f) || !std::isfinite(defaultDistance))
+    throw std::invalid_argument("placeCrosshair: defaultDistance must be positive and finite (got " +
+                                std::to_string(defaultDistance) + ")");
+  if (!(margin >= 0.0f) || !std::isfinite(margin))
+    throw std::invalid_argument("placeCrosshair: margin must be >= 0 and finite (got " + std::to_string(margin) + ")");
+  const std::optional<float> hit = rayCast ? rayCast(camera.position, camera.aim, defaultDistance) : std::nullopt;
+  if (!hit || *hit >= defaultDistance) return {defaultDistance, false};
+  const float nearest = std::max(camera.nearPlane, kMinCrosshairDepth);
+  return {std::max(*hit - margin, nearest), true, *hit};
+}
+
+stereo::StereoParameters weaponPushForFrame(stereo::StereoParameters parameters, const WeaponMaskStats& weapon,
+                                            bool allowNegativeParallax) {
+  if (!allowNegativeParallax && weapon.pixels > 0)
+    parameters = pushWeaponBehindScreen(parameters, weapon.nearestDepth, weapon.farthestDepth);
+  return parameters;
+}
+
+bool holdZeroParallax(stereo::StereoParameters& parameters, std::optional<float> nearest, bool allowNegativeParallax) {
+  if (allowNegativeParallax || !nearest || !(*nearest < parameters.zeroParallaxDistance)) return false;
+  parameters.zeroParallaxDistance = *nearest;
+  return true;
+}
+
+HudElementState hudElementState(const std::string& name, float depth, const stereo::StereoParameters& parameters,
+                                const WeaponMaskStats& weapon, std::uint32_t width, bool allowNegativeParallax) {
+  if (!(depth > 0.0f)) throw std::invalid_argument("HUD element '" + name + "': depth must be positive");
+  HudElementState state{name, allowNegativeParallax ? depth : std::max(depth, parameters.zeroParallaxDistance)};
+  state.parallaxPx =
+      gpu::parallaxFromDepth(parameters.maxSeparation, parameters.zeroParallaxDistance, state.depth) * float(width);
+  const float weaponNearestPushed = weapon.pixels > 0
+                                        ? parameters.weaponDepthOffset + parameters.weaponDepthScale * weapon.nearestDepth
+                                        : std::numeric_limits<float>::infinity();
+  state.fadesBehindWeapon = state.depth > weaponNearestPushed;
+  return state;
+}
+
+FrameComfortState frameComfortState(const FrameComfortInput& input) {
+  if (input.width == 0) throw std::invalid_argument("frameComfortState: the eyes' width is 0");
+  FrameComfortState state;
+  state.parameters = weaponPushForFrame(input.parameters, input.weapon, input.allowNegativeParallax);
+  state.weaponPushed = state.parameters.weaponDepthOffset != input.parameters.weaponDepthOffset ||
+                       state.parameters.weaponDepthScale != input.parameters.weaponDepthScale;
+  std::optional<float> nearest = input.stereoDepth ? nearestDepth(*input.stereoDepth) : input.nearestWorldDepth;
+  if (!input.stereoDepth && input.weapon.pixels > 0) {  // the weapon as the stereo pass will see it
+    const float pushed = state.parameters.weaponDepthOffset + state.parameters.weaponDepthScale * input.weapon.nearestDepth;
+    nearest = nearest ? std::min(*nearest, pushed) : pushed;
+  }
+  state.zeroParallaxLimited = holdZeroParallax(state.parameters, nearest, input.allowNegativeParallax);
+
+  const CrosshairPlacement placement =
+      placeCrosshairAlongAim(input.rayCast, input.camera, input.crosshairDistance, input.crosshairMargin);
+  state.crosshair = hudElementState("crosshair", placement.depth, state.parameters, input.weapon, input.width,
+                                    input.allowNegativeParallax);
+  state.crosshairDepth = state.crosshair.depth;
+  state.crosshairHitWorld = placement.hitWorld;
+  for (const HudElementDepth& element : input.hud)
+    state.hud.push_back(hudElementState(element.name, element.depth, state.parameters, input.weapon, input.width,
+                                        input.allowNegativeParallax));
+  if (input.stereoDepth && input.display)
+    state.statistics = frameComfort(*input.stereoDepth, state.parameters, *input.display);
+  return state;
+}
+
+}  // namespace s3d::comfort
