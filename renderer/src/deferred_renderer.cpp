@@ -22,12 +22,11 @@
 #include <s3d_spirv/gbuffer_frag.h>
 #include <s3d_spirv/geometry_vert.h>
 #include <s3d_spirv/light_frag.h>
-#include <s3d_spirv/linear_depth_comp.h>
 #include <s3d_spirv/shading_frag.h>
 #include <s3d_spirv/sky_frag.h>
 #include <s3d_spirv/ssao_comp.h>
 #include <s3d_spirv/sky_vert.h>
-#include <s3d_spirv/tonemap_comp.h>
+#include <s3d_spirv/resolve_comp.h>
 #include <s3d_spirv/transparent_frag.h>
 // clang-format on
 
@@ -220,9 +219,9 @@ struct DeferredRenderer::Impl {
   vk::Image whiteTexture, flatNormalTexture;  // what untextured objects sample: albedo x 1, normal (0, 0, 1)
 
   // Passes: layouts and pipelines.
-  vk::PipelineLayout geometryLayout, lightLayout, shadingLayout, skyLayout, tonemapLayout, linearDepthLayout, ssaoLayout;
-  vk::Unique<VkPipeline> gbufferPipeline, lightPipeline, shadingPipeline, transparentPipeline, skyPipeline, tonemapPipeline,
-      linearDepthPipeline, ssaoPipeline;
+  vk::PipelineLayout geometryLayout, lightLayout, shadingLayout, skyLayout, resolveLayout, ssaoLayout;
+  vk::Unique<VkPipeline> gbufferPipeline, lightPipeline, shadingPipeline, transparentPipeline, skyPipeline, resolvePipeline,
+      ssaoPipeline;
 
   // Scene data.
   Scene scene;
@@ -325,13 +324,10 @@ struct DeferredRenderer::Impl {
     lightLayout = vk::createPushDescriptorLayout(context, lightBindings, sizeof(gpu::LightConstants), fragment);
     const VkDescriptorSetLayoutBinding skyBindings[] = {binding(0, ubo, fragment)};
     skyLayout = vk::createPushDescriptorLayout(context, skyBindings, 0, 0);
-    const VkDescriptorSetLayoutBinding tonemapBindings[] = {binding(0, ubo, compute), binding(1, storage, compute),
+    const VkDescriptorSetLayoutBinding resolveBindings[] = {binding(0, ubo, compute),     binding(1, storage, compute),
                                                             binding(2, storage, compute), binding(3, storage, compute),
-                                                            binding(4, sampled, compute)};
-    tonemapLayout = vk::createPushDescriptorLayout(context, tonemapBindings, sizeof(gpu::ResolveConstants), compute);
-    const VkDescriptorSetLayoutBinding linearDepthBindings[] = {binding(0, ubo, compute), binding(1, sampled, compute),
-                                                                binding(2, storage, compute)};
-    linearDepthLayout = vk::createPushDescriptorLayout(context, linearDepthBindings, sizeof(gpu::ResolveConstants), compute);
+                                                            binding(4, sampled, compute), binding(5, storage, compute)};
+    resolveLayout = vk::createPushDescriptorLayout(context, resolveBindings, sizeof(gpu::ResolveConstants), compute);
     const VkDescriptorSetLayoutBinding ssaoBindings[] = {binding(0, ubo, compute), binding(1, sampled, compute),
                                                          binding(2, sampled, compute), binding(3, storage, compute)};
     ssaoLayout = vk::createPushDescriptorLayout(context, ssaoBindings, 0, 0);
@@ -386,8 +382,7 @@ struct DeferredRenderer::Impl {
     sky.depthCompare = options.reversedZ ? VK_COMPARE_OP_GREATER_OR_EQUAL : VK_COMPARE_OP_LESS_OR_EQUAL;
     skyPipeline = vk::createGraphicsPipeline(context, skyLayout.layout, sky);
 
-    tonemapPipeline = vk::createComputePipeline(context, tonemapLayout.layout, spirv_tonemap_comp);
-    linearDepthPipeline = vk::createComputePipeline(context, linearDepthLayout.layout, spirv_linear_depth_comp);
+    resolvePipeline = vk::createComputePipeline(context, resolveLayout.layout, spirv_resolve_comp);
     ssaoPipeline = vk::createComputePipeline(context, ssaoLayout.layout, spirv_ssao_comp);
   }
 
@@ -799,24 +794,15 @@ struct DeferredRenderer::Impl {
     VkDescriptorImageInfo hdrInfo{VK_NULL_HANDLE, hdr.view, VK_IMAGE_LAYOUT_GENERAL};
     VkDescriptorImageInfo displayInfo{VK_NULL_HANDLE, display.view, VK_IMAGE_LAYOUT_GENERAL};
     VkDescriptorImageInfo resolvedHdrInfo{VK_NULL_HANDLE, resolvedHdr.view, VK_IMAGE_LAYOUT_GENERAL};
-    // The depth goes to tone mapping too: the weapon mask is written into the display image's alpha.
     VkDescriptorImageInfo depthInfo{nearestSampler, depth.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
-    VkWriteDescriptorSet tonemapWrites[] = {vk::uniformBufferWrite(0, &frameInfo), vk::storageImageWrite(1, &hdrInfo),
-                                            vk::storageImageWrite(2, &displayInfo),
-                                            vk::storageImageWrite(3, &resolvedHdrInfo), vk::sampledImageWrite(4, &depthInfo)};
-    tonemapWrites[4].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, tonemapPipeline);
-    context.cmdPushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, tonemapLayout.layout, 0, 5, tonemapWrites);
-    vkCmdPushConstants(cmd, tonemapLayout.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(resolve), &resolve);
-    vkCmdDispatch(cmd, groupsX, groupsY, 1);
-
     VkDescriptorImageInfo linearInfo{VK_NULL_HANDLE, linearDepth.view, VK_IMAGE_LAYOUT_GENERAL};
-    VkWriteDescriptorSet depthWrites[] = {vk::uniformBufferWrite(0, &frameInfo), vk::sampledImageWrite(1, &depthInfo),
-                                          vk::storageImageWrite(2, &linearInfo)};
-    depthWrites[1].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, linearDepthPipeline);
-    context.cmdPushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, linearDepthLayout.layout, 0, 3, depthWrites);
-    vkCmdPushConstants(cmd, linearDepthLayout.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(resolve), &resolve);
+    VkWriteDescriptorSet writes[] = {vk::uniformBufferWrite(0, &frameInfo),       vk::storageImageWrite(1, &hdrInfo),
+                                     vk::storageImageWrite(2, &displayInfo),      vk::storageImageWrite(3, &resolvedHdrInfo),
+                                     vk::sampledImageWrite(4, &depthInfo),        vk::storageImageWrite(5, &linearInfo)};
+    writes[4].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, resolvePipeline);
+    context.cmdPushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, resolveLayout.layout, 0, 6, writes);
+    vkCmdPushConstants(cmd, resolveLayout.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(resolve), &resolve);
     vkCmdDispatch(cmd, groupsX, groupsY, 1);
   }
 
