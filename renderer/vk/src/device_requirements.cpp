@@ -99,6 +99,10 @@ std::vector<std::string> missingEnabledRequirements(const VkDeviceCreateInfo& in
 }
 
 DeviceRequirementsPatch::DeviceRequirementsPatch(VkPhysicalDevice physicalDevice, VkDeviceCreateInfo& info) {
+  vulkan13_.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES;
+  synchronization2_.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SYNCHRONIZATION_2_FEATURES;
+  dynamicRendering_.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DYNAMIC_RENDERING_FEATURES;
+  maintenance4_.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MAINTENANCE_4_FEATURES;
   if (std::vector<std::string> missing = missingDeviceSupport(physicalDevice); !missing.empty()) {
     VkPhysicalDeviceProperties properties{};
     vkGetPhysicalDeviceProperties(physicalDevice, &properties);

@@ -63,10 +63,11 @@ class DeviceRequirementsPatch {
 
  private:
   std::vector<const char*> extensions_;
-  VkPhysicalDeviceVulkan13Features vulkan13_{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
-  VkPhysicalDeviceSynchronization2Features synchronization2_{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SYNCHRONIZATION_2_FEATURES};
-  VkPhysicalDeviceDynamicRenderingFeatures dynamicRendering_{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DYNAMIC_RENDERING_FEATURES};
-  VkPhysicalDeviceMaintenance4Features maintenance4_{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MAINTENANCE_4_FEATURES};
+  // sTypes set by the constructor: the headers stay clean under a consumer's -Wextra.
+  VkPhysicalDeviceVulkan13Features vulkan13_{};
+  VkPhysicalDeviceSynchronization2Features synchronization2_{};
+  VkPhysicalDeviceDynamicRenderingFeatures dynamicRendering_{};
+  VkPhysicalDeviceMaintenance4Features maintenance4_{};
 };
 
 // A host's device for s3d to run on. s3d destroys none of these handles; the host keeps them alive (and the
