@@ -87,6 +87,7 @@ class HostStereoPass {
   std::uint32_t packedWidth() const;
   std::uint32_t packedHeight() const;
   bool convertsInputs() const { return !desc_.inputsAreStorage; }
+  const HostStereoPassDesc& desc() const { return desc_; }
 
  private:
   vk::Context* context_;

@@ -1,0 +1,164 @@
+/* s3d's C API for hosts that bind C (Godot GDExtension, Unity native plugins, C engines): opaque handles, POD
+ * parameter structs, error codes plus a per-thread last-error string. Stable within a minor version (0.2).
+ * See docs/INTEGRATION.md for the frame sequence and the synchronization contract. */
+#ifndef S3D_S3D_H
+#define S3D_S3D_H
+
+#include <stdint.h>
+#include <vulkan/vulkan.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define S3D_API_VERSION_MAJOR 0
+#define S3D_API_VERSION_MINOR 2
+
+typedef enum s3d_result {
+  S3D_SUCCESS = 0,
+  S3D_ERROR_INVALID_ARGUMENT = -1,   /* a parameter, format, size or layout s3d does not accept */
+  S3D_ERROR_DEVICE_UNSUPPORTED = -2, /* the device lacks a required feature or extension (named in the message) */
+  S3D_ERROR_VULKAN = -3,             /* a Vulkan call failed */
+  S3D_ERROR_UNKNOWN = -4
+} s3d_result;
+
+/* The message of this thread's last failed call ("" after a success). Valid until the thread's next s3d call. */
+const char* s3d_last_error(void);
+
+/* ---- Device ---- */
+uint32_t s3d_required_api_version(void);
+uint32_t s3d_required_extension_count(void);
+const char* s3d_required_extension(uint32_t index);
+uint32_t s3d_required_feature_count(void);
+const char* s3d_required_feature(uint32_t index); /* VkPhysicalDeviceVulkan13Features member names */
+
+/* Adds s3d's extensions and features to the host's create info; keep the patch until vkCreateDevice returned. */
+typedef struct s3d_device_patch_t* s3d_device_patch;
+s3d_result s3d_device_patch_apply(VkPhysicalDevice physical_device, VkDeviceCreateInfo* info, s3d_device_patch* out);
+void s3d_device_patch_destroy(s3d_device_patch patch);
+
+typedef struct s3d_host_device {
+  VkInstance instance;
+  VkPhysicalDevice physical_device;
+  VkDevice device;
+  uint32_t queue_family;
+  VkQueue queue;                          /* used only while creating passes (uploads), never per frame */
+  const VkAllocationCallbacks* allocator; /* may be NULL */
+  VkPipelineCache pipeline_cache;         /* may be VK_NULL_HANDLE */
+  const VkDeviceCreateInfo* create_info;  /* may be NULL; when given, enabled features are checked too */
+} s3d_host_device;
+
+typedef struct s3d_context_t* s3d_context;
+s3d_result s3d_context_create(const s3d_host_device* host, s3d_context* out);
+void s3d_context_destroy(s3d_context context);
+
+/* ---- Stereo pass on the host's images ---- */
+typedef enum s3d_output {
+  S3D_OUTPUT_TWO_EYES = 0,
+  S3D_OUTPUT_SIDE_BY_SIDE_HALF = 1,
+  S3D_OUTPUT_SIDE_BY_SIDE_FULL = 2,
+  S3D_OUTPUT_TOP_BOTTOM_HALF = 3,
+  S3D_OUTPUT_TOP_BOTTOM_FULL = 4,
+  S3D_OUTPUT_ANAGLYPH = 5
+} s3d_output;
+
+typedef struct s3d_host_pass_desc {
+  uint32_t width;
+  uint32_t height;
+  VkFormat color_format; /* RGBA8/BGRA8 UNORM or SRGB, RGBA16F, B10G11R11 */
+  VkFormat depth_format; /* D32, D24S8, D16, or R32F linear depth */
+  s3d_output output;
+  int32_t inputs_are_storage; /* 1: RGBA8 UNORM + R32F storage images, read without conversion */
+} s3d_host_pass_desc;
+
+typedef enum s3d_method { S3D_METHOD_SEED = 0, S3D_METHOD_SEARCH = 1 } s3d_method;
+
+typedef struct s3d_stereo_parameters {
+  float max_separation;         /* per-eye displacement at infinity, fraction of the width */
+  float zero_parallax_distance; /* world units */
+  float edge_crop;              /* fraction of the width per side; < 0: = max_separation */
+  s3d_method method;
+  int32_t search_taps;          /* S3D_METHOD_SEARCH: 1..16 */
+  float weapon_depth_offset;    /* first-person push: depth' = offset + scale * depth */
+  float weapon_depth_scale;
+} s3d_stereo_parameters;
+void s3d_default_stereo_parameters(s3d_stereo_parameters* out);
+
+typedef struct s3d_projection {
+  float near_plane;
+  float far_plane;
+  int32_t reversed_z;
+  int32_t infinite_far_plane;
+  float first_person_depth_range; /* 0: no first-person layer */
+  float first_person_near;
+  float first_person_far;
+} s3d_projection;
+
+typedef struct s3d_host_image {
+  VkImage image;
+  VkImageView view;
+  VkFormat format;
+  VkImageLayout layout;        /* current; the image is left in it */
+  VkPipelineStageFlags2 stage; /* the host's last access (s3d adds barriers), or 0: the host synchronizes */
+  VkAccessFlags2 access;
+} s3d_host_image;
+
+typedef struct s3d_host_pass_t* s3d_host_pass;
+s3d_result s3d_host_pass_create(s3d_context context, const s3d_host_pass_desc* desc, s3d_host_pass* out);
+void s3d_host_pass_destroy(s3d_host_pass pass);
+VkFormat s3d_host_pass_eye_format(s3d_host_pass pass);
+void s3d_host_pass_packed_size(s3d_host_pass pass, uint32_t* width, uint32_t* height);
+/* Records into the host's command buffer; left/right for S3D_OUTPUT_TWO_EYES, target otherwise (others NULL). */
+s3d_result s3d_host_pass_record(s3d_host_pass pass, VkCommandBuffer cmd, const s3d_host_image* color,
+                                const s3d_host_image* depth, const s3d_stereo_parameters* parameters,
+                                const s3d_projection* projection, const s3d_host_image* left,
+                                const s3d_host_image* right, const s3d_host_image* target);
+
+/* ---- Per-frame comfort ---- */
+/* Distance to the first world surface along the ray within max_distance; return 0 for no hit. */
+typedef int32_t (*s3d_ray_cast)(void* user, const float origin[3], const float direction[3], float max_distance,
+                                float* distance);
+
+typedef struct s3d_frame_comfort_input {
+  float camera_position[3];
+  float camera_aim[3];  /* normalized view axis */
+  float camera_near;
+  s3d_ray_cast ray_cast; /* may be NULL */
+  void* ray_cast_user;
+  s3d_stereo_parameters parameters;
+  uint32_t width;
+  float crosshair_distance;
+  float crosshair_margin;
+  uint64_t weapon_pixels; /* 0: no weapon in view */
+  float weapon_nearest_depth;
+  float weapon_farthest_depth;
+  int32_t has_nearest_world_depth;
+  float nearest_world_depth;
+  const float* hud_depths; /* hud_count element depths */
+  uint32_t hud_count;
+  int32_t allow_negative_parallax;
+} s3d_frame_comfort_input;
+
+typedef struct s3d_hud_element_state {
+  float depth;
+  float parallax_px; /* the right eye's offset (the left eye's is minus this) */
+  int32_t fades_behind_weapon;
+} s3d_hud_element_state;
+
+typedef struct s3d_frame_comfort_state {
+  s3d_stereo_parameters parameters; /* push and zero-parallax distance applied */
+  int32_t weapon_pushed;
+  int32_t zero_parallax_limited;
+  int32_t crosshair_hit_world;
+  s3d_hud_element_state crosshair;
+} s3d_frame_comfort_state;
+
+/* hud_states: hud_count entries written in the order of hud_depths (may be NULL when hud_count is 0). */
+s3d_result s3d_frame_comfort_state_compute(const s3d_frame_comfort_input* input, s3d_frame_comfort_state* out,
+                                           s3d_hud_element_state* hud_states);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* S3D_S3D_H */

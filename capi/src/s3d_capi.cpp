@@ -1,0 +1,226 @@
+// The C API over the C++ library: every entry point catches, stores the message per thread and returns a code.
+#include "s3d/s3d.h"
+
+#include <memory>
+#include <stdexcept>
+#include <string>
+
+#include "s3d/comfort/frame_comfort_state.h"
+#include "s3d/stereo/host_stereo_pass.h"
+#include "s3d/vk/check.h"
+#include "s3d/vk/context.h"
+
+struct s3d_context_t {
+  s3d::vk::Context context;
+};
+struct s3d_host_pass_t {
+  s3d::stereo::HostStereoPass pass;
+};
+struct s3d_device_patch_t {
+  std::unique_ptr<s3d::vk::DeviceRequirementsPatch> patch;
+};
+
+namespace {
+
+thread_local std::string lastError;
+
+template <typename F>
+s3d_result guarded(F&& body) {
+  try {
+    body();
+    lastError.clear();
+    return S3D_SUCCESS;
+  } catch (const std::invalid_argument& error) {
+    lastError = error.what();
+    return S3D_ERROR_INVALID_ARGUMENT;
+  } catch (const s3d::vk::VulkanError& error) {
+    lastError = error.what();
+    return S3D_ERROR_VULKAN;
+  } catch (const std::runtime_error& error) {  // adoption and patch failures name the missing requirement
+    lastError = error.what();
+    return S3D_ERROR_DEVICE_UNSUPPORTED;
+  } catch (const std::exception& error) {
+    lastError = error.what();
+    return S3D_ERROR_UNKNOWN;
+  } catch (...) {
+    lastError = "unknown error";
+    return S3D_ERROR_UNKNOWN;
+  }
+}
+
+void requireNotNull(const void* pointer, const char* what) {
+  if (!pointer) throw std::invalid_argument(std::string(what) + " is NULL");
+}
+
+s3d::stereo::StereoParameters toCpp(const s3d_stereo_parameters& p) {
+  s3d::stereo::StereoParameters result;
+  result.maxSeparation = p.max_separation;
+  result.zeroParallaxDistance = p.zero_parallax_distance;
+  result.edgeCrop = p.edge_crop;
+  if (p.method != S3D_METHOD_SEED && p.method != S3D_METHOD_SEARCH)
+    throw std::invalid_argument("s3d_stereo_parameters.method must be S3D_METHOD_SEED or S3D_METHOD_SEARCH");
+  result.method = p.method == S3D_METHOD_SEED ? s3d::stereo::StereoMethod::Seed : s3d::stereo::StereoMethod::Search;
+  result.searchTaps = p.search_taps;
+  result.weaponDepthOffset = p.weapon_depth_offset;
+  result.weaponDepthScale = p.weapon_depth_scale;
+  s3d::stereo::validate(result);
+  return result;
+}
+
+s3d_stereo_parameters toC(const s3d::stereo::StereoParameters& p) {
+  return {p.maxSeparation, p.zeroParallaxDistance, p.edgeCrop,
+          p.method == s3d::stereo::StereoMethod::Seed ? S3D_METHOD_SEED : S3D_METHOD_SEARCH,
+          p.searchTaps, p.weaponDepthOffset, p.weaponDepthScale};
+}
+
+s3d::stereo::HostImage toCpp(const s3d_host_image& i) {
+  return {i.image, i.view, i.format, i.layout, i.stage, i.access};
+}
+
+s3d_hud_element_state toC(const s3d::comfort::HudElementState& s) {
+  return {s.depth, s.parallaxPx, s.fadesBehindWeapon ? 1 : 0};
+}
+
+const s3d::vk::DeviceRequirements& requirements() {
+  static const s3d::vk::DeviceRequirements value = s3d::vk::deviceRequirements();
+  return value;
+}
+
+}  // namespace
+
+extern "C" {
+
+const char* s3d_last_error(void) { return lastError.c_str(); }
+
+uint32_t s3d_required_api_version(void) { return requirements().apiVersion; }
+uint32_t s3d_required_extension_count(void) { return uint32_t(requirements().extensions.size()); }
+const char* s3d_required_extension(uint32_t index) {
+  return index < requirements().extensions.size() ? requirements().extensions[index].c_str() : nullptr;
+}
+uint32_t s3d_required_feature_count(void) { return uint32_t(requirements().features.size()); }
+const char* s3d_required_feature(uint32_t index) {
+  return index < requirements().features.size() ? requirements().features[index].c_str() : nullptr;
+}
+
+s3d_result s3d_device_patch_apply(VkPhysicalDevice physical_device, VkDeviceCreateInfo* info, s3d_device_patch* out) {
+  return guarded([&] {
+    requireNotNull(info, "the VkDeviceCreateInfo");
+    requireNotNull(out, "the patch output");
+    auto patch = std::make_unique<s3d_device_patch_t>();
+    patch->patch = std::make_unique<s3d::vk::DeviceRequirementsPatch>(physical_device, *info);
+    *out = patch.release();
+  });
+}
+void s3d_device_patch_destroy(s3d_device_patch patch) { delete patch; }
+
+s3d_result s3d_context_create(const s3d_host_device* host, s3d_context* out) {
+  return guarded([&] {
+    requireNotNull(host, "the host device");
+    requireNotNull(out, "the context output");
+    s3d::vk::HostDevice device;
+    device.instance = host->instance;
+    device.physicalDevice = host->physical_device;
+    device.device = host->device;
+    device.queueFamily = host->queue_family;
+    device.queue = host->queue;
+    device.allocator = host->allocator;
+    device.pipelineCache = host->pipeline_cache;
+    device.createInfo = host->create_info;
+    *out = new s3d_context_t{s3d::vk::Context(device)};
+  });
+}
+void s3d_context_destroy(s3d_context context) { delete context; }
+
+void s3d_default_stereo_parameters(s3d_stereo_parameters* out) {
+  if (out) *out = toC(s3d::stereo::StereoParameters{});
+}
+
+s3d_result s3d_host_pass_create(s3d_context context, const s3d_host_pass_desc* desc, s3d_host_pass* out) {
+  return guarded([&] {
+    requireNotNull(context, "the context");
+    requireNotNull(desc, "the pass description");
+    requireNotNull(out, "the pass output");
+    if (desc->output < S3D_OUTPUT_TWO_EYES || desc->output > S3D_OUTPUT_ANAGLYPH)
+      throw std::invalid_argument("s3d_host_pass_desc.output is not an s3d_output");
+    const s3d::stereo::HostStereoPassDesc cpp{desc->width, desc->height, desc->color_format, desc->depth_format,
+                                              s3d::stereo::HostOutput(desc->output), desc->inputs_are_storage != 0};
+    *out = new s3d_host_pass_t{s3d::stereo::HostStereoPass(context->context, cpp)};
+  });
+}
+void s3d_host_pass_destroy(s3d_host_pass pass) { delete pass; }
+VkFormat s3d_host_pass_eye_format(s3d_host_pass pass) { return pass ? pass->pass.eyeFormat() : VK_FORMAT_UNDEFINED; }
+void s3d_host_pass_packed_size(s3d_host_pass pass, uint32_t* width, uint32_t* height) {
+  if (width) *width = pass ? pass->pass.packedWidth() : 0;
+  if (height) *height = pass ? pass->pass.packedHeight() : 0;
+}
+
+s3d_result s3d_host_pass_record(s3d_host_pass pass, VkCommandBuffer cmd, const s3d_host_image* color,
+                                const s3d_host_image* depth, const s3d_stereo_parameters* parameters,
+                                const s3d_projection* projection, const s3d_host_image* left,
+                                const s3d_host_image* right, const s3d_host_image* target) {
+  return guarded([&] {
+    requireNotNull(pass, "the pass");
+    requireNotNull(color, "the colour image");
+    requireNotNull(depth, "the depth image");
+    requireNotNull(parameters, "the stereo parameters");
+    const s3d::stereo::StereoParameters cpp = toCpp(*parameters);
+    const s3d::stereo::HostStereoPassDesc& desc = pass->pass.desc();
+    s3d::stereo::HostFrame frame;
+    frame.stereo = s3d::stereo::makeStereoConstants(cpp, desc.width, desc.height);
+    if (projection)
+      frame.projection = {projection->near_plane, projection->far_plane, projection->reversed_z != 0,
+                          projection->infinite_far_plane != 0, projection->first_person_depth_range,
+                          projection->first_person_near, projection->first_person_far};
+    else if (desc.depthFormat != VK_FORMAT_R32_SFLOAT)
+      throw std::invalid_argument("a hardware depth buffer needs its s3d_projection");
+    frame.weaponDepthOffset = cpp.weaponDepthOffset;
+    frame.weaponDepthScale = cpp.weaponDepthScale;
+    const s3d::stereo::HostImage leftImage = left ? toCpp(*left) : s3d::stereo::HostImage{};
+    const s3d::stereo::HostImage rightImage = right ? toCpp(*right) : s3d::stereo::HostImage{};
+    const s3d::stereo::HostImage targetImage = target ? toCpp(*target) : s3d::stereo::HostImage{};
+    pass->pass.record(cmd, toCpp(*color), toCpp(*depth), frame, left ? &leftImage : nullptr,
+                      right ? &rightImage : nullptr, target ? &targetImage : nullptr);
+  });
+}
+
+s3d_result s3d_frame_comfort_state_compute(const s3d_frame_comfort_input* input, s3d_frame_comfort_state* out,
+                                           s3d_hud_element_state* hud_states) {
+  return guarded([&] {
+    requireNotNull(input, "the comfort input");
+    requireNotNull(out, "the comfort output");
+    if (input->hud_count > 0) {
+      requireNotNull(input->hud_depths, "hud_depths");
+      requireNotNull(hud_states, "hud_states");
+    }
+    s3d::comfort::FrameComfortInput cpp;
+    cpp.camera = {glm::vec3(input->camera_position[0], input->camera_position[1], input->camera_position[2]),
+                  glm::vec3(input->camera_aim[0], input->camera_aim[1], input->camera_aim[2]), input->camera_near};
+    if (input->ray_cast) {
+      const s3d_ray_cast cast = input->ray_cast;
+      void* user = input->ray_cast_user;
+      cpp.rayCast = [cast, user](glm::vec3 origin, glm::vec3 direction, float maxDistance) -> std::optional<float> {
+        const float o[3] = {origin.x, origin.y, origin.z}, d[3] = {direction.x, direction.y, direction.z};
+        float distance = 0.0f;
+        if (!cast(user, o, d, maxDistance, &distance)) return std::nullopt;
+        return distance;
+      };
+    }
+    cpp.parameters = toCpp(input->parameters);
+    cpp.width = input->width;
+    cpp.crosshairDistance = input->crosshair_distance;
+    cpp.crosshairMargin = input->crosshair_margin;
+    cpp.weapon = {input->weapon_pixels, input->weapon_nearest_depth, input->weapon_farthest_depth};
+    if (input->has_nearest_world_depth) cpp.nearestWorldDepth = input->nearest_world_depth;
+    for (uint32_t i = 0; i < input->hud_count; ++i) cpp.hud.push_back({"hud" + std::to_string(i), input->hud_depths[i]});
+    cpp.allowNegativeParallax = input->allow_negative_parallax != 0;
+    const s3d::comfort::FrameComfortState state = s3d::comfort::frameComfortState(cpp);
+    out->parameters = toC(state.parameters);
+    out->weapon_pushed = state.weaponPushed;
+    out->zero_parallax_limited = state.zeroParallaxLimited;
+    out->crosshair_hit_world = state.crosshairHitWorld;
+    out->crosshair = toC(state.crosshair);
+    for (uint32_t i = 0; i < input->hud_count; ++i) hud_states[i] = toC(state.hud[i]);
+  });
+}
+
+}  // extern "C"
