@@ -5,8 +5,11 @@
 #include <bit>
 #include <cmath>
 #include <limits>
+#include <random>
 
 #include "s3d/stereo/depth_range.h"
+#include "s3d/stereo/depth_range_pass.h"
+#include "vulkan_test.h"
 
 namespace s3d::stereo {
 namespace {
@@ -53,6 +56,40 @@ TEST(DepthRangeReference, AnImageWithoutFiniteDepthHasNoRange) {
   EXPECT_FALSE(range.hasFinite());
   EXPECT_EQ(range.skyPixels, 3u);
   EXPECT_TRUE(std::isinf(range.percentile(0.5)));
+}
+
+class DepthRangeGpu : public test::VulkanTest {};
+
+TEST_F(DepthRangeGpu, MatchesTheReferenceBinForBin) {
+  // 67x41 (not a multiple of the 16x16 groups): log-uniform depths from 1 cm to 1000 km (both clamped bins
+  // hit), plus sky, NaN, zero and negative pixels. Integer binning of the float bits: exact, no tolerance.
+  DepthImage depth(67, 41);
+  std::mt19937 random(7);
+  std::uniform_real_distribution<float> exponent(-2.0f, 6.0f);
+  std::uniform_int_distribution<int> kind(0, 19);
+  for (float& value : depth.pixels) {
+    const int k = kind(random);
+    value = k == 0   ? std::numeric_limits<float>::infinity()
+            : k == 1 ? std::numeric_limits<float>::quiet_NaN()
+            : k == 2 ? (random() % 2 ? 0.0f : -3.0f)
+                     : std::pow(10.0f, exponent(random));
+  }
+  const DepthRange expected = reduceDepthRangeReference(depth);
+  const DepthRange gpu = reduceDepthRangeOnGpu(context(), depth);
+  EXPECT_EQ(gpu.nearest, expected.nearest);
+  EXPECT_EQ(gpu.farthest, expected.farthest);
+  EXPECT_EQ(gpu.skyPixels, expected.skyPixels);
+  EXPECT_EQ(gpu.invalidPixels, expected.invalidPixels);
+  EXPECT_EQ(gpu.bins, expected.bins);
+  EXPECT_GT(expected.skyPixels, 0u);
+  EXPECT_GT(expected.bins.front(), 0u);
+  EXPECT_GT(expected.bins.back(), 0u);
+}
+
+TEST_F(DepthRangeGpu, AnImageOfSkyHasNoFiniteRange) {
+  const DepthRange gpu = reduceDepthRangeOnGpu(context(), DepthImage(5, 3, std::numeric_limits<float>::infinity()));
+  EXPECT_FALSE(gpu.hasFinite());
+  EXPECT_EQ(gpu.skyPixels, 15u);
 }
 
 }  // namespace

@@ -27,6 +27,16 @@ void ProfileOptions::add(CLI::App& command) {
       ->capture_default_str();
 }
 
+void addDisparityBudgetOption(CLI::App& command, std::string& rule) {
+  command
+      .add_option("--disparity-budget", rule,
+                  "off: maxSeparation and the zero-parallax distance as given; 1deg: chosen per frame from the "
+                  "frame's depth range (a GPU reduction) so every pixel's disparity stays within 1 degree on the "
+                  "--display, filling 90 % of that budget")
+      ->check(CLI::IsMember({"off", "1deg"}))
+      ->capture_default_str();
+}
+
 comfort::ComfortProfile ProfileOptions::resolve(const CLI::App& command, const StereoOptions& stereo) const {
   comfort::ComfortProfile profile = load.empty() ? comfort::ComfortProfile{} : comfort::loadComfortProfile(load);
   auto given = [&](const char* name) { return command.count(name) > 0; };

@@ -8,6 +8,7 @@
 
 #include "cli_support.h"
 #include "s3d/comfort/comfort_profile.h"
+#include "s3d/comfort/disparity_budget.h"
 
 namespace s3d::cli {
 
@@ -16,12 +17,18 @@ struct ProfileOptions {
   std::filesystem::path save;
   bool allowNegativeParallax = false;
   std::string display = "tv55";
+  std::string disparityBudget = "1deg";
 
   // --profile, --save-profile, --allow-negative-parallax and --display on `command`.
   void add(CLI::App& command);
   // After parsing (and stereo.finish()): the loaded profile, or the defaults, with every option that was
   // given on `command` (the StereoOptions', --weapon-depth-*, --display, --allow-negative-parallax) applied.
   comfort::ComfortProfile resolve(const CLI::App& command, const StereoOptions& stereo) const;
+  // --disparity-budget, where the command offers it (addDisparityBudgetOption).
+  comfort::DisparityBudgetRule budgetRule() const { return comfort::parseDisparityBudgetRule(disparityBudget); }
 };
+
+// --disparity-budget off|1deg (default: what `rule` holds).
+void addDisparityBudgetOption(CLI::App& command, std::string& rule);
 
 }  // namespace s3d::cli

@@ -69,6 +69,7 @@ class RenderCommand final : public Command {
         ->check(CLI::Range(1, 4))
         ->capture_default_str();
     profile_.add(render);
+    addDisparityBudgetOption(render, profile_.disparityBudget);
     render.add_option("--frame", options_.frame, "Frame of the scene's camera path to render (0: its first)")
         ->capture_default_str();
     render.add_flag("--reversed-z", options_.reversedZ,
@@ -98,6 +99,7 @@ class RenderCommand final : public Command {
     options_.display = profile.display;
     options_.crosshair = profile.crosshair;
     options_.allowNegativeParallax = profile.allowNegativeParallax;
+    options_.disparityBudget = profile_.budgetRule();
     zeroParallax_ = profile.zeroParallaxSettings();
     return sequence_ ? runSequence() : runSingleFrame();
   }
@@ -116,6 +118,7 @@ class RenderCommand final : public Command {
     sequenceOptions.display = options_.display;
     sequenceOptions.allowNegativeParallax = options_.allowNegativeParallax;
     sequenceOptions.reversedZ = options_.reversedZ;
+    sequenceOptions.disparityBudget = options_.disparityBudget;
     vk::Context context(contextOptions_);
     const app::SequenceReport report = app::runSequenceJob(context, sequenceOptions);
     std::uint64_t conflicts = 0;

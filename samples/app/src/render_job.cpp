@@ -158,6 +158,19 @@ RenderReport runRenderJob(vk::Context& context, const RenderJobOptions& options)
   report.sanitized.colorValues = stereo::sanitizeColor(centerHdr);
   const std::vector<std::uint8_t> firstPersonMask = deferred.readFirstPersonMask();  // weapon conflicts
   report.zeroParallaxLimited = holdZeroParallaxAtNearestDepth(parameters, centerDepth, options.allowNegativeParallax);
+  const comfort::WorldQueries world(job.scene);  // once per job: the world does not change between views
+  const comfort::CrosshairPlacement placement =
+      comfort::placeCrosshair(world, job.scene.camera, options.crosshair.distance.value_or(job.scene.crosshairDistance),
+                              options.crosshair.margin);
+  if (options.disparityBudget != comfort::DisparityBudgetRule::Off) {
+    // The frame's depth range, reduced on the GPU, picks maxSeparation and the zero-parallax distance.
+    const stereo::DepthRangePass reduction(context);
+    comfort::DisparityBudgetController controller(comfort::disparityBudget(options.display), options.allowNegativeParallax);
+    report.budget = applyDisparityBudget(context, reduction, &controller, deferred.linearDepth(),
+                                         {placement.depth, weaponNearestPushed(parameters, weaponDepths)}, 1.0f / 30.0f,
+                                         parameters);
+    report.cropColumns = std::uint32_t(stereo::makeStereoConstants(parameters, width, height).cropBegin);
+  }
   report.stereo = parameters;
   if (report.stereo.edgeCrop < 0.0f) report.stereo.edgeCrop = report.stereo.maxSeparation;
 
@@ -197,7 +210,6 @@ RenderReport runRenderJob(vk::Context& context, const RenderJobOptions& options)
 
   // Comfort report: the parallax the stereo pass gave every pixel, as angles on the chosen display, and
   // weapon pixels whose pushed depth lies behind the world surface there (Embree rays).
-  const comfort::WorldQueries world(job.scene);  // once per job: the world does not change between views
   report.display = options.display;
   report.comfort = comfort::frameComfort(centerDepth, parameters, report.display);
   report.weaponConflictPixels =
@@ -209,9 +221,6 @@ RenderReport runRenderJob(vk::Context& context, const RenderJobOptions& options)
   // behind the weapon. Not part
   // of the 3D scene: synthesized eyes and references get the same overlay, after the comparison so it
   // cannot flatter the error.
-  const comfort::CrosshairPlacement placement =
-      comfort::placeCrosshair(world, job.scene.camera, options.crosshair.distance.value_or(job.scene.crosshairDistance),
-                              options.crosshair.margin);
   ImageRGBA8 centerHud = centerColor;
   stereo::StereoPair eyesHud = synthesized;
   stereo::StereoPair referenceHud{leftReference, rightReference};
@@ -290,7 +299,9 @@ nlohmann::json toJson(const RenderReport& report) {
           {"gpuTimeMs",
            {{"centerFrame", optionalMs(report.centerFrameGpuMs)},
             {"stereoPass", optionalMs(report.stereoPassGpuMs)},
-            {"referenceEye", optionalMs(report.referenceEyeGpuMs)}}},
+            {"referenceEye", optionalMs(report.referenceEyeGpuMs)},
+            {"depthReduction", optionalMs(report.budget.reductionGpuMs)}}},
+          {"disparityBudget", budgetJson(report.budget, report.comfort)},
           {"centerPasses", passes},
           {"ratios", {{"stereoPassToReferenceEye", ratio}}},
           {"error", {{"left", errorJson(report.left)}, {"right", errorJson(report.right)}}},

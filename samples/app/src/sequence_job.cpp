@@ -44,7 +44,16 @@ SequenceReport runSequenceJob(vk::Context& context, const SequenceJobOptions& op
   deferred.setScene(scene);
   const float aspect = float(options.width) / float(options.height);
   const glm::vec2 weaponDepths = renderer::firstPersonDepthRange(scene).value_or(glm::vec2(0.0f));
-  const std::uint32_t crop = std::uint32_t(stereo::makeStereoConstants(options.stereo, options.width, options.height).cropBegin);
+  const bool budgetOn = options.disparityBudget != comfort::DisparityBudgetRule::Off;
+  if (!(options.anticipateSeconds >= 0.0f) || options.anticipateSeconds > 10.0f)
+    throw std::invalid_argument("sequence: anticipateSeconds must be in [0, 10]");
+  std::optional<comfort::DisparityBudgetController> budgetControl;
+  std::optional<stereo::DepthRangePass> reduction;
+  if (budgetOn) {
+    budgetControl.emplace(comfort::disparityBudget(options.display), options.allowNegativeParallax);
+    reduction.emplace(context);
+  }
+  glm::vec3 previousPosition(0.0f);
 
   SequenceReport report;
   report.deviceName = context.deviceName();
@@ -101,6 +110,21 @@ SequenceReport runSequenceJob(vk::Context& context, const SequenceJobOptions& op
       limitZeroParallax(*nearest);
     }
     parameters.zeroParallaxDistance = frame.zeroParallaxDistance;
+    if (budgetOn) {
+      // Ray casts from where the camera will be (current velocity) warn of a surface before it is in view.
+      BudgetFrameHints hints{frame.crosshairDepth, weaponNearestPushed(parameters, weaponDepths), std::nullopt, false};
+      if (index > 0 && options.anticipateSeconds > 0.0f) {
+        renderer::Camera ahead = scene.camera;
+        ahead.position += (scene.camera.position - previousPosition) * (options.anticipateSeconds * options.framesPerSecond);
+        hints.anticipatedNearest = comfort::nearestSurfaceAhead(world, ahead, settings, 8.0f);
+      }
+      frame.budget = applyDisparityBudget(context, *reduction, &*budgetControl, deferred.linearDepth(), hints, seconds,
+                                          parameters);
+      frame.zeroParallaxDistance = parameters.zeroParallaxDistance;
+    }
+    previousPosition = scene.camera.position;
+    frame.maxSeparation = parameters.maxSeparation;
+    const std::uint32_t crop = std::uint32_t(stereo::makeStereoConstants(parameters, options.width, options.height).cropBegin);
     // The crosshair not in front of the screen plane either (the plane is never beyond the aimed-at surface).
     if (!options.allowNegativeParallax) frame.crosshairDepth = std::max(frame.crosshairDepth, frame.zeroParallaxDistance);
     frame.comfort = comfort::frameComfort(pushed, parameters, options.display);
@@ -143,7 +167,9 @@ nlohmann::json toJson(const SequenceReport& report) {
                       {"weaponDepthScale", frame.weaponDepthScale},
                       {"weaponPixels", frame.weaponPixels},
                       {"weaponConflictPixels", frame.weaponConflictPixels},
-                      {"psnrDb", {{"left", frame.psnrLeftDb}, {"right", frame.psnrRightDb}}}});
+                      {"psnrDb", {{"left", frame.psnrLeftDb}, {"right", frame.psnrRightDb}}},
+                      {"maxSeparation", frame.maxSeparation},
+                      {"disparityBudget", budgetJson(frame.budget, frame.comfort)}});
   return {{"device", report.deviceName}, {"scene", report.scene}, {"frames", frames}, {"files", report.filesWritten}};
 }
 

@@ -7,7 +7,8 @@
 
 S3D_GPU_BEGIN
 
-#define S3D_DEPTH_GROUP_SIZE 16
+#define S3D_DEPTH_GROUP_SIZE 8  // 8x8 invocations per workgroup
+#define S3D_DEPTH_RUN 32        // each invocation reduces a run of 32 pixels of one row in registers
 #define S3D_DEPTH_MANTISSA_BITS 3  // 8 bins per octave: each bin spans a factor of at most 2^(1/8) = 1.09
 #define S3D_DEPTH_HISTOGRAM_BINS 192  // 24 octaves
 #define S3D_DEPTH_FIRST_OCTAVE 121    // float exponent of 2^-6 m: bin 0 starts at 1/64 world unit

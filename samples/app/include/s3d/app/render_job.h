@@ -14,6 +14,7 @@
 
 #include "s3d/app/eye_comparison.h"
 #include "s3d/app/frame_rules.h"
+#include "s3d/app/budget_frame.h"
 #include "s3d/comfort/comfort_profile.h"
 #include "s3d/comfort/comfort_report.h"
 #include "s3d/comfort/display_profile.h"
@@ -59,6 +60,9 @@ struct RenderJobOptions {
   bool allowNegativeParallax = false;    // off: nothing in the frame is given negative parallax
   std::uint32_t supersample = 1;  // renderer anti-aliasing, 1..4 (center view and reference eyes alike)
   bool reversedZ = false;         // renderer::RendererOptions::reversedZ for every view
+  // OneDegree: maxSeparation and the zero-parallax distance are chosen from the frame's depth range so every
+  // pixel fits the display's 1-degree budget (budget_frame.h); the library default is off (`s3d` turns it on).
+  comfort::DisparityBudgetRule disparityBudget = comfort::DisparityBudgetRule::Off;
 };
 
 // EyeError (per-region error of one eye) lives in eye_comparison.h, shared with `s3d bench`.
@@ -81,6 +85,7 @@ struct RenderReport {
   std::optional<double> centerFrameGpuMs;   // whole deferred frame of the center view
   std::optional<double> stereoPassGpuMs;    // the stereo compute dispatch producing both eyes
   std::optional<double> referenceEyeGpuMs;  // whole deferred frame of the left reference eye
+  BudgetFrame budget;                       // the disparity budget's reduction and choice (rule off: empty)
   std::vector<renderer::PassTiming> centerPasses;
   EyeError left{};
   EyeError right{};
@@ -118,7 +123,8 @@ RenderReport runRenderJob(vk::Context& context, const RenderJobOptions& options)
 // The report.json document:
 // { "device", "scene", "width", "height",
 //   "stereo": {"maxSeparation", "zeroParallaxDistance", "edgeCrop", "cropColumns", "method": "seed"|"search", "searchTaps" (search only)},
-//   "gpuTimeMs": {"centerFrame", "stereoPass", "referenceEye"},   (null when the device has no timestamps)
+//   "gpuTimeMs": {"centerFrame", "stereoPass", "referenceEye", "depthReduction" (disparity budget on)},
+//   "disparityBudget": budgetJson (budget_frame.h),   (null when the device has no timestamps)
 //   "centerPasses": [{"name", "gpuMs"}],
 //   "ratios": {"stereoPassToReferenceEye"},                        (null when a time is missing)
 //   "error": {"left": {"psnrDb", "ssim", "meanAbsoluteError", "shareAbove8", "pixelCount",

@@ -9,6 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "s3d/app/budget_frame.h"
 #include "s3d/comfort/comfort_profile.h"
 #include "s3d/comfort/comfort_report.h"
 #include "s3d/comfort/zero_parallax_control.h"
@@ -31,6 +32,12 @@ struct SequenceJobOptions {
   comfort::DisplayProfile display = comfort::builtInDisplayProfile("tv55");  // of the per-frame comfort report
   bool allowNegativeParallax = false;  // off: the zero-parallax distance never exceeds the frame's nearest depth
   bool reversedZ = false;  // renderer::RendererOptions::reversedZ
+  // OneDegree: the disparity budget controller (budget_frame.h) chooses maxSeparation and the zero-parallax
+  // distance per frame from the GPU depth reduction; off: the zero-parallax control alone, as before.
+  comfort::DisparityBudgetRule disparityBudget = comfort::DisparityBudgetRule::Off;
+  // The budget's anticipation: the zero-parallax control's ray casts from where the camera will be this many
+  // seconds ahead at its current velocity (0: none); a surface they find eases the target down early.
+  float anticipateSeconds = 0.5f;
 };
 
 struct SequenceFrame {
@@ -47,6 +54,8 @@ struct SequenceFrame {
   std::uint64_t weaponPixels = 0;
   std::uint64_t weaponConflictPixels = 0;  // weapon pixels whose pushed depth lies behind the world surface there
   double psnrLeftDb = 0.0, psnrRightDb = 0.0;  // synthesized vs two-pass reference
+  BudgetFrame budget;                           // the disparity budget's reduction and choice (off: empty)
+  float maxSeparation = 0.0f;                   // as the stereo pass used it
 };
 
 struct SequenceReport {
