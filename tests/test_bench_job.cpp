@@ -200,7 +200,10 @@ TEST_F(BenchJobTest, RendererModeTimesEveryPassOfEachScene) {
   if (context().timestampPeriodNs() > 0.0) {
     ASSERT_TRUE(row.frameGpuMs);
     EXPECT_GT(*row.frameGpuMs, 0.0);
+    ASSERT_TRUE(row.guardBandFrameGpuMs);
+    EXPECT_GT(*row.guardBandFrameGpuMs, 0.0);
   }
+  EXPECT_EQ(row.guardBandColumns, 3u);  // s3d render's band at the default 2 %: ceil(1.28) + 1
   const std::string markdown = readText(folder / "bench.md");
   EXPECT_NE(markdown.find("| courtyard | "), std::string::npos) << markdown;
   EXPECT_NE(markdown.find(row.passes.front().name), std::string::npos);

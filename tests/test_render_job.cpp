@@ -134,13 +134,15 @@ TEST_F(RenderJob, ReportJsonHasEveryFieldAndOnlyFiniteNumbers) {
   EXPECT_EQ(report.at("height"), kHeight);
 
   const nlohmann::json& stereo = report.at("stereo");
-  for (const char* key : {"maxSeparation", "zeroParallaxDistance", "edgeCrop", "cropColumns"})
+  for (const char* key : {"maxSeparation", "zeroParallaxDistance", "edgeCrop", "cropColumns", "guardBandColumns", "renderedWidth"})
     expectFiniteNumber(stereo, key, "stereo");
   EXPECT_EQ(stereo.at("method"), "search");  // the default: 4 taps
   EXPECT_EQ(stereo.at("searchTaps"), 4);
   EXPECT_DOUBLE_EQ(stereo.at("maxSeparation").get<double>(), 0.02);
-  EXPECT_DOUBLE_EQ(stereo.at("edgeCrop").get<double>(), 0.02);  // resolved: defaults to maxSeparation
-  EXPECT_EQ(stereo.at("cropColumns"), 7);                      // ceil(0.02 * 320)
+  EXPECT_DOUBLE_EQ(stereo.at("edgeCrop").get<double>(), 0.0);  // the default: full-frame eyes
+  EXPECT_EQ(stereo.at("cropColumns"), 0);
+  EXPECT_EQ(stereo.at("guardBandColumns"), 8);  // ceil(0.02 * 320) + 1: sky's parallax and the filter texel
+  EXPECT_EQ(stereo.at("renderedWidth"), kWidth + 16);
 
   // lavapipe has timestamps, so every time must be a number.
   for (const char* key : {"centerFrame", "stereoPass", "referenceEye"})
@@ -157,7 +159,7 @@ TEST_F(RenderJob, ReportJsonHasEveryFieldAndOnlyFiniteNumbers) {
     const nlohmann::json& error = report.at("error").at(eye);
     for (const char* key : {"psnrDb", "ssim", "meanAbsoluteError", "shareAbove8", "pixelCount"})
       expectFiniteNumber(error, key, std::string("error.") + eye);
-    EXPECT_EQ(error.at("pixelCount"), std::uint64_t(kWidth - 2 * 7) * kHeight);
+    EXPECT_EQ(error.at("pixelCount"), std::uint64_t(kWidth) * kHeight);  // the whole frame
     for (const char* region : {"halo", "disocclusion", "transparent", "rest"})
       expectFiniteNumber(error.at(region), "ssim", std::string("error.") + eye + "." + region);
     EXPECT_EQ(error.at("transparent").at("pixelCount"), 0);  // the courtyard has no transparent objects
@@ -204,7 +206,7 @@ TEST_F(RenderJob, BothEyesDifferFromTheCenter) {
   const ImageRGBA8 center = io::readPng(run.folder / "center.png");
   const ImageRGBA8 left = io::readPng(run.folder / "left.png");
   const ImageRGBA8 right = io::readPng(run.folder / "right.png");
-  // The crop strips alone differ by 2 * 7 / 320 = 4.4 %: ask for more, so the parallax itself shows.
+  // Full-frame eyes: no crop strip, so the differences are the parallax's.
   EXPECT_GT(differingPixelShare(left, center), 0.06);
   EXPECT_GT(differingPixelShare(right, center), 0.06);
   EXPECT_GT(differingPixelShare(left, right), 0.06);
@@ -377,6 +379,44 @@ TEST_F(RenderJob, NegativeParallaxAppearsOnlyWhenAllowed) {
   EXPECT_GE(disallowed.comfort.parallax.minParallaxPx, 0.0);
   EXPECT_EQ(disallowed.comfort.windowViolationPixels, 0u);
   EXPECT_GE(disallowed.crosshair.depth, disallowed.stereo.zeroParallaxDistance);
+}
+
+TEST_F(RenderJob, EyesAreFullFrameByDefault) {
+  // The guard band gives every eye column a source: no column is black from edge to edge.
+  const DefaultRun& run = defaultRun(context());
+  for (const char* name : {"left.png", "right.png"}) {
+    const ImageRGBA8 eye = io::readPng(run.folder / name);
+    for (std::uint32_t x = 0; x < eye.width; ++x) {
+      bool lit = false;
+      for (std::uint32_t y = 0; y < eye.height && !lit; ++y) lit = eye.at(x, y)[0] || eye.at(x, y)[1] || eye.at(x, y)[2];
+      EXPECT_TRUE(lit) << name << " column " << x << " is black";
+    }
+  }
+}
+
+TEST_F(RenderJob, EdgeCropRendersTheOutputSizeAndBlacksOutTheStrips) {
+  RenderJobOptions options;
+  options.width = 64;
+  options.height = 36;
+  options.outputs = {};
+  options.stereo.edgeCrop = 0.05f;  // ceil(3.2) = 4 columns a side
+  const RenderReport report = runRenderJob(context(), options);
+  EXPECT_EQ(report.cropColumns, 4u);
+  EXPECT_EQ(report.guardBandColumns, 0u);
+  EXPECT_EQ(report.renderedWidth, 64u);
+}
+
+TEST_F(RenderJob, AllowedNegativeParallaxWidensTheGuardBandToTheNearPlane) {
+  RenderJobOptions options;
+  options.width = 64;
+  options.height = 36;
+  options.outputs = {};
+  const RenderReport held = runRenderJob(context(), options);
+  EXPECT_EQ(held.guardBandColumns, 3u);  // ceil(0.02 * 64) + 1: the sky's parallax, nothing in front
+  options.allowNegativeParallax = true;
+  const RenderReport allowed = runRenderJob(context(), options);
+  EXPECT_GT(allowed.guardBandColumns, held.guardBandColumns);
+  EXPECT_EQ(allowed.renderedWidth, 64u + 2 * allowed.guardBandColumns);
 }
 
 TEST_F(RenderJob, TheHudFadesBehindTheWeaponAndTheOutputsAreOpaque) {

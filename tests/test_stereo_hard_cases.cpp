@@ -189,8 +189,10 @@ TEST_F(StereoNumericsRender, ARenderJobReportsTheClampedZeroParallaxDistanceInIt
   options.allowNegativeParallax = true;  // else the comfort rule lowers it further, to the nearest surface
   const app::RenderReport report = app::runRenderJob(context(), options);
   EXPECT_EQ(report.stereo.zeroParallaxDistance, 500.0f);
-  ASSERT_EQ(report.warnings.size(), 1u);
+  // The clamp, then the guard band: 500 m over the 0.1 m near plane needs ~5000 widths, capped at half of one.
+  ASSERT_EQ(report.warnings.size(), 2u);
   EXPECT_NE(report.warnings[0].find("zeroParallaxDistance"), std::string::npos) << report.warnings[0];
+  EXPECT_NE(report.warnings[1].find("guard band capped at 16 columns"), std::string::npos) << report.warnings[1];
   EXPECT_EQ(app::toJson(report).at("warnings").at(0), report.warnings[0]);
 }
 

@@ -101,7 +101,8 @@ void StereoOptions::add(CLI::App& command, const std::string& depthUnits, bool o
   command
       .add_option("--edge-crop", parameters.edgeCrop,
                   "Fraction of the width blacked out on each side of both eyes (and left out of the comparison); "
-                  "default: = --max-separation")
+                  "default: none in s3d render (the center view gets a guard band, the eyes are full frame), = "
+                  "--max-separation elsewhere; giving it renders the output-size center view and crops")
       ->check(floatRange(0.0, double(stereo::kMaxSeparationLimit), false, "a fraction of the screen width"));
   command
       .add_option("--method", method,

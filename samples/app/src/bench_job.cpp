@@ -16,6 +16,7 @@
 #include "s3d/app/render_job.h"
 #include "s3d/io/image_io.h"
 #include "s3d/renderer/scene.h"
+#include "s3d/stereo/guard_band.h"
 #include "s3d/stereo/forward.h"
 #include "s3d/stereo/iterative.h"
 #include "s3d/stereo/row_tile_shared.h"
@@ -393,6 +394,10 @@ void runSweep(vk::Context& context, const BenchOptions& options, const Validated
 void runRendererTimings(vk::Context& context, const BenchOptions& options, const ValidatedBench& bench,
                         BenchReport& report) {
   renderer::DeferredRenderer deferred(context, options.width, options.height, {options.supersample});
+  // `s3d render`'s guard band (zero-parallax plane held at the nearest depth: the sky's parallax bounds it).
+  const stereo::GuardBand band = stereo::guardBandFor(options.stereo.maxSeparation, 1.0, 1.0, options.width,
+                                                      kMaxImageSize / options.supersample);
+  renderer::DeferredRenderer wide(context, band.renderedWidth(options.width), options.height, {options.supersample});
   std::size_t done = 0;
   for (const std::string& sceneName : bench.scenes) {
     if (options.progress) options.progress({done, bench.scenes.size(), sceneName + " center frame"});
@@ -404,7 +409,13 @@ void runRendererTimings(vk::Context& context, const BenchOptions& options, const
                                      {options.stereo.weaponDepthOffset, options.stereo.weaponDepthScale});
     (void)deferred.render(center);  // warm-up
     auto [frameMs, passes] = timeFrames(deferred, center, options.repeat);
-    report.rendererRows.push_back({sceneName, frameMs, std::move(passes)});
+    wide.setScene(scene);
+    const renderer::ViewMatrices wideCenter =
+        renderer::centerViewMatrices(scene, float(band.renderedWidth(options.width)) / float(options.height),
+                                     {options.stereo.weaponDepthOffset, options.stereo.weaponDepthScale});
+    (void)wide.render(wideCenter);  // warm-up
+    const std::optional<double> wideMs = timeFrames(wide, wideCenter, options.repeat).first;
+    report.rendererRows.push_back({sceneName, frameMs, std::move(passes), band.columns, wideMs});
     ++done;
   }
   if (options.progress) options.progress({done, bench.scenes.size(), "done"});
@@ -657,13 +668,17 @@ std::string rendererMarkdown(const BenchReport& report) {
   for (const RendererRow& row : report.rendererRows)
     for (const renderer::PassTiming& pass : row.passes)
       if (std::find(passNames.begin(), passNames.end(), pass.name) == passNames.end()) passNames.push_back(pass.name);
-  md << "| scene | frame |";
+  const std::uint32_t band = report.rendererRows.empty() ? 0 : report.rendererRows.front().guardBandColumns;
+  md << "Guard band: the center frame " << band << " columns wider on each side (`s3d render`'s default at "
+     << "this separation), timed right after it.\n\n";
+  md << "| scene | frame | guard band frame | ratio |";
   for (const std::string& name : passNames) md << ' ' << name << " |";
-  md << "\n|---|---|";
+  md << "\n|---|---|---|---|";
   for (std::size_t i = 0; i < passNames.size(); ++i) md << "---|";
   md << '\n';
   for (const RendererRow& row : report.rendererRows) {
-    md << "| " << row.scene << " | " << msText(row.frameGpuMs) << " |";
+    md << "| " << row.scene << " | " << msText(row.frameGpuMs) << " | " << msText(row.guardBandFrameGpuMs) << " | "
+       << ratioText(ratio(row.guardBandFrameGpuMs, row.frameGpuMs)) << " |";
     for (const std::string& name : passNames) {
       auto pass = std::find_if(row.passes.begin(), row.passes.end(),
                                [&](const renderer::PassTiming& p) { return p.name == name; });
@@ -842,7 +857,9 @@ nlohmann::json toJson(const BenchReport& report) {
     nlohmann::json passes = nlohmann::json::array();
     for (const renderer::PassTiming& pass : row.passes)
       passes.push_back({{"name", pass.name}, {"gpuMs", finiteOrNull(pass.gpuMs)}});
-    rendererRows.push_back({{"scene", row.scene}, {"frameGpuMs", optionalMs(row.frameGpuMs)}, {"passes", passes}});
+    rendererRows.push_back({{"scene", row.scene}, {"frameGpuMs", optionalMs(row.frameGpuMs)}, {"passes", passes},
+                            {"guardBandColumns", row.guardBandColumns},
+                            {"guardBandFrameGpuMs", optionalMs(row.guardBandFrameGpuMs)}});
   }
   nlohmann::json targets = nlohmann::json::array();
   if (!report.rendererOnly)

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <system_error>
@@ -19,6 +20,7 @@
 #include "s3d/io/image_io.h"
 #include "s3d/renderer/scene.h"
 #include "s3d/renderer/scene_file.h"
+#include "s3d/stereo/guard_band.h"
 #include "s3d/stereo/hdr_gather.h"
 #include "s3d/stereo/sanitize.h"
 #include "s3d/stereo/stereo_pass.h"
@@ -82,7 +84,7 @@ ValidatedJob validateJob(const RenderJobOptions& options) {
   job.constants = stereo::makeStereoConstants(job.stereo, options.width, options.height);
   // The scene's camera at the requested frame of its path (throws naming the frame and the count).
   job.scene.camera = renderer::cameraForFrame(job.scene, options.frame);
-  if (job.constants.cropEnd <= job.constants.cropBegin)
+  if (options.stereo.edgeCrop >= 0.0f && job.constants.cropEnd <= job.constants.cropBegin)
     throw std::invalid_argument("edgeCrop " + std::to_string(options.stereo.edgeCrop) + " blacks out all " +
                                 std::to_string(options.width) + " columns: nothing left to compare");
   return job;
@@ -128,7 +130,6 @@ RenderReport runRenderJob(vk::Context& context, const RenderJobOptions& options)
   report.width = width;
   report.height = height;
   report.warnings = job.warnings;
-  report.cropColumns = std::uint32_t(job.constants.cropBegin);
   // Without negative parallax allowed, the weapon push reaches at least the screen plane
   // (comfort::pushWeaponBehindScreen) and, once the frame's depth is known, the zero-parallax distance is
   // held at its nearest surface: every pixel gets zero or positive parallax.
@@ -137,27 +138,47 @@ RenderReport runRenderJob(vk::Context& context, const RenderJobOptions& options)
   stereo::StereoParameters parameters =  // the zero-parallax distance clamped
       pushWeaponUnlessNegativeParallaxAllowed(job.stereo, weaponDepths, options.allowNegativeParallax);
 
-  // 2. The center view.
-  renderer::DeferredRenderer deferred(context, width, height, {options.supersample, options.reversedZ});
-  deferred.setScene(job.scene);
-  const renderer::ViewMatrices center = renderer::centerViewMatrices(
-      job.scene, float(width) / float(height), {parameters.weaponDepthOffset, parameters.weaponDepthScale});
-  // The first frame on fresh pipelines includes shader compilation (lavapipe compiles at first use):
-  // render it once untimed so the center frame, the stereo pass and the reference eye are all warm.
-  (void)deferred.render(center);
-  renderer::FrameTimings centerTimings = deferred.render(center);
-  report.centerFrameGpuMs = centerTimings.totalGpuMs;
-  report.centerPasses = std::move(centerTimings.passes);
-  const ImageRGBA8 centerColor = deferred.readDisplayColor();
-  const bool wantsExr = selected("center.exr");
-  // For center.exr, the regions and the HDR error; NaN or inf is sanitized and counted (the GPU pass reads
-  // invalid depth as the zero-parallax plane too, and the tone map writes non-finite color as black).
-  DepthImage centerDepth = deferred.readLinearDepth();
-  ImageRGBA32F centerHdr = deferred.readHdrColor();
-  report.sanitized.depthPixels = stereo::sanitizeDepth(centerDepth, parameters.zeroParallaxDistance);
-  report.sanitized.colorValues = stereo::sanitizeColor(centerHdr);
-  const std::vector<std::uint8_t> firstPersonMask = deferred.readFirstPersonMask();  // weapon conflicts
-  report.zeroParallaxLimited = holdZeroParallaxAtNearestDepth(parameters, centerDepth, options.allowNegativeParallax);
+  // Guard band (no --edge-crop): the center view is rendered wider by the largest displacement an eye can
+  // need, so every eye pixel's source lies inside it. The nearest depth allowed is the zero-parallax plane
+  // (held there below) unless negative parallax is allowed: then the near plane or the pushed weapon's nearest.
+  const bool guardBand = options.stereo.edgeCrop < 0.0f;
+  auto bandFor = [&](const stereo::StereoParameters& p) {
+    if (!guardBand) return stereo::GuardBand{};
+    float nearest = p.zeroParallaxDistance;
+    if (options.allowNegativeParallax) {
+      nearest = job.scene.camera.nearPlane;
+      if (weaponDepths) nearest = std::min(nearest, p.weaponDepthOffset + p.weaponDepthScale * weaponDepths->x);
+    }
+    return stereo::guardBandFor(p.maxSeparation, p.zeroParallaxDistance, nearest, width,
+                                kMaxImageSize / options.supersample);
+  };
+  stereo::GuardBand band;
+  std::uint32_t renderedWidth = width;
+  // The output's columns inside the rendered frame.
+  auto output = [&](const auto& image) { return stereo::cropColumns(image, band.columns, width); };
+  auto outputMask = [&](const std::vector<std::uint8_t>& mask) {
+    return stereo::cropColumns(mask, renderedWidth, band.columns, width);
+  };
+
+  // 2. The center view (a wider frustum with the same vertical field of view when there is a band).
+  std::unique_ptr<renderer::DeferredRenderer> deferred;
+  renderer::ViewMatrices center;
+  auto renderCenter = [&](const stereo::GuardBand& newBand) {
+    band = newBand;
+    renderedWidth = band.renderedWidth(width);
+    deferred = std::make_unique<renderer::DeferredRenderer>(context, renderedWidth, height,
+                                                            renderer::RendererOptions{options.supersample, options.reversedZ});
+    deferred->setScene(job.scene);
+    center = renderer::centerViewMatrices(job.scene, float(renderedWidth) / float(height),
+                                          {parameters.weaponDepthOffset, parameters.weaponDepthScale});
+    // The first frame on fresh pipelines includes shader compilation (lavapipe compiles at first use):
+    // render it once untimed so the center frame, the stereo pass and the reference eye are all warm.
+    (void)deferred->render(center);
+    renderer::FrameTimings centerTimings = deferred->render(center);
+    report.centerFrameGpuMs = centerTimings.totalGpuMs;
+    report.centerPasses = std::move(centerTimings.passes);
+  };
+  renderCenter(bandFor(parameters));
   const comfort::WorldQueries world(job.scene);  // once per job: the world does not change between views
   const comfort::CrosshairPlacement placement =
       comfort::placeCrosshair(world, job.scene.camera, options.crosshair.distance.value_or(job.scene.crosshairDistance),
@@ -166,37 +187,69 @@ RenderReport runRenderJob(vk::Context& context, const RenderJobOptions& options)
     // The frame's depth range, reduced on the GPU, picks maxSeparation and the zero-parallax distance.
     const stereo::DepthRangePass reduction(context);
     comfort::DisparityBudgetController controller(comfort::disparityBudget(options.display), options.allowNegativeParallax);
-    report.budget = applyDisparityBudget(context, reduction, &controller, deferred.linearDepth(),
+    report.budget = applyDisparityBudget(context, reduction, &controller, deferred->linearDepth(),
                                          {placement.depth, weaponNearestPushed(parameters, weaponDepths)}, 1.0f / 30.0f,
                                          parameters);
-    report.cropColumns = std::uint32_t(stereo::makeStereoConstants(parameters, width, height).cropBegin);
+    // A larger chosen separation needs a wider band: render the center view again at that width.
+    if (const stereo::GuardBand chosen = bandFor(parameters); chosen.columns > band.columns) renderCenter(chosen);
   }
+  if (band.capped)
+    report.warnings.push_back("guard band capped at " + std::to_string(band.columns) + " columns per side (" +
+                              std::to_string(band.neededColumns) +
+                              " needed): the outermost eye columns repeat the band's edge");
+  if (guardBand) parameters.edgeCrop = 0.0f;  // the output eyes are full frame
+  report.guardBandColumns = band.columns;
+  report.renderedWidth = renderedWidth;
+  report.cropColumns = guardBand ? 0u : std::uint32_t(stereo::makeStereoConstants(parameters, width, height).cropBegin);
+  // The output-size center view's matrices, for per-pixel rays over the output's depth.
+  const renderer::ViewMatrices outputCenter = renderer::centerViewMatrices(
+      job.scene, float(width) / float(height), {parameters.weaponDepthOffset, parameters.weaponDepthScale});
+  const ImageRGBA8 centerColor = output(deferred->readDisplayColor());
+  const bool wantsExr = selected("center.exr");
+  // For center.exr, the regions and the HDR error; NaN or inf is sanitized and counted (the GPU pass reads
+  // invalid depth as the zero-parallax plane too, and the tone map writes non-finite color as black).
+  DepthImage renderedDepth = deferred->readLinearDepth();
+  ImageRGBA32F renderedHdr = deferred->readHdrColor();
+  report.sanitized.depthPixels = stereo::sanitizeDepth(renderedDepth, parameters.zeroParallaxDistance);
+  report.sanitized.colorValues = stereo::sanitizeColor(renderedHdr);
+  const std::vector<std::uint8_t> firstPersonMask = outputMask(deferred->readFirstPersonMask());  // weapon conflicts
+  // Held at the nearest depth of the whole rendered frame: the band's content reaches the eyes too.
+  report.zeroParallaxLimited = holdZeroParallaxAtNearestDepth(parameters, renderedDepth, options.allowNegativeParallax);
   report.stereo = parameters;
   if (report.stereo.edgeCrop < 0.0f) report.stereo.edgeCrop = report.stereo.maxSeparation;
+  // The pass and the reference cameras on the rendered frame: the same parallax in pixels, the band cropped.
+  const stereo::StereoParameters renderedParameters =
+      guardBand ? stereo::guardBandParameters(parameters, width, band) : parameters;
 
   // 3. Both eyes synthesized on the GPU from the renderer's own images.
   stereo::SynthesisResult synthesis =
-      stereo::synthesizeTimed(context, deferred.displayColor(), deferred.linearDepth(), parameters);
+      stereo::synthesizeTimed(context, deferred->displayColor(), deferred->linearDepth(), renderedParameters);
   report.stereoPassGpuMs = synthesis.gpuMs;
   report.filledPixels = {synthesis.filledLeft, synthesis.filledRight};
-  const stereo::StereoPair synthesized = std::move(synthesis.eyes);
+  const stereo::StereoPair synthesized{output(synthesis.eyes.left), output(synthesis.eyes.right)};
   // The same gather on the linear HDR center view, by the C++ reference of the method (hdr_gather.h).
-  const stereo::HdrStereoPair synthesizedHdr = stereo::synthesizeHdrReference(centerHdr, centerDepth, parameters);
+  const stereo::HdrStereoPair renderedEyesHdr =
+      stereo::synthesizeHdrReference(renderedHdr, renderedDepth, renderedParameters);
+  const stereo::HdrStereoPair synthesizedHdr{output(renderedEyesHdr.left), output(renderedEyesHdr.right)};
+  const DepthImage centerDepth = output(renderedDepth);
+  const ImageRGBA32F centerHdr = output(renderedHdr);
 
-  // 4. The two-pass reference: each eye rendered with its off-axis camera.
-  const renderer::FrameTimings leftTimings = deferred.render(referenceEyeView(job.scene, center, stereo::Eye::Left, parameters));
-  const ImageRGBA8 leftReference = deferred.readDisplayColor();
-  const DepthImage leftReferenceDepth = deferred.readLinearDepth();
-  const ImageRGBA32F leftReferenceHdr = deferred.readHdrColor();
-  const std::vector<std::uint8_t> leftTransparent = deferred.readTransparentMask();
-  (void)deferred.render(referenceEyeView(job.scene, center, stereo::Eye::Right, parameters));
-  const ImageRGBA8 rightReference = deferred.readDisplayColor();
-  const DepthImage rightReferenceDepth = deferred.readLinearDepth();
-  const ImageRGBA32F rightReferenceHdr = deferred.readHdrColor();
-  const std::vector<std::uint8_t> rightTransparent = deferred.readTransparentMask();
+  // 4. The two-pass reference: each eye rendered with its off-axis camera (on the rendered frame, cropped
+  // to the output: the same rays as an output-size eye, tests/test_guard_band.cpp).
+  const renderer::FrameTimings leftTimings =
+      deferred->render(referenceEyeView(job.scene, center, stereo::Eye::Left, renderedParameters));
+  const ImageRGBA8 leftReference = output(deferred->readDisplayColor());
+  const DepthImage leftReferenceDepth = output(deferred->readLinearDepth());
+  const ImageRGBA32F leftReferenceHdr = output(deferred->readHdrColor());
+  const std::vector<std::uint8_t> leftTransparent = outputMask(deferred->readTransparentMask());
+  (void)deferred->render(referenceEyeView(job.scene, center, stereo::Eye::Right, renderedParameters));
+  const ImageRGBA8 rightReference = output(deferred->readDisplayColor());
+  const DepthImage rightReferenceDepth = output(deferred->readLinearDepth());
+  const ImageRGBA32F rightReferenceHdr = output(deferred->readHdrColor());
+  const std::vector<std::uint8_t> rightTransparent = outputMask(deferred->readTransparentMask());
   report.referenceEyeGpuMs = leftTimings.totalGpuMs;
 
-  // 5. Synthesized vs reference, without the border strips that view synthesis cannot know.
+  // 5. Synthesized vs reference over the full frame with a guard band, else without the cropped strips.
   // (region masks and comparison: eye_comparison.h, shared with s3d bench)
   const std::vector<std::uint8_t> halo = haloMaskFor(centerDepth, parameters);
   for (auto [eyeError, eye, reference, referenceDepth, side, eyeHdr, referenceHdr, transparent] :
@@ -213,7 +266,7 @@ RenderReport runRenderJob(vk::Context& context, const RenderJobOptions& options)
   report.display = options.display;
   report.comfort = comfort::frameComfort(centerDepth, parameters, report.display);
   report.weaponConflictPixels =
-      comfort::countWeaponConflicts(world, job.scene.camera, center, centerDepth, firstPersonMask).conflictPixels;
+      comfort::countWeaponConflicts(world, job.scene.camera, outputCenter, centerDepth, firstPersonMask).conflictPixels;
 
   // 6. HUD (s3d/hud/overlay.h, drawn by frame_rules.h's drawHud): the crosshair, placed by an Embree ray cast
   // along the aim (seed 4.6.2), and the static panels, each drawn after stereo synthesis into every view at the
@@ -288,6 +341,8 @@ nlohmann::json toJson(const RenderReport& report) {
             {"zeroParallaxDistance", finiteOrNull(tidy(report.stereo.zeroParallaxDistance))},
             {"edgeCrop", finiteOrNull(tidy(report.stereo.edgeCrop))},
             {"cropColumns", report.cropColumns},
+            {"guardBandColumns", report.guardBandColumns},
+            {"renderedWidth", report.renderedWidth},
             {"method", stereo::methodName(report.stereo.method)},
             {"iterations", report.stereo.method == stereo::StereoMethod::Iterative ? nlohmann::json(report.stereo.iterations)
                                                                                     : nlohmann::json()},

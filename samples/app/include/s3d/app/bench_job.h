@@ -100,6 +100,8 @@ struct RendererRow {
   std::string scene;
   std::optional<double> frameGpuMs;           // median whole center frame
   std::vector<renderer::PassTiming> passes;   // median per pass, in the order they ran
+  std::uint32_t guardBandColumns = 0;         // per side, `s3d render`'s default band at the options' separation
+  std::optional<double> guardBandFrameGpuMs;  // median center frame rendered that much wider
 };
 
 struct BenchReport {

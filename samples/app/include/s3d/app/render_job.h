@@ -54,6 +54,7 @@ struct RenderJobOptions {
   std::set<std::string> outputs{kAllOutputs.begin(), kAllOutputs.end()};
   stereo::PackingMode sideBySide = stereo::PackingMode::Half;
   stereo::PackingMode topBottom = stereo::PackingMode::Half;
+  // edgeCrop < 0 (the default): a guard band, full-frame eyes; >= 0: the output-size center view, that crop.
   stereo::StereoParameters stereo;
   comfort::DisplayProfile display = comfort::builtInDisplayProfile("tv55");  // of the comfort report
   comfort::CrosshairSettings crosshair;  // distance (nullopt: the scene's) and margin in front of a hit
@@ -81,7 +82,9 @@ struct RenderReport {
   std::uint32_t width = 0;
   std::uint32_t height = 0;
   stereo::StereoParameters stereo;  // as used: edgeCrop resolved (never < 0), zeroParallaxDistance clamped, the no-negative-parallax rules applied
-  std::uint32_t cropColumns = 0;    // columns blacked out on each side (and excluded from the error)
+  std::uint32_t cropColumns = 0;    // columns blacked out on each side (and excluded from the error); 0 with a guard band
+  std::uint32_t guardBandColumns = 0;  // extra center-view columns rendered per side (0 with --edge-crop)
+  std::uint32_t renderedWidth = 0;     // width of the rendered center view and reference eyes: width + 2 guard band
   std::optional<double> centerFrameGpuMs;   // whole deferred frame of the center view
   std::optional<double> stereoPassGpuMs;    // the stereo compute dispatch producing both eyes
   std::optional<double> referenceEyeGpuMs;  // whole deferred frame of the left reference eye
@@ -122,7 +125,7 @@ RenderReport runRenderJob(vk::Context& context, const RenderJobOptions& options)
 
 // The report.json document:
 // { "device", "scene", "width", "height",
-//   "stereo": {"maxSeparation", "zeroParallaxDistance", "edgeCrop", "cropColumns", "method": "seed"|"search", "searchTaps" (search only)},
+//   "stereo": {"maxSeparation", "zeroParallaxDistance", "edgeCrop", "cropColumns", "guardBandColumns", "renderedWidth", "method": "seed"|"search", "searchTaps" (search only)},
 //   "gpuTimeMs": {"centerFrame", "stereoPass", "referenceEye", "depthReduction" (disparity budget on)},
 //   "disparityBudget": budgetJson (budget_frame.h),   (null when the device has no timestamps)
 //   "centerPasses": [{"name", "gpuMs"}],
