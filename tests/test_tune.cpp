@@ -301,6 +301,7 @@ TEST_F(TuneSessionTest, AnaglyphOfTheFirstFrameEqualsTheOffscreenRender) {
   options.width = 64;
   options.height = 48;
   options.outputs = {"anaglyph.png"};
+  options.stereo.edgeCrop = options.stereo.maxSeparation;  // s3d tune crops the edges (it has no guard band)
   options.outputFolder = scratchFolder("offscreen");
   (void)app::runRenderJob(context(), options);
   const ImageRGBA8 offscreen = io::readPng(options.outputFolder / "anaglyph.png");
@@ -325,6 +326,7 @@ TEST_F(TuneSessionTest, AllowingNegativeParallaxMatchesTheOffscreenRenderThatAll
   options.frame = 23;
   options.allowNegativeParallax = true;
   options.outputs = {"left.png"};
+  options.stereo.edgeCrop = options.stereo.maxSeparation;  // s3d tune crops the edges (it has no guard band)
   options.outputFolder = scratchFolder("offscreen_negative");
   const app::RenderReport report = app::runRenderJob(context(), options);
   const ImageRGBA8 offscreen = io::readPng(options.outputFolder / "left.png");

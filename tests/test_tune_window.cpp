@@ -52,6 +52,7 @@ TEST(TuneWindow, ScreenshotViewMatchesTheOffscreenAnaglyphOfTheSameFrame) {
   options.supersample = 2;
   options.stereo.maxSeparation = 0.03f;
   options.stereo.zeroParallaxDistance = 2.0f;
+  options.stereo.edgeCrop = 0.03f;  // s3d tune crops the edges (it has no guard band)
   options.outputs = {"anaglyph.png"};
   options.outputFolder = folder / "render";
   vk::Context context;
