@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <unistd.h>
 
+#include "s3d/app/convert_job.h"
 #include "s3d/app/render_job.h"
 #include "s3d/app/sequence_job.h"
 #include "vulkan_test.h"
@@ -56,6 +57,22 @@ TEST_F(BudgetJobs, TheCoverSequenceStaysWithinTheBudgetInEveryFrame) {
     EXPECT_GE(frame.comfort.parallax.minParallaxPx, -1e-3) << "frame " << frame.index;
     EXPECT_EQ(frame.maxSeparation, frame.budget.choice.parameters.maxSeparation);
   }
+}
+
+TEST_F(BudgetJobs, ConvertFitsAFileDepthMapIntoTheBudget) {
+  // The 8x4 fixture spans 1 to 8 m: with the budget the separation fills 90 % of the monitor's budget.
+  ConvertJobOptions options;
+  options.color = fs::path(S3D_TEST_DATA_DIR) / "convert" / "color.png";
+  options.depth = fs::path(S3D_TEST_DATA_DIR) / "convert" / "depth.pfm";
+  options.outputFolder = scratch("convert");
+  options.display = comfort::builtInDisplayProfile("monitor27");
+  options.disparityBudget = comfort::DisparityBudgetRule::OneDegree;
+  const ConvertReport report = runConvertJob(context(), options);
+  std::error_code ignored;
+  fs::remove_all(options.outputFolder, ignored);
+  EXPECT_EQ(report.comfort.parallax.shareBeyondOneDegree, 0.0);
+  EXPECT_NEAR(report.budget.choice.usedShare, 0.9, 1e-4);
+  EXPECT_EQ(report.stereo.maxSeparation, report.budget.choice.parameters.maxSeparation);
 }
 
 }  // namespace

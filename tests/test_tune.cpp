@@ -364,6 +364,19 @@ TEST_F(TuneSessionTest, ReferenceNumbersAndTheComfortControlRunWhenAskedFor) {
   EXPECT_EQ(frame.view.width, 48u);
 }
 
+TEST_F(TuneSessionTest, TheDisparityBudgetFitsEveryPixelAndIsShown) {
+  TuneSession session(context(), 48, 32);
+  TuneState state;
+  state.settings.profile.display = comfort::builtInDisplayProfile("monitor27");
+  state.disparityBudget = comfort::DisparityBudgetRule::OneDegree;
+  session.loadScene(state);
+  const TuneFrame frame = session.renderFrame(state, {}, 1.0f / 30.0f);
+  EXPECT_EQ(frame.numbers.comfort.parallax.shareBeyondOneDegree, 0.0);
+  EXPECT_EQ(frame.numbers.budget.rule, comfort::DisparityBudgetRule::OneDegree);
+  EXPECT_EQ(frame.numbers.maxSeparation, frame.numbers.budget.choice.parameters.maxSeparation);
+  EXPECT_GE(frame.numbers.budget.choice.usedShare, 0.8);
+}
+
 TEST_F(TuneSessionTest, ScriptCommandsSwitchSceneFrameViewAndRoundTripAProfile) {
   TuneSession session(context(), 32, 24);
   TuneState state;

@@ -108,6 +108,8 @@ BudgetChoice DisparityBudgetController::update(const BudgetFrameInput& frame, fl
                                 frame.weaponNearestPushed, budget_, allowNegativeParallax_, settings_.targetShare,
                                 settings_);
 
+  const float previousLogZ = logZeroParallax_.value, previousLogM = logSeparation_.value;
+  const float bound = settings_.maxLogChangePerSecond * seconds;
   const bool histogramCut = frame.histogram && !previousHistogram_.empty() &&
                             histogramOverlap(previousHistogram_, *frame.histogram) < settings_.cutOverlap;
   if (frame.histogram) previousHistogram_ = *frame.histogram;
@@ -129,7 +131,6 @@ BudgetChoice DisparityBudgetController::update(const BudgetFrameInput& frame, fl
       goal_.maxSeparation = choice.target.maxSeparation;
     if (raise || choice.target.zeroParallaxDistance < goal_.zeroParallaxDistance)
       goal_.zeroParallaxDistance = choice.target.zeroParallaxDistance;
-    const float bound = settings_.maxLogChangePerSecond * seconds;
     logSeparation_.step(std::log(goal_.maxSeparation), seconds, settings_.responseSeconds, bound);
     logZeroParallax_.step(std::log(goal_.zeroParallaxDistance), seconds, settings_.responseSeconds, bound);
   }
@@ -139,13 +140,13 @@ BudgetChoice DisparityBudgetController::update(const BudgetFrameInput& frame, fl
   if (!allowNegativeParallax_) zLimit = std::min(zLimit, nearest);
   if (std::exp(logZeroParallax_.value) > zLimit) {
     logZeroParallax_.hold(std::log(zLimit));
-    choice.forced = !choice.cut;
+    choice.forced = !choice.cut && previousLogZ - logZeroParallax_.value > bound * 1.0001f;
   }
   const double z = std::min(double(std::exp(logZeroParallax_.value)), double(zLimit));
   const double mLimit = largestSeparation(z, nearest, frame.farthest, budget_, kHardShare);
   if (std::exp(double(logSeparation_.value)) > mLimit) {
     logSeparation_.hold(float(std::log(mLimit)));
-    choice.forced = !choice.cut;
+    choice.forced = choice.forced || (!choice.cut && previousLogM - logSeparation_.value > bound * 1.0001f);
   }
   choice.parameters = {float(std::min(double(std::exp(logSeparation_.value)), mLimit)), float(z)};
   if (choice.cut && !choice.forced && double(goal_.maxSeparation) <= mLimit && goal_.zeroParallaxDistance <= zLimit)

@@ -6,6 +6,7 @@
 #include <iostream>
 
 #include "cli_support.h"
+#include "profile_options.h"
 #include "s3d/app/convert_job.h"
 #include "s3d/stereo/output_formats.h"
 
@@ -95,6 +96,11 @@ class ConvertCommand final : public Command {
     stereo_.add(convert, "in the depth file's units", true);
     for (const char* derived : {"--max-separation", "--zero-parallax-distance"})
       convert.get_option(derived)->excludes(disparity);
+    addDisparityBudgetOption(convert, disparityBudget_);
+    convert
+        .add_option("--display", display_,
+                    "Display the disparity budget is computed for: tv55, monitor27, hmd or a JSON display profile FILE.json")
+        ->capture_default_str();
     convert.add_option("--sbs", sideBySide_, "Side-by-side packing: half or full")->check(CLI::IsMember({"half", "full"}));
     convert.add_option("--tab", topBottom_, "Top-and-bottom packing: half or full")->check(CLI::IsMember({"half", "full"}));
     addDeviceOptions(convert, contextOptions_);
@@ -124,6 +130,8 @@ class ConvertCommand final : public Command {
     stereo_.finish();
     options_.stereo = stereo_.parameters;
     options_.automaticMethod = stereo_.automatic;
+    options_.disparityBudget = comfort::parseDisparityBudgetRule(disparityBudget_);
+    options_.display = comfort::resolveDisplayProfile(display_);  // throws naming the file or the choices
     if (!referenceLeft_.empty()) options_.referenceLeft = referenceLeft_;
     if (!referenceRight_.empty()) options_.referenceRight = referenceRight_;
     // Pairing problems surface before a Vulkan start-up and before any output.
@@ -163,6 +171,8 @@ class ConvertCommand final : public Command {
   StereoOptions stereo_;
   vk::ContextOptions contextOptions_;
   std::string depthKind_ = "linear";
+  std::string disparityBudget_ = "1deg";
+  std::string display_ = "tv55";
   std::string sideBySide_ = "half";
   std::string topBottom_ = "half";
   std::string referenceLeft_, referenceRight_;

@@ -44,6 +44,7 @@ class TuneCommand final : public Command {
         ->check(floatRange(0.0, 1.0e4, true, "a positive factor"))
         ->capture_default_str();
     profile_.add(tune);  // --profile, --save-profile, --allow-negative-parallax, --display (as `s3d render`)
+    addDisparityBudgetOption(tune, profile_.disparityBudget);
     tune.add_option("--set", sets_, "NAME=VALUE for any panel parameter (" + joined(tune::parameterNames(), ", ") +
                                         "); repeatable, applied last")
         ->type_name("NAME=VALUE");
@@ -74,6 +75,7 @@ class TuneCommand final : public Command {
     if (!profile_.save.empty()) options_.profileFile = profile_.save;
     else if (!profile_.load.empty()) options_.profileFile = profile_.load;
     options_.state.view = tune::parseViewMode(view_);
+    options_.state.disparityBudget = profile_.budgetRule();
     options_.state.reference = !noReference_;
     options_.state.pathFrame = frame_;
     if (!script_.empty()) options_.script = script_;

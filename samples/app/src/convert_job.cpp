@@ -257,6 +257,20 @@ ConvertReport runConvertJob(vk::Context& context, const ConvertJobOptions& optio
   const std::optional<ImageRGBA8> referenceLeft = readReference(options.referenceLeft, color, "left");
   const std::optional<ImageRGBA8> referenceRight = readReference(options.referenceRight, color, "right");
   stereo::validate(parameters);
+  const bool budgetOn = options.disparityBudget != comfort::DisparityBudgetRule::Off && !options.disparity;
+  if (budgetOn) {
+    // The depth range, reduced on the GPU, picks maxSeparation and the zero-parallax distance.
+    const comfort::DisparityBudget budget = comfort::disparityBudget(options.display);
+    std::optional<comfort::DisparityBudgetController> fresh;
+    if (!options.budgetController) fresh.emplace(budget, false);
+    const stereo::DepthRangePass reduction(context);
+    vk::Image depthImage = vk::createImage(context, stereo::StereoPass::kDepthFormat, depth.width, depth.height,
+                                           VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
+    vk::uploadImage(context, depthImage, std::as_bytes(std::span(depth.pixels)), vk::kComputeWrite);
+    report.budget = applyDisparityBudget(context, reduction, fresh ? &*fresh : options.budgetController, depthImage, {},
+                                         1.0f / 30.0f, parameters);
+    report.comfort = comfort::frameComfort(depth, parameters, options.display);
+  }
   const gpu::StereoConstants constants = stereo::makeStereoConstants(parameters, color.width, color.height);
 
   report.deviceName = context.deviceName();
@@ -310,6 +324,7 @@ nlohmann::json toJson(const ConvertReport& report) {
           {"gpuTimeMs", {{"stereoPass", report.stereoPassGpuMs ? nlohmann::json(*report.stereoPassGpuMs) : nullptr}}},
           {"error", {{"left", statsJson(report.left)}, {"right", statsJson(report.right)}}},
           {"sanitized", {{"colorValues", report.sanitizedColorValues}, {"unknownDepthPixels", report.unknownDepthPixels}}},
+          {"disparityBudget", budgetJson(report.budget, report.comfort)},
           {"files", report.filesWritten}};
 }
 
@@ -350,12 +365,16 @@ std::vector<ConvertReport> runConvertFolder(vk::Context& context, const ConvertJ
                                             const std::function<void(std::size_t, std::size_t, const std::string&)>& progress) {
   std::vector<ConvertReport> reports;
   nlohmann::json frameJson = nlohmann::json::array();
+  std::optional<comfort::DisparityBudgetController> budget;  // one over the whole sequence: smoothed, cuts detected
+  if (options.disparityBudget != comfort::DisparityBudgetRule::Off && !options.budgetController)
+    budget.emplace(comfort::disparityBudget(options.display), false);
   for (const ConvertFrame& frame : frames) {
     ConvertJobOptions frameOptions = options;
     frameOptions.color = frame.color;
     frameOptions.depth = frame.depth;
     frameOptions.fileSuffix = "_" + frame.key;
     frameOptions.writeReport = false;
+    if (budget) frameOptions.budgetController = &*budget;
     try {
       reports.push_back(runConvertJob(context, frameOptions));
     } catch (const std::exception& error) {

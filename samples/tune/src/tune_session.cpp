@@ -32,6 +32,9 @@ struct TuneSession::Loaded {
   std::uint32_t supersample = 0;  // of `deferred`
   comfort::ZeroParallaxControlSettings controlSettings;
   std::unique_ptr<comfort::ZeroParallaxController> control;
+  std::unique_ptr<stereo::DepthRangePass> reduction;
+  std::unique_ptr<comfort::DisparityBudgetController> budget;
+  nlohmann::json budgetKey;  // the display and rule the controller was made for
 };
 
 TuneSession::TuneSession(vk::Context& context, std::uint32_t width, std::uint32_t height)
@@ -143,6 +146,22 @@ TuneFrame TuneSession::renderFrame(TuneState& state, const FrameInput& input, fl
   numbers.zeroParallaxLimited = app::holdZeroParallaxAtNearestDepth(parameters, images.stereoDepth, allowNegativeParallax);
   if (numbers.zeroParallaxLimited && loaded.control)  // the control goes on smoothly from the limit
     parameters.zeroParallaxDistance = loaded.control->limit(parameters.zeroParallaxDistance);
+  if (state.disparityBudget != comfort::DisparityBudgetRule::Off) {
+    // The disparity budget, as `s3d render` runs it; a new controller when the display or the rule changes.
+    const nlohmann::json key{comfort::toJson(profile.display), allowNegativeParallax};
+    if (!loaded.budget || loaded.budgetKey != key) {
+      loaded.budget = std::make_unique<comfort::DisparityBudgetController>(comfort::disparityBudget(profile.display),
+                                                                           allowNegativeParallax);
+      loaded.budgetKey = key;
+    }
+    if (!loaded.reduction) loaded.reduction = std::make_unique<stereo::DepthRangePass>(context_);
+    numbers.budget = app::applyDisparityBudget(context_, *loaded.reduction, loaded.budget.get(), deferred.linearDepth(),
+                                               {std::nullopt, app::weaponNearestPushed(parameters, weaponDepths)},
+                                               seconds, parameters);
+  } else {
+    loaded.budget.reset();
+  }
+  numbers.maxSeparation = parameters.maxSeparation;
   numbers.zeroParallaxDistance = parameters.zeroParallaxDistance;
   numbers.weaponDepthOffset = parameters.weaponDepthOffset;
   numbers.weaponDepthScale = parameters.weaponDepthScale;

@@ -607,6 +607,15 @@ void drawPanel(TuneSession& session, TuneState& state, const FrameNumbers& numbe
                   *numbers.nearestSurface);
     else
       ImGui::Text("zero parallax %.2f m%s", numbers.zeroParallaxDistance, limited);
+    if (numbers.budget.rule != comfort::DisparityBudgetRule::Off) {
+      const app::BudgetFrame& b = numbers.budget;
+      ImGui::Text("budget 1 deg: %.1f px behind, %.1f px in front; used %.0f %%%s%s", b.budget.uncrossedPx(b.imageWidth),
+                  b.budget.crossedPx(b.imageWidth), 100.0 * b.choice.usedShare, b.choice.cut ? ", cut" : "",
+                  b.choice.forced ? ", forced" : "");
+      ImGui::Text("budget choice: separation %.2f %% (target %.2f %%), zero parallax %.2f m (target %.2f m)",
+                  100.0 * b.choice.parameters.maxSeparation, 100.0 * b.choice.target.maxSeparation,
+                  b.choice.parameters.zeroParallaxDistance, b.choice.target.zeroParallaxDistance);
+    }
     ImGui::Text("weapon push %.2f + %.2f d, crosshair %.2f m%s", numbers.weaponDepthOffset, numbers.weaponDepthScale,
                 numbers.crosshairDepth, numbers.crosshairHitWorld ? " (hit)" : "");
     if (numbers.sanitizedDepthPixels > 0)

@@ -13,7 +13,8 @@
 //  5. Smooth: ln m and ln Z follow their targets through a critically damped filter with a bounded change
 //     per frame; a target that asks for more depth is taken only after it has held for `holdSeconds` and
 //     exceeds the current goal by `hysteresis` (no oscillation at a depth discontinuity, no reversal at a
-//     static camera); rules 1-3 override the bound at once when the filter lags (counted as `forced`).
+//     static camera); rules 1-3 override the bound at once when the filter lags (`forced` when that moves a
+//     parameter by more than the bound).
 //  6. A camera cut (the frame's depth histogram shares less than `cutOverlap` with the previous one, or the
 //     host says so) jumps straight to the target, without a ramp.
 #include <cstdint>
@@ -76,7 +77,7 @@ struct BudgetChoice {
   BudgetParameters target;      // what the frame alone asks for
   double usedShare = 0.0;       // of the budget, by the frame's depth range at `parameters`
   bool cut = false;             // reset without a ramp
-  bool forced = false;          // a hard rule (1-3) moved a parameter beyond the per-frame bound
+  bool forced = false;          // a hard rule (1-3) moved a parameter by more than the per-frame bound
 };
 
 // Share of overlap of two histograms, each normalized to its total (1: identical, 0: disjoint).

@@ -9,6 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "s3d/app/budget_frame.h"
 #include "s3d/stereo/metrics.h"
 #include "s3d/stereo/output_formats.h"
 #include "s3d/stereo/stereo.h"
@@ -54,6 +55,12 @@ struct ConvertJobOptions {
   bool automaticMethod = false;
   std::string fileSuffix;           // folder mode: "_0001" makes left_0001.png, ...
   bool writeReport = true;          // report<suffix>.json
+  // OneDegree (depth input only; disparity input is reproduced as given): maxSeparation and the zero-parallax
+  // distance chosen from the frame's depth range on `display` (budget_frame.h); folder mode runs one
+  // controller over the frames in order. Off: the library default; `s3d convert` turns it on.
+  comfort::DisparityBudgetRule disparityBudget = comfort::DisparityBudgetRule::Off;
+  comfort::DisplayProfile display = comfort::builtInDisplayProfile("tv55");
+  comfort::DisparityBudgetController* budgetController = nullptr;  // none: a fresh one (the frame's target)
 };
 
 struct ConvertReport {
@@ -69,6 +76,8 @@ struct ConvertReport {
   // Depth or disparity pixels without a value (NaN; zero or negative depth; +-inf or PNG 0 disparity), given the
   // depth of the background beside them on their row (stereo::fillUnknownDepthFromBackground).
   std::uint64_t unknownDepthPixels = 0;
+  BudgetFrame budget;                    // the disparity budget's reduction and choice (off: empty)
+  comfort::FrameComfort comfort;         // on options.display, with the budget on
   std::vector<std::string> filesWritten;
 };
 

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "s3d/app/budget_frame.h"
 #include "s3d/comfort/comfort_report.h"
 #include "s3d/comfort/display_profile.h"
 #include "s3d/comfort/world_queries.h"
@@ -43,6 +44,8 @@ struct FrameNumbers {
   bool crosshairHitWorld = false;
   std::uint64_t sanitizedDepthPixels = 0;  // NaN / non-positive depths read as the zero-parallax plane
   std::optional<std::string> warning;      // e.g. the zero-parallax distance clamped into the camera's range
+  app::BudgetFrame budget;                 // the disparity budget's reduction and choice (rule off: empty)
+  float maxSeparation = 0.0f;              // as used
 };
 
 struct TuneFrame {

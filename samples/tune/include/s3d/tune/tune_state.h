@@ -7,6 +7,7 @@
 
 #include <glm/glm.hpp>
 
+#include "s3d/comfort/disparity_budget.h"
 #include "s3d/renderer/scene.h"
 #include "s3d/tune/tune_settings.h"
 
@@ -35,6 +36,8 @@ struct TuneState {
   bool playPath = false;      // advance along the scene's camera path one frame per frame
   bool reference = true;      // render the two-pass reference eyes (error numbers); forced by the views needing it
   std::uint32_t supersample = 1;  // renderer anti-aliasing, 1..4 (renderer::RendererOptions), as `s3d render`
+  // OneDegree: maxSeparation and the zero-parallax distance chosen per frame (app/budget_frame.h), as `s3d render`.
+  comfort::DisparityBudgetRule disparityBudget = comfort::DisparityBudgetRule::Off;
 };
 
 }  // namespace s3d::tune
