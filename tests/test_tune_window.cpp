@@ -28,14 +28,14 @@ TEST(TuneWindow, ScreenshotViewMatchesTheOffscreenAnaglyphOfTheSameFrame) {
   fs::create_directories(folder);
   const fs::path shot = folder / "shot.png";
   {
-    // Walks and turns for two frames in another view, then jumps back onto the camera path (courtyard frame 3)
+    // The budget off: the parameters below are compared as given. Walks and turns for two frames in another view, then jumps back onto the camera path (courtyard frame 3)
     // in the anaglyph view with 2x2 supersampling: a frame `s3d render --frame 3 --supersample 2` renders too.
     std::ofstream script(folder / "script.txt");
     script << "set maxSeparation 0.03\nset zeroParallaxDistance 2\nview sbs\nhold w 2\nlook 30 -5\nwait 2\n"
               "view anaglyph\nframe 3\nsupersample 2\nscreenshot "
            << shot.string() << "\nquit\n";
   }
-  const std::string command = std::string("'") + S3D_TOOL + "' tune --resolution 64x48 --no-reference --validation "
+  const std::string command = std::string("'") + S3D_TOOL + "' tune --resolution 64x48 --no-reference --validation --disparity-budget off "
                               "--script '" + (folder / "script.txt").string() + "'";
   const int status = std::system(command.c_str());
   ASSERT_TRUE(WIFEXITED(status)) << command;
