@@ -50,6 +50,23 @@ TEST_F(CoverSequence, ZeroParallaxChangesByNoMoreThanTheBoundPerFrame) {
         << "frame " << i;
 }
 
+TEST_F(CoverSequence, ReportsTheFlickerOfEveryFrameAfterTheFirst) {
+  // The camera moves in every frame and the halo changes with it: some flicker, none on the first frame.
+  const SequenceReport& report = coverSequence(context());
+  EXPECT_FALSE(report.frames.front().flicker.has_value());
+  for (std::size_t i = 1; i < report.frames.size(); ++i) {
+    ASSERT_TRUE(report.frames[i].flicker.has_value()) << "frame " << i;
+    for (const stereo::FlickerStats& eye : *report.frames[i].flicker) {
+      EXPECT_GT(eye.all.pixelCount, 0u);
+      EXPECT_GE(eye.all.meanLevels, 0.0);
+    }
+  }
+  const std::array<stereo::FlickerStats, 2> mean = meanFlicker(report);
+  EXPECT_GT(mean[0].all.meanLevels, 0.0);
+  EXPECT_GT(mean[0].halo.meanLevels, mean[0].all.meanLevels);  // it concentrates where the method errs
+  EXPECT_EQ(toJson(report).at("frames").at(0).at("flicker"), nullptr);
+}
+
 TEST_F(CoverSequence, ReturnsToTheRestValueWhenThePlayerStepsBack) {
   // The path ends 4 m from the wall, beyond the 2.25 m release distance; 1 cm: the filter's tail.
   const SequenceReport& report = coverSequence(context());

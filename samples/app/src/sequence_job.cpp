@@ -1,10 +1,12 @@
 #include "s3d/app/sequence_job.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
 
 #include "s3d/app/comfort_json.h"
+#include "s3d/app/eye_comparison.h"
 #include "s3d/app/render_job.h"
 #include "s3d/comfort/crosshair.h"
 #include "s3d/comfort/world_queries.h"
@@ -20,6 +22,16 @@ namespace {
 
 // The pushed weapon's farthest point stays within this share of the distance to the nearest surface.
 constexpr float kWeaponClearance = 0.9f;
+
+nlohmann::json flickerJson(const std::array<stereo::FlickerStats, 2>& flicker) {
+  auto region = [](const stereo::FlickerRegion& r) {
+    return nlohmann::json{{"meanLevels", r.meanLevels}, {"pixelCount", r.pixelCount}};
+  };
+  auto eye = [&](const stereo::FlickerStats& f) {
+    return nlohmann::json{{"all", region(f.all)}, {"halo", region(f.halo)}, {"disocclusion", region(f.disocclusion)}};
+  };
+  return {{"left", eye(flicker[0])}, {"right", eye(flicker[1])}};
+}
 
 }  // namespace
 
@@ -55,6 +67,12 @@ SequenceReport runSequenceJob(vk::Context& context, const SequenceJobOptions& op
   }
   glm::vec3 previousPosition(0.0f);
 
+  // The previous frame's eyes, synthesized and reference, and its crop: the flicker metric's other frame.
+  struct EyeFrames {
+    stereo::StereoPair synthesized, reference;
+    std::uint32_t crop = 0;
+  };
+  std::optional<EyeFrames> previous;
   SequenceReport report;
   report.deviceName = context.deviceName();
   report.scene = options.scene;
@@ -134,10 +152,28 @@ SequenceReport runSequenceJob(vk::Context& context, const SequenceJobOptions& op
     frame.weaponConflictPixels = conflicts.conflictPixels;
     stereo::SynthesisResult eyes = stereo::synthesizeTimed(context, deferred.displayColor(), deferred.linearDepth(), parameters);
 
+    EyeFrames current{eyes.eyes, {}, crop};
+    std::array<DepthImage, 2> referenceDepth;
     deferred.render(referenceEyeView(scene, center, stereo::Eye::Left, parameters));
-    frame.psnrLeftDb = stereo::compareDisplayImages(eyes.eyes.left, deferred.readDisplayColor(), crop).psnrDb;
+    current.reference.left = deferred.readDisplayColor();
+    referenceDepth[0] = deferred.readLinearDepth();
+    frame.psnrLeftDb = stereo::compareDisplayImages(eyes.eyes.left, current.reference.left, crop).psnrDb;
     deferred.render(referenceEyeView(scene, center, stereo::Eye::Right, parameters));
-    frame.psnrRightDb = stereo::compareDisplayImages(eyes.eyes.right, deferred.readDisplayColor(), crop).psnrDb;
+    current.reference.right = deferred.readDisplayColor();
+    referenceDepth[1] = deferred.readLinearDepth();
+    frame.psnrRightDb = stereo::compareDisplayImages(eyes.eyes.right, current.reference.right, crop).psnrDb;
+    if (previous) {
+      const std::vector<std::uint8_t> halo = haloMaskFor(pushed, parameters);
+      const std::uint32_t bothCrops = std::max(crop, previous->crop);
+      frame.flicker = std::array<stereo::FlickerStats, 2>{
+          stereo::temporalFlicker(current.synthesized.left, previous->synthesized.left, current.reference.left,
+                                  previous->reference.left, bothCrops, halo,
+                                  disocclusionMaskFor(referenceDepth[0], pushed, parameters, stereo::Eye::Left)),
+          stereo::temporalFlicker(current.synthesized.right, previous->synthesized.right, current.reference.right,
+                                  previous->reference.right, bothCrops, halo,
+                                  disocclusionMaskFor(referenceDepth[1], pushed, parameters, stereo::Eye::Right))};
+    }
+    previous = std::move(current);
 
     if (options.writeFrames) {
       char name[48];
@@ -169,8 +205,30 @@ nlohmann::json toJson(const SequenceReport& report) {
                       {"weaponConflictPixels", frame.weaponConflictPixels},
                       {"psnrDb", {{"left", frame.psnrLeftDb}, {"right", frame.psnrRightDb}}},
                       {"maxSeparation", frame.maxSeparation},
-                      {"disparityBudget", budgetJson(frame.budget, frame.comfort)}});
-  return {{"device", report.deviceName}, {"scene", report.scene}, {"frames", frames}, {"files", report.filesWritten}};
+                      {"disparityBudget", budgetJson(frame.budget, frame.comfort)},
+                      {"flicker", frame.flicker ? flickerJson(*frame.flicker) : nlohmann::json()}});
+  return {{"device", report.deviceName}, {"scene", report.scene}, {"frames", frames},
+          {"flicker", flickerJson(meanFlicker(report))}, {"files", report.filesWritten}};
+}
+
+std::array<stereo::FlickerStats, 2> meanFlicker(const SequenceReport& report) {
+  std::array<stereo::FlickerStats, 2> mean{};
+  std::size_t count = 0;
+  for (const SequenceFrame& frame : report.frames) {
+    if (!frame.flicker) continue;
+    ++count;
+    for (std::size_t eye = 0; eye < 2; ++eye) {
+      const stereo::FlickerStats& f = (*frame.flicker)[eye];
+      mean[eye].all.meanLevels += f.all.meanLevels, mean[eye].all.pixelCount += f.all.pixelCount;
+      mean[eye].halo.meanLevels += f.halo.meanLevels, mean[eye].halo.pixelCount += f.halo.pixelCount;
+      mean[eye].disocclusion.meanLevels += f.disocclusion.meanLevels;
+      mean[eye].disocclusion.pixelCount += f.disocclusion.pixelCount;
+    }
+  }
+  for (stereo::FlickerStats& eye : mean)
+    for (stereo::FlickerRegion* region : {&eye.all, &eye.halo, &eye.disocclusion})
+      region->meanLevels = count ? region->meanLevels / double(count) : 0.0;
+  return mean;
 }
 
 }  // namespace s3d::app

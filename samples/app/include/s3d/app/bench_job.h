@@ -102,6 +102,7 @@ struct RendererRow {
   std::vector<renderer::PassTiming> passes;   // median per pass, in the order they ran
   std::uint32_t guardBandColumns = 0;         // per side, `s3d render`'s default band at the options' separation
   std::optional<double> guardBandFrameGpuMs;  // median center frame rendered that much wider
+  std::optional<double> guardBandRatio;       // median over `repeat` back-to-back pairs of wide / plain frame time
 };
 
 struct BenchReport {

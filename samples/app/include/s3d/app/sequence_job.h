@@ -2,6 +2,7 @@
 // `s3d render --sequence`: a scene's camera path with the comfort controls running frame by frame: the
 // zero-parallax control pulls the screen plane in when the player nears a wall (seed 4.6.2), the weapon
 // push shrinks with it, the crosshair follows the aim ray; every frame is checked for depth conflicts.
+#include <array>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -14,6 +15,7 @@
 #include "s3d/comfort/comfort_report.h"
 #include "s3d/comfort/zero_parallax_control.h"
 #include "s3d/stereo/stereo.h"
+#include "s3d/stereo/temporal.h"
 #include "s3d/vk/context.h"
 
 namespace s3d::app {
@@ -56,6 +58,9 @@ struct SequenceFrame {
   double psnrLeftDb = 0.0, psnrRightDb = 0.0;  // synthesized vs two-pass reference
   BudgetFrame budget;                           // the disparity budget's reduction and choice (off: empty)
   float maxSeparation = 0.0f;                   // as the stereo pass used it
+  // Left, right: the change of the eye's error since the previous frame (stereo/temporal.h), over the
+  // crop of both frames, the halo and this frame's disocclusion; empty on the first frame.
+  std::optional<std::array<stereo::FlickerStats, 2>> flicker;
 };
 
 struct SequenceReport {
@@ -64,6 +69,9 @@ struct SequenceReport {
   std::vector<SequenceFrame> frames;
   std::vector<std::string> filesWritten;
 };
+
+// Mean over the frames that have one of each eye's flicker per region (all, halo, disocclusion).
+std::array<stereo::FlickerStats, 2> meanFlicker(const SequenceReport& report);
 
 // Throws std::invalid_argument for bad options (checked before rendering) and anything the renderer throws.
 SequenceReport runSequenceJob(vk::Context& context, const SequenceJobOptions& options);
