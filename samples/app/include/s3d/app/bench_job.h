@@ -88,6 +88,7 @@ struct BenchRow {
   std::optional<double> stereoGpuMs;     // median over the repeats; empty without timestamps
   std::vector<double> stereoGpuMsRuns;
   std::optional<double> centerFrameGpuMs;  // the scene's center frame (median)
+  std::optional<double> depthReductionGpuMs;  // the disparity budget's depth reduction of that frame (median)
   std::optional<double> referenceEyeGpuMs;  // the left reference eye at this separation (median)
   EyeError left{};
   EyeError right{};
