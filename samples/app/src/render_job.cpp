@@ -179,6 +179,19 @@ RenderReport runRenderJob(vk::Context& context, const RenderJobOptions& options)
     report.centerPasses = std::move(centerTimings.passes);
   };
   renderCenter(bandFor(parameters));
+  // For center.exr, the regions and the HDR error; NaN or inf is sanitized and counted (the GPU pass reads
+  // invalid depth as the zero-parallax plane too, and the tone map writes non-finite color as black).
+  DepthImage renderedDepth;
+  ImageRGBA32F renderedHdr;
+  auto readCenter = [&] {
+    renderedDepth = deferred->readLinearDepth();
+    renderedHdr = deferred->readHdrColor();
+    report.sanitized.depthPixels = stereo::sanitizeDepth(renderedDepth, parameters.zeroParallaxDistance);
+    report.sanitized.colorValues = stereo::sanitizeColor(renderedHdr);
+  };
+  readCenter();
+  // Held at the nearest depth of the whole rendered frame: the band's content reaches the eyes too.
+  report.zeroParallaxLimited = holdZeroParallaxAtNearestDepth(parameters, renderedDepth, options.allowNegativeParallax);
   const comfort::WorldQueries world(job.scene);  // once per job: the world does not change between views
   const comfort::CrosshairPlacement placement =
       comfort::placeCrosshair(world, job.scene.camera, options.crosshair.distance.value_or(job.scene.crosshairDistance),
@@ -191,7 +204,10 @@ RenderReport runRenderJob(vk::Context& context, const RenderJobOptions& options)
                                          {placement.depth, weaponNearestPushed(parameters, weaponDepths)}, 1.0f / 30.0f,
                                          parameters);
     // A larger chosen separation needs a wider band: render the center view again at that width.
-    if (const stereo::GuardBand chosen = bandFor(parameters); chosen.columns > band.columns) renderCenter(chosen);
+    if (const stereo::GuardBand chosen = bandFor(parameters); chosen.columns > band.columns) {
+      renderCenter(chosen);
+      readCenter();
+    }
   }
   if (band.capped)
     report.warnings.push_back("guard band capped at " + std::to_string(band.columns) + " columns per side (" +
@@ -206,15 +222,7 @@ RenderReport runRenderJob(vk::Context& context, const RenderJobOptions& options)
       job.scene, float(width) / float(height), {parameters.weaponDepthOffset, parameters.weaponDepthScale});
   const ImageRGBA8 centerColor = output(deferred->readDisplayColor());
   const bool wantsExr = selected("center.exr");
-  // For center.exr, the regions and the HDR error; NaN or inf is sanitized and counted (the GPU pass reads
-  // invalid depth as the zero-parallax plane too, and the tone map writes non-finite color as black).
-  DepthImage renderedDepth = deferred->readLinearDepth();
-  ImageRGBA32F renderedHdr = deferred->readHdrColor();
-  report.sanitized.depthPixels = stereo::sanitizeDepth(renderedDepth, parameters.zeroParallaxDistance);
-  report.sanitized.colorValues = stereo::sanitizeColor(renderedHdr);
   const std::vector<std::uint8_t> firstPersonMask = outputMask(deferred->readFirstPersonMask());  // weapon conflicts
-  // Held at the nearest depth of the whole rendered frame: the band's content reaches the eyes too.
-  report.zeroParallaxLimited = holdZeroParallaxAtNearestDepth(parameters, renderedDepth, options.allowNegativeParallax);
   report.stereo = parameters;
   if (report.stereo.edgeCrop < 0.0f) report.stereo.edgeCrop = report.stereo.maxSeparation;
   // The pass and the reference cameras on the rendered frame: the same parallax in pixels, the band cropped.

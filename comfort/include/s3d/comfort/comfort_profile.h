@@ -5,7 +5,7 @@
 // defaults, so a profile may hold only what it changes.
 //
 // The JSON document (every key optional; defaults are those of the structs below):
-// { "stereo": {"maxSeparation", "zeroParallaxDistance", "edgeCrop" (null: = maxSeparation),
+// { "stereo": {"maxSeparation", "zeroParallaxDistance", "edgeCrop" (null: s3d render a guard band, else = maxSeparation),
 //              "method": "seed"|"search"|"iterative"|"forward", "searchTaps", "iterations"},
 //   "weapon": {"depthOffset", "depthScale"},
 //   "zeroParallaxControl": {"engageDistance", "releaseMargin", "minimumDistance", "responseSeconds",
