@@ -2,7 +2,7 @@
 """Disparity budget table for docs/RESULTS.md: every built-in scene's camera path x display, with the budget
 off (before) and at 1deg (after), from `s3d render --sequence` report.json files.
 
-usage: docs/tools/budget_table.py S3D_BINARY OUT_FOLDER [--resolution 256x144]
+usage: docs/tools/budget_table.py S3D_BINARY OUT_FOLDER [--resolution 256x144] [--scenes a,b]
 """
 import json, math, subprocess, sys
 from pathlib import Path
@@ -26,10 +26,11 @@ def steps(frames, key):
 def main():
     binary, out = sys.argv[1], sys.argv[2]
     resolution = sys.argv[sys.argv.index("--resolution") + 1] if "--resolution" in sys.argv else "256x144"
+    scenes = sys.argv[sys.argv.index("--scenes") + 1].split(",") if "--scenes" in sys.argv else SCENES
     print(f"| scene | display | frames | beyond 1 deg, off: max / mean | beyond 1 deg, 1deg: max | used share, 1deg: "
           f"min / mean | frames used >= 80 % | max step ln m / ln ZPP per frame | forced frames |")
     print("|---|---|---|---|---|---|---|---|---|")
-    for scene in SCENES:
+    for scene in scenes:
         for display in DISPLAYS:
             off = run(binary, out, scene, display, "off", resolution)
             on = run(binary, out, scene, display, "1deg", resolution)

@@ -38,8 +38,8 @@ struct SequenceJobOptions {
   // distance per frame from the GPU depth reduction; off: the zero-parallax control alone, as before.
   comfort::DisparityBudgetRule disparityBudget = comfort::DisparityBudgetRule::Off;
   // The budget's anticipation: the zero-parallax control's ray casts from where the camera will be this many
-  // seconds ahead at its current velocity (0: none); a surface they find eases the target down early.
-  float anticipateSeconds = 0.5f;
+  // seconds ahead at its current velocity (0: none; 0.35 s: no forced frame on the cover path, docs/RESULTS.md); a surface they find eases the target down early.
+  float anticipateSeconds = 0.35f;
 };
 
 struct SequenceFrame {
