@@ -10,6 +10,7 @@
 #include "profile_options.h"
 #include "s3d/app/render_job.h"
 #include "s3d/app/sequence_job.h"
+#include "s3d/app/views_job.h"
 #include "s3d/renderer/scene.h"
 #include "s3d/stereo/output_formats.h"
 
@@ -78,6 +79,10 @@ class RenderCommand final : public Command {
     render.add_flag("--sequence", sequence_,
                     "Render the scene's whole camera path with the comfort controls running (zero-parallax "
                     "control, weapon push, crosshair): anaglyph_NNNN.png per frame and a per-frame report.json");
+    render.add_option("--views", viewsFile_,
+                      "Per-eye views as OpenXR reports them (JSON: eye x offsets in metres, angleLeft/Right/Up/Down, "
+                      "size per eye, worldScale; samples/views/): render the center view covering both eyes, "
+                      "synthesize each eye in its own projection and compare with the eyes rendered directly");
     addDeviceOptions(render, contextOptions_);
     render.add_flag("--list-devices", listDevicesOnly_,
                     "List the Vulkan devices and whether s3d can use them, then exit without rendering");
@@ -101,10 +106,29 @@ class RenderCommand final : public Command {
     options_.allowNegativeParallax = profile.allowNegativeParallax;
     options_.disparityBudget = profile_.budgetRule();
     zeroParallax_ = profile.zeroParallaxSettings();
+    if (!viewsFile_.empty()) return runViews();
     return sequence_ ? runSequence() : runSingleFrame();
   }
 
  private:
+  int runViews() {
+    if (sequence_) return fail("--views and --sequence cannot be combined");
+    app::ViewsJobOptions viewsOptions;
+    viewsOptions.views = comfort::loadViewConfiguration(viewsFile_);  // one error naming the file and field
+    viewsOptions.viewsFile = viewsFile_;
+    viewsOptions.scene = options_.scene;
+    viewsOptions.frame = options_.frame;
+    viewsOptions.outputFolder = options_.outputFolder;
+    vk::Context context(contextOptions_);
+    const app::ViewsReport report = app::runViewsJob(context, viewsOptions);
+    std::printf("s3d render --views: scene %s, center view %ux%u on %s; synthesized vs reference: left %.2f dB, "
+                "right %.2f dB; wrote %zu files to %s\n",
+                report.scene.c_str(), report.center.width, report.center.height, report.deviceName.c_str(),
+                report.error[0].psnrDb, report.error[1].psnrDb, report.filesWritten.size(),
+                options_.outputFolder.string().c_str());
+    return 0;
+  }
+
   int runSequence() {
     app::SequenceJobOptions sequenceOptions;
     sequenceOptions.width = options_.width;
@@ -173,6 +197,7 @@ class RenderCommand final : public Command {
   }
 
   app::RenderJobOptions options_;
+  std::string viewsFile_;
   StereoOptions stereo_;
   ProfileOptions profile_;
   comfort::ZeroParallaxControlSettings zeroParallax_;

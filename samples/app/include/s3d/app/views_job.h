@@ -1,0 +1,48 @@
+#pragma once
+// `s3d render --views FILE.json`: per-eye views as OpenXR reports them (comfort/view_configuration.h). The
+// center view is rendered with the frustum that covers both eyes plus the guard band; each eye is
+// synthesized from it through the view mapping (C++, a fixed-point depth search) and resampled into its own
+// projection and size; the two-pass reference renders exactly those eye views; the error is the whole frame's.
+#include <array>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "s3d/comfort/view_configuration.h"
+#include "s3d/image.h"
+#include "s3d/stereo/metrics.h"
+#include "s3d/vk/context.h"
+
+namespace s3d::app {
+
+struct ViewsJobOptions {
+  std::string scene = "courtyard";
+  std::size_t frame = 0;
+  comfort::ViewConfiguration views;
+  std::string viewsFile;  // as given, for the report
+  std::filesystem::path outputFolder = "out";
+  bool writeImages = true;  // center.png, left.png, right.png, left_reference.png, right_reference.png
+};
+
+struct ViewsReport {
+  std::string deviceName;
+  std::string scene;
+  comfort::CenterView center;
+  std::array<stereo::ErrorStats, 2> error{};  // left, right: synthesized vs reference over the whole eye
+  std::vector<std::string> filesWritten;
+};
+
+// Iterations of the fixed-point search t_c = t_eye + b / depth(t_c), starting at infinity.
+inline constexpr int kViewSearchIterations = 8;
+
+// One eye synthesized from the center view's colour and linear depth (plain C++): per eye pixel centre, the
+// depth is found by the fixed-point search, then the colour is filtered bilinearly at the mapped position.
+ImageRGBA8 synthesizeEyeForView(const ImageRGBA8& centerColor, const DepthImage& centerDepth,
+                                const comfort::ViewConfiguration& views, const comfort::CenterView& center, int eye);
+
+ViewsReport runViewsJob(vk::Context& context, const ViewsJobOptions& options);
+nlohmann::json toJson(const ViewsReport& report);
+
+}  // namespace s3d::app

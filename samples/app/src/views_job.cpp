@@ -1,0 +1,139 @@
+#include "s3d/app/views_job.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "s3d/app/eye_comparison.h"
+#include "s3d/io/image_io.h"
+#include "s3d/renderer/deferred_renderer.h"
+#include "s3d/renderer/scene_file.h"
+
+namespace s3d::app {
+namespace {
+
+float depthAt(const DepthImage& depth, glm::dvec2 pixel) {
+  const int x = std::clamp(int(std::floor(pixel.x)), 0, int(depth.width) - 1);
+  const int y = std::clamp(int(std::floor(pixel.y)), 0, int(depth.height) - 1);
+  const float d = depth.at(std::uint32_t(x), std::uint32_t(y))[0];
+  return d > 0.0f ? d : INFINITY;  // invalid depth: no displacement
+}
+
+void bilinear(const ImageRGBA8& image, glm::dvec2 pixel, std::uint8_t* out) {
+  const double fx = std::clamp(pixel.x - 0.5, 0.0, double(image.width - 1));
+  const double fy = std::clamp(pixel.y - 0.5, 0.0, double(image.height - 1));
+  const std::uint32_t x0 = std::uint32_t(fx), y0 = std::uint32_t(fy);
+  const std::uint32_t x1 = std::min(x0 + 1, image.width - 1), y1 = std::min(y0 + 1, image.height - 1);
+  const double ax = fx - x0, ay = fy - y0;
+  for (int c = 0; c < 4; ++c) {
+    const double top = image.at(x0, y0)[c] * (1 - ax) + image.at(x1, y0)[c] * ax;
+    const double bottom = image.at(x0, y1)[c] * (1 - ax) + image.at(x1, y1)[c] * ax;
+    out[c] = std::uint8_t(std::lround(top * (1 - ay) + bottom * ay));
+  }
+}
+
+}  // namespace
+
+ImageRGBA8 synthesizeEyeForView(const ImageRGBA8& centerColor, const DepthImage& centerDepth,
+                                const comfort::ViewConfiguration& views, const comfort::CenterView& center, int eye) {
+  requireSameSize(centerColor, centerDepth, "view synthesis (color vs depth)");
+  const comfort::EyeView& view = views.eyes[std::size_t(eye)];
+  ImageRGBA8 out(view.width, view.height);
+  for (std::uint32_t y = 0; y < view.height; ++y)
+    for (std::uint32_t x = 0; x < view.width; ++x) {
+      const glm::dvec2 eyePixel(x + 0.5, y + 0.5);
+      double depth = INFINITY;
+      glm::dvec2 source = comfort::centerPixelForEyePixel(views, center, eye, eyePixel, depth);
+      for (int i = 0; i < kViewSearchIterations; ++i) {
+        depth = depthAt(centerDepth, source);
+        source = comfort::centerPixelForEyePixel(views, center, eye, eyePixel, depth);
+      }
+      bilinear(centerColor, source, out.at(x, y));
+      out.at(x, y)[3] = 255;
+    }
+  return out;
+}
+
+ViewsReport runViewsJob(vk::Context& context, const ViewsJobOptions& options) {
+  renderer::Scene scene = renderer::loadScene(options.scene);
+  scene.camera = renderer::cameraForFrame(scene, options.frame);
+  // The world layer only: the first-person layer's lighting in the eyes' own frusta does not match its center
+  // render yet (a known limit, docs/DESIGN.md "View configurations").
+  std::erase_if(scene.objects, [](const renderer::Object& o) { return o.layer == renderer::Layer::FirstPerson; });
+  ViewsReport report;
+  report.deviceName = context.deviceName();
+  report.scene = options.scene;
+  // Guard band down to the near plane: with parallel eyes every depth has parallax b / d.
+  const comfort::CenterView& center = report.center = comfort::centerViewFor(options.views, scene.camera.nearPlane);
+  auto frustum = [](double l, double r, double u, double d, float nearPlane, float farPlane) {
+    return glm::mat4(comfort::frustumProjection(l, r, u, d, nearPlane, farPlane));
+  };
+
+  // The center view: no weapon depth push (the eyes are parallel; the reference renders the true depths).
+  renderer::ViewMatrices centerView = renderer::centerViewMatrices(scene, float(center.width) / float(center.height), {0.0f, 1.0f});
+  centerView.worldProjection = frustum(center.tanLeft, center.tanRight, center.tanUp, center.tanDown,
+                                       scene.camera.nearPlane, scene.camera.farPlane);
+  centerView.firstPersonProjection = frustum(center.tanLeft, center.tanRight, center.tanUp, center.tanDown,
+                                             scene.firstPerson.nearPlane, scene.firstPerson.farPlane);
+  ImageRGBA8 centerColor;
+  DepthImage centerDepth;  // NaN, 0, negative: read as infinity
+  {
+    renderer::DeferredRenderer deferred(context, center.width, center.height);  // one renderer alive at a time
+    deferred.setScene(scene);
+    (void)deferred.render(centerView);
+    centerColor = deferred.readDisplayColor();
+    centerDepth = deferred.readLinearDepth();
+  }
+
+  std::array<ImageRGBA8, 2> eyes, references;
+  for (int i = 0; i < 2; ++i) {
+    const comfort::EyeView& eye = options.views.eyes[std::size_t(i)];
+    eyes[std::size_t(i)] = synthesizeEyeForView(centerColor, centerDepth, options.views, center, i);
+    // The reference: the eye's own camera, offset along x, with its own asymmetric frustum and size.
+    renderer::DeferredRenderer eyeRenderer(context, eye.width, eye.height);
+    eyeRenderer.setScene(scene);
+    glm::mat4 toEye(1.0f);
+    toEye[3][0] = float(-center.eyeOffset[std::size_t(i)]);  // the eye sits at +offset: points move by -offset
+    renderer::ViewMatrices eyeView = centerView;
+    eyeView.worldView = toEye * centerView.worldView;
+    eyeView.firstPersonView = toEye * centerView.firstPersonView;
+    const double l = std::tan(eye.angleLeft), r = std::tan(eye.angleRight);
+    const double u = std::tan(eye.angleUp), d = std::tan(eye.angleDown);
+    eyeView.worldProjection = frustum(l, r, u, d, scene.camera.nearPlane, scene.camera.farPlane);
+    eyeView.firstPersonProjection = frustum(l, r, u, d, scene.firstPerson.nearPlane, scene.firstPerson.farPlane);
+    (void)eyeRenderer.render(eyeView);  // the first frame of a fresh renderer, as in s3d render: rendered twice
+    (void)eyeRenderer.render(eyeView);
+    references[std::size_t(i)] = eyeRenderer.readDisplayColor();
+    report.error[std::size_t(i)] = stereo::compareDisplayImages(eyes[std::size_t(i)], references[std::size_t(i)], 0);
+  }
+
+  if (options.writeImages) {
+    const std::array<std::pair<const char*, const ImageRGBA8*>, 5> images{
+        {{"center.png", &centerColor}, {"left.png", &eyes[0]}, {"right.png", &eyes[1]},
+         {"left_reference.png", &references[0]}, {"right_reference.png", &references[1]}}};
+    for (const auto& [name, image] : images) {
+      io::writePng(options.outputFolder / name, *image);
+      report.filesWritten.push_back(name);
+    }
+    report.filesWritten.push_back("report.json");
+    nlohmann::json document = toJson(report);
+    document["views"] = options.viewsFile;
+    io::writeTextFile(options.outputFolder / "report.json", document.dump(2) + "\n");
+  }
+  return report;
+}
+
+nlohmann::json toJson(const ViewsReport& report) {
+  auto stats = [](const stereo::ErrorStats& e) {
+    return nlohmann::json{{"psnrDb", finiteOrNull(e.psnrDb)}, {"ssim", finiteOrNull(e.ssim)},
+                          {"meanAbsoluteError", finiteOrNull(e.meanAbsoluteError)}, {"pixelCount", e.pixelCount}};
+  };
+  const comfort::CenterView& c = report.center;
+  return {{"device", report.deviceName},
+          {"scene", report.scene},
+          {"center", {{"width", c.width}, {"height", c.height}, {"tanLeft", c.tanLeft}, {"tanRight", c.tanRight},
+                      {"tanUp", c.tanUp}, {"tanDown", c.tanDown}, {"eyeOffset", c.eyeOffset}}},
+          {"error", {{"left", stats(report.error[0])}, {"right", stats(report.error[1])}}},
+          {"files", report.filesWritten}};
+}
+
+}  // namespace s3d::app
