@@ -1,0 +1,150 @@
+// GPU time (Vulkan timestamps) of the host pass (stereo::HostStereoPass) against the bare stereo pass on the same
+// synthetic 1920x1080 view, in one run: what the input conversion and the output packing cost a host.
+// Device: S3D_BENCH_DEVICE (default auto).
+#include <benchmark/benchmark.h>
+
+#include <cstdlib>
+#include <cstring>
+#include <memory>
+#include <random>
+
+#include "s3d/stereo/host_stereo_pass.h"
+#include "s3d/stereo/stereo_pass.h"
+#include "s3d/vk/timestamps.h"
+
+namespace {
+
+using namespace s3d;
+
+constexpr std::uint32_t kWidth = 1920, kHeight = 1080;
+
+vk::Context& benchContext() {
+  static std::unique_ptr<vk::Context> context = [] {
+    vk::ContextOptions options;
+    if (const char* device = std::getenv("S3D_BENCH_DEVICE")) options.device = device;
+    return std::make_unique<vk::Context>(options);
+  }();
+  return *context;
+}
+
+// Random colour over depth in 16x8 blocks between 1 and 50 m, a quarter sky; as colour bytes and as D32 device depth.
+struct View {
+  std::vector<std::uint8_t> color = std::vector<std::uint8_t>(std::size_t(kWidth) * kHeight * 4);
+  std::vector<float> linear = std::vector<float>(std::size_t(kWidth) * kHeight);
+  std::vector<float> device = std::vector<float>(std::size_t(kWidth) * kHeight);
+  View() {
+    std::mt19937 random(5);
+    for (auto& c : color) c = std::uint8_t(random() & 255u);
+    std::uniform_real_distribution<float> depth(1.0f, 50.0f);
+    for (std::uint32_t by = 0; by < kHeight; by += 8)
+      for (std::uint32_t bx = 0; bx < kWidth; bx += 16) {
+        const float z = random() % 4 == 0 ? INFINITY : depth(random);
+        for (std::uint32_t y = by; y < by + 8 && y < kHeight; ++y)
+          for (std::uint32_t x = bx; x < bx + 16 && x < kWidth; ++x) {
+            linear[std::size_t(y) * kWidth + x] = z;
+            device[std::size_t(y) * kWidth + x] = std::isinf(z) ? 1.0f : 1000.0f / 999.9f - 100.0f / (999.9f * z);
+          }
+      }
+  }
+};
+
+const View& view() {
+  static const View v;
+  return v;
+}
+
+stereo::HostFrame frame() {
+  stereo::HostFrame f;
+  f.stereo = stereo::makeStereoConstants(stereo::StereoParameters{}, kWidth, kHeight);
+  f.projection.nearPlane = 0.1f;
+  f.projection.farPlane = 1000.0f;
+  return f;
+}
+
+template <typename Record>
+void timeRecording(benchmark::State& state, const Record& record) {
+  vk::Context& context = benchContext();
+  context.submitAndWait(record);  // warm-up
+  vk::TimestampQueries timestamps(context, 2);
+  for (auto _ : state) {
+    context.submitAndWait([&](VkCommandBuffer cmd) {
+      timestamps.reset(cmd);
+      timestamps.write(cmd, 0, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT);
+      record(cmd);
+      timestamps.write(cmd, 1, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT);
+    });
+    state.SetIterationTime(timestamps.elapsedMs(0, 1).value_or(0.0) * 1e-3);
+  }
+  state.SetLabel(context.deviceName());
+}
+
+// The stereo kernel alone on RGBA8 + R32F storage images (the default 4-tap search).
+void BareStereoPass(benchmark::State& state) {
+  vk::Context& context = benchContext();
+  const VkImageUsageFlags usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+  vk::Image color = vk::createImage(context, VK_FORMAT_R8G8B8A8_UNORM, kWidth, kHeight, usage);
+  vk::Image depth = vk::createImage(context, VK_FORMAT_R32_SFLOAT, kWidth, kHeight, usage);
+  vk::Image left = vk::createImage(context, VK_FORMAT_R8G8B8A8_UNORM, kWidth, kHeight, usage);
+  vk::Image right = vk::createImage(context, VK_FORMAT_R8G8B8A8_UNORM, kWidth, kHeight, usage);
+  vk::uploadImage(context, color, std::as_bytes(std::span(view().color)), vk::kComputeRead);
+  vk::uploadImage(context, depth, std::as_bytes(std::span(view().linear)), vk::kComputeRead);
+  context.submitAndWait([&](VkCommandBuffer cmd) {
+    vk::transition(cmd, left, vk::kUndefined, vk::kComputeWrite);
+    vk::transition(cmd, right, vk::kUndefined, vk::kComputeWrite);
+  });
+  const stereo::StereoPass pass(context);
+  const stereo::HostFrame f = frame();
+  timeRecording(state, [&](VkCommandBuffer cmd) { pass.record(cmd, color, depth, left, right, f.stereo); });
+}
+
+// Argument: 0 sRGB colour + D32 depth -> two eyes; 1 RGBA8 + R32F storage inputs (no conversion) -> two eyes;
+// 2 sRGB + D32 -> anaglyph; 3 sRGB + D32 -> side-by-side half; 4 RGBA16F + D32 -> two half-float eyes.
+void HostPass(benchmark::State& state) {
+  vk::Context& context = benchContext();
+  const int variant = int(state.range(0));
+  const bool storage = variant == 1, hdr = variant == 4;
+  const VkFormat colorFormat = storage ? VK_FORMAT_R8G8B8A8_UNORM : hdr ? VK_FORMAT_R16G16B16A16_SFLOAT : VK_FORMAT_R8G8B8A8_SRGB;
+  const VkFormat depthFormat = storage ? VK_FORMAT_R32_SFLOAT : VK_FORMAT_D32_SFLOAT;
+  const stereo::HostOutput output = variant == 2 ? stereo::HostOutput::Anaglyph
+                                    : variant == 3 ? stereo::HostOutput::SideBySideHalf
+                                                   : stereo::HostOutput::TwoEyes;
+  const VkImageUsageFlags inputUsage =
+      (storage ? VK_IMAGE_USAGE_STORAGE_BIT : VK_IMAGE_USAGE_SAMPLED_BIT) | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+  const vk::ImageState readable = storage ? vk::kComputeRead : vk::kFragmentRead;
+  vk::Image color = vk::createImage(context, colorFormat, kWidth, kHeight, inputUsage);
+  vk::Image depth = vk::createImage(context, depthFormat, kWidth, kHeight, inputUsage);
+  if (hdr) {
+    std::vector<std::uint16_t> half(view().color.size(), 0x3c00);  // 1.0: the cost does not depend on the values
+    vk::uploadImage(context, color, std::as_bytes(std::span(half)), readable);
+  } else {
+    vk::uploadImage(context, color, std::as_bytes(std::span(view().color)), readable);
+  }
+  vk::uploadImage(context, depth, std::as_bytes(std::span(storage ? view().linear : view().device)), readable);
+  const stereo::HostStereoPass pass(context, {kWidth, kHeight, colorFormat, depthFormat, output, storage});
+  const VkImageUsageFlags outputUsage = VK_IMAGE_USAGE_STORAGE_BIT;
+  vk::Image left = vk::createImage(context, pass.eyeFormat(), kWidth, kHeight, outputUsage);
+  vk::Image right = vk::createImage(context, pass.eyeFormat(), kWidth, kHeight, outputUsage);
+  vk::Image target = vk::createImage(context, pass.eyeFormat(), pass.packedWidth(), pass.packedHeight(), outputUsage);
+  context.submitAndWait([&](VkCommandBuffer cmd) {
+    for (const vk::Image* image : {&left, &right, &target}) vk::transition(cmd, *image, vk::kUndefined, vk::kComputeWrite);
+  });
+  // The host synchronizes its images itself (stage NONE): the time is the pass's own work and barriers.
+  auto host = [](const vk::Image& image, VkImageLayout layout) {
+    return stereo::HostImage{image.image, image.view, image.format, layout, VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE};
+  };
+  const stereo::HostImage l = host(left, VK_IMAGE_LAYOUT_GENERAL), r = host(right, VK_IMAGE_LAYOUT_GENERAL),
+                          t = host(target, VK_IMAGE_LAYOUT_GENERAL);
+  const stereo::HostFrame f = frame();
+  const bool eyes = output == stereo::HostOutput::TwoEyes;
+  timeRecording(state, [&](VkCommandBuffer cmd) {
+    pass.record(cmd, host(color, readable.layout), host(depth, readable.layout), f, eyes ? &l : nullptr,
+                eyes ? &r : nullptr, eyes ? nullptr : &t);
+  });
+}
+
+BENCHMARK(BareStereoPass)->UseManualTime()->Unit(benchmark::kMillisecond)->MinTime(0.5);
+BENCHMARK(HostPass)->DenseRange(0, 4)->ArgName("variant")->UseManualTime()->Unit(benchmark::kMillisecond)->MinTime(0.5);
+
+}  // namespace
+
+BENCHMARK_MAIN();
