@@ -3,6 +3,8 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <random>
 #include <unistd.h>
 
@@ -56,6 +58,11 @@ class ConvertJob : public test::VulkanTest {
   DepthImage depth_;
   ConvertJobOptions options_;
 };
+
+std::string fileBytes(const fs::path& file) {
+  std::ifstream stream(file, std::ios::binary);
+  return {std::istreambuf_iterator<char>(stream), std::istreambuf_iterator<char>()};
+}
 
 int largestDifference(const ImageRGBA8& a, const ImageRGBA8& b) {
   int largest = 0;
@@ -129,6 +136,34 @@ TEST_F(ConvertJob, AMissingColorFileIsNamedAndNothingIsWritten) {
     EXPECT_NE(std::string(error.what()).find("missing.png"), std::string::npos) << error.what();
   }
   EXPECT_TRUE(outputFolderIsEmpty());
+}
+
+TEST_F(ConvertJob, WritingOverItsOwnInputIsRefusedAndTheInputKept) {
+  fs::copy_file(folder_ / "color.png", folder_ / "left.png");
+  options_.color = folder_ / "left.png";
+  options_.outputFolder = folder_;
+  const std::string before = fileBytes(folder_ / "left.png");
+  const std::string message = errorOf([&] { runConvertJob(context(), options_); });
+  EXPECT_NE(message.find("would overwrite input"), std::string::npos) << message;
+  EXPECT_NE(message.find("left.png"), std::string::npos) << message;
+  EXPECT_EQ(fileBytes(folder_ / "left.png"), before);
+  EXPECT_FALSE(fs::exists(folder_ / "right.png"));
+}
+
+TEST_F(ConvertJob, FolderModeRefusesAnOutputThatIsAnotherFramesInput) {
+  // Frame "1" writes left_1.png, which is frame "left_1"'s color input.
+  fs::create_directories(folder_ / "in");
+  io::writePng(folder_ / "in" / "left_1.png", color_);
+  io::writeExr(folder_ / "in" / "left_1.exr", ImageRGBA32F(48, 20, 0.5f), &depth_);
+  io::writePng(folder_ / "in" / "1.png", color_);
+  io::writeExr(folder_ / "in" / "1.exr", ImageRGBA32F(48, 20, 0.5f), &depth_);
+  options_.outputFolder = folder_ / "in";
+  const std::vector<ConvertFrame> frames = pairFrames(folder_ / "in", "*.png", "*.exr");
+  ASSERT_EQ(frames.size(), 2u);
+  const std::string message = errorOf([&] { runConvertFolder(context(), options_, frames, {}); });
+  EXPECT_NE(message.find("left_1.png"), std::string::npos) << message;
+  EXPECT_EQ(io::readPng(folder_ / "in" / "left_1.png").pixels, color_.pixels);
+  EXPECT_FALSE(fs::exists(folder_ / "in" / "right_1.png"));
 }
 
 TEST_F(ConvertJob, NonFiniteColorIsSanitizedAndCounted) {

@@ -169,13 +169,33 @@ TEST_F(ImageIoTest, FailedRenameRemovesTemporaryFile) {
   EXPECT_TRUE(fs::is_directory(file));
 }
 
-TEST_F(ImageIoTest, FailedWriteKeepsPreviousFileIntact) {
+TEST_F(ImageIoTest, ObjectAtAPredictableTemporaryNameIsNeitherUsedNorRemoved) {
   const fs::path file = folder_ / "keep.txt";
   writeTextFile(file, "previous");
-  fs::create_directories(folder_ / "keep.txt.tmp" / "x");  // make the temporary name impossible to create
-  EXPECT_THROW(writeTextFile(file, "replacement"), std::runtime_error);
-  EXPECT_EQ(test::readFileBytes(file), "previous");
-  EXPECT_TRUE(fs::is_directory(folder_ / "keep.txt.tmp"));  // not ours: must not be deleted
+  fs::create_directories(folder_ / "keep.txt.tmp" / "x");
+  writeTextFile(file, "replacement");
+  EXPECT_EQ(test::readFileBytes(file), "replacement");
+  EXPECT_TRUE(fs::is_directory(folder_ / "keep.txt.tmp" / "x"));  // not ours: must not be touched
+}
+
+TEST_F(ImageIoTest, PlantedLinkAtATemporaryNameIsNeverWrittenThrough) {
+  const fs::path victim = folder_ / "victim.txt";
+  writeTextFile(victim, "precious");
+  for (const char* name : {"out.txt.tmp", ".out.txt.tmp", "out.txt~"})
+    fs::create_symlink(victim, folder_ / name);
+  writeTextFile(folder_ / "out.txt", "new");
+  EXPECT_EQ(test::readFileBytes(victim), "precious");
+  EXPECT_EQ(test::readFileBytes(folder_ / "out.txt"), "new");
+}
+
+TEST_F(ImageIoTest, PlantedLinkAtTheFinalNameIsReplacedNotFollowed) {
+  const fs::path victim = folder_ / "victim.txt";
+  writeTextFile(victim, "precious");
+  fs::create_symlink(victim, folder_ / "out.txt");
+  writeTextFile(folder_ / "out.txt", "new");
+  EXPECT_EQ(test::readFileBytes(victim), "precious");
+  EXPECT_FALSE(fs::is_symlink(folder_ / "out.txt"));
+  EXPECT_EQ(test::readFileBytes(folder_ / "out.txt"), "new");
 }
 
 TEST_F(ImageIoTest, WritingEmptyPngThrowsInvalidArgument) {

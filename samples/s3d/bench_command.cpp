@@ -11,6 +11,7 @@
 #include <string>
 
 #include "cli_support.h"
+#include "s3d/io/output_transaction.h"
 #include "s3d/app/bench_job.h"
 #include "s3d/app/render_job.h"
 #include "s3d/renderer/scene.h"
@@ -100,6 +101,7 @@ class BenchCommand final : public Command {
 
     std::optional<app::BenchReport> report;
     std::string jobError;
+    io::OutputTransaction outputs(options_.outputFolder);  // all files or none
     try {
       report = app::runBench(context, options_);
     } catch (const std::exception& error) {
@@ -108,6 +110,7 @@ class BenchCommand final : public Command {
     const std::vector<std::string> messages = context.validationMessages();
     for (const std::string& message : messages) std::cerr << "s3d: validation: " << oneLine(message) << '\n';
     if (!report) return fail(jobError);
+    if (messages.empty()) outputs.commit();
     if (report->rendererOnly) std::cout << app::benchMarkdown(*report);
     char wall[32];
     std::snprintf(wall, sizeof(wall), "%.1f", report->wallSeconds);

@@ -7,6 +7,7 @@
 
 #include "cli_support.h"
 #include "profile_options.h"
+#include "s3d/io/output_transaction.h"
 #include "s3d/app/convert_job.h"
 #include "s3d/stereo/output_formats.h"
 
@@ -139,6 +140,7 @@ class ConvertCommand final : public Command {
         folderMode ? app::pairFrames(inputFolder_, colorPattern_, disparityPattern_.empty() ? depthPattern_ : disparityPattern_)
                    : std::vector<app::ConvertFrame>();
     vk::Context context(contextOptions_);
+    io::OutputTransaction outputs(options_.outputFolder);  // all files or none
     std::size_t filesWritten = 0;
     std::uint32_t width = 0, height = 0;
     std::optional<double> gpuMs;
@@ -160,6 +162,7 @@ class ConvertCommand final : public Command {
     for (const std::string& message : messages) std::cerr << "s3d: validation: " << oneLine(message) << '\n';
     if (!messages.empty())
       return fail("the Vulkan validation layer reported " + std::to_string(messages.size()) + " message(s)");
+    outputs.commit();
     std::cout << "s3d convert: " << (folderMode ? std::to_string(frames.size()) + " frames of " : std::string()) << width
               << "x" << height << " on " << context.deviceName() << ", stereo pass " << formatMs(gpuMs) << ", wrote "
               << filesWritten << " files to " << options_.outputFolder.string() << '\n';

@@ -8,6 +8,7 @@
 
 #include "cli_support.h"
 #include "profile_options.h"
+#include "s3d/io/output_transaction.h"
 #include "s3d/app/render_job.h"
 #include "s3d/app/sequence_job.h"
 #include "s3d/app/views_job.h"
@@ -120,7 +121,9 @@ class RenderCommand final : public Command {
     viewsOptions.frame = options_.frame;
     viewsOptions.outputFolder = options_.outputFolder;
     vk::Context context(contextOptions_);
+    io::OutputTransaction outputs(options_.outputFolder);  // all files or none
     const app::ViewsReport report = app::runViewsJob(context, viewsOptions);
+    outputs.commit();
     std::printf("s3d render --views: scene %s, center view %ux%u on %s; synthesized vs reference: left %.2f dB, "
                 "right %.2f dB; wrote %zu files to %s\n",
                 report.scene.c_str(), report.center.width, report.center.height, report.deviceName.c_str(),
@@ -144,7 +147,9 @@ class RenderCommand final : public Command {
     sequenceOptions.reversedZ = options_.reversedZ;
     sequenceOptions.disparityBudget = options_.disparityBudget;
     vk::Context context(contextOptions_);
+    io::OutputTransaction outputs(options_.outputFolder);  // all files or none
     const app::SequenceReport report = app::runSequenceJob(context, sequenceOptions);
+    outputs.commit();
     std::uint64_t conflicts = 0;
     for (const app::SequenceFrame& frame : report.frames) conflicts += frame.weaponConflictPixels;
     std::cout << "s3d render --sequence: scene " << report.scene << ", " << report.frames.size() << " frames on "
@@ -159,6 +164,7 @@ class RenderCommand final : public Command {
     vk::Context context(contextOptions_);
     std::optional<app::RenderReport> report;
     std::string jobError;
+    io::OutputTransaction outputs(options_.outputFolder);  // all files or none
     try {
       report = app::runRenderJob(context, options_);
     } catch (const std::exception& error) {
@@ -168,6 +174,7 @@ class RenderCommand final : public Command {
     const std::vector<std::string> messages = context.validationMessages();
     for (const std::string& message : messages) std::cerr << "s3d: validation: " << oneLine(message) << '\n';
     if (!report) return fail(jobError);
+    if (messages.empty()) outputs.commit();
     for (const std::string& warning : report->warnings) warn(warning);
     printSummary(*report);
     if (!messages.empty())

@@ -240,10 +240,40 @@ std::pair<std::string, std::string> splitPattern(const std::string& pattern, con
   return {pattern.substr(0, star), pattern.substr(star + 1)};
 }
 
+// The files one frame writes, in order.
+std::vector<std::string> outputNames(const std::string& suffix, bool writeReport) {
+  std::vector<std::string> names;
+  for (const char* view : {"left", "right", "anaglyph", "sbs", "tab"}) names.push_back(view + suffix + ".png");
+  if (writeReport) names.push_back("report" + suffix + ".json");
+  return names;
+}
+
+// After resolving links: an output that is one of the inputs would destroy it (and each rerun again).
+void requireOutputsDistinctFromInputs(const fs::path& folder, const std::vector<std::string>& outputs,
+                                      const std::vector<fs::path>& inputs) {
+  std::error_code error;
+  for (const fs::path& input : inputs) {
+    if (input.empty()) continue;
+    const fs::path resolvedInput = fs::weakly_canonical(input, error);
+    for (const std::string& name : outputs) {
+      const fs::path output = folder / name;
+      const bool same = (!error && fs::weakly_canonical(output, error) == resolvedInput && !error) ||
+                        (fs::exists(output) && fs::equivalent(output, input, error) && !error);
+      if (same)
+        throw std::invalid_argument("output '" + output.string() + "' would overwrite input '" + input.string() +
+                                    "'; choose another --output folder");
+      error.clear();
+    }
+  }
+}
+
 }  // namespace
 
 ConvertReport runConvertJob(vk::Context& context, const ConvertJobOptions& options) {
   // Every input is read and checked before any output exists.
+  requireOutputsDistinctFromInputs(options.outputFolder, outputNames(options.fileSuffix, options.writeReport),
+                                   {options.color, options.depth, options.referenceLeft.value_or(fs::path()),
+                                    options.referenceRight.value_or(fs::path())});
   ConvertReport report;
   const ImageRGBA8 color = readColor(options.color, &report.sanitizedColorValues);
   stereo::StereoParameters parameters = options.stereo;
@@ -363,6 +393,15 @@ std::vector<ConvertFrame> pairFrames(const fs::path& folder, const std::string& 
 std::vector<ConvertReport> runConvertFolder(vk::Context& context, const ConvertJobOptions& options,
                                             const std::vector<ConvertFrame>& frames,
                                             const std::function<void(std::size_t, std::size_t, const std::string&)>& progress) {
+  // A frame's outputs may be another frame's inputs: every name is checked against every input first.
+  std::vector<std::string> outputs{"report.json"};
+  std::vector<fs::path> inputs{options.referenceLeft.value_or(fs::path()), options.referenceRight.value_or(fs::path())};
+  for (const ConvertFrame& frame : frames) {
+    for (std::string& name : outputNames("_" + frame.key, false)) outputs.push_back(std::move(name));
+    inputs.push_back(frame.color);
+    inputs.push_back(frame.depth);
+  }
+  requireOutputsDistinctFromInputs(options.outputFolder, outputs, inputs);
   std::vector<ConvertReport> reports;
   nlohmann::json frameJson = nlohmann::json::array();
   std::optional<comfort::DisparityBudgetController> budget;  // one over the whole sequence: smoothed, cuts detected

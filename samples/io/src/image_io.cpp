@@ -1,6 +1,7 @@
 #include "s3d/io/image_io.h"
 
 #include "file_access.h"
+#include "s3d/io/output_transaction.h"
 
 // Third-party headers are silenced here because pkg-config exposes them with -I, not -isystem
 // (Imath's half.h trips -Wconversion); our own code below keeps the full warning set.
@@ -18,7 +19,13 @@
 #include <stb/stb_image_write.h>  // implementation lives in Debian's libstb.so: no STB_*_IMPLEMENTATION here
 #pragma GCC diagnostic pop
 
+#include <fcntl.h>
+#include <unistd.h>
+
 #include <cerrno>
+#include <cstdio>
+#include <random>
+#include <utility>
 #include <climits>
 #include <cstring>
 #include <fstream>
@@ -59,37 +66,60 @@ namespace detail {
 namespace {
 using detail::failRead;
 
-// Write to "<file>.tmp" in the same folder, then rename over the target: rename within one file system
-// is atomic, so readers see either the old file or the complete new one, never a partial one.
+// Opens a fresh temporary file beside the target under an unpredictable name, refusing any existing file or
+// link there (O_EXCL | O_NOFOLLOW), so a link planted in a shared folder is never written through.
+int createTemporaryBeside(const fs::path& file, fs::path& temporary) {
+  std::random_device entropy;
+  for (int attempt = 0; attempt < 16; ++attempt) {
+    char suffix[24];
+    std::snprintf(suffix, sizeof suffix, ".%08x.tmp", static_cast<unsigned>(entropy()));
+    temporary = file.parent_path() / ("." + file.filename().string() + suffix);
+    const int descriptor = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0666);
+    if (descriptor >= 0 || errno != EEXIST) return descriptor;
+  }
+  errno = EEXIST;
+  return -1;
+}
+
+// Write to a fresh temporary file in the same folder, then rename over the target: rename within one file
+// system is atomic, so readers see either the old file or the complete new one, never a partial one; a link
+// at the target itself is replaced, not followed.
 void writeFileAtomically(const char* operation, const fs::path& file, std::string_view bytes) {
   if (file.empty() || !file.has_filename()) failWrite(operation, file, "path names no file");
   std::error_code error;
-  const fs::path folder = file.parent_path();
+  const fs::path target = OutputTransaction::stagedTarget(file);  // messages still name the user's file
+  const fs::path folder = target.parent_path();
   if (!folder.empty()) {
     fs::create_directories(folder, error);
     if (error) failWrite(operation, file, "cannot create folder " + quoted(folder) + ": " + error.message());
   }
 
-  fs::path temporary = file;
-  temporary += ".tmp";
-  bool temporaryCreated = false;  // never delete a file we did not create
+  fs::path temporary;
+  int descriptor = createTemporaryBeside(target, temporary);
+  if (descriptor < 0) {
+    const int openErrno = errno;  // capture before anything else can overwrite it
+    failWrite(operation, file, std::string("cannot create a temporary file beside it: ") + std::strerror(openErrno));
+  }
   try {
-    std::ofstream stream(temporary, std::ios::binary | std::ios::trunc);
-    if (!stream) {
-      const int openErrno = errno;  // capture before anything else can overwrite it
-      failWrite(operation, file, "cannot create temporary file " + quoted(temporary) + ": " + std::strerror(openErrno));
+    std::size_t written = 0;
+    while (written < bytes.size()) {
+      const ::ssize_t count = ::write(descriptor, bytes.data() + written, bytes.size() - written);
+      if (count < 0 && errno == EINTR) continue;
+      if (count <= 0) {
+        const int writeErrno = errno;
+        failWrite(operation, file, "writing temporary file " + quoted(temporary) + " failed: " + std::strerror(writeErrno));
+      }
+      written += static_cast<std::size_t>(count);
     }
-    temporaryCreated = true;
-    stream.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-    stream.close();
-    if (stream.fail()) {
-      const int writeErrno = errno;
-      failWrite(operation, file, "writing temporary file " + quoted(temporary) + " failed: " + std::strerror(writeErrno));
+    if (::close(std::exchange(descriptor, -1)) != 0) {
+      const int closeErrno = errno;
+      failWrite(operation, file, "writing temporary file " + quoted(temporary) + " failed: " + std::strerror(closeErrno));
     }
-    fs::rename(temporary, file, error);
+    fs::rename(temporary, target, error);
     if (error) failWrite(operation, file, "cannot move temporary file into place: " + error.message());
   } catch (...) {
-    if (temporaryCreated) fs::remove(temporary, error);  // best effort; the original error is what matters
+    if (descriptor >= 0) ::close(descriptor);
+    fs::remove(temporary, error);  // ours: created exclusively above; best effort, the original error matters
     throw;
   }
 }
