@@ -5,7 +5,6 @@
 #include <iostream>
 
 #include "cli_support.h"
-#include "s3d/io/output_transaction.h"
 #include "s3d/app/regress_job.h"
 
 namespace s3d::cli {
@@ -32,13 +31,11 @@ class RegressCommand final : public Command {
     // The whole suite is validated before a Vulkan start-up.
     const app::RegressSuite suite = app::loadRegressSuite(suite_);
     vk::Context context(contextOptions_);
-    io::OutputTransaction outputs(options_.outputFolder);  // the report: all files or none
     const bool terminal = ::isatty(STDERR_FILENO) != 0;
     const app::RegressResult result = app::runRegressSuite(
         context, suite, options_, [terminal](std::size_t done, std::size_t total, const std::string& name) {
           if (terminal) std::cerr << "\r[" << done << '/' << total << "] " << name << (done == total ? "\n" : "") << std::flush;
         });
-    outputs.commit();
     for (const app::RegressRun& run : result.runs) {
       std::cout << (run.baselineUpdated ? "updated " : run.passed() ? "pass    " : "FAIL    ") << run.name;
       if (!run.problem.empty()) std::cout << ": " << oneLine(run.problem);

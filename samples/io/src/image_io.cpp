@@ -73,7 +73,10 @@ int createTemporaryBeside(const fs::path& file, fs::path& temporary) {
   for (int attempt = 0; attempt < 16; ++attempt) {
     char suffix[24];
     std::snprintf(suffix, sizeof suffix, ".%08x.tmp", static_cast<unsigned>(entropy()));
-    temporary = file.parent_path() / ("." + file.filename().string() + suffix);
+    std::string name(1, '.');  // appended: `"." + std::string` trips GCC 12's -Wrestrict false positive
+    name += file.filename().string();
+    name += suffix;
+    temporary = file.parent_path() / name;
     const int descriptor = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0666);
     if (descriptor >= 0 || errno != EEXIST) return descriptor;
   }
