@@ -28,7 +28,8 @@ enum class DepthSource {
 };
 // --method auto, from measurements (docs/RESULTS.md): forward for external depth or disparity (on the real
 // scenes at least the plain forward warp on visible pixels, where every gather method is below it: their
-// searches look behind the screen only, and disparity input is all in front of it); the default otherwise.
+// searches look behind the screen only, and disparity input is all in front of it; on the built-in scenes'
+// depth at 1920x1080 the highest SSIM of all methods); the default otherwise (its cost on an H100 is open).
 StereoMethod automaticMethod(DepthSource source);
 StereoMethod parseStereoMethod(const std::string& name);  // throws std::invalid_argument listing the choices
 
