@@ -154,6 +154,45 @@ TEST(GltfScene, ATruncatedBufferIsNamed) {
   EXPECT_NE(message.find(file.string()), std::string::npos) << message;
 }
 
+TEST(GltfScene, AnAbsoluteBufferUriIsRefused) {
+  ScratchFolder scratch;
+  const fs::path file = scratch.copyOfTexturedQuad();
+  writeText(file, replaced(readText(file), "\"uri\": \"textured_quad.bin\"",
+                           "\"uri\": \"" + (scratch.path() / "textured_quad.bin").string() + "\""));
+  const std::string message = errorOf<std::invalid_argument>([&] { loadGltfScene(file); });
+  EXPECT_NE(message.find("buffer 0 URI"), std::string::npos) << message;
+  EXPECT_NE(message.find("absolute"), std::string::npos) << message;
+}
+
+TEST(GltfScene, AnImageUriClimbingOutOfTheFolderIsRefused) {
+  ScratchFolder scratch;
+  const fs::path file = scratch.copyOfTexturedQuad();
+  fs::create_directories(scratch.path() / "inner");
+  fs::rename(file, scratch.path() / "inner" / "scene.gltf");
+  fs::rename(scratch.path() / "textured_quad.bin", scratch.path() / "inner" / "textured_quad.bin");
+  const fs::path moved = scratch.path() / "inner" / "scene.gltf";
+  writeText(moved, replaced(readText(moved), "\"uri\": \"textured_quad_base_color.png\"",
+                            "\"uri\": \"..%2Ftextured_quad_base_color.png\""));
+  const std::string message = errorOf<std::invalid_argument>([&] { loadGltfScene(moved); });
+  EXPECT_NE(message.find("image 0 URI"), std::string::npos) << message;
+  EXPECT_NE(message.find("climbs out"), std::string::npos) << message;
+}
+
+TEST(GltfScene, AnImageUriLeadingOutThroughALinkIsRefused) {
+  ScratchFolder scratch;
+  scratch.copyOfTexturedQuad();
+  fs::create_directories(scratch.path() / "outside");
+  fs::rename(scratch.path() / "textured_quad_normal.png", scratch.path() / "outside" / "normal.png");
+  fs::create_directories(scratch.path() / "scene");
+  for (const char* name : {"textured_quad.gltf", "textured_quad.bin", "textured_quad_base_color.png"})
+    fs::rename(scratch.path() / name, scratch.path() / "scene" / name);
+  fs::create_symlink(scratch.path() / "outside" / "normal.png", scratch.path() / "scene" / "textured_quad_normal.png");
+  const std::string message =
+      errorOf<std::invalid_argument>([&] { loadGltfScene(scratch.path() / "scene" / "textured_quad.gltf"); });
+  EXPECT_NE(message.find("image 1 URI"), std::string::npos) << message;
+  EXPECT_NE(message.find("through a link"), std::string::npos) << message;
+}
+
 TEST(GltfScene, ARequiredExtensionItCannotDrawIsNamed) {
   ScratchFolder scratch;
   const fs::path file = scratch.copyOfTexturedQuad();

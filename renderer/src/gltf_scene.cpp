@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstring>
 #include <fstream>
+#include <iterator>
 #include <functional>
 #include <map>
 #include <stdexcept>
@@ -21,6 +22,7 @@
 #include <glm/gtc/type_ptr.hpp>
 #include <nlohmann/json.hpp>
 #include <tiny_gltf.h>
+
 
 namespace s3d::renderer {
 namespace fs = std::filesystem;
@@ -587,13 +589,111 @@ fs::path sceneDescriptionPath(const fs::path& gltfFile) {
   return description;
 }
 
+namespace {
+
+// A scene file may read only files inside its own folder: URIs that are absolute, climb out with "..", or
+// lead out through a link are refused before tinygltf follows them, and the file callbacks refuse anything
+// outside the folder (tinygltf also searches the working directory).
+std::string decodedUri(const std::string& uri) {
+  std::string decoded;
+  for (std::size_t i = 0; i < uri.size(); ++i) {
+    if (uri[i] == '%' && i + 2 < uri.size() && std::isxdigit(static_cast<unsigned char>(uri[i + 1])) &&
+        std::isxdigit(static_cast<unsigned char>(uri[i + 2]))) {
+      decoded += static_cast<char>(std::stoi(uri.substr(i + 1, 2), nullptr, 16));
+      i += 2;
+    } else {
+      decoded += uri[i];
+    }
+  }
+  return decoded;
+}
+
+bool isInside(const fs::path& folder, const fs::path& path) {
+  std::error_code error;
+  const fs::path resolved = fs::weakly_canonical(path, error);
+  if (error) return false;
+  const fs::path relative = resolved.lexically_relative(folder);
+  return !relative.empty() && *relative.begin() != "..";
+}
+
+// The JSON part of a .gltf or .glb; null when it cannot be read (tinygltf then reports why).
+nlohmann::json gltfJson(const fs::path& file, bool binary) {
+  std::ifstream in(file, std::ios::binary);
+  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (binary) {
+    if (bytes.size() < 20 || bytes.compare(0, 4, "glTF") != 0) return nullptr;
+    std::uint32_t length = 0;
+    std::memcpy(&length, bytes.data() + 12, 4);
+    if (length > bytes.size() - 20) return nullptr;
+    bytes = bytes.substr(20, length);
+  }
+  nlohmann::json json = nlohmann::json::parse(bytes, nullptr, false);
+  return json.is_discarded() ? nlohmann::json(nullptr) : json;
+}
+
+void requireUrisInsideFolder(const fs::path& file, const fs::path& folder, bool binary) {
+  const nlohmann::json json = gltfJson(file, binary);
+  if (!json.is_object()) return;
+  for (const char* kind : {"buffers", "images"}) {
+    const auto list = json.find(kind);
+    if (list == json.end() || !list->is_array()) continue;
+    for (std::size_t index = 0; index < list->size(); ++index) {
+      const nlohmann::json& entry = (*list)[index];
+      if (!entry.is_object() || !entry.contains("uri") || !entry["uri"].is_string()) continue;
+      const std::string uri = entry["uri"].get<std::string>();
+      if (uri.rfind("data:", 0) == 0) continue;
+      const std::string decoded = decodedUri(uri);
+      const bool hasScheme = decoded.find(':') != std::string::npos;
+      std::string problem;
+      if (decoded.empty()) problem = "is empty";
+      else if (decoded.front() == '/' || decoded.front() == '\\' || hasScheme) problem = "is an absolute path";
+      else if (const fs::path normal = fs::path(decoded).lexically_normal(); !normal.empty() && *normal.begin() == "..")
+        problem = "climbs out of the scene's folder";
+      else if (!isInside(folder, folder / decoded)) problem = "leads out of the scene's folder through a link";
+      if (!problem.empty())
+        throw std::invalid_argument("glTF file '" + file.string() + "': " + std::string(kind).substr(0, std::strlen(kind) - 1) +
+                                    " " + std::to_string(index) + " URI '" + uri + "' " + problem +
+                                    "; a scene may only use files in its own folder");
+    }
+  }
+}
+
+struct SceneFolderSandbox {
+  fs::path folder;
+};
+
+bool fileExistsInside(const std::string& path, void* sandbox) {
+  std::error_code error;
+  return isInside(static_cast<SceneFolderSandbox*>(sandbox)->folder, path) && fs::is_regular_file(path, error);
+}
+
+std::string expandNothing(const std::string& path, void*) { return path; }  // no "~" or shell expansion
+
+bool readWholeFileInside(std::vector<unsigned char>* out, std::string* error, const std::string& path, void* sandbox) {
+  if (!fileExistsInside(path, sandbox)) {
+    if (error) *error += "file '" + path + "' is not in the scene's folder\n";
+    return false;
+  }
+  return tinygltf::ReadWholeFile(out, error, path, nullptr);
+}
+
+bool writeNothing(std::string* error, const std::string&, const std::vector<unsigned char>&, void*) {
+  if (error) *error += "scene loading writes no files\n";
+  return false;
+}
+
+}  // namespace
+
 Scene loadGltfScene(const fs::path& file) {
   std::error_code error;
   if (!fs::is_regular_file(file, error)) throw std::runtime_error("glTF file '" + file.string() + "' does not exist");
+  const bool binary = lowercase(file.extension().string()) == ".glb";
+  SceneFolderSandbox sandbox{fs::weakly_canonical(fs::absolute(file).parent_path(), error)};
+  requireUrisInsideFolder(file, sandbox.folder, binary);
   tinygltf::TinyGLTF loader;
+  loader.SetFsCallbacks({fileExistsInside, expandNothing, readWholeFileInside, writeNothing, &sandbox});
   tinygltf::Model model;
   std::string errors, warnings;
-  const bool binary = lowercase(file.extension().string()) == ".glb";
   const bool loaded = binary ? loader.LoadBinaryFromFile(&model, &errors, &warnings, file.string())
                              : loader.LoadASCIIFromFile(&model, &errors, &warnings, file.string());
   if (!loaded) {

@@ -7,15 +7,13 @@
 #include <string_view>
 
 #include "s3d/image.h"
+#include "s3d/image_limits.h"
 
 namespace s3d::io {
 
-// Largest image the readers accept. A header claiming more is rejected before any pixel memory is
-// allocated, so a small corrupt or hostile file cannot exhaust memory (found by tests/fuzz/fuzz_exr.cpp).
-// 16384 is the usual Vulkan maxImageDimension2D; 2^26 pixels (8192x8192, more than 8K UHD) keep an
-// RGBA float frame at 1 GiB.
-inline constexpr std::uint32_t kMaxImageSide = 16384;
-inline constexpr std::uint64_t kMaxImagePixels = std::uint64_t(1) << 26;
+// Largest image the readers accept (s3d/image_limits.h: the same limits hold for glTF textures).
+using s3d::kMaxImagePixels;
+using s3d::kMaxImageSide;
 
 // 8-bit RGBA PNG. The parent folder is created if missing.
 // Throws std::invalid_argument for an empty or inconsistent image, std::runtime_error if writing fails.
