@@ -1,5 +1,7 @@
 #include "s3d/hud/overlay.h"
 
+#include "s3d/hud/hud_layers.h"
+
 #include <stb_easy_font.h>
 
 #include <algorithm>
@@ -77,22 +79,7 @@ ImageRGBA8 panelLayer(std::uint32_t width, std::uint32_t height, const Panel& pa
 BlendCounts blendLayer(ImageRGBA8& eye, const ImageRGBA8& layer, bool behindWeapon) {
   if (eye.width != layer.width || eye.height != layer.height)
     throw std::invalid_argument("blendLayer: the layer and the eye differ in size");
-  BlendCounts counts;
-  for (std::size_t i = 0; i < eye.pixelCount(); ++i) {
-    const std::uint8_t* source = &layer.pixels[4 * i];
-    if (source[3] == 0) continue;
-    std::uint8_t* target = &eye.pixels[4 * i];
-    float opacity = float(source[3]) / 255.0f;
-    if (behindWeapon && target[3] < 255) {
-      opacity *= float(target[3]) / 255.0f;  // the seed's fade: the weapon mask occludes the element
-      ++counts.fadedPixels;
-    }
-    if (opacity <= 0.0f) continue;
-    ++counts.drawnPixels;
-    for (int c = 0; c < 3; ++c)
-      target[c] = std::uint8_t(std::lround(float(target[c]) + (float(source[c]) - float(target[c])) * opacity));
-  }
-  return counts;
+  return compositeLayer(eye, layer, 0, 0, behindWeapon);  // the HUD pass's per-pixel math (hud_pass_shared.h)
 }
 
 std::uint64_t countDepthConflicts(const ImageRGBA8& centerLayer, float elementDepth, const DepthImage& stereoDepth,

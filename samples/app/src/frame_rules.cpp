@@ -1,7 +1,6 @@
 #include "s3d/app/frame_rules.h"
 
 #include <algorithm>
-#include <functional>
 #include <limits>
 #include <stdexcept>
 #include <utility>
@@ -9,6 +8,7 @@
 #include "s3d/comfort/comfort_report.h"
 #include "s3d/comfort/frame_comfort_state.h"
 #include "s3d/hud/crosshair.h"
+#include "s3d/hud/hud_layers.h"
 #include "s3d/hud/overlay.h"
 
 namespace s3d::app {
@@ -49,36 +49,33 @@ HudFrame drawHud(const HudFrameInput& input, stereo::StereoPair& eyes, ImageRGBA
   HudFrame hud;
   const comfort::HudElementState crosshair = state("crosshair", input.crosshairDepth);
   hud.crosshairDepth = crosshair.depth;
-  const hud::CrosshairStyle crosshairStyle = hud::crosshairStyleForHeight(height);
-
-  struct HudElement {
-    comfort::HudElementState state;
-    std::function<ImageRGBA8(float offsetPx)> layer;  // the element alone, shifted by offsetPx
-  };
-  std::vector<HudElement> elements;
-  for (const hud::Panel& panel : hud::defaultPanels(width, height))
-    elements.push_back({state(panel.name, panel.depth),
-                        [&, panel](float offsetPx) { return hud::panelLayer(width, height, panel, offsetPx); }});
-  // The crosshair last, on top. Its center in pixel indices ((W - 1) / 2, rounded half up) plus the offset.
-  elements.push_back({crosshair, [&](float offsetPx) {
-                        ImageRGBA8 layer(width, height);
-                        hud::drawCrosshair(layer, 0.5f * float(width - 1) + offsetPx, 0.5f * float(height - 1),
-                                           crosshairStyle);
-                        return layer;
-                      }});
-  for (const HudElement& element : elements) {
-    HudElementReport entry{element.state.name, element.state.depth, element.state.fadesBehindWeapon};
-    const ImageRGBA8 centerLayer = element.layer(0.0f);
+  // The library's layers (what hud::HudPass composites on the GPU): the panels, then the crosshair on top.
+  std::vector<comfort::HudElementState> states;
+  std::vector<hud::HudLayer> layers;
+  for (const hud::Panel& panel : hud::defaultPanels(width, height)) {
+    states.push_back(state(panel.name, panel.depth));
+    layers.push_back(hud::panelHudLayer(panel));
+  }
+  states.push_back(crosshair);
+  layers.push_back(hud::crosshairHudLayer(width, height, hud::crosshairStyleForHeight(height)));
+  for (std::size_t i = 0; i < layers.size(); ++i) {
+    const hud::HudLayer& layer = layers[i];
+    HudElementReport entry{states[i].name, states[i].depth, states[i].fadesBehindWeapon};
+    const hud::LayerOrigin still = hud::layerOrigin(layer.placement, 0.0f);
+    const ImageRGBA8 centerLayer = hud::placedLayer(width, height, layer.pixels, still.x, still.y);
     entry.conflictPixels =
         hud::countDepthConflicts(centerLayer, entry.depth, *input.stereoDepth, *input.firstPersonMask, entry.behindWeapon);
     if (center) (void)hud::blendLayer(*center, centerLayer, entry.behindWeapon);
     for (const stereo::Eye eye : {stereo::Eye::Left, stereo::Eye::Right}) {
       const std::size_t side = eye == stereo::Eye::Left ? 0 : 1;
-      const ImageRGBA8 layer = element.layer(hud::crosshairEyeOffsetPx(parameters, entry.depth, width, eye));
-      const hud::BlendCounts counts = hud::blendLayer(side == 0 ? eyes.left : eyes.right, layer, entry.behindWeapon);
+      const hud::LayerOrigin origin = hud::layerOrigin(layer.placement, hud::eyeOffsetPx(states[i].parallaxPx, eye));
+      const hud::BlendCounts counts = hud::compositeLayer(side == 0 ? eyes.left : eyes.right, layer.pixels, origin.x,
+                                                          origin.y, entry.behindWeapon);
       entry.drawnPixels[side] = counts.drawnPixels;
       entry.fadedPixels[side] = counts.fadedPixels;
-      if (reference) (void)hud::blendLayer(side == 0 ? reference->left : reference->right, layer, entry.behindWeapon);
+      if (reference)
+        (void)hud::compositeLayer(side == 0 ? reference->left : reference->right, layer.pixels, origin.x, origin.y,
+                                  entry.behindWeapon);
     }
     hud.conflictPixels += entry.conflictPixels;
     hud.elements.push_back(std::move(entry));
