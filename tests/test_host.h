@@ -4,6 +4,7 @@
 // command pool; s3d adopts the device through vk::HostDevice.
 #include <gtest/gtest.h>
 
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -141,6 +142,26 @@ class TestHost {
 inline TestHost& sharedTestHost() {
   static std::unique_ptr<TestHost> host = std::make_unique<TestHost>();
   return *host;
+}
+
+// Records into a command buffer of the host's pool, submits it on the host's queue and waits (what an engine's
+// frame does, minus the swapchain).
+inline void runOnHostQueue(TestHost& host, const std::function<void(VkCommandBuffer)>& record) {
+  VkCommandBufferAllocateInfo info{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+  info.commandPool = host.commandPool;
+  info.commandBufferCount = 1;
+  VkCommandBuffer cmd = VK_NULL_HANDLE;
+  S3D_VK_CHECK(vkAllocateCommandBuffers(host.device, &info, &cmd));
+  VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+  S3D_VK_CHECK(vkBeginCommandBuffer(cmd, &begin));
+  record(cmd);
+  S3D_VK_CHECK(vkEndCommandBuffer(cmd));
+  VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+  submit.commandBufferCount = 1;
+  submit.pCommandBuffers = &cmd;
+  S3D_VK_CHECK(vkQueueSubmit(host.queue, 1, &submit, VK_NULL_HANDLE));
+  S3D_VK_CHECK(vkQueueWaitIdle(host.queue));
+  vkFreeCommandBuffers(host.device, host.commandPool, 1, &cmd);
 }
 
 // Any validation message (synchronization validation included) recorded on the host fails the test.

@@ -1,9 +1,11 @@
 #include "s3d/stereo/host_stereo_pass.h"
 
+#include <array>
+#include <span>
 #include <stdexcept>
 #include <string>
-#include <vector>
 
+#include "s3d/stereo/detail/host_barriers.h"
 #include "s3d/vk/check.h"
 #include "s3d/vk/pipeline.h"
 
@@ -34,18 +36,8 @@ bool isColorFormat(VkFormat f) {
       return false;
   }
 }
-bool isHardwareDepth(VkFormat f) {
-  return f == VK_FORMAT_D32_SFLOAT || f == VK_FORMAT_D24_UNORM_S8_UINT || f == VK_FORMAT_D16_UNORM;
-}
-VkImageAspectFlags barrierAspect(VkFormat f) {
-  if (f == VK_FORMAT_D24_UNORM_S8_UINT) return VK_IMAGE_ASPECT_DEPTH_BIT | VK_IMAGE_ASPECT_STENCIL_BIT;
-  return isHardwareDepth(f) ? VK_IMAGE_ASPECT_DEPTH_BIT : VK_IMAGE_ASPECT_COLOR_BIT;
-}
-bool sampledReadable(VkImageLayout l) {
-  return l == VK_IMAGE_LAYOUT_GENERAL || l == VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL ||
-         l == VK_IMAGE_LAYOUT_READ_ONLY_OPTIMAL || l == VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL ||
-         l == VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_OPTIMAL;
-}
+using detail::isHostDepthFormat;
+using detail::sampledReadable;
 
 gpu::vec2 layerRatio(float nearPlane, float farPlane, bool infinite, bool reversed, float begin, float end) {
   if (!infinite) return reversed ? gpu::reversedProjectionRatio(nearPlane, farPlane, begin, end)
@@ -70,35 +62,8 @@ VkDescriptorSetLayoutBinding binding(std::uint32_t index, VkDescriptorType type)
   return {index, type, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr};
 }
 
-struct BarrierList {
-  std::vector<VkImageMemoryBarrier2> images;
-  bool memory = false;  // a compute -> compute dependency for s3d's own intermediates (this and earlier frames)
-  void image(const HostImage& host, VkImageLayout fromLayout, VkPipelineStageFlags2 fromStage, VkAccessFlags2 fromAccess,
-             VkImageLayout toLayout, VkPipelineStageFlags2 toStage, VkAccessFlags2 toAccess) {
-    VkImageMemoryBarrier2 b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
-    b.srcStageMask = fromStage;
-    b.srcAccessMask = fromAccess;
-    b.dstStageMask = toStage;
-    b.dstAccessMask = toAccess;
-    b.oldLayout = fromLayout;
-    b.newLayout = toLayout;
-    b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-    b.image = host.image;
-    b.subresourceRange = {barrierAspect(host.format), 0, 1, 0, 1};
-    images.push_back(b);
-  }
-  void record(VkCommandBuffer cmd) const {
-    VkMemoryBarrier2 global{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
-    global.srcStageMask = global.dstStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
-    global.srcAccessMask = global.dstAccessMask = VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
-    VkDependencyInfo dependency{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-    dependency.memoryBarrierCount = memory ? 1 : 0;
-    dependency.pMemoryBarriers = &global;
-    dependency.imageMemoryBarrierCount = std::uint32_t(images.size());
-    dependency.pImageMemoryBarriers = images.data();
-    if (memory || !images.empty()) vkCmdPipelineBarrier2(cmd, &dependency);
-  }
-};
+// Colour, depth and two outputs at most.
+using BarrierList = detail::HostBarriers<4>;
 
 // The layout s3d uses an input in, and whether it needs a barrier from the host's state.
 VkImageLayout inputLayout(const HostImage& image, bool storage, const char* what) {
@@ -146,7 +111,7 @@ HostStereoPass::HostStereoPass(vk::Context& context, const HostStereoPassDesc& d
   if (!isColorFormat(desc.colorFormat))
     throw std::invalid_argument("HostStereoPass: colour format " + std::to_string(int(desc.colorFormat)) +
                                 " is not one of RGBA8/BGRA8 UNORM or SRGB, RGBA16F, B10G11R11");
-  if (!isHardwareDepth(desc.depthFormat) && desc.depthFormat != VK_FORMAT_R32_SFLOAT)
+  if (!isHostDepthFormat(desc.depthFormat) && desc.depthFormat != VK_FORMAT_R32_SFLOAT)
     throw std::invalid_argument("HostStereoPass: depth format " + std::to_string(int(desc.depthFormat)) +
                                 " is not one of D32, D24S8, D16 or R32F linear depth");
   if (desc.inputsAreStorage && (desc.colorFormat != VK_FORMAT_R8G8B8A8_UNORM || desc.depthFormat != VK_FORMAT_R32_SFLOAT))
@@ -214,7 +179,8 @@ std::uint32_t HostStereoPass::packedHeight() const {
 }
 
 void HostStereoPass::record(VkCommandBuffer cmd, const HostImage& color, const HostImage& depth, const HostFrame& frame,
-                            const HostImage* left, const HostImage* right, const HostImage* target) const {
+                            const HostImage* left, const HostImage* right, const HostImage* target,
+                            const EyeOverlay* overlay) const {
   const gpu::StereoConstants& constants = frame.stereo;
   if (constants.tapCount < 0 || constants.tapCount > S3D_STEREO_MAX_TAPS)
     throw std::invalid_argument("HostStereoPass: tap count out of range (use makeStereoConstants)");
@@ -224,14 +190,17 @@ void HostStereoPass::record(VkCommandBuffer cmd, const HostImage& color, const H
   requireImage(&depth, "depth");
   if (color.format != desc_.colorFormat || depth.format != desc_.depthFormat)
     throw std::invalid_argument("HostStereoPass: the colour or depth format differs from the one the pass was made for");
-  std::vector<const HostImage*> outputs;
+  std::array<const HostImage*, 2> outputArray{};
+  std::span<const HostImage* const> outputs;
   if (desc_.output == HostOutput::TwoEyes) {
     requireImage(left, "left eye");
     requireImage(right, "right eye");
-    outputs = {left, right};
+    outputArray = {left, right};
+    outputs = std::span(outputArray);
   } else {
     requireImage(target, "packed target");
-    outputs = {target};
+    outputArray = {target, nullptr};
+    outputs = std::span(outputArray).first(1);
   }
   for (const HostImage* output : outputs) {
     if (output->format != eyeFormat())
@@ -251,10 +220,10 @@ void HostStereoPass::record(VkCommandBuffer cmd, const HostImage& color, const H
   before.memory = true;
   for (auto [image, layout] : {std::pair{&color, colorLayout}, std::pair{&depth, depthLayout}})
     if (image->stage != VK_PIPELINE_STAGE_2_NONE)
-      before.image(*image, image->layout, image->stage, image->access, layout, compute, inputRead);
+      before.image(image->image, image->format, image->layout, image->stage, image->access, layout, compute, inputRead);
   for (const HostImage* output : outputs)
     if (output->stage != VK_PIPELINE_STAGE_2_NONE)
-      before.image(*output, output->layout, output->stage, output->access, VK_IMAGE_LAYOUT_GENERAL, compute,
+      before.image(output->image, output->format, output->layout, output->stage, output->access, VK_IMAGE_LAYOUT_GENERAL, compute,
                    VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
   before.record(cmd);
 
@@ -276,7 +245,7 @@ void HostStereoPass::record(VkCommandBuffer cmd, const HostImage& color, const H
     push.width = int(desc_.width);
     push.height = int(desc_.height);
     push.colorTransfer = colorTransfer_;
-    push.depthKind = isHardwareDepth(desc_.depthFormat) ? S3D_HOST_DEPTH_DEVICE : S3D_HOST_DEPTH_LINEAR;
+    push.depthKind = isHostDepthFormat(desc_.depthFormat) ? S3D_HOST_DEPTH_DEVICE : S3D_HOST_DEPTH_LINEAR;
     const VkDescriptorImageInfo infos[4] = {{sampler_, color.view, colorLayout},
                                             {sampler_, depth.view, depthLayout},
                                             {VK_NULL_HANDLE, centerColor_.view, VK_IMAGE_LAYOUT_GENERAL},
@@ -304,6 +273,15 @@ void HostStereoPass::record(VkCommandBuffer cmd, const HostImage& color, const H
              desc_.width, desc_.height);
   }
 
+  if (overlay) {  // on the finished eyes, before packing (the HUD)
+    between.record(cmd);
+    const HostImage leftEye = pack_ ? HostImage{leftEye_.image, leftEye_.view, eyeFormat(), VK_IMAGE_LAYOUT_GENERAL}
+                                    : HostImage{left->image, left->view, left->format, VK_IMAGE_LAYOUT_GENERAL};
+    const HostImage rightEye = pack_ ? HostImage{rightEye_.image, rightEye_.view, eyeFormat(), VK_IMAGE_LAYOUT_GENERAL}
+                                     : HostImage{right->image, right->view, right->format, VK_IMAGE_LAYOUT_GENERAL};
+    overlay->recordOnEyes(cmd, leftEye, rightEye);
+  }
+
   if (pack_) {
     between.record(cmd);
     gpu::HostPackConstants push{};
@@ -328,10 +306,10 @@ void HostStereoPass::record(VkCommandBuffer cmd, const HostImage& color, const H
   BarrierList after;
   for (auto [image, layout] : {std::pair{&color, colorLayout}, std::pair{&depth, depthLayout}})
     if (image->stage != VK_PIPELINE_STAGE_2_NONE)
-      after.image(*image, layout, compute, inputRead, image->layout, image->stage, image->access);
+      after.image(image->image, image->format, layout, compute, inputRead, image->layout, image->stage, image->access);
   for (const HostImage* output : outputs)
     if (output->stage != VK_PIPELINE_STAGE_2_NONE)
-      after.image(*output, VK_IMAGE_LAYOUT_GENERAL, compute, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, output->layout,
+      after.image(output->image, output->format, VK_IMAGE_LAYOUT_GENERAL, compute, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, output->layout,
                   output->stage, output->access);
   after.record(cmd);
 }

@@ -71,16 +71,30 @@ struct HostFrame {
 gpu::LinearDepthParams linearDepthParams(const HostProjection& projection, float weaponDepthOffset,
                                          float weaponDepthScale);
 
+// Work recorded on the finished eyes inside HostStereoPass::record, before they are packed (the HUD pass:
+// hud::HudPass::overlay). The eyes come in GENERAL layout, eyeFormat(), already ordered after the stereo kernel's
+// compute writes (stage NONE: s3d synchronizes them), and record() orders the packing after the overlay's compute
+// writes. An overlay synchronizes any other image it uses itself.
+class EyeOverlay {
+ public:
+  virtual void recordOnEyes(VkCommandBuffer cmd, const HostImage& left, const HostImage& right) const = 0;
+
+ protected:
+  ~EyeOverlay() = default;
+};
+
 class HostStereoPass {
  public:
   // Throws std::invalid_argument naming an unsupported format or size.
   HostStereoPass(vk::Context& context, const HostStereoPassDesc& desc);
 
-  // Records the input conversion (unless skipped), the stereo kernel and the output packing into `cmd`. Eyes:
-  // `left`/`right` (storage images in the pass's eye format, see eyeFormat()); packed outputs: `target`
-  // (storage image in eyeFormat(), packedWidth() x packedHeight()). No submit, no wait, no allocation.
+  // Records the input conversion (unless skipped), the stereo kernel, the overlay (when given) and the output
+  // packing into `cmd`. Eyes: `left`/`right` (storage images in the pass's eye format, see eyeFormat()); packed
+  // outputs: `target` (storage image in eyeFormat(), packedWidth() x packedHeight()). No submit, no wait, no
+  // allocation.
   void record(VkCommandBuffer cmd, const HostImage& color, const HostImage& depth, const HostFrame& frame,
-              const HostImage* left, const HostImage* right, const HostImage* target) const;
+              const HostImage* left, const HostImage* right, const HostImage* target,
+              const EyeOverlay* overlay = nullptr) const;
 
   // RGBA8 UNORM (display colour) for 8-bit inputs, RGBA16F for RGBA16F and B10G11R11 (HDR) inputs.
   VkFormat eyeFormat() const { return hdr_ ? VK_FORMAT_R16G16B16A16_SFLOAT : VK_FORMAT_R8G8B8A8_UNORM; }
