@@ -1,11 +1,15 @@
 // The C API over the C++ library: every entry point catches, stores the message per thread and returns a code.
 #include "s3d/s3d.h"
 
+#include <algorithm>
+#include <array>
 #include <memory>
+#include <span>
 #include <stdexcept>
 #include <string>
 
 #include "s3d/comfort/frame_comfort_state.h"
+#include "s3d/hud/hud_pass.h"
 #include "s3d/stereo/host_stereo_pass.h"
 #include "s3d/vk/check.h"
 #include "s3d/vk/context.h"
@@ -15,6 +19,9 @@ struct s3d_context_t {
 };
 struct s3d_host_pass_t {
   s3d::stereo::HostStereoPass pass;
+};
+struct s3d_hud_pass_t {
+  s3d::hud::HudPass pass;
 };
 struct s3d_device_patch_t {
   std::unique_ptr<s3d::vk::DeviceRequirementsPatch> patch;
@@ -79,6 +86,54 @@ s3d::stereo::HostImage toCpp(const s3d_host_image& i) {
 
 s3d_hud_element_state toC(const s3d::comfort::HudElementState& s) {
   return {s.depth, s.parallaxPx, s.fadesBehindWeapon ? 1 : 0};
+}
+
+// One frame's HUD in C++ types, held on the stack: record() allocates nothing per frame.
+struct HudFrameStorage {
+  std::array<s3d::hud::HudElementFrame, S3D_HUD_MAX_ELEMENTS> frames{};
+  std::array<s3d::stereo::HostImage, S3D_HUD_MAX_ELEMENTS> hostLayers{};
+  std::span<const s3d::hud::HudElementFrame> frameSpan;
+  std::span<const s3d::stereo::HostImage> hostLayerSpan;
+
+  HudFrameStorage(const s3d_hud_element_frame* frames_, uint32_t frameCount, const s3d_host_image* hostLayers_,
+                  uint32_t hostLayerCount) {
+    if (frameCount > S3D_HUD_MAX_ELEMENTS || hostLayerCount > S3D_HUD_MAX_ELEMENTS)
+      throw std::invalid_argument("more HUD element frames or host layers than the 16 a HUD pass has at most");
+    if (frameCount > 0) requireNotNull(frames_, "the HUD element frames");
+    if (hostLayerCount > 0) requireNotNull(hostLayers_, "the HUD host layers");
+    for (uint32_t i = 0; i < frameCount; ++i)
+      frames[i] = {frames_[i].parallax_px, frames_[i].fades_behind_weapon != 0, frames_[i].hidden != 0};
+    for (uint32_t i = 0; i < hostLayerCount; ++i) hostLayers[i] = toCpp(hostLayers_[i]);
+    frameSpan = std::span(frames).first(frameCount);
+    hostLayerSpan = std::span(hostLayers).first(hostLayerCount);
+  }
+};
+
+void recordHostPass(s3d_host_pass pass, VkCommandBuffer cmd, const s3d_host_image* color, const s3d_host_image* depth,
+                    const s3d_stereo_parameters* parameters, const s3d_projection* projection,
+                    const s3d_host_image* left, const s3d_host_image* right, const s3d_host_image* target,
+                    const s3d::stereo::EyeOverlay* overlay) {
+  requireNotNull(pass, "the pass");
+  requireNotNull(color, "the colour image");
+  requireNotNull(depth, "the depth image");
+  requireNotNull(parameters, "the stereo parameters");
+  const s3d::stereo::StereoParameters cpp = toCpp(*parameters);
+  const s3d::stereo::HostStereoPassDesc& desc = pass->pass.desc();
+  s3d::stereo::HostFrame frame;
+  frame.stereo = s3d::stereo::makeStereoConstants(cpp, desc.width, desc.height);
+  if (projection)
+    frame.projection = {projection->near_plane, projection->far_plane, projection->reversed_z != 0,
+                        projection->infinite_far_plane != 0, projection->first_person_depth_range,
+                        projection->first_person_near, projection->first_person_far};
+  else if (desc.depthFormat != VK_FORMAT_R32_SFLOAT)
+    throw std::invalid_argument("a hardware depth buffer needs its s3d_projection");
+  frame.weaponDepthOffset = cpp.weaponDepthOffset;
+  frame.weaponDepthScale = cpp.weaponDepthScale;
+  const s3d::stereo::HostImage leftImage = left ? toCpp(*left) : s3d::stereo::HostImage{};
+  const s3d::stereo::HostImage rightImage = right ? toCpp(*right) : s3d::stereo::HostImage{};
+  const s3d::stereo::HostImage targetImage = target ? toCpp(*target) : s3d::stereo::HostImage{};
+  pass->pass.record(cmd, toCpp(*color), toCpp(*depth), frame, left ? &leftImage : nullptr,
+                    right ? &rightImage : nullptr, target ? &targetImage : nullptr, overlay);
 }
 
 const s3d::vk::DeviceRequirements& requirements() {
@@ -158,28 +213,63 @@ s3d_result s3d_host_pass_record(s3d_host_pass pass, VkCommandBuffer cmd, const s
                                 const s3d_host_image* depth, const s3d_stereo_parameters* parameters,
                                 const s3d_projection* projection, const s3d_host_image* left,
                                 const s3d_host_image* right, const s3d_host_image* target) {
+  return guarded([&] { recordHostPass(pass, cmd, color, depth, parameters, projection, left, right, target, nullptr); });
+}
+
+s3d_result s3d_hud_pass_create(s3d_context context, const s3d_hud_pass_desc* desc, s3d_hud_pass* out) {
   return guarded([&] {
-    requireNotNull(pass, "the pass");
-    requireNotNull(color, "the colour image");
-    requireNotNull(depth, "the depth image");
-    requireNotNull(parameters, "the stereo parameters");
-    const s3d::stereo::StereoParameters cpp = toCpp(*parameters);
-    const s3d::stereo::HostStereoPassDesc& desc = pass->pass.desc();
-    s3d::stereo::HostFrame frame;
-    frame.stereo = s3d::stereo::makeStereoConstants(cpp, desc.width, desc.height);
-    if (projection)
-      frame.projection = {projection->near_plane, projection->far_plane, projection->reversed_z != 0,
-                          projection->infinite_far_plane != 0, projection->first_person_depth_range,
-                          projection->first_person_near, projection->first_person_far};
-    else if (desc.depthFormat != VK_FORMAT_R32_SFLOAT)
-      throw std::invalid_argument("a hardware depth buffer needs its s3d_projection");
-    frame.weaponDepthOffset = cpp.weaponDepthOffset;
-    frame.weaponDepthScale = cpp.weaponDepthScale;
-    const s3d::stereo::HostImage leftImage = left ? toCpp(*left) : s3d::stereo::HostImage{};
-    const s3d::stereo::HostImage rightImage = right ? toCpp(*right) : s3d::stereo::HostImage{};
-    const s3d::stereo::HostImage targetImage = target ? toCpp(*target) : s3d::stereo::HostImage{};
-    pass->pass.record(cmd, toCpp(*color), toCpp(*depth), frame, left ? &leftImage : nullptr,
-                      right ? &rightImage : nullptr, target ? &targetImage : nullptr);
+    requireNotNull(context, "the context");
+    requireNotNull(desc, "the HUD pass description");
+    requireNotNull(out, "the HUD pass output");
+    if (desc->element_count > 0) requireNotNull(desc->elements, "the HUD elements");
+    s3d::hud::HudPassDesc cpp{desc->width, desc->height, {}};
+    if (desc->built_in)
+      for (const s3d::hud::HudLayer& layer : s3d::hud::builtInHudLayers(desc->width, desc->height))
+        cpp.elements.push_back(s3d::hud::HudPassElement::uploaded(layer));
+    for (uint32_t i = 0; i < desc->element_count; ++i) {
+      const s3d_hud_element_desc& e = desc->elements[i];
+      const std::string name = e.name ? e.name : "element " + std::to_string(i);
+      const s3d::hud::HudPlacement placement{e.placement.anchor_x, e.placement.anchor_y, e.placement.pivot_x,
+                                             e.placement.pivot_y};
+      if (!e.pixels) {
+        cpp.elements.push_back(s3d::hud::HudPassElement::hostLayer(name, e.width, e.height, placement));
+        continue;
+      }
+      s3d::hud::HudLayer layer{name, s3d::ImageRGBA8(e.width, e.height), placement};
+      std::copy_n(e.pixels, layer.pixels.pixels.size(), layer.pixels.pixels.data());
+      cpp.elements.push_back(s3d::hud::HudPassElement::uploaded(layer));
+    }
+    *out = new s3d_hud_pass_t{s3d::hud::HudPass(context->context, cpp)};
+  });
+}
+void s3d_hud_pass_destroy(s3d_hud_pass pass) { delete pass; }
+uint32_t s3d_hud_pass_element_count(s3d_hud_pass pass) {
+  return pass ? uint32_t(pass->pass.desc().elements.size()) : 0;
+}
+
+s3d_result s3d_hud_pass_record(s3d_hud_pass pass, VkCommandBuffer cmd, const s3d_hud_element_frame* frames,
+                               uint32_t frame_count, const s3d_host_image* host_layers, uint32_t host_layer_count,
+                               const s3d_host_image* left, const s3d_host_image* right) {
+  return guarded([&] {
+    requireNotNull(pass, "the HUD pass");
+    requireNotNull(left, "the left eye");
+    requireNotNull(right, "the right eye");
+    const HudFrameStorage hud(frames, frame_count, host_layers, host_layer_count);
+    pass->pass.record(cmd, hud.frameSpan, hud.hostLayerSpan, toCpp(*left), toCpp(*right));
+  });
+}
+
+s3d_result s3d_host_pass_record_with_hud(s3d_host_pass pass, VkCommandBuffer cmd, const s3d_host_image* color,
+                                         const s3d_host_image* depth, const s3d_stereo_parameters* parameters,
+                                         const s3d_projection* projection, const s3d_host_image* left,
+                                         const s3d_host_image* right, const s3d_host_image* target, s3d_hud_pass hud,
+                                         const s3d_hud_element_frame* frames, uint32_t frame_count,
+                                         const s3d_host_image* host_layers, uint32_t host_layer_count) {
+  return guarded([&] {
+    requireNotNull(hud, "the HUD pass");
+    const HudFrameStorage storage(frames, frame_count, host_layers, host_layer_count);
+    const s3d::hud::HudOverlay overlay = hud->pass.overlay(storage.frameSpan, storage.hostLayerSpan);
+    recordHostPass(pass, cmd, color, depth, parameters, projection, left, right, target, &overlay);
   });
 }
 

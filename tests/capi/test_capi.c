@@ -1,6 +1,7 @@
 /* The C API from C: a host device adopted, a device without s3d's features refused naming one, a bad format
  * refused, the stereo pass on uniform colour and depth (every visible eye pixel the colour, the cropped border
- * black), and the per-frame comfort call with a C ray cast. Exit status 0 when every check holds. */
+ * black), the HUD pass after it and inside it (a marker at its parallax in each eye), and the per-frame comfort
+ * call with a C ray cast. Exit status 0 when every check holds. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -238,6 +239,54 @@ int main(void) {
       for (int c = 0; c < 4; ++c) wrong += abs((int)p[c] - (int)expected[c]) > 1;
     }
   CHECK(wrong == 0, "%d channels differ from the uniform colour or the black border", wrong);
+
+  /* The HUD: a 2x2 white marker s3d uploads, anchored at (16, 4) with 1 px parallax (left eye 15-16, right 17-18),
+   * first recorded after the stereo pass, then inside it (s3d_host_pass_record_with_hud) at -2 px. */
+  unsigned char white[2 * 2 * 4];
+  memset(white, 255, sizeof white);
+  const s3d_hud_element_desc marker = {"marker", {16.0f, 4.0f, 0, 0}, white, 2, 2};
+  const s3d_hud_pass_desc hudDesc = {W, H, 0, &marker, 1};
+  s3d_hud_pass hudPass = NULL;
+  CHECK(s3d_hud_pass_create(context, &hudDesc, &hudPass) == S3D_SUCCESS, "the HUD pass is made");
+  if (!hudPass) return 1;
+  CHECK(s3d_hud_pass_element_count(hudPass) == 1, "one element");
+  for (int round = 0; round < 2; ++round) {
+    const s3d_hud_element_frame hudFrame = {round == 0 ? 1.0f : -2.0f, 0, 0};
+    VK(vkResetCommandPool(device, pool, 0));
+    VK(vkBeginCommandBuffer(cmd, &begin));
+    if (round == 0) {
+      CHECK(s3d_host_pass_record(pass, cmd, &color, &depth, &parameters, NULL, &left, &right, NULL) == S3D_SUCCESS,
+            "the pass records");
+      CHECK(s3d_hud_pass_record(hudPass, cmd, &hudFrame, 1, NULL, 0, &left, &right) == S3D_SUCCESS, "the HUD records");
+      CHECK(s3d_hud_pass_record(hudPass, cmd, &hudFrame, 0, NULL, 0, &left, &right) == S3D_ERROR_INVALID_ARGUMENT &&
+                strstr(s3d_last_error(), "0 element states for 1 elements") != NULL,
+            "a missing element state is refused");
+    } else {
+      CHECK(s3d_host_pass_record_with_hud(pass, cmd, &color, &depth, &parameters, NULL, &left, &right, NULL, hudPass,
+                                          &hudFrame, 1, NULL, 0) == S3D_SUCCESS,
+            "the pass records with the HUD");
+    }
+    copy.bufferOffset = 0;
+    vkCmdCopyImageToBuffer(cmd, images[2], VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, buffer, 1, &copy);
+    copy.bufferOffset = W * H * 4;
+    vkCmdCopyImageToBuffer(cmd, images[3], VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, buffer, 1, &copy);
+    VK(vkEndCommandBuffer(cmd));
+    VK(vkQueueSubmit(queue, 1, &submit, VK_NULL_HANDLE));
+    VK(vkQueueWaitIdle(queue));
+    wrong = 0;
+    for (int eye = 0; eye < 2; ++eye) {
+      const int first = 16 + (eye == 0 ? -1 : 1) * (int)hudFrame.parallax_px; /* rounded half up: exact here */
+      for (int y = 3; y < 7; ++y)
+        for (int x = 4; x < W - 4; ++x) {
+          const unsigned char* p = texels + eye * W * H * 4 + (y * W + x) * 4;
+          const int marked = x >= first && x < first + 2 && y >= 4 && y < 6;
+          const unsigned char expected[4] = {255, marked ? 255 : 128, marked ? 255 : 0, 255};
+          for (int c = 0; c < 4; ++c) wrong += abs((int)p[c] - (int)expected[c]) > 1;
+        }
+    }
+    CHECK(wrong == 0, "round %d: %d channels differ from the orange eyes with the white marker", round, wrong);
+  }
+  s3d_hud_pass_destroy(hudPass);
 
   /* Per-frame comfort through a C ray cast. */
   s3d_frame_comfort_input input;

@@ -114,6 +114,54 @@ s3d_result s3d_host_pass_record(s3d_host_pass pass, VkCommandBuffer cmd, const s
                                 const s3d_projection* projection, const s3d_host_image* left,
                                 const s3d_host_image* right, const s3d_host_image* target);
 
+/* ---- HUD pass: element layers over both eyes at their parallax, faded by the weapon mask ---- */
+typedef struct s3d_hud_placement {
+  float anchor_x; /* center-view pixel (indices) the pivot lands on, before the eye's offset */
+  float anchor_y;
+  int32_t pivot_x; /* pixel of the layer placed there */
+  int32_t pivot_y;
+} s3d_hud_placement;
+
+typedef struct s3d_hud_element_desc {
+  const char* name;            /* named in errors */
+  s3d_hud_placement placement;
+  const uint8_t* pixels;       /* width * height straight-alpha RGBA8, copied and uploaded once; NULL: a host layer */
+  uint32_t width;
+  uint32_t height;
+} s3d_hud_element_desc;
+
+typedef struct s3d_hud_pass_desc {
+  uint32_t width; /* the eyes */
+  uint32_t height;
+  int32_t built_in; /* 1: s3d's health and ammo panels and crosshair come first (elements 0, 1, 2) */
+  const s3d_hud_element_desc* elements; /* then these, drawn in order (later on top); 16 elements at most */
+  uint32_t element_count;
+} s3d_hud_pass_desc;
+
+/* One element in one frame: parallax_px and fades_behind_weapon from s3d_frame_comfort_state_compute. */
+typedef struct s3d_hud_element_frame {
+  float parallax_px; /* the right eye's offset; the left eye's is minus this */
+  int32_t fades_behind_weapon;
+  int32_t hidden;
+} s3d_hud_element_frame;
+
+typedef struct s3d_hud_pass_t* s3d_hud_pass;
+s3d_result s3d_hud_pass_create(s3d_context context, const s3d_hud_pass_desc* desc, s3d_hud_pass* out);
+void s3d_hud_pass_destroy(s3d_hud_pass pass);
+uint32_t s3d_hud_pass_element_count(s3d_hud_pass pass);
+/* frames: one per element; host_layers: the host layers' images in element order (RGBA8/BGRA8 UNORM, sampled);
+ * left/right: R8G8B8A8_UNORM storage eyes whose alpha is the weapon mask. Same synchronization as the stereo pass. */
+s3d_result s3d_hud_pass_record(s3d_hud_pass pass, VkCommandBuffer cmd, const s3d_hud_element_frame* frames,
+                               uint32_t frame_count, const s3d_host_image* host_layers, uint32_t host_layer_count,
+                               const s3d_host_image* left, const s3d_host_image* right);
+/* s3d_host_pass_record with the HUD drawn into the eyes before they are packed (for packed outputs). */
+s3d_result s3d_host_pass_record_with_hud(s3d_host_pass pass, VkCommandBuffer cmd, const s3d_host_image* color,
+                                         const s3d_host_image* depth, const s3d_stereo_parameters* parameters,
+                                         const s3d_projection* projection, const s3d_host_image* left,
+                                         const s3d_host_image* right, const s3d_host_image* target, s3d_hud_pass hud,
+                                         const s3d_hud_element_frame* frames, uint32_t frame_count,
+                                         const s3d_host_image* host_layers, uint32_t host_layer_count);
+
 /* ---- Per-frame comfort ---- */
 /* Distance to the first world surface along the ray within max_distance; return 0 for no hit. */
 typedef int32_t (*s3d_ray_cast)(void* user, const float origin[3], const float direction[3], float max_distance,
