@@ -1,13 +1,16 @@
 // GPU time (Vulkan timestamps) of the host pass (stereo::HostStereoPass) against the bare stereo pass on the same
-// synthetic 1920x1080 view, in one run: what the input conversion and the output packing cost a host.
+// synthetic 1920x1080 view, in one run: what the input conversion and the output packing cost a host; and the HUD
+// pass (hud::HudPass) on its own and inside the host pass.
 // Device: S3D_BENCH_DEVICE (default auto).
 #include <benchmark/benchmark.h>
 
 #include <cstdlib>
 #include <cstring>
 #include <memory>
+#include <optional>
 #include <random>
 
+#include "s3d/hud/hud_pass.h"
 #include "s3d/stereo/host_stereo_pass.h"
 #include "s3d/stereo/stereo_pass.h"
 #include "s3d/vk/timestamps.h"
@@ -97,15 +100,31 @@ void BareStereoPass(benchmark::State& state) {
   timeRecording(state, [&](VkCommandBuffer cmd) { pass.record(cmd, color, depth, left, right, f.stereo); });
 }
 
+// s3d's built-in HUD (health and ammo panels, crosshair) at 1920x1080, with parallax and the fade on.
+hud::HudPassDesc builtInHud(std::size_t extraHostLayerSide) {
+  hud::HudPassDesc desc{kWidth, kHeight, {}};
+  for (const hud::HudLayer& layer : hud::builtInHudLayers(kWidth, kHeight))
+    desc.elements.push_back(hud::HudPassElement::uploaded(layer));
+  if (extraHostLayerSide > 0)
+    desc.elements.push_back(hud::HudPassElement::hostLayer("minimap", std::uint32_t(extraHostLayerSide),
+                                                           std::uint32_t(extraHostLayerSide), {64.0f, 64.0f, 0, 0}));
+  return desc;
+}
+std::vector<hud::HudElementFrame> hudFrames(std::size_t count) {
+  std::vector<hud::HudElementFrame> frames(count, hud::HudElementFrame{6.4f, true, false});
+  return frames;
+}
+
 // Argument: 0 sRGB colour + D32 depth -> two eyes; 1 RGBA8 + R32F storage inputs (no conversion) -> two eyes;
-// 2 sRGB + D32 -> anaglyph; 3 sRGB + D32 -> side-by-side half; 4 RGBA16F + D32 -> two half-float eyes.
+// 2 sRGB + D32 -> anaglyph; 3 sRGB + D32 -> side-by-side half; 4 RGBA16F + D32 -> two half-float eyes;
+// 5 sRGB + D32 -> anaglyph with the built-in HUD drawn into the eyes before packing (hud::HudOverlay).
 void HostPass(benchmark::State& state) {
   vk::Context& context = benchContext();
   const int variant = int(state.range(0));
   const bool storage = variant == 1, hdr = variant == 4;
   const VkFormat colorFormat = storage ? VK_FORMAT_R8G8B8A8_UNORM : hdr ? VK_FORMAT_R16G16B16A16_SFLOAT : VK_FORMAT_R8G8B8A8_SRGB;
   const VkFormat depthFormat = storage ? VK_FORMAT_R32_SFLOAT : VK_FORMAT_D32_SFLOAT;
-  const stereo::HostOutput output = variant == 2 ? stereo::HostOutput::Anaglyph
+  const stereo::HostOutput output = variant == 2 || variant == 5 ? stereo::HostOutput::Anaglyph
                                     : variant == 3 ? stereo::HostOutput::SideBySideHalf
                                                    : stereo::HostOutput::TwoEyes;
   const VkImageUsageFlags inputUsage =
@@ -136,14 +155,50 @@ void HostPass(benchmark::State& state) {
                           t = host(target, VK_IMAGE_LAYOUT_GENERAL);
   const stereo::HostFrame f = frame();
   const bool eyes = output == stereo::HostOutput::TwoEyes;
+  std::optional<hud::HudPass> hudPass;
+  if (variant == 5) hudPass.emplace(context, builtInHud(0));
+  const std::vector<hud::HudElementFrame> hudFrame = hudFrames(hudPass ? hudPass->desc().elements.size() : 0);
+  const std::optional<hud::HudOverlay> overlay =
+      hudPass ? std::optional<hud::HudOverlay>(hudPass->overlay(hudFrame)) : std::nullopt;
   timeRecording(state, [&](VkCommandBuffer cmd) {
     pass.record(cmd, host(color, readable.layout), host(depth, readable.layout), f, eyes ? &l : nullptr,
-                eyes ? &r : nullptr, eyes ? nullptr : &t);
+                eyes ? &r : nullptr, eyes ? nullptr : &t, overlay ? &*overlay : nullptr);
   });
 }
 
+// The HUD pass alone on two 1920x1080 RGBA8 eyes the host synchronizes. Argument: 0 the built-in HUD; N > 0 the
+// built-in HUD plus a host layer N x N pixels (the cost follows the layers' area, not the eyes').
+void HudPass(benchmark::State& state) {
+  vk::Context& context = benchContext();
+  const std::size_t side = std::size_t(state.range(0));
+  const hud::HudPass pass(context, builtInHud(side));
+  const VkImageUsageFlags usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+  vk::Image left = vk::createImage(context, VK_FORMAT_R8G8B8A8_UNORM, kWidth, kHeight, usage);
+  vk::Image right = vk::createImage(context, VK_FORMAT_R8G8B8A8_UNORM, kWidth, kHeight, usage);
+  vk::uploadImage(context, left, std::as_bytes(std::span(view().color)), vk::kComputeWrite);
+  vk::uploadImage(context, right, std::as_bytes(std::span(view().color)), vk::kComputeWrite);
+  std::optional<vk::Image> layer;
+  std::vector<stereo::HostImage> hostLayers;
+  if (side > 0) {
+    layer = vk::createImage(context, VK_FORMAT_R8G8B8A8_UNORM, std::uint32_t(side), std::uint32_t(side),
+                            VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
+    std::vector<std::uint8_t> pixels(side * side * 4, 200);
+    const vk::ImageState sampled{VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                                 VK_ACCESS_2_SHADER_SAMPLED_READ_BIT};
+    vk::uploadImage(context, *layer, std::as_bytes(std::span(pixels)), sampled);
+    hostLayers.push_back({layer->image, layer->view, layer->format, sampled.layout, VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE});
+  }
+  const std::vector<hud::HudElementFrame> frames = hudFrames(pass.desc().elements.size());
+  const stereo::HostImage l{left.image, left.view, left.format, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_NONE,
+                            VK_ACCESS_2_NONE};
+  const stereo::HostImage r{right.image, right.view, right.format, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_NONE,
+                            VK_ACCESS_2_NONE};
+  timeRecording(state, [&](VkCommandBuffer cmd) { pass.record(cmd, frames, hostLayers, l, r); });
+}
+
 BENCHMARK(BareStereoPass)->UseManualTime()->Unit(benchmark::kMillisecond)->MinTime(0.5);
-BENCHMARK(HostPass)->DenseRange(0, 4)->ArgName("variant")->UseManualTime()->Unit(benchmark::kMillisecond)->MinTime(0.5);
+BENCHMARK(HostPass)->DenseRange(0, 5)->ArgName("variant")->UseManualTime()->Unit(benchmark::kMillisecond)->MinTime(0.5);
+BENCHMARK(HudPass)->Arg(0)->Arg(256)->Arg(512)->ArgName("hostLayer")->UseManualTime()->Unit(benchmark::kMillisecond)->MinTime(0.5);
 
 }  // namespace
 
