@@ -5,6 +5,9 @@
 #include <s3d/comfort/frame_comfort_state.h>
 #include <s3d/comfort/world_queries.h>
 #include <s3d/hud/crosshair.h>
+#include <s3d/hud/hud_layers.h>
+#include <s3d/hud/hud_pass.h>
+#include <s3d/hud/hud_pass_shared.h>
 #include <s3d/hud/overlay.h>
 #include <s3d/stereo/host_stereo_pass.h>
 #include <s3d/stereo/output_formats.h>
