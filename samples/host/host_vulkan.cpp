@@ -33,9 +33,9 @@ VkBool32 onValidationMessage(VkDebugUtilsMessageSeverityFlagBitsEXT, VkDebugUtil
 
 }  // namespace
 
-Device::Device(bool validation) {
+Device::Device(bool withValidation) {
   const char* layerName = "VK_LAYER_KHRONOS_validation";
-  validation = validation && layerAvailable(layerName);
+  validation = withValidation && layerAvailable(layerName);
   VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
   app.pApplicationName = "s3d host example";
   app.apiVersion = VK_API_VERSION_1_3;

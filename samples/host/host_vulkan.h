@@ -34,6 +34,7 @@ struct Device {
   // Records with `record`, submits on the queue and waits (uploads at start-up, the host's frames here).
   void submitAndWait(const std::function<void(VkCommandBuffer)>& record) const;
 
+  bool validation = false;  // the layer was found and is on
   int validationMessages = 0;
 
  private:

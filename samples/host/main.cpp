@@ -235,8 +235,9 @@ int main(int argc, char** argv) try {
 
   const bool written = writePng(outputFolder + "/anaglyph.png", gpuAnaglyph) &&
                        writePng(outputFolder + "/side_by_side.png", gpuSideBySide);
-  std::printf("device %s: anaglyph %d, side-by-side %d levels from the C++ reference; %d validation messages\n",
-              device.name.c_str(), anaglyphError, sideBySideError, device.validationMessages);
+  std::printf("device %s: anaglyph %d, side-by-side %d levels from the C++ reference; validation layer %s, %d messages\n",
+              device.name.c_str(), anaglyphError, sideBySideError, device.validation ? "on" : "not installed",
+              device.validationMessages);
   if (!written) {
     std::fprintf(stderr, "s3d_host: cannot write the PNG files into '%s'\n", outputFolder.c_str());
     return 1;
