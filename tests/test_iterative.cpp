@@ -135,10 +135,12 @@ TEST(IterativeReference, NearBoxEdgesLandWithinOnePixelWhereTheSeedMisplacesThem
 TEST(IterativeReference, DisocclusionIsFilledFromTheBackgroundAndMarked) {
   // Left of the box the left eye sees background the center view hides behind it (columns
   // [80 - backgroundShift, 80 - boxShift)); no source maps there, so it is filled from the background side
-  // (never with the box) and alpha 0 marks it. Everything else is a solution and keeps alpha 255.
+  // (never with the box) and, with markFilled, alpha 0 flags it. Everything else is a solution: flag 255.
   StereoParameters parameters{0.1f, 1.0f, -1.0f};
   View view = makeBoxView(INFINITY, 1.25f);
   gpu::IterativeConstants c = makeIterativeConstants(parameters, kDefaultIterations, kBoxWidth, 1);
+  EXPECT_EQ(c.markFilled, 0);  // by default the eyes carry the center's alpha, as every method's do
+  c.markFilled = 1;
   StereoPair pair = synthesizeIterativeReference(view.color, view.depth, c);
   for (int x = c.cropBegin; x < c.cropEnd; ++x) {
     const bool hole = x >= 61 && x <= 75;  // [60, 76) less the edge columns the filter blends
@@ -154,6 +156,19 @@ TEST(IterativeReference, DisocclusionIsFilledFromTheBackgroundAndMarked) {
   c.markFilled = 0;
   StereoPair unmarked = synthesizeIterativeReference(view.color, view.depth, c);
   for (std::uint32_t x = 0; x < kBoxWidth; ++x) EXPECT_EQ(unmarked.left.at(x, 0)[3], 255) << x;
+}
+
+TEST(IterativeReference, CarriesTheWeaponMaskInAlphaAndIsTheCenterViewAtZeroSeparation) {
+  // The weapon mask travels in alpha (0 on first-person pixels); the HUD fades by it in the eyes. Without a fill
+  // flag the iterative method must carry it like the seed does, and at maxSeparation 0 reproduce every byte.
+  View view = makeBoxView(INFINITY, 1.25f);
+  for (std::uint32_t x = 20; x < 40; ++x) view.color.at(x, 0)[3] = 0;  // a weapon over columns [20, 40)
+  for (std::uint32_t x = 40; x < 42; ++x) view.color.at(x, 0)[3] = 128;  // its anti-aliased edge
+  StereoParameters parameters{0.0f, 1.0f, 0.0f};
+  const gpu::IterativeConstants c = makeIterativeConstants(parameters, kDefaultIterations, kBoxWidth, 1);
+  const StereoPair pair = synthesizeIterativeReference(view.color, view.depth, c);
+  EXPECT_EQ(pair.left.pixels, view.color.pixels);
+  EXPECT_EQ(pair.right.pixels, view.color.pixels);
 }
 
 TEST(IterativeReference, InvalidAndExtremeDepthsGiveFiniteSourcesWithinTheSeparation) {

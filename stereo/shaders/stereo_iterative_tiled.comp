@@ -43,7 +43,9 @@ vec4 solveEye(ivec2 pixel, float direction, bool depthIsFlat) {
     }
   }
   vec4 color = tileSampleRow(pixel.y, iterativeSourcePosition(search), c.width);
-  if (!search.converged && c.markFilled != 0) color.a = 0.0;  // a disocclusion, filled from the background
+  // The fill flag replaces the alpha (the weapon mask) only when asked for: 0 for a disocclusion filled from the
+  // background, 1 elsewhere.
+  if (c.markFilled != 0) color.a = search.converged ? 1.0 : 0.0;
   return color;
 }
 

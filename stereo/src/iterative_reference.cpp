@@ -36,7 +36,7 @@ gpu::IterativeConstants makeIterativeConstants(const StereoParameters& parameter
   c.width = seed.width;
   c.height = seed.height;
   c.iterations = iterations;
-  c.markFilled = 1;
+  c.markFilled = 0;  // the eyes carry the center's alpha (the weapon mask), as every method's do
   // Near-start taps from the target itself (offset 0: a surface the target lies on) to the sky's displacement,
   // evenly spread and rounded like the seed's; repeated offsets are dropped.
   for (int i = 0; i < S3D_ITERATIVE_START_TAPS; ++i) {
@@ -96,7 +96,7 @@ StereoPair synthesizeIterativeReference(const ImageRGBA8& center, const DepthIma
         }
         IterativeSample sample = solveIterativePixel(linearDepth, x, y, eye, c);
         sampleRow(center, y, sample.sourcePosition, out);
-        if (sample.filled && c.markFilled != 0) out[3] = 0;
+        if (c.markFilled != 0) out[3] = sample.filled ? 0 : 255;  // the fill flag instead of the alpha
       }
     }
   }

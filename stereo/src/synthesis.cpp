@@ -22,14 +22,10 @@ ImageRGBA8 readEye(vk::Context& context, const vk::Image& image) {
   return eye;
 }
 
-// Counts the pixels the iterative method marked as filled (alpha 0) and makes them opaque again.
-std::uint64_t countAndClearFillMarks(ImageRGBA8& eye) {
+// Pixels the iterative method flagged as filled (markFilled: alpha 0).
+std::uint64_t countFillFlags(const ImageRGBA8& eye) {
   std::uint64_t filled = 0;
-  for (std::size_t i = 3; i < eye.pixels.size(); i += 4)
-    if (eye.pixels[i] == 0) {
-      ++filled;
-      eye.pixels[i] = 255;
-    }
+  for (std::size_t i = 3; i < eye.pixels.size(); i += 4) filled += eye.pixels[i] == 0 ? 1 : 0;
   return filled;
 }
 
@@ -92,11 +88,15 @@ SynthesisResult synthesizeTimed(vk::Context& context, const vk::Image& centerCol
     throw std::invalid_argument("stereo synthesis needs RGBA8 unorm color and R32 float linear depth");
   if (parameters.method == StereoMethod::Iterative) {
     const IterativeStereoPass pass(context, parameters.kernel);
-    const gpu::IterativeConstants constants =
+    gpu::IterativeConstants constants =
         makeIterativeConstants(parameters, parameters.iterations, centerColor.width, centerColor.height);
+    // The eyes carry the center's alpha (the weapon mask the HUD fades by); the fill counts come from one more,
+    // untimed dispatch whose alpha is the fill flag instead.
     SynthesisResult result = run(context, pass, constants, centerColor, linearDepth, timedRuns);
-    result.filledLeft = countAndClearFillMarks(result.eyes.left);
-    result.filledRight = countAndClearFillMarks(result.eyes.right);
+    constants.markFilled = 1;
+    const SynthesisResult flags = run(context, pass, constants, centerColor, linearDepth, 1);
+    result.filledLeft = countFillFlags(flags.eyes.left);
+    result.filledRight = countFillFlags(flags.eyes.right);
     return result;
   }
   if (parameters.method == StereoMethod::Forward) {

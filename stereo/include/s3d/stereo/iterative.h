@@ -15,7 +15,7 @@ inline constexpr int kDefaultIterations = 6;
 
 // Constants for the parameters at the given image size: separation, zero-parallax distance and edge crop as
 // in the seed (parameters.method and searchTaps are not used), the near start's taps spread evenly over
-// [0, maxSeparation] in whole pixels, and filled pixels marked in alpha. Throws std::invalid_argument for
+// [0, maxSeparation] in whole pixels, and markFilled 0 (the eyes carry the center's alpha). Throws std::invalid_argument for
 // invalid parameters or an iteration count outside [1, S3D_ITERATIVE_MAX_ITERATIONS].
 gpu::IterativeConstants makeIterativeConstants(const StereoParameters& parameters, int iterations, std::uint32_t width,
                                                std::uint32_t height);
@@ -35,8 +35,8 @@ IterativeSample solveIterativePixel(const DepthImage& linearDepth, int x, int y,
                                     const gpu::IterativeConstants& constants);
 
 // Both eyes, same math and order as the shader. Color is filtered horizontally at the fractional source
-// position exactly as the seed does, so maxSeparation = 0 reproduces the center view bit for bit.
-// Filled pixels get alpha 0 when constants.markFilled is set.
+// position exactly as the seed does, so maxSeparation = 0 reproduces the center view bit for bit, alpha (the
+// weapon mask) included. With constants.markFilled set, alpha is the fill flag instead (0 filled, 255 not).
 StereoPair synthesizeIterativeReference(const ImageRGBA8& center, const DepthImage& linearDepth,
                                         const gpu::IterativeConstants& constants);
 

@@ -48,7 +48,7 @@ struct IterativeConstants {
   int cropEnd;                 // columns [cropEnd, width) are written black
   int width;
   int height;
-  int markFilled;  // != 0: disoccluded (filled) pixels get alpha 0, the others keep the center's alpha
+  int markFilled;  // 0: the center's alpha (the weapon mask) is carried; != 0: alpha is the fill flag (0 filled, 1 not)
   int padding0;
 };
 

@@ -11,7 +11,7 @@
 namespace s3d::stereo {
 
 struct SynthesisResult {
-  StereoPair eyes;                 // alpha restored to 255 where the iterative method marked a filled pixel
+  StereoPair eyes;                 // alpha: the center's (the weapon mask), carried by every method
   std::optional<double> gpuMs;     // median of the timed dispatches (both eyes); empty without timestamps
   std::vector<double> gpuMsRuns;   // every timed dispatch, in order
   std::uint64_t filledLeft = 0;    // iterative method: disoccluded pixels filled from the background side
