@@ -193,6 +193,55 @@ TEST(GltfScene, AnImageUriLeadingOutThroughALinkIsRefused) {
   EXPECT_NE(message.find("through a link"), std::string::npos) << message;
 }
 
+// A PNG of 45 bytes whose header declares an 8-bit grey width x height image: stb_image would decode it (it
+// refuses 4-channel images beyond 1 GB itself, but a grey one of 20000x20000 passes and becomes 1.6 GB of RGBA).
+std::string pngHeaderClaiming(std::uint32_t width, std::uint32_t height) {
+  auto bigEndian = [](std::uint32_t value) {
+    return std::string{char(value >> 24), char((value >> 16) & 0xff), char((value >> 8) & 0xff), char(value & 0xff)};
+  };
+  auto crc32 = [](const std::string& bytes) {
+    std::uint32_t crc = 0xffffffffu;
+    for (unsigned char byte : bytes) {
+      crc ^= byte;
+      for (int bit = 0; bit < 8; ++bit) crc = (crc >> 1) ^ (0xedb88320u & (0u - (crc & 1u)));
+    }
+    return ~crc;
+  };
+  const std::string ihdr = "IHDR" + bigEndian(width) + bigEndian(height) + std::string("\x08\x00\x00\x00\x00", 5);
+  const std::string idat = "IDAT" + std::string("\x78\x01", 2);
+  return std::string("\x89PNG\r\n\x1a\n", 8) + bigEndian(13) + ihdr + bigEndian(crc32(ihdr)) + bigEndian(2) + idat +
+         bigEndian(crc32(idat));
+}
+
+TEST(GltfScene, ATextureBeyondTheReadersLimitsIsRefusedBeforeItIsDecoded) {
+  ScratchFolder scratch;
+  const fs::path file = scratch.copyOfTexturedQuad();
+  writeText(scratch.path() / "textured_quad_base_color.png", pngHeaderClaiming(20000, 20000));
+  const std::string message = errorOf<std::runtime_error>([&] { loadGltfScene(file); });
+  EXPECT_NE(message.find("textured_quad.gltf"), std::string::npos) << message;
+  EXPECT_NE(message.find("20000x20000, beyond the readers' limit of 16384 pixels a side"), std::string::npos) << message;
+}
+
+TEST(GltfScene, TheFuzzSeedsOfTheSandboxAndTheTextureLimitsAreRefusedClearly) {
+  // tests/fuzz/corpus/gltf_scene (make_gltf_scene_seeds.py): each seed must reach the check it was written for.
+  const fs::path corpus = kDataDir.parent_path() / "fuzz" / "corpus" / "gltf_scene";
+  const std::vector<std::pair<const char*, const char*>> seeds{
+      {"absolute_buffer_uri.glb", "is an absolute path"},
+      {"escaping_image_uri.glb", "climbs out of the scene's folder"},
+      {"encoded_escaping_image_uri.glb", "climbs out of the scene's folder"},
+      {"oversized_texture.glb", "20000x20000, beyond the readers' limit"},
+      {"oversized_data_uri_texture.glb", "20000x20000, beyond the readers' limit"}};
+  for (const auto& [seed, expected] : seeds) {
+    std::string message;
+    try {
+      (void)loadGltfScene(corpus / seed);
+    } catch (const std::exception& error) {
+      message = error.what();
+    }
+    EXPECT_NE(message.find(expected), std::string::npos) << seed << ": " << message;
+  }
+}
+
 TEST(GltfScene, ARequiredExtensionItCannotDrawIsNamed) {
   ScratchFolder scratch;
   const fs::path file = scratch.copyOfTexturedQuad();

@@ -21,7 +21,10 @@
 #include <glm/gtc/quaternion.hpp>
 #include <glm/gtc/type_ptr.hpp>
 #include <nlohmann/json.hpp>
+#include <stb/stb_image.h>  // the header only: stbi_info_from_memory sizes a texture before tinygltf decodes it
 #include <tiny_gltf.h>
+
+#include "s3d/image_limits.h"
 
 
 namespace s3d::renderer {
@@ -682,6 +685,23 @@ bool writeNothing(std::string* error, const std::string&, const std::vector<unsi
   return false;
 }
 
+// Every texture is held to the readers' size limits (s3d/image_limits.h) before it is decoded: a PNG of a few
+// hundred bytes can declare 20000x20000 pixels, 1.6 GB decoded (6 GB was measured through the renderer).
+bool loadImageWithinLimits(tinygltf::Image* image, const int index, std::string* error, std::string* warning,
+                           int requestedWidth, int requestedHeight, const unsigned char* bytes, int size, void*) {
+  int width = 0, height = 0, channels = 0;
+  if (stbi_info_from_memory(bytes, size, &width, &height, &channels) != 0 &&
+      (std::uint32_t(width) > kMaxImageSide || std::uint32_t(height) > kMaxImageSide ||
+       std::uint64_t(width) * std::uint64_t(height) > kMaxImagePixels)) {
+    if (error)
+      *error += "image " + std::to_string(index) + " is " + std::to_string(width) + "x" + std::to_string(height) +
+                ", beyond the readers' limit of " + std::to_string(kMaxImageSide) + " pixels a side and " +
+                std::to_string(kMaxImagePixels) + " pixels in all\n";
+    return false;
+  }
+  return tinygltf::LoadImageData(image, index, error, warning, requestedWidth, requestedHeight, bytes, size, nullptr);
+}
+
 }  // namespace
 
 Scene loadGltfScene(const fs::path& file) {
@@ -692,6 +712,7 @@ Scene loadGltfScene(const fs::path& file) {
   requireUrisInsideFolder(file, sandbox.folder, binary);
   tinygltf::TinyGLTF loader;
   loader.SetFsCallbacks({fileExistsInside, expandNothing, readWholeFileInside, writeNothing, &sandbox});
+  loader.SetImageLoader(loadImageWithinLimits, nullptr);
   tinygltf::Model model;
   std::string errors, warnings;
   const bool loaded = binary ? loader.LoadBinaryFromFile(&model, &errors, &warnings, file.string())
@@ -706,6 +727,24 @@ Scene loadGltfScene(const fs::path& file) {
   const fs::path description = sceneDescriptionPath(file);
   if (fs::exists(description, error)) DescriptionReader(description).apply(scene);
   return scene;
+}
+
+std::vector<fs::path> sceneFileInputs(const fs::path& file) {
+  const bool binary = lowercase(file.extension().string()) == ".glb";
+  const nlohmann::json json = gltfJson(file, binary);
+  std::vector<fs::path> inputs{file};
+  std::error_code error;
+  if (fs::exists(sceneDescriptionPath(file), error)) inputs.push_back(sceneDescriptionPath(file));
+  if (!json.is_object()) return inputs;
+  for (const char* kind : {"buffers", "images"}) {
+    const auto list = json.find(kind);
+    if (list == json.end() || !list->is_array()) continue;
+    for (const nlohmann::json& entry : *list)
+      if (entry.is_object() && entry.contains("uri") && entry["uri"].is_string() &&
+          entry["uri"].get<std::string>().rfind("data:", 0) != 0)
+        inputs.push_back(file.parent_path() / decodedUri(entry["uri"].get<std::string>()));
+  }
+  return inputs;
 }
 
 Scene loadScene(const std::string& scene) { return isSceneFile(scene) ? loadGltfScene(scene) : makeBuiltInScene(scene); }

@@ -4,6 +4,7 @@
 // exposure, a camera path) or to override its lights and camera.
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "s3d/renderer/scene.h"
 
@@ -20,6 +21,11 @@ std::filesystem::path sceneDescriptionPath(const std::filesystem::path& gltfFile
 // content the renderer cannot draw (a required extension, points or lines, spot lights, alpha cut-outs, ...).
 // Material mapping and what is ignored: docs/DESIGN.md, "glTF scenes".
 Scene loadGltfScene(const std::filesystem::path& file);
+
+// The files a scene file reads: itself, its scene description when present, and every buffer and image URI
+// that is not a data: URI, resolved against the file's folder (whether or not they exist). Empty for a file that
+// cannot be parsed (loadGltfScene names the problem). Lets a tool refuse outputs that would overwrite its input.
+std::vector<std::filesystem::path> sceneFileInputs(const std::filesystem::path& file);
 
 // A built-in scene by name (makeBuiltInScene) or a scene file (isSceneFile: loadGltfScene).
 Scene loadScene(const std::string& scene);

@@ -1,0 +1,71 @@
+#!/usr/bin/env python3
+"""Writes the gltf_scene fuzz seeds that probe the scene-file sandbox and the texture size limits (standard
+library only): URIs that are absolute or climb out of the scene's folder (plain and percent-encoded), and a
+textured triangle whose embedded PNG (in a buffer view, and as a data: URI) declares 20000x20000 pixels in a
+header of 45 bytes. Run from this folder: python3 make_gltf_scene_seeds.py"""
+import base64
+import json
+import struct
+import zlib
+
+
+def png_header_claiming(width, height):
+    def chunk(kind, data):
+        return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data) & 0xFFFFFFFF)
+    ihdr = struct.pack(">IIBBBBB", width, height, 8, 0, 0, 0, 0)  # 8-bit grey: stb_image decodes it (to RGBA, 1.6 GB)
+    return b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", ihdr) + chunk(b"IDAT", b"\x78\x01")
+
+
+def glb(document, binary=b""):
+    text = json.dumps(document, separators=(",", ":")).encode()
+    text += b" " * (-len(text) % 4)
+    chunks = struct.pack("<I4s", len(text), b"JSON") + text
+    if binary:
+        binary += b"\0" * (-len(binary) % 4)
+        chunks += struct.pack("<I4s", len(binary), b"BIN\0") + binary
+    return struct.pack("<4sII", b"glTF", 2, 12 + len(chunks)) + chunks
+
+
+def textured_triangle(image):
+    positions = struct.pack("<9f", 0, 0, 0, 1, 0, 0, 0, 1, 0)
+    uvs = struct.pack("<6f", 0, 0, 1, 0, 0, 1)
+    geometry = positions + uvs
+    document = {
+        "asset": {"version": "2.0"},
+        "scene": 0,
+        "scenes": [{"nodes": [0]}],
+        "nodes": [{"mesh": 0}],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "TEXCOORD_0": 1}, "material": 0}]}],
+        "materials": [{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}}],
+        "textures": [{"source": 0}],
+        "images": [image],
+        "accessors": [
+            {"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]},
+            {"bufferView": 1, "componentType": 5126, "count": 3, "type": "VEC2"},
+        ],
+        "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 36}, {"buffer": 0, "byteOffset": 36, "byteLength": 24}],
+        "buffers": [{"byteLength": len(geometry)}],
+    }
+    return document, geometry
+
+
+def main():
+    seeds = {
+        "absolute_buffer_uri.glb": glb({"asset": {"version": "2.0"}, "buffers": [{"uri": "/etc/hostname", "byteLength": 4}]}),
+        "escaping_image_uri.glb": glb({"asset": {"version": "2.0"}, "images": [{"uri": "../outside.png"}]}),
+        "encoded_escaping_image_uri.glb": glb({"asset": {"version": "2.0"}, "images": [{"uri": "..%2Foutside.png"}]}),
+    }
+    png = png_header_claiming(20000, 20000)
+    document, geometry = textured_triangle({"bufferView": 2, "mimeType": "image/png"})
+    document["bufferViews"].append({"buffer": 0, "byteOffset": len(geometry), "byteLength": len(png)})
+    document["buffers"][0]["byteLength"] = len(geometry) + len(png)
+    seeds["oversized_texture.glb"] = glb(document, geometry + png)
+    document, geometry = textured_triangle({"uri": "data:image/png;base64," + base64.b64encode(png).decode()})
+    seeds["oversized_data_uri_texture.glb"] = glb(document, geometry)
+    for name, data in seeds.items():
+        with open("gltf_scene/" + name, "wb") as out:
+            out.write(data)
+
+
+if __name__ == "__main__":
+    main()
