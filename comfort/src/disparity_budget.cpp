@@ -4,6 +4,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "s3d/number_text.h"
+
 namespace s3d::comfort {
 namespace {
 
@@ -34,7 +36,7 @@ DisparityBudget disparityBudget(const DisplayProfile& display, double limitArcmi
   validate(display);
   if (!(limitArcmin > 0.0) || !(limitArcmin <= 600.0))
     throw std::invalid_argument("disparity budget: the limit must be in (0, 600] arcminutes (got " +
-                                std::to_string(limitArcmin) + ")");
+                                numberText(limitArcmin) + ")");
   DisparityBudget budget;
   budget.limitArcmin = limitArcmin;
   budget.uncrossedMeters = parallaxMetersForDisparity(display, limitArcmin);

@@ -6,6 +6,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "s3d/number_text.h"
+
 namespace s3d::comfort {
 namespace {
 
@@ -16,7 +18,7 @@ constexpr double kHardShare = 0.998;
 void requireIn(float value, float low, float high, const char* name) {
   if (!(value >= low && value <= high))
     throw std::invalid_argument(std::string("disparity budget control: ") + name + " must be in [" +
-                                std::to_string(low) + ", " + std::to_string(high) + "] (got " + std::to_string(value) + ")");
+                                numberText(low) + ", " + numberText(high) + "] (got " + numberText(value) + ")");
 }
 
 double inverse(float depth) { return std::isinf(depth) ? 0.0 : 1.0 / double(depth); }

@@ -5,6 +5,8 @@
 #include <limits>
 #include <stdexcept>
 
+#include "s3d/number_text.h"
+
 #include "json_fields.h"
 
 namespace s3d::comfort {
@@ -22,7 +24,7 @@ void requireIn(float value, detail::Range range, const char* name) {
   const bool below = range.lowOpen ? !(value > range.low) : !(value >= range.low);
   const bool above = range.highOpen ? !(value < range.high) : !(value <= range.high);
   if (!std::isfinite(value) || below || above)
-    throw std::invalid_argument(std::string("display profile: ") + name + " = " + std::to_string(value) +
+    throw std::invalid_argument(std::string("display profile: ") + name + " = " + numberText(value) +
                                 " is outside " + detail::describe(range));
 }
 

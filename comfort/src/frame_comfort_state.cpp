@@ -7,6 +7,7 @@
 
 #include "s3d/comfort/crosshair.h"
 #include "s3d/comfort/world_queries.h"
+#include "s3d/number_text.h"
 
 namespace s3d::comfort {
 
@@ -20,9 +21,9 @@ CrosshairPlacement placeCrosshairAlongAim(const RayCast& rayCast, const FrameCam
                                           float margin) {
   if (!(defaultDistance > 0.0f) || !std::isfinite(defaultDistance))
     throw std::invalid_argument("placeCrosshair: defaultDistance must be positive and finite (got " +
-                                std::to_string(defaultDistance) + ")");
+                                numberText(defaultDistance) + ")");
   if (!(margin >= 0.0f) || !std::isfinite(margin))
-    throw std::invalid_argument("placeCrosshair: margin must be >= 0 and finite (got " + std::to_string(margin) + ")");
+    throw std::invalid_argument("placeCrosshair: margin must be >= 0 and finite (got " + numberText(margin) + ")");
   const std::optional<float> hit = rayCast ? rayCast(camera.position, camera.aim, defaultDistance) : std::nullopt;
   if (!hit || *hit >= defaultDistance) return {defaultDistance, false};
   const float nearest = std::max(camera.nearPlane, kMinCrosshairDepth);

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "s3d/comfort/critically_damped.h"
+#include "s3d/number_text.h"
 #include "s3d/renderer/deferred_renderer.h"
 
 namespace s3d::comfort {
@@ -14,7 +15,7 @@ namespace {
 void requirePositive(float value, const char* name) {
   if (!(value > 0.0f) || !std::isfinite(value))
     throw std::invalid_argument(std::string("zero-parallax control: ") + name + " must be positive and finite (got " +
-                                std::to_string(value) + ")");
+                                numberText(value) + ")");
 }
 
 }  // namespace

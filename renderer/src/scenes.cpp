@@ -533,7 +533,7 @@ Camera cameraForFrame(const Scene& scene, std::size_t frame) {
   if (scene.cameraPath.empty() && frame == 0) return scene.camera;
   if (frame < scene.cameraPath.size()) return scene.cameraPath[frame];
   const std::size_t count = scene.cameraPath.empty() ? 1 : scene.cameraPath.size();
-  throw std::out_of_range("cameraForFrame: frame " + std::to_string(frame) + " is out of range: scene '" + scene.name +
+  throw std::out_of_range("frame " + std::to_string(frame) + " is out of range: scene '" + scene.name +
                           "' has " + std::to_string(count) + (count == 1 ? " frame" : " frames") + " (0.." +
                           std::to_string(count - 1) + ")");
 }

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "row_sampling.h"
+#include "s3d/number_text.h"
 #include "s3d/stereo/forward.h"
 
 namespace s3d::stereo {
@@ -104,7 +105,7 @@ gpu::ForwardConstants makeForwardConstants(const StereoParameters& p, std::uint3
   c.height = int(height);
   c.fillSearchPx = int(std::ceil(2.0f * c.maxParallaxPx)) + 2;
   if (c.maxParallaxPx + 2.0f > float(S3D_FORWARD_OFFSET_BIAS - 1))
-    throw std::invalid_argument("forward stereo method: a displacement of " + std::to_string(c.maxParallaxPx) +
+    throw std::invalid_argument("forward stereo method: a displacement of " + numberText(c.maxParallaxPx) +
                                 " px is beyond its limit of " + std::to_string(S3D_FORWARD_OFFSET_BIAS - 3) + " px");
   return c;
 }

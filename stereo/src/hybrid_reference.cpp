@@ -4,6 +4,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "s3d/number_text.h"
 #include "s3d/stereo/hybrid.h"
 
 namespace s3d::stereo {
@@ -56,7 +57,7 @@ HybridClassification classifyHybridReference(const DepthImage& linearDepth, cons
 
 HybridThreshold hybridThreshold(const HybridHistogram& histogram, float budget) {
   if (!(budget >= 0.0f && budget <= 1.0f))
-    throw std::invalid_argument("hybrid budget must be in [0, 1] (got " + std::to_string(budget) + ")");
+    throw std::invalid_argument("hybrid budget must be in [0, 1] (got " + numberText(budget) + ")");
   const std::uint64_t total = std::accumulate(histogram.begin(), histogram.end(), std::uint64_t(0));
   // Integer cap, so budget 1 takes every pixel whatever the rounding of budget * total.
   const std::uint64_t cap = budget >= 1.0f ? total : std::uint64_t(std::floor(double(budget) * double(total)));

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include "s3d/number_text.h"
 #include "s3d/stereo/stereo_shared.h"
 
 namespace s3d::stereo {
@@ -77,10 +78,10 @@ std::uint64_t countInvalidDepth(const DepthImage& linearDepth) {
 
 ClampedZeroParallax clampZeroParallaxDistance(float zpp, float nearPlane, float farPlane) {
   if (!(nearPlane > 0.0f) || !(farPlane > nearPlane) || !std::isfinite(farPlane))
-    throw std::invalid_argument("zero-parallax clamp needs 0 < near < far (got near " + std::to_string(nearPlane) +
-                                ", far " + std::to_string(farPlane) + ")");
+    throw std::invalid_argument("zero-parallax clamp needs 0 < near < far (got near " + numberText(nearPlane) +
+                                ", far " + numberText(farPlane) + ")");
   if (!std::isfinite(zpp) || !(zpp > 0.0f))
-    throw std::invalid_argument("zeroParallaxDistance must be positive (got " + std::to_string(zpp) + ")");
+    throw std::invalid_argument("zeroParallaxDistance must be positive (got " + numberText(zpp) + ")");
   const float lowest = kMinZppFractionOfNear * nearPlane;
   const float highest = kMaxZppFractionOfFar * farPlane;
   if (zpp < lowest)

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "row_sampling.h"
+#include "s3d/number_text.h"
 #include "s3d/stereo/row_tile_shared.h"
 #include "s3d/stereo/stereo.h"
 
@@ -14,7 +15,7 @@ using detail::clampInt;
 using detail::sampleRow;
 
 void requireFinite(float value, const char* name) {
-  if (!std::isfinite(value)) throw std::invalid_argument(std::string(name) + " must be finite (got " + std::to_string(value) + ")");
+  if (!std::isfinite(value)) throw std::invalid_argument(std::string(name) + " must be finite (got " + numberText(value) + ")");
 }
 
 float linearDepthAt(const DepthImage& depth, int x, int y, float zeroParallaxDistance) {
@@ -37,20 +38,20 @@ void validate(const StereoParameters& p) {
   requireFinite(p.edgeCrop, "edgeCrop");
   requireFinite(p.weaponDepthOffset, "weaponDepthOffset");
   requireFinite(p.weaponDepthScale, "weaponDepthScale");
-  if (p.weaponDepthOffset < 0.0f) throw std::invalid_argument("weaponDepthOffset must be >= 0 (got " + std::to_string(p.weaponDepthOffset) + ")");
-  if (p.weaponDepthScale <= 0.0f) throw std::invalid_argument("weaponDepthScale must be > 0 (got " + std::to_string(p.weaponDepthScale) + ")");
+  if (p.weaponDepthOffset < 0.0f) throw std::invalid_argument("weaponDepthOffset must be >= 0 (got " + numberText(p.weaponDepthOffset) + ")");
+  if (p.weaponDepthScale <= 0.0f) throw std::invalid_argument("weaponDepthScale must be > 0 (got " + numberText(p.weaponDepthScale) + ")");
   if (p.maxSeparation < 0.0f || p.maxSeparation > kMaxSeparationLimit)
-    throw std::invalid_argument("maxSeparation " + std::to_string(p.maxSeparation) + " is outside [0, " +
-                                std::to_string(kMaxSeparationLimit) + "] (a fraction of the screen width)");
+    throw std::invalid_argument("maxSeparation " + numberText(p.maxSeparation) + " is outside [0, " +
+                                numberText(kMaxSeparationLimit) + "] (a fraction of the screen width)");
   if (p.zeroParallaxDistance <= 0.0f)
-    throw std::invalid_argument("zeroParallaxDistance must be positive (got " + std::to_string(p.zeroParallaxDistance) + ")");
+    throw std::invalid_argument("zeroParallaxDistance must be positive (got " + numberText(p.zeroParallaxDistance) + ")");
   if (p.method == StereoMethod::Search && (p.searchTaps < 1 || p.searchTaps > S3D_STEREO_MAX_TAPS))
     throw std::invalid_argument("searchTaps " + std::to_string(p.searchTaps) + " is outside [1, " +
                                 std::to_string(S3D_STEREO_MAX_TAPS) + "]");
   if (p.method == StereoMethod::Iterative && (p.iterations < 1 || p.iterations > 16))
     throw std::invalid_argument("iterations " + std::to_string(p.iterations) + " is outside [1, 16]");
   if (p.edgeCrop > kMaxSeparationLimit)
-    throw std::invalid_argument("edgeCrop " + std::to_string(p.edgeCrop) + " is above " + std::to_string(kMaxSeparationLimit));
+    throw std::invalid_argument("edgeCrop " + numberText(p.edgeCrop) + " is above " + numberText(kMaxSeparationLimit));
 }
 
 const char* methodName(StereoMethod method) {

@@ -24,6 +24,7 @@
 #include <stdexcept>
 #include <string_view>
 
+#include "exr_memory_stream.h"
 #include "file_access.h"
 
 namespace s3d::io {
@@ -74,14 +75,14 @@ void appendChunk(std::string& png, const char* type, std::string_view data) {
 }  // namespace
 
 PfmImage readPfm(const fs::path& file) {
-  const std::string bytes = detail::readWholeFile("readPfm", file);
+  const std::string bytes = detail::readWholeFile("PFM", file);
   // Header: three whitespace-separated tokens after the magic, then exactly one whitespace byte.
   std::size_t position = 0;
   auto nextToken = [&](const char* what) {
     while (position < bytes.size() && std::isspace(static_cast<unsigned char>(bytes[position]))) ++position;
     const std::size_t begin = position;
     while (position < bytes.size() && !std::isspace(static_cast<unsigned char>(bytes[position]))) ++position;
-    if (begin == position || position >= bytes.size()) failRead("readPfm", file, std::string("truncated header: no ") + what);
+    if (begin == position || position >= bytes.size()) failRead("PFM", file, std::string("truncated header: no ") + what);
     return std::string_view(bytes).substr(begin, position - begin);
   };
   const std::string_view magic = nextToken("PF/Pf magic");
@@ -91,13 +92,13 @@ PfmImage readPfm(const fs::path& file) {
   else if (magic == "Pf")
     image.channels = 1;
   else
-    failRead("readPfm", file, "not a PFM file (expected 'PF' or 'Pf', found '" + std::string(magic.substr(0, 8)) + "')");
+    failRead("PFM", file, "not a PFM file (expected 'PF' or 'Pf', found '" + std::string(magic.substr(0, 8)) + "')");
   auto parseSide = [&](const char* what) {
     const std::string_view token = nextToken(what);
     std::uint64_t value = 0;
     auto [ptr, ec] = std::from_chars(token.data(), token.data() + token.size(), value);
     if (ec != std::errc() || ptr != token.data() + token.size() || value == 0 || value > kMaxSide)
-      failRead("readPfm", file, std::string("bad ") + what + " '" + std::string(token) + "' (expected 1 to " +
+      failRead("PFM", file, std::string("bad ") + what + " '" + std::string(token) + "' (expected 1 to " +
                                     std::to_string(kMaxSide) + ")");
     return std::uint32_t(value);
   };
@@ -107,14 +108,14 @@ PfmImage readPfm(const fs::path& file) {
   char* scaleEnd = nullptr;
   const double scale = std::strtod(scaleToken.c_str(), &scaleEnd);
   if (scaleEnd != scaleToken.c_str() + scaleToken.size() || !std::isfinite(scale) || scale == 0.0)
-    failRead("readPfm", file, "bad scale '" + scaleToken + "' (a non-zero number; its sign gives the byte order)");
+    failRead("PFM", file, "bad scale '" + scaleToken + "' (a non-zero number; its sign gives the byte order)");
   ++position;  // the single whitespace byte ending the header
   const bool fileIsLittleEndian = scale < 0.0;
 
   const std::size_t count = std::size_t(image.width) * image.height * std::size_t(image.channels);
   const std::size_t available = bytes.size() - position;
   if (available < count * sizeof(float))
-    failRead("readPfm", file, "truncated: " + std::to_string(image.width) + "x" + std::to_string(image.height) + "x" +
+    failRead("PFM", file, "truncated: " + std::to_string(image.width) + "x" + std::to_string(image.height) + "x" +
                                   std::to_string(image.channels) + " floats need " + std::to_string(count * sizeof(float)) +
                                   " bytes of pixel data, the file has " + std::to_string(available));
   image.values.resize(count);
@@ -136,11 +137,11 @@ PfmImage readPfm(const fs::path& file) {
 
 void writePfm(const fs::path& file, const PfmImage& image, bool bigEndian) {
   if (image.channels != 1 && image.channels != 3)
-    throw std::invalid_argument("writePfm: " + std::to_string(image.channels) + " channels (PFM has 1 or 3)");
-  if (image.width == 0 || image.height == 0) throw std::invalid_argument("writePfm: image is empty");
+    throw std::invalid_argument("PFM image with " + std::to_string(image.channels) + " channels (PFM has 1 or 3)");
+  if (image.width == 0 || image.height == 0) throw std::invalid_argument("PFM image is empty");
   const std::size_t rowValues = std::size_t(image.width) * std::size_t(image.channels);
   if (image.values.size() != rowValues * image.height)
-    throw std::invalid_argument("writePfm: " + std::to_string(image.values.size()) + " values for a " +
+    throw std::invalid_argument("PFM image holds " + std::to_string(image.values.size()) + " values for a " +
                                 std::to_string(image.width) + "x" + std::to_string(image.height) + "x" +
                                 std::to_string(image.channels) + " image");
   std::string bytes = std::string(image.channels == 3 ? "PF" : "Pf") + "\n" + std::to_string(image.width) + " " +
@@ -157,28 +158,28 @@ void writePfm(const fs::path& file, const PfmImage& image, bool bigEndian) {
       bytes.append(raw, sizeof(raw));
     }
   }
-  detail::writeWholeFileAtomically("writePfm", file, bytes);
+  detail::writeWholeFileAtomically("PFM", file, bytes);
 }
 
 Gray16Image readPngGray16(const fs::path& file) {
-  const std::string bytes = detail::readWholeFile("readPngGray16", file);
-  detail::requirePngStructure("readPngGray16", file, bytes);
+  const std::string bytes = detail::readWholeFile("PNG", file);
+  detail::requirePngStructure("PNG", file, bytes);
   const auto* data = reinterpret_cast<const stbi_uc*>(bytes.data());
   const int size = static_cast<int>(bytes.size());
   int width = 0, height = 0, channelsInFile = 0;
   if (!stbi_info_from_memory(data, size, &width, &height, &channelsInFile)) {
     const char* reason = stbi_failure_reason();
-    failRead("readPngGray16", file, std::string("corrupt PNG: ") + (reason ? reason : "unknown decoder error"));
+    failRead("PNG", file, std::string("corrupt PNG: ") + (reason ? reason : "unknown decoder error"));
   }
   if (!stbi_is_16_bit_from_memory(data, size))
-    failRead("readPngGray16", file, "an 8-bit PNG: depth or disparity needs a 16-bit grey PNG");
+    failRead("PNG", file, "an 8-bit PNG: depth or disparity needs a 16-bit grey PNG");
   if (channelsInFile > 2)
-    failRead("readPngGray16", file, "a colour PNG: depth or disparity needs a 16-bit grey (single-channel) PNG");
+    failRead("PNG", file, "a colour PNG: depth or disparity needs a 16-bit grey (single-channel) PNG");
   std::unique_ptr<stbi_us, void (*)(void*)> decoded(
       stbi_load_16_from_memory(data, size, &width, &height, &channelsInFile, 1), stbi_image_free);
   if (!decoded) {
     const char* reason = stbi_failure_reason();
-    failRead("readPngGray16", file, std::string("corrupt PNG: ") + (reason ? reason : "unknown decoder error"));
+    failRead("PNG", file, std::string("corrupt PNG: ") + (reason ? reason : "unknown decoder error"));
   }
   Gray16Image image(static_cast<std::uint32_t>(width), static_cast<std::uint32_t>(height));
   std::memcpy(image.pixels.data(), decoded.get(), image.pixels.size() * sizeof(std::uint16_t));
@@ -187,9 +188,9 @@ Gray16Image readPngGray16(const fs::path& file) {
 
 void writePngGray16(const fs::path& file, const Gray16Image& image) {
   if (image.width == 0 || image.height == 0 || image.pixels.size() != image.pixelCount())
-    throw std::invalid_argument("writePngGray16: image is empty or its pixel buffer has the wrong size");
+    throw std::invalid_argument("16-bit PNG image is empty or its pixel buffer has the wrong size");
   if (image.width > kMaxSide || image.height > kMaxSide)
-    throw std::invalid_argument("writePngGray16: image is too large");
+    throw std::invalid_argument("16-bit PNG image is too large");
   // Raw scanlines: filter byte 0, then big-endian samples.
   std::string raw;
   raw.reserve(image.height * (1 + 2 * std::size_t(image.width)));
@@ -229,35 +230,34 @@ void writePngGray16(const fs::path& file, const Gray16Image& image) {
   appendChunk(png, "IHDR", header);
   appendChunk(png, "IDAT", zlib);
   appendChunk(png, "IEND", {});
-  detail::writeWholeFileAtomically("writePngGray16", file, png);
+  detail::writeWholeFileAtomically("PNG", file, png);
 }
 
 DepthImage readExrChannel(const fs::path& file, const std::string& channel) {
-  const std::string bytes = detail::readWholeFile("readExrChannel", file);
+  const std::string bytes = detail::readWholeFile("EXR", file);
   DepthImage image;
   try {
-    Imf::StdISStream stream;
-    stream.str(bytes);
+    detail::ExrMemoryStream stream(file, bytes);
     Imf::InputFile input(stream);
     const Imf::Header& header = input.header();
     const Imath::Box2i dataWindow = header.dataWindow();
     const std::int64_t width = std::int64_t(dataWindow.max.x) - dataWindow.min.x + 1;
     const std::int64_t height = std::int64_t(dataWindow.max.y) - dataWindow.min.y + 1;
     if (width <= 0 || height <= 0 || std::uint64_t(width) > kMaxSide || std::uint64_t(height) > kMaxSide)
-      failRead("readExrChannel", file, "invalid data window");
+      failRead("EXR", file, "invalid data window");
     // A crafted header can claim a huge window in a tiny file: refuse before allocating it (1 GiB of floats).
     if (std::uint64_t(width) * std::uint64_t(height) > kMaxPixels)
-      failRead("readExrChannel", file, "data window of " + std::to_string(width) + "x" + std::to_string(height) + " is too large");
+      failRead("EXR", file, "data window of " + std::to_string(width) + "x" + std::to_string(height) + " is too large");
     const Imf::ChannelList& channels = header.channels();
     const Imf::Channel* found = channels.findChannel(channel);
     if (!found) {
       std::string names;
       for (auto entry = channels.begin(); entry != channels.end(); ++entry)
         names += (names.empty() ? "" : ", ") + std::string(entry.name());
-      failRead("readExrChannel", file, "no channel '" + channel + "' (channels: " + names + ")");
+      failRead("EXR", file, "no channel '" + channel + "' (channels: " + names + ")");
     }
     if (found->xSampling != 1 || found->ySampling != 1)
-      failRead("readExrChannel", file, "subsampled channel '" + channel + "' is not supported");
+      failRead("EXR", file, "subsampled channel '" + channel + "' is not supported");
     image = DepthImage(static_cast<std::uint32_t>(width), static_cast<std::uint32_t>(height));
     Imf::FrameBuffer frameBuffer;
     frameBuffer.insert(channel, Imf::Slice::Make(Imf::FLOAT, image.pixels.data(), dataWindow, sizeof(float),
@@ -267,7 +267,7 @@ DepthImage readExrChannel(const fs::path& file, const std::string& channel) {
   } catch (const FileError&) {
     throw;
   } catch (const std::exception& error) {
-    failRead("readExrChannel", file, std::string("corrupt EXR: ") + error.what());
+    failRead("EXR", file, "corrupt EXR: " + detail::exrReason(file, error.what()));
   }
   return image;
 }

@@ -13,16 +13,17 @@ namespace s3d::io::detail {
 struct FileError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
-// Throws FileError "<operation>: cannot read '<file>': <reason>".
-[[noreturn]] void failRead(const char* operation, const std::filesystem::path& file, const std::string& reason);
+// Throws FileError "cannot read <kind> file '<file>': <reason>"; kind is the format as users call it ("PNG",
+// "EXR", "PFM"; "" for just "file"), never a function's name.
+[[noreturn]] void failRead(const char* kind, const std::filesystem::path& file, const std::string& reason);
 
-// Throws std::runtime_error "<operation>: cannot read '<file>': <reason>" (missing, not a regular file, I/O).
-std::string readWholeFile(const char* operation, const std::filesystem::path& file);
+// Throws FileError "cannot read <kind> file '<file>': <reason>" (missing, a folder, not a regular file, I/O).
+std::string readWholeFile(const char* kind, const std::filesystem::path& file);
 // A PNG's signature and chunk lengths, checked before stb_image sees the bytes: stb grows its IDAT buffer to
 // a chunk's declared length before reading it, so a 100-byte file declaring a 2 GB chunk made it allocate
-// 2 GB (found by fuzz_png). Throws std::runtime_error "<operation>: cannot read '<file>': ...".
-void requirePngStructure(const char* operation, const std::filesystem::path& file, const std::string& bytes);
+// 2 GB (found by fuzz_png). Throws FileError "cannot read <kind> file '<file>': ...".
+void requirePngStructure(const char* kind, const std::filesystem::path& file, const std::string& bytes);
 // Temporary file in the same folder, then rename; the parent folder is created if missing.
-void writeWholeFileAtomically(const char* operation, const std::filesystem::path& file, std::string_view bytes);
+void writeWholeFileAtomically(const char* kind, const std::filesystem::path& file, std::string_view bytes);
 
 }  // namespace s3d::io::detail

@@ -1,5 +1,6 @@
 #include "s3d/io/image_io.h"
 
+#include "exr_memory_stream.h"
 #include "file_access.h"
 #include "s3d/io/output_transaction.h"
 
@@ -22,6 +23,7 @@
 #include <fcntl.h>
 #include <unistd.h>
 
+#include <cctype>
 #include <cerrno>
 #include <cstdio>
 #include <random>
@@ -31,6 +33,7 @@
 #include <fstream>
 #include <iterator>
 #include <memory>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <system_error>
@@ -51,15 +54,23 @@ std::string quoted(const fs::path& file) {
   return text;
 }
 
-[[noreturn]] void failWrite(const char* operation, const fs::path& file, const std::string& reason) {
-  throw FileError(std::string(operation) + ": cannot write " + quoted(file) + ": " + reason);
+// "<kind> file" ("PNG file", "EXR file") or just "file": what the user calls it, never a function's name.
+std::string fileKind(const char* kind) {
+  std::string text(kind);
+  if (!text.empty()) text += ' ';
+  text += "file ";
+  return text;
+}
+
+[[noreturn]] void failWrite(const char* kind, const fs::path& file, const std::string& reason) {
+  throw FileError("cannot write " + fileKind(kind) + quoted(file) + ": " + reason);
 }
 
 }  // namespace
 
 namespace detail {
-[[noreturn]] void failRead(const char* operation, const fs::path& file, const std::string& reason) {
-  throw FileError(std::string(operation) + ": cannot read " + quoted(file) + ": " + reason);
+[[noreturn]] void failRead(const char* kind, const fs::path& file, const std::string& reason) {
+  throw FileError("cannot read " + fileKind(kind) + quoted(file) + ": " + reason);
 }
 }  // namespace detail
 
@@ -87,21 +98,21 @@ int createTemporaryBeside(const fs::path& file, fs::path& temporary) {
 // Write to a fresh temporary file in the same folder, then rename over the target: rename within one file
 // system is atomic, so readers see either the old file or the complete new one, never a partial one; a link
 // at the target itself is replaced, not followed.
-void writeFileAtomically(const char* operation, const fs::path& file, std::string_view bytes) {
-  if (file.empty() || !file.has_filename()) failWrite(operation, file, "path names no file");
+void writeFileAtomically(const char* kind, const fs::path& file, std::string_view bytes) {
+  if (file.empty() || !file.has_filename()) failWrite(kind, file, "path names no file");
   std::error_code error;
   const fs::path target = OutputTransaction::stagedTarget(file);  // messages still name the user's file
   const fs::path folder = target.parent_path();
   if (!folder.empty()) {
     fs::create_directories(folder, error);
-    if (error) failWrite(operation, file, "cannot create folder " + quoted(folder) + ": " + error.message());
+    if (error) failWrite(kind, file, "cannot create folder " + quoted(folder) + ": " + error.message());
   }
 
   fs::path temporary;
   int descriptor = createTemporaryBeside(target, temporary);
   if (descriptor < 0) {
     const int openErrno = errno;  // capture before anything else can overwrite it
-    failWrite(operation, file, std::string("cannot create a temporary file beside it: ") + std::strerror(openErrno));
+    failWrite(kind, file, std::string("cannot create a temporary file beside it: ") + std::strerror(openErrno));
   }
   try {
     std::size_t written = 0;
@@ -110,16 +121,16 @@ void writeFileAtomically(const char* operation, const fs::path& file, std::strin
       if (count < 0 && errno == EINTR) continue;
       if (count <= 0) {
         const int writeErrno = errno;
-        failWrite(operation, file, "writing temporary file " + quoted(temporary) + " failed: " + std::strerror(writeErrno));
+        failWrite(kind, file, "writing temporary file " + quoted(temporary) + " failed: " + std::strerror(writeErrno));
       }
       written += static_cast<std::size_t>(count);
     }
     if (::close(std::exchange(descriptor, -1)) != 0) {
       const int closeErrno = errno;
-      failWrite(operation, file, "writing temporary file " + quoted(temporary) + " failed: " + std::strerror(closeErrno));
+      failWrite(kind, file, "writing temporary file " + quoted(temporary) + " failed: " + std::strerror(closeErrno));
     }
     fs::rename(temporary, target, error);
-    if (error) failWrite(operation, file, "cannot move temporary file into place: " + error.message());
+    if (error) failWrite(kind, file, "cannot move temporary file into place: " + error.message());
   } catch (...) {
     if (descriptor >= 0) ::close(descriptor);
     fs::remove(temporary, error);  // ours: created exclusively above; best effort, the original error matters
@@ -127,33 +138,37 @@ void writeFileAtomically(const char* operation, const fs::path& file, std::strin
   }
 }
 
-std::string readFileBytes(const char* operation, const fs::path& file) {
+std::string readFileBytes(const char* kind, const fs::path& file) {
   std::error_code error;
   const fs::file_status status = fs::status(file, error);
-  if (!fs::exists(status)) failRead(operation, file, "file does not exist");
-  if (!fs::is_regular_file(status)) failRead(operation, file, "not a regular file");
+  if (!fs::exists(status)) failRead(kind, file, "it does not exist");
+  if (fs::is_directory(status)) failRead(kind, file, "it is a folder, not a file");
+  if (!fs::is_regular_file(status)) failRead(kind, file, "not a regular file");
   std::ifstream stream(file, std::ios::binary);
   if (!stream) {
     const int openErrno = errno;
-    failRead(operation, file, std::strerror(openErrno));
+    failRead(kind, file, std::strerror(openErrno));
   }
   std::string bytes((std::istreambuf_iterator<char>(stream)), std::istreambuf_iterator<char>());
-  if (stream.bad()) failRead(operation, file, "I/O error while reading");
+  if (stream.bad()) failRead(kind, file, "I/O error while reading");
   return bytes;
 }
 
+// A caller's mistake, not the file system's: std::invalid_argument, still naming the file.
+[[noreturn]] void failImage(const char* kind, const fs::path& file, const std::string& reason) {
+  throw std::invalid_argument("cannot write " + fileKind(kind) + quoted(file) + ": " + reason);
+}
+
 template <typename Image>
-void requireWritableImage(const char* operation, const Image& image, const char* what) {
-  if (image.width == 0 || image.height == 0)
-    throw std::invalid_argument(std::string(operation) + ": " + what + " image is empty");
+void requireWritableImage(const char* kind, const fs::path& file, const Image& image, const char* what) {
+  if (image.width == 0 || image.height == 0) failImage(kind, file, std::string("the ") + what + " image is empty");
   if (image.pixels.size() != image.pixelCount() * Image::channels)
-    throw std::invalid_argument(std::string(operation) + ": " + what + " pixel buffer holds " +
-                                std::to_string(image.pixels.size()) + " values, expected " +
-                                std::to_string(image.pixelCount() * Image::channels));
+    failImage(kind, file, std::string("the ") + what + " pixel buffer holds " + std::to_string(image.pixels.size()) +
+                              " values, expected " + std::to_string(image.pixelCount() * Image::channels));
   // Both libraries take int sizes and int row strides.
   if (std::uint64_t(image.width) * Image::channels * sizeof(typename decltype(image.pixels)::value_type) > INT_MAX ||
       image.height > INT_MAX)
-    throw std::invalid_argument(std::string(operation) + ": " + what + " image is too large for the file format");
+    failImage(kind, file, std::string("the ") + what + " image is too large for the file format");
 }
 
 void appendToByteVector(void* context, void* data, int size) {
@@ -165,9 +180,9 @@ void appendToByteVector(void* context, void* data, int size) {
 constexpr int kRgbaChannels = 4;
 
 // Called with the size a file's header claims, before the pixels are allocated.
-void requireReadableSize(const char* operation, const fs::path& file, std::int64_t width, std::int64_t height) {
+void requireReadableSize(const char* kind, const fs::path& file, std::int64_t width, std::int64_t height) {
   if (width > kMaxImageSide || height > kMaxImageSide || std::uint64_t(width) * std::uint64_t(height) > kMaxImagePixels)
-    failRead(operation, file, "image is " + std::to_string(width) + "x" + std::to_string(height) +
+    failRead(kind, file, "image is " + std::to_string(width) + "x" + std::to_string(height) +
                                   ", beyond the readers' limit of " + std::to_string(kMaxImageSide) + " pixels a side and " +
                                   std::to_string(kMaxImagePixels) + " pixels in all");
 }
@@ -175,33 +190,33 @@ void requireReadableSize(const char* operation, const fs::path& file, std::int64
 }  // namespace
 
 void writePng(const fs::path& file, const ImageRGBA8& image) {
-  requireWritableImage("writePng", image, "PNG");
+  requireWritableImage("PNG", file, image, "PNG");
   // Encode into memory first so the file itself goes through the atomic writer.
   std::vector<char> encoded;
   const int rowBytes = static_cast<int>(image.width) * kRgbaChannels;
   if (stbi_write_png_to_func(appendToByteVector, &encoded, static_cast<int>(image.width),
                              static_cast<int>(image.height), kRgbaChannels, image.pixels.data(), rowBytes) == 0)
-    failWrite("writePng", file, "PNG encoding failed");
-  writeFileAtomically("writePng", file, std::string_view(encoded.data(), encoded.size()));
+    failWrite("PNG", file, "PNG encoding failed");
+  writeFileAtomically("PNG", file, std::string_view(encoded.data(), encoded.size()));
 }
 
 ImageRGBA8 readPng(const fs::path& file) {
-  const std::string bytes = readFileBytes("readPng", file);
-  detail::requirePngStructure("readPng", file, bytes);
+  const std::string bytes = readFileBytes("PNG", file);
+  detail::requirePngStructure("PNG", file, bytes);
   int width = 0;
   int height = 0;
   int channelsInFile = 0;
   // The header alone first: stb would allocate whatever size the header claims before finding the data short.
   if (stbi_info_from_memory(reinterpret_cast<const stbi_uc*>(bytes.data()), static_cast<int>(bytes.size()), &width,
                             &height, &channelsInFile) != 0)
-    requireReadableSize("readPng", file, width, height);
+    requireReadableSize("PNG", file, width, height);
   std::unique_ptr<stbi_uc, void (*)(void*)> decoded(
       stbi_load_from_memory(reinterpret_cast<const stbi_uc*>(bytes.data()), static_cast<int>(bytes.size()), &width,
                             &height, &channelsInFile, kRgbaChannels),
       stbi_image_free);
   if (!decoded) {
     const char* reason = stbi_failure_reason();
-    failRead("readPng", file, std::string("corrupt PNG: ") + (reason ? reason : "unknown decoder error"));
+    failRead("PNG", file, std::string("corrupt PNG: ") + (reason ? reason : "unknown decoder error"));
   }
   ImageRGBA8 image(static_cast<std::uint32_t>(width), static_cast<std::uint32_t>(height));
   std::memcpy(image.pixels.data(), decoded.get(), image.pixels.size());
@@ -209,10 +224,11 @@ ImageRGBA8 readPng(const fs::path& file) {
 }
 
 void writeExr(const fs::path& file, const ImageRGBA32F& color, const DepthImage* linearDepth) {
-  requireWritableImage("writeExr", color, "color");
+  requireWritableImage("EXR", file, color, "color");
   if (linearDepth) {
-    requireSameSize(color, *linearDepth, "writeExr (color vs linear depth)");
-    requireWritableImage("writeExr", *linearDepth, "linear depth");
+    if (color.width != linearDepth->width || color.height != linearDepth->height)
+      failImage("EXR", file, "the color and the linear depth differ in size");
+    requireWritableImage("EXR", file, *linearDepth, "linear depth");
   }
   const int width = static_cast<int>(color.width);
   const int height = static_cast<int>(color.height);
@@ -247,33 +263,32 @@ void writeExr(const fs::path& file, const ImageRGBA32F& color, const DepthImage*
     }  // the destructor writes the line-offset table, so the bytes are complete only after this scope
     encoded = stream.str();
   } catch (const std::exception& error) {
-    failWrite("writeExr", file, std::string("EXR encoding failed: ") + error.what());
+    failWrite("EXR", file, std::string("EXR encoding failed: ") + error.what());
   }
-  writeFileAtomically("writeExr", file, encoded);
+  writeFileAtomically("EXR", file, encoded);
 }
 
 ExrFrame readExr(const fs::path& file) {
-  const std::string bytes = readFileBytes("readExr", file);
+  const std::string bytes = readFileBytes("EXR", file);
   ExrFrame frame;
   try {
-    Imf::StdISStream stream;
-    stream.str(bytes);
+    detail::ExrMemoryStream stream(file, bytes);
     Imf::InputFile input(stream);
     const Imf::Header& header = input.header();
     const Imath::Box2i dataWindow = header.dataWindow();
     const std::int64_t width = std::int64_t(dataWindow.max.x) - dataWindow.min.x + 1;
     const std::int64_t height = std::int64_t(dataWindow.max.y) - dataWindow.min.y + 1;
     if (width <= 0 || height <= 0 || width > INT_MAX / (kRgbaChannels * int(sizeof(float))) || height > INT_MAX)
-      failRead("readExr", file, "invalid data window");
-    requireReadableSize("readExr", file, width, height);
+      failRead("EXR", file, "invalid data window");
+    requireReadableSize("EXR", file, width, height);
 
     const Imf::ChannelList& channels = header.channels();
     for (const char* required : {"R", "G", "B"})
       if (!channels.findChannel(required))
-        failRead("readExr", file, std::string("missing colour channel '") + required + "'");
+        failRead("EXR", file, std::string("missing colour channel '") + required + "'");
     for (auto channel = channels.begin(); channel != channels.end(); ++channel)
       if (channel.channel().xSampling != 1 || channel.channel().ySampling != 1)
-        failRead("readExr", file, std::string("subsampled channel '") + channel.name() + "' is not supported");
+        failRead("EXR", file, std::string("subsampled channel '") + channel.name() + "' is not supported");
 
     frame.color = ImageRGBA32F(static_cast<std::uint32_t>(width), static_cast<std::uint32_t>(height));
     Imf::FrameBuffer frameBuffer;
@@ -296,35 +311,85 @@ ExrFrame readExr(const fs::path& file) {
   } catch (const FileError&) {
     throw;
   } catch (const std::exception& error) {
-    failRead("readExr", file, std::string("corrupt EXR: ") + error.what());
+    failRead("EXR", file, "corrupt EXR: " + detail::exrReason(file, error.what()));
   }
   return frame;
 }
 
-void writeTextFile(const fs::path& file, std::string_view text) { writeFileAtomically("writeTextFile", file, text); }
+ImageSize readImageSize(const fs::path& file) {
+  std::string extension = file.extension().string();
+  for (char& c : extension) c = char(std::tolower(static_cast<unsigned char>(c)));
+  if (extension == ".exr") {
+    try {
+      Imf::InputFile input(file.c_str());  // reads the header only
+      const Imath::Box2i window = input.header().dataWindow();
+      const std::int64_t width = std::int64_t(window.max.x) - window.min.x + 1;
+      const std::int64_t height = std::int64_t(window.max.y) - window.min.y + 1;
+      if (width <= 0 || height <= 0) failRead("EXR", file, "invalid data window");
+      requireReadableSize("EXR", file, width, height);
+      return {std::uint32_t(width), std::uint32_t(height)};
+    } catch (const FileError&) {
+      throw;
+    } catch (const std::exception& error) {
+      (void)readFileBytes("EXR", file);  // a missing file or a folder is named as such
+      failRead("EXR", file, "corrupt EXR: " + detail::exrReason(file, error.what()));
+    }
+  }
+  const char* kind = extension == ".pfm" ? "PFM" : "PNG";
+  std::error_code error;
+  if (!fs::is_regular_file(file, error)) (void)readFileBytes(kind, file);  // names what it is instead
+  std::ifstream stream(file, std::ios::binary);
+  std::string head(256, '\0');
+  stream.read(head.data(), std::streamsize(head.size()));
+  head.resize(std::size_t(stream.gcount()));
+  if (extension == ".pfm") {
+    std::istringstream tokens(head);
+    std::string magic;
+    std::int64_t width = 0, height = 0;
+    if (!(tokens >> magic >> width >> height) || (magic != "PF" && magic != "Pf") || width <= 0 || height <= 0)
+      failRead("PFM", file, "not a PFM header (expected 'PF' or 'Pf', width and height)");
+    requireReadableSize("PFM", file, width, height);
+    return {std::uint32_t(width), std::uint32_t(height)};
+  }
+  // PNG: the signature, then IHDR's width and height (big-endian) at bytes 16..23.
+  constexpr std::string_view kPngSignature("\x89PNG\r\n\x1a\n", 8);
+  if (head.size() < 24 || std::string_view(head).substr(0, 8) != kPngSignature || head.compare(12, 4, "IHDR") != 0)
+    failRead("PNG", file, "not a PNG file (bad signature or header)");
+  auto bigEndian = [&](std::size_t at) {
+    std::uint32_t value = 0;
+    for (std::size_t i = 0; i < 4; ++i) value = (value << 8) | static_cast<unsigned char>(head[at + i]);
+    return value;
+  };
+  const std::uint32_t width = bigEndian(16), height = bigEndian(20);
+  if (width == 0 || height == 0) failRead("PNG", file, "corrupt PNG: zero width or height");
+  requireReadableSize("PNG", file, width, height);
+  return {width, height};
+}
+
+void writeTextFile(const fs::path& file, std::string_view text) { writeFileAtomically("", file, text); }
 
 namespace detail {
-std::string readWholeFile(const char* operation, const fs::path& file) { return readFileBytes(operation, file); }
+std::string readWholeFile(const char* kind, const fs::path& file) { return readFileBytes(kind, file); }
 
-void requirePngStructure(const char* operation, const fs::path& file, const std::string& bytes) {
-  if (bytes.size() > INT_MAX) failRead(operation, file, "file is too large");
+void requirePngStructure(const char* kind, const fs::path& file, const std::string& bytes) {
+  if (bytes.size() > INT_MAX) failRead(kind, file, "file is too large");
   // stb_image accepts several formats; the signature check keeps the readers honest about "PNG".
   constexpr std::string_view kPngSignature("\x89PNG\r\n\x1a\n", 8);
   if (std::string_view(bytes).substr(0, kPngSignature.size()) != kPngSignature)
-    failRead(operation, file, "not a PNG file (bad signature)");
+    failRead(kind, file, "not a PNG file (bad signature)");
   for (std::size_t at = kPngSignature.size(); at + 8 <= bytes.size();) {
     const auto byte = [&](std::size_t i) { return std::uint32_t(static_cast<unsigned char>(bytes[at + i])); };
     const std::uint64_t length = (byte(0) << 24) | (byte(1) << 16) | (byte(2) << 8) | byte(3);
     if (length + 12 > bytes.size() - at)
-      failRead(operation, file, "corrupt PNG: chunk '" + bytes.substr(at + 4, 4) + "' declares " +
+      failRead(kind, file, "corrupt PNG: chunk '" + bytes.substr(at + 4, 4) + "' declares " +
                                     std::to_string(length) + " bytes, more than the file holds");
     if (bytes.compare(at + 4, 4, "IEND") == 0) break;
     at += std::size_t(length) + 12;
   }
 }
 
-void writeWholeFileAtomically(const char* operation, const fs::path& file, std::string_view bytes) {
-  writeFileAtomically(operation, file, bytes);
+void writeWholeFileAtomically(const char* kind, const fs::path& file, std::string_view bytes) {
+  writeFileAtomically(kind, file, bytes);
 }
 }  // namespace detail
 

@@ -74,20 +74,92 @@ fs::path OutputTransaction::stagedTarget(const fs::path& file) {
 void OutputTransaction::commit() {
   std::lock_guard lock(mutex_);
   std::error_code error;
+  auto abandon = [&](const std::string& message) {
+    finished_ = true;
+    active.store(previous_);
+    std::error_code ignored;
+    fs::remove_all(staging_, ignored);
+    for (const fs::path& created : createdFolders_) fs::remove(created, ignored);  // only while empty
+    throw std::runtime_error(message);
+  };
+  // 1. Nothing moves unless every file can: a folder at an output's name (or at one of its folders' names as a
+  //    file) is named and the output folder stays as it was.
   for (const fs::path& relative : staged_) {
     const fs::path target = folder_ / relative;
-    fs::create_directories(target.parent_path(), error);
-    if (!error) fs::rename(staging_ / relative, target, error);
-    if (error) {
-      finished_ = true;
-      active.store(previous_);
-      fs::remove_all(staging_, error);
-      throw std::runtime_error("cannot move " + quoted(target) + " into place: " + error.message());
+    std::error_code missing;  // a target or folder that does not exist yet is fine
+    if (fs::is_directory(fs::symlink_status(target, missing)))
+      abandon("output " + quoted(target) + " is a folder: it cannot be replaced by a file");
+    for (fs::path parent = target.parent_path(); parent != folder_ && !parent.empty(); parent = parent.parent_path()) {
+      const fs::file_status status = fs::symlink_status(parent, missing);
+      if (fs::exists(status) && !fs::is_directory(status))
+        abandon("output " + quoted(target) + " needs the folder " + quoted(parent) + ", which is a file");
     }
+  }
+  // 2. Each file replaced is first moved aside into the staging folder (same file system: renames), so a failure
+  //    part-way puts every earlier file back; a link at an output's name is moved, never followed.
+  struct Move {
+    fs::path target, replaced;  // replaced: empty when nothing was there
+  };
+  std::vector<Move> moves;
+  auto undo = [&] {
+    std::error_code ignored;
+    for (auto move = moves.rbegin(); move != moves.rend(); ++move) {
+      fs::remove(move->target, ignored);
+      if (!move->replaced.empty()) fs::rename(move->replaced, move->target, ignored);
+    }
+  };
+  for (std::size_t i = 0; i < staged_.size(); ++i) {
+    const fs::path target = folder_ / staged_[i];
+    Move move{target, {}};
+    fs::create_directories(target.parent_path(), error);
+    std::error_code missing;  // symlink_status reports a missing target as an error too
+    if (!error && fs::exists(fs::symlink_status(target, missing))) {
+      move.replaced = staging_ / (".s3d-replaced-" + std::to_string(i));
+      fs::rename(target, move.replaced, error);
+      if (error) move.replaced.clear();
+    }
+    if (!error) fs::rename(staging_ / staged_[i], target, error);
+    if (error) {
+      const std::string reason = error.message();
+      if (!move.replaced.empty()) {
+        std::error_code ignored;
+        fs::rename(move.replaced, target, ignored);
+      }
+      undo();
+      abandon("cannot move " + quoted(target) + " into place: " + reason);
+    }
+    moves.push_back(std::move(move));
   }
   finished_ = true;
   active.store(previous_);
-  fs::remove_all(staging_, error);
+  fs::remove_all(staging_, error);  // the staging folder, with the files the run replaced
+}
+
+void OutputTransaction::requireReplaceable(const fs::path& folder, const std::vector<std::string>& names) {
+  std::error_code error;
+  for (const std::string& name : names)
+    if (fs::is_directory(fs::symlink_status(folder / name, error)))
+      throw std::invalid_argument("output " + quoted(folder / name) +
+                                  " is a folder: it cannot be replaced by a file; move it or choose another --output");
+}
+
+void requireOutputsAreNotInputs(const fs::path& folder, const std::vector<std::string>& outputs,
+                                const std::vector<fs::path>& inputs) {
+  OutputTransaction::requireReplaceable(folder, outputs);
+  std::error_code error;
+  for (const fs::path& input : inputs) {
+    if (input.empty()) continue;
+    const fs::path resolvedInput = fs::weakly_canonical(input, error);
+    for (const std::string& name : outputs) {
+      const fs::path output = folder / name;
+      const bool same = (!error && fs::weakly_canonical(output, error) == resolvedInput && !error) ||
+                        (fs::exists(output) && fs::equivalent(output, input, error) && !error);
+      if (same)
+        throw std::invalid_argument("output " + quoted(output) + " would overwrite input " + quoted(input) +
+                                    "; choose another --output folder");
+      error.clear();
+    }
+  }
 }
 
 void OutputTransaction::rollback() noexcept {

@@ -40,6 +40,15 @@ struct ExrFrame {
 // or is larger than kMaxImageSide / kMaxImagePixels.
 ExrFrame readExr(const std::filesystem::path& file);
 
+// The width and height a PNG, EXR or PFM file's header declares (by its extension, case-insensitive), read
+// without decoding a pixel, so a run can budget its memory before it allocates any. Throws std::runtime_error
+// naming the file when it is missing, not of its kind, or its header is corrupt.
+struct ImageSize {
+  std::uint32_t width = 0;
+  std::uint32_t height = 0;
+};
+ImageSize readImageSize(const std::filesystem::path& file);
+
 // Writes text verbatim (no newline translation). The parent folder is created if missing.
 void writeTextFile(const std::filesystem::path& file, std::string_view text);
 

@@ -19,8 +19,14 @@ class OutputTransaction {
   OutputTransaction(const OutputTransaction&) = delete;
   OutputTransaction& operator=(const OutputTransaction&) = delete;
 
-  // Moves every staged file into the output folder (replacing older files of the same name).
+  // Moves every staged file into the output folder (replacing older files or links of the same name; a link is
+  // moved, never followed). Refuses before moving anything when a folder sits at an output's name, and puts every
+  // replaced file back when a move fails part-way; throws std::runtime_error naming the file either way.
   void commit();
+
+  // Before a run: throws std::invalid_argument naming the first of `names` (files inside `folder`) that exists
+  // as a folder, which no output file can replace.
+  static void requireReplaceable(const std::filesystem::path& folder, const std::vector<std::string>& names);
 
   // Where a write of `file` must go now: inside the open transaction's staging folder when `file` lies in
   // its output folder, else `file` itself. Used by s3d_io's writers.
@@ -37,5 +43,11 @@ class OutputTransaction {
   OutputTransaction* previous_ = nullptr;
   bool finished_ = false;
 };
+
+// Before a run: throws std::invalid_argument when one of `outputs` (files inside `folder`) resolves, after
+// links, to one of `inputs` (a run would destroy its own input, and each rerun again), naming both, or when one
+// of them is a folder (OutputTransaction::requireReplaceable). Empty inputs are skipped.
+void requireOutputsAreNotInputs(const std::filesystem::path& folder, const std::vector<std::string>& outputs,
+                                const std::vector<std::filesystem::path>& inputs);
 
 }  // namespace s3d::io
