@@ -40,7 +40,9 @@ class BenchCommand final : public Command {
         .add_option("--methods", options_.methods,
                     "Comma-separated method settings: seed, forward, search-N (N taps), iterative-K (K iterations); search and "
                     "iterative alone sweep taps 4,8,16 and iterations 2,4,6,8; a /pixel or /tiles suffix (search-4/pixel) "
-                    "forces the per-pixel or the row-tiled kernel (default: row tiles where their margin fits)")
+                    "forces the per-pixel or the row-tiled kernel (default: the library's choice, " +
+                        std::string(stereo::kernelName(stereo::StereoParameters{}.kernel)) +
+                        ": per pixel, as row tiles measured slower)")
         ->delimiter(',')
         ->type_name("LIST")
         ->capture_default_str();
@@ -58,30 +60,35 @@ class BenchCommand final : public Command {
         ->check(CLI::Range(1, 4))
         ->capture_default_str();
     bench.add_flag("--renderer", options_.rendererOnly,
-                   "Time the center frame and each renderer pass per scene (issue #3) instead of the stereo sweep");
+                   "Time the center frame and each renderer pass per scene instead of the stereo sweep");
     bench
         .add_option("--bandwidth-gbs", bandwidth_,
                     "Memory bandwidth of the device in GB/s for the memory-traffic target (H100 SXM: 3350, "
                     "H100 PCIe: 2000); without it that target is skipped")
         ->check(floatRange(0.0, 1.0e6, true, "a bandwidth in GB/s"));
     bench.add_option("--target-setting", options_.targetSetting,
-                     "The setting the issue #4 targets judge (default: the library's default method, " +
+                     "The setting the speed and error targets judge (default: the library's default method, " +
                          app::defaultMethodSetting().name() + ")");
     bench.add_option("--output", options_.outputFolder, "Output folder (created if missing)")->capture_default_str();
     bench.add_option("--results-md", resultsMarkdown_,
                      "Markdown file whose section between '<!-- s3d bench: KIND begin -->' and '... end -->' (KIND: cpu "
                      "or gpu; 's3d bench renderer: KIND' with --renderer) is replaced by the tables (appended when the "
                      "file has no such section)");
+    addMemoryLimitOption(bench, options_.memoryLimitBytes);
     addDeviceOptions(bench, contextOptions_);
   }
 
   int run() override {
+    if (options_.rendererOnly)
+      rejectGiven(*subcommand, {"--methods", "--separations", "--bandwidth-gbs", "--target-setting"},
+                  "belongs to the stereo sweep: it does not apply to --renderer (the renderer's passes per scene)");
     if (resolution_.empty()) resolution_ = options_.rendererOnly ? "1280x720" : "1920x1080";
     parseResolution(resolution_, app::kMaxImageSize, options_.width, options_.height);
     if (bandwidth_) options_.bandwidthGBs = *bandwidth_;
     if (!resultsMarkdown_.empty()) options_.resultsMarkdown = resultsMarkdown_;
     // Options first: a typo must not cost a Vulkan start-up or a half-hour sweep, and must leave no files behind.
     app::validateBenchOptions(options_);
+    app::requireHostMemory(app::benchMemoryEstimate(options_), options_.memoryLimitBytes, contextOptions_.device == "cpu");
     vk::Context context(contextOptions_);
     std::cerr << "s3d bench: " << context.deviceName() << " (" << (context.isCpuDevice() ? "cpu" : "gpu") << "), "
               << options_.width << "x" << options_.height << '\n';

@@ -7,6 +7,9 @@
 #include <cstdio>
 #include <iostream>
 #include <sstream>
+#include <stdexcept>
+
+#include "s3d/app/memory_budget.h"
 
 namespace s3d::cli {
 
@@ -85,6 +88,50 @@ CLI::Validator resolutionValidator(std::uint32_t maxSize) {
                    : "expected WxH with both in [1, " + std::to_string(maxSize) + "] (got '" + text + "')";
       },
       "WxH");
+}
+
+CLI::Validator frameNumberValidator() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        const bool digits = !text.empty() && text.size() < 10 &&
+                            std::all_of(text.begin(), text.end(), [](unsigned char c) { return std::isdigit(c) != 0; });
+        return digits ? std::string() : "expected a frame number, 0 or more (got '" + text + "')";
+      },
+      "N");
+}
+
+void rejectGiven(const CLI::App& command, const std::vector<std::string>& options, const std::string& reason) {
+  for (const std::string& option : options)
+    if (command.count(option) > 0) throw std::invalid_argument(option + " " + reason);
+}
+
+void addMemoryLimitOption(CLI::App& command, std::optional<std::uint64_t>& limit) {
+  command
+      .add_option_function<std::string>(
+          "--memory-limit", [&limit](const std::string& text) { limit = app::parseByteSize(text); },
+          "Most memory the run may plan for (e.g. 4GiB, 512MiB): its estimate (images x bytes per pixel) is checked "
+          "against this and the machine's available memory before anything is allocated")
+      ->check(
+          [](const std::string& text) -> std::string {
+            return app::parseByteSize(text) ? std::string()
+                                            : "expected a size such as 4GiB, 1.5G or 512MiB (got '" + text + "')";
+          },
+          "SIZE");
+}
+
+void StereoOptions::requireMethodOptionsApply(const CLI::App& command, stereo::StereoMethod method) {
+  const std::string used = std::string("(the method is ") + stereo::methodName(method) + ")";
+  if (method != stereo::StereoMethod::Search) rejectGiven(command, {"--taps"}, "applies to --method search " + used);
+  if (method != stereo::StereoMethod::Iterative)
+    rejectGiven(command, {"--iterations"}, "applies to --method iterative " + used);
+}
+
+void StereoOptions::rejectSeparationUnderBudget(const CLI::App& command, const std::string& budgetRule) {
+  if (budgetRule == "off") return;
+  rejectGiven(command, {"--max-separation", "--zero-parallax-distance"},
+              "is chosen every frame by --disparity-budget " + budgetRule +
+                  (command.count("--disparity-budget") ? "" : " (the default)") +
+                  " from the frame's depth range; add --disparity-budget off to set it");
 }
 
 void StereoOptions::add(CLI::App& command, const std::string& depthUnits, bool offerAuto) {

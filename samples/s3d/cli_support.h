@@ -42,16 +42,33 @@ CLI::Validator floatRange(double low, double high, bool lowOpen, const std::stri
 bool parseResolution(const std::string& text, std::uint32_t maxSize, std::uint32_t& width, std::uint32_t& height);
 CLI::Validator resolutionValidator(std::uint32_t maxSize);
 
-// --max-separation, --zero-parallax-distance, --edge-crop, --method, --taps, --iterations on `command`;
-// call finish() after parsing to turn the method name into StereoParameters::method and validate.
+// --frame N: a whole number >= 0 (CLI11 would wrap "-1" around to 18446744073709551615).
+CLI::Validator frameNumberValidator();
+
+// Throws std::invalid_argument "<option> <reason>" for the first of `options` given on `command`: an option that
+// does nothing in the mode the command line chose is an error naming the mode, never silently ignored.
+void rejectGiven(const CLI::App& command, const std::vector<std::string>& options, const std::string& reason);
+
+// --max-separation, --zero-parallax-distance, --edge-crop, --method, --taps, --iterations on `command`, their
+// defaults read from stereo::StereoParameters (the help prints what a run uses); call finish() after parsing to
+// turn the method name into StereoParameters::method and validate.
 // With offerAuto, --method also takes "auto" (finish() then sets `automatic` and leaves parameters.method).
 struct StereoOptions {
   stereo::StereoParameters parameters;
-  std::string method = "seed";
+  std::string method = stereo::methodName(stereo::StereoParameters{}.method);
   bool automatic = false;
   void add(CLI::App& command, const std::string& depthUnits, bool offerAuto = false);
   void finish();
+  // --taps without the search method or --iterations without the iterative one (`method`: the one the run uses,
+  // after a profile or --method auto) is an error naming the method.
+  static void requireMethodOptionsApply(const CLI::App& command, stereo::StereoMethod method);
+  // With the disparity budget on, the budget chooses maxSeparation and the zero-parallax distance every frame:
+  // giving either is an error that says so and how to set them (--disparity-budget off).
+  static void rejectSeparationUnderBudget(const CLI::App& command, const std::string& budgetRule);
 };
+
+// --memory-limit SIZE (e.g. 4GiB): the most memory a run may plan for, below the machine's available memory.
+void addMemoryLimitOption(CLI::App& command, std::optional<std::uint64_t>& limit);
 
 // --device and --validation.
 void addDeviceOptions(CLI::App& command, vk::ContextOptions& options);

@@ -2,8 +2,12 @@
 // frames (s3d/app/convert_job.h).
 #include <unistd.h>
 
+#include <cctype>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
+#include <optional>
+#include <stdexcept>
 
 #include "cli_support.h"
 #include "profile_options.h"
@@ -90,6 +94,11 @@ class ConvertCommand final : public Command {
     convert.add_option("--disparity-pattern", disparityPattern_, "Folder mode: disparity file names instead of depth")
         ->excludes(depthPattern);
     convert.add_option("--output", options_.outputFolder, "Output folder (created if missing)")->capture_default_str();
+    convert.add_flag("--resume", resume_,
+                     "Folder mode: keep the frames the output folder's report.json lists with unchanged inputs and "
+                     "settings, convert the rest, and commit each frame as it is done (report.json lists exactly the "
+                     "frames present), so a run that fails or is stopped can go on; without it a folder run is "
+                     "all-or-nothing");
     convert.add_option("--reference-left", referenceLeft_, "A real left view to measure the synthesized left eye against");
     convert.add_option("--reference-right", referenceRight_,
                        "A real right view to measure the synthesized right eye against");
@@ -104,6 +113,7 @@ class ConvertCommand final : public Command {
         ->capture_default_str();
     convert.add_option("--sbs", sideBySide_, "Side-by-side packing: half or full")->check(CLI::IsMember({"half", "full"}));
     convert.add_option("--tab", topBottom_, "Top-and-bottom packing: half or full")->check(CLI::IsMember({"half", "full"}));
+    addMemoryLimitOption(convert, options_.memoryLimitBytes);
     addDeviceOptions(convert, contextOptions_);
   }
 
@@ -112,12 +122,7 @@ class ConvertCommand final : public Command {
     if (!folderMode && options_.color.empty()) return fail("convert needs --color (or --input-folder)");
     if (!folderMode && options_.depth.empty() && disparityFile_.empty())
       return fail("convert needs --depth or --disparity (or --input-folder)");
-    if (folderMode && (!referenceLeft_.empty() || !referenceRight_.empty()))
-      return fail("--reference-left/--reference-right measure one frame: not available with --input-folder");
-    if (!disparityPattern_.empty())
-      for (const char* derived : {"--max-separation", "--zero-parallax-distance"})
-        if (subcommand->count(derived) > 0)
-          return fail(std::string(derived) + " is derived from the disparity: not available with --disparity-pattern");
+    rejectInapplicableOptions(folderMode);
     if (!disparityFile_.empty()) options_.depth = disparityFile_;
     if (!disparityFile_.empty() || !disparityPattern_.empty())
       options_.disparity = disparityOutput_ == "left" ? app::DisparityOutput::Left : app::DisparityOutput::Right;
@@ -129,6 +134,8 @@ class ConvertCommand final : public Command {
     options_.sideBySide = stereo::parsePackingMode(sideBySide_);
     options_.topBottom = stereo::parsePackingMode(topBottom_);
     stereo_.finish();
+    StereoOptions::requireMethodOptionsApply(
+        *subcommand, stereo_.automatic ? stereo::automaticMethod(stereo::DepthSource::External) : stereo_.parameters.method);
     options_.stereo = stereo_.parameters;
     options_.automaticMethod = stereo_.automatic;
     options_.disparityBudget = comfort::parseDisparityBudgetRule(disparityBudget_);
@@ -140,17 +147,24 @@ class ConvertCommand final : public Command {
         folderMode ? app::pairFrames(inputFolder_, colorPattern_, disparityPattern_.empty() ? depthPattern_ : disparityPattern_)
                    : std::vector<app::ConvertFrame>();
     vk::Context context(contextOptions_);
-    io::OutputTransaction outputs(options_.outputFolder);  // all files or none
+    // All files or none; resuming a folder commits frame by frame instead (runConvertFolder).
+    std::optional<io::OutputTransaction> outputs;
+    if (!resume_) outputs.emplace(options_.outputFolder);
     std::size_t filesWritten = 0;
     std::uint32_t width = 0, height = 0;
     std::optional<double> gpuMs;
+    std::string kept;
     if (folderMode) {
-      const std::vector<app::ConvertReport> reports = app::runConvertFolder(context, options_, frames, drawProgress);
-      for (const app::ConvertReport& report : reports) filesWritten += report.filesWritten.size();
+      const app::ConvertFolderResult result = app::runConvertFolder(
+          context, options_, frames, drawProgress, resume_ ? app::FolderResume::Yes : app::FolderResume::No);
+      for (const app::ConvertReport& report : result.converted) filesWritten += report.filesWritten.size();
       filesWritten += 1;  // report.json
-      width = reports.front().width;
-      height = reports.front().height;
-      gpuMs = reports.front().stereoPassGpuMs;
+      if (!result.converted.empty()) {
+        width = result.converted.front().width;
+        height = result.converted.front().height;
+        gpuMs = result.converted.front().stereoPassGpuMs;
+      }
+      if (resume_) kept = ", kept " + std::to_string(result.kept.size()) + " converted earlier";
     } else {
       const app::ConvertReport report = app::runConvertJob(context, options_);
       filesWritten = report.filesWritten.size();
@@ -162,20 +176,64 @@ class ConvertCommand final : public Command {
     for (const std::string& message : messages) std::cerr << "s3d: validation: " << oneLine(message) << '\n';
     if (!messages.empty())
       return fail("the Vulkan validation layer reported " + std::to_string(messages.size()) + " message(s)");
-    outputs.commit();
-    std::cout << "s3d convert: " << (folderMode ? std::to_string(frames.size()) + " frames of " : std::string()) << width
-              << "x" << height << " on " << context.deviceName() << ", stereo pass " << formatMs(gpuMs) << ", wrote "
-              << filesWritten << " files to " << options_.outputFolder.string() << '\n';
+    if (outputs) outputs->commit();
+    std::cout << "s3d convert: " << (folderMode ? std::to_string(frames.size()) + " frames" + kept + "; " : std::string());
+    if (width > 0)
+      std::cout << width << "x" << height << " on " << context.deviceName() << ", stereo pass " << formatMs(gpuMs) << ", ";
+    std::cout << "wrote " << filesWritten << " files to " << options_.outputFolder.string() << '\n';
     return 0;
   }
 
  private:
+  // Every option that does nothing with the inputs and modes chosen is an error naming the mode.
+  void rejectInapplicableOptions(bool folderMode) const {
+    const CLI::App& convert = *subcommand;
+    if (folderMode)
+      rejectGiven(convert, {"--reference-left", "--reference-right"},
+                  "measures one frame: it does not apply to --input-folder");
+    else
+      rejectGiven(convert, {"--color-pattern", "--depth-pattern", "--disparity-pattern", "--resume"},
+                  "applies to --input-folder (folder mode) only");
+    const bool disparity = !disparityFile_.empty() || !disparityPattern_.empty();
+    if (disparity) {
+      rejectGiven(convert, {"--max-separation", "--zero-parallax-distance"},
+                  "is derived from the disparity: it does not apply to disparity input (--disparity, "
+                  "--disparity-pattern)");
+      rejectGiven(convert, {"--depth-kind", "--near", "--far", "--fov-y", "--focal-px"},
+                  "describes depth: it does not apply to disparity input (--disparity, --disparity-pattern)");
+      rejectGiven(convert, {"--disparity-budget", "--display"},
+                  "does not apply to disparity input: the disparity is reproduced as given");
+    } else {
+      rejectGiven(convert, {"--disparity-output"}, "applies to disparity input (--disparity, --disparity-pattern)");
+      StereoOptions::rejectSeparationUnderBudget(convert, disparityBudget_);
+      if (disparityBudget_ == "off")
+        rejectGiven(convert, {"--display"}, "is the display of the disparity budget: it does not apply with "
+                                            "--disparity-budget off");
+      if (depthKind_ != "hardware")
+        rejectGiven(convert, {"--near", "--far"}, "applies to --depth-kind hardware (the depth kind is " + depthKind_ + ")");
+      else if (convert.count("--near") == 0 || convert.count("--far") == 0)
+        throw std::invalid_argument("--depth-kind hardware needs --near and --far (the projection's planes)");
+      if (depthKind_ != "distance")
+        rejectGiven(convert, {"--fov-y", "--focal-px"},
+                    "applies to --depth-kind distance (the depth kind is " + depthKind_ + ")");
+    }
+    // The depth or disparity file's format: --depth-channel is an EXR's, --depth-scale a 16-bit PNG's.
+    const std::string scalarFile = folderMode ? (disparity ? disparityPattern_ : depthPattern_)
+                                              : (disparity ? disparityFile_ : options_.depth.string());
+    std::string extension = std::filesystem::path(scalarFile).extension().string();
+    for (char& c : extension) c = char(std::tolower(static_cast<unsigned char>(c)));
+    const std::string what = std::string(disparity ? "disparity" : "depth") + " '" + scalarFile + "'";
+    if (extension != ".exr") rejectGiven(convert, {"--depth-channel"}, "applies to EXR files (the " + what + " is not one)");
+    if (extension != ".png")
+      rejectGiven(convert, {"--depth-scale"}, "applies to 16-bit PNG files (the " + what + " is not one)");
+  }
+
   app::ConvertJobOptions options_;
   StereoOptions stereo_;
   vk::ContextOptions contextOptions_;
-  std::string depthKind_ = "linear";
-  std::string disparityBudget_ = "1deg";
-  std::string display_ = "tv55";
+  std::string depthKind_ = "linear";  // app::DepthKind::Linear, ConvertJobOptions' default
+  std::string disparityBudget_ = comfort::disparityBudgetRuleName(comfort::DisparityBudgetRule::OneDegree);
+  std::string display_ = app::ConvertJobOptions{}.display.name;
   std::string sideBySide_ = "half";
   std::string topBottom_ = "half";
   std::string referenceLeft_, referenceRight_;
@@ -186,6 +244,7 @@ class ConvertCommand final : public Command {
   std::string colorPattern_ = "color_*.png";
   std::string depthPattern_ = "depth_*.exr";
   std::string disparityPattern_;
+  bool resume_ = false;
 };
 
 }  // namespace

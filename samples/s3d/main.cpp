@@ -1,7 +1,7 @@
 // s3d: the command-line tool. Each command lives in its own file (render_command.cpp, convert_command.cpp, ...)
 // and implements cli::Command (cli_support.h); main parses the command line and runs the command given.
 //
-// Exit status: 0 on success (and for --help / --list-devices); 1 on any error, which ends with one line
+// Exit status: 0 on success (and for --help / --version / --list-devices); 1 on any error, which ends with one line
 // "s3d: error: <message>" on stderr. `s3d` without a command prints the help and fails: there is nothing
 // sensible to do by default, and a script calling a bare `s3d` is almost certainly a mistake.
 #include <exception>
@@ -16,6 +16,7 @@ int main(int argc, char** argv) {
   CLI::App app{"s3d: stereoscopic 3D from one rendered view and its depth (view synthesis), "
                "checked against a two-pass reference",
                "s3d"};
+  app.set_version_flag("--version", std::string("s3d ") + S3D_VERSION, "Print the version (" S3D_VERSION ") and exit");
   bool listDevicesOnly = false;
   app.add_flag("--list-devices", listDevicesOnly, "List the Vulkan devices and whether s3d can use them, then exit");
 

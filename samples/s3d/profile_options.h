@@ -16,8 +16,9 @@ struct ProfileOptions {
   std::filesystem::path load;
   std::filesystem::path save;
   bool allowNegativeParallax = false;
-  std::string display = "tv55";
-  std::string disparityBudget = "1deg";
+  std::string display = comfort::ComfortProfile{}.display.name;  // the profile's default display
+  // `s3d` turns the budget on (the library's jobs default to off, so a host decides for itself).
+  std::string disparityBudget = comfort::disparityBudgetRuleName(comfort::DisparityBudgetRule::OneDegree);
 
   // --profile, --save-profile, --allow-negative-parallax and --display on `command`.
   void add(CLI::App& command);

@@ -73,7 +73,15 @@ class RenderCommand final : public Command {
     profile_.add(render);
     addDisparityBudgetOption(render, profile_.disparityBudget);
     render.add_option("--frame", options_.frame, "Frame of the scene's camera path to render (0: its first)")
+        ->check(frameNumberValidator())
         ->capture_default_str();
+    render
+        .add_option("--hud", hud_,
+                    "HUD drawn into every view at its depth: game (the built-in health and ammo panels and the "
+                    "crosshair), none, or auto (game on the built-in scenes, none on a glTF file: your scene, not ours)")
+        ->check(CLI::IsMember({"auto", "game", "none"}))
+        ->capture_default_str();
+    addMemoryLimitOption(render, options_.memoryLimitBytes);
     render.add_flag("--reversed-z", options_.reversedZ,
                     "Reversed-Z depth buffer (cleared to 0, test GREATER, near/far swapped): more depth precision far "
                     "away; the linear depth handed to the stereo pass is the same");
@@ -94,12 +102,29 @@ class RenderCommand final : public Command {
       listDevices();
       return 0;
     }
+    // Options that do nothing in the chosen mode are errors naming the mode.
+    if (!viewsFile_.empty())
+      rejectGiven(*subcommand,
+                  {"--sequence", "--width", "--height", "--resolution", "--outputs", "--sbs", "--tab", "--max-separation",
+                   "--zero-parallax-distance", "--edge-crop", "--method", "--taps", "--iterations",
+                   "--weapon-depth-offset", "--weapon-depth-scale", "--supersample", "--profile", "--save-profile",
+                   "--allow-negative-parallax", "--display", "--disparity-budget", "--reversed-z", "--hud"},
+                  "does not apply to --views (each eye's size, projection and offset come from the views file; the "
+                  "eyes are synthesized by the views' own depth search and compared with the eyes rendered directly)");
+    if (sequence_)
+      rejectGiven(*subcommand, {"--outputs", "--sbs", "--tab", "--frame", "--hud"},
+                  "does not apply to --sequence (it renders every frame of the camera path and writes "
+                  "anaglyph_NNNN.png per frame and report.json, without the HUD)");
     if (!resolution_.empty()) parseResolution(resolution_, app::kMaxImageSize, options_.width, options_.height);
     options_.outputs = std::set<std::string>(outputs_.begin(), outputs_.end());
     options_.sideBySide = stereo::parsePackingMode(sideBySide_);
     options_.topBottom = stereo::parsePackingMode(topBottom_);
+    options_.hud = app::parseHudMode(hud_);
+    if (!viewsFile_.empty()) return runViews();
     stereo_.finish();
+    StereoOptions::rejectSeparationUnderBudget(*subcommand, profile_.disparityBudget);
     const comfort::ComfortProfile profile = profile_.resolve(*subcommand, stereo_);
+    StereoOptions::requireMethodOptionsApply(*subcommand, profile.stereo.method);
     if (!profile_.save.empty()) comfort::saveComfortProfile(profile_.save, profile);
     options_.stereo = profile.stereo;
     options_.display = profile.display;
@@ -107,14 +132,18 @@ class RenderCommand final : public Command {
     options_.allowNegativeParallax = profile.allowNegativeParallax;
     options_.disparityBudget = profile_.budgetRule();
     zeroParallax_ = profile.zeroParallaxSettings();
-    if (!viewsFile_.empty()) return runViews();
     return sequence_ ? runSequence() : runSingleFrame();
   }
 
  private:
+  // Before the Vulkan start-up: the host's share of the estimate (all of it on the CPU device).
+  void requireHostMemory(const app::MemoryEstimate& estimate) const {
+    app::requireHostMemory(estimate, options_.memoryLimitBytes, contextOptions_.device == "cpu");
+  }
+
   int runViews() {
-    if (sequence_) return fail("--views and --sequence cannot be combined");
     app::ViewsJobOptions viewsOptions;
+    viewsOptions.memoryLimitBytes = options_.memoryLimitBytes;
     viewsOptions.views = comfort::loadViewConfiguration(viewsFile_);  // one error naming the file and field
     viewsOptions.viewsFile = viewsFile_;
     viewsOptions.scene = options_.scene;
@@ -146,6 +175,8 @@ class RenderCommand final : public Command {
     sequenceOptions.allowNegativeParallax = options_.allowNegativeParallax;
     sequenceOptions.reversedZ = options_.reversedZ;
     sequenceOptions.disparityBudget = options_.disparityBudget;
+    sequenceOptions.memoryLimitBytes = options_.memoryLimitBytes;
+    requireHostMemory(app::renderMemoryEstimate(options_.width, options_.height, options_.width, options_.supersample));
     vk::Context context(contextOptions_);
     io::OutputTransaction outputs(options_.outputFolder);  // all files or none
     const app::SequenceReport report = app::runSequenceJob(context, sequenceOptions);
@@ -160,7 +191,7 @@ class RenderCommand final : public Command {
 
   int runSingleFrame() {
     // Options first: a typo must not cost a Vulkan start-up, and must leave no files behind.
-    app::validateRenderJobOptions(options_);
+    requireHostMemory(app::renderJobMemoryEstimate(options_));  // validates every option on the way
     vk::Context context(contextOptions_);
     std::optional<app::RenderReport> report;
     std::string jobError;
@@ -213,6 +244,7 @@ class RenderCommand final : public Command {
   std::vector<std::string> outputs_{app::kAllOutputs};
   std::string sideBySide_ = "half";
   std::string topBottom_ = "half";
+  std::string hud_ = app::hudModeName(app::RenderJobOptions{}.hud);
   bool sequence_ = false;
   bool listDevicesOnly_ = false;
 };

@@ -4,6 +4,7 @@
 
 #include "cli_support.h"
 #include "profile_options.h"
+#include "s3d/app/memory_budget.h"
 #include "s3d/app/render_job.h"
 #include "s3d/renderer/scene.h"
 #include "s3d/tune/tune_window.h"
@@ -30,7 +31,12 @@ class TuneCommand final : public Command {
     tune.add_option("--scene", options_.state.scene, "Built-in scene: " + joined(renderer::builtInSceneNames(), ", "))
         ->check(CLI::IsMember(renderer::builtInSceneNames()))
         ->capture_default_str();
-    tune.add_option("--frame", frame_, "Start at this frame of the scene's camera path")->capture_default_str();
+    tune.add_option("--frame", frame_, "Start at this frame of the scene's camera path")
+        ->check(frameNumberValidator())
+        ->capture_default_str();
+    tune.add_option("--hud", hud_, "HUD: game (the built-in panels and crosshair), none, or auto (game on the built-in scenes)")
+        ->check(CLI::IsMember({"auto", "game", "none"}))
+        ->capture_default_str();
     tune.add_option("--view", view_, "View mode: " + joined(tune::viewModeNames(), ", "))
         ->check(CLI::IsMember(tune::viewModeNames()))
         ->capture_default_str();
@@ -58,12 +64,19 @@ class TuneCommand final : public Command {
         ->check(CLI::ExistingFile);
     tune.add_option("--frames", frames_, "Quit after this many frames")->check(CLI::Range(std::size_t(1), std::size_t(1000000)));
     tune.add_option("--screenshot", screenshot_, "PNG of the whole window at the last frame (--frames) or at quit");
+    addMemoryLimitOption(tune, memoryLimit_);
     addDeviceOptions(tune, options_.context);
   }
 
   int run() override {
     parseResolution(resolution_, app::kMaxImageSize, options_.width, options_.height);
     stereo_.finish();
+    StereoOptions::rejectSeparationUnderBudget(*subcommand, profile_.disparityBudget);
+    // The view's frame (the edges cropped, no guard band) before the window and the Vulkan start-up.
+    app::requireHostMemory(app::renderMemoryEstimate(options_.width, options_.height, options_.width,
+                                                     options_.state.supersample),
+                           memoryLimit_, options_.context.device == "cpu");
+    options_.state.hud = app::parseHudMode(hud_);
     tune::TuneSettings& settings = options_.state.settings;
     settings.profile = profile_.resolve(*subcommand, stereo_);  // the profile, with the options given here over it
     for (const std::string& assignment : sets_) {
@@ -99,9 +112,12 @@ class TuneCommand final : public Command {
  private:
   tune::TuneWindowOptions options_;
   StereoOptions stereo_;
-  std::string resolution_ = "960x540";
+  std::string resolution_ = std::to_string(tune::TuneWindowOptions{}.width) + "x" +
+                            std::to_string(tune::TuneWindowOptions{}.height);
   std::size_t frame_ = 0;
   std::string view_ = "anaglyph";
+  std::string hud_ = app::hudModeName(tune::TuneState{}.hud);
+  std::optional<std::uint64_t> memoryLimit_;
   ProfileOptions profile_;
   std::vector<std::string> sets_;
   bool noReference_ = false;

@@ -828,9 +828,18 @@ StereoTraffic stereoPassTraffic(const stereo::StereoParameters& parameters, std:
 
 void validateBenchOptions(const BenchOptions& options) { (void)validateBench(options); }
 
+MemoryEstimate benchMemoryEstimate(const BenchOptions& options) {
+  double separation = 0.0;
+  if (!options.rendererOnly)
+    for (double percent : options.separationsPercent) separation = std::max(separation, percent / 100.0);
+  const std::uint32_t band = separation > 0.0 ? std::uint32_t(std::ceil(separation * options.width)) + 1 : 0;
+  return renderMemoryEstimate(options.width, options.height, options.width + 2 * band, options.supersample);
+}
+
 BenchReport runBench(vk::Context& context, const BenchOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   const ValidatedBench bench = validateBench(options);
+  requireMemory(context, benchMemoryEstimate(options), options.memoryLimitBytes);
   BenchReport report;
   report.deviceName = context.deviceName();
   report.deviceKind = context.isCpuDevice() ? "cpu" : "gpu";

@@ -1,6 +1,8 @@
 #include "s3d/app/convert_job.h"
 
 #include <algorithm>
+#include <chrono>
+#include <fstream>
 #include <cctype>
 #include <cmath>
 #include <cstring>
@@ -9,9 +11,12 @@
 #include <stdexcept>
 #include <utility>
 
+#include "s3d/app/comfort_json.h"
 #include "s3d/gpu/linear_depth.h"
 #include "s3d/io/depth_io.h"
 #include "s3d/io/image_io.h"
+#include "s3d/io/output_transaction.h"
+#include "s3d/number_text.h"
 #include "s3d/stereo/sanitize.h"
 #include "s3d/stereo/srgb.h"
 #include "s3d/stereo/stereo_pass.h"
@@ -30,7 +35,13 @@ std::string lowerExtension(const fs::path& file) {
 
 void requireFile(const fs::path& file, const char* what) {
   if (file.empty()) throw std::invalid_argument(std::string(what) + ": no file given");
-  if (!fs::is_regular_file(file)) throw std::invalid_argument(std::string(what) + " file '" + file.string() + "' does not exist");
+  std::error_code error;
+  const fs::file_status status = fs::status(file, error);
+  if (fs::is_directory(status))
+    throw std::invalid_argument(std::string(what) + " file '" + file.string() + "' is a folder, not a file");
+  if (!fs::exists(status)) throw std::invalid_argument(std::string(what) + " file '" + file.string() + "' does not exist");
+  if (!fs::is_regular_file(status))
+    throw std::invalid_argument(std::string(what) + " file '" + file.string() + "' is not a regular file");
 }
 
 std::string sizeText(std::uint32_t width, std::uint32_t height) {
@@ -76,7 +87,7 @@ DepthImage readScalarFile(const ConvertJobOptions& options, const char* what) {
   }
   if (extension == ".png") {
     if (!(options.depthScale > 0.0f) || !std::isfinite(options.depthScale))
-      throw std::invalid_argument("--depth-scale must be a positive number (got " + std::to_string(options.depthScale) + ")");
+      throw std::invalid_argument("--depth-scale must be a positive number (got " + numberText(options.depthScale) + ")");
     const io::Gray16Image png = io::readPngGray16(file);
     DepthImage image(png.width, png.height);
     const bool normalized = !options.disparity && options.depthKind == DepthKind::Hardware;
@@ -131,8 +142,8 @@ DepthImage readLinearDepth(const ConvertJobOptions& options, std::uint64_t& unkn
   gpu::LinearDepthParams hardware{};
   if (options.depthKind == DepthKind::Hardware) {
     if (!(options.nearPlane > 0.0f) || !(options.farPlane > options.nearPlane) || !std::isfinite(options.farPlane))
-      throw std::invalid_argument("hardware depth needs 0 < --near < --far (got near " + std::to_string(options.nearPlane) +
-                                  ", far " + std::to_string(options.farPlane) + ")");
+      throw std::invalid_argument("hardware depth needs 0 < --near < --far (got near " + numberText(options.nearPlane) +
+                                  ", far " + numberText(options.farPlane) + ")");
     // One layer spanning device depth [0, 1]: no first-person range, 1.0 is sky.
     hardware.worldRatio = gpu::projectionRatio(options.nearPlane, options.farPlane, 0.0f, 1.0f);
     hardware.firstPersonDeviceDepthMax = -1.0f;
@@ -182,9 +193,9 @@ DepthImage depthFromDisparity(const ConvertJobOptions& options, stereo::StereoPa
   const float width = float(disparity.width);
   const float separation = std::max(largest / width, 1.0f / (4.0f * width));  // > 0 even for an all-zero map
   if (separation > stereo::kMaxSeparationLimit)
-    throw std::invalid_argument("disparity file '" + options.depth.string() + "' reaches " + std::to_string(largest) +
-                                " px, beyond " + std::to_string(stereo::kMaxSeparationLimit) + " of the width (" +
-                                std::to_string(stereo::kMaxSeparationLimit * width) + " px)");
+    throw std::invalid_argument("disparity file '" + options.depth.string() + "' reaches " + numberText(largest) +
+                                " px, beyond " + numberText(stereo::kMaxSeparationLimit) + " of the width (" +
+                                numberText(stereo::kMaxSeparationLimit * width) + " px)");
   parameters.maxSeparation = separation;
   parameters.zeroParallaxDistance = 1.0f;
   for (float& value : disparity.pixels) {
@@ -248,33 +259,19 @@ std::vector<std::string> outputNames(const std::string& suffix, bool writeReport
   return names;
 }
 
-// After resolving links: an output that is one of the inputs would destroy it (and each rerun again).
-void requireOutputsDistinctFromInputs(const fs::path& folder, const std::vector<std::string>& outputs,
-                                      const std::vector<fs::path>& inputs) {
-  std::error_code error;
-  for (const fs::path& input : inputs) {
-    if (input.empty()) continue;
-    const fs::path resolvedInput = fs::weakly_canonical(input, error);
-    for (const std::string& name : outputs) {
-      const fs::path output = folder / name;
-      const bool same = (!error && fs::weakly_canonical(output, error) == resolvedInput && !error) ||
-                        (fs::exists(output) && fs::equivalent(output, input, error) && !error);
-      if (same)
-        throw std::invalid_argument("output '" + output.string() + "' would overwrite input '" + input.string() +
-                                    "'; choose another --output folder");
-      error.clear();
-    }
-  }
-}
-
 }  // namespace
 
 ConvertReport runConvertJob(vk::Context& context, const ConvertJobOptions& options) {
   // Every input is read and checked before any output exists.
-  requireOutputsDistinctFromInputs(options.outputFolder, outputNames(options.fileSuffix, options.writeReport),
+  io::requireOutputsAreNotInputs(options.outputFolder, outputNames(options.fileSuffix, options.writeReport),
                                    {options.color, options.depth, options.referenceLeft.value_or(fs::path()),
                                     options.referenceRight.value_or(fs::path())});
   ConvertReport report;
+  // The frame's memory from the color file's header, before a pixel is decoded.
+  requireFile(options.color, "color");
+  const io::ImageSize size = io::readImageSize(options.color);
+  report.memory = convertMemoryEstimate(size.width, size.height);
+  requireMemory(context, report.memory, options.memoryLimitBytes);
   const ImageRGBA8 color = readColor(options.color, &report.sanitizedColorValues);
   stereo::StereoParameters parameters = options.stereo;
   if (options.automaticMethod) parameters.method = stereo::automaticMethod(stereo::DepthSource::External);
@@ -362,7 +359,10 @@ std::vector<ConvertFrame> pairFrames(const fs::path& folder, const std::string& 
                                      const std::string& depthPattern) {
   const auto [colorPrefix, colorSuffix] = splitPattern(colorPattern, "--color-pattern");
   const auto [depthPrefix, depthSuffix] = splitPattern(depthPattern, "--depth-pattern");
-  if (!fs::is_directory(folder)) throw std::invalid_argument("input folder '" + folder.string() + "' does not exist");
+  std::error_code error;
+  if (fs::exists(folder, error) && !fs::is_directory(folder, error))
+    throw std::invalid_argument("input folder '" + folder.string() + "' is a file, not a folder");
+  if (!fs::is_directory(folder, error)) throw std::invalid_argument("input folder '" + folder.string() + "' does not exist");
   std::map<std::string, ConvertFrame> frames;
   std::map<std::string, fs::path> depths;
   for (const fs::directory_entry& entry : fs::directory_iterator(folder)) {
@@ -390,9 +390,87 @@ std::vector<ConvertFrame> pairFrames(const fs::path& folder, const std::string& 
   return sorted;
 }
 
-std::vector<ConvertReport> runConvertFolder(vk::Context& context, const ConvertJobOptions& options,
-                                            const std::vector<ConvertFrame>& frames,
-                                            const std::function<void(std::size_t, std::size_t, const std::string&)>& progress) {
+namespace {
+
+// The options that shape a folder run's outputs: a manifest made with others cannot be resumed.
+nlohmann::json settingsJson(const ConvertJobOptions& o) {
+  const stereo::StereoParameters& p = o.stereo;
+  return {{"depthChannel", o.depthChannel},
+          {"depthScale", o.depthScale},
+          {"depthKind", o.depthKind == DepthKind::Hardware ? "hardware" : o.depthKind == DepthKind::Distance ? "distance" : "linear"},
+          {"near", o.nearPlane},
+          {"far", o.farPlane},
+          {"verticalFovDegrees", o.verticalFovDegrees ? nlohmann::json(*o.verticalFovDegrees) : nlohmann::json()},
+          {"focalLengthPx", o.focalLengthPx ? nlohmann::json(*o.focalLengthPx) : nlohmann::json()},
+          {"disparity", !o.disparity ? "" : *o.disparity == DisparityOutput::Left ? "left" : "right"},
+          {"sideBySide", o.sideBySide == stereo::PackingMode::Full ? "full" : "half"},
+          {"topBottom", o.topBottom == stereo::PackingMode::Full ? "full" : "half"},
+          {"method", o.automaticMethod ? "auto" : stereo::methodName(p.method)},
+          {"maxSeparation", p.maxSeparation},
+          {"zeroParallaxDistance", p.zeroParallaxDistance},
+          {"edgeCrop", p.edgeCrop},
+          {"searchTaps", p.searchTaps},
+          {"iterations", p.iterations},
+          {"disparityBudget", comfort::disparityBudgetRuleName(o.disparityBudget)},
+          {"display", displayJson(o.display)}};
+}
+
+// An input as the manifest remembers it: a changed size or modification time means the frame is stale.
+nlohmann::json inputJson(const fs::path& file) {
+  std::error_code error;
+  const auto bytes = fs::file_size(file, error);
+  const auto modified = fs::last_write_time(file, error);
+  return {{"path", file.string()},
+          {"bytes", error ? 0 : bytes},
+          {"modifiedNs", error ? 0 : std::chrono::duration_cast<std::chrono::nanoseconds>(modified.time_since_epoch()).count()}};
+}
+
+// The frames an earlier run's report.json lists, by key; empty when there is none.
+std::map<std::string, nlohmann::json> readManifest(const fs::path& folder, const nlohmann::json& settings) {
+  const fs::path file = folder / "report.json";
+  std::error_code error;
+  if (!fs::exists(fs::symlink_status(file, error))) return {};
+  const std::string where = "--resume: '" + file.string() + "'";
+  nlohmann::json manifest;
+  try {
+    std::ifstream stream(file, std::ios::binary);
+    manifest = nlohmann::json::parse(stream);
+  } catch (const nlohmann::json::exception&) {
+    throw std::invalid_argument(where + " is not valid JSON: remove it or run without --resume");
+  }
+  if (!manifest.is_object() || !manifest.contains("frames") || !manifest["frames"].is_array() ||
+      !manifest.contains("settings"))
+    throw std::invalid_argument(where + " is not the report of an `s3d convert --input-folder` run: remove it or run "
+                                        "without --resume");
+  if (manifest["settings"] != settings)
+    throw std::invalid_argument(where + " was made with other settings; run without --resume to convert every frame "
+                                        "with these");
+  std::map<std::string, nlohmann::json> frames;
+  for (const nlohmann::json& frame : manifest["frames"])
+    if (frame.is_object() && frame.contains("frame") && frame["frame"].is_string())
+      frames[frame["frame"].get<std::string>()] = frame;
+  return frames;
+}
+
+// An earlier run's frame is kept when its inputs are unchanged and every file it wrote is still there.
+bool frameIsCurrent(const nlohmann::json& entry, const ConvertFrame& frame, const fs::path& folder) {
+  if (!entry.contains("inputs") || entry["inputs"] != nlohmann::json{{"color", inputJson(frame.color)},
+                                                                     {"depth", inputJson(frame.depth)}})
+    return false;
+  if (!entry.contains("files") || !entry["files"].is_array() || entry["files"].empty()) return false;
+  std::error_code error;
+  for (const nlohmann::json& file : entry["files"])
+    if (!file.is_string() || !fs::is_regular_file(fs::symlink_status(folder / file.get<std::string>(), error)))
+      return false;
+  return true;
+}
+
+}  // namespace
+
+ConvertFolderResult runConvertFolder(vk::Context& context, const ConvertJobOptions& options,
+                                     const std::vector<ConvertFrame>& frames,
+                                     const std::function<void(std::size_t, std::size_t, const std::string&)>& progress,
+                                     FolderResume resume) {
   // A frame's outputs may be another frame's inputs: every name is checked against every input first.
   std::vector<std::string> outputs{"report.json"};
   std::vector<fs::path> inputs{options.referenceLeft.value_or(fs::path()), options.referenceRight.value_or(fs::path())};
@@ -401,31 +479,66 @@ std::vector<ConvertReport> runConvertFolder(vk::Context& context, const ConvertJ
     inputs.push_back(frame.color);
     inputs.push_back(frame.depth);
   }
-  requireOutputsDistinctFromInputs(options.outputFolder, outputs, inputs);
-  std::vector<ConvertReport> reports;
-  nlohmann::json frameJson = nlohmann::json::array();
+  io::requireOutputsAreNotInputs(options.outputFolder, outputs, inputs);
+  const nlohmann::json settings = settingsJson(options);
+  const std::map<std::string, nlohmann::json> earlier =
+      resume == FolderResume::Yes ? readManifest(options.outputFolder, settings) : std::map<std::string, nlohmann::json>{};
+  ConvertFolderResult result;
+  std::vector<nlohmann::json> frameJson(frames.size());  // null: not (yet) present
+  for (std::size_t i = 0; i < frames.size(); ++i)
+    if (const auto entry = earlier.find(frames[i].key);
+        entry != earlier.end() && frameIsCurrent(entry->second, frames[i], options.outputFolder)) {
+      frameJson[i] = entry->second;
+      result.kept.push_back(frames[i].key);
+    }
+  auto writeManifest = [&](bool complete) {
+    nlohmann::json present = nlohmann::json::array();
+    for (const nlohmann::json& entry : frameJson)
+      if (!entry.is_null()) present.push_back(entry);
+    io::writeTextFile(options.outputFolder / "report.json",
+                      nlohmann::json{{"settings", settings}, {"complete", complete}, {"frames", present}}.dump(2) + "\n");
+  };
   std::optional<comfort::DisparityBudgetController> budget;  // one over the whole sequence: smoothed, cuts detected
   if (options.disparityBudget != comfort::DisparityBudgetRule::Off && !options.budgetController)
     budget.emplace(comfort::disparityBudget(options.display), false);
-  for (const ConvertFrame& frame : frames) {
-    ConvertJobOptions frameOptions = options;
-    frameOptions.color = frame.color;
-    frameOptions.depth = frame.depth;
-    frameOptions.fileSuffix = "_" + frame.key;
-    frameOptions.writeReport = false;
-    if (budget) frameOptions.budgetController = &*budget;
-    try {
-      reports.push_back(runConvertJob(context, frameOptions));
-    } catch (const std::exception& error) {
-      throw std::runtime_error("frame '" + frame.key + "': " + error.what());
+  std::size_t done = 0;
+  std::size_t present = result.kept.size();  // frames whose files are in the output folder (resuming)
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    const ConvertFrame& frame = frames[i];
+    if (frameJson[i].is_null()) {
+      ConvertJobOptions frameOptions = options;
+      frameOptions.color = frame.color;
+      frameOptions.depth = frame.depth;
+      frameOptions.fileSuffix = "_" + frame.key;
+      frameOptions.writeReport = false;
+      if (budget) frameOptions.budgetController = &*budget;
+      // Resuming: each frame is its own transaction, committed with the manifest that lists it.
+      std::optional<io::OutputTransaction> frameOutputs;
+      if (resume == FolderResume::Yes) frameOutputs.emplace(options.outputFolder);
+      try {
+        result.converted.push_back(runConvertJob(context, frameOptions));
+        nlohmann::json json = toJson(result.converted.back());
+        json["frame"] = frame.key;
+        json["inputs"] = {{"color", inputJson(frame.color)}, {"depth", inputJson(frame.depth)}};
+        frameJson[i] = std::move(json);
+        if (frameOutputs) {
+          writeManifest(i + 1 == frames.size());
+          frameOutputs->commit();
+          ++present;
+        }
+      } catch (const std::exception& error) {
+        std::string message = "frame '" + frame.key + "': " + error.what();
+        if (resume == FolderResume::Yes) {
+          message += " (" + std::to_string(present) + " of " + std::to_string(frames.size()) +
+                     " frames are in the output folder, listed in its report.json; rerun with --resume to go on)";
+        }
+        throw std::runtime_error(message);
+      }
     }
-    nlohmann::json json = toJson(reports.back());
-    json["frame"] = frame.key;
-    frameJson.push_back(std::move(json));
-    if (progress) progress(reports.size(), frames.size(), frame.key);
+    if (progress) progress(++done, frames.size(), frame.key);
   }
-  io::writeTextFile(options.outputFolder / "report.json", nlohmann::json{{"frames", frameJson}}.dump(2) + "\n");
-  return reports;
+  if (resume == FolderResume::No || result.converted.empty()) writeManifest(true);
+  return result;
 }
 
 }  // namespace s3d::app

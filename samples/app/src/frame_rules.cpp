@@ -10,6 +10,7 @@
 #include "s3d/hud/crosshair.h"
 #include "s3d/hud/hud_layers.h"
 #include "s3d/hud/overlay.h"
+#include "s3d/renderer/scene_file.h"
 
 namespace s3d::app {
 namespace {
@@ -21,6 +22,27 @@ comfort::WeaponMaskStats weaponStats(const std::optional<glm::vec2>& weaponDepth
 }
 
 }  // namespace
+
+HudMode parseHudMode(const std::string& name) {
+  if (name == "auto") return HudMode::Auto;
+  if (name == "game") return HudMode::Game;
+  if (name == "none") return HudMode::None;
+  throw std::invalid_argument("unknown HUD '" + name + "' (choices: auto, game, none)");
+}
+
+const char* hudModeName(HudMode mode) {
+  switch (mode) {
+    case HudMode::Auto: return "auto";
+    case HudMode::Game: return "game";
+    case HudMode::None: return "none";
+  }
+  return "auto";
+}
+
+HudMode resolveHudMode(HudMode mode, const std::string& scene) {
+  if (mode != HudMode::Auto) return mode;
+  return renderer::isSceneFile(scene) ? HudMode::None : HudMode::Game;
+}
 
 stereo::StereoParameters pushWeaponUnlessNegativeParallaxAllowed(stereo::StereoParameters parameters,
                                                                  const std::optional<glm::vec2>& weaponDepths,
@@ -49,6 +71,12 @@ HudFrame drawHud(const HudFrameInput& input, stereo::StereoPair& eyes, ImageRGBA
   HudFrame hud;
   const comfort::HudElementState crosshair = state("crosshair", input.crosshairDepth);
   hud.crosshairDepth = crosshair.depth;
+  if (!input.draw) {
+    for (ImageRGBA8* image : {center, &eyes.left, &eyes.right, reference ? &reference->left : nullptr,
+                              reference ? &reference->right : nullptr})
+      if (image) hud::makeOpaque(*image);
+    return hud;
+  }
   // The library's layers (what hud::HudPass composites on the GPU): the panels, then the crosshair on top.
   std::vector<comfort::HudElementState> states;
   std::vector<hud::HudLayer> layers;

@@ -18,6 +18,8 @@
 #include "s3d/comfort/world_queries.h"
 #include "s3d/hud/crosshair.h"
 #include "s3d/io/image_io.h"
+#include "s3d/io/output_transaction.h"
+#include "s3d/number_text.h"
 #include "s3d/renderer/scene.h"
 #include "s3d/renderer/scene_file.h"
 #include "s3d/stereo/guard_band.h"
@@ -55,6 +57,23 @@ void requireImageSize(std::uint32_t value, const char* name) {
                                 std::to_string(value) + ")");
 }
 
+// The memory estimate with the widest guard band the run can reach: the separation's (or the disparity budget's
+// largest on the display), from the zero-parallax plane, or from the near plane with negative parallax allowed.
+MemoryEstimate memoryEstimateFor(const RenderJobOptions& options, const renderer::Scene& scene,
+                                 const stereo::StereoParameters& parameters) {
+  std::uint32_t renderedWidth = options.width;
+  if (parameters.edgeCrop < 0.0f) {
+    float separation = parameters.maxSeparation;
+    if (options.disparityBudget != comfort::DisparityBudgetRule::Off)
+      separation = std::max(separation, float(comfort::disparityBudget(options.display).uncrossedFraction));
+    const float nearest = options.allowNegativeParallax ? scene.camera.nearPlane : parameters.zeroParallaxDistance;
+    renderedWidth = stereo::guardBandFor(separation, parameters.zeroParallaxDistance, nearest, options.width,
+                                         kMaxImageSize / options.supersample)
+                        .renderedWidth(options.width);
+  }
+  return renderMemoryEstimate(options.width, options.height, renderedWidth, options.supersample);
+}
+
 // Everything runRenderJob checks before touching the GPU or the file system; returns what it built on the way.
 ValidatedJob validateJob(const RenderJobOptions& options) {
   requireImageSize(options.width, "width");
@@ -71,6 +90,11 @@ ValidatedJob validateJob(const RenderJobOptions& options) {
   const fs::file_status status = fs::status(options.outputFolder, error);
   if (fs::exists(status) && !fs::is_directory(status))
     throw std::invalid_argument("output folder '" + options.outputFolder.string() + "' exists and is not a folder");
+  // A scene file's folder may be the output folder: no output may land on the scene or a file it reads.
+  io::requireOutputsAreNotInputs(options.outputFolder,
+                                 std::vector<std::string>(options.outputs.begin(), options.outputs.end()),
+                                 renderer::isSceneFile(options.scene) ? renderer::sceneFileInputs(options.scene)
+                                                                      : std::vector<fs::path>{});
 
   stereo::validate(options.stereo);
   comfort::validate(options.display);
@@ -85,8 +109,17 @@ ValidatedJob validateJob(const RenderJobOptions& options) {
   // The scene's camera at the requested frame of its path (throws naming the frame and the count).
   job.scene.camera = renderer::cameraForFrame(job.scene, options.frame);
   if (options.stereo.edgeCrop >= 0.0f && job.constants.cropEnd <= job.constants.cropBegin)
-    throw std::invalid_argument("edgeCrop " + std::to_string(options.stereo.edgeCrop) + " blacks out all " +
+    throw std::invalid_argument("edgeCrop " + numberText(options.stereo.edgeCrop) + " blacks out all " +
                                 std::to_string(options.width) + " columns: nothing left to compare");
+  // Packing limits, so a size the options accept cannot fail after the whole render.
+  if (options.outputs.count("sbs.png") && options.sideBySide == stereo::PackingMode::Half && options.width < 2)
+    throw std::invalid_argument("--sbs half squeezes each eye to half its width, which needs at least 2 columns (the "
+                                "width is 1): use --sbs full or leave sbs.png out of --outputs");
+  if (options.outputs.count("tab.png") && options.topBottom == stereo::PackingMode::Half && options.height < 2)
+    throw std::invalid_argument("--tab half squeezes each eye to half its height, which needs at least 2 rows (the "
+                                "height is 1): use --tab full or leave tab.png out of --outputs");
+  // Memory last: the estimate needs the scene (near plane) and the valid parameters.
+  requireHostMemory(memoryEstimateFor(options, job.scene, job.stereo), options.memoryLimitBytes, false);
   return job;
 }
 
@@ -117,9 +150,17 @@ renderer::ViewMatrices referenceEyeView(const renderer::Scene& scene, const rend
 
 void validateRenderJobOptions(const RenderJobOptions& options) { (void)validateJob(options); }
 
+MemoryEstimate renderJobMemoryEstimate(const RenderJobOptions& options) {
+  const ValidatedJob job = validateJob(options);
+  return memoryEstimateFor(options, job.scene, job.stereo);
+}
+
 RenderReport runRenderJob(vk::Context& context, const RenderJobOptions& options) {
   // 1. Options: all checks happen before any GPU resource or file exists.
   const ValidatedJob job = validateJob(options);
+  // With the device known: lavapipe's images live in main memory too, a GPU's must fit its memory.
+  const MemoryEstimate memory = memoryEstimateFor(options, job.scene, job.stereo);
+  requireMemory(context, memory, options.memoryLimitBytes);
   const std::uint32_t width = options.width;
   const std::uint32_t height = options.height;
   auto selected = [&](const std::string& name) { return options.outputs.count(name) != 0; };
@@ -130,6 +171,7 @@ RenderReport runRenderJob(vk::Context& context, const RenderJobOptions& options)
   report.width = width;
   report.height = height;
   report.warnings = job.warnings;
+  report.memory = memory;
   // Without negative parallax allowed, the weapon push reaches at least the screen plane
   // (comfort::pushWeaponBehindScreen) and, once the frame's depth is known, the zero-parallax distance is
   // held at its nearest surface: every pixel gets zero or positive parallax.
@@ -286,8 +328,8 @@ RenderReport runRenderJob(vk::Context& context, const RenderJobOptions& options)
   stereo::StereoPair eyesHud = synthesized;
   stereo::StereoPair referenceHud{leftReference, rightReference};
   HudFrame overlay = drawHud({parameters, placement.depth, weaponDepths, options.allowNegativeParallax, &centerDepth,
-                          &firstPersonMask},
-                         eyesHud, &centerHud, &referenceHud);
+                              &firstPersonMask, resolveHudMode(options.hud, options.scene) == HudMode::Game},
+                             eyesHud, &centerHud, &referenceHud);
   const float rightOffset = hud::crosshairEyeOffsetPx(parameters, overlay.crosshairDepth, width, stereo::Eye::Right);
   report.crosshair = {overlay.crosshairDepth, placement.hitWorld, rightOffset};
   report.hud = std::move(overlay.elements);
@@ -395,6 +437,11 @@ nlohmann::json toJson(const RenderReport& report) {
                                    {"conflictPixels", e.conflictPixels}});
              return elements;
            }()},
+          {"memory",
+           {{"estimatedBytes", report.memory.totalBytes()},
+            {"hostBytes", report.memory.hostBytes},
+            {"deviceBytes", report.memory.deviceBytes},
+            {"peakResidentBytes", peakResidentBytes()}}},
           {"files", report.filesWritten}};
 }
 

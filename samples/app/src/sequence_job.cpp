@@ -7,6 +7,7 @@
 
 #include "s3d/app/comfort_json.h"
 #include "s3d/app/eye_comparison.h"
+#include "s3d/app/memory_budget.h"
 #include "s3d/app/render_job.h"
 #include "s3d/comfort/crosshair.h"
 #include "s3d/comfort/world_queries.h"
@@ -51,6 +52,9 @@ SequenceReport runSequenceJob(vk::Context& context, const SequenceJobOptions& op
   comfort::validate(options.display);
   const float crosshairDistance = options.crosshair.distance.value_or(scene.crosshairDistance);
 
+  // One frame's images at a time (no guard band: the sequence crops its edges), checked before any is allocated.
+  requireMemory(context, renderMemoryEstimate(options.width, options.height, options.width, options.supersample),
+                options.memoryLimitBytes);
   const comfort::WorldQueries world(scene);
   renderer::DeferredRenderer deferred(context, options.width, options.height, {options.supersample, options.reversedZ});
   deferred.setScene(scene);

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "s3d/app/eye_comparison.h"
+#include "s3d/app/memory_budget.h"
 #include "s3d/io/image_io.h"
 #include "s3d/renderer/deferred_renderer.h"
 #include "s3d/renderer/scene_file.h"
@@ -74,6 +75,8 @@ ViewsReport runViewsJob(vk::Context& context, const ViewsJobOptions& options) {
                                        scene.camera.nearPlane, scene.camera.farPlane);
   centerView.firstPersonProjection = frustum(center.tanLeft, center.tanRight, center.tanUp, center.tanDown,
                                              scene.firstPerson.nearPlane, scene.firstPerson.farPlane);
+  // The center view dominates (the eyes' references are rendered one at a time after it).
+  requireMemory(context, renderMemoryEstimate(center.width, center.height, center.width, 1), options.memoryLimitBytes);
   ImageRGBA8 centerColor;
   DepthImage centerDepth;  // NaN, 0, negative: read as infinity
   {

@@ -207,7 +207,8 @@ TuneFrame TuneSession::renderFrame(TuneState& state, const FrameInput& input, fl
   images.eyesWithHud = images.eyes;
   if (images.reference) images.referenceWithHud = images.reference;
   const app::HudFrame overlay =
-      app::drawHud({parameters, placement.depth, weaponDepths, allowNegativeParallax, &images.stereoDepth, &firstPersonMask},
+      app::drawHud({parameters, placement.depth, weaponDepths, allowNegativeParallax, &images.stereoDepth, &firstPersonMask,
+                    app::resolveHudMode(state.hud, state.scene) == app::HudMode::Game},
                    *images.eyesWithHud, nullptr, images.referenceWithHud ? &*images.referenceWithHud : nullptr);
   numbers.crosshairDepth = overlay.crosshairDepth;
   numbers.crosshairHitWorld = placement.hitWorld;

@@ -1,5 +1,5 @@
 #pragma once
-// `s3d bench` as a library (issues #3 and #4): for every scene x maxSeparation the center view and the two
+// `s3d bench` as a library: for every scene x maxSeparation the center view and the two
 // reference eyes are rendered once, then every stereo method setting runs on that center view; each number is
 // the median of `repeat` GPU timestamp measurements. Writes bench.json, bench.md and bench_speed_vs_error.svg,
 // and optionally regenerates a marked section of docs/RESULTS.md. `renderer` mode times the deferred
@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "s3d/app/eye_comparison.h"
+#include "s3d/app/memory_budget.h"
 #include "s3d/renderer/deferred_renderer.h"
 #include "s3d/stereo/stereo.h"
 #include "s3d/vk/context.h"
@@ -35,7 +36,7 @@ struct MethodSetting {
 // followed by "/pixel" or "/tiles" to force a kernel (stereo::StereoKernel; none: Auto). Repeats are dropped.
 // Throws std::invalid_argument naming the bad item and the accepted forms.
 std::vector<MethodSetting> parseMethodSettings(const std::vector<std::string>& items);
-// The library's default stereo method (StereoParameters{}) as a setting: what the issue #4 targets judge.
+// The library's default stereo method (StereoParameters{}) as a setting: what the speed and error targets judge.
 MethodSetting defaultMethodSetting();
 
 inline const std::vector<std::string> kDefaultBenchMethods = {"seed", "search", "iterative"};
@@ -55,14 +56,18 @@ struct BenchOptions {
   std::vector<double> separationsPercent = kDefaultSeparationsPercent;  // maxSeparation in % of the width, (0, 25]
   int repeat = 5;                 // GPU timings per number (median), [1, 1000]
   std::uint32_t supersample = 1;  // renderer anti-aliasing for the center view and the reference eyes, 1..4
-  bool rendererOnly = false;      // issue #3: center frame and pass timings per scene, no stereo sweep
+  bool rendererOnly = false;      // center frame and pass timings per scene, no stereo sweep
   std::optional<double> bandwidthGBs;  // memory bandwidth for the traffic target; no guess when absent
   std::string targetSetting;      // the setting the targets judge; empty: defaultMethodSetting()
   stereo::StereoParameters stereo;  // zeroParallaxDistance and the weapon push; method and maxSeparation are swept
   std::filesystem::path outputFolder = "bench";
   std::optional<std::filesystem::path> resultsMarkdown;  // file whose marked section is replaced
   std::function<void(const BenchProgress&)> progress;  // called before each step and once at the end
+  std::optional<std::uint64_t> memoryLimitBytes;  // --memory-limit; the machine's available memory in any case
 };
+
+// A scene's frame at the largest separation swept (its guard band), as `s3d render` counts it (memory_budget.h).
+MemoryEstimate benchMemoryEstimate(const BenchOptions& options);
 
 // What the stereo pass moves per frame, counted from the shaders (stereo/shaders/). Per-pixel kernel: per
 // interior pixel and eye the depth imageLoads (4 B each: seed/search tapCount, iterative startTapCount + 2 x

@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "s3d/app/budget_frame.h"
+#include "s3d/app/memory_budget.h"
 #include "s3d/stereo/metrics.h"
 #include "s3d/stereo/output_formats.h"
 #include "s3d/stereo/stereo.h"
@@ -61,6 +62,7 @@ struct ConvertJobOptions {
   comfort::DisparityBudgetRule disparityBudget = comfort::DisparityBudgetRule::Off;
   comfort::DisplayProfile display = comfort::builtInDisplayProfile("tv55");
   comfort::DisparityBudgetController* budgetController = nullptr;  // none: a fresh one (the frame's target)
+  std::optional<std::uint64_t> memoryLimitBytes;  // --memory-limit; the machine's available memory in any case
 };
 
 struct ConvertReport {
@@ -79,6 +81,7 @@ struct ConvertReport {
   BudgetFrame budget;                    // the disparity budget's reduction and choice (off: empty)
   comfort::FrameComfort comfort;         // on options.display, with the budget on
   std::vector<std::string> filesWritten;
+  MemoryEstimate memory;  // estimated from the color file's header before anything was decoded
 };
 
 // Reads and checks every input first (missing, unreadable or truncated file, missing channel, mismatched
@@ -103,11 +106,28 @@ struct ConvertFrame {
 std::vector<ConvertFrame> pairFrames(const std::filesystem::path& folder, const std::string& colorPattern,
                                      const std::string& depthPattern);
 
+// How a folder run treats an earlier run's outputs in the same output folder.
+enum class FolderResume {
+  No,   // every frame converted; a caller's io::OutputTransaction makes the run all-or-nothing
+  Yes,  // frames report.json lists with unchanged inputs and settings and all files present are kept; every other
+        // frame is committed as soon as it is converted, with report.json rewritten to list exactly the frames
+        // present ("complete": false until the last), so a failure leaves what report.json says and a rerun goes on
+};
+
+struct ConvertFolderResult {
+  std::vector<ConvertReport> converted;  // frames converted by this run, in order
+  std::vector<std::string> kept;         // keys of frames an earlier run converted (FolderResume::Yes)
+};
+
 // Converts every frame with `options` (its color/depth replaced, fileSuffix "_<key>", no per-frame report) and
-// writes one report.json listing the frames. progress(done, total, key) is called after each frame.
-// A bad frame stops the run with an error naming it; frames before it keep their (complete) outputs.
-std::vector<ConvertReport> runConvertFolder(vk::Context& context, const ConvertJobOptions& options,
-                                            const std::vector<ConvertFrame>& frames,
-                                            const std::function<void(std::size_t, std::size_t, const std::string&)>& progress = {});
+// writes one report.json, the folder's manifest: {"settings": the options that shape the outputs, "complete",
+// "frames": [{"frame": key, "inputs": {"color"|"depth": {"path", "bytes", "modifiedNs"}}, "files", ...}]}.
+// progress(done, total, key) is called after each frame. A bad frame stops the run with an error naming it
+// (with FolderResume::Yes also how many frames report.json lists). Throws std::invalid_argument when resuming
+// from a report.json made with other settings, or one that is not such a manifest.
+ConvertFolderResult runConvertFolder(vk::Context& context, const ConvertJobOptions& options,
+                                     const std::vector<ConvertFrame>& frames,
+                                     const std::function<void(std::size_t, std::size_t, const std::string&)>& progress = {},
+                                     FolderResume resume = FolderResume::No);
 
 }  // namespace s3d::app

@@ -27,6 +27,18 @@ stereo::StereoParameters pushWeaponUnlessNegativeParallaxAllowed(stereo::StereoP
 bool holdZeroParallaxAtNearestDepth(stereo::StereoParameters& parameters, const DepthImage& stereoDepth,
                                     bool allowNegativeParallax);
 
+// The game HUD of the built-in scenes (health and ammo panels, crosshair). A glTF file is the user's own scene:
+// a game's HUD drawn over it would be ours, not theirs, so Auto leaves it out there.
+enum class HudMode {
+  Auto,  // Game on the built-in scenes, None on scene files
+  Game,  // the panels and the crosshair
+  None,  // nothing drawn; the eyes are the stereo pass's (made opaque)
+};
+HudMode parseHudMode(const std::string& name);  // "auto", "game", "none"; throws std::invalid_argument otherwise
+const char* hudModeName(HudMode mode);
+// Auto resolved for `scene` (a built-in name or a .gltf/.glb file).
+HudMode resolveHudMode(HudMode mode, const std::string& scene);
+
 // One HUD element (s3d/hud/overlay.h) as drawn into the synthesized eyes.
 struct HudElementReport {
   std::string name;            // "health", "ammo", "crosshair"
@@ -45,6 +57,7 @@ struct HudFrameInput {
   bool allowNegativeParallax = false;     // off: no element is shown in front of the screen plane
   const DepthImage* stereoDepth = nullptr;                   // the center view's linear depth (weapon pushed)
   const std::vector<std::uint8_t>* firstPersonMask = nullptr;  // the renderer's weapon mask of the center view
+  bool draw = true;  // false (HudMode::None): no element is drawn or reported, the images are only made opaque
 };
 
 struct HudFrame {
@@ -56,7 +69,8 @@ struct HudFrame {
 // The HUD (seed 4.6.2): the static panels (hud::defaultPanels) and the crosshair on top, each drawn after
 // stereo synthesis into every view at the parallax of its depth and faded out where the weapon mask (the eyes'
 // alpha) covers an element that lies behind the weapon. Drawn into `eyes` (counted in the report) and into
-// `center` and `reference` when given; then every one of them is made opaque (the mask has served).
+// `center` and `reference` when given; then every one of them is made opaque (the mask has served). With
+// input.draw false nothing is drawn: no elements, and the crosshair depth is the placement's (screen rule applied).
 HudFrame drawHud(const HudFrameInput& input, stereo::StereoPair& eyes, ImageRGBA8* center = nullptr,
                  stereo::StereoPair* reference = nullptr);
 

@@ -15,6 +15,7 @@
 #include "s3d/app/eye_comparison.h"
 #include "s3d/app/frame_rules.h"
 #include "s3d/app/budget_frame.h"
+#include "s3d/app/memory_budget.h"
 #include "s3d/comfort/comfort_profile.h"
 #include "s3d/comfort/comfort_report.h"
 #include "s3d/comfort/display_profile.h"
@@ -64,6 +65,10 @@ struct RenderJobOptions {
   // OneDegree: maxSeparation and the zero-parallax distance are chosen from the frame's depth range so every
   // pixel fits the display's 1-degree budget (budget_frame.h); the library default is off (`s3d` turns it on).
   comfort::DisparityBudgetRule disparityBudget = comfort::DisparityBudgetRule::Off;
+  // The game HUD (panels and crosshair) of the built-in scenes; Auto: drawn on them, left out of glTF files.
+  HudMode hud = HudMode::Auto;
+  // The most memory the run may use (--memory-limit); the machine's available memory in any case.
+  std::optional<std::uint64_t> memoryLimitBytes;
 };
 
 // EyeError (per-region error of one eye) lives in eye_comparison.h, shared with `s3d bench`.
@@ -106,6 +111,7 @@ struct RenderReport {
   } sanitized;
   std::vector<std::string> warnings;  // e.g. a clamped zero-parallax distance; also printed on stderr by the CLI
   std::vector<std::string> filesWritten;  // file names relative to the output folder, in write order
+  MemoryEstimate memory;                  // what the run was estimated to need before it started
 };
 
 // The two-pass reference's view of one eye: both layers get their own off-axis camera (the first-person
@@ -114,9 +120,14 @@ renderer::ViewMatrices referenceEyeView(const renderer::Scene& scene, const rend
                                         stereo::Eye eye, const stereo::StereoParameters& parameters);
 
 // Throws std::invalid_argument naming the problem: zero or absurd size (> kMaxImageSize), unknown scene,
-// unknown output name, invalid stereo parameters, a crop that leaves no columns to compare, or an output
+// unknown output name, invalid stereo parameters, a crop that leaves no columns to compare, a packing the size
+// cannot take (half side-by-side of a 1-pixel-wide eye), a memory estimate beyond the host's memory, or an output
 // folder path that exists but is not a folder. Needs no Vulkan: call it before creating a context.
 void validateRenderJobOptions(const RenderJobOptions& options);
+
+// The run's memory (memory_budget.h), with the widest guard band the options allow: the separation's, the
+// disparity budget's largest on the display, or half the width a side with negative parallax allowed.
+MemoryEstimate renderJobMemoryEstimate(const RenderJobOptions& options);
 
 // Validates the options (before creating any GPU resource or file), renders, compares, writes the selected
 // outputs into options.outputFolder (each write atomic) and returns the report.

@@ -40,6 +40,7 @@ struct SequenceJobOptions {
   // The budget's anticipation: the zero-parallax control's ray casts from where the camera will be this many
   // seconds ahead at its current velocity (0: none; 0.35 s: no forced frame on the cover path, docs/RESULTS.md); a surface they find eases the target down early.
   float anticipateSeconds = 0.35f;
+  std::optional<std::uint64_t> memoryLimitBytes;  // --memory-limit; the machine's available memory in any case
 };
 
 struct SequenceFrame {

@@ -4,7 +4,9 @@
 // synthesized from it through the view mapping (C++, a fixed-point depth search) and resampled into its own
 // projection and size; the two-pass reference renders exactly those eye views; the error is the whole frame's.
 #include <array>
+#include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -24,6 +26,7 @@ struct ViewsJobOptions {
   std::string viewsFile;  // as given, for the report
   std::filesystem::path outputFolder = "out";
   bool writeImages = true;  // center.png, left.png, right.png, left_reference.png, right_reference.png
+  std::optional<std::uint64_t> memoryLimitBytes;  // --memory-limit; the machine's available memory in any case
 };
 
 struct ViewsReport {

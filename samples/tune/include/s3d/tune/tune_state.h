@@ -7,6 +7,7 @@
 
 #include <glm/glm.hpp>
 
+#include "s3d/app/frame_rules.h"
 #include "s3d/comfort/disparity_budget.h"
 #include "s3d/renderer/scene.h"
 #include "s3d/tune/tune_settings.h"
@@ -38,6 +39,7 @@ struct TuneState {
   std::uint32_t supersample = 1;  // renderer anti-aliasing, 1..4 (renderer::RendererOptions), as `s3d render`
   // OneDegree: maxSeparation and the zero-parallax distance chosen per frame (app/budget_frame.h), as `s3d render`.
   comfort::DisparityBudgetRule disparityBudget = comfort::DisparityBudgetRule::Off;
+  app::HudMode hud = app::HudMode::Auto;  // the game HUD (panels, crosshair), as `s3d render --hud`
 };
 
 }  // namespace s3d::tune
