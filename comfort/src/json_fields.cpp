@@ -16,6 +16,7 @@ namespace s3d::comfort::detail {
 nlohmann::json readJsonFile(const std::filesystem::path& file, const char* what) {
   const std::string name = std::string(what) + " '" + file.string() + "'";
   std::error_code error;
+  if (std::filesystem::is_directory(file, error)) throw std::runtime_error(name + ": is a folder, not a file");
   if (!std::filesystem::is_regular_file(file, error)) throw std::runtime_error(name + ": no such file");
   std::ifstream stream(file, std::ios::binary);
   if (!stream) throw std::runtime_error(name + ": cannot open: " + std::strerror(errno));

@@ -85,6 +85,9 @@ ViewConfiguration viewConfigurationFromJson(const nlohmann::json& document) {
 
 ViewConfiguration loadViewConfiguration(const std::filesystem::path& file) {
   const std::string prefix = "views file '" + file.string() + "': ";
+  std::error_code status;
+  if (std::filesystem::is_directory(file, status)) throw std::invalid_argument(prefix + "is a folder, not a file");
+  if (!std::filesystem::exists(file, status)) throw std::invalid_argument(prefix + "does not exist");
   std::ifstream stream(file);
   if (!stream) throw std::invalid_argument(prefix + "cannot be read");
   nlohmann::json document;

@@ -117,6 +117,8 @@ class RenderCommand final : public Command {
                   "anaglyph_NNNN.png per frame and report.json, without the HUD)");
     if (!resolution_.empty()) parseResolution(resolution_, app::kMaxImageSize, options_.width, options_.height);
     options_.outputs = std::set<std::string>(outputs_.begin(), outputs_.end());
+    if (!options_.outputs.count("sbs.png")) rejectGiven(*subcommand, {"--sbs"}, "packs sbs.png, which --outputs leaves out");
+    if (!options_.outputs.count("tab.png")) rejectGiven(*subcommand, {"--tab"}, "packs tab.png, which --outputs leaves out");
     options_.sideBySide = stereo::parsePackingMode(sideBySide_);
     options_.topBottom = stereo::parsePackingMode(topBottom_);
     options_.hud = app::parseHudMode(hud_);

@@ -435,6 +435,7 @@ RegressSuite parseRegressSuite(const json& document, const fs::path& suiteFolder
 }
 
 RegressSuite loadRegressSuite(const fs::path& file) {
+  if (fs::is_directory(file)) throw std::invalid_argument("suite file '" + file.string() + "' is a folder, not a file");
   if (!fs::is_regular_file(file)) throw std::invalid_argument("suite file '" + file.string() + "' does not exist");
   json document;
   try {
