@@ -25,6 +25,8 @@ class TuneCommand final : public Command {
         "parallax and comfort heat maps), sliders for every stereo and comfort parameter, camera control, GPU "
         "times, error and comfort numbers, comfort profiles. Exits with status 77 when no window can be opened");
     CLI::App& tune = *subcommand;
+    resolution_ = std::to_string(options_.width) + "x" + std::to_string(options_.height);
+    hud_ = app::hudModeName(options_.state.hud);
     tune.add_option("--resolution", resolution_, "View size as WxH (the window adds the panel)")
         ->check(resolutionValidator(app::kMaxImageSize))
         ->capture_default_str();
@@ -112,11 +114,10 @@ class TuneCommand final : public Command {
  private:
   tune::TuneWindowOptions options_;
   StereoOptions stereo_;
-  std::string resolution_ = std::to_string(tune::TuneWindowOptions{}.width) + "x" +
-                            std::to_string(tune::TuneWindowOptions{}.height);
+  std::string resolution_;  // the defaults of options_ (TuneWindowOptions), set first in the constructor
   std::size_t frame_ = 0;
   std::string view_ = "anaglyph";
-  std::string hud_ = app::hudModeName(tune::TuneState{}.hud);
+  std::string hud_;
   std::optional<std::uint64_t> memoryLimit_;
   ProfileOptions profile_;
   std::vector<std::string> sets_;
