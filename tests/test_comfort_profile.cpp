@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <iterator>
 #include <stdexcept>
 #include <string>
 
@@ -166,6 +167,20 @@ TEST_F(ComfortProfileFiles, AnInvalidProfileIsNotSaved) {
   profile.stereo.maxSeparation = 0.9f;
   EXPECT_THROW(saveComfortProfile(folder_ / "profile.json", profile), std::invalid_argument);
   EXPECT_FALSE(fs::exists(folder_ / "profile.json"));
+}
+
+TEST_F(ComfortProfileFiles, SavingNeverWritesThroughALinkPlantedBesideOrAtTheFile) {
+  // --save-profile may name a file in a shared folder: a link at the old predictable temporary name
+  // (profile.json.tmp) or at the name itself must leave its target untouched.
+  const fs::path victim = folder_ / "victim.txt";
+  std::ofstream(victim) << "precious";
+  fs::create_symlink(victim, folder_ / "profile.json.tmp");
+  fs::create_symlink(victim, folder_ / "profile.json");
+  saveComfortProfile(folder_ / "profile.json", ComfortProfile{});
+  std::ifstream in(victim);
+  EXPECT_EQ(std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>()), "precious");
+  EXPECT_FALSE(fs::is_symlink(folder_ / "profile.json"));
+  EXPECT_EQ(loadComfortProfile(folder_ / "profile.json").stereo.maxSeparation, ComfortProfile{}.stereo.maxSeparation);
 }
 
 TEST(ComfortProfile, ADisplayObjectDescribesAScreenOrAHeadMountedDisplay) {

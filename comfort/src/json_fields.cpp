@@ -1,13 +1,18 @@
 #include "json_fields.h"
 
+#include <fcntl.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <cerrno>
 #include <charconv>
+#include <cstdio>
 #include <cstdlib>
 #include <cmath>
 #include <cstring>
 #include <fstream>
 #include <iterator>
+#include <random>
 #include <sstream>
 #include <stdexcept>
 
@@ -33,21 +38,35 @@ nlohmann::json readJsonFile(const std::filesystem::path& file, const char* what)
 void writeTextAtomically(const std::filesystem::path& file, const std::string& text, const char* what) {
   const std::string name = std::string(what) + " '" + file.string() + "'";
   if (file.empty() || !file.has_filename()) throw std::runtime_error(name + ": the path names no file");
-  std::filesystem::path temporary = file;
-  temporary += ".tmp";
-  {
-    std::ofstream stream(temporary, std::ios::binary | std::ios::trunc);
-    if (!stream) throw std::runtime_error(name + ": cannot create " + temporary.string() + ": " + std::strerror(errno));
-    stream << text;
-    stream.close();
-    if (stream.fail()) {
-      std::error_code ignored;
-      std::filesystem::remove(temporary, ignored);
-      throw std::runtime_error(name + ": writing failed");
-    }
+  // A fresh temporary beside the target under an unpredictable name, refusing any existing file or link there
+  // (O_EXCL | O_NOFOLLOW): a link planted in a shared folder is never written through.
+  std::random_device entropy;
+  std::filesystem::path temporary;
+  int descriptor = -1;
+  for (int attempt = 0; attempt < 16 && descriptor < 0; ++attempt) {
+    char suffix[24];
+    std::snprintf(suffix, sizeof suffix, ".%08x.tmp", static_cast<unsigned>(entropy()));
+    temporary = file;
+    temporary += suffix;
+    descriptor = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0666);
+    if (descriptor < 0 && errno != EEXIST) break;
   }
+  if (descriptor < 0)
+    throw std::runtime_error(name + ": cannot create a temporary file beside it: " + std::strerror(errno));
+  std::size_t written = 0;
+  while (written < text.size()) {
+    const ::ssize_t count = ::write(descriptor, text.data() + written, text.size() - written);
+    if (count < 0 && errno == EINTR) continue;
+    if (count <= 0) break;
+    written += std::size_t(count);
+  }
+  const bool closed = ::close(descriptor) == 0;
   std::error_code error;
-  std::filesystem::rename(temporary, file, error);
+  if (written != text.size() || !closed) {
+    std::filesystem::remove(temporary, error);
+    throw std::runtime_error(name + ": writing failed");
+  }
+  std::filesystem::rename(temporary, file, error);  // a link at the target itself is replaced, not followed
   if (error) {
     std::error_code ignored;
     std::filesystem::remove(temporary, ignored);
