@@ -21,6 +21,11 @@ if(S3D_BUILD_FUZZERS)
     message(FATAL_ERROR "S3D_BUILD_FUZZERS needs a compiler with libFuzzer: configure with "
                         "-DCMAKE_CXX_COMPILER=clang++ (Debian packages clang, libclang-rt-14-dev)")
   endif()
+  # The C targets (the C API test) get the same instrumentation, so the C compiler must be clang too.
+  if(NOT CMAKE_C_COMPILER_ID MATCHES "Clang")
+    message(FATAL_ERROR "S3D_BUILD_FUZZERS needs clang as the C compiler as well: configure with "
+                        "-DCMAKE_C_COMPILER=clang (found ${CMAKE_C_COMPILER_ID})")
+  endif()
   add_compile_options(-fsanitize=fuzzer-no-link)
 endif()
 
