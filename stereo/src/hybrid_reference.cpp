@@ -19,10 +19,68 @@ gpu::HybridConstants makeHybridConstants(const StereoParameters& parameters, std
   c.width = int(width);
   c.height = int(height);
   // Parallax never exceeds maxSeparation (depth at or behind the zero-parallax plane; nearer surfaces are what
-  // the comfort rules avoid): a step farther than that plus a pixel cannot land on the pixel.
+  // the comfort rules avoid): content farther than that plus a pixel cannot land on the pixel.
   c.windowPx = int(std::ceil(parameters.maxSeparation * float(width))) + 1;
-  c.thresholdBin = S3D_HYBRID_NO_PIXEL;
+  const std::uint64_t classified = std::uint64_t(std::max(c.cropEnd - c.cropBegin, 0)) * height;
+  c.maskedPixelCap = hybridPixelCap(parameters.hybridBudget, classified);
+  // A gather base's taps (its choice of source is recomputed per pixel); the others land on the visible surface.
+  const StereoParameters base = displacementParameters(parameters);
+  if (base.method == StereoMethod::Seed || base.method == StereoMethod::Search) {
+    const gpu::StereoConstants taps = makeStereoConstants(base, width, height);
+    c.baseTapCount = taps.tapCount;
+    for (int i = 0; i < taps.tapCount; ++i) c.baseTapOffsetPx[i] = taps.tapOffsetPx[i];
+  }
   return c;
+}
+
+std::uint32_t hybridPixelCap(float budget, std::uint64_t classifiedPixels) {
+  if (!(budget >= 0.0f && budget <= 1.0f))
+    throw std::invalid_argument("hybrid budget must be in [0, 1] (got " + numberText(budget) + ")");
+  if (classifiedPixels > 0xffffffffu) throw std::invalid_argument("hybrid classification: too many pixels");
+  // Integer cap, so budget 1 takes every pixel whatever the rounding of budget * total; the factor undoes the float
+  // budget's representation error (at most 2^-24 relative: 0.02f * 550 is 10.9999997, meant as 11).
+  return budget >= 1.0f ? std::uint32_t(classifiedPixels)
+                        : std::uint32_t(std::floor(double(budget) * double(classifiedPixels) * (1.0 + 1e-7)));
+}
+
+float hybridPixelScoreReference(const DepthImage& linearDepth, int x, int y, Eye eye, const gpu::HybridConstants& c) {
+  auto depthAt = [&](int column) {
+    return *linearDepth.at(std::uint32_t(std::clamp(column, 0, c.width - 1)), std::uint32_t(y));
+  };
+  auto parallaxAt = [&](int column) {
+    return gpu::hybridParallaxPx(depthAt(column), c.maxSeparation, c.zeroParallaxDistance, c.width);
+  };
+  const float direction = eye == Eye::Left ? 1.0f : -1.0f;
+  const float eyeX = float(x);
+  gpu::HybridCoverage coverage = gpu::hybridCoverageBegin();
+  auto sanitizedDepthAt = [&](int column) { return gpu::sanitizedDepth(depthAt(column), c.zeroParallaxDistance); };
+  float dA = sanitizedDepthAt(x - c.windowPx);
+  float pA = gpu::hybridParallaxPx(dA, c.maxSeparation, c.zeroParallaxDistance, c.width);
+  for (int i = x - c.windowPx; i < x + c.windowPx; ++i) {
+    const float dB = sanitizedDepthAt(i + 1);
+    const float pB = gpu::hybridParallaxPx(dB, c.maxSeparation, c.zeroParallaxDistance, c.width);
+    const float landA = float(i) - direction * pA;
+    const float landB = float(i + 1) - direction * pB;
+    coverage = gpu::hybridConsiderColumns(coverage, eyeX, landA, pA, dA, landB, pB, dB);
+    dA = dB;
+    pA = pB;
+  }
+  float gatherError = 0.0f;
+  if (c.baseTapCount > 0) {  // the gather's own choice: the nearest depth over its taps (stereo_reference.cpp)
+    float minDepth = S3D_INFINITY;
+    for (int t = 0; t < c.baseTapCount; ++t)
+      minDepth = std::min(minDepth, gpu::sanitizedDepth(depthAt(x + int(direction) * c.baseTapOffsetPx[t]),
+                                                        c.zeroParallaxDistance));
+    const float u =
+        float(x) + direction * (gpu::parallaxFromDepth(c.maxSeparation, c.zeroParallaxDistance, minDepth) * float(c.width));
+    const float base = std::floor(u);
+    const float fraction = u - base;
+    const float pLow = parallaxAt(int(base)), pHigh = parallaxAt(int(base) + 1);
+    const float pNearest = fraction < 0.5f ? pLow : pHigh;
+    const float landing = u - direction * pNearest;
+    gatherError = gpu::hybridGatherErrorPx(coverage, pNearest, std::abs(landing - eyeX), pLow, pHigh, fraction);
+  }
+  return gpu::hybridPixelScore(coverage, gatherError, c.windowPx);
 }
 
 HybridClassification classifyHybridReference(const DepthImage& linearDepth, const gpu::HybridConstants& c) {
@@ -30,55 +88,38 @@ HybridClassification classifyHybridReference(const DepthImage& linearDepth, cons
     throw std::invalid_argument("hybrid classification: depth size does not match the constants");
   const std::size_t count = std::size_t(c.width) * std::size_t(c.height);
   HybridClassification result{std::vector<std::uint32_t>(count, 0u), std::vector<std::uint32_t>(count, 0u), {}, {}};
-  std::vector<float> parallax(std::size_t(c.width));
-  for (int y = 0; y < c.height; ++y) {
-    for (int x = 0; x < c.width; ++x)
-      parallax[std::size_t(x)] = gpu::hybridParallaxPx(*linearDepth.at(std::uint32_t(x), std::uint32_t(y)),
-                                                       c.maxSeparation, c.zeroParallaxDistance, c.width);
-    auto at = [&](int x) { return parallax[std::size_t(std::clamp(x, 0, c.width - 1))]; };
+  for (int y = 0; y < c.height; ++y)
     for (int x = c.cropBegin; x < c.cropEnd; ++x) {
-      float leftScore = 0.0f, rightScore = 0.0f;
-      const float eyeX = float(x);
-      for (int i = x - c.windowPx; i < x + c.windowPx; ++i) {
-        const float previous = at(i), next = at(i + 1);
-        const float jump = std::abs(next - previous);
-        leftScore = std::max(leftScore, gpu::hybridStepScore(eyeX, float(i) - previous, float(i + 1) - next, jump));
-        rightScore = std::max(rightScore, gpu::hybridStepScore(eyeX, float(i) + previous, float(i + 1) + next, jump));
-      }
       const std::size_t index = std::size_t(y) * std::size_t(c.width) + std::size_t(x);
-      result.leftBins[index] = gpu::hybridScoreBin(leftScore);
-      result.rightBins[index] = gpu::hybridScoreBin(rightScore);
+      result.leftBins[index] = gpu::hybridScoreBin(hybridPixelScoreReference(linearDepth, x, y, Eye::Left, c));
+      result.rightBins[index] = gpu::hybridScoreBin(hybridPixelScoreReference(linearDepth, x, y, Eye::Right, c));
       ++result.leftHistogram[result.leftBins[index]];
       ++result.rightHistogram[result.rightBins[index]];
     }
-  }
   return result;
 }
 
-HybridThreshold hybridThreshold(const HybridHistogram& histogram, float budget) {
-  if (!(budget >= 0.0f && budget <= 1.0f))
-    throw std::invalid_argument("hybrid budget must be in [0, 1] (got " + numberText(budget) + ")");
-  const std::uint64_t total = std::accumulate(histogram.begin(), histogram.end(), std::uint64_t(0));
-  // Integer cap, so budget 1 takes every pixel whatever the rounding of budget * total.
-  const std::uint64_t cap = budget >= 1.0f ? total : std::uint64_t(std::floor(double(budget) * double(total)));
+HybridThreshold hybridThreshold(const HybridHistogram& histogram, std::uint32_t maskedPixelCap) {
   HybridThreshold threshold;
   for (int bin = S3D_HYBRID_BINS - 1; bin >= 0; --bin) {
     const std::uint64_t masked = threshold.maskedPixels + histogram[std::size_t(bin)];
-    if (masked > cap) break;
+    if (masked > maskedPixelCap) break;
     threshold = {bin, masked};
   }
   return threshold;
 }
 
-void compositeHybridReference(ImageRGBA8& eye, const ImageRGBA8& rendered, const std::vector<std::uint32_t>& bins,
-                              const gpu::HybridConstants& c) {
-  requireSameSize(eye, rendered, "hybrid composite (eye vs rendered eye)");
-  if (int(eye.width) != c.width || int(eye.height) != c.height || bins.size() != eye.pixels.size() / 4)
-    throw std::invalid_argument("hybrid composite: image or bins size does not match the constants");
+std::vector<std::uint8_t> hybridMaskReference(const std::vector<std::uint32_t>& bins, int thresholdBin,
+                                              const gpu::HybridConstants& c) {
+  if (bins.size() != std::size_t(c.width) * std::size_t(c.height))
+    throw std::invalid_argument("hybrid mask: bins size does not match the constants");
+  std::vector<std::uint8_t> mask(bins.size(), 0);
   for (int y = 0; y < c.height; ++y)
-    for (int x = c.cropBegin; x < c.cropEnd; ++x)
-      if (int(bins[std::size_t(y) * std::size_t(c.width) + std::size_t(x)]) >= c.thresholdBin)
-        std::copy_n(rendered.at(std::uint32_t(x), std::uint32_t(y)), 4, eye.at(std::uint32_t(x), std::uint32_t(y)));
+    for (int x = c.cropBegin; x < c.cropEnd; ++x) {
+      const std::size_t i = std::size_t(y) * std::size_t(c.width) + std::size_t(x);
+      mask[i] = int(bins[i]) >= thresholdBin ? 1 : 0;
+    }
+  return mask;
 }
 
 }  // namespace s3d::stereo

@@ -1,9 +1,11 @@
 #pragma once
 // Hybrid stereo, the stereo side: classify the eye pixels a displacement gets wrong (score bins, hybrid_shared.h),
-// pick the bins a budget can afford from a histogram, and composite rendered pixels into the displaced eyes.
-// Plain C++ of the same math as the GPU pass (hybrid_pass.h), which the tests hold to it.
+// pick the bins a budget can afford from a histogram, mask those pixels for the renderer, and composite what it
+// rendered into the displaced eyes. Plain C++ of the same math as the GPU passes (hybrid_pass.h), which the tests
+// hold to it.
 #include <array>
 #include <cstdint>
+#include <stdexcept>
 #include <vector>
 
 #include "s3d/image.h"
@@ -20,10 +22,17 @@ struct HybridClassification {
   HybridHistogram leftHistogram{}, rightHistogram{};
 };
 
-// Constants for the parameters at the given size (crop as the stereo pass; window = the largest parallax the
-// zero-parallax distance allows, + 1 px); thresholdBin starts at S3D_HYBRID_NO_PIXEL.
+// The budget as a whole number of pixels: budget * classifiedPixels rounded down, and every pixel at budget 1
+// whatever the rounding. Throws std::invalid_argument unless budget is in [0, 1].
+std::uint32_t hybridPixelCap(float budget, std::uint64_t classifiedPixels);
+
+// Constants for the parameters at the given size: the crop as the stereo pass's, the window = the largest
+// parallax the zero-parallax distance allows + 1 px, the cap of parameters.hybridBudget over the crop, and a
+// gather base's taps.
 gpu::HybridConstants makeHybridConstants(const StereoParameters& parameters, std::uint32_t width, std::uint32_t height);
 
+// The expected error of one eye pixel in pixels of parallax (hybrid_shared.h), and every pixel's bin.
+float hybridPixelScoreReference(const DepthImage& linearDepth, int x, int y, Eye eye, const gpu::HybridConstants& constants);
 HybridClassification classifyHybridReference(const DepthImage& linearDepth, const gpu::HybridConstants& constants);
 
 struct HybridThreshold {
@@ -31,12 +40,24 @@ struct HybridThreshold {
   std::uint64_t maskedPixels = 0;
 };
 
-// The lowest threshold whose masked pixels stay within budget * classifiedPixels: the highest scores first, and
-// a bin is taken whole or not at all. budget 0 masks nothing, budget 1 everything. budget must be in [0, 1].
-HybridThreshold hybridThreshold(const HybridHistogram& histogram, float budget);
+// The lowest threshold whose masked pixels stay within maskedPixelCap: the highest scores first, and a bin is
+// taken whole or not at all (a cap of 0 masks nothing, the classified count masks everything).
+HybridThreshold hybridThreshold(const HybridHistogram& histogram, std::uint32_t maskedPixelCap);
 
-// Eye pixels inside the crop whose bin is >= thresholdBin take `rendered`'s color (in place).
-void compositeHybridReference(ImageRGBA8& eye, const ImageRGBA8& rendered, const std::vector<std::uint32_t>& bins,
-                              const gpu::HybridConstants& constants);
+// 1 for the pixels inside the crop whose bin is >= thresholdBin, else 0 (what the renderer shades).
+std::vector<std::uint8_t> hybridMaskReference(const std::vector<std::uint32_t>& bins, int thresholdBin,
+                                              const gpu::HybridConstants& constants);
+
+// Eye pixels whose mask is set take `rendered`'s color (in place); the others keep the displaced color. Display
+// (RGBA8) or linear HDR (RGBA32F) eyes alike.
+template <typename Channel>
+void compositeHybridReference(Image<Channel, 4>& eye, const Image<Channel, 4>& rendered,
+                              const std::vector<std::uint8_t>& mask) {
+  requireSameSize(eye, rendered, "hybrid composite (eye vs rendered eye)");
+  if (mask.size() != eye.pixelCount()) throw std::invalid_argument("hybrid composite: mask size does not match the eye");
+  for (std::size_t i = 0; i < mask.size(); ++i)
+    if (mask[i] != 0)
+      for (std::size_t channel = 0; channel < 4; ++channel) eye.pixels[4 * i + channel] = rendered.pixels[4 * i + channel];
+}
 
 }  // namespace s3d::stereo

@@ -1,6 +1,8 @@
 #pragma once
-// Hybrid stereo on the GPU: the classification pass (score bins of both eyes and their histograms) and the
-// per-eye composite of rendered pixels (math in hybrid_shared.h, C++ reference in hybrid.h).
+// Hybrid stereo on the GPU: classification (score bins of both eyes and their histograms), the budget's
+// threshold per eye, both eyes' render masks, and the per-eye composite of rendered pixels (math in
+// hybrid_shared.h, C++ reference in hybrid.h). Nothing is read back between the passes: a frame records
+// classify, renders each eye's masked pixels with its own renderer, then composites.
 #include <vulkan/vulkan.h>
 
 #include "s3d/stereo/hybrid.h"
@@ -14,36 +16,49 @@ class HybridPass {
  public:
   explicit HybridPass(const vk::Context& context);
 
-  // The images a classification writes: a bin per eye pixel (R32UI) and the histogram (R32UI,
-  // S3D_HYBRID_BINS x 2, row 0 the left eye), all in vk::kComputeWrite state after record.
-  struct Classification {
-    vk::Image leftBins, rightBins, histogram;
+  // One size's intermediate images, created once and reused every frame. All R32_UINT.
+  struct Images {
+    vk::Image leftBins, rightBins;  // score bin per eye pixel
+    vk::Image histogram;            // S3D_HYBRID_BINS x 2, row 0 the left eye
+    vk::Image thresholds;           // 2 x 2: (0, eye) the threshold bin, (1, eye) the masked pixel count
+    vk::Image leftMask, rightMask;  // 1 where the eye camera renders the pixel
+    bool written = false;           // set by recordMasks: later frames wait for the earlier frame's reads
   };
-  Classification createClassification(std::uint32_t width, std::uint32_t height) const;
+  Images createImages(std::uint32_t width, std::uint32_t height) const;
 
-  // linearDepth in VK_IMAGE_LAYOUT_GENERAL, readable by compute; the classification's images in any state
-  // written by an earlier record (or fresh: `fresh` true).
-  void recordClassify(VkCommandBuffer cmd, const vk::Image& linearDepth, const Classification& target, bool fresh,
-                      const gpu::HybridConstants& constants) const;
-  // eye (RGBA8) is updated in place where bins >= constants.thresholdBin from renderedEye (RGBA8); all in
-  // VK_IMAGE_LAYOUT_GENERAL with earlier writes made visible by the caller.
-  void recordComposite(VkCommandBuffer cmd, const vk::Image& eye, const vk::Image& renderedEye, const vk::Image& bins,
+  // Classification, threshold and masks in three dispatches. linearDepth: the center view's (R32F, GENERAL,
+  // written by an earlier compute pass and made visible by the caller). Leaves every image of `images` in
+  // vk::kComputeWrite state: a consumer of the masks (the renderer) transitions them to what it reads with.
+  void recordMasks(VkCommandBuffer cmd, const vk::Image& linearDepth, Images& images,
+                   const gpu::HybridConstants& constants) const;
+  // eye (RGBA8) takes renderedEye's (RGBA8) colour where mask is set; all three in VK_IMAGE_LAYOUT_GENERAL with
+  // earlier writes made visible by the caller; eye is left in vk::kComputeWrite state.
+  void recordComposite(VkCommandBuffer cmd, const vk::Image& eye, const vk::Image& renderedEye, const vk::Image& mask,
                        const gpu::HybridConstants& constants) const;
 
   static HybridHistogram readHistogram(vk::Context& context, const vk::Image& histogram, int row);
+  static HybridThreshold readThreshold(vk::Context& context, const vk::Image& thresholds, int row);
   static std::vector<std::uint32_t> readBins(vk::Context& context, const vk::Image& bins);
+  static std::vector<std::uint8_t> readMask(vk::Context& context, const vk::Image& mask);
+
+  static constexpr VkFormat kMaskFormat = VK_FORMAT_R32_UINT;
 
  private:
   const vk::Context* context_;
-  vk::PipelineLayout classifyLayout_, compositeLayout_;
-  vk::Unique<VkPipeline> classify_, composite_;
+  vk::PipelineLayout classifyLayout_, thresholdLayout_, maskLayout_, compositeLayout_;
+  vk::Unique<VkPipeline> classify_, threshold_, mask_, composite_;
 };
 
-// Uploads the depth, classifies it on the GPU and reads bins and histograms back (tests).
-HybridClassification classifyHybridOnGpu(vk::Context& context, const DepthImage& linearDepth,
-                                         const gpu::HybridConstants& constants);
-// Uploads both images, composites on the GPU and reads the eye back (tests).
+// What the GPU passes produce for one depth image (tests): bins, histograms, thresholds and masks.
+struct HybridGpuResult {
+  HybridClassification classification;
+  HybridThreshold leftThreshold, rightThreshold;
+  std::vector<std::uint8_t> leftMask, rightMask;
+};
+HybridGpuResult classifyHybridOnGpu(vk::Context& context, const DepthImage& linearDepth,
+                                    const gpu::HybridConstants& constants);
+// Uploads the images, composites on the GPU and reads the eye back (tests).
 ImageRGBA8 compositeHybridOnGpu(vk::Context& context, const ImageRGBA8& eye, const ImageRGBA8& rendered,
-                                const std::vector<std::uint32_t>& bins, const gpu::HybridConstants& constants);
+                                const std::vector<std::uint8_t>& mask, const gpu::HybridConstants& constants);
 
 }  // namespace s3d::stereo
