@@ -166,7 +166,8 @@ TEST_F(BenchJobTest, JsonHoldsEveryRowAndListsTheFiles) {
   EXPECT_EQ(json.at("rows")[1].at("iterations"), 2);
   EXPECT_TRUE(json.at("rows")[0].at("error").at("left").at("halo").at("psnrDb").is_number());
   EXPECT_EQ(json.at("deviceKind"), sweep.report.deviceKind);
-  EXPECT_EQ(json.at("files"), nlohmann::json({"bench_speed_vs_error.svg", "bench.md", "bench.json", sweep.results.string()}));
+  EXPECT_EQ(json.at("files"), nlohmann::json({"bench_speed_vs_error.svg", "bench_time_over_eye.svg", "bench.md", "bench.json",
+                                               sweep.results.string()}));
 }
 
 TEST_F(BenchJobTest, ResultsFileChangesOnlyInsideItsDeviceSection) {
@@ -208,6 +209,7 @@ TEST_F(BenchJobTest, RendererModeTimesEveryPassOfEachScene) {
   EXPECT_NE(markdown.find("| courtyard | "), std::string::npos) << markdown;
   EXPECT_NE(markdown.find(row.passes.front().name), std::string::npos);
   EXPECT_FALSE(fs::exists(folder / "bench_speed_vs_error.svg"));  // no error to plot
+  EXPECT_FALSE(fs::exists(folder / "bench_time_over_eye.svg"));
   std::error_code ignored;
   fs::remove_all(folder, ignored);
 }

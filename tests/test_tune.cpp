@@ -54,7 +54,8 @@ TEST(TuneParameters, EveryNamedParameterCanBeSet) {
       {"weaponDepthOffset", "0.5"},   {"weaponDepthScale", "1.5"},     {"zppControl", "on"},
       {"zppEngageDistance", "3"},     {"zppReleaseMargin", "0.5"},     {"zppMinimumDistance", "0.3"},
       {"zppResponseSeconds", "0.5"},  {"zppMaxChangePerSecond", "2"},  {"crosshairDistance", "6"},
-      {"crosshairMargin", "0.5"},     {"display", "monitor27"},        {"allowNegativeParallax", "on"}};
+      {"crosshairMargin", "0.5"},     {"display", "monitor27"},        {"allowNegativeParallax", "on"},
+      {"hybridBudget", "0.25"},       {"hybridBase", "iterative"}};
   ASSERT_EQ(values.size(), parameterNames().size());
   for (const auto& [name, value] : values) setParameter(settings, name, value);
   EXPECT_FLOAT_EQ(settings.profile.stereo.maxSeparation, 0.03f);
@@ -73,6 +74,8 @@ TEST(TuneParameters, EveryNamedParameterCanBeSet) {
   EXPECT_FLOAT_EQ(settings.profile.zeroParallax.maxChangePerSecond, 2.0f);
   EXPECT_FLOAT_EQ(settings.profile.crosshair.distance.value_or(0.0f), 6.0f);
   EXPECT_FLOAT_EQ(settings.profile.crosshair.margin, 0.5f);
+  EXPECT_FLOAT_EQ(settings.profile.stereo.hybridBudget, 0.25f);
+  EXPECT_EQ(settings.profile.stereo.hybridBase, stereo::StereoMethod::Iterative);
   EXPECT_EQ(settings.profile.display.name, "monitor27");
   EXPECT_TRUE(settings.profile.allowNegativeParallax);
 }

@@ -19,7 +19,8 @@ constexpr Range kDistance{0.0, 1.0e4};
 constexpr Range kPositiveSeconds{0.0, 60.0, true};
 constexpr Range kSeconds{0.0, 60.0};
 
-const std::vector<std::string> kMethods = {"seed", "search", "iterative", "forward"};
+const std::vector<std::string> kMethods = {"seed", "search", "iterative", "forward", "hybrid"};
+const std::vector<std::string> kHybridBases = {"seed", "search", "iterative", "forward"};
 
 void readStereo(const nlohmann::json& section, stereo::StereoParameters& p) {
   ObjectReader reader(section, "stereo");
@@ -34,6 +35,10 @@ void readStereo(const nlohmann::json& section, stereo::StereoParameters& p) {
   p.method = stereo::parseStereoMethod(method);
   reader.integer("searchTaps", p.searchTaps, 1, S3D_STEREO_MAX_TAPS);
   reader.integer("iterations", p.iterations, 1, 16);
+  reader.number("hybridBudget", p.hybridBudget, {0.0, 1.0, false});
+  std::string base = stereo::methodName(p.hybridBase);
+  reader.choice("hybridBase", base, kHybridBases);
+  p.hybridBase = stereo::parseStereoMethod(base);
   reader.finish();
 }
 
@@ -125,7 +130,9 @@ nlohmann::json toJson(const ComfortProfile& profile) {
             {"edgeCrop", s.edgeCrop < 0.0f ? nlohmann::json() : nlohmann::json(detail::shortest(s.edgeCrop))},
             {"method", stereo::methodName(s.method)},
             {"searchTaps", s.searchTaps},
-            {"iterations", s.iterations}}},
+            {"iterations", s.iterations},
+            {"hybridBudget", detail::shortest(s.hybridBudget)},
+            {"hybridBase", stereo::methodName(s.hybridBase)}}},
           {"weapon", {{"depthOffset", detail::shortest(s.weaponDepthOffset)}, {"depthScale", detail::shortest(s.weaponDepthScale)}}},
           {"zeroParallaxControl",
            {{"engageDistance", detail::shortest(z.engageDistance)},

@@ -119,11 +119,20 @@ void addMemoryLimitOption(CLI::App& command, std::optional<std::uint64_t>& limit
           "SIZE");
 }
 
-void StereoOptions::requireMethodOptionsApply(const CLI::App& command, stereo::StereoMethod method) {
+void StereoOptions::requireMethodOptionsApply(const CLI::App& command, const stereo::StereoParameters& parameters) {
+  const stereo::StereoMethod method = parameters.method;
   const std::string used = std::string("(the method is ") + stereo::methodName(method) + ")";
-  if (method != stereo::StereoMethod::Search) rejectGiven(command, {"--taps"}, "applies to --method search " + used);
-  if (method != stereo::StereoMethod::Iterative)
-    rejectGiven(command, {"--iterations"}, "applies to --method iterative " + used);
+  if (method != stereo::StereoMethod::Hybrid)
+    rejectGiven(command, {"--hybrid-budget", "--hybrid-base"}, "applies to --method hybrid " + used);
+  // A hybrid's displacement is its base: --taps and --iterations apply to that.
+  const stereo::StereoMethod displacement = stereo::displacementParameters(parameters).method;
+  const std::string base = method == stereo::StereoMethod::Hybrid
+                               ? std::string("(the hybrid's base is ") + stereo::methodName(displacement) + ")"
+                               : used;
+  if (displacement != stereo::StereoMethod::Search)
+    rejectGiven(command, {"--taps"}, "applies to --method search " + base);
+  if (displacement != stereo::StereoMethod::Iterative)
+    rejectGiven(command, {"--iterations"}, "applies to --method iterative " + base);
 }
 
 void StereoOptions::rejectSeparationUnderBudget(const CLI::App& command, const std::string& budgetRule) {
@@ -155,12 +164,24 @@ void StereoOptions::add(CLI::App& command, const std::string& depthUnits, bool o
       .add_option("--method", method,
                   std::string("Stereo method: seed (Listing 4.5, taps at 0.5/0.66/1.0 of the separation), search (--taps "
                               "taps spread over the separation), iterative (fixed-point source search, --iterations) "
-                              "or forward (z-buffered scatter of every pixel, holes filled from the background)") +
+                              "forward (z-buffered scatter of every pixel, holes filled from the background) or hybrid "
+                              "(--hybrid-base's displacement, then up to --hybrid-budget of each eye's pixels, the ones it "
+                              "gets wrong, rendered from the eye cameras; needs a renderer)") +
                       (offerAuto ? "; auto: forward for depth or disparity from files (measured on real photographs, "
                                    "docs/RESULTS.md)"
                                  : ""))
-      ->check(offerAuto ? CLI::IsMember({"auto", "seed", "search", "iterative", "forward"})
-                        : CLI::IsMember({"seed", "search", "iterative", "forward"}))
+      ->check(offerAuto ? CLI::IsMember({"auto", "seed", "search", "iterative", "forward", "hybrid"})
+                        : CLI::IsMember({"seed", "search", "iterative", "forward", "hybrid"}))
+      ->capture_default_str();
+  command
+      .add_option("--hybrid-budget", parameters.hybridBudget,
+                  "--method hybrid: largest share of each eye's pixels rendered from the eye camera, worst first (0: the "
+                  "base displacement bit for bit, 1: every pixel, the two-pass reference)")
+      ->check(floatRange(0.0, 1.0, false, "a share of the pixels"))
+      ->capture_default_str();
+  command
+      .add_option("--hybrid-base", hybridBase, "--method hybrid: the displacement it starts from")
+      ->check(CLI::IsMember({"seed", "search", "iterative", "forward"}))
       ->capture_default_str();
   command.add_option("--taps", parameters.searchTaps, "Depth-search taps of --method search")
       ->check(CLI::Range(1, S3D_STEREO_MAX_TAPS))
@@ -173,6 +194,7 @@ void StereoOptions::add(CLI::App& command, const std::string& depthUnits, bool o
 void StereoOptions::finish() {
   automatic = method == "auto";
   if (!automatic) parameters.method = stereo::parseStereoMethod(method);
+  parameters.hybridBase = stereo::parseStereoMethod(hybridBase);
   stereo::validate(parameters);
 }
 

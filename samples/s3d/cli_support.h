@@ -49,19 +49,22 @@ CLI::Validator frameNumberValidator();
 // does nothing in the mode the command line chose is an error naming the mode, never silently ignored.
 void rejectGiven(const CLI::App& command, const std::vector<std::string>& options, const std::string& reason);
 
-// --max-separation, --zero-parallax-distance, --edge-crop, --method, --taps, --iterations on `command`, their
-// defaults read from stereo::StereoParameters (the help prints what a run uses); call finish() after parsing to
+// --max-separation, --zero-parallax-distance, --edge-crop, --method, --taps, --iterations, --hybrid-budget and
+// --hybrid-base on `command`, their defaults read from stereo::StereoParameters (the help prints what a run
+// uses); call finish() after parsing to
 // turn the method name into StereoParameters::method and validate.
 // With offerAuto, --method also takes "auto" (finish() then sets `automatic` and leaves parameters.method).
 struct StereoOptions {
   stereo::StereoParameters parameters;
   std::string method = stereo::methodName(stereo::StereoParameters{}.method);
+  std::string hybridBase = stereo::methodName(stereo::StereoParameters{}.hybridBase);
   bool automatic = false;
   void add(CLI::App& command, const std::string& depthUnits, bool offerAuto = false);
   void finish();
-  // --taps without the search method or --iterations without the iterative one (`method`: the one the run uses,
-  // after a profile or --method auto) is an error naming the method.
-  static void requireMethodOptionsApply(const CLI::App& command, stereo::StereoMethod method);
+  // --taps without the search method or --iterations without the iterative one (a hybrid's: its base), and
+  // --hybrid-budget / --hybrid-base without the hybrid method, are errors naming the method (`parameters`: what
+  // the run uses, after a profile or --method auto).
+  static void requireMethodOptionsApply(const CLI::App& command, const stereo::StereoParameters& parameters);
   // With the disparity budget on, the budget chooses maxSeparation and the zero-parallax distance every frame:
   // giving either is an error that says so and how to set them (--disparity-budget off).
   static void rejectSeparationUnderBudget(const CLI::App& command, const std::string& budgetRule);

@@ -134,8 +134,9 @@ class ConvertCommand final : public Command {
     options_.sideBySide = stereo::parsePackingMode(sideBySide_);
     options_.topBottom = stereo::parsePackingMode(topBottom_);
     stereo_.finish();
-    StereoOptions::requireMethodOptionsApply(
-        *subcommand, stereo_.automatic ? stereo::automaticMethod(stereo::DepthSource::External) : stereo_.parameters.method);
+    stereo::StereoParameters used = stereo_.parameters;
+    if (stereo_.automatic) used.method = stereo::automaticMethod(stereo::DepthSource::External);
+    StereoOptions::requireMethodOptionsApply(*subcommand, used);
     options_.stereo = stereo_.parameters;
     options_.automaticMethod = stereo_.automatic;
     options_.disparityBudget = comfort::parseDisparityBudgetRule(disparityBudget_);

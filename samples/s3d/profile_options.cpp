@@ -48,6 +48,8 @@ comfort::ComfortProfile ProfileOptions::resolve(const CLI::App& command, const S
   if (given("--method")) p.method = cli.method;
   if (given("--taps")) p.searchTaps = cli.searchTaps;
   if (given("--iterations")) p.iterations = cli.iterations;
+  if (given("--hybrid-budget")) p.hybridBudget = cli.hybridBudget;
+  if (given("--hybrid-base")) p.hybridBase = cli.hybridBase;
   if (given("--weapon-depth-offset")) p.weaponDepthOffset = cli.weaponDepthOffset;
   if (given("--weapon-depth-scale")) p.weaponDepthScale = cli.weaponDepthScale;
   if (given("--display")) profile.display = comfort::resolveDisplayProfile(display);

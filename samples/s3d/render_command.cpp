@@ -126,7 +126,7 @@ class RenderCommand final : public Command {
     stereo_.finish();
     StereoOptions::rejectSeparationUnderBudget(*subcommand, profile_.disparityBudget);
     const comfort::ComfortProfile profile = profile_.resolve(*subcommand, stereo_);
-    StereoOptions::requireMethodOptionsApply(*subcommand, profile.stereo.method);
+    StereoOptions::requireMethodOptionsApply(*subcommand, profile.stereo);
     if (!profile_.save.empty()) comfort::saveComfortProfile(profile_.save, profile);
     options_.stereo = profile.stereo;
     options_.display = profile.display;

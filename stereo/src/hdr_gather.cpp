@@ -95,7 +95,8 @@ HdrStereoPair forwardHdr(const ImageRGBA32F& center, const DepthImage& linearDep
 }  // namespace
 
 HdrStereoPair synthesizeHdrReference(const ImageRGBA32F& centerHdr, const DepthImage& linearDepth,
-                                     const StereoParameters& parameters) {
+                                     const StereoParameters& methodParameters) {
+  const StereoParameters parameters = displacementParameters(methodParameters);  // a hybrid's displaced pixels
   requireSameSize(centerHdr, linearDepth, "HDR stereo (color vs depth)");
   if (parameters.method == StereoMethod::Forward) return forwardHdr(centerHdr, linearDepth, parameters);
   const SourceColumns columns = referenceSourceColumns(linearDepth, parameters);

@@ -50,6 +50,15 @@ void validate(const StereoParameters& p) {
                                 std::to_string(S3D_STEREO_MAX_TAPS) + "]");
   if (p.method == StereoMethod::Iterative && (p.iterations < 1 || p.iterations > 16))
     throw std::invalid_argument("iterations " + std::to_string(p.iterations) + " is outside [1, 16]");
+  if (p.method == StereoMethod::Hybrid) {
+    if (p.hybridBase == StereoMethod::Hybrid) throw std::invalid_argument("the hybrid method's base must be another method");
+    requireFinite(p.hybridBudget, "hybridBudget");
+    if (p.hybridBudget < 0.0f || p.hybridBudget > 1.0f)
+      throw std::invalid_argument("hybridBudget " + std::to_string(p.hybridBudget) + " is outside [0, 1]");
+    StereoParameters base = p;
+    base.method = p.hybridBase;
+    validate(base);
+  }
   if (p.edgeCrop > kMaxSeparationLimit)
     throw std::invalid_argument("edgeCrop " + numberText(p.edgeCrop) + " is above " + numberText(kMaxSeparationLimit));
 }
@@ -60,6 +69,7 @@ const char* methodName(StereoMethod method) {
     case StereoMethod::Search: return "search";
     case StereoMethod::Iterative: return "iterative";
     case StereoMethod::Forward: return "forward";
+    case StereoMethod::Hybrid: return "hybrid";
   }
   return "unknown";
 }
@@ -69,9 +79,15 @@ StereoMethod automaticMethod(DepthSource source) {
 }
 
 StereoMethod parseStereoMethod(const std::string& name) {
-  for (StereoMethod method : {StereoMethod::Seed, StereoMethod::Search, StereoMethod::Iterative, StereoMethod::Forward})
+  for (StereoMethod method : {StereoMethod::Seed, StereoMethod::Search, StereoMethod::Iterative, StereoMethod::Forward,
+                              StereoMethod::Hybrid})
     if (name == methodName(method)) return method;
-  throw std::invalid_argument("unknown stereo method '" + name + "' (expected seed, search, iterative or forward)");
+  throw std::invalid_argument("unknown stereo method '" + name + "' (expected seed, search, iterative, forward or hybrid)");
+}
+
+StereoParameters displacementParameters(StereoParameters parameters) {
+  if (parameters.method == StereoMethod::Hybrid) parameters.method = parameters.hybridBase;
+  return parameters;
 }
 
 const char* kernelName(StereoKernel kernel) {
@@ -134,7 +150,7 @@ gpu::StereoConstants makeSeedConstants(const StereoParameters& p, std::uint32_t 
 
 gpu::StereoConstants makeStereoConstants(const StereoParameters& p, std::uint32_t width, std::uint32_t height) {
   // The iterative pass has its own constants (makeIterativeConstants); crop and size are the seed's.
-  if (p.method != StereoMethod::Search) return makeSeedConstants(p, width, height);
+  if (displacementParameters(p).method != StereoMethod::Search) return makeSeedConstants(p, width, height);
   gpu::StereoConstants c = makeConstantsWithoutTaps(p, width, height);
   // Evenly spread over (0, maxSeparation], rounded to whole pixels; repeated offsets are dropped.
   for (int i = 1; i <= p.searchTaps; ++i) {

@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <chrono>
+#include <memory>
 #include <cstring>
 #include <string>
+#include <tuple>
 #include <stdexcept>
 
 #include "s3d/stereo/forward_pass.h"
@@ -22,16 +24,8 @@ ImageRGBA8 readEye(vk::Context& context, const vk::Image& image) {
   return eye;
 }
 
-// Pixels the iterative method flagged as filled (markFilled: alpha 0).
-std::uint64_t countFillFlags(const ImageRGBA8& eye) {
-  std::uint64_t filled = 0;
-  for (std::size_t i = 3; i < eye.pixels.size(); i += 4) filled += eye.pixels[i] == 0 ? 1 : 0;
-  return filled;
-}
-
-template <typename Pass, typename Constants>
-SynthesisResult run(vk::Context& context, const Pass& pass, const Constants& constants, const vk::Image& color,
-                    const vk::Image& depth, int timedRuns) {
+SynthesisResult run(vk::Context& context, const DisplacementPass& pass, const vk::Image& color, const vk::Image& depth,
+                    int timedRuns) {
   const VkImageUsageFlags usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
   vk::Image left = vk::createImage(context, StereoPass::kColorFormat, color.width, color.height, usage);
   vk::Image right = vk::createImage(context, StereoPass::kColorFormat, color.width, color.height, usage);
@@ -55,7 +49,7 @@ SynthesisResult run(vk::Context& context, const Pass& pass, const Constants& con
         timestamps.reset(cmd);
         timestamps.write(cmd, 0, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT);
       }
-      pass.record(cmd, color, depth, left, right, constants);
+      pass.record(cmd, color, depth, left, right);
       if (timed && timestamps.supported()) timestamps.write(cmd, 1, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT);
       StereoPass::recordInputRelease(cmd, color, depth);
     });
@@ -70,6 +64,38 @@ SynthesisResult run(vk::Context& context, const Pass& pass, const Constants& con
 
 }  // namespace
 
+DisplacementPass::DisplacementPass(const vk::Context& context, const StereoParameters& methodParameters,
+                                   std::uint32_t width, std::uint32_t height, bool markFilled) {
+  const StereoParameters parameters = displacementParameters(methodParameters);
+  method_ = parameters.method;
+  // Each pass owns its pipelines; the closure owns the pass and its constants.
+  if (parameters.method == StereoMethod::Iterative) {
+    auto pass = std::make_shared<IterativeStereoPass>(context, parameters.kernel);
+    gpu::IterativeConstants constants = makeIterativeConstants(parameters, parameters.iterations, width, height);
+    constants.markFilled = markFilled ? 1 : 0;
+    record_ = [pass, constants](VkCommandBuffer cmd, const vk::Image& c, const vk::Image& d, const vk::Image& l,
+                                const vk::Image& r) { pass->record(cmd, c, d, l, r, constants); };
+  } else if (parameters.method == StereoMethod::Forward) {
+    auto pass = std::make_shared<ForwardStereoPass>(context);
+    const gpu::ForwardConstants constants = makeForwardConstants(parameters, width, height);
+    record_ = [pass, constants](VkCommandBuffer cmd, const vk::Image& c, const vk::Image& d, const vk::Image& l,
+                                const vk::Image& r) { pass->record(cmd, c, d, l, r, constants); };
+  } else {
+    auto pass = std::make_shared<StereoPass>(context, parameters.kernel);
+    const gpu::StereoConstants constants = makeStereoConstants(parameters, width, height);
+    record_ = [pass, constants](VkCommandBuffer cmd, const vk::Image& c, const vk::Image& d, const vk::Image& l,
+                                const vk::Image& r) { pass->record(cmd, c, d, l, r, constants); };
+  }
+}
+
+std::pair<std::uint64_t, std::uint64_t> countIterativeFills(vk::Context& context, const vk::Image& centerColor,
+                                                           const vk::Image& linearDepth,
+                                                           const StereoParameters& methodParameters) {
+  const DisplacementPass flags(context, methodParameters, centerColor.width, centerColor.height, true);
+  const SynthesisResult marked = run(context, flags, centerColor, linearDepth, 1);
+  return {countFillFlags(marked.eyes.left), countFillFlags(marked.eyes.right)};
+}
+
 std::optional<double> medianMs(std::vector<double> samples) {
   if (samples.empty()) return std::nullopt;
   const std::size_t middle = samples.size() / 2;
@@ -81,32 +107,17 @@ std::optional<double> medianMs(std::vector<double> samples) {
 }
 
 SynthesisResult synthesizeTimed(vk::Context& context, const vk::Image& centerColor, const vk::Image& linearDepth,
-                                const StereoParameters& parameters, int timedRuns) {
+                                const StereoParameters& methodParameters, int timedRuns) {
+  const StereoParameters parameters = displacementParameters(methodParameters);
   if (timedRuns < 1)
     throw std::invalid_argument("stereo synthesis: timedRuns must be at least 1 (got " + std::to_string(timedRuns) + ")");
   if (centerColor.format != StereoPass::kColorFormat || linearDepth.format != StereoPass::kDepthFormat)
     throw std::invalid_argument("stereo synthesis needs RGBA8 unorm color and R32 float linear depth");
-  if (parameters.method == StereoMethod::Iterative) {
-    const IterativeStereoPass pass(context, parameters.kernel);
-    gpu::IterativeConstants constants =
-        makeIterativeConstants(parameters, parameters.iterations, centerColor.width, centerColor.height);
-    // The eyes carry the center's alpha (the weapon mask the HUD fades by); the fill counts come from one more,
-    // untimed dispatch whose alpha is the fill flag instead.
-    SynthesisResult result = run(context, pass, constants, centerColor, linearDepth, timedRuns);
-    constants.markFilled = 1;
-    const SynthesisResult flags = run(context, pass, constants, centerColor, linearDepth, 1);
-    result.filledLeft = countFillFlags(flags.eyes.left);
-    result.filledRight = countFillFlags(flags.eyes.right);
-    return result;
-  }
-  if (parameters.method == StereoMethod::Forward) {
-    const ForwardStereoPass pass(context);
-    return run(context, pass, makeForwardConstants(parameters, centerColor.width, centerColor.height), centerColor,
-               linearDepth, timedRuns);
-  }
-  const StereoPass pass(context, parameters.kernel);
-  return run(context, pass, makeStereoConstants(parameters, centerColor.width, centerColor.height), centerColor,
-             linearDepth, timedRuns);
+  const DisplacementPass pass(context, parameters, centerColor.width, centerColor.height);
+  SynthesisResult result = run(context, pass, centerColor, linearDepth, timedRuns);
+  if (parameters.method == StereoMethod::Iterative)
+    std::tie(result.filledLeft, result.filledRight) = countIterativeFills(context, centerColor, linearDepth, parameters);
+  return result;
 }
 
 }  // namespace s3d::stereo

@@ -1,18 +1,21 @@
 #include "s3d/app/bench_job.h"
 
 #include <algorithm>
+#include <charconv>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <iterator>
 #include <map>
+#include <memory>
 #include <sstream>
 #include <stdexcept>
 #include <system_error>
 #include <tuple>
 #include <utility>
 
+#include "bench_text.h"
 #include "s3d/app/render_job.h"
 #include "s3d/io/image_io.h"
 #include "s3d/renderer/scene.h"
@@ -28,9 +31,12 @@ namespace fs = std::filesystem;
 
 namespace {
 
+using namespace bench_text;
+
 // The default sweeps of "search" and "iterative" in --methods.
 constexpr int kDefaultSweepTaps[] = {4, 8, 16};
 constexpr int kDefaultSweepIterations[] = {2, 4, 6, 8};
+constexpr float kDefaultSweepBudgets[] = {0.0f, 0.02f, 0.05f, 0.1f, 0.2f, 0.5f, 1.0f};
 constexpr int kMaxRepeat = 1000;
 
 // Issue #4's targets.
@@ -39,51 +45,12 @@ constexpr double kTimeOverSeedTarget = 2.0;        // at no more than this multi
 constexpr double kStereoToEyeTarget = 1.0 / 20.0;  // both eyes' stereo pass against one reference eye
 constexpr double kTrafficLimitTarget = 1.5;       // measured time over (bytes / bandwidth)
 
-std::string format(const char* pattern, double value) {
-  char text[64];
-  std::snprintf(text, sizeof(text), pattern, value);
-  return text;
-}
-
-std::string percentText(double fraction) { return format("%g", double(tidy(float(fraction * 100.0)))); }
-
-std::string msText(const std::optional<double>& ms) {
-  if (!ms) return "n/a";
-  return *ms >= 10.0 ? format("%.1f", *ms) : *ms >= 1.0 ? format("%.2f", *ms) : format("%.3f", *ms);
-}
-
-std::optional<double> ratio(const std::optional<double>& numerator, const std::optional<double>& denominator) {
-  if (!numerator || !denominator || !(*denominator > 0.0)) return std::nullopt;
-  return *numerator / *denominator;
-}
-
-std::string ratioText(const std::optional<double>& value) {
-  if (!value) return "n/a";
-  return *value > 0.0 && *value < 1.0 ? format("%.3f", *value) + " (1/" + format("%.0f", 1.0 / *value) + ")"
-                                      : format("%.2f", *value);
-}
-
-std::string dbPair(double left, double right) { return format("%.2f", left) + " / " + format("%.2f", right); }
-
 std::string joinedNames(const std::vector<std::string>& names, const char* separator) {
   std::string text;
   for (const std::string& name : names) text += (text.empty() ? "" : separator) + name;
   return text;
 }
 
-std::string xmlEscaped(const std::string& text) {
-  std::string escaped;
-  for (char c : text) {
-    switch (c) {
-      case '&': escaped += "&amp;"; break;
-      case '<': escaped += "&lt;"; break;
-      case '>': escaped += "&gt;"; break;
-      case '"': escaped += "&quot;"; break;
-      default: escaped += c;
-    }
-  }
-  return escaped;
-}
 
 // Error measures over the whole cropped area shown per eye after the PSNR columns: one line per stereo::ErrorStats
 // field worth a column (a new field such as SSIM is one more line here and one in statsJson).
@@ -140,6 +107,17 @@ MethodSetting parseOneSetting(const std::string& item, std::vector<MethodSetting
     }
     return last;
   }
+  if (item == "hybrid") {
+    for (float budget : kDefaultSweepBudgets) add({stereo::StereoMethod::Hybrid, 0, stereo::StereoKernel::Auto, budget});
+    return settings.back();
+  }
+  if (item.rfind("hybrid-", 0) == 0) {  // a budget in [0, 1], e.g. hybrid-0.05
+    const std::string text = item.substr(7);
+    float budget = -1.0f;
+    const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), budget);
+    if (error == std::errc() && end == text.data() + text.size() && budget >= 0.0f && budget <= 1.0f)
+      return add({stereo::StereoMethod::Hybrid, 0, stereo::StereoKernel::Auto, budget});
+  }
   if (item == "seed") return add({stereo::StereoMethod::Seed, 0});
   if (item == "forward") return add({stereo::StereoMethod::Forward, 0});
   if (item == "search") {
@@ -155,8 +133,9 @@ MethodSetting parseOneSetting(const std::string& item, std::vector<MethodSetting
   if (std::optional<int> iterations = numberAfter("iterative-", 1, S3D_ITERATIVE_MAX_ITERATIONS))
     return add({stereo::StereoMethod::Iterative, *iterations});
   throw std::invalid_argument("unknown method setting '" + item + "' (expected seed, forward, search, search-N with N in [1, " +
-                              std::to_string(S3D_STEREO_MAX_TAPS) + "], iterative, or iterative-K with K in [1, " +
-                              std::to_string(S3D_ITERATIVE_MAX_ITERATIONS) + "], each optionally followed by /pixel or /tiles)");
+                              std::to_string(S3D_STEREO_MAX_TAPS) + "], iterative, iterative-K with K in [1, " +
+                              std::to_string(S3D_ITERATIVE_MAX_ITERATIONS) +
+                              "], each optionally followed by /pixel or /tiles, hybrid, or hybrid-B with B in [0, 1])");
 }
 
 MethodSetting parseSingleSetting(const std::string& item, const char* what) {
@@ -311,6 +290,13 @@ struct EyeReferences {
 
 void runSweep(vk::Context& context, const BenchOptions& options, const ValidatedBench& bench, BenchReport& report) {
   renderer::DeferredRenderer deferred(context, options.width, options.height, {options.supersample});
+  // The hybrid settings' masked eye renders (a second renderer: the center view stays in `deferred`).
+  const bool anyHybrid = std::any_of(bench.settings.begin(), bench.settings.end(),
+                                     [](const MethodSetting& s) { return s.method == stereo::StereoMethod::Hybrid; });
+  std::unique_ptr<renderer::DeferredRenderer> eyeRenderer;
+  if (anyHybrid)
+    eyeRenderer = std::make_unique<renderer::DeferredRenderer>(context, options.width, options.height,
+                                                               renderer::RendererOptions{options.supersample});
   const std::size_t total = bench.scenes.size() * bench.separations.size() * bench.settings.size();
   std::size_t done = 0;
   auto progress = [&](const std::string& label) {
@@ -320,6 +306,7 @@ void runSweep(vk::Context& context, const BenchOptions& options, const Validated
     renderer::Scene scene = renderer::makeBuiltInScene(sceneName);
     scene.camera = renderer::cameraForFrame(scene, 0);
     deferred.setScene(scene);
+    if (eyeRenderer) eyeRenderer->setScene(scene);
     const renderer::ViewMatrices center =
         renderer::centerViewMatrices(scene, float(options.width) / float(options.height),
                                      {options.stereo.weaponDepthOffset, options.stereo.weaponDepthScale});
@@ -363,10 +350,19 @@ void runSweep(vk::Context& context, const BenchOptions& options, const Validated
       // dispatches nor 50 ms of frames brought them back (an H100 timed the pass 4x slow).
       (void)timeFrames(deferred, center, 1);  // leaves the center view in displayColor / linearDepth
       std::vector<stereo::SynthesisResult> syntheses;
+      std::vector<std::optional<HybridSynthesis>> hybrids;
       for (const MethodSetting& setting : bench.settings) {
         progress(sceneName + " " + setting.name() + " sep " + percentText(parameters.maxSeparation) + "%");
-        syntheses.push_back(stereo::synthesizeTimed(context, deferred.displayColor(), deferred.linearDepth(),
-                                                    setting.applyTo(parameters), options.repeat));
+        if (setting.method == stereo::StereoMethod::Hybrid) {
+          HybridSynthesis hybrid = synthesizeHybrid(context, deferred.displayColor(), deferred.linearDepth(), *eyeRenderer,
+                                                    scene, center, setting.applyTo(parameters), options.repeat);
+          syntheses.push_back({std::move(hybrid.eyes), hybrid.timings.total, {}, hybrid.filledLeft, hybrid.filledRight});
+          hybrids.push_back(std::move(hybrid));
+        } else {
+          syntheses.push_back(stereo::synthesizeTimed(context, deferred.displayColor(), deferred.linearDepth(),
+                                                      setting.applyTo(parameters), options.repeat));
+          hybrids.push_back(std::nullopt);
+        }
         ++done;
       }
       const std::vector<std::uint8_t> halo = haloMaskFor(centerDepth, parameters);
@@ -394,6 +390,12 @@ void runSweep(vk::Context& context, const BenchOptions& options, const Validated
         row.filledLeft = synthesis.filledLeft;
         row.filledRight = synthesis.filledRight;
         row.traffic = stereoPassTraffic(methodParameters, options.width, options.height, context.isCpuDevice());
+        if (const std::optional<HybridSynthesis>& hybrid = hybrids[i]) {
+          const double classified = double(std::max<std::uint64_t>(hybrid->classifiedPixels, 1));
+          row.maskedShareLeft = double(hybrid->thresholds[0].maskedPixels) / classified;
+          row.maskedShareRight = double(hybrid->thresholds[1].maskedPixels) / classified;
+          row.hybridTimings = hybrid->timings;
+        }
         report.rows.push_back(std::move(row));
       }
     }
@@ -549,6 +551,7 @@ std::string settingDetail(const MethodSetting& setting) {
     case stereo::StereoMethod::Search: return std::to_string(setting.parameter) + " taps" + kernel;
     case stereo::StereoMethod::Iterative: return std::to_string(setting.parameter) + " iterations" + kernel;
     case stereo::StereoMethod::Forward: return "z-buffered scatter";
+    case stereo::StereoMethod::Hybrid: return "budget " + format("%g", double(setting.budget));
   }
   return "";
 }
@@ -636,6 +639,8 @@ std::string sweepMarkdown(const BenchReport& report) {
     for (const TargetCase& c : target.cases) md << "  - " << c.scope << ": " << passText(c.pass) << ", " << c.numbers << '\n';
   }
 
+  md << hybridBenchMarkdown(report);
+
   md << "\n#### Memory traffic of the stereo pass (counted from stereo/shaders/)\n\n"
         "Per pixel kernel, per interior pixel and eye: the depth imageLoads (4 B each; seed/search: one per tap,\n"
         "iterative: 8 start taps + 2 x iterations), two color imageLoads (4 B, the horizontal filter) and one\n"
@@ -651,6 +656,7 @@ std::string sweepMarkdown(const BenchReport& report) {
   md << '\n';
   std::vector<std::pair<MethodSetting, float>> seen;
   for (const BenchRow& row : report.rows) {
+    if (row.setting.method == stereo::StereoMethod::Hybrid) continue;  // renders pixels: not a pass's traffic
     const std::pair key{row.setting, row.maxSeparation};
     if (std::find(seen.begin(), seen.end(), key) != seen.end()) continue;
     seen.push_back(key);
@@ -729,6 +735,12 @@ nlohmann::json rowJson(const BenchRow& row) {
             {"stereoPassToReferenceEye", optionalMs(ratio(row.stereoGpuMs, row.referenceEyeGpuMs))}}},
           {"error", {{"left", errorJson(row.left)}, {"right", errorJson(row.right)}}},
           {"filledPixels", {{"left", row.filledLeft}, {"right", row.filledRight}}},
+          {"hybrid", row.setting.method != stereo::StereoMethod::Hybrid
+                         ? nlohmann::json()
+                         : nlohmann::json{{"budget", finiteOrNull(tidy(row.setting.budget))},
+                                          {"maskedShare", {{"left", row.maskedShareLeft ? finiteOrNull(*row.maskedShareLeft) : nlohmann::json()},
+                                                           {"right", row.maskedShareRight ? finiteOrNull(*row.maskedShareRight) : nlohmann::json()}}},
+                                          {"gpuTimeMs", row.hybridTimings ? toJson(*row.hybridTimings) : nlohmann::json()}}},
           {"kernel", row.traffic.rowTiles ? "tiles" : "pixel"},
           {"traffic",
            {{"bytesRead", row.traffic.bytesRead},
@@ -745,6 +757,7 @@ std::string MethodSetting::name() const {
     case stereo::StereoMethod::Search: return "search-" + std::to_string(parameter) + suffix;
     case stereo::StereoMethod::Iterative: return "iterative-" + std::to_string(parameter) + suffix;
     case stereo::StereoMethod::Forward: return "forward";
+    case stereo::StereoMethod::Hybrid: return "hybrid-" + format("%g", double(budget));
   }
   return "unknown";
 }
@@ -754,6 +767,7 @@ stereo::StereoParameters MethodSetting::applyTo(stereo::StereoParameters paramet
   parameters.kernel = kernel;
   if (method == stereo::StereoMethod::Search) parameters.searchTaps = parameter;
   if (method == stereo::StereoMethod::Iterative) parameters.iterations = parameter;
+  if (method == stereo::StereoMethod::Hybrid) parameters.hybridBudget = budget;
   return parameters;
 }
 
@@ -770,12 +784,14 @@ MethodSetting defaultMethodSetting() {
     case stereo::StereoMethod::Search: return {stereo::StereoMethod::Search, defaults.searchTaps};
     case stereo::StereoMethod::Iterative: return {stereo::StereoMethod::Iterative, defaults.iterations};
     case stereo::StereoMethod::Forward: return {stereo::StereoMethod::Forward, 0};
+    case stereo::StereoMethod::Hybrid: return {stereo::StereoMethod::Hybrid, 0, stereo::StereoKernel::Auto, defaults.hybridBudget};
   }
   return {};
 }
 
-StereoTraffic stereoPassTraffic(const stereo::StereoParameters& parameters, std::uint32_t width, std::uint32_t height,
-                                bool cpuDevice) {
+StereoTraffic stereoPassTraffic(const stereo::StereoParameters& methodParameters, std::uint32_t width,
+                                std::uint32_t height, bool cpuDevice) {
+  const stereo::StereoParameters parameters = stereo::displacementParameters(methodParameters);  // a hybrid's base
   constexpr std::uint64_t kTexelBytes = 4;  // RGBA8 color, R32F depth, RGBA8 eyes
   int depthLoadsPerEye = 0;
   int margin = 0;
@@ -864,6 +880,7 @@ BenchReport runBench(vk::Context& context, const BenchOptions& options) {
     report.filesWritten.push_back(name);
   };
   if (!options.rendererOnly) write("bench_speed_vs_error.svg", benchSpeedErrorSvg(report));
+  if (!options.rendererOnly) write("bench_time_over_eye.svg", benchTimeOverEyeSvg(report));
   write("bench.md", "# s3d bench\n\n" + markdown);
   // bench.json lists itself and the results file, written after it.
   report.filesWritten.push_back("bench.json");
@@ -919,123 +936,6 @@ std::string benchMarkdown(const BenchReport& report) {
   return report.rendererOnly ? rendererMarkdown(report) : sweepMarkdown(report);
 }
 
-std::string benchSpeedErrorSvg(const BenchReport& report) {
-  constexpr double kWidth = 900, kHeight = 560;
-  constexpr double kLeft = 70, kRight = 170, kTop = 40, kBottom = 60;
-  constexpr double kPlotWidth = kWidth - kLeft - kRight, kPlotHeight = kHeight - kTop - kBottom;
-  const char* const kPalette[] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b", "#e377c2", "#17becf"};
-
-  struct Point {
-    const BenchRow* row;
-    double ms;
-    double haloDb;  // mean of both eyes
-  };
-  std::vector<Point> points;
-  std::vector<std::string> scenes;
-  std::vector<float> separations;
-  for (const BenchRow& row : report.rows) {
-    if (!row.stereoGpuMs || !(*row.stereoGpuMs > 0.0)) continue;  // nothing to place on a log axis
-    points.push_back({&row, *row.stereoGpuMs, 0.5 * (row.left.halo.psnrDb + row.right.halo.psnrDb)});
-    if (std::find(scenes.begin(), scenes.end(), row.scene) == scenes.end()) scenes.push_back(row.scene);
-    if (std::find(separations.begin(), separations.end(), row.maxSeparation) == separations.end())
-      separations.push_back(row.maxSeparation);
-  }
-  // Axes: whole decades of ms, whole dB with a margin.
-  double minMs = 1.0, maxMs = 10.0, minDb = 0.0, maxDb = 1.0;
-  if (!points.empty()) {
-    minMs = maxMs = points.front().ms;
-    minDb = maxDb = points.front().haloDb;
-    for (const Point& p : points) {
-      minMs = std::min(minMs, p.ms), maxMs = std::max(maxMs, p.ms);
-      minDb = std::min(minDb, p.haloDb), maxDb = std::max(maxDb, p.haloDb);
-    }
-  }
-  // x ticks at 1, 2 and 5 of each decade; the axis spans from the last tick at or below the fastest point to
-  // the first tick at or above the slowest.
-  std::vector<double> ticks;
-  for (double decade = std::floor(std::log10(minMs)); decade <= std::ceil(std::log10(maxMs)); decade += 1.0)
-    for (double mantissa : {1.0, 2.0, 5.0}) ticks.push_back(mantissa * std::pow(10.0, decade));
-  double lowTick = ticks.front(), highTick = ticks.back();  // 10^ceil(log10(maxMs)) is a tick >= maxMs
-  for (double tick : ticks)
-    if (tick <= minMs * (1 + 1e-9)) lowTick = tick;
-  for (auto tick = ticks.rbegin(); tick != ticks.rend(); ++tick)
-    if (*tick >= maxMs * (1 - 1e-9)) highTick = *tick;
-  if (highTick <= lowTick) highTick = lowTick * 10.0;  // every point at one time
-  const double firstLog = std::log10(lowTick), lastLog = std::log10(highTick);
-  minDb = std::floor(minDb) - 1.0;
-  maxDb = std::ceil(maxDb) + 1.0;
-  const double dbStep = maxDb - minDb > 20 ? 5.0 : maxDb - minDb > 8 ? 2.0 : 1.0;
-  minDb = std::floor(minDb / dbStep) * dbStep;
-  maxDb = std::ceil(maxDb / dbStep) * dbStep;
-  auto xOf = [&](double ms) { return kLeft + (std::log10(ms) - firstLog) / (lastLog - firstLog) * kPlotWidth; };
-  auto yOf = [&](double db) { return kTop + (maxDb - db) / (maxDb - minDb) * kPlotHeight; };
-  auto number = [](double value) { return format("%.1f", value); };
-
-  std::ostringstream svg;
-  svg << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << kWidth << "\" height=\"" << kHeight
-      << "\" viewBox=\"0 0 " << kWidth << ' ' << kHeight << "\" font-family=\"sans-serif\" font-size=\"11\">\n";
-  svg << "<rect x=\"0\" y=\"0\" width=\"" << kWidth << "\" height=\"" << kHeight << "\" fill=\"white\"/>\n";
-  svg << "<text x=\"" << kLeft << "\" y=\"22\" font-size=\"14\">Stereo pass speed against halo error, "
-      << xmlEscaped(report.deviceName) << ", " << report.width << "x" << report.height << "</text>\n";
-  // Grid and ticks: every 1, 2, 5 of each decade on x, every dbStep on y.
-  for (double ms : ticks) {
-    if (ms < lowTick * (1 - 1e-9) || ms > highTick * (1 + 1e-9)) continue;
-    const bool decade = std::fabs(std::log10(ms) - std::round(std::log10(ms))) < 1e-9;
-    const double x = xOf(ms);
-    svg << "<line x1=\"" << number(x) << "\" y1=\"" << kTop << "\" x2=\"" << number(x) << "\" y2=\""
-        << kTop + kPlotHeight << "\" stroke=\"" << (decade ? "#bbbbbb" : "#eeeeee") << "\"/>\n";
-    svg << "<text x=\"" << number(x) << "\" y=\"" << kTop + kPlotHeight + 16 << "\" text-anchor=\"middle\">"
-        << format("%g", ms) << "</text>\n";
-  }
-  for (double db = minDb; db <= maxDb + 1e-9; db += dbStep) {
-    const double y = yOf(db);
-    svg << "<line x1=\"" << kLeft << "\" y1=\"" << number(y) << "\" x2=\"" << kLeft + kPlotWidth << "\" y2=\""
-        << number(y) << "\" stroke=\"#dddddd\"/>\n";
-    svg << "<text x=\"" << kLeft - 6 << "\" y=\"" << number(y + 4) << "\" text-anchor=\"end\">" << format("%g", db)
-        << "</text>\n";
-  }
-  svg << "<rect x=\"" << kLeft << "\" y=\"" << kTop << "\" width=\"" << kPlotWidth << "\" height=\"" << kPlotHeight
-      << "\" fill=\"none\" stroke=\"black\"/>\n";
-  svg << "<text x=\"" << kLeft + kPlotWidth / 2 << "\" y=\"" << kHeight - 18
-      << "\" text-anchor=\"middle\">stereo pass GPU time, both eyes (ms, log scale; median of " << report.repeat
-      << ")</text>\n";
-  svg << "<text transform=\"translate(18 " << kTop + kPlotHeight / 2
-      << ") rotate(-90)\" text-anchor=\"middle\">halo PSNR, mean of both eyes (dB)</text>\n";
-  // One circle per row: color = scene, radius grows with the separation; labelled with the setting.
-  for (const Point& p : points) {
-    const std::size_t scene = std::size_t(std::find(scenes.begin(), scenes.end(), p.row->scene) - scenes.begin());
-    const std::size_t separation =
-        std::size_t(std::find(separations.begin(), separations.end(), p.row->maxSeparation) - separations.begin());
-    const double x = xOf(p.ms), y = yOf(p.haloDb);
-    svg << "<circle cx=\"" << number(x) << "\" cy=\"" << number(y) << "\" r=\"" << 3 + 1.5 * double(separation)
-        << "\" fill=\"" << kPalette[scene % std::size(kPalette)] << "\" fill-opacity=\"0.75\"><title>"
-        << xmlEscaped(p.row->scene + " " + p.row->setting.name() + " sep " + percentText(p.row->maxSeparation) +
-                      "%: " + msText(p.ms) + " ms, " + format("%.2f", p.haloDb) + " dB")
-        << "</title></circle>\n";
-    svg << "<text x=\"" << number(x + 6) << "\" y=\"" << number(y - 4) << "\" font-size=\"9\">"
-        << xmlEscaped(p.row->setting.name() + (separations.size() > 1 ? " " + percentText(p.row->maxSeparation) + "%" : ""))
-        << "</text>\n";
-  }
-  // Legend: scenes by color, separations by size (squares, so circles stay one per row).
-  double legendY = kTop + 10;
-  const double legendX = kLeft + kPlotWidth + 16;
-  for (std::size_t i = 0; i < scenes.size(); ++i, legendY += 18)
-    svg << "<rect x=\"" << legendX << "\" y=\"" << legendY - 9 << "\" width=\"10\" height=\"10\" fill=\""
-        << kPalette[i % std::size(kPalette)] << "\"/><text x=\"" << legendX + 16 << "\" y=\"" << legendY << "\">"
-        << xmlEscaped(scenes[i]) << "</text>\n";
-  legendY += 8;
-  for (std::size_t i = 0; i < separations.size(); ++i, legendY += 18) {
-    const double size = 2 * (3 + 1.5 * double(i));
-    svg << "<rect x=\"" << number(legendX + 5 - size / 2) << "\" y=\"" << number(legendY - 4 - size / 2)
-        << "\" width=\"" << size << "\" height=\"" << size << "\" fill=\"#888888\"/><text x=\"" << legendX + 16
-        << "\" y=\"" << legendY << "\">sep " << percentText(separations[i]) << " %</text>\n";
-  }
-  if (points.size() != report.rows.size())
-    svg << "<text x=\"" << kLeft + 8 << "\" y=\"" << kTop + 16 << "\">" << report.rows.size() - points.size()
-        << " rows without GPU timestamps are not shown</text>\n";
-  svg << "</svg>\n";
-  return svg.str();
-}
 
 std::string resultsBeginMarker(const std::string& deviceKind, bool rendererOnly) {
   return std::string("<!-- s3d bench") + (rendererOnly ? " renderer" : "") + ": " + deviceKind + " begin -->";

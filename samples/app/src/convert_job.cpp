@@ -284,6 +284,9 @@ ConvertReport runConvertJob(vk::Context& context, const ConvertJobOptions& optio
   const std::optional<ImageRGBA8> referenceLeft = readReference(options.referenceLeft, color, "left");
   const std::optional<ImageRGBA8> referenceRight = readReference(options.referenceRight, color, "right");
   stereo::validate(parameters);
+  if (parameters.method == stereo::StereoMethod::Hybrid)
+    throw std::invalid_argument("--method hybrid renders pixels from the eye cameras and needs a scene: s3d convert has "
+                                "only the frames (use it in s3d render, bench, tune or regress)");
   const bool budgetOn = options.disparityBudget != comfort::DisparityBudgetRule::Off && !options.disparity;
   if (budgetOn) {
     // The depth range, reduced on the GPU, picks maxSeparation and the zero-parallax distance.

@@ -82,21 +82,25 @@ void parseTolerances(const json& object, const Where& where, RegressTolerances& 
 
 // The keys of a comfort profile's "stereo" object (comfort_profile.h), so a case reads like a profile.
 void parseStereo(const json& object, const Where& where, stereo::StereoParameters& parameters) {
-  requireKeys(object, where, {"method", "maxSeparation", "zeroParallaxDistance", "edgeCrop", "searchTaps", "iterations"},
+  requireKeys(object, where,
+              {"method", "maxSeparation", "zeroParallaxDistance", "edgeCrop", "searchTaps", "iterations", "hybridBudget",
+               "hybridBase"},
               {});
   auto read = [&](const char* key, float& target) {
     if (object.contains(key)) target = float(number(object[key], where / key));
   };
-  if (object.contains("method")) {
-    try {
-      parameters.method = stereo::parseStereoMethod(text(object["method"], where / "method"));
-    } catch (const std::invalid_argument& error) {
-      (where / "method").fail(error.what());
+  for (auto [key, method] : {std::pair{"method", &parameters.method}, std::pair{"hybridBase", &parameters.hybridBase}})
+    if (object.contains(key)) {
+      try {
+        *method = stereo::parseStereoMethod(text(object[key], where / key));
+      } catch (const std::invalid_argument& error) {
+        (where / key).fail(error.what());
+      }
     }
-  }
   read("maxSeparation", parameters.maxSeparation);
   read("zeroParallaxDistance", parameters.zeroParallaxDistance);
   read("edgeCrop", parameters.edgeCrop);
+  read("hybridBudget", parameters.hybridBudget);
   if (object.contains("searchTaps"))
     parameters.searchTaps = int(std::min<std::size_t>(count(object["searchTaps"], where / "searchTaps"), 1u << 20));
   if (object.contains("iterations"))

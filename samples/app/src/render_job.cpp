@@ -24,6 +24,7 @@
 #include "s3d/renderer/scene_file.h"
 #include "s3d/stereo/guard_band.h"
 #include "s3d/stereo/hdr_gather.h"
+#include "s3d/stereo/hybrid.h"
 #include "s3d/stereo/sanitize.h"
 #include "s3d/stereo/stereo_pass.h"
 #include "s3d/stereo/synthesis.h"
@@ -124,6 +125,21 @@ ValidatedJob validateJob(const RenderJobOptions& options) {
 }
 
 // tidy, finiteOrNull, optionalMs, statsJson and errorJson: extracted to eye_comparison.cpp (shared with s3d bench).
+
+nlohmann::json hybridJson(const HybridReport& hybrid) {
+  auto eyeJson = [&](const stereo::HybridThreshold& threshold) {
+    return nlohmann::json{{"thresholdBin", threshold.bin},
+                          {"maskedPixels", threshold.maskedPixels},
+                          {"maskedShare", finiteOrNull(tidy(float(threshold.maskedPixels) /
+                                                            float(std::max<std::uint64_t>(hybrid.classifiedPixels, 1))))}};
+  };
+  return {{"budget", finiteOrNull(tidy(hybrid.budget))},
+          {"base", stereo::methodName(hybrid.base)},
+          {"classifiedPixels", hybrid.classifiedPixels},
+          {"left", eyeJson(hybrid.thresholds[0])},
+          {"right", eyeJson(hybrid.thresholds[1])},
+          {"gpuTimeMs", toJson(hybrid.timings)}};
+}
 
 }  // namespace
 
@@ -272,14 +288,31 @@ RenderReport runRenderJob(vk::Context& context, const RenderJobOptions& options)
       guardBand ? stereo::guardBandParameters(parameters, width, band) : parameters;
 
   // 3. Both eyes synthesized on the GPU from the renderer's own images.
-  stereo::SynthesisResult synthesis =
-      stereo::synthesizeTimed(context, deferred->displayColor(), deferred->linearDepth(), renderedParameters);
-  report.stereoPassGpuMs = synthesis.gpuMs;
-  report.filledPixels = {synthesis.filledLeft, synthesis.filledRight};
-  const stereo::StereoPair synthesized{output(synthesis.eyes.left), output(synthesis.eyes.right)};
   // The same gather on the linear HDR center view, by the C++ reference of the method (hdr_gather.h).
-  const stereo::HdrStereoPair renderedEyesHdr =
-      stereo::synthesizeHdrReference(renderedHdr, renderedDepth, renderedParameters);
+  stereo::HdrStereoPair renderedEyesHdr = stereo::synthesizeHdrReference(renderedHdr, renderedDepth, renderedParameters);
+  stereo::StereoPair renderedEyes;
+  if (parameters.method == stereo::StereoMethod::Hybrid) {
+    // The pixels the displacement gets wrong rendered from the eye cameras (HDR eyes: the same pixels).
+    renderer::DeferredRenderer eyeRenderer(context, renderedWidth, height,
+                                           renderer::RendererOptions{options.supersample, options.reversedZ});
+    eyeRenderer.setScene(job.scene);
+    HybridSynthesis hybrid = synthesizeHybrid(context, deferred->displayColor(), deferred->linearDepth(), eyeRenderer,
+                                              job.scene, center, renderedParameters);
+    report.stereoPassGpuMs = hybrid.timings.total;
+    report.filledPixels = {hybrid.filledLeft, hybrid.filledRight};
+    stereo::compositeHybridReference(renderedEyesHdr.left, hybrid.renderedHdr[0], hybrid.masks[0]);
+    stereo::compositeHybridReference(renderedEyesHdr.right, hybrid.renderedHdr[1], hybrid.masks[1]);
+    report.hybrid = HybridReport{parameters.hybridBudget, parameters.hybridBase, hybrid.classifiedPixels,
+                                 hybrid.thresholds, std::move(hybrid.timings)};
+    renderedEyes = std::move(hybrid.eyes);
+  } else {
+    stereo::SynthesisResult synthesis =
+        stereo::synthesizeTimed(context, deferred->displayColor(), deferred->linearDepth(), renderedParameters);
+    report.stereoPassGpuMs = synthesis.gpuMs;
+    report.filledPixels = {synthesis.filledLeft, synthesis.filledRight};
+    renderedEyes = std::move(synthesis.eyes);
+  }
+  const stereo::StereoPair synthesized{output(renderedEyes.left), output(renderedEyes.right)};
   const stereo::HdrStereoPair synthesizedHdr{output(renderedEyesHdr.left), output(renderedEyesHdr.right)};
   const DepthImage centerDepth = output(renderedDepth);
   const ImageRGBA32F centerHdr = output(renderedHdr);
@@ -407,6 +440,7 @@ nlohmann::json toJson(const RenderReport& report) {
             {"referenceEye", optionalMs(report.referenceEyeGpuMs)},
             {"depthReduction", optionalMs(report.budget.reductionGpuMs)}}},
           {"disparityBudget", budgetJson(report.budget, report.comfort)},
+          {"hybrid", report.hybrid ? hybridJson(*report.hybrid) : nlohmann::json()},
           {"centerPasses", passes},
           {"ratios", {{"stereoPassToReferenceEye", ratio}}},
           {"error", {{"left", errorJson(report.left)}, {"right", errorJson(report.right)}}},

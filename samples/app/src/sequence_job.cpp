@@ -3,10 +3,12 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <memory>
 #include <stdexcept>
 
 #include "s3d/app/comfort_json.h"
 #include "s3d/app/eye_comparison.h"
+#include "s3d/app/hybrid_stereo.h"
 #include "s3d/app/memory_budget.h"
 #include "s3d/app/render_job.h"
 #include "s3d/comfort/crosshair.h"
@@ -58,6 +60,7 @@ SequenceReport runSequenceJob(vk::Context& context, const SequenceJobOptions& op
   const comfort::WorldQueries world(scene);
   renderer::DeferredRenderer deferred(context, options.width, options.height, {options.supersample, options.reversedZ});
   deferred.setScene(scene);
+  std::unique_ptr<renderer::DeferredRenderer> eyeRenderer;  // the hybrid method's masked eye renders
   const float aspect = float(options.width) / float(options.height);
   const glm::vec2 weaponDepths = renderer::firstPersonDepthRange(scene).value_or(glm::vec2(0.0f));
   const bool budgetOn = options.disparityBudget != comfort::DisparityBudgetRule::Off;
@@ -154,7 +157,20 @@ SequenceReport runSequenceJob(vk::Context& context, const SequenceJobOptions& op
         comfort::countWeaponConflicts(world, scene.camera, center, pushed, deferred.readFirstPersonMask());
     frame.weaponPixels = conflicts.weaponPixels;
     frame.weaponConflictPixels = conflicts.conflictPixels;
-    stereo::SynthesisResult eyes = stereo::synthesizeTimed(context, deferred.displayColor(), deferred.linearDepth(), parameters);
+    stereo::SynthesisResult eyes;
+    if (parameters.method == stereo::StereoMethod::Hybrid) {
+      if (!eyeRenderer) {
+        eyeRenderer = std::make_unique<renderer::DeferredRenderer>(
+            context, options.width, options.height, renderer::RendererOptions{options.supersample, options.reversedZ});
+        eyeRenderer->setScene(scene);
+      }
+      HybridSynthesis hybrid = synthesizeHybrid(context, deferred.displayColor(), deferred.linearDepth(), *eyeRenderer,
+                                                scene, center, parameters);
+      eyes.eyes = std::move(hybrid.eyes);
+      eyes.gpuMs = hybrid.timings.total;
+    } else {
+      eyes = stereo::synthesizeTimed(context, deferred.displayColor(), deferred.linearDepth(), parameters);
+    }
 
     EyeFrames current{eyes.eyes, {}, crop};
     std::array<DepthImage, 2> referenceDepth;

@@ -65,7 +65,7 @@ const std::vector<std::string>& parameterNames() {
       "taps",              "iterations",           "weaponDepthOffset",  "weaponDepthScale",
       "zppControl",        "zppEngageDistance",    "zppReleaseMargin",   "zppMinimumDistance",
       "zppResponseSeconds", "zppMaxChangePerSecond", "crosshairDistance", "crosshairMargin", "display",
-      "allowNegativeParallax"};
+      "allowNegativeParallax", "hybridBudget", "hybridBase"};
   return names;
 }
 
@@ -83,7 +83,14 @@ void assignParameter(TuneSettings& settings, const std::string& name, const std:
     } catch (const std::invalid_argument& error) {
       throw std::invalid_argument("method: " + std::string(error.what()));
     }
-  } else if (name == "taps") next.stereo.searchTaps = parseIntegerOf(name, value);
+  } else if (name == "hybridBase") {
+    try {
+      next.stereo.hybridBase = stereo::parseStereoMethod(value);
+    } catch (const std::invalid_argument& error) {
+      throw std::invalid_argument("hybridBase: " + std::string(error.what()));
+    }
+  } else if (name == "hybridBudget") next.stereo.hybridBudget = number();
+  else if (name == "taps") next.stereo.searchTaps = parseIntegerOf(name, value);
   else if (name == "iterations") next.stereo.iterations = parseIntegerOf(name, value);
   else if (name == "weaponDepthOffset") next.stereo.weaponDepthOffset = number();
   else if (name == "weaponDepthScale") next.stereo.weaponDepthScale = number();

@@ -26,7 +26,7 @@ struct HdrStereoPair {
   ImageRGBA32F left;
   ImageRGBA32F right;
 };
-// Both eyes of the linear HDR center view (same size as the depth) by parameters.method.
+// Both eyes of the linear HDR center view (same size as the depth) by parameters.method (a hybrid: its base).
 HdrStereoPair synthesizeHdrReference(const ImageRGBA32F& centerHdr, const DepthImage& linearDepth,
                                      const StereoParameters& parameters);
 

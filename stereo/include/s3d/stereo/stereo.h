@@ -17,6 +17,9 @@ enum class StereoMethod {
   Search,  // searchTaps taps spread evenly over (0, maxSeparation]: no thin occluder falls between taps
   Iterative,  // fixed-point source search, nearest surface wins, holes filled from the background (iterative.h)
   Forward,    // z-buffered scatter of every pixel with sub-pixel placement, holes filled from the background (forward.h)
+  // hybridBase's displacement, then the pixels it gets wrong (ranked, up to hybridBudget of each eye) rendered
+  // from the real eye cameras and composited (hybrid.h); needs a renderer, so not for external frames.
+  Hybrid,
 };
 
 const char* methodName(StereoMethod method);
@@ -59,7 +62,15 @@ struct StereoParameters {
   // sits behind the screen plane instead of popping out (applied where linear depth is produced).
   float weaponDepthOffset = 1.0f;  // world units
   float weaponDepthScale = 1.0f;
+  // StereoMethod::Hybrid only: the displacement it starts from (any other method, with its own taps or
+  // iterations above), and the largest share of each eye's pixels rendered from the eye camera: 0 is the base
+  // bit for bit, 1 renders every pixel (the two-pass reference).
+  StereoMethod hybridBase = StereoMethod::Search;
+  float hybridBudget = 0.2f;
 };
+
+// The parameters of a hybrid's displacement (parameters.method = hybridBase); any other method as it is.
+StereoParameters displacementParameters(StereoParameters parameters);
 
 // Largest accepted maxSeparation / edgeCrop: beyond a quarter of the screen the eyes cannot fuse anything.
 inline constexpr float kMaxSeparationLimit = 0.25f;

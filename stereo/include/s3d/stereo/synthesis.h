@@ -1,7 +1,9 @@
 #pragma once
 // One call for any stereo method on GPU images: what `s3d render` and `s3d convert` run.
 #include <cstdint>
+#include <functional>
 #include <optional>
+#include <utility>
 #include <vector>
 
 #include "s3d/stereo/stereo.h"
@@ -9,6 +11,31 @@
 #include "s3d/vk/resources.h"
 
 namespace s3d::stereo {
+
+// Any displacement method's GPU pass with its constants for one image size (a hybrid: its base), created once
+// and recorded any number of times. Inputs and eyes as StereoPass's (RGBA8 color and R32F depth in, RGBA8 eyes
+// out, all GENERAL; StereoPass::recordInputBarriers / recordInputRelease apply). The eyes carry the center's
+// alpha (the weapon mask); with markFilled the iterative method's alpha is its fill flag instead (0: filled).
+class DisplacementPass {
+ public:
+  DisplacementPass(const vk::Context& context, const StereoParameters& parameters, std::uint32_t width,
+                   std::uint32_t height, bool markFilled = false);
+  void record(VkCommandBuffer cmd, const vk::Image& centerColor, const vk::Image& linearDepth, const vk::Image& leftEye,
+              const vk::Image& rightEye) const {
+    record_(cmd, centerColor, linearDepth, leftEye, rightEye);
+  }
+  StereoMethod method() const { return method_; }
+
+ private:
+  StereoMethod method_;
+  std::function<void(VkCommandBuffer, const vk::Image&, const vk::Image&, const vk::Image&, const vk::Image&)> record_;
+};
+
+// The iterative method's filled pixels per eye (left, right): one untimed dispatch whose alpha is the fill flag.
+// Inputs as synthesizeTimed's.
+std::pair<std::uint64_t, std::uint64_t> countIterativeFills(vk::Context& context, const vk::Image& centerColor,
+                                                           const vk::Image& linearDepth,
+                                                           const StereoParameters& parameters);
 
 struct SynthesisResult {
   StereoPair eyes;                 // alpha: the center's (the weapon mask), carried by every method

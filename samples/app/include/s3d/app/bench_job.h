@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "s3d/app/eye_comparison.h"
+#include "s3d/app/hybrid_stereo.h"
 #include "s3d/app/memory_budget.h"
 #include "s3d/renderer/deferred_renderer.h"
 #include "s3d/stereo/stereo.h"
@@ -21,19 +22,22 @@
 
 namespace s3d::app {
 
-// One stereo method with its parameter: "seed", "search-N" (N taps), "iterative-K" (K iterations).
+// One stereo method with its parameter: "seed", "search-N" (N taps), "iterative-K" (K iterations), "hybrid-B"
+// (budget B; the base is the options' hybridBase with its default taps or iterations).
 struct MethodSetting {
   stereo::StereoMethod method = stereo::StereoMethod::Seed;
   int parameter = 0;  // searchTaps (search), iterations (iterative), 0 (seed)
   stereo::StereoKernel kernel = stereo::StereoKernel::Auto;  // a "/pixel" or "/tiles" suffix
+  float budget = 0.0f;  // hybrid only: hybridBudget
   std::string name() const;
   stereo::StereoParameters applyTo(stereo::StereoParameters parameters) const;
   bool operator==(const MethodSetting&) const = default;
 };
 
-// Parses --methods items: "seed", "search-N" (N in [1, S3D_STEREO_MAX_TAPS]), "iterative-K" (K in [1, 16]), and
-// "search" / "iterative" for their default sweeps (taps 4, 8, 16; iterations 2, 4, 6, 8), each optionally
-// followed by "/pixel" or "/tiles" to force a kernel (stereo::StereoKernel; none: Auto). Repeats are dropped.
+// Parses --methods items: "seed", "search-N" (N in [1, S3D_STEREO_MAX_TAPS]), "iterative-K" (K in [1, 16]),
+// "hybrid-B" (B in [0, 1]), and "search" / "iterative" / "hybrid" for their default sweeps (taps 4, 8, 16;
+// iterations 2, 4, 6, 8; budgets 0, 0.02, 0.05, 0.1, 0.2, 0.5, 1), each but hybrid optionally followed by
+// "/pixel" or "/tiles" to force a kernel (stereo::StereoKernel; none: Auto). Repeats are dropped.
 // Throws std::invalid_argument naming the bad item and the accepted forms.
 std::vector<MethodSetting> parseMethodSettings(const std::vector<std::string>& items);
 // The library's default stereo method (StereoParameters{}) as a setting: what the speed and error targets judge.
@@ -100,6 +104,9 @@ struct BenchRow {
   std::uint64_t filledLeft = 0;  // iterative: disoccluded pixels filled from the background side
   std::uint64_t filledRight = 0;
   StereoTraffic traffic;
+  // Hybrid settings: the masked share of each eye and the GPU time per part (stereoGpuMs is their total).
+  std::optional<double> maskedShareLeft, maskedShareRight;
+  std::optional<HybridTimings> hybridTimings;
 };
 
 struct RendererRow {
@@ -138,9 +145,15 @@ BenchReport runBench(vk::Context& context, const BenchOptions& options);
 nlohmann::json toJson(const BenchReport& report);
 // The tables, targets and traffic estimate; headings start at level 3 so the text fits into RESULTS.md.
 std::string benchMarkdown(const BenchReport& report);
+// The hybrid rows' section of benchMarkdown (masked share, time per part, error, the hybrid targets); empty
+// without hybrid rows.
+std::string hybridBenchMarkdown(const BenchReport& report);
 // Speed against error: x = stereo pass GPU ms (log scale), y = halo PSNR (mean of both eyes), one labelled
 // circle per row with a time, one color per scene.
 std::string benchSpeedErrorSvg(const BenchReport& report);
+// Speed against whole-image error: x = both eyes' GPU time over one reference eye's (log scale), y = whole-image
+// PSNR (mean of both eyes); every row a circle, the hybrid budgets of a scene and separation joined into a curve.
+std::string benchTimeOverEyeSvg(const BenchReport& report);
 
 // The markers of the section --results-md replaces: "<!-- s3d bench: KIND begin -->" / "... end -->"; the
 // renderer mode uses "s3d bench renderer: KIND".

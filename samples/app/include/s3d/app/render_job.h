@@ -15,6 +15,7 @@
 #include "s3d/app/eye_comparison.h"
 #include "s3d/app/frame_rules.h"
 #include "s3d/app/budget_frame.h"
+#include "s3d/app/hybrid_stereo.h"
 #include "s3d/app/memory_budget.h"
 #include "s3d/comfort/comfort_profile.h"
 #include "s3d/comfort/comfort_report.h"
@@ -81,6 +82,15 @@ struct CrosshairReport {
 
 // HudElementReport (one HUD element as drawn) lives in frame_rules.h, shared with `s3d tune`.
 
+// What the hybrid method did in one frame (method hybrid only).
+struct HybridReport {
+  float budget = 0.0f;
+  stereo::StereoMethod base = stereo::StereoMethod::Search;
+  std::uint64_t classifiedPixels = 0;               // per eye: the compared area
+  std::array<stereo::HybridThreshold, 2> thresholds;  // left, right: the threshold bin and the masked pixel count
+  HybridTimings timings;
+};
+
 struct RenderReport {
   std::string deviceName;
   std::string scene;
@@ -105,6 +115,7 @@ struct RenderReport {
   std::vector<HudElementReport> hud;       // panels, then the crosshair
   std::uint64_t hudConflictPixels = 0;     // sum over the HUD elements
   std::array<std::uint64_t, 2> filledPixels{};  // left, right: disoccluded pixels filled (iterative method)
+  std::optional<HybridReport> hybrid;           // method hybrid: the masks and the GPU time per part
   struct {
     std::uint64_t colorValues = 0;  // non-finite HDR channel values of the center view, made 0
     std::uint64_t depthPixels = 0;  // NaN / -inf / non-positive center depths, read as the zero-parallax plane

@@ -1,0 +1,55 @@
+#pragma once
+// The hybrid stereo method with s3d's deferred renderer: displace both eyes (the base method), classify the
+// pixels the displacement gets wrong and mask the budget's worst ones (stereo::HybridPass), render exactly those
+// pixels from each real eye camera (the two-pass reference's cameras), and composite them into the displaced
+// eyes. A host with its own renderer does the same with HybridPass and its renderer (docs/DESIGN.md).
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "s3d/image.h"
+#include "s3d/renderer/deferred_renderer.h"
+#include "s3d/stereo/hybrid.h"
+#include "s3d/stereo/stereo.h"
+#include "s3d/vk/context.h"
+
+namespace s3d::app {
+
+// GPU milliseconds of one hybrid frame, both eyes (empty without timestamps).
+struct HybridTimings {
+  std::optional<double> displacement;    // the base method's pass
+  std::optional<double> classification;  // classification, threshold and masks
+  std::optional<double> eyeGeometry;     // both eyes' G-buffer rasterization (the renderer's "gbuffer" passes)
+  std::optional<double> maskedShading;   // both eyes' other renderer passes (shadows, lighting, resolve)
+  std::optional<double> composite;       // both eyes
+  std::optional<double> total;           // the sum
+  std::vector<renderer::PassTiming> leftEyePasses, rightEyePasses;  // the masked renders' passes
+};
+
+// {"displacement", "classification", "eyeGeometry", "maskedShading", "composite", "total"}: ms or null.
+nlohmann::json toJson(const HybridTimings& timings);
+
+struct HybridSynthesis {
+  stereo::StereoPair eyes;  // at the renderer's size; alpha as the displaced eyes' (the weapon mask)
+  std::array<stereo::HybridThreshold, 2> thresholds;  // left, right
+  std::uint64_t classifiedPixels = 0;                 // per eye (the crop's area)
+  std::array<std::vector<std::uint8_t>, 2> masks;     // left, right: 1 where the eye camera rendered the pixel
+  std::array<ImageRGBA32F, 2> renderedHdr;            // the masked renders' HDR colour (valid where masked)
+  std::uint64_t filledLeft = 0, filledRight = 0;      // the iterative base's filled pixels that stayed displaced
+  HybridTimings timings;
+};
+
+// centerColor (RGBA8) and linearDepth (R32F): the center view of `center` (the renderer's outputs, in
+// vk::kComputeWrite state, left so). eyeRenderer: a renderer of the same size with `scene` set, used for the eye
+// cameras' masked renders (it holds the right eye's afterwards). parameters (method Hybrid) are for that size
+// (the guard band's rescaled ones when it has one). Every GPU part runs once untimed (first use compiles on
+// lavapipe), then timedRuns times; the timings are medians.
+HybridSynthesis synthesizeHybrid(vk::Context& context, const vk::Image& centerColor, const vk::Image& linearDepth,
+                                 renderer::DeferredRenderer& eyeRenderer, const renderer::Scene& scene,
+                                 const renderer::ViewMatrices& center, const stereo::StereoParameters& parameters,
+                                 int timedRuns = 1);
+
+}  // namespace s3d::app

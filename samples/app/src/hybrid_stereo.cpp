@@ -1,0 +1,172 @@
+#include "s3d/app/hybrid_stereo.h"
+
+#include <cstring>
+#include <functional>
+#include <map>
+#include <stdexcept>
+#include <string>
+#include <tuple>
+
+#include "s3d/app/eye_comparison.h"
+#include "s3d/app/render_job.h"
+#include "s3d/stereo/hybrid_pass.h"
+#include "s3d/stereo/stereo_pass.h"
+#include "s3d/stereo/synthesis.h"
+#include "s3d/vk/resources.h"
+#include "s3d/vk/timestamps.h"
+
+namespace s3d::app {
+namespace {
+
+std::optional<double> sum(std::optional<double> a, std::optional<double> b) {
+  if (!a || !b) return std::nullopt;
+  return *a + *b;
+}
+
+ImageRGBA8 readEye(vk::Context& context, const vk::Image& image) {
+  ImageRGBA8 eye(image.width, image.height);
+  const std::vector<std::byte> bytes = vk::readbackImage(context, image, vk::kComputeWrite);
+  std::memcpy(eye.pixels.data(), bytes.data(), bytes.size());
+  return eye;
+}
+
+// Submits `record` once untimed, then `timedRuns` times with a timestamp after each of its `marks` sections;
+// returns the median milliseconds of each section.
+std::vector<std::optional<double>> timeSections(vk::Context& context, int timedRuns, std::uint32_t sections,
+                                                const std::function<void(VkCommandBuffer, const std::function<void()>&)>& record) {
+  vk::TimestampQueries timestamps(context, sections + 1);
+  std::vector<std::vector<double>> runs(sections);
+  for (int run = 0; run <= timedRuns; ++run) {
+    const bool timed = run > 0 && timestamps.supported();
+    std::uint32_t next = 0;
+    context.submitAndWait([&](VkCommandBuffer cmd) {
+      if (timed) {
+        timestamps.reset(cmd);
+        timestamps.write(cmd, next++, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT);
+      }
+      record(cmd, [&] {
+        if (timed) timestamps.write(cmd, next++, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT);
+      });
+    });
+    if (timed)
+      for (std::uint32_t section = 0; section < sections; ++section)
+        if (const std::optional<double> ms = timestamps.elapsedMs(section, section + 1)) runs[section].push_back(*ms);
+  }
+  std::vector<std::optional<double>> medians;
+  for (std::vector<double>& samples : runs) medians.push_back(stereo::medianMs(std::move(samples)));
+  return medians;
+}
+
+// The eye renders: median total and median per pass; "gbuffer" passes are the eye's rasterized geometry,
+// all others shade the masked pixels.
+struct EyeRenderTimes {
+  std::optional<double> geometry, shading;
+  std::vector<renderer::PassTiming> passes;
+};
+
+EyeRenderTimes renderEye(renderer::DeferredRenderer& eyeRenderer, const renderer::ViewMatrices& view, int timedRuns) {
+  (void)eyeRenderer.render(view);
+  std::vector<double> totals;
+  std::map<std::string, std::vector<double>> passTimes;
+  std::vector<renderer::PassTiming> order;
+  for (int run = 0; run < timedRuns; ++run) {
+    const renderer::FrameTimings frame = eyeRenderer.render(view);
+    if (!frame.totalGpuMs) continue;
+    totals.push_back(*frame.totalGpuMs);
+    if (order.empty()) order = frame.passes;
+    for (const renderer::PassTiming& pass : frame.passes) passTimes[pass.name].push_back(pass.gpuMs);
+  }
+  EyeRenderTimes times;
+  const std::optional<double> total = stereo::medianMs(totals);
+  if (!total) return times;
+  double geometry = 0.0;
+  for (renderer::PassTiming& pass : order) {
+    pass.gpuMs = stereo::medianMs(passTimes[pass.name]).value_or(0.0);
+    if (pass.name == "gbuffer") geometry += pass.gpuMs;
+  }
+  times.geometry = geometry;
+  times.shading = *total - geometry;
+  times.passes = std::move(order);
+  return times;
+}
+
+}  // namespace
+
+nlohmann::json toJson(const HybridTimings& t) {
+  return {{"displacement", optionalMs(t.displacement)}, {"classification", optionalMs(t.classification)},
+          {"eyeGeometry", optionalMs(t.eyeGeometry)},   {"maskedShading", optionalMs(t.maskedShading)},
+          {"composite", optionalMs(t.composite)},       {"total", optionalMs(t.total)}};
+}
+
+HybridSynthesis synthesizeHybrid(vk::Context& context, const vk::Image& centerColor, const vk::Image& linearDepth,
+                                 renderer::DeferredRenderer& eyeRenderer, const renderer::Scene& scene,
+                                 const renderer::ViewMatrices& center, const stereo::StereoParameters& parameters,
+                                 int timedRuns) {
+  if (parameters.method != stereo::StereoMethod::Hybrid)
+    throw std::invalid_argument("synthesizeHybrid needs the hybrid method's parameters");
+  if (timedRuns < 1) throw std::invalid_argument("synthesizeHybrid: timedRuns must be at least 1");
+  const std::uint32_t width = centerColor.width, height = centerColor.height;
+  if (eyeRenderer.width() != width || eyeRenderer.height() != height)
+    throw std::invalid_argument("synthesizeHybrid: the eye renderer's size differs from the center view's");
+
+  const stereo::DisplacementPass displacement(context, parameters, width, height);
+  const stereo::HybridPass hybrid(context);
+  const gpu::HybridConstants constants = stereo::makeHybridConstants(parameters, width, height);
+  stereo::HybridPass::Images images = hybrid.createImages(width, height);
+  const VkImageUsageFlags usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+  const vk::Image left = vk::createImage(context, stereo::StereoPass::kColorFormat, width, height, usage);
+  const vk::Image right = vk::createImage(context, stereo::StereoPass::kColorFormat, width, height, usage);
+  HybridSynthesis result;
+  result.classifiedPixels = std::uint64_t(constants.cropEnd - constants.cropBegin) * height;
+
+  // Displacement, classification, threshold and masks: one submission, nothing read back in between.
+  const std::vector<std::optional<double>> front =
+      timeSections(context, timedRuns, 2, [&](VkCommandBuffer cmd, const std::function<void()>& mark) {
+        stereo::StereoPass::recordInputBarriers(cmd, centerColor, linearDepth, left, right);
+        displacement.record(cmd, centerColor, linearDepth, left, right);
+        mark();
+        hybrid.recordMasks(cmd, linearDepth, images, constants);
+        mark();
+        stereo::StereoPass::recordInputRelease(cmd, centerColor, linearDepth);
+      });
+  HybridTimings& timings = result.timings;
+  timings.displacement = front[0];
+  timings.classification = front[1];
+  timings.eyeGeometry = timings.maskedShading = timings.composite = 0.0;
+
+  // Each eye: its masked pixels rendered from the eye camera, then composited into the displaced eye.
+  for (const stereo::Eye eye : {stereo::Eye::Left, stereo::Eye::Right}) {
+    const std::size_t index = eye == stereo::Eye::Left ? 0 : 1;
+    const vk::Image& target = index == 0 ? left : right;
+    const vk::Image& mask = index == 0 ? images.leftMask : images.rightMask;
+    const EyeRenderTimes render = renderEye(eyeRenderer, referenceEyeView(scene, center, eye, parameters), timedRuns);
+    timings.eyeGeometry = sum(timings.eyeGeometry, render.geometry);
+    timings.maskedShading = sum(timings.maskedShading, render.shading);
+    (index == 0 ? timings.leftEyePasses : timings.rightEyePasses) = render.passes;
+    // The composite copies the masked pixels of the same rendered eye each run: repeating it changes nothing.
+    const std::vector<std::optional<double>> composite =
+        timeSections(context, timedRuns, 1, [&](VkCommandBuffer cmd, const std::function<void()>& mark) {
+          vk::transition(cmd, eyeRenderer.displayColor(), vk::kComputeWrite, vk::kComputeRead);
+          vk::transition(cmd, target, vk::kComputeWrite, vk::kComputeWrite);
+          vk::transition(cmd, mask, vk::kComputeWrite, vk::kComputeRead);
+          hybrid.recordComposite(cmd, target, eyeRenderer.displayColor(), mask, constants);
+          mark();
+          vk::transition(cmd, eyeRenderer.displayColor(), vk::kComputeRead, vk::kComputeWrite);
+          vk::transition(cmd, mask, vk::kComputeRead, vk::kComputeWrite);
+        });
+    timings.composite = sum(timings.composite, composite[0]);
+    result.renderedHdr[index] = eyeRenderer.readHdrColor();
+    result.masks[index] = stereo::HybridPass::readMask(context, mask);
+    result.thresholds[index] = stereo::HybridPass::readThreshold(context, images.thresholds, int(index));
+  }
+  timings.total =
+      sum(sum(sum(sum(timings.displacement, timings.classification), timings.eyeGeometry), timings.maskedShading),
+          timings.composite);
+  result.eyes = {readEye(context, left), readEye(context, right)};
+  if (displacement.method() == stereo::StereoMethod::Iterative)
+    std::tie(result.filledLeft, result.filledRight) =
+        stereo::countIterativeFills(context, centerColor, linearDepth, parameters);
+  return result;
+}
+
+}  // namespace s3d::app
