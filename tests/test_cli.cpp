@@ -157,10 +157,20 @@ TEST_F(Cli, TheEstimateInReportJsonIsAtLeastThePeakResidentMemory) {
   EXPECT_GT(memory["peakResidentBytes"].get<std::uint64_t>(), 0u);
 }
 
+// The hybrid method's second renderer and masks are in the estimate too.
+TEST_F(Cli, TheHybridEstimateInReportJsonIsAtLeastThePeakResidentMemory) {
+  const fs::path output = folder_ / "out";
+  ASSERT_EQ(run("render --method hybrid --resolution 320x180 --outputs report.json --output '" + output.string() + "'")
+                .status,
+            0);
+  const nlohmann::json memory = nlohmann::json::parse(readText(output / "report.json"))["memory"];
+  EXPECT_GE(memory["estimatedBytes"].get<std::uint64_t>(), memory["peakResidentBytes"].get<std::uint64_t>()) << memory;
+}
+
 // Zero separation moves nothing: every method's eyes are the center view byte for byte, HUD included (the HUD
 // fades by the weapon mask the eyes carry in alpha, as the center view's does).
 TEST_F(Cli, ZeroSeparationEyesAreTheCenterViewForEveryMethodHudIncluded) {
-  for (const char* method : {"seed", "search", "iterative", "forward"}) {
+  for (const char* method : {"seed", "search", "iterative", "forward", "hybrid"}) {
     const fs::path output = folder_ / method;
     const ToolRun result = run(std::string("render --method ") + method +
                                " --max-separation 0 --disparity-budget off --resolution 128x72 "

@@ -74,9 +74,10 @@ class TuneCommand final : public Command {
     parseResolution(resolution_, app::kMaxImageSize, options_.width, options_.height);
     stereo_.finish();
     StereoOptions::rejectSeparationUnderBudget(*subcommand, profile_.disparityBudget);
-    // The view's frame (the edges cropped, no guard band) before the window and the Vulkan start-up.
+    // The view's frame (the edges cropped, no guard band) before the window and the Vulkan start-up; the panel
+    // can switch to the hybrid method at any time, so its eye renderer is counted.
     app::requireHostMemory(app::renderMemoryEstimate(options_.width, options_.height, options_.width,
-                                                     options_.state.supersample),
+                                                     options_.state.supersample, true),
                            memoryLimit_, options_.context.device == "cpu");
     options_.state.hud = app::parseHudMode(hud_);
     tune::TuneSettings& settings = options_.state.settings;

@@ -24,6 +24,13 @@ ImageRGBA8 readEye(vk::Context& context, const vk::Image& image) {
   return eye;
 }
 
+// Pixels the iterative method flagged as filled (markFilled: alpha 0).
+std::uint64_t countFillFlags(const ImageRGBA8& eye) {
+  std::uint64_t filled = 0;
+  for (std::size_t i = 3; i < eye.pixels.size(); i += 4) filled += eye.pixels[i] == 0 ? 1 : 0;
+  return filled;
+}
+
 SynthesisResult run(vk::Context& context, const DisplacementPass& pass, const vk::Image& color, const vk::Image& depth,
                     int timedRuns) {
   const VkImageUsageFlags usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;

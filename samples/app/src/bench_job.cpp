@@ -849,7 +849,11 @@ MemoryEstimate benchMemoryEstimate(const BenchOptions& options) {
   if (!options.rendererOnly)
     for (double percent : options.separationsPercent) separation = std::max(separation, percent / 100.0);
   const std::uint32_t band = separation > 0.0 ? std::uint32_t(std::ceil(separation * options.width)) + 1 : 0;
-  return renderMemoryEstimate(options.width, options.height, options.width + 2 * band, options.supersample);
+  bool hybrid = false;
+  if (!options.rendererOnly)
+    for (const MethodSetting& setting : parseMethodSettings(options.methods))
+      hybrid = hybrid || setting.method == stereo::StereoMethod::Hybrid;
+  return renderMemoryEstimate(options.width, options.height, options.width + 2 * band, options.supersample, hybrid);
 }
 
 BenchReport runBench(vk::Context& context, const BenchOptions& options) {

@@ -23,6 +23,10 @@ constexpr std::uint64_t kRenderHostBytesPerOutputPixel = 65 + 50 + 3 + 16 + 20 +
 // And per rendered pixel (the guard band's width): depth 4, HDR 16, eyes 8, HDR eyes 32, and one read-back at a
 // time (half-float bytes and their float copy) 24.
 constexpr std::uint64_t kRenderHostBytesPerRenderedPixel = 84;
+// The hybrid method per rendered pixel: device: the eye renderer's G-buffer per sample and its resolved images,
+// score bins and masks 16, the displaced eyes 8; host: masks 2, rendered HDR eyes 32.
+constexpr std::uint64_t kHybridDeviceBytesPerRenderedPixel = kDeviceBytesPerRenderedPixel + 16 + 8;
+constexpr std::uint64_t kHybridHostBytesPerRenderedPixel = 2 + 32;
 
 // `s3d convert` per pixel: host: color 4 (an EXR's float color and file bytes 32 more), depth 4 (its file's
 // values 4), eyes 8, anaglyph 4, side-by-side 8, top-bottom 8, two references 8, PNG encoding 4, read-back 8;
@@ -62,7 +66,7 @@ std::optional<std::uint64_t> readNumberFile(const char* path) {
 }  // namespace
 
 MemoryEstimate renderMemoryEstimate(std::uint32_t width, std::uint32_t height, std::uint32_t renderedWidth,
-                                    std::uint32_t supersample) {
+                                    std::uint32_t supersample, bool hybridEyes) {
   const std::uint64_t outputPixels = std::uint64_t(width) * height;
   const std::uint64_t renderedPixels = std::uint64_t(std::max(renderedWidth, width)) * height;
   const std::uint64_t samples = std::uint64_t(supersample) * supersample;
@@ -70,11 +74,16 @@ MemoryEstimate renderMemoryEstimate(std::uint32_t width, std::uint32_t height, s
   estimate.hostBytes = kRunFixedBytes + kRenderHostBytesPerOutputPixel * outputPixels +
                        kRenderHostBytesPerRenderedPixel * renderedPixels;
   estimate.deviceBytes = (kDeviceBytesPerSample * samples + kDeviceBytesPerRenderedPixel) * renderedPixels;
+  if (hybridEyes) {
+    estimate.hostBytes += kHybridHostBytesPerRenderedPixel * renderedPixels;
+    estimate.deviceBytes += (kDeviceBytesPerSample * samples + kHybridDeviceBytesPerRenderedPixel) * renderedPixels;
+  }
   estimate.what = std::to_string(width) + "x" + std::to_string(height);
   if (supersample > 1) estimate.what += ", supersample " + std::to_string(supersample);
   if (renderedWidth > width)
     estimate.what += ", guard band 2 x " + std::to_string((renderedWidth - width) / 2) + " columns";
-  estimate.what += " (center view, eyes and reference eyes)";
+  estimate.what += hybridEyes ? " (center view, eyes, the hybrid's eye renders and reference eyes)"
+                              : " (center view, eyes and reference eyes)";
   estimate.lower = "--resolution or --supersample";
   return estimate;
 }

@@ -72,7 +72,8 @@ MemoryEstimate memoryEstimateFor(const RenderJobOptions& options, const renderer
                                          kMaxImageSize / options.supersample)
                         .renderedWidth(options.width);
   }
-  return renderMemoryEstimate(options.width, options.height, renderedWidth, options.supersample);
+  return renderMemoryEstimate(options.width, options.height, renderedWidth, options.supersample,
+                              parameters.method == stereo::StereoMethod::Hybrid);
 }
 
 // Everything runRenderJob checks before touching the GPU or the file system; returns what it built on the way.

@@ -55,7 +55,9 @@ SequenceReport runSequenceJob(vk::Context& context, const SequenceJobOptions& op
   const float crosshairDistance = options.crosshair.distance.value_or(scene.crosshairDistance);
 
   // One frame's images at a time (no guard band: the sequence crops its edges), checked before any is allocated.
-  requireMemory(context, renderMemoryEstimate(options.width, options.height, options.width, options.supersample),
+  requireMemory(context,
+                renderMemoryEstimate(options.width, options.height, options.width, options.supersample,
+                                     options.stereo.method == stereo::StereoMethod::Hybrid),
                 options.memoryLimitBytes);
   const comfort::WorldQueries world(scene);
   renderer::DeferredRenderer deferred(context, options.width, options.height, {options.supersample, options.reversedZ});

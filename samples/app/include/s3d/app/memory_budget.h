@@ -27,9 +27,10 @@ inline constexpr std::uint64_t kDeviceBytesPerRenderedPixel = 40;  // resolved d
 // One `s3d render` frame (also a --sequence frame, a bench scene, a regress case, the tune view): the center
 // view and the reference eyes at renderedWidth x height with supersample^2 samples, and every output-size image
 // the job keeps at once (eyes and references in 8-bit and HDR, depth, masks, HUD copies, packed outputs, PNG
-// and EXR encoding).
+// and EXR encoding). hybridEyes: the hybrid method's second renderer (the eye cameras), its classification and
+// masks on the device and the masks and rendered HDR eyes read back.
 MemoryEstimate renderMemoryEstimate(std::uint32_t width, std::uint32_t height, std::uint32_t renderedWidth,
-                                    std::uint32_t supersample);
+                                    std::uint32_t supersample, bool hybridEyes = false);
 
 // `s3d convert` of one width x height frame (inputs decoded, eyes, packed outputs, GPU copies).
 MemoryEstimate convertMemoryEstimate(std::uint32_t width, std::uint32_t height);
