@@ -71,6 +71,31 @@ TEST_F(OutputTransactionTest, CommitMovesEveryFileIntoPlaceAndLeavesNoStaging) {
   EXPECT_EQ(test::readFileBytes(root_ / "out" / "frames" / "a.txt"), "frame a");
 }
 
+TEST_F(OutputTransactionTest, AKilledRunsStagingIsRemovedByTheNextRun) {
+  // A run killed outright leaves its staging folder (with or without its lock file); nothing holds the lock.
+  const fs::path killed = root_ / "out" / ".s3d-staging-Kill3d";
+  const fs::path killedEarly = root_ / "out" / ".s3d-staging-Early1";
+  fs::create_directories(killed);
+  fs::create_directories(killedEarly);
+  test::writeFileBytes(killed / ".lock", "");
+  test::writeFileBytes(killed / "left.png", "half-written");
+  OutputTransaction next(root_ / "out");
+  EXPECT_FALSE(fs::exists(killed));
+  EXPECT_FALSE(fs::exists(killedEarly));
+}
+
+TEST_F(OutputTransactionTest, ALiveRunsStagingIsNeverTouchedByAnother) {
+  OutputTransaction first(root_ / "out");
+  writeTextFile(root_ / "out" / "first.txt", "first");  // staged by the open transaction
+  std::vector<std::string> before = entries(root_ / "out");
+  {
+    OutputTransaction second(root_ / "out");  // a second run on the same folder, e.g. another process
+  }
+  EXPECT_EQ(entries(root_ / "out"), before);
+  first.commit();
+  EXPECT_EQ(test::readFileBytes(root_ / "out" / "first.txt"), "first");
+}
+
 TEST_F(OutputTransactionTest, AFolderCreatedForAFailedRunIsRemovedAgain) {
   {
     OutputTransaction outputs(root_ / "new" / "deeper");

@@ -1,6 +1,9 @@
 #include "s3d/io/output_transaction.h"
 
-#include <stdlib.h>  // mkdtemp
+#include <fcntl.h>     // open
+#include <stdlib.h>    // mkdtemp
+#include <sys/file.h>  // flock
+#include <unistd.h>    // close
 
 #include <algorithm>
 #include <atomic>
@@ -27,6 +30,25 @@ std::string quoted(const fs::path& path) {
 [[noreturn]] void failFolder(const fs::path& folder, const std::string& reason) {
   throw std::runtime_error("cannot write output folder " + quoted(folder) + ": " + reason);
 }
+
+constexpr const char* kStagingPrefix = ".s3d-staging-";
+constexpr const char* kStagingLock = ".lock";
+
+// A run killed before it could clean up (SIGKILL, power loss) leaves its staging folder behind. A live run
+// holds an exclusive flock on its folder's lock file for its whole life, so a staging folder whose lock can be
+// taken (or that has none: killed between creating it and the lock) belongs to no running process.
+void removeStaleStaging(const fs::path& folder) {
+  std::error_code error;
+  for (fs::directory_iterator entry(folder, error), end; !error && entry != end; entry.increment(error)) {
+    const std::string name = entry->path().filename().string();
+    if (name.rfind(kStagingPrefix, 0) != 0 || !entry->is_directory(error) || entry->is_symlink(error)) continue;
+    const int fd = ::open((entry->path() / kStagingLock).c_str(), O_RDWR | O_CLOEXEC | O_NOFOLLOW);
+    const bool stale = fd < 0 || ::flock(fd, LOCK_EX | LOCK_NB) == 0;
+    if (fd >= 0) ::close(fd);
+    std::error_code ignored;
+    if (stale) fs::remove_all(entry->path(), ignored);
+  }
+}
 }  // namespace
 
 OutputTransaction::OutputTransaction(const fs::path& folder) : folder_(fs::absolute(folder).lexically_normal()) {
@@ -46,18 +68,32 @@ OutputTransaction::OutputTransaction(const fs::path& folder) : folder_(fs::absol
     rollback();
     failFolder(folder, "not a folder");
   }
-  std::string pattern = (folder_ / ".s3d-staging-XXXXXX").string();
+  removeStaleStaging(folder_);
+  std::string pattern = (folder_ / (std::string(kStagingPrefix) + "XXXXXX")).string();
   if (::mkdtemp(pattern.data()) == nullptr) {
     const int mkdtempErrno = errno;
     rollback();
     failFolder(folder, std::strerror(mkdtempErrno));
   }
   staging_ = pattern;
+  lockFd_ = ::open((staging_ / kStagingLock).c_str(), O_RDWR | O_CREAT | O_EXCL | O_CLOEXEC | O_NOFOLLOW, 0600);
+  if (lockFd_ < 0 || ::flock(lockFd_, LOCK_EX | LOCK_NB) != 0) {
+    const int lockErrno = errno;
+    releaseLock();
+    rollback();
+    failFolder(folder, std::strerror(lockErrno));
+  }
   previous_ = active.exchange(this);
 }
 
 OutputTransaction::~OutputTransaction() {
   if (!finished_) rollback();
+  releaseLock();
+}
+
+void OutputTransaction::releaseLock() noexcept {
+  if (lockFd_ >= 0) ::close(lockFd_);
+  lockFd_ = -1;
 }
 
 fs::path OutputTransaction::stagedTarget(const fs::path& file) {

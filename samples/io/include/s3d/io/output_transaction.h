@@ -2,7 +2,8 @@
 // All-or-nothing outputs for one tool run. While a transaction is open, every s3d_io write into its folder
 // goes to a private staging folder (created exclusively inside the output folder); commit() renames the
 // files into place, and a transaction destroyed without commit removes everything it staged and any folder
-// it created, so a run that fails late leaves the output folder exactly as it was.
+// it created, so a run that fails late leaves the output folder exactly as it was. A run killed outright leaves
+// its staging folder; the next transaction on that folder removes it (a live run's is locked, never touched).
 #include <filesystem>
 #include <mutex>
 #include <string>
@@ -34,12 +35,14 @@ class OutputTransaction {
 
  private:
   void rollback() noexcept;
+  void releaseLock() noexcept;
 
   std::filesystem::path folder_;
   std::filesystem::path staging_;
   std::vector<std::filesystem::path> createdFolders_;  // innermost first
   std::vector<std::filesystem::path> staged_;          // relative to folder_
   std::mutex mutex_;
+  int lockFd_ = -1;  // the staging folder's lock file, flock'ed exclusively while this run lives
   OutputTransaction* previous_ = nullptr;
   bool finished_ = false;
 };
