@@ -24,12 +24,14 @@ class RegressCommand final : public Command {
     regress.add_option("--output", options_.outputFolder, "Report folder (created if missing)")->capture_default_str();
     regress.add_flag("--update-baselines", options_.updateBaselines,
                      "Write (or overwrite) every run's baseline instead of comparing with it");
+    addMemoryLimitOption(regress, options_.memoryLimitBytes);
     addDeviceOptions(regress, contextOptions_);
   }
 
   int run() override {
     // The whole suite is validated before a Vulkan start-up.
     const app::RegressSuite suite = app::loadRegressSuite(suite_);
+    app::requireRegressMemory(suite, options_);
     vk::Context context(contextOptions_);
     const bool terminal = ::isatty(STDERR_FILENO) != 0;
     const app::RegressResult result = app::runRegressSuite(

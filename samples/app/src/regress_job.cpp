@@ -450,6 +450,19 @@ RegressSuite loadRegressSuite(const fs::path& file) {
   return parseRegressSuite(document, file.parent_path(), file.string());
 }
 
+void requireRegressMemory(const RegressSuite& suite, const RegressOptions& options) {
+  for (const RegressCase& entry : suite.cases)
+    for (std::size_t frame : entry.frames) {
+      RenderJobOptions render = renderOptionsFor(entry, frame);
+      render.memoryLimitBytes = options.memoryLimitBytes;
+      try {
+        validateRenderJobOptions(render);
+      } catch (const std::invalid_argument& error) {
+        throw std::invalid_argument("case '" + entry.name + "': " + error.what());
+      }
+    }
+}
+
 RegressResult runRegressSuite(vk::Context& context, const RegressSuite& suite, const RegressOptions& options,
                               const std::function<void(std::size_t, std::size_t, const std::string&)>& progress) {
   std::size_t total = 0;
@@ -463,6 +476,7 @@ RegressResult runRegressSuite(vk::Context& context, const RegressSuite& suite, c
       run.name = entry.name + "_f" + std::to_string(frame);
       const fs::path runFolder = options.outputFolder / run.name;
       RenderJobOptions render = renderOptionsFor(entry, frame);
+      render.memoryLimitBytes = options.memoryLimitBytes;
       render.outputFolder = runFolder;
       render.outputs = {"left.png", "right.png", "left_reference.png", "right_reference.png", "error_left.png",
                         "error_right.png", "report.json"};

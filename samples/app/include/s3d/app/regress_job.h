@@ -77,7 +77,12 @@ struct RegressRun {
 struct RegressOptions {
   std::filesystem::path outputFolder = "regress_out";  // report.html, regress.json and one folder per run
   bool updateBaselines = false;  // (re)write every run's baseline instead of comparing with it
+  std::optional<std::uint64_t> memoryLimitBytes;  // --memory-limit; the machine's available memory in any case
 };
+
+// Before a Vulkan start-up: every run's memory estimate against the available memory and memoryLimitBytes.
+// Throws std::invalid_argument naming the case, the estimate and the limit.
+void requireRegressMemory(const RegressSuite& suite, const RegressOptions& options);
 
 struct RegressResult {
   std::vector<RegressRun> runs;
