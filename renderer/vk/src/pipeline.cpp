@@ -39,13 +39,15 @@ PipelineLayout createPushDescriptorLayout(const Context& context,
 }
 
 Unique<VkPipeline> createComputePipeline(const Context& context, VkPipelineLayout layout,
-                                         std::span<const std::uint32_t> spirv) {
+                                         std::span<const std::uint32_t> spirv,
+                                         const VkSpecializationInfo* specialization) {
   Unique<VkShaderModule> module = createShaderModule(context, spirv);
   VkComputePipelineCreateInfo info{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
   info.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
   info.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
   info.stage.module = module;
   info.stage.pName = "main";
+  info.stage.pSpecializationInfo = specialization;
   info.layout = layout;
   VkPipeline pipeline = VK_NULL_HANDLE;
   S3D_VK_CHECK(vkCreateComputePipelines(context.device(), context.pipelineCache(), 1, &info, context.allocator(), &pipeline));
@@ -64,6 +66,7 @@ Unique<VkPipeline> createGraphicsPipeline(const Context& context, VkPipelineLayo
   stages[1] = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
   stages[1].stage = VK_SHADER_STAGE_FRAGMENT_BIT;
   stages[1].module = fragment;
+  stages[1].pSpecializationInfo = desc.fragmentSpecialization;
   stages[1].pName = "main";
 
   VkPipelineVertexInputStateCreateInfo vertexInput{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};

@@ -15,6 +15,7 @@
 #define S3D_INFINITY (std::numeric_limits<float>::infinity())
 namespace s3d::gpu {
 using uint = std::uint32_t;
+using glm::abs;
 using glm::exp2;
 using glm::floor;
 using glm::mat4;
@@ -22,7 +23,10 @@ using glm::max;
 using glm::min;
 using glm::mix;
 using glm::pow;
+using glm::sqrt;
 using glm::step;
+using glm::uvec2;
+using glm::uvec4;
 using glm::vec2;
 using glm::vec3;
 using glm::vec4;

@@ -22,8 +22,10 @@ PipelineLayout createPushDescriptorLayout(const Context& context,
                                           std::span<const VkDescriptorSetLayoutBinding> bindings,
                                           std::uint32_t pushConstantBytes, VkShaderStageFlags pushConstantStages);
 
+// `specialization`: values of the shader's specialization constants (null: their defaults).
 Unique<VkPipeline> createComputePipeline(const Context& context, VkPipelineLayout layout,
-                                         std::span<const std::uint32_t> spirv);
+                                         std::span<const std::uint32_t> spirv,
+                                         const VkSpecializationInfo* specialization = nullptr);
 
 // Graphics pipeline for dynamic rendering (no render pass objects).
 struct GraphicsPipelineDesc {
@@ -42,6 +44,8 @@ struct GraphicsPipelineDesc {
   // Rasterizer depth bias (shadow maps): constant in the format's depth units plus slope * max depth slope.
   float depthBiasConstant = 0.0f;
   float depthBiasSlope = 0.0f;
+  // Values of the fragment shader's specialization constants (null: their defaults).
+  const VkSpecializationInfo* fragmentSpecialization = nullptr;
 };
 Unique<VkPipeline> createGraphicsPipeline(const Context& context, VkPipelineLayout layout,
                                           const GraphicsPipelineDesc& desc);
