@@ -83,8 +83,8 @@ TEST_F(LightingTest, ALitPlaneMatchesTheAnalyticBlinnPhongValue) {
   matte.objects[0].material.specularColor = glm::vec3(0.0f);
   ASSERT_GT(analyticPlaneRadiance(scene, kWidth / 2, kHeight / 2).g,
             1.05 * analyticPlaneRadiance(matte, kWidth / 2, kHeight / 2).g);
-  // Tolerance 1 % relative: the light and HDR buffers are RGBA16F (11-bit mantissa, 0.05 %), the normal
-  // buffer too, and the lobe's exponent 16 amplifies a normal error of 1e-3 to under 0.5 %.
+  // Tolerance 1 % relative: the HDR and normal buffers are RGBA16F (11-bit mantissa, 0.05 %), the lobe's
+  // exponent 16 amplifies a normal error of 1e-3 to under 0.5 %, the packed albedo under 1e-5.
   for (std::uint32_t y : {kHeight / 2, kHeight * 3 / 4}) {
     for (std::uint32_t x : {kWidth / 4, kWidth / 2, kWidth * 3 / 4}) {
       const glm::dvec3 expected = analyticPlaneRadiance(scene, x, y);
@@ -141,10 +141,10 @@ TEST_F(LightingTest, AnOpaqueSceneDoesNotRunTheTransparentPass) {
   EXPECT_EQ(std::count(frame.passes.begin(), frame.passes.end(), "transparent"), 0);
 }
 
-TEST_F(LightingTest, ATransparentPaneIsBlendedAfterShadingAndWritesNoDepth) {
+TEST_F(LightingTest, ATransparentPaneIsBlendedAfterLightingAndWritesNoDepth) {
   const PaneFrame opaque = renderPaneScene(context(), false);
   const PaneFrame glass = renderPaneScene(context(), true);
-  const auto shading = std::find(glass.passes.begin(), glass.passes.end(), "shading");
+  const auto shading = std::find(glass.passes.begin(), glass.passes.end(), "lighting");
   const auto transparent = std::find(glass.passes.begin(), glass.passes.end(), "transparent");
   ASSERT_NE(transparent, glass.passes.end());
   EXPECT_LT(shading, transparent);

@@ -1,5 +1,5 @@
-// Shadows (seed 003 8.5.3, 000 4.3.3): sun cascades through the deferred shadow mask, point-light faces and
-// spot-light views in the light pass; the split scheme and texel snapping; shadow maps scheduled only when a
+// Shadows (seed 003 8.5.3, 000 4.3.3): sun cascades, point-light faces and spot-light views, all looked up by
+// the lighting pass; the split scheme and texel snapping; shadow maps scheduled only when a
 // caster is in reach. Tiny scenes, 64x36 pixels, small shadow maps.
 #include <gtest/gtest.h>
 
@@ -172,7 +172,7 @@ TEST_F(ShadowTest, AGroundPointInTheBoxsSunShadowGetsOnlyAmbient) {
   const Rendered frame = render(context(), scene);
   ASSERT_NEAR(*frame.depth.at(probe.x, probe.y), viewDepth(scene, probe.ground), 0.01);  // the ground, not the box
   EXPECT_TRUE(ran(frame, "shadow-sun-cascade-0"));
-  EXPECT_TRUE(ran(frame, "shadow-mask"));
+  EXPECT_TRUE(ran(frame, "lighting"));  // which looks the cascades up itself (no screen-space mask pass)
   const glm::dvec3 unshadowed = groundRadiance(scene, probe.ground, toSun, glm::dvec3(scene.sun.color));
   ASSERT_GT(unshadowed.g, 3.0 * ambientOnly(scene, probe.ground).g);  // so a missing shadow cannot pass
   expectRadiance(frame, probe, ambientOnly(scene, probe.ground), "sun shadow");
@@ -261,7 +261,7 @@ TEST_F(ShadowTest, ASunWithoutCastersRunsNoShadowPass) {
   for (Object& object : scene.objects) object.castsShadow = false;
   const Rendered frame = render(context(), scene);
   EXPECT_FALSE(anyShadowPass(frame));
-  EXPECT_TRUE(ran(frame, "sun-and-ambient"));
+  EXPECT_TRUE(ran(frame, "lighting"));
 }
 
 TEST_F(ShadowTest, APointLightWithItsOnlyCasterOutOfReachRunsNoShadowMap) {
@@ -270,7 +270,7 @@ TEST_F(ShadowTest, APointLightWithItsOnlyCasterOutOfReachRunsNoShadowMap) {
   scene.objects[0].castsShadow = false;  // the ground lies in every downward face
   const Rendered frame = render(context(), scene);
   EXPECT_FALSE(anyShadowPass(frame));
-  EXPECT_TRUE(ran(frame, "point-lights"));  // the light itself still lights the ground
+  EXPECT_TRUE(ran(frame, "lighting"));  // the light itself still lights the ground
 }
 
 TEST_F(ShadowTest, ASpotLightWithItsOnlyCasterOutsideTheConeRunsNoShadowMap) {
@@ -279,7 +279,7 @@ TEST_F(ShadowTest, ASpotLightWithItsOnlyCasterOutsideTheConeRunsNoShadowMap) {
   scene.objects[0].castsShadow = false;
   const Rendered frame = render(context(), scene);
   EXPECT_FALSE(anyShadowPass(frame));
-  EXPECT_TRUE(ran(frame, "point-lights"));
+  EXPECT_TRUE(ran(frame, "lighting"));
 }
 
 // setScene's message for a scene, or "" when it is accepted.

@@ -1,5 +1,5 @@
 #version 450
-// One triangle covering the screen at depth 0 (no depth test): light accumulation.
+// One triangle covering the screen at depth 0 (its viewport places it): the shade mask's depth fill.
 void main() {
   vec2 corner = vec2((gl_VertexIndex << 1) & 2, gl_VertexIndex & 2);
   gl_Position = vec4(corner * 2.0 - 1.0, 0.0, 1.0);

@@ -1,5 +1,6 @@
 #version 450
-// Shared by the G-buffer and the shading pass: the same module gives both the same depth (depth test EQUAL).
+// Shared by the G-buffer, the depth-only pass of a masked render and the transparent pass: one module gives them
+// the same depth.
 #extension GL_GOOGLE_include_directive : require
 #include "s3d/renderer/renderer_shared.h"
 

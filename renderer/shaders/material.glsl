@@ -1,4 +1,4 @@
-// Material texturing shared by the G-buffer, shading and transparent passes (include after renderer_shared.h).
+// Material texturing shared by the G-buffer and transparent passes (include after renderer_shared.h).
 
 // The shading normal: the interpolated normal, perturbed by a tangent-space normal map when the object has
 // one (normalScale != 0). Without one the result is exactly the untextured renderer's normalize(worldNormal).
@@ -8,7 +8,7 @@ vec3 shadingNormal(vec3 worldNormal, vec4 worldTangent, vec2 texCoord, float nor
   // Gram-Schmidt: the interpolated tangent is re-orthogonalized against the interpolated normal.
   vec3 tangent = normalize(worldTangent.xyz - normal * dot(normal, worldTangent.xyz));
   vec3 bitangent = worldTangent.w * cross(normal, tangent);
-  vec3 mapped = texture(normalMap, texCoord).xyz * 2.0 - 1.0;
+  vec3 mapped = textureLod(normalMap, texCoord, 0.0).xyz * 2.0 - 1.0;  // one level: no derivatives needed
   mapped.xy *= normalScale;
   return normalize(tangent * mapped.x + bitangent * mapped.y + normal * mapped.z);
 }

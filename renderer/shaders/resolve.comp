@@ -5,10 +5,13 @@
 // supersampling, the samples of an output pixel are averaged after the tone curve (a bright sample cannot swamp
 // the pixel) and before sRGB encoding (averaging stays linear); the depth is the nearest sample's, so the
 // stereo pass moves a partly covered pixel with its occluder, as Listing 4.5's minimum-depth search does.
+// One thread per output pixel. A masked render runs one workgroup per listed render tile, over the output
+// pixels whose first sample lies in it, and resolves only shade-mask pixels.
 #extension GL_GOOGLE_include_directive : require
 #include "s3d/renderer/renderer_shared.h"
+#include "tonemap.glsl"
 
-layout(local_size_x = S3D_COMPUTE_GROUP_SIZE, local_size_y = S3D_COMPUTE_GROUP_SIZE) in;
+layout(local_size_x = S3D_TILE_SIZE, local_size_y = S3D_TILE_SIZE) in;
 layout(binding = 0) uniform Frame { FrameConstants frame; };
 layout(binding = 1, rgba16f) uniform readonly image2D hdrColor;
 layout(binding = 2, rgba8) uniform writeonly image2D displayColor;
@@ -16,17 +19,11 @@ layout(binding = 3, rgba16f) uniform writeonly image2D resolvedHdrColor;
 layout(binding = 4) uniform sampler2D deviceDepth;
 layout(binding = 5, r32f) uniform writeonly image2D linearDepth;
 layout(push_constant) uniform Push { ResolveConstants resolve; };
+#define S3D_TILES_BINDING 6
+#define S3D_SHADE_MASK_BINDING 7
+#include "tiles.glsl"
 
-// Krzysztof Narkowicz's fit of the ACES filmic tone curve (2016).
-vec3 filmic(vec3 x) { return clamp(x * (2.51 * x + 0.03) / (x * (2.43 * x + 0.59) + 0.14), 0.0, 1.0); }
-
-vec3 encodeSrgb(vec3 linear) {
-  return mix(linear * 12.92, 1.055 * pow(linear, vec3(1.0 / 2.4)) - 0.055, step(vec3(0.0031308), linear));
-}
-
-void main() {
-  ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
-  if (pixel.x >= resolve.outputWidth || pixel.y >= resolve.outputHeight) return;
+void resolvePixel(ivec2 pixel) {
   vec4 hdrSum = vec4(0.0);
   vec3 toneMappedSum = vec3(0.0);
   float weapon = 0.0;
@@ -35,10 +32,7 @@ void main() {
   for (int sy = 0; sy < resolve.supersample; ++sy)
     for (int sx = 0; sx < resolve.supersample; ++sx) {
       ivec2 sampleTexel = pixel * resolve.supersample + ivec2(sx, sy);
-      vec4 hdr = imageLoad(hdrColor, sampleTexel);
-      // NaN or inf (a broken shader or input) is black, as stereo::sanitizeColor makes it: the curve would turn
-      // it into NaN and the unorm store into an undefined level that the stereo pass would then displace.
-      if (any(isnan(hdr)) || any(isinf(hdr))) hdr = vec4(0.0);
+      vec4 hdr = finiteHdr(imageLoad(hdrColor, sampleTexel));
       hdrSum += hdr;
       toneMappedSum += filmic(hdr.rgb * frame.exposure.x);
       float device = texelFetch(deviceDepth, sampleTexel, 0).r;
@@ -56,4 +50,19 @@ void main() {
   imageStore(displayColor, pixel, vec4(encodeSrgb(toneMappedSum / sampleCount), 1.0 - weapon));
   imageStore(resolvedHdrColor, pixel, hdrSum / sampleCount);
   imageStore(linearDepth, pixel, vec4(stereoDepthFromDevice(frame.linearDepth, nearestDevice)));
+}
+
+void main() {
+  ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+  ivec2 end = ivec2(resolve.outputWidth, resolve.outputHeight);
+  if (maskedRender()) {
+    // The output pixels o with o * supersample inside the render tile: [ceil(start / s), ceil(end / s)).
+    ivec2 tile = maskedTile();
+    int s = resolve.supersample;
+    pixel = (tile * S3D_TILE_SIZE + s - 1) / s + ivec2(gl_LocalInvocationID.xy);
+    end = min((tile * S3D_TILE_SIZE + S3D_TILE_SIZE + s - 1) / s, end);
+  }
+  if (any(greaterThanEqual(pixel, end)) || !shadeMasked(pixel * resolve.supersample)) return;
+  resolvePixel(pixel);
+  countShaded(S3D_COUNT_RESOLVE, 1u);
 }

@@ -32,7 +32,7 @@ void main() {
   float nDotV = clamp(dot(normal, toEye), 0.0, 1.0);
   vec3 fresnel = object.specular.rgb + (1.0 - object.specular.rgb) * pow(1.0 - nDotV, 5.0);  // Schlick
   // Specular is not dimmed by the opacity: glass reflects even where it lets most light through.
-  vec4 albedo = object.albedo * texture(baseColor, texCoord);  // texture alpha scales the opacity
+  vec4 albedo = object.albedo * textureLod(baseColor, texCoord, 0.0);  // texture alpha scales the opacity
   hdrColor = vec4(albedo.rgb * diffuse + fresnel * specular / max(albedo.a, 1e-3), albedo.a);
   coverage = vec4(1.0, 1.0, 1.0, albedo.a);
 }

@@ -11,22 +11,22 @@
 #include <glm/gtc/packing.hpp>
 
 #include "s3d/renderer/renderer_shared.h"
-#include "shadow_maps.h"
+#include "ambient_occlusion.h"
 #include "s3d/vk/check.h"
 #include "s3d/vk/pipeline.h"
 #include "s3d/vk/timestamps.h"
+#include "shadow_maps.h"
+#include "tile_lists.h"
+#include "tiled_lighting.h"
 
 // clang-format off
 #include <cstdint>
 #include <s3d_spirv/fullscreen_vert.h>
 #include <s3d_spirv/gbuffer_frag.h>
 #include <s3d_spirv/geometry_vert.h>
-#include <s3d_spirv/light_frag.h>
-#include <s3d_spirv/shading_frag.h>
-#include <s3d_spirv/sky_frag.h>
-#include <s3d_spirv/ssao_comp.h>
-#include <s3d_spirv/sky_vert.h>
+#include <s3d_spirv/mask_fill_frag.h>
 #include <s3d_spirv/resolve_comp.h>
+#include <s3d_spirv/shadow_depth_frag.h>
 #include <s3d_spirv/transparent_frag.h>
 // clang-format on
 
@@ -35,59 +35,52 @@ namespace {
 
 constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
 constexpr VkFormat kNormalFormat = VK_FORMAT_R16G16B16A16_SFLOAT;  // world normal + glossiness
-constexpr VkFormat kLightFormat = VK_FORMAT_R16G16B16A16_SFLOAT;   // HDR diffuse / specular light
+constexpr VkFormat kMaterialFormat = VK_FORMAT_R32G32_UINT;        // packed albedo (gpu::packAlbedo), object index
 constexpr VkFormat kHdrFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
 constexpr VkFormat kDisplayFormat = VK_FORMAT_R8G8B8A8_UNORM;     // sRGB-encoded by the tone-map pass
 constexpr VkFormat kLinearDepthFormat = VK_FORMAT_R32_SFLOAT;
-constexpr VkFormat kAmbientOcclusionFormat = VK_FORMAT_R16_SFLOAT;
 constexpr VkFormat kCoverageFormat = VK_FORMAT_R8G8B8A8_UNORM;  // red: transparent coverage (the metrics' mask)
 
 // Material textures (section 4.3's "sRGB textures read as linear"): colour through an sRGB format, data not.
 VkFormat textureFormat(Texture::Encoding encoding) {
   return encoding == Texture::Encoding::Srgb ? VK_FORMAT_R8G8B8A8_SRGB : VK_FORMAT_R8G8B8A8_UNORM;
 }
-// Descriptor bindings of an object's textures in the passes that draw geometry: base color, then normal map.
-constexpr std::uint32_t kGeometryTextureBinding = 2;  // G-buffer and transparent pass (geometry layout)
-constexpr std::uint32_t kShadingTextureBinding = 4;   // shading pass (after the two light buffers)
+// Descriptor binding of an object's base-color texture in the passes that draw geometry (normal map: the next).
+constexpr std::uint32_t kGeometryTextureBinding = 2;
 
-constexpr vk::ImageState kDepthSampled{VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
-                                       VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                                       VK_ACCESS_2_SHADER_SAMPLED_READ_BIT};
+// The G-buffer's targets once drawn: sampled by compute (ambient occlusion, lighting, resolve, counting).
+constexpr vk::ImageState kComputeSampled{VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+                                         VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT};
+// Depth tested by the transparent pass, read-only.
 constexpr vk::ImageState kDepthReadOnlyAttachment{VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL,
                                                   VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT |
                                                       VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
                                                   VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT};
-// Sampled by the light pass (fragment) and SSAO (compute).
-constexpr vk::ImageState kNormalSampled{VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
-                                        VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                                        VK_ACCESS_2_SHADER_SAMPLED_READ_BIT};
-constexpr vk::ImageState kOcclusionSampled = kNormalSampled;
-constexpr vk::ImageState kComputeSampled{VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
-                                         VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT};
 
-constexpr std::uint32_t kMaxPasses = 64;  // timestamps: one before the first pass and one after each (shadow maps: up to 53)
+// Timestamps: one before the first pass and one after each (shadow maps: up to 52 passes, the rest up to 9).
+constexpr std::uint32_t kMaxPasses = 64;
 
 VkDescriptorSetLayoutBinding binding(std::uint32_t index, VkDescriptorType type, VkShaderStageFlags stages) {
   return {index, type, 1, stages, nullptr};
 }
 
-VkRenderingAttachmentInfo colorAttachment(const vk::Image& image, bool clear) {
+VkRenderingAttachmentInfo colorAttachment(const vk::Image& image, bool clear, VkClearColorValue clearValue = {}) {
   VkRenderingAttachmentInfo info{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
   info.imageView = image.view;
   info.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
   info.loadOp = clear ? VK_ATTACHMENT_LOAD_OP_CLEAR : VK_ATTACHMENT_LOAD_OP_LOAD;
   info.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-  info.clearValue.color = {{0.0f, 0.0f, 0.0f, 0.0f}};
+  info.clearValue.color = clearValue;
   return info;
 }
 
-// The G-buffer's depth, tested but not written (shading, sky, transparent surfaces).
-VkRenderingAttachmentInfo readOnlyDepthAttachment(const vk::Image& depth) {
+VkRenderingAttachmentInfo depthAttachment(const vk::Image& depth, VkAttachmentLoadOp load, float clearDepth) {
   VkRenderingAttachmentInfo info{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
   info.imageView = depth.view;
-  info.imageLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL;
-  info.loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;
-  info.storeOp = VK_ATTACHMENT_STORE_OP_NONE;
+  info.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
+  info.loadOp = load;
+  info.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+  info.clearValue.depthStencil = {clearDepth, 0};
   return info;
 }
 
@@ -111,34 +104,6 @@ void setScissor(VkCommandBuffer cmd, VkRect2D rect) { vkCmdSetScissor(cmd, 0, 1,
 
 glm::vec4 projectionTerms(const glm::mat4& projection) {
   return {projection[0][0], projection[1][1], projection[2][0], projection[2][1]};
-}
-
-// The screen rectangle a point light's sphere can touch, so the light costs only those pixels
-// (nullopt: entirely off screen or behind the camera).
-std::optional<VkRect2D> lightScissor(const PointLight& light, const glm::mat4& viewProjection, std::uint32_t width,
-                                     std::uint32_t height) {
-  glm::vec2 lo(1e30f), hi(-1e30f);
-  int behind = 0;
-  for (int corner = 0; corner < 8; ++corner) {
-    glm::vec3 offset((corner & 1) ? light.radius : -light.radius, (corner & 2) ? light.radius : -light.radius,
-                     (corner & 4) ? light.radius : -light.radius);
-    glm::vec4 clip = viewProjection * glm::vec4(light.position + offset, 1.0f);
-    if (clip.w <= 1e-4f) {
-      ++behind;
-      continue;
-    }
-    glm::vec2 ndc = glm::vec2(clip) / clip.w;
-    lo = glm::min(lo, ndc);
-    hi = glm::max(hi, ndc);
-  }
-  if (behind == 8) return std::nullopt;
-  if (behind > 0) return VkRect2D{{0, 0}, {width, height}};  // the sphere straddles the eye plane
-  lo = glm::clamp((lo * 0.5f + 0.5f) * glm::vec2(width, height), glm::vec2(0.0f), glm::vec2(width, height));
-  hi = glm::clamp((hi * 0.5f + 0.5f) * glm::vec2(width, height), glm::vec2(0.0f), glm::vec2(width, height));
-  auto x0 = std::uint32_t(std::floor(lo.x)), y0 = std::uint32_t(std::floor(lo.y));
-  auto x1 = std::uint32_t(std::ceil(hi.x)), y1 = std::uint32_t(std::ceil(hi.y));
-  if (x1 <= x0 || y1 <= y0) return std::nullopt;
-  return VkRect2D{{int32_t(x0), int32_t(y0)}, {x1 - x0, y1 - y0}};
 }
 
 struct MeshRange {
@@ -211,17 +176,21 @@ struct DeferredRenderer::Impl {
   RendererOptions options;
 
   // Render targets (render size), then the resolve's outputs (output size).
-  vk::Image depth, normalGlossiness, diffuseLight, specularLight, hdr, ambientOcclusion;
+  vk::Image depth, normalGlossiness, materialTarget, hdr;
   vk::Image transparentCoverage;  // written by the transparent pass only (scenes with transparent objects)
+  vk::Image ambientDepth;         // masked renders with ambient occlusion: depth of every pixel (made at first use)
   vk::Image display, linearDepth, resolvedHdr;
   vk::Unique<VkSampler> nearestSampler;
   vk::Unique<VkSampler> textureSampler;  // bilinear, repeating, no mipmaps
   vk::Image whiteTexture, flatNormalTexture;  // what untextured objects sample: albedo x 1, normal (0, 0, 1)
 
-  // Passes: layouts and pipelines.
-  vk::PipelineLayout geometryLayout, lightLayout, shadingLayout, skyLayout, resolveLayout, ssaoLayout;
-  vk::Unique<VkPipeline> gbufferPipeline, lightPipeline, shadingPipeline, transparentPipeline, skyPipeline, resolvePipeline,
-      ssaoPipeline;
+  // Passes: layouts and pipelines (the compute passes own theirs: detail::AmbientOcclusion, TiledLighting,
+  // TileLists, ShadowMaps).
+  vk::PipelineLayout geometryLayout, maskFillLayout, resolveLayout;
+  // G-buffer: one pipeline per texture combination, index gbufferVariant(material).
+  std::array<vk::Unique<VkPipeline>, 4> gbufferPipelines;
+  vk::Unique<VkPipeline> depthOnlyPipeline, maskFillPipeline, transparentPipeline;
+  std::unique_ptr<detail::TilePipelines> resolvePipelines;
 
   // Scene data.
   Scene scene;
@@ -232,7 +201,10 @@ struct DeferredRenderer::Impl {
   std::vector<std::uint32_t> transparentOrder;   // transparent objects, sorted back to front per frame
 
   vk::TimestampQueries timestamps;
-  std::unique_ptr<detail::ShadowMaps> shadows;  // sun cascades + mask, point/spot shadow maps (shadow_maps.cpp)
+  std::unique_ptr<detail::ShadowMaps> shadows;  // sun cascades, point/spot shadow maps (shadow_maps.cpp)
+  std::unique_ptr<detail::AmbientOcclusion> ambientOcclusion;
+  std::unique_ptr<detail::TiledLighting> lighting;
+  std::unique_ptr<detail::TileLists> tiles;
 
   Impl(vk::Context& ctx, std::uint32_t w, std::uint32_t h, RendererOptions rendererOptions)
       : context(ctx),
@@ -252,20 +224,21 @@ struct DeferredRenderer::Impl {
     createTargets();
     createPipelines();
     shadows = std::make_unique<detail::ShadowMaps>(context, width, height);
+    ambientOcclusion = std::make_unique<detail::AmbientOcclusion>(context, width, height, options.countShadedPixels);
+    lighting = std::make_unique<detail::TiledLighting>(context, options.countShadedPixels);
+    tiles = std::make_unique<detail::TileLists>(context, width, height);
     frameBuffer = vk::createBuffer(context, sizeof(gpu::FrameConstants), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
                                    vk::MemoryLocation::HostVisible);
   }
 
   void createTargets() {
-    const VkImageUsageFlags attachmentSampled = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+    const VkImageUsageFlags attachmentSampled =
+        VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
     depth = vk::createImage(context, kDepthFormat, width, height,
-                            VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | attachmentSampled);
-    normalGlossiness = vk::createImage(context, kNormalFormat, width, height,
-                                       VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | attachmentSampled);
-    diffuseLight = vk::createImage(context, kLightFormat, width, height,
-                                   VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | attachmentSampled);
-    specularLight = vk::createImage(context, kLightFormat, width, height,
-                                    VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | attachmentSampled);
+                            VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
+                                VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
+    normalGlossiness = vk::createImage(context, kNormalFormat, width, height, attachmentSampled);
+    materialTarget = vk::createImage(context, kMaterialFormat, width, height, attachmentSampled);
     hdr = vk::createImage(context, kHdrFormat, width, height,
                           VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
     const VkImageUsageFlags computeOutput = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
@@ -274,9 +247,6 @@ struct DeferredRenderer::Impl {
     resolvedHdr = vk::createImage(context, kHdrFormat, outputWidth, outputHeight, computeOutput);
     transparentCoverage = vk::createImage(context, kCoverageFormat, width, height,
                                           VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
-    ambientOcclusion = vk::createImage(context, kAmbientOcclusionFormat, width, height,
-                                       VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
-                                           VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
 
     VkSamplerCreateInfo samplerInfo{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
     samplerInfo.magFilter = samplerInfo.minFilter = VK_FILTER_NEAREST;
@@ -313,24 +283,13 @@ struct DeferredRenderer::Impl {
     const VkDescriptorSetLayoutBinding geometryBindings[] = {binding(0, ubo, graphics), binding(1, ssbo, graphics),
                                                              binding(2, sampled, fragment), binding(3, sampled, fragment)};
     geometryLayout = vk::createPushDescriptorLayout(context, geometryBindings, sizeof(std::uint32_t), graphics);
-    const VkDescriptorSetLayoutBinding shadingBindings[] = {binding(0, ubo, graphics),      binding(1, ssbo, graphics),
-                                                            binding(2, sampled, fragment), binding(3, sampled, fragment),
-                                                            binding(4, sampled, fragment), binding(5, sampled, fragment)};
-    shadingLayout = vk::createPushDescriptorLayout(context, shadingBindings, sizeof(std::uint32_t), graphics);
-    const VkDescriptorSetLayoutBinding lightBindings[] = {binding(0, ubo, fragment),     binding(1, sampled, fragment),
-                                                          binding(2, sampled, fragment), binding(3, sampled, fragment),
-                                                          binding(4, sampled, fragment), binding(5, sampled, fragment),
-                                                          binding(6, ubo, fragment)};
-    lightLayout = vk::createPushDescriptorLayout(context, lightBindings, sizeof(gpu::LightConstants), fragment);
-    const VkDescriptorSetLayoutBinding skyBindings[] = {binding(0, ubo, fragment)};
-    skyLayout = vk::createPushDescriptorLayout(context, skyBindings, 0, 0);
-    const VkDescriptorSetLayoutBinding resolveBindings[] = {binding(0, ubo, compute),     binding(1, storage, compute),
-                                                            binding(2, storage, compute), binding(3, storage, compute),
-                                                            binding(4, sampled, compute), binding(5, storage, compute)};
+    const VkDescriptorSetLayoutBinding maskFillBindings[] = {binding(0, ubo, fragment), binding(1, storage, fragment)};
+    maskFillLayout = vk::createPushDescriptorLayout(context, maskFillBindings, 0, 0);
+    const VkDescriptorSetLayoutBinding resolveBindings[] = {
+        binding(0, ubo, compute),     binding(1, storage, compute), binding(2, storage, compute),
+        binding(3, storage, compute), binding(4, sampled, compute), binding(5, storage, compute),
+        binding(6, ssbo, compute),    binding(7, storage, compute)};
     resolveLayout = vk::createPushDescriptorLayout(context, resolveBindings, sizeof(gpu::ResolveConstants), compute);
-    const VkDescriptorSetLayoutBinding ssaoBindings[] = {binding(0, ubo, compute), binding(1, sampled, compute),
-                                                         binding(2, sampled, compute), binding(3, storage, compute)};
-    ssaoLayout = vk::createPushDescriptorLayout(context, ssaoBindings, 0, 0);
 
     vk::GraphicsPipelineDesc geometry;
     geometry.vertexSpirv = spirv_geometry_vert;
@@ -346,16 +305,31 @@ struct DeferredRenderer::Impl {
 
     vk::GraphicsPipelineDesc gbuffer = geometry;
     gbuffer.fragmentSpirv = spirv_gbuffer_frag;
-    gbuffer.colorFormats = {kNormalFormat};
+    gbuffer.colorFormats = {kNormalFormat, kMaterialFormat};
     gbuffer.depthWrite = true;
     gbuffer.depthCompare = nearer();
-    gbufferPipeline = vk::createGraphicsPipeline(context, geometryLayout.layout, gbuffer);
+    const VkSpecializationMapEntry textureSwitches[] = {{0, 0, sizeof(VkBool32)}, {1, sizeof(VkBool32), sizeof(VkBool32)}};
+    for (std::uint32_t variant = 0; variant < gbufferPipelines.size(); ++variant) {
+      const VkBool32 values[] = {(variant & 1) != 0 ? VK_TRUE : VK_FALSE, (variant & 2) != 0 ? VK_TRUE : VK_FALSE};
+      const VkSpecializationInfo specialization{2, textureSwitches, sizeof(values), values};
+      gbuffer.fragmentSpecialization = &specialization;
+      gbufferPipelines[variant] = vk::createGraphicsPipeline(context, geometryLayout.layout, gbuffer);
+    }
 
-    vk::GraphicsPipelineDesc shading = geometry;
-    shading.fragmentSpirv = spirv_shading_frag;
-    shading.colorFormats = {kHdrFormat};
-    shading.depthCompare = VK_COMPARE_OP_EQUAL;  // only the surface the G-buffer kept
-    shadingPipeline = vk::createGraphicsPipeline(context, shadingLayout.layout, shading);
+    vk::GraphicsPipelineDesc depthOnly = geometry;  // the same vertex module: the same depth as the G-buffer
+    depthOnly.fragmentSpirv = spirv_shadow_depth_frag;
+    depthOnly.depthWrite = true;
+    depthOnly.depthCompare = nearer();
+    depthOnlyPipeline = vk::createGraphicsPipeline(context, geometryLayout.layout, depthOnly);
+
+    vk::GraphicsPipelineDesc maskFill;
+    maskFill.vertexSpirv = spirv_fullscreen_vert;
+    maskFill.fragmentSpirv = spirv_mask_fill_frag;
+    maskFill.depthFormat = kDepthFormat;
+    maskFill.depthTest = true;
+    maskFill.depthWrite = true;
+    maskFill.depthCompare = VK_COMPARE_OP_ALWAYS;
+    maskFillPipeline = vk::createGraphicsPipeline(context, maskFillLayout.layout, maskFill);
 
     vk::GraphicsPipelineDesc transparent = geometry;
     transparent.fragmentSpirv = spirv_transparent_frag;
@@ -365,30 +339,14 @@ struct DeferredRenderer::Impl {
     transparent.blend = vk::GraphicsPipelineDesc::Blend::Alpha;
     transparentPipeline = vk::createGraphicsPipeline(context, geometryLayout.layout, transparent);
 
-    vk::GraphicsPipelineDesc light;
-    light.vertexSpirv = spirv_fullscreen_vert;
-    light.fragmentSpirv = spirv_light_frag;
-    light.colorFormats = {kLightFormat, kLightFormat};
-    light.blend = vk::GraphicsPipelineDesc::Blend::Additive;
-    lightPipeline = vk::createGraphicsPipeline(context, lightLayout.layout, light);
-
-    vk::GraphicsPipelineDesc sky;
-    sky.vertexSpirv = spirv_sky_vert;
-    sky.fragmentSpirv = spirv_sky_frag;
-    sky.colorFormats = {kHdrFormat};
-    sky.depthFormat = kDepthFormat;
-    sky.depthTest = true;
-    // Reaches only pixels still at the cleared far plane (the sky's viewport puts it there: drawSky).
-    sky.depthCompare = options.reversedZ ? VK_COMPARE_OP_GREATER_OR_EQUAL : VK_COMPARE_OP_LESS_OR_EQUAL;
-    skyPipeline = vk::createGraphicsPipeline(context, skyLayout.layout, sky);
-
-    resolvePipeline = vk::createComputePipeline(context, resolveLayout.layout, spirv_resolve_comp);
-    ssaoPipeline = vk::createComputePipeline(context, ssaoLayout.layout, spirv_ssao_comp);
+    resolvePipelines = std::make_unique<detail::TilePipelines>(context, resolveLayout.layout, spirv_resolve_comp,
+                                                                options.countShadedPixels);
   }
 
   // Reversed-Z: nearer surfaces have greater device depth.
   VkCompareOp nearer() const { return options.reversedZ ? VK_COMPARE_OP_GREATER : VK_COMPARE_OP_LESS; }
   float clearedDepth() const { return options.reversedZ ? 0.0f : 1.0f; }  // the far plane: sky
+  float nearestDepth() const { return options.reversedZ ? 1.0f : 0.0f; }  // nothing passes a depth test here
 
   // A layer's viewport depth range (Listing 4.3): first-person in [0, split], the world in [split, 1]; reversed-Z
   // mirrors both (the world in [0, 1 - split], first-person in [1 - split, 1]).
@@ -420,8 +378,9 @@ struct DeferredRenderer::Impl {
       validateTextures(newScene, object);
     }
     if (vertices.empty() || indices.empty()) throw std::invalid_argument("scene '" + newScene.name + "' has no geometry");
-    if (newScene.pointLights.size() + newScene.spotLights.size() > 256)
-      throw std::invalid_argument("scene has more than 256 point and spot lights");
+    if (newScene.objects.size() >= S3D_NO_OBJECT)  // the G-buffer holds 16-bit object indices (packMaterial)
+      throw std::invalid_argument("scene '" + newScene.name + "' has " + std::to_string(newScene.objects.size()) +
+                                  " objects, more than " + std::to_string(S3D_NO_OBJECT - 1));
     if (newScene.ambientOcclusion && !(newScene.ambientOcclusionRadius > 0.0f && newScene.ambientOcclusionRadius < 1e4f))
       throw std::invalid_argument("scene '" + newScene.name + "': ambient-occlusion radius must be in (0, 1e4) world units");
 
@@ -459,6 +418,7 @@ struct DeferredRenderer::Impl {
     std::vector<detail::ShadowMeshRange> shadowRanges;
     for (const MeshRange& range : meshRanges) shadowRanges.push_back({range.firstIndex, range.indexCount, range.vertexOffset});
     shadows->setScene(newScene, vertexBuffer.buffer, indexBuffer.buffer, std::move(shadowRanges));
+    lighting->setScene(newScene);
     scene = newScene;
   }
 
@@ -493,7 +453,7 @@ struct DeferredRenderer::Impl {
     check(object.material.normalTexture, Texture::Encoding::Linear, "normal", true);
   }
 
-  void writeFrameConstants(const ViewMatrices& view) {
+  void writeFrameConstants(const ViewMatrices& view, const ShadeMask& mask) {
     gpu::FrameConstants frame{};
     gpu::LayerConstants& world = frame.layers[S3D_LAYER_WORLD];
     // Reversed-Z swaps near and far in both layers' projections (the caller's matrices stay standard).
@@ -524,7 +484,11 @@ struct DeferredRenderer::Impl {
     frame.skyGround = glm::vec4(scene.sky.groundColor, 0.0f);
     frame.screen = glm::vec4(float(width), float(height), 1.0f / float(width), 1.0f / float(height));
     frame.exposure = glm::vec4(scene.exposure, 0.0f, 0.0f, 0.0f);
-    frame.ambientOcclusion = glm::vec4(scene.ambientOcclusionRadius, 0.0f, 0.0f, 0.0f);
+    frame.ambientOcclusion = glm::vec4(scene.ambientOcclusionRadius, float(ambientOcclusion->width()),
+                                       float(ambientOcclusion->height()), 0.0f);
+    frame.worldViewDepth = -glm::vec4(view.worldView[0][2], view.worldView[1][2], view.worldView[2][2], view.worldView[3][2]);
+    frame.tiles = glm::uvec4(tiles->tilesX(), tiles->tilesY(), mask.threshold, 0u);
+    frame.options = glm::uvec4(supersample, scene.ambientOcclusion ? 1u : 0u, 0u, 0u);
     std::memcpy(frameBuffer.mapped, &frame, sizeof(frame));
 
     auto* objects = static_cast<gpu::ObjectConstants*>(objectBuffer.mapped);
@@ -542,15 +506,15 @@ struct DeferredRenderer::Impl {
     }
   }
 
-  // The frame and object buffers, the pass's own descriptors (`extra`) and, at textureBinding and the one after
-  // it, the object's base-color and normal textures (the 1x1 defaults when it has none).
-  void pushGeometryDescriptors(VkCommandBuffer cmd, VkPipelineLayout layout, std::span<VkWriteDescriptorSet> extra,
-                               const Material& material, std::uint32_t textureBinding) {
+  // The frame and object buffers and, at kGeometryTextureBinding and the one after it, the object's base-color
+  // and normal textures (the 1x1 defaults when it has none).
+  void pushGeometryDescriptors(VkCommandBuffer cmd, const Material& material) {
+    const VkPipelineLayout layout = geometryLayout.layout;
+    const std::uint32_t textureBinding = kGeometryTextureBinding;
     VkDescriptorBufferInfo frameInfo{frameBuffer.buffer, 0, VK_WHOLE_SIZE};
     VkDescriptorBufferInfo objectInfo{objectBuffer.buffer, 0, VK_WHOLE_SIZE};
     std::vector<VkWriteDescriptorSet> writes = {vk::uniformBufferWrite(0, &frameInfo), vk::uniformBufferWrite(1, &objectInfo)};
     writes[1].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-    writes.insert(writes.end(), extra.begin(), extra.end());
     auto view = [this](std::int32_t index, const vk::Image& fallback) -> VkImageView {
       return index == kNoTexture ? fallback.view : textures[std::size_t(index)].view;
     };
@@ -565,208 +529,124 @@ struct DeferredRenderer::Impl {
     context.cmdPushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 0, std::uint32_t(writes.size()), writes.data());
   }
 
-  void drawObjects(VkCommandBuffer cmd, VkPipelineLayout layout, const std::vector<std::uint32_t>& objects,
-                   std::span<VkWriteDescriptorSet> extra, std::uint32_t textureBinding) {
+  // The G-buffer pipeline of a material: bit 0 a base-color texture, bit 1 a normal map.
+  static std::size_t gbufferVariant(const Material& material) {
+    return (material.baseColorTexture != kNoTexture ? 1u : 0u) | (material.normalTexture != kNoTexture ? 2u : 0u);
+  }
+
+  // Draws the objects with the bound pipeline, or with each object's G-buffer variant (`gbuffer`).
+  void drawObjects(VkCommandBuffer cmd, const std::vector<std::uint32_t>& objects, bool gbuffer = false) {
     const VkDeviceSize offsets[] = {0, 0};
     const VkBuffer streams[] = {vertexBuffer.buffer, surfaceBuffer.buffer};
     vkCmdBindVertexBuffers(cmd, 0, 2, streams, offsets);
     vkCmdBindIndexBuffer(cmd, indexBuffer.buffer, 0, VK_INDEX_TYPE_UINT32);
     std::optional<Layer> currentLayer;
+    std::optional<std::size_t> currentVariant;
     for (std::uint32_t objectIndex : objects) {
       const Object& object = scene.objects[objectIndex];
+      if (gbuffer && currentVariant != gbufferVariant(object.material)) {
+        currentVariant = gbufferVariant(object.material);
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, gbufferPipelines[*currentVariant]);
+      }
       if (currentLayer != object.layer) {
         setLayerViewport(cmd, object.layer);
         currentLayer = object.layer;
       }
-      pushGeometryDescriptors(cmd, layout, extra, object.material, textureBinding);  // per object: its textures
-      vkCmdPushConstants(cmd, layout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
+      pushGeometryDescriptors(cmd, object.material);  // per object: its textures
+      vkCmdPushConstants(cmd, geometryLayout.layout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
                          sizeof(std::uint32_t), &objectIndex);
       const MeshRange& range = meshRanges[object.mesh];
       vkCmdDrawIndexed(cmd, range.indexCount, 1, range.firstIndex, range.vertexOffset, 0);
     }
   }
 
-  void recordGBuffer(VkCommandBuffer cmd) {
+  // The G-buffer: normal/glossiness and material targets over cleared depth. A masked render first gives every
+  // pixel outside the mask the nearest depth, so the geometry's fragments there fail the depth test unshaded.
+  void recordGBuffer(VkCommandBuffer cmd, const ShadeMask& mask) {
     vk::transition(cmd, depth, vk::kUndefined, vk::kDepthAttachment);
-    vk::transition(cmd, normalGlossiness, vk::kUndefined, vk::kColorAttachment);
-    VkRenderingAttachmentInfo color = colorAttachment(normalGlossiness, true);
-    VkRenderingAttachmentInfo depthAttachment{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-    depthAttachment.imageView = depth.view;
-    depthAttachment.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
-    depthAttachment.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-    depthAttachment.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-    depthAttachment.clearValue.depthStencil = {clearedDepth(), 0};
-    beginRendering(cmd, width, height, std::span(&color, 1), &depthAttachment);
-    setScissor(cmd, {{0, 0}, {width, height}});
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, gbufferPipeline);
-    drawObjects(cmd, geometryLayout.layout, drawOrder, {}, kGeometryTextureBinding);
-    vkCmdEndRendering(cmd);
-    recordGBufferReadable(cmd);  // SSAO, the shadow mask and the light pass read depth and normals
-  }
-
-  void pushLightDescriptors(VkCommandBuffer cmd) {
-    VkDescriptorBufferInfo frameInfo{frameBuffer.buffer, 0, VK_WHOLE_SIZE};
-    VkDescriptorImageInfo depthInfo{nearestSampler, depth.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
-    VkDescriptorImageInfo normalInfo{nearestSampler, normalGlossiness.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
-    VkDescriptorImageInfo occlusionInfo{nearestSampler, ambientOcclusion.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
-    VkDescriptorImageInfo maskInfo = shadows->maskDescriptor();
-    VkDescriptorImageInfo localShadowInfo = shadows->localAtlasDescriptor();
-    VkDescriptorBufferInfo shadowInfo = shadows->constantsDescriptor();
-    VkWriteDescriptorSet writes[] = {vk::uniformBufferWrite(0, &frameInfo),     vk::sampledImageWrite(1, &depthInfo),
-                                     vk::sampledImageWrite(2, &normalInfo),     vk::sampledImageWrite(3, &occlusionInfo),
-                                     vk::sampledImageWrite(4, &maskInfo),       vk::sampledImageWrite(5, &localShadowInfo),
-                                     vk::uniformBufferWrite(6, &shadowInfo)};
-    for (int i = 1; i <= 5; ++i) writes[i].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-    context.cmdPushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, lightLayout.layout, 0, 7, writes);
-  }
-
-  // Starts a light-accumulation render pass instance over the diffuse and specular light buffers.
-  void beginLightAccumulation(VkCommandBuffer cmd, bool clear) {
-    VkRenderingAttachmentInfo colors[] = {colorAttachment(diffuseLight, clear), colorAttachment(specularLight, clear)};
-    beginRendering(cmd, width, height, colors, nullptr);
-    setViewport(cmd, width, height, 0.0f, 1.0f);
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, lightPipeline);
-    pushLightDescriptors(cmd);
-  }
-
-  // After the G-buffer: depth and normals become readable by the fragment and compute passes that follow.
-  void recordGBufferReadable(VkCommandBuffer cmd) {
-    vk::transition(cmd, depth, vk::kDepthAttachment, kDepthSampled);
-    vk::transition(cmd, normalGlossiness, vk::kColorAttachment, kNormalSampled);
-  }
-
-  // SSAO into the ambient-occlusion image (left readable by the light pass).
-  void recordAmbientOcclusion(VkCommandBuffer cmd) {
-    vk::transition(cmd, ambientOcclusion, vk::kUndefined, vk::kComputeWrite);
-    VkDescriptorBufferInfo frameInfo{frameBuffer.buffer, 0, VK_WHOLE_SIZE};
-    VkDescriptorImageInfo depthInfo{nearestSampler, depth.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
-    VkDescriptorImageInfo normalInfo{nearestSampler, normalGlossiness.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
-    VkDescriptorImageInfo occlusionInfo{VK_NULL_HANDLE, ambientOcclusion.view, VK_IMAGE_LAYOUT_GENERAL};
-    VkWriteDescriptorSet writes[] = {vk::uniformBufferWrite(0, &frameInfo), vk::sampledImageWrite(1, &depthInfo),
-                                     vk::sampledImageWrite(2, &normalInfo), vk::storageImageWrite(3, &occlusionInfo)};
-    writes[1].descriptorType = writes[2].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, ssaoPipeline);
-    context.cmdPushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, ssaoLayout.layout, 0, 4, writes);
-    vkCmdDispatch(cmd, (width + S3D_COMPUTE_GROUP_SIZE - 1) / S3D_COMPUTE_GROUP_SIZE,
-                  (height + S3D_COMPUTE_GROUP_SIZE - 1) / S3D_COMPUTE_GROUP_SIZE, 1);
-    vk::transition(cmd, ambientOcclusion, vk::kComputeWrite, kOcclusionSampled);
-  }
-
-  // Without SSAO the light pass reads an occlusion of 1 everywhere.
-  void recordNoAmbientOcclusion(VkCommandBuffer cmd) {
-    vk::transition(cmd, ambientOcclusion, vk::kUndefined, vk::kTransferDestination);
-    VkClearColorValue one{{1.0f, 1.0f, 1.0f, 1.0f}};
-    VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-    vkCmdClearColorImage(cmd, ambientOcclusion.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &one, 1, &range);
-    vk::transition(cmd, ambientOcclusion, vk::kTransferDestination, kOcclusionSampled);
-  }
-
-  // Hemisphere ambient and the sun: one fullscreen triangle; clears the light buffers.
-  void recordSunAndAmbient(VkCommandBuffer cmd, bool withAmbientOcclusion) {
-    if (!withAmbientOcclusion) recordNoAmbientOcclusion(cmd);
-    shadows->recordReadableForLighting(cmd);
-    vk::transition(cmd, diffuseLight, vk::kUndefined, vk::kColorAttachment);
-    vk::transition(cmd, specularLight, vk::kUndefined, vk::kColorAttachment);
-    beginLightAccumulation(cmd, true);
-    gpu::LightConstants sun{};
-    sun.kind = S3D_LIGHT_AMBIENT_AND_SUN;
-    sun.shadowView = shadows->sunShadowView();
-    setScissor(cmd, {{0, 0}, {width, height}});
-    vkCmdPushConstants(cmd, lightLayout.layout, VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(sun), &sun);
-    vkCmdDraw(cmd, 3, 1, 0, 0);
-    vkCmdEndRendering(cmd);
-  }
-
-  struct VisibleLight {
-    gpu::LightConstants constants;
-    VkRect2D screenRect;
-  };
-
-  // Point and spot lights whose sphere reaches the screen, with the rectangle each can touch (call after the
-  // shadow maps are scheduled: a light uses its shadow map only when one renders this frame).
-  std::vector<VisibleLight> visiblePointLights(const ViewMatrices& view) const {
-    std::vector<VisibleLight> visible;
-    const glm::mat4 viewProjection = view.worldProjection * view.worldView;
-    for (std::size_t i = 0; i < scene.pointLights.size(); ++i) {
-      const PointLight& pointLight = scene.pointLights[i];
-      if (std::optional<VkRect2D> rect = lightScissor(pointLight, viewProjection, width, height)) {
-        gpu::LightConstants constants{};
-        constants.kind = S3D_LIGHT_POINT;
-        constants.positionRadius = glm::vec4(pointLight.position, pointLight.radius);
-        constants.color = glm::vec4(pointLight.color, 0.0f);
-        constants.shadowView = shadows->pointLightShadowView(i);
-        visible.push_back({constants, *rect});
-      }
-    }
-    for (std::size_t i = 0; i < scene.spotLights.size(); ++i) {
-      const SpotLight& spot = scene.spotLights[i];
-      if (std::optional<VkRect2D> rect =
-              lightScissor(PointLight{spot.position, spot.color, spot.radius}, viewProjection, width, height)) {
-        gpu::LightConstants constants{};
-        constants.kind = S3D_LIGHT_SPOT;
-        constants.positionRadius = glm::vec4(spot.position, spot.radius);
-        constants.color = glm::vec4(spot.color, 0.0f);
-        constants.spotDirection = glm::vec4(glm::normalize(spot.direction), 0.0f);
-        constants.spotCone = glm::vec4(std::cos(spot.outerConeRadians), std::cos(spot.innerConeRadians), 0.0f, 0.0f);
-        constants.shadowView = shadows->spotLightShadowView(i);
-        visible.push_back({constants, *rect});
-      }
-    }
-    return visible;
-  }
-
-  // Point lights, each scissored to its screen rectangle so it costs only the pixels it can touch.
-  void recordPointLights(VkCommandBuffer cmd, const std::vector<VisibleLight>& lights) {
-    vk::transition(cmd, diffuseLight, vk::kColorAttachment, vk::kColorAttachment);  // after the sun's writes
-    vk::transition(cmd, specularLight, vk::kColorAttachment, vk::kColorAttachment);
-    beginLightAccumulation(cmd, false);
-    for (const VisibleLight& visible : lights) {
-      setScissor(cmd, visible.screenRect);
-      vkCmdPushConstants(cmd, lightLayout.layout, VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(visible.constants),
-                         &visible.constants);
+    if (mask.image != nullptr) {
+      const VkRenderingAttachmentInfo fillDepth = depthAttachment(depth, VK_ATTACHMENT_LOAD_OP_CLEAR, clearedDepth());
+      beginRendering(cmd, width, height, {}, &fillDepth);
+      setViewport(cmd, width, height, nearestDepth(), nearestDepth());
+      setScissor(cmd, {{0, 0}, {width, height}});
+      vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, maskFillPipeline);
+      VkDescriptorBufferInfo frameInfo{frameBuffer.buffer, 0, VK_WHOLE_SIZE};
+      VkDescriptorImageInfo maskInfo = tiles->maskDescriptor(mask.image);
+      VkWriteDescriptorSet writes[] = {vk::uniformBufferWrite(0, &frameInfo), vk::storageImageWrite(1, &maskInfo)};
+      context.cmdPushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, maskFillLayout.layout, 0, 2, writes);
       vkCmdDraw(cmd, 3, 1, 0, 0);
+      vkCmdEndRendering(cmd);
+      vk::transition(cmd, depth, vk::kDepthAttachment, vk::kDepthAttachment);
     }
-    vkCmdEndRendering(cmd);
-  }
-
-  void recordShading(VkCommandBuffer cmd) {
-    vk::transition(cmd, depth, kDepthSampled, kDepthReadOnlyAttachment);
-    vk::transition(cmd, diffuseLight, vk::kColorAttachment, vk::kFragmentRead);
-    vk::transition(cmd, specularLight, vk::kColorAttachment, vk::kFragmentRead);
-    vk::transition(cmd, hdr, vk::kUndefined, vk::kColorAttachment);
-    VkRenderingAttachmentInfo color = colorAttachment(hdr, true);
-    const VkRenderingAttachmentInfo depthAttachment = readOnlyDepthAttachment(depth);
-    beginRendering(cmd, width, height, std::span(&color, 1), &depthAttachment);
+    vk::transition(cmd, normalGlossiness, vk::kUndefined, vk::kColorAttachment);
+    vk::transition(cmd, materialTarget, vk::kUndefined, vk::kColorAttachment);
+    const VkRenderingAttachmentInfo colors[] = {colorAttachment(normalGlossiness, true),
+                                                colorAttachment(materialTarget, true, {.uint32 = {0, S3D_NO_OBJECT << 16, 0, 0}})};
+    const VkRenderingAttachmentInfo depthInfo = depthAttachment(
+        depth, mask.image != nullptr ? VK_ATTACHMENT_LOAD_OP_LOAD : VK_ATTACHMENT_LOAD_OP_CLEAR, clearedDepth());
+    beginRendering(cmd, width, height, colors, &depthInfo);
     setScissor(cmd, {{0, 0}, {width, height}});
-
-    // The sky triangle sits at z = 1; the viewport maps it onto the cleared far plane (0 with reversed-Z).
-    setViewport(cmd, width, height, 0.0f, clearedDepth());
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, skyPipeline);
-    VkDescriptorBufferInfo frameInfo{frameBuffer.buffer, 0, VK_WHOLE_SIZE};
-    VkWriteDescriptorSet skyWrite = vk::uniformBufferWrite(0, &frameInfo);
-    context.cmdPushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, skyLayout.layout, 0, 1, &skyWrite);
-    vkCmdDraw(cmd, 3, 1, 0, 0);
-
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, shadingPipeline);
-    VkDescriptorImageInfo diffuseInfo{nearestSampler, diffuseLight.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
-    VkDescriptorImageInfo specularInfo{nearestSampler, specularLight.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
-    VkWriteDescriptorSet extra[] = {vk::sampledImageWrite(2, &diffuseInfo), vk::sampledImageWrite(3, &specularInfo)};
-    extra[0].descriptorType = extra[1].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-    drawObjects(cmd, shadingLayout.layout, drawOrder, extra, kShadingTextureBinding);
+    drawObjects(cmd, drawOrder, true);
     vkCmdEndRendering(cmd);
+    // Ambient occlusion, lighting, the resolve and the counting pass read depth, normals and material.
+    vk::transition(cmd, depth, vk::kDepthAttachment, kComputeSampled);
+    vk::transition(cmd, normalGlossiness, vk::kColorAttachment, kComputeSampled);
+    vk::transition(cmd, materialTarget, vk::kColorAttachment, kComputeSampled);
   }
 
-  // Transparent surfaces over the shaded image, back to front, depth-tested against the opaque depth.
+  // Masked renders with ambient occlusion: every pixel's depth (no fragment work), so the occlusion's samples
+  // outside the mask see what an unmasked render's do.
+  void recordAmbientDepth(VkCommandBuffer cmd) {
+    if (ambientDepth.width == 0)  // first use; kept for later frames
+      ambientDepth = vk::createImage(context, kDepthFormat, width, height,
+                                     VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT);
+    vk::transition(cmd, ambientDepth, vk::kUndefined, vk::kDepthAttachment);
+    const VkRenderingAttachmentInfo depthInfo = depthAttachment(ambientDepth, VK_ATTACHMENT_LOAD_OP_CLEAR, clearedDepth());
+    beginRendering(cmd, width, height, {}, &depthInfo);
+    setScissor(cmd, {{0, 0}, {width, height}});
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, depthOnlyPipeline);
+    drawObjects(cmd, drawOrder);
+    vkCmdEndRendering(cmd);
+    vk::transition(cmd, ambientDepth, vk::kDepthAttachment, kComputeSampled);
+  }
+
+  // No transparent pass and no supersampling: the lighting pass writes the resolve's outputs itself.
+  bool resolveInLighting() const { return transparentOrder.empty() && supersample == 1; }
+
+  void recordLighting(VkCommandBuffer cmd, const ShadeMask& mask) {
+    shadows->recordReadableForLighting(cmd);
+    if (!scene.ambientOcclusion) ambientOcclusion->recordUnused(cmd);
+    const detail::TiledLighting::Inputs inputs{depth,
+                                               normalGlossiness,
+                                               materialTarget,
+                                               ambientOcclusion->result(),
+                                               frameBuffer.buffer,
+                                               objectBuffer.buffer,
+                                               tiles->buffer(),
+                                               tiles->maskDescriptor(mask.image),
+                                               mask.image != nullptr,
+                                               tiles->tilesX(),
+                                               tiles->tilesY()};
+    lighting->record(cmd, inputs, *shadows, {hdr, display, resolvedHdr, linearDepth, resolveInLighting()});
+  }
+
+  // Transparent surfaces over the lit image, back to front, depth-tested against the opaque depth (in a masked
+  // render the depth fill hides them outside the mask too).
   void recordTransparent(VkCommandBuffer cmd, const std::vector<std::uint32_t>& backToFront) {
-    vk::transition(cmd, hdr, vk::kColorAttachment, vk::kColorAttachment);  // after the shading pass's writes
+    vk::transition(cmd, hdr, vk::kComputeWrite, vk::kColorAttachment);
+    vk::transition(cmd, depth, kComputeSampled, kDepthReadOnlyAttachment);
     vk::transition(cmd, transparentCoverage, vk::kUndefined, vk::kColorAttachment);
-    VkRenderingAttachmentInfo colors[] = {colorAttachment(hdr, false), colorAttachment(transparentCoverage, true)};
-    const VkRenderingAttachmentInfo depthAttachment = readOnlyDepthAttachment(depth);
-    beginRendering(cmd, width, height, colors, &depthAttachment);
+    const VkRenderingAttachmentInfo colors[] = {colorAttachment(hdr, false), colorAttachment(transparentCoverage, true)};
+    VkRenderingAttachmentInfo depthInfo = depthAttachment(depth, VK_ATTACHMENT_LOAD_OP_LOAD, 0.0f);
+    depthInfo.imageLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL;
+    depthInfo.storeOp = VK_ATTACHMENT_STORE_OP_NONE;
+    beginRendering(cmd, width, height, colors, &depthInfo);
     setScissor(cmd, {{0, 0}, {width, height}});
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, transparentPipeline);
-    drawObjects(cmd, geometryLayout.layout, backToFront, {}, kGeometryTextureBinding);
+    drawObjects(cmd, backToFront);
     vkCmdEndRendering(cmd);
+    vk::transition(cmd, hdr, vk::kColorAttachment, vk::kComputeRead);
+    vk::transition(cmd, depth, kDepthReadOnlyAttachment, kComputeSampled);
   }
 
   // Transparent objects sorted by the view depth of their origin, farthest first.
@@ -780,64 +660,109 @@ struct DeferredRenderer::Impl {
     return sorted;
   }
 
-  void recordResolve(VkCommandBuffer cmd) {
-    vk::transition(cmd, hdr, vk::kColorAttachment, vk::kComputeRead);
-    vk::transition(cmd, depth, kDepthReadOnlyAttachment, kComputeSampled);
+  void recordResolve(VkCommandBuffer cmd, const ShadeMask& mask, bool afterTransparent) {
+    if (!afterTransparent) vk::transition(cmd, hdr, vk::kComputeWrite, vk::kComputeRead);
     vk::transition(cmd, display, vk::kUndefined, vk::kComputeWrite);
     vk::transition(cmd, linearDepth, vk::kUndefined, vk::kComputeWrite);
     vk::transition(cmd, resolvedHdr, vk::kUndefined, vk::kComputeWrite);
-    const std::uint32_t groupsX = (outputWidth + S3D_COMPUTE_GROUP_SIZE - 1) / S3D_COMPUTE_GROUP_SIZE;
-    const std::uint32_t groupsY = (outputHeight + S3D_COMPUTE_GROUP_SIZE - 1) / S3D_COMPUTE_GROUP_SIZE;
     const gpu::ResolveConstants resolve{int(supersample), int(outputWidth), int(outputHeight), 0};
     VkDescriptorBufferInfo frameInfo{frameBuffer.buffer, 0, VK_WHOLE_SIZE};
-
     VkDescriptorImageInfo hdrInfo{VK_NULL_HANDLE, hdr.view, VK_IMAGE_LAYOUT_GENERAL};
     VkDescriptorImageInfo displayInfo{VK_NULL_HANDLE, display.view, VK_IMAGE_LAYOUT_GENERAL};
     VkDescriptorImageInfo resolvedHdrInfo{VK_NULL_HANDLE, resolvedHdr.view, VK_IMAGE_LAYOUT_GENERAL};
     VkDescriptorImageInfo depthInfo{nearestSampler, depth.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
     VkDescriptorImageInfo linearInfo{VK_NULL_HANDLE, linearDepth.view, VK_IMAGE_LAYOUT_GENERAL};
-    VkWriteDescriptorSet writes[] = {vk::uniformBufferWrite(0, &frameInfo),       vk::storageImageWrite(1, &hdrInfo),
-                                     vk::storageImageWrite(2, &displayInfo),      vk::storageImageWrite(3, &resolvedHdrInfo),
-                                     vk::sampledImageWrite(4, &depthInfo),        vk::storageImageWrite(5, &linearInfo)};
+    VkDescriptorBufferInfo tileInfo = tiles->descriptor();
+    VkDescriptorImageInfo maskInfo = tiles->maskDescriptor(mask.image);
+    VkWriteDescriptorSet writes[] = {vk::uniformBufferWrite(0, &frameInfo),  vk::storageImageWrite(1, &hdrInfo),
+                                     vk::storageImageWrite(2, &displayInfo), vk::storageImageWrite(3, &resolvedHdrInfo),
+                                     vk::sampledImageWrite(4, &depthInfo),   vk::storageImageWrite(5, &linearInfo),
+                                     vk::uniformBufferWrite(6, &tileInfo),   vk::storageImageWrite(7, &maskInfo)};
     writes[4].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, resolvePipeline);
-    context.cmdPushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, resolveLayout.layout, 0, 6, writes);
+    writes[6].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, resolvePipelines->get(mask.image != nullptr));
+    context.cmdPushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, resolveLayout.layout, 0, 8, writes);
     vkCmdPushConstants(cmd, resolveLayout.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(resolve), &resolve);
-    vkCmdDispatch(cmd, groupsX, groupsY, 1);
+    // Masked: one workgroup per listed render tile (its output pixels); else one per 16x16 output pixels.
+    if (mask.image != nullptr)
+      vkCmdDispatchIndirect(cmd, tiles->buffer(), detail::TileLists::kMaskedTilesDispatch);
+    else
+      vkCmdDispatch(cmd, (outputWidth + S3D_TILE_SIZE - 1) / S3D_TILE_SIZE, (outputHeight + S3D_TILE_SIZE - 1) / S3D_TILE_SIZE, 1);
   }
 
   struct ScheduledPass {
     std::string name;
     std::function<void(VkCommandBuffer)> record;
+    int counterSlot = -1;  // S3D_COUNT_*: the pass's shaded-pixel counter
   };
 
   // The passes this frame needs, in order: a pass that serves nothing in the scene does not run.
-  std::vector<ScheduledPass> schedulePasses(const ViewMatrices& view) {
+  std::vector<ScheduledPass> schedulePasses(const ViewMatrices& view, const ShadeMask& mask) {
     std::vector<ScheduledPass> passes;
-    passes.push_back({"gbuffer", [this](VkCommandBuffer cmd) { recordGBuffer(cmd); }});
+    const bool masked = mask.image != nullptr;
     const bool withAmbientOcclusion = scene.ambientOcclusion;
-    if (withAmbientOcclusion) passes.push_back({"ssao", [this](VkCommandBuffer cmd) { recordAmbientOcclusion(cmd); }});
-    for (detail::ShadowPass& shadowPass : shadows->schedule(view, depth, normalGlossiness, frameBuffer.buffer))
+    if (masked) {
+      passes.push_back({"mask-tiles", [this, mask](VkCommandBuffer cmd) {
+                          tiles->recordReset(cmd, mask.image);
+                          tiles->recordBuild(cmd, frameBuffer.buffer, *mask.image);
+                        }});
+      if (withAmbientOcclusion) passes.push_back({"ssao-depth", [this](VkCommandBuffer cmd) { recordAmbientDepth(cmd); }});
+    }
+    passes.push_back({"gbuffer",
+                      [this, mask](VkCommandBuffer cmd) {
+                        if (mask.image == nullptr) tiles->recordReset(cmd, nullptr);
+                        recordGBuffer(cmd, mask);
+                      },
+                      S3D_COUNT_GBUFFER});
+    if (options.countShadedPixels)
+      passes.push_back({"gbuffer-count", [this](VkCommandBuffer cmd) {
+                          tiles->recordCountGBuffer(cmd, frameBuffer.buffer, materialTarget, nearestSampler);
+                        }});
+    if (withAmbientOcclusion) {
+      const vk::Image& occlusionDepth = masked ? ambientDepth : depth;
+      passes.push_back({"ssao",
+                        [this, &occlusionDepth, masked](VkCommandBuffer cmd) {
+                          ambientOcclusion->recordOcclusion(cmd, occlusionDepth, frameBuffer.buffer, tiles->buffer(), masked);
+                        },
+                        S3D_COUNT_SSAO});
+      passes.push_back({"ssao-blur",
+                        [this, masked](VkCommandBuffer cmd) {
+                          ambientOcclusion->recordBlur(cmd, frameBuffer.buffer, tiles->buffer(), masked);
+                        },
+                        S3D_COUNT_SSAO_BLUR});
+    }
+    for (detail::ShadowPass& shadowPass : shadows->schedule(view))
       passes.push_back({std::move(shadowPass.name), std::move(shadowPass.record)});
-    passes.push_back({"sun-and-ambient", [this, withAmbientOcclusion](VkCommandBuffer cmd) {
-                        recordSunAndAmbient(cmd, withAmbientOcclusion);
-                      }});
-    std::vector<VisibleLight> lights = visiblePointLights(view);
-    if (!lights.empty())
-      passes.push_back({"point-lights", [this, lights](VkCommandBuffer cmd) { recordPointLights(cmd, lights); }});
-    passes.push_back({"shading", [this](VkCommandBuffer cmd) { recordShading(cmd); }});
-    if (!transparentOrder.empty()) {
+    lighting->prepareFrame(scene, view, *shadows);
+    passes.push_back({"lighting", [this, mask](VkCommandBuffer cmd) { recordLighting(cmd, mask); }, S3D_COUNT_LIGHTING});
+    const bool withTransparent = !transparentOrder.empty();
+    if (withTransparent) {
       std::vector<std::uint32_t> backToFront = transparentBackToFront(view);
       passes.push_back({"transparent", [this, backToFront](VkCommandBuffer cmd) { recordTransparent(cmd, backToFront); }});
     }
-    passes.push_back({"resolve", [this](VkCommandBuffer cmd) { recordResolve(cmd); }});
+    if (!resolveInLighting())
+      passes.push_back({"resolve",
+                        [this, mask, withTransparent](VkCommandBuffer cmd) { recordResolve(cmd, mask, withTransparent); },
+                        S3D_COUNT_RESOLVE});
     return passes;
   }
 
-  FrameTimings render(const ViewMatrices& view) {
+  void validateMask(const ShadeMask& mask) const {
+    if (mask.image == nullptr) return;
+    if (mask.image->format != VK_FORMAT_R32_UINT)
+      throw std::invalid_argument("renderer: the shade mask must be an R32_UINT image");
+    if (mask.image->width != outputWidth || mask.image->height != outputHeight)
+      throw std::invalid_argument("renderer: the shade mask is " + std::to_string(mask.image->width) + "x" +
+                                  std::to_string(mask.image->height) + ", the output " + std::to_string(outputWidth) +
+                                  "x" + std::to_string(outputHeight));
+  }
+
+  FrameTimings render(const ViewMatrices& view, const ShadeMask& mask) {
     if (meshRanges.empty()) throw std::logic_error("DeferredRenderer::render called before setScene");
-    writeFrameConstants(view);
-    const std::vector<ScheduledPass> passes = schedulePasses(view);
+    validateMask(mask);
+    writeFrameConstants(view, mask);
+    const std::vector<ScheduledPass> passes = schedulePasses(view, mask);
+    if (passes.size() > kMaxPasses) throw std::logic_error("renderer: more passes than timestamps");
     constexpr VkPipelineStageFlags2 kAll = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
     context.submitAndWait([&](VkCommandBuffer cmd) {
       timestamps.reset(cmd);
@@ -846,12 +771,17 @@ struct DeferredRenderer::Impl {
         passes[pass].record(cmd);
         timestamps.write(cmd, pass + 1, kAll);
       }
+      if (options.countShadedPixels) tiles->recordCountReadback(cmd);
     });
     FrameTimings timings;
     const auto passCount = std::uint32_t(passes.size());
     timings.totalGpuMs = timestamps.elapsedMs(0, passCount);
+    const std::array<std::uint32_t, S3D_COUNT_SLOTS> counts =
+        options.countShadedPixels ? tiles->readCounts() : std::array<std::uint32_t, S3D_COUNT_SLOTS>{};
     for (std::uint32_t pass = 0; pass < passCount; ++pass) {
-      PassTiming timing{passes[pass].name, timestamps.elapsedMs(pass, pass + 1).value_or(0.0)};
+      PassTiming timing{passes[pass].name, timestamps.elapsedMs(pass, pass + 1).value_or(0.0), std::nullopt};
+      if (options.countShadedPixels && passes[pass].counterSlot >= 0)
+        timing.shadedPixels = counts[std::size_t(passes[pass].counterSlot)];
       timings.passes.push_back(timing);
     }
     return timings;
@@ -864,7 +794,9 @@ DeferredRenderer::DeferredRenderer(vk::Context& context, std::uint32_t width, st
 DeferredRenderer::~DeferredRenderer() = default;
 
 void DeferredRenderer::setScene(const Scene& scene) { impl_->setScene(scene); }
-FrameTimings DeferredRenderer::render(const ViewMatrices& view) { return impl_->render(view); }
+FrameTimings DeferredRenderer::render(const ViewMatrices& view, const ShadeMask& mask) {
+  return impl_->render(view, mask);
+}
 std::uint32_t DeferredRenderer::width() const { return impl_->outputWidth; }
 std::uint32_t DeferredRenderer::height() const { return impl_->outputHeight; }
 std::uint32_t DeferredRenderer::supersample() const { return impl_->supersample; }

@@ -14,14 +14,12 @@
 #include <cstdint>
 #include <s3d_spirv/shadow_depth_frag.h>
 #include <s3d_spirv/shadow_depth_vert.h>
-#include <s3d_spirv/shadow_mask_comp.h>
 // clang-format on
 
 namespace s3d::renderer::detail {
 namespace {
 
 constexpr VkFormat kShadowDepthFormat = VK_FORMAT_D32_SFLOAT;
-constexpr VkFormat kShadowMaskFormat = VK_FORMAT_R16_SFLOAT;
 constexpr std::uint32_t kLocalAtlasColumns = 8;
 // Receiver-side constant bias of the sun lookup (seed 000 4.3.3: "a constant depth bias was used during deferred
 // shadow passes"), in world units along the sunlight.
@@ -31,22 +29,14 @@ constexpr float kSunReceiverBias = 0.02f;
 constexpr float kSunSlopeBias = 2.0f;
 constexpr float kLocalSlopeBias = 1.0f;
 
-constexpr vk::ImageState kShadowSampledByCompute{VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
-                                                 VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                                                 VK_ACCESS_2_SHADER_SAMPLED_READ_BIT};
-constexpr vk::ImageState kSampledByLightPass{VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
-                                             VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
-                                             VK_ACCESS_2_SHADER_SAMPLED_READ_BIT};
+constexpr vk::ImageState kSampledByLighting{VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+                                            VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT};
 
-VkDescriptorSetLayoutBinding binding(std::uint32_t index, VkDescriptorType type, VkShaderStageFlags stages) {
-  return {index, type, 1, stages, nullptr};
-}
-
-vk::Unique<VkSampler> createSampler(const vk::Context& context, bool compare) {
+vk::Unique<VkSampler> createCompareSampler(const vk::Context& context) {
   VkSamplerCreateInfo info{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
-  info.magFilter = info.minFilter = compare ? VK_FILTER_LINEAR : VK_FILTER_NEAREST;
+  info.magFilter = info.minFilter = VK_FILTER_LINEAR;
   info.addressModeU = info.addressModeV = info.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
-  info.compareEnable = compare ? VK_TRUE : VK_FALSE;
+  info.compareEnable = VK_TRUE;
   info.compareOp = VK_COMPARE_OP_LESS_OR_EQUAL;  // lit where the receiver is no farther than the nearest caster
   info.maxLod = 0.0f;
   VkSampler sampler = VK_NULL_HANDLE;
@@ -69,14 +59,7 @@ float depthPerWorldUnit(const glm::mat4& viewProjection) {
 
 ShadowMaps::ShadowMaps(vk::Context& context, std::uint32_t width, std::uint32_t height)
     : context_(context), width_(width), height_(height) {
-  constexpr VkDescriptorType ubo = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
-  constexpr VkDescriptorType sampled = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-  constexpr VkShaderStageFlags compute = VK_SHADER_STAGE_COMPUTE_BIT;
   depthLayout_ = vk::createPushDescriptorLayout(context_, {}, sizeof(glm::mat4), VK_SHADER_STAGE_VERTEX_BIT);
-  const VkDescriptorSetLayoutBinding maskBindings[] = {
-      binding(0, ubo, compute),     binding(1, sampled, compute), binding(2, sampled, compute),
-      binding(3, sampled, compute), binding(4, ubo, compute),     binding(5, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, compute)};
-  maskLayout_ = vk::createPushDescriptorLayout(context_, maskBindings, 0, 0);
 
   vk::GraphicsPipelineDesc depth;
   depth.vertexSpirv = spirv_shadow_depth_vert;
@@ -96,12 +79,11 @@ ShadowMaps::ShadowMaps(vk::Context& context, std::uint32_t width, std::uint32_t 
   local.cullMode = VK_CULL_MODE_FRONT_BIT;
   local.depthBiasSlope = kLocalSlopeBias;
   localDepthPipeline_ = vk::createGraphicsPipeline(context_, depthLayout_.layout, local);
-  maskPipeline_ = vk::createComputePipeline(context_, maskLayout_.layout, spirv_shadow_mask_comp);
 
-  nearestSampler_ = createSampler(context_, false);
-  compareSampler_ = createSampler(context_, true);
-  mask_ = vk::createImage(context_, kShadowMaskFormat, width_, height_,
-                          VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
+  compareSampler_ = createCompareSampler(context_);
+  // 1x1 placeholders until a scene needs an atlas: the lighting pass binds both every frame.
+  sunAtlas_ = vk::createImage(context_, kShadowDepthFormat, 1, 1,
+                              VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT);
   localAtlas_ = vk::createImage(context_, kShadowDepthFormat, 1, 1,
                                 VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT);
   constants_ = vk::createBuffer(context_, sizeof(gpu::ShadowConstants), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
@@ -152,8 +134,9 @@ void ShadowMaps::setScene(const Scene& scene, VkBuffer vertexBuffer, VkBuffer in
   const std::uint32_t tile = localTileSize_;
 
   // Allocate only what the scene can use; a later setScene with the same sizes keeps the images.
-  if (sun.castsShadows) {
-    const std::uint32_t w = sun.cascadeCount * sunMapSize_, h = sunMapSize_;
+  {
+    const std::uint32_t w = sun.castsShadows ? sun.cascadeCount * sunMapSize_ : 1;
+    const std::uint32_t h = sun.castsShadows ? sunMapSize_ : 1;
     if (sunAtlas_.width != w || sunAtlas_.height != h)
       sunAtlas_ = vk::createImage(context_, kShadowDepthFormat, w, h,
                                   VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT);
@@ -181,11 +164,10 @@ void ShadowMaps::setScene(const Scene& scene, VkBuffer vertexBuffer, VkBuffer in
   meshRanges_ = std::move(meshRanges);
 }
 
-std::vector<ShadowPass> ShadowMaps::schedule(const ViewMatrices& view, const vk::Image& depth,
-                                             const vk::Image& normalGlossiness, VkBuffer frameBuffer) {
+std::vector<ShadowPass> ShadowMaps::schedule(const ViewMatrices& view) {
   gpu::ShadowConstants constants{};
   std::vector<ShadowPass> passes;
-  sunMaskThisFrame_ = false;
+  sunShadowedThisFrame_ = false;
   localAtlasWritten_ = false;
   pointViewsThisFrame_.assign(scene_.pointLights.size(), -1);
   spotViewsThisFrame_.assign(scene_.spotLights.size(), -1);
@@ -223,12 +205,7 @@ std::vector<ShadowPass> ShadowMaps::schedule(const ViewMatrices& view, const vk:
                         }});
       first = false;
     }
-    if (!first) {
-      sunMaskThisFrame_ = true;
-      passes.push_back({"shadow-mask", [this, &depth, &normalGlossiness, frameBuffer](VkCommandBuffer cmd) {
-                          recordMask(cmd, depth, normalGlossiness, frameBuffer);
-                        }});
-    }
+    sunShadowedThisFrame_ = !first;
   }
 
   // Point and spot lights on screen, each only with a caster in one of its views.
@@ -306,34 +283,13 @@ void ShadowMaps::recordDepthViews(VkCommandBuffer cmd, const vk::Image& atlas, V
   vkCmdEndRendering(cmd);
 }
 
-void ShadowMaps::recordMask(VkCommandBuffer cmd, const vk::Image& depth, const vk::Image& normalGlossiness,
-                            VkBuffer frameBuffer) {
-  vk::transition(cmd, sunAtlas_, vk::kDepthAttachment, kShadowSampledByCompute);
-  vk::transition(cmd, mask_, vk::kUndefined, vk::kComputeWrite);
-  VkDescriptorBufferInfo frameInfo{frameBuffer, 0, VK_WHOLE_SIZE};
-  VkDescriptorImageInfo depthInfo{nearestSampler_, depth.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
-  VkDescriptorImageInfo normalInfo{nearestSampler_, normalGlossiness.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
-  VkDescriptorImageInfo atlasInfo{compareSampler_, sunAtlas_.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
-  VkDescriptorBufferInfo shadowInfo = constantsDescriptor();
-  VkDescriptorImageInfo maskInfo{VK_NULL_HANDLE, mask_.view, VK_IMAGE_LAYOUT_GENERAL};
-  VkWriteDescriptorSet writes[] = {vk::uniformBufferWrite(0, &frameInfo), vk::sampledImageWrite(1, &depthInfo),
-                                   vk::sampledImageWrite(2, &normalInfo), vk::sampledImageWrite(3, &atlasInfo),
-                                   vk::uniformBufferWrite(4, &shadowInfo), vk::storageImageWrite(5, &maskInfo)};
-  writes[1].descriptorType = writes[2].descriptorType = writes[3].descriptorType =
-      VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, maskPipeline_);
-  context_.cmdPushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, maskLayout_.layout, 0, 6, writes);
-  vkCmdDispatch(cmd, (width_ + S3D_COMPUTE_GROUP_SIZE - 1) / S3D_COMPUTE_GROUP_SIZE,
-                (height_ + S3D_COMPUTE_GROUP_SIZE - 1) / S3D_COMPUTE_GROUP_SIZE, 1);
-}
-
 void ShadowMaps::recordReadableForLighting(VkCommandBuffer cmd) {
-  vk::transition(cmd, mask_, sunMaskThisFrame_ ? vk::kComputeWrite : vk::kUndefined, kSampledByLightPass);
-  vk::transition(cmd, localAtlas_, localAtlasWritten_ ? vk::kDepthAttachment : vk::kUndefined, kSampledByLightPass);
+  vk::transition(cmd, sunAtlas_, sunShadowedThisFrame_ ? vk::kDepthAttachment : vk::kUndefined, kSampledByLighting);
+  vk::transition(cmd, localAtlas_, localAtlasWritten_ ? vk::kDepthAttachment : vk::kUndefined, kSampledByLighting);
 }
 
-VkDescriptorImageInfo ShadowMaps::maskDescriptor() const {
-  return {nearestSampler_, mask_.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+VkDescriptorImageInfo ShadowMaps::sunAtlasDescriptor() const {
+  return {compareSampler_, sunAtlas_.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
 }
 
 VkDescriptorImageInfo ShadowMaps::localAtlasDescriptor() const {

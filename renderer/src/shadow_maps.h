@@ -1,7 +1,8 @@
 #pragma once
-// The deferred renderer's shadow passes (seed 003 8.5.3, 000 4.3.3): sun cascades into one depth atlas and a
-// screen-space shadow mask from them; point-light faces and spot views into a second atlas that the light pass
-// reads. Planned per frame: a shadow map without a caster in its view does not render.
+// The deferred renderer's shadow passes (seed 003 8.5.3, 000 4.3.3): sun cascades into one depth atlas,
+// point-light faces and spot views into a second; the lighting pass reads both (the sun's deferred shadow mask
+// is computed there, per pixel, rather than in a screen pass of its own). Planned per frame: a shadow map
+// without a caster in its view does not render.
 #include <cstdint>
 #include <functional>
 #include <string>
@@ -37,21 +38,20 @@ class ShadowMaps {
   void setScene(const Scene& scene, VkBuffer vertexBuffer, VkBuffer indexBuffer, std::vector<ShadowMeshRange> meshRanges);
 
   // Plans the frame: which shadow maps have a caster in reach, their matrices (written to the shadow constants),
-  // and the passes that render them, in order, ending with the sun's shadow mask. G-buffer depth and normals
-  // must be readable (kDepthSampled-like) when the mask pass runs.
-  std::vector<ShadowPass> schedule(const ViewMatrices& view, const vk::Image& depth, const vk::Image& normalGlossiness,
-                                   VkBuffer frameBuffer);
+  // and the passes that render them, in order.
+  std::vector<ShadowPass> schedule(const ViewMatrices& view);
 
-  // Before light accumulation: the mask and the local atlas readable by the light pass (also when not written).
+  // Before lighting: both atlases readable by compute (also when not written this frame).
   void recordReadableForLighting(VkCommandBuffer cmd);
 
-  // Light constants' shadowView for this frame (-1: unshadowed).
-  int sunShadowView() const { return sunMaskThisFrame_ ? 0 : -1; }
+  // This frame's plan for the lighting pass: whether the sun's cascades rendered, and each light's first shadow
+  // view (-1: unshadowed).
+  bool sunShadowed() const { return sunShadowedThisFrame_; }
   int pointLightShadowView(std::size_t light) const { return pointViewsThisFrame_.at(light); }
   int spotLightShadowView(std::size_t light) const { return spotViewsThisFrame_.at(light); }
 
-  // Light-pass descriptors (bindings 4, 5, 6 of light.frag).
-  VkDescriptorImageInfo maskDescriptor() const;
+  // Lighting-pass descriptors: the atlases (compare samplers) and gpu::ShadowConstants.
+  VkDescriptorImageInfo sunAtlasDescriptor() const;
   VkDescriptorImageInfo localAtlasDescriptor() const;
   VkDescriptorBufferInfo constantsDescriptor() const;
 
@@ -72,15 +72,13 @@ class ShadowMaps {
 
   void recordDepthViews(VkCommandBuffer cmd, const vk::Image& atlas, VkPipeline pipeline,
                         const std::vector<ViewDraws>& views, bool firstUse);
-  void recordMask(VkCommandBuffer cmd, const vk::Image& depth, const vk::Image& normalGlossiness, VkBuffer frameBuffer);
 
   vk::Context& context_;
   std::uint32_t width_, height_;
-  vk::PipelineLayout depthLayout_, maskLayout_;
-  vk::Unique<VkPipeline> sunDepthPipeline_, localDepthPipeline_, maskPipeline_;
-  vk::Unique<VkSampler> nearestSampler_, compareSampler_;
-  vk::Image mask_;         // R16F sun shadow factor per pixel
-  vk::Image sunAtlas_;     // cascades side by side (only when the sun casts shadows)
+  vk::PipelineLayout depthLayout_;
+  vk::Unique<VkPipeline> sunDepthPipeline_, localDepthPipeline_;
+  vk::Unique<VkSampler> compareSampler_;
+  vk::Image sunAtlas_;     // cascades side by side (1x1 when the sun casts no shadows)
   vk::Image localAtlas_;   // local-light views in a grid (1x1 when no light casts)
   vk::Buffer constants_;   // gpu::ShadowConstants
 
@@ -94,7 +92,7 @@ class ShadowMaps {
   std::uint32_t sunMapSize_ = 0, localTileSize_ = 0;  // the sizes in use (see effectiveShadowMapSize)
 
   // This frame's plan.
-  bool sunMaskThisFrame_ = false;
+  bool sunShadowedThisFrame_ = false;
   bool localAtlasWritten_ = false;
   std::vector<int> pointViewsThisFrame_, spotViewsThisFrame_;
 };

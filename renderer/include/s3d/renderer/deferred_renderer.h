@@ -1,6 +1,7 @@
 #pragma once
-// The deferred renderer (the seed's section 4.3): G-buffer, light accumulation into HDR diffuse and specular
-// buffers, a shading pass applying albedo and Fresnel, the sky, then tone mapping and linear depth.
+// The deferred renderer (the seed's section 4.3): a G-buffer (depth, normal and glossiness, material), half-
+// resolution ambient occlusion, shadow maps, one tiled compute pass for all lighting, shading and the sky, the
+// transparent surfaces, then tone mapping and linear depth. It can shade part of an image (ShadeMask).
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -50,6 +51,9 @@ glm::mat4 reversedDepthProjection(const glm::mat4& projection, float nearPlane, 
 struct PassTiming {
   std::string name;
   double gpuMs = 0.0;
+  // With RendererOptions::countShadedPixels, what the pass shaded: gbuffer, lighting: render pixels (G-buffer:
+  // those it wrote); ssao, ssao-blur: half-resolution texels; resolve: output pixels. Empty otherwise.
+  std::optional<std::uint64_t> shadedPixels;
 };
 
 struct FrameTimings {
@@ -66,6 +70,30 @@ struct RendererOptions {
   // projections (the world in device depth [0, 0.9], first-person in [0.9, 1]). D32 float then keeps its
   // precision at the far end, where standard Z spends it all near 1. Linear depth is the same either way.
   bool reversedZ = false;
+  // Tests: every frame counts what its passes shaded (PassTiming::shadedPixels), with atomic adds per pixel.
+  bool countShadedPixels = false;
+};
+
+// Which pixels a render shades (the hybrid stereo method renders only the eye pixels displacement gets wrong).
+//
+// `image`: VK_FORMAT_R32_UINT, exactly the renderer's output size (width() x height()), created with
+// VK_IMAGE_USAGE_STORAGE_BIT, in VK_IMAGE_LAYOUT_GENERAL; its writes submitted before render() (render records a
+// barrier from any earlier write on its queue, then reads it as a storage image in compute and fragment
+// shaders). A pixel is shaded where its value >= threshold, so a classification's bin image can be passed with
+// its threshold bin as is (1: every nonzero pixel). With supersampling the value covers all samples of its pixel.
+//
+// What a masked render does: the G-buffer still rasterizes all geometry, but every pixel outside the mask has
+// the nearest depth before it draws, so its fragments fail the depth test before shading; ambient occlusion
+// (with a depth-only pass of its own, so its samples see real depth outside the mask) runs on the tiles of the
+// mask and their neighbours; lighting and the resolve run on the mask's tiles only (found on the GPU) and skip
+// unmasked pixels inside them; shadow maps render as for a full frame.
+//
+// Outputs outside the mask are undefined after a masked render: displayColor, linearDepth, hdrColor and the
+// read*() masks there may hold anything (the previous frame, zeros, the depth fill). Inside it they equal the
+// unmasked render's (tests: within one 8-bit level and 1e-5 relative depth).
+struct ShadeMask {
+  const vk::Image* image = nullptr;
+  std::uint32_t threshold = 1;
 };
 
 class DeferredRenderer {
@@ -79,8 +107,9 @@ class DeferredRenderer {
 
   // Uploads the scene's meshes and materials; call again when the scene changes.
   void setScene(const Scene& scene);
-  // Renders one view; the results stay on the GPU until read back.
-  FrameTimings render(const ViewMatrices& view);
+  // Renders one view; the results stay on the GPU until read back. With a mask (its image non-null), only the
+  // mask's pixels (ShadeMask). Throws std::invalid_argument for a mask of another size or format.
+  FrameTimings render(const ViewMatrices& view, const ShadeMask& mask = {});
 
   std::uint32_t width() const;   // output size
   std::uint32_t height() const;

@@ -9,10 +9,24 @@ S3D_GPU_BEGIN
 
 #define S3D_LAYER_WORLD 0
 #define S3D_LAYER_FIRST_PERSON 1
-#define S3D_LIGHT_AMBIENT_AND_SUN 0
 #define S3D_LIGHT_POINT 1
 #define S3D_LIGHT_SPOT 2
 #define S3D_COMPUTE_GROUP_SIZE 8
+
+// Tiles: the lighting pass shades one tile of S3D_TILE_SIZE^2 render pixels per workgroup of
+// S3D_COMPUTE_GROUP_SIZE^2 threads (each thread 2x2 pixels, 8 apart so neighbouring threads read neighbouring
+// pixels); the half-resolution ambient occlusion covers the same tile with one 8x8 group of its texels.
+#define S3D_TILE_SIZE 16
+#define S3D_MAX_LIGHTS 256  // point and spot lights of a scene: one bit each in a tile's light mask
+#define S3D_LIGHT_MASK_WORDS (S3D_MAX_LIGHTS / 32)
+
+// Slots of the shaded-pixel counters (RendererOptions::countShadedPixels).
+#define S3D_COUNT_GBUFFER 0   // render pixels the G-buffer wrote
+#define S3D_COUNT_SSAO 1      // half-resolution texels the ambient occlusion computed
+#define S3D_COUNT_SSAO_BLUR 2 // half-resolution texels the blur wrote
+#define S3D_COUNT_LIGHTING 3  // render pixels lit (surfaces) or given the sky
+#define S3D_COUNT_RESOLVE 4   // output pixels resolved
+#define S3D_COUNT_SLOTS 8
 
 // Per layer (world, first-person): how its geometry is projected and how its depth is turned back into a
 // world position (the seed's "linearly transform the screen-space VPos basis to the target space").
@@ -33,10 +47,19 @@ struct FrameConstants {  // uniform buffer, std140 (every member 16-byte aligned
   vec4 skyGround;
   vec4 screen;  // width, height, 1 / width, 1 / height
   vec4 exposure;  // x: exposure multiplier
-  vec4 ambientOcclusion;  // x: radius in world units
+  vec4 ambientOcclusion;  // x: radius in world units; y, z: half-resolution width, height
+  vec4 worldViewDepth;    // view depth of a world point p in the world layer's view: dot(worldViewDepth, (p, 1))
+  uvec4 tiles;    // x, y: tiles per row and column; z: a masked render's shade-mask value from which a pixel is shaded
+  uvec4 options;  // x: supersample factor, y: 1 = ambient occlusion on
 };
 
 #define S3D_SSAO_SAMPLES 16
+
+// Weight of a half-resolution ambient-occlusion texel for a surface at linear depth `depth` (blur and
+// upsample): 1 at the same depth, falling to 0 at 10 % apart (+inf, sky and weapon texels: 0).
+S3D_INLINE float ambientDepthWeight(float texelDepth, float depth) {
+  return max(0.0f, 1.0f - abs(texelDepth - depth) / (0.1f * depth));
+}
 
 struct ObjectConstants {  // storage buffer, std430, one per object
   mat4 objectToLayer;  // world layer: object -> world; first-person: object -> camera space
@@ -56,18 +79,35 @@ struct SurfaceVertex {
   vec4 tangent;  // xyz: +u direction in object space, w: handedness (+-1)
 };
 
-struct LightConstants {  // push constants of the light-accumulation pass
-  vec4 positionRadius;   // point/spot light: world position, radius of influence
+// A point or spot light, as the lighting pass reads it (storage buffer, std430).
+struct LightConstants {
+  vec4 positionRadius;   // world position, radius of influence
+  vec4 viewPosition;     // xyz: position in the world layer's view space (tile culling)
   vec4 color;            // linear radiance scale
   vec4 spotDirection;    // spot light: unit direction it points to (world)
   vec4 spotCone;         // spot light: x cos(outer cone angle), y cos(inner cone angle)
   uint kind;             // S3D_LIGHT_*
-  int shadowView;        // -1: unshadowed; sun: reads the shadow mask; point: first of six atlas views; spot: its view
+  int shadowView;        // -1: unshadowed; point: first of six atlas views; spot: its view
   uint padding1;
   uint padding2;
 };
 
-// Push constants of the resolve pass: the G-buffer and lights run at supersample x the output size; the
+struct LightingConstants {  // push constants of the lighting pass
+  uint lightCount;
+  uint shadowedLights;  // lights [0, shadowedLights) have shadow maps this frame, the rest not
+  uint padding1;
+  uint padding2;
+};
+
+// Head of the tile buffer (std430), followed by uint entries: the tile flags of the ambient-occlusion region,
+// the masked tiles and the ambient-occlusion tiles, tilesX * tilesY each (a tile packed as x | y << 16).
+struct TileHeader {
+  uvec4 lightingDispatch;  // vkCmdDispatchIndirect arguments: x = masked tiles
+  uvec4 ambientDispatch;   // x = tiles of the ambient-occlusion region (masked tiles and their 8 neighbours)
+  uint shadedPixels[S3D_COUNT_SLOTS];
+};
+
+// Push constants of the resolve pass: the G-buffer and lighting run at supersample x the output size; the
 // resolve averages each output pixel's supersample^2 samples (colour after tone mapping) and keeps the
 // nearest of their linear depths, so a pixel half-covered by an occluder moves with the occluder.
 struct ResolveConstants {
@@ -77,8 +117,32 @@ struct ResolveConstants {
   int padding0;
 };
 
-// Shadows (seed 003 section 8.5.3, 000 section 4.3.3): sun cascades in one depth atlas, read by the deferred
-// shadow-mask pass; point (six views) and spot (one view) shadow maps in a second atlas, read by the light pass.
+// Whether a light can reach a tile (the lighting pass's culling, tested against brute force in C++): its
+// sphere (centre in the world layer's view space, radius) must overlap the view-depth range of the tile's
+// surface points and, when sidePlanes, the wedge between the rays through the tile's edges (ndcRect: x0, y0,
+// x1, y1 in the world layer's normalized device coordinates; projection: P00, P11, P20, P21). A tile with
+// first-person pixels passes sidePlanes false: those were projected by the first-person projection.
+S3D_INLINE bool sphereTouchesTile(vec3 centre, float radius, vec2 depthRange, vec4 ndcRect, vec4 projection,
+                                  bool sidePlanes) {
+  float depth = -centre.z;
+  if (depth + radius < depthRange.x || depth - radius > depthRange.y) return false;
+  if (!sidePlanes) return true;
+  // A view point lies on the ray of ndc x where X = k d, k = (x + P20) / P00 (d = -Z), i.e. on the plane
+  // X + k Z = 0; the tile lies between its two edges' planes (likewise for y).
+  float kx0 = (ndcRect.x + projection.z) / projection.x;
+  float kx1 = (ndcRect.z + projection.z) / projection.x;
+  float ky0 = (ndcRect.y + projection.w) / projection.y;
+  float ky1 = (ndcRect.w + projection.w) / projection.y;
+  float kxLo = min(kx0, kx1), kxHi = max(kx0, kx1), kyLo = min(ky0, ky1), kyHi = max(ky0, ky1);
+  if (centre.x + kxLo * centre.z < -radius * sqrt(1.0f + kxLo * kxLo)) return false;
+  if (centre.x + kxHi * centre.z > radius * sqrt(1.0f + kxHi * kxHi)) return false;
+  if (centre.y + kyLo * centre.z < -radius * sqrt(1.0f + kyLo * kyLo)) return false;
+  if (centre.y + kyHi * centre.z > radius * sqrt(1.0f + kyHi * kyHi)) return false;
+  return true;
+}
+
+// Shadows (seed 003 section 8.5.3, 000 section 4.3.3): sun cascades in one depth atlas, point (six views) and
+// spot (one view) shadow maps in a second atlas, both read by the lighting pass.
 #define S3D_MAX_SUN_CASCADES 4
 #define S3D_MAX_LOCAL_SHADOW_VIEWS 48
 
@@ -114,6 +178,19 @@ S3D_INLINE float spotConeFalloff(float cosAngle, float cosOuter, float cosInner)
   float t = min(max((cosAngle - cosOuter) / max(cosInner - cosOuter, 1e-4f), 0.0f), 1.0f);
   return t * t * (3.0f - 2.0f * t);
 }
+
+// The G-buffer's material target (RG32_UINT): linear albedo (base colour x texture) in 16-bit unorm per channel
+// (error under 8e-6) and the object's index (16 bits), whose constants give F0; packed with plain arithmetic, so a CPU
+// rasterizer pays no transcendental per fragment.
+#define S3D_NO_OBJECT 0xffffu  // the object index where nothing was drawn (so at most 65535 objects)
+S3D_INLINE uint unorm16(float value) { return uint(min(max(value, 0.0f), 1.0f) * 65535.0f + 0.5f); }
+S3D_INLINE uvec2 packMaterial(vec3 albedo, uint objectIndex) {
+  return uvec2(unorm16(albedo.x) | (unorm16(albedo.y) << 16), unorm16(albedo.z) | (objectIndex << 16));
+}
+S3D_INLINE vec3 unpackAlbedo(uvec2 material) {
+  return vec3(float(material.x & 0xffffu), float(material.x >> 16), float(material.y & 0xffffu)) / 65535.0f;
+}
+S3D_INLINE uint unpackObjectIndex(uvec2 material) { return material.y >> 16; }
 
 S3D_GPU_END
 
