@@ -25,6 +25,7 @@
 #include "s3d/stereo/iterative.h"
 #include "s3d/stereo/row_tile_shared.h"
 #include "s3d/stereo/synthesis.h"
+#include "renderer_timing.h"
 
 namespace s3d::app {
 namespace fs = std::filesystem;
@@ -258,29 +259,7 @@ std::optional<double> medianOf(const std::vector<std::optional<double>>& samples
   return stereo::medianMs(present);
 }
 
-// Renders `view` `repeat` times; the median whole-frame time and the median time of each pass (first frame's order).
-std::pair<std::optional<double>, std::vector<renderer::PassTiming>> timeFrames(renderer::DeferredRenderer& deferred,
-                                                                               const renderer::ViewMatrices& view,
-                                                                               int repeat,
-                                                                               std::chrono::milliseconds warmUp =
-                                                                                   std::chrono::milliseconds(500)) {
-  std::vector<std::optional<double>> totals;
-  std::vector<renderer::PassTiming> order;
-  std::map<std::string, std::vector<double>> passTimes;
-  // Untimed frames for at least `warmUp` first: a GPU that idled while the host computed metrics ramps its
-  // clocks back up (an H100 timed a reference eye at 25.7 ms instead of 4.7 ms after 50 ms of warm-up).
-  const auto warmUpStart = std::chrono::steady_clock::now();
-  do (void)deferred.render(view);
-  while (std::chrono::steady_clock::now() - warmUpStart < warmUp);
-  for (int run = 0; run < repeat; ++run) {
-    renderer::FrameTimings timings = deferred.render(view);
-    totals.push_back(timings.totalGpuMs);
-    if (run == 0) order = timings.passes;
-    for (const renderer::PassTiming& pass : timings.passes) passTimes[pass.name].push_back(pass.gpuMs);
-  }
-  for (renderer::PassTiming& pass : order) pass.gpuMs = stereo::medianMs(passTimes[pass.name]).value_or(0.0);
-  return {medianOf(totals), order};
-}
+using detail::timeFrames;
 
 struct EyeReferences {
   ImageRGBA8 leftColor, rightColor;
@@ -436,6 +415,11 @@ void runRendererTimings(vk::Context& context, const BenchOptions& options, const
     }
     report.rendererRows.push_back(
         {sceneName, frameMs, std::move(passes), band.columns, medianOf(wideRuns), medianOf(ratios)});
+    if (done == 0) {  // the masked-render cost scaling, on the first scene
+      if (options.progress) options.progress({done, bench.scenes.size(), sceneName + " masked frames"});
+      (void)deferred.render(center);  // its depth picks the masks
+      report.maskedRenderRows = detail::timeMaskedRenders(context, deferred, center, sceneName, options.repeat);
+    }
     ++done;
   }
   if (options.progress) options.progress({done, bench.scenes.size(), "done"});
@@ -711,6 +695,7 @@ std::string rendererMarkdown(const BenchReport& report) {
     }
     md << '\n';
   }
+  if (!report.maskedRenderRows.empty()) md << '\n' << detail::maskedRenderMarkdown(report.maskedRenderRows, report.repeat);
   return md.str();
 }
 
@@ -912,6 +897,15 @@ nlohmann::json toJson(const BenchReport& report) {
                             {"guardBandFrameGpuMs", optionalMs(row.guardBandFrameGpuMs)},
                             {"guardBandRatio", optionalMs(row.guardBandRatio)}});
   }
+  nlohmann::json maskedRows = nlohmann::json::array();
+  for (const MaskedRenderRow& row : report.maskedRenderRows) {
+    nlohmann::json passes = nlohmann::json::array();
+    for (const renderer::PassTiming& pass : row.passes)
+      passes.push_back({{"name", pass.name}, {"gpuMs", finiteOrNull(pass.gpuMs)}});
+    maskedRows.push_back({{"scene", row.scene}, {"requestedShare", finiteOrNull(row.requestedShare)},
+                          {"shadedShare", finiteOrNull(row.shadedShare)}, {"frameGpuMs", optionalMs(row.frameGpuMs)},
+                          {"passes", passes}});
+  }
   nlohmann::json targets = nlohmann::json::array();
   if (!report.rendererOnly)
     for (const TargetResult& target : evaluateTargets(report)) {
@@ -932,6 +926,7 @@ nlohmann::json toJson(const BenchReport& report) {
           {"bandwidthGBs", report.bandwidthGBs ? finiteOrNull(*report.bandwidthGBs) : nlohmann::json()},
           {"rows", rows},
           {"renderer", rendererRows},
+          {"maskedRenderer", maskedRows},
           {"targets", targets},
           {"files", report.filesWritten}};
 }

@@ -118,6 +118,15 @@ struct RendererRow {
   std::optional<double> guardBandRatio;       // median over `repeat` back-to-back pairs of wide / plain frame time
 };
 
+// A masked render of the center view (renderer timings, the first scene only).
+struct MaskedRenderRow {
+  std::string scene;
+  double requestedShare = 0.0;  // of the output pixels
+  double shadedShare = 0.0;     // what the mask holds
+  std::optional<double> frameGpuMs;
+  std::vector<renderer::PassTiming> passes;
+};
+
 struct BenchReport {
   std::string deviceName;
   std::string deviceKind;  // "cpu" (e.g. lavapipe) or "gpu": picks the marked section of --results-md
@@ -130,6 +139,7 @@ struct BenchReport {
   std::optional<double> bandwidthGBs;
   std::vector<BenchRow> rows;              // scene, then separation, then setting, in option order
   std::vector<RendererRow> rendererRows;
+  std::vector<MaskedRenderRow> maskedRenderRows;
   double wallSeconds = 0.0;
   std::vector<std::string> filesWritten;   // in the output folder (and the results file, by its path)
 };
