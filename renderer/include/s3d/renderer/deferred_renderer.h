@@ -91,6 +91,10 @@ struct RendererOptions {
 // Outputs outside the mask are undefined after a masked render: displayColor, linearDepth, hdrColor and the
 // read*() masks there may hold anything (the previous frame, zeros, the depth fill). Inside it they equal the
 // unmasked render's (tests: within one 8-bit level and 1e-5 relative depth).
+//
+// The first masked render creates the masked pipeline variants and, with ambient occlusion, a render-size depth
+// image; later renders allocate nothing. render() submits on the context's queue and waits, so the mask may be
+// rewritten as soon as it returns.
 struct ShadeMask {
   const vk::Image* image = nullptr;
   std::uint32_t threshold = 1;

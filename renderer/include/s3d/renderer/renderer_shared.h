@@ -13,9 +13,8 @@ S3D_GPU_BEGIN
 #define S3D_LIGHT_SPOT 2
 #define S3D_COMPUTE_GROUP_SIZE 8
 
-// Tiles: the lighting pass shades one tile of S3D_TILE_SIZE^2 render pixels per workgroup of
-// S3D_COMPUTE_GROUP_SIZE^2 threads (each thread 2x2 pixels, 8 apart so neighbouring threads read neighbouring
-// pixels); the half-resolution ambient occlusion covers the same tile with one 8x8 group of its texels.
+// Tiles: the lighting pass shades one tile of S3D_TILE_SIZE^2 render pixels per workgroup, one thread per
+// pixel; the half-resolution ambient occlusion covers the same tile with one 8x8 group of its texels.
 #define S3D_TILE_SIZE 16
 #define S3D_MAX_LIGHTS 256  // point and spot lights of a scene: one bit each in a tile's light mask
 #define S3D_LIGHT_MASK_WORDS (S3D_MAX_LIGHTS / 32)
