@@ -57,20 +57,22 @@ std::vector<std::optional<double>> timeSections(vk::Context& context, int timedR
   return medians;
 }
 
-// The eye renders: median total and median per pass; "gbuffer" passes are the eye's rasterized geometry,
-// all others shade the masked pixels.
+// The eye renders, masked (renderer::ShadeMask: only the mask's pixels are shaded): median total and median
+// per pass; "gbuffer" passes are the eye's rasterized geometry, all others shade the masked pixels.
 struct EyeRenderTimes {
   std::optional<double> geometry, shading;
   std::vector<renderer::PassTiming> passes;
 };
 
-EyeRenderTimes renderEye(renderer::DeferredRenderer& eyeRenderer, const renderer::ViewMatrices& view, int timedRuns) {
-  (void)eyeRenderer.render(view);
+EyeRenderTimes renderEye(renderer::DeferredRenderer& eyeRenderer, const renderer::ViewMatrices& view,
+                         const vk::Image& mask, int timedRuns) {
+  const renderer::ShadeMask shadeMask{&mask, 1};  // HybridPass masks: 1 where the eye camera renders the pixel
+  (void)eyeRenderer.render(view, shadeMask);
   std::vector<double> totals;
   std::map<std::string, std::vector<double>> passTimes;
   std::vector<renderer::PassTiming> order;
   for (int run = 0; run < timedRuns; ++run) {
-    const renderer::FrameTimings frame = eyeRenderer.render(view);
+    const renderer::FrameTimings frame = eyeRenderer.render(view, shadeMask);
     if (!frame.totalGpuMs) continue;
     totals.push_back(*frame.totalGpuMs);
     if (order.empty()) order = frame.passes;
@@ -139,7 +141,8 @@ HybridSynthesis synthesizeHybrid(vk::Context& context, const vk::Image& centerCo
     const std::size_t index = eye == stereo::Eye::Left ? 0 : 1;
     const vk::Image& target = index == 0 ? left : right;
     const vk::Image& mask = index == 0 ? images.leftMask : images.rightMask;
-    const EyeRenderTimes render = renderEye(eyeRenderer, referenceEyeView(scene, center, eye, parameters), timedRuns);
+    const EyeRenderTimes render =
+        renderEye(eyeRenderer, referenceEyeView(scene, center, eye, parameters), mask, timedRuns);
     timings.eyeGeometry = sum(timings.eyeGeometry, render.geometry);
     timings.maskedShading = sum(timings.maskedShading, render.shading);
     (index == 0 ? timings.leftEyePasses : timings.rightEyePasses) = render.passes;
