@@ -121,7 +121,9 @@ void expectCountsMatchTheMask(vk::Context& context, std::uint32_t supersample, s
   ASSERT_LT(expected.outputPixels, std::uint64_t(kWidth) * kHeight / 4);
   EXPECT_EQ(shadedPixels(timings, "gbuffer"), expected.renderPixels);
   EXPECT_EQ(shadedPixels(timings, "lighting"), expected.renderPixels);
-  if (supersample > 1) EXPECT_EQ(shadedPixels(timings, "resolve"), expected.outputPixels);
+  if (supersample > 1) {
+    EXPECT_EQ(shadedPixels(timings, "resolve"), expected.outputPixels);
+  }
   EXPECT_EQ(shadedPixels(timings, "ssao"), expected.ambientTexels);
   EXPECT_EQ(shadedPixels(timings, "ssao-blur"), expected.ambientTexels);
   EXPECT_LT(expected.ambientTexels, std::uint64_t(kWidth * supersample / 2) * (kHeight * supersample / 2));

@@ -21,7 +21,7 @@ struct MemoryEstimate {
 // The renderer's and the stereo pass's bytes, and the fixed cost of a run, as counted from their formats (see
 // memory_budget.cpp) and checked against the peak resident memory on lavapipe (docs/RESULTS.md).
 inline constexpr std::uint64_t kRunFixedBytes = 128ull << 20;  // Vulkan driver, shaders, shadow maps, Embree, scene
-inline constexpr std::uint64_t kDeviceBytesPerSample = 42;     // G-buffer per sample: depth, normal, 2 x light, HDR, coverage, AO
+inline constexpr std::uint64_t kDeviceBytesPerSample = 42;     // per sample: the renderer's targets (38, DESIGN.md) and 4 to spare
 inline constexpr std::uint64_t kDeviceBytesPerRenderedPixel = 40;  // resolved display/depth/HDR, both eyes, readback staging
 
 // One `s3d render` frame (also a --sequence frame, a bench scene, a regress case, the tune view): the center
