@@ -58,7 +58,8 @@ std::vector<std::optional<double>> timeSections(vk::Context& context, int timedR
 }
 
 // The eye renders, masked (renderer::ShadeMask: only the mask's pixels are shaded): median total and median
-// per pass; "gbuffer" passes are the eye's rasterized geometry, all others shade the masked pixels.
+// per pass; "gbuffer" and "ssao-depth" passes are the eye's rasterized geometry (every pixel's depth), all
+// others shade the masked pixels (shadow maps included: they render as for a full frame).
 struct EyeRenderTimes {
   std::optional<double> geometry, shading;
   std::vector<renderer::PassTiming> passes;
@@ -84,7 +85,7 @@ EyeRenderTimes renderEye(renderer::DeferredRenderer& eyeRenderer, const renderer
   double geometry = 0.0;
   for (renderer::PassTiming& pass : order) {
     pass.gpuMs = stereo::medianMs(passTimes[pass.name]).value_or(0.0);
-    if (pass.name == "gbuffer") geometry += pass.gpuMs;
+    if (pass.name == "gbuffer" || pass.name == "ssao-depth") geometry += pass.gpuMs;
   }
   times.geometry = geometry;
   times.shading = *total - geometry;

@@ -22,8 +22,8 @@ namespace s3d::app {
 struct HybridTimings {
   std::optional<double> displacement;    // the base method's pass
   std::optional<double> classification;  // classification, threshold and masks
-  std::optional<double> eyeGeometry;     // both eyes' G-buffer rasterization (the renderer's "gbuffer" passes)
-  std::optional<double> maskedShading;   // both eyes' other renderer passes (shadows, lighting, resolve)
+  std::optional<double> eyeGeometry;     // both eyes' rasterized depth (the masked renders' "gbuffer", "ssao-depth")
+  std::optional<double> maskedShading;   // both eyes' other passes (mask tiles, shadows, SSAO, lighting, resolve)
   std::optional<double> composite;       // both eyes
   std::optional<double> total;           // the sum
   std::vector<renderer::PassTiming> leftEyePasses, rightEyePasses;  // the masked renders' passes
