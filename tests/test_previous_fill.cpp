@@ -144,6 +144,41 @@ TEST(PreviousFrameFill, OnAStaticCameraTheHolesKeepTheirFill) {
   EXPECT_LE(largestChannelDifference(second.eyes.right, first.eyes.right), 1);
 }
 
+TEST(PreviousFrameFill, TheWeaponsHistoryNeverFillsAHole) {
+  // The weapon (alpha 0 in the eyes) moves with the camera, not with the world: mark the whole previous frame as
+  // weapon and nothing may come from it.
+  const Frame before = render(viewAt(0.0f), centerProjection()), now = render(viewAt(0.3f), centerProjection());
+  ForwardWithHistory first = synthesizeForwardWithPreviousFrameReference(before.color, before.depth, kConstants,
+                                                                        motionBetween(0.0f, 0.0f), nullptr);
+  for (EyeHistory& eye : first.history)
+    for (std::size_t i = 3; i < eye.color.pixels.size(); i += 4) eye.color.pixels[i] = 0;
+  const ForwardWithHistory second = synthesizeForwardWithPreviousFrameReference(
+      now.color, now.depth, kConstants, motionBetween(0.3f, 0.0f), &first.history);
+  EXPECT_GT(second.counts[0].holePixels, 0u);
+  EXPECT_EQ(second.counts[0].filledFromPrevious, 0u);
+  EXPECT_EQ(second.counts[1].filledFromPrevious, 0u);
+}
+
+TEST(PreviousFrameFill, TheOccluderNeverFillsItsOwnDisocclusion) {
+  // A previous frame that showed the slab (depth 2) everywhere, on a static camera: the holes beside the slab find
+  // it at their own position, at the occluder's depth, and must keep the forward method's fill.
+  const Frame frame = render(viewAt(0.0f), centerProjection());
+  const std::array<gpu::EyeMotion, 2> still = motionBetween(0.0f, 0.0f);
+  ForwardWithHistory first = synthesizeForwardWithPreviousFrameReference(frame.color, frame.depth, kConstants, still, nullptr);
+  for (EyeHistory& eye : first.history)
+    for (float& d : eye.depth.pixels) d = 2.0f;
+  const ForwardWithHistory second =
+      synthesizeForwardWithPreviousFrameReference(frame.color, frame.depth, kConstants, still, &first.history);
+  // Columns [16, 112): the holes beside the slab (the image's outer columns have holes with one covered side
+  // only, which no occluder bounds).
+  const StereoPair plain = synthesizeForwardReference(frame.color, frame.depth, kConstants);
+  for (auto [eye, expected] : {std::pair{&second.eyes.left, &plain.left}, std::pair{&second.eyes.right, &plain.right}})
+    for (std::uint32_t y = 0; y < kHeight; ++y)
+      for (std::uint32_t x = 16; x < 112; ++x)
+        ASSERT_EQ(std::memcmp(eye->at(x, y), expected->at(x, y), 4), 0) << x << "," << y;
+  EXPECT_GE(second.counts[0].holePixels, 10u * kHeight);  // about 7 columns beside the slab, 4 at the border
+}
+
 TEST(PreviousFrameFill, WithoutHistoryItIsTheForwardMethod) {
   const Frame frame = render(viewAt(0.0f), centerProjection());
   const ForwardWithHistory first =

@@ -96,7 +96,9 @@ class RenderCommand final : public Command {
                       "size per eye, worldScale; samples/views/): render the center view covering both eyes, "
                       "synthesize each eye in its own projection and compare with the eyes rendered directly; each "
                       "eye's comfort is reported on the display of --display or --profile (else " +
-                          app::ViewsJobOptions{}.display.name + ")");
+                          app::ViewsJobOptions{}.display.name +
+                          "). A display profile with eyeViews (samples/views/headset-display.json) does the same "
+                          "for its own views in a single frame");
     addDeviceOptions(render, contextOptions_);
     render.add_flag("--list-devices", listDevicesOnly_,
                     "List the Vulkan devices and whether s3d can use them, then exit without rendering");
@@ -107,17 +109,25 @@ class RenderCommand final : public Command {
       listDevices();
       return 0;
     }
+    // Per-eye views: a --views file, or in a single frame a display that reports its own (a display profile's
+    // eyeViews, from --display or the --profile's display).
+    const bool displayViews =
+        viewsFile_.empty() && !sequence_ && displayGiven() && profile_.resolveDisplay(*subcommand).eyeViews;
     // Options that do nothing in the chosen mode are errors naming the mode.
-    if (!viewsFile_.empty())
+    if (!viewsFile_.empty() || displayViews)
       rejectGiven(*subcommand,
                   {"--sequence", "--previous-frame-fill", "--width", "--height", "--resolution", "--outputs", "--sbs",
                    "--tab", "--max-separation", "--zero-parallax-distance", "--edge-crop", "--method", "--taps",
                    "--iterations", "--hybrid-budget", "--hybrid-base", "--weapon-depth-offset", "--weapon-depth-scale",
                    "--supersample", "--save-profile", "--allow-negative-parallax", "--disparity-budget", "--reversed-z",
                    "--hud"},
-                  "does not apply to --views (each eye's size, projection and offset come from the views file; the "
-                  "eyes are synthesized by the views' own depth search and compared with the eyes rendered directly; "
-                  "only the display, --display or a --profile's, applies: its focal distance for the comfort report)");
+                  std::string("does not apply to ") +
+                      (displayViews ? "a display with eye views (each eye's size, projection and offset come from "
+                                      "the display profile's eyeViews"
+                                    : "--views (each eye's size, projection and offset come from the views file") +
+                      "; the eyes are synthesized by the views' own depth search and compared with the eyes rendered "
+                      "directly; only the display, --display or a --profile's, applies: its focal distance for the "
+                      "comfort report)");
     if (sequence_)
       rejectGiven(*subcommand, {"--outputs", "--sbs", "--tab", "--frame", "--hud"},
                   "does not apply to --sequence (it renders every frame of the camera path and writes "
@@ -131,7 +141,7 @@ class RenderCommand final : public Command {
     options_.sideBySide = stereo::parsePackingMode(sideBySide_);
     options_.topBottom = stereo::parsePackingMode(topBottom_);
     options_.hud = app::parseHudMode(hud_);
-    if (!viewsFile_.empty()) return runViews();
+    if (!viewsFile_.empty() || displayViews) return runViews();
     stereo_.finish();
     StereoOptions::rejectSeparationUnderBudget(*subcommand, profile_.disparityBudget);
     const comfort::ComfortProfile profile = profile_.resolve(*subcommand, stereo_);
@@ -154,6 +164,8 @@ class RenderCommand final : public Command {
   }
 
  private:
+  bool displayGiven() const { return subcommand->count("--display") > 0 || !profile_.load.empty(); }
+
   // Before the Vulkan start-up: the host's share of the estimate (all of it on the CPU device).
   void requireHostMemory(const app::MemoryEstimate& estimate) const {
     app::requireHostMemory(estimate, options_.memoryLimitBytes, contextOptions_.device == "cpu");
@@ -162,15 +174,18 @@ class RenderCommand final : public Command {
   int runViews() {
     app::ViewsJobOptions viewsOptions;
     viewsOptions.memoryLimitBytes = options_.memoryLimitBytes;
-    viewsOptions.views = comfort::loadViewConfiguration(viewsFile_);  // one error naming the file and field
-    viewsOptions.viewsFile = viewsFile_;
+    // The comfort report's display: the one given (--display or a profile's), else the head-mounted display.
+    if (displayGiven()) viewsOptions.display = profile_.resolveDisplay(*subcommand);
+    if (!viewsFile_.empty()) {
+      viewsOptions.views = comfort::loadViewConfiguration(viewsFile_);  // one error naming the file and field
+      viewsOptions.viewsFile = viewsFile_;
+    } else {  // the display reports its own per-eye views
+      viewsOptions.views = *viewsOptions.display.eyeViews;
+      viewsOptions.viewsFile = "display profile " + viewsOptions.display.name;
+    }
     viewsOptions.scene = options_.scene;
     viewsOptions.frame = options_.frame;
     viewsOptions.outputFolder = options_.outputFolder;
-    // The comfort report's display: the one given (--display or a profile's), else the head-mounted display.
-    // (No stereo option is given with --views, so the profile's display and --display are all resolve applies.)
-    if (subcommand->count("--display") > 0 || !profile_.load.empty())
-      viewsOptions.display = profile_.resolve(*subcommand, stereo_).display;
     vk::Context context(contextOptions_);
     io::OutputTransaction outputs(options_.outputFolder);  // all files or none
     const app::ViewsReport report = app::runViewsJob(context, viewsOptions);

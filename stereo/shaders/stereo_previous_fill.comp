@@ -15,23 +15,20 @@ layout(binding = 5, r32f) uniform writeonly image2D historyDepth;
 
 layout(push_constant) uniform Push { PreviousFillConstants c; };
 
-// The farther of the hole's nearest covered neighbours in the row; 0 when nothing is covered nearby.
-float holeBackground(ivec2 pixel) {
-  uint farthest = S3D_FORWARD_EMPTY;
-  bool found = false;
+// The hole's (background, occluder) depths from its nearest covered neighbours in the row (previousFillEdges).
+vec2 holeEdges(ivec2 pixel) {
+  uint found[2] = uint[2](S3D_FORWARD_EMPTY, S3D_FORWARD_EMPTY);
   for (int s = 0; s < 2; ++s) {
-    int step = s == 0 ? -1 : 1;
     for (int i = 1; i <= c.edgeSearchPx; ++i) {
-      int column = pixel.x + step * i;
+      int column = pixel.x + (s == 0 ? -i : i);
       if (column < 0 || column >= c.width) break;
       uint key = imageLoad(keys, ivec2(column, pixel.y)).r;
       if (key == S3D_FORWARD_EMPTY) continue;
-      if (!found || forwardKeyDepth(key) > forwardKeyDepth(farthest)) farthest = key;
-      found = true;
+      found[s] = key;
       break;
     }
   }
-  return found ? forwardKeyLinearDepth(farthest) : 0.0;
+  return previousFillEdges(found[0], found[1]);
 }
 
 // The previous eye around `position` over the texels showing the surface of inverse depth `expected`.
@@ -45,7 +42,9 @@ vec4 previousSample(vec2 position, float expected, out float weightSum) {
     float w = weights[tap];
     if (!(w >= S3D_REPROJECTION_MIN_WEIGHT) || !previousFillInsideEye(c, t)) continue;
     if (!sameSurface(expected, inverseDepthOf(imageLoad(previousDepth, t).r))) continue;
-    sum += w * imageLoad(previousEye, t);
+    vec4 texel = imageLoad(previousEye, t);
+    if (!(texel.a >= S3D_PREVIOUS_FILL_WORLD_ALPHA)) continue;
+    sum += w * texel;
     weightSum += w;
   }
   return sum;
@@ -66,7 +65,8 @@ void main() {
     imageStore(historyDepth, pixel, vec4(forwardKeyLinearDepth(key)));
     return;
   }
-  float background = holeBackground(pixel);
+  vec2 edges = holeEdges(pixel);
+  float background = edges.x;
   float depth = background;
   if (c.hasHistory != 0) {
     float q = inverseDepthOf(background);
@@ -76,7 +76,7 @@ void main() {
       if (was.z < 0.0) break;
       float weightSum;
       vec4 sum = previousSample(was.xy, was.z, weightSum);
-      if (weightSum > 0.0) {
+      if (weightSum > 0.0 && behindOccluder(q, edges.y)) {
         color = sum / weightSum;
         depth = q > 0.0 ? 1.0 / q : S3D_INFINITY;
         imageStore(eye, pixel, color);
@@ -85,7 +85,7 @@ void main() {
       ivec2 t = ivec2(int(floor(was.x)), int(floor(was.y)));
       if (!previousFillInsideEye(c, t)) break;
       float previousInverse = inverseDepthOf(imageLoad(previousDepth, t).r);
-      if (previousInverse < 0.0) break;
+      if (previousInverse < 0.0 || !(imageLoad(previousEye, t).a >= S3D_PREVIOUS_FILL_WORLD_ALPHA)) break;
       q = reprojectToCurrent(c.motion, vec2(t) + 0.5, previousInverse, c.width, c.height).z;
     }
   }

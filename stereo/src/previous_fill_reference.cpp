@@ -8,23 +8,28 @@
 namespace s3d::stereo {
 namespace {
 
-// The farther of a hole pixel's nearest covered neighbours in its row (within the edge search): a guess of the
-// depth behind the occluder; 0 when nothing is covered nearby.
-float holeBackground(const std::vector<std::uint32_t>& keys, int x, int y, const gpu::PreviousFillConstants& c) {
+// A hole pixel's nearest covered neighbours in its row (within the edge search): the farther one's depth is a
+// guess of the depth behind the occluder (0: nothing covered nearby); the nearer one's is the occluder's when the
+// two are different surfaces (else 0).
+struct HoleEdges {
+  float background = 0.0f;
+  float occluder = 0.0f;
+};
+
+HoleEdges holeEdges(const std::vector<std::uint32_t>& keys, int x, int y, const gpu::PreviousFillConstants& c) {
   const std::size_t row = std::size_t(y) * std::size_t(c.width);
-  std::uint32_t farthest = S3D_FORWARD_EMPTY;
-  bool found = false;
-  for (int step : {-1, 1})
+  std::uint32_t found[2] = {S3D_FORWARD_EMPTY, S3D_FORWARD_EMPTY};
+  for (int s = 0; s < 2; ++s)
     for (int i = 1; i <= c.edgeSearchPx; ++i) {
-      const int column = x + step * i;
+      const int column = x + (s == 0 ? -i : i);
       if (column < 0 || column >= c.width) break;
       const std::uint32_t key = keys[row + std::size_t(column)];
       if (key == S3D_FORWARD_EMPTY) continue;
-      if (!found || gpu::forwardKeyDepth(key) > gpu::forwardKeyDepth(farthest)) farthest = key;
-      found = true;
+      found[s] = key;
       break;
     }
-  return found ? gpu::forwardKeyLinearDepth(farthest) : 0.0f;
+  const gpu::vec2 edges = gpu::previousFillEdges(found[0], found[1]);
+  return {edges.x, edges.y};
 }
 
 // The previous eye's colour (0..1) around `position` over the texels showing the surface of inverse depth
@@ -42,6 +47,7 @@ gpu::vec4 previousSample(const EyeHistory& previous, gpu::vec2 position, float e
     if (!gpu::sameSurface(expected, gpu::inverseDepthOf(*previous.depth.at(std::uint32_t(t.x), std::uint32_t(t.y)))))
       continue;
     const std::uint8_t* texel = previous.color.at(std::uint32_t(t.x), std::uint32_t(t.y));
+    if (!(float(texel[3]) / 255.0f >= S3D_PREVIOUS_FILL_WORLD_ALPHA)) continue;
     sum += w * (gpu::vec4(texel[0], texel[1], texel[2], texel[3]) / 255.0f);
     weightSum += w;
   }
@@ -90,7 +96,8 @@ EyeHistory fillFromPreviousFrameReference(ImageRGBA8& eye, const std::vector<std
         depth = gpu::forwardKeyLinearDepth(key);
         continue;
       }
-      const float background = holeBackground(keys, x, y, c);
+      const HoleEdges edges = holeEdges(keys, x, y, c);
+      const float background = edges.background;
       depth = background;
       if (counts) ++counts->holePixels;
       if (useHistory) {
@@ -101,7 +108,7 @@ EyeHistory fillFromPreviousFrameReference(ImageRGBA8& eye, const std::vector<std
           if (was.z < 0.0f) break;
           float weightSum = 0.0f;
           const gpu::vec4 sum = previousSample(*previous, {was.x, was.y}, was.z, c, weightSum);
-          if (weightSum > 0.0f) {
+          if (weightSum > 0.0f && gpu::behindOccluder(q, edges.occluder)) {
             const gpu::vec4 color = sum / weightSum;
             for (int i = 0; i < 4; ++i) out[i] = std::uint8_t(std::lround(std::clamp(color[i], 0.0f, 1.0f) * 255.0f));
             depth = q > 0.0f ? 1.0f / q : S3D_INFINITY;
@@ -111,7 +118,8 @@ EyeHistory fillFromPreviousFrameReference(ImageRGBA8& eye, const std::vector<std
           const gpu::ivec2 t(int(std::floor(was.x)), int(std::floor(was.y)));
           if (!gpu::previousFillInsideEye(c, t)) break;
           const float previousInverse = gpu::inverseDepthOf(*previous->depth.at(std::uint32_t(t.x), std::uint32_t(t.y)));
-          if (previousInverse < 0.0f) break;
+          const float previousAlpha = float(previous->color.at(std::uint32_t(t.x), std::uint32_t(t.y))[3]) / 255.0f;
+          if (previousInverse < 0.0f || !(previousAlpha >= S3D_PREVIOUS_FILL_WORLD_ALPHA)) break;
           q = gpu::reprojectToCurrent(c.motion, gpu::vec2(float(t.x) + 0.5f, float(t.y) + 0.5f), previousInverse,
                                       c.width, c.height).z;
         }

@@ -100,6 +100,16 @@ ViewsReport runViewsJob(vk::Context& context, const ViewsJobOptions& options) {
     eyes[std::size_t(i)] = synthesizeEyeForView(centerColor, centerDepth, options.views, center, i, &eyeDepth);
     report.comfort[std::size_t(i)] =
         comfort::eyeViewComfort(eyeDepth, options.views.worldScale, report.interocularMeters, options.display);
+    double nearest = INFINITY, farthest = 0.0;
+    for (float d : eyeDepth.pixels)
+      if (d > 0.0f) nearest = std::min(nearest, double(d)), farthest = std::max(farthest, double(d));
+    if (farthest > 0.0) {
+      const double separation = report.interocularMeters * options.views.worldScale;  // world units
+      const double range = separation * (1.0 / nearest - 1.0 / farthest);          // tangent units
+      const double pitch = (std::tan(eye.angleRight) - std::tan(eye.angleLeft)) / double(eye.width);
+      report.disparityRangePx[std::size_t(i)] = range / pitch;
+      report.disparityRangeArcmin[std::size_t(i)] = range * 180.0 * 60.0 / 3.14159265358979323846;
+    }
     // The reference: the eye's own camera, offset along x, with its own asymmetric frustum and size.
     renderer::DeferredRenderer eyeRenderer(context, eye.width, eye.height);
     eyeRenderer.setScene(scene);
@@ -154,6 +164,10 @@ nlohmann::json toJson(const ViewsReport& report) {
           {"center", {{"width", c.width}, {"height", c.height}, {"tanLeft", c.tanLeft}, {"tanRight", c.tanRight},
                       {"tanUp", c.tanUp}, {"tanDown", c.tanDown}, {"eyeOffset", c.eyeOffset}}},
           {"error", {{"left", stats(report.error[0])}, {"right", stats(report.error[1])}}},
+          {"disparityRangePx", {{"left", finiteOrNull(report.disparityRangePx[0])},
+                                {"right", finiteOrNull(report.disparityRangePx[1])}}},
+          {"disparityRangeArcmin", {{"left", finiteOrNull(report.disparityRangeArcmin[0])},
+                                    {"right", finiteOrNull(report.disparityRangeArcmin[1])}}},
           {"comfort", {{"display", displayJson(report.display)},
                        {"focalDistanceMeters", report.display.viewingDistanceMeters},
                        {"interocularMeters", report.interocularMeters},

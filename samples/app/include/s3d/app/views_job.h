@@ -42,6 +42,10 @@ struct ViewsReport {
   double interocularMeters = 0.0;  // the views' eye separation
   // Left, right: vergence-accommodation conflict and zone of comfort of what each synthesized eye shows.
   std::array<comfort::EyeViewComfort, 2> comfort{};
+  // Left, right: the range of disparity between the eyes over the depths the eye shows, in its pixels at the
+  // image centre (eye separation in world units times (1 / nearest - 1 / farthest), over the eye's tangent pitch)
+  // and in arcminutes at the eyes (the views are the viewer's: separation in metres over distance in metres).
+  std::array<double, 2> disparityRangePx{}, disparityRangeArcmin{};
   std::vector<std::string> filesWritten;
 };
 
