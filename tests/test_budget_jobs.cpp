@@ -41,22 +41,45 @@ TEST_F(BudgetJobs, ACourtyardFrameOnAMonitorFitsTheOneDegreeRule) {
   EXPECT_EQ(json.at("shareOutside"), 0.0);
 }
 
-TEST_F(BudgetJobs, TheCoverSequenceStaysWithinTheBudgetInEveryFrame) {
+// The cover sequence at 96x54 with the disparity budget, run once per test binary.
+SequenceJobOptions budgetSequenceOptions() {
   SequenceJobOptions options;
   options.width = 96;
   options.height = 54;
   options.writeFrames = false;
   options.outputFolder = scratch("sequence");
   options.disparityBudget = comfort::DisparityBudgetRule::OneDegree;
-  const SequenceReport report = runSequenceJob(context(), options);
-  std::error_code ignored;
-  fs::remove_all(options.outputFolder, ignored);
+  return options;
+}
+const SequenceReport& budgetSequence(vk::Context& context) {
+  static const SequenceReport report = [&] {
+    const SequenceJobOptions options = budgetSequenceOptions();
+    SequenceReport result = runSequenceJob(context, options);
+    std::error_code ignored;
+    fs::remove_all(options.outputFolder, ignored);
+    return result;
+  }();
+  return report;
+}
+
+TEST_F(BudgetJobs, TheCoverSequenceStaysWithinTheBudgetInEveryFrame) {
+  const SequenceReport& report = budgetSequence(context());
   ASSERT_FALSE(report.frames.empty());
   for (const SequenceFrame& frame : report.frames) {
     EXPECT_EQ(frame.comfort.parallax.shareBeyondOneDegree, 0.0) << "frame " << frame.index;
     EXPECT_GE(frame.comfort.parallax.minParallaxPx, -1e-3) << "frame " << frame.index;
     EXPECT_EQ(frame.maxSeparation, frame.budget.choice.parameters.maxSeparation);
   }
+}
+
+// The memory estimate, checked before anything is allocated, counts a band at least as wide as any frame's.
+TEST_F(BudgetJobs, TheSequenceMemoryEstimateCoversEveryFramesGuardBand) {
+  const SequenceReport& report = budgetSequence(context());
+  const stereo::GuardBand widest = widestSequenceGuardBand(budgetSequenceOptions());
+  for (const SequenceFrame& frame : report.frames)
+    EXPECT_LE(frame.guardBandColumns, widest.columns) << "frame " << frame.index;
+  EXPECT_NE(sequenceMemoryEstimate(budgetSequenceOptions()).what.find("guard band 2 x " + std::to_string(widest.columns)),
+            std::string::npos);
 }
 
 TEST_F(BudgetJobs, ConvertFitsAFileDepthMapIntoTheBudget) {

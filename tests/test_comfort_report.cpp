@@ -44,6 +44,36 @@ TEST(FrameComfort, CountsPixelsOutsideTheZoneOfComfort) {
   EXPECT_DOUBLE_EQ(comfort.shareOutsideComfortZone, 0.5);
 }
 
+TEST(EyeViewComfort, ConflictAndZoneOfAHeadsetsEyeByHand) {
+  // The hmd profile focuses at 1.3 m; world scale 2 (2 world units per metre). Pixels: on the focal plane (2.6
+  // units), at 0.3 m (0.6 units), the sky, and one of unknown depth (left out).
+  const DisplayProfile hmd = builtInDisplayProfile("hmd");
+  DepthImage depth(4, 1);
+  depth.pixels = {2.6f, 0.6f, std::numeric_limits<float>::infinity(), std::numeric_limits<float>::quiet_NaN()};
+  std::vector<float> perPixel;
+  const EyeViewComfort comfort = eyeViewComfort(depth, 2.0, 0.063, hmd, &perPixel);
+  EXPECT_EQ(comfort.pixelCount, 3u);
+  const double focal = 1.0 / 1.3;
+  // Tolerance 1e-5 D: depths held as floats.
+  EXPECT_NEAR(perPixel[0], 0.0, 1e-5);
+  EXPECT_NEAR(perPixel[1], 1.0 / 0.3 - focal, 1e-5);
+  EXPECT_NEAR(perPixel[2], focal, 1e-5);
+  EXPECT_TRUE(std::isnan(perPixel[3]));
+  EXPECT_NEAR(comfort.maxConflictDiopters, 1.0 / 0.3 - focal, 1e-5);
+  EXPECT_NEAR(comfort.meanConflictDiopters, (1.0 / 0.3 - focal + focal) / 3.0, 1e-5);
+  EXPECT_NEAR(comfort.nearestMeters, 0.3, 1e-6);
+  // The zone at 1.3 m (Shibata's fit): near 1 / ((1/1.3 + 0.626) / 1.035) = 0.74 m, far 1 / ((1/1.3 - 0.442) / 1.129)
+  // = 3.45 m: the 0.3 m pixel and the sky lie outside it.
+  const ComfortZone zone = shibataComfortZone(hmd);
+  ASSERT_GT(zone.nearMeters, 0.3);
+  ASSERT_LT(zone.farMeters, 1000.0);
+  EXPECT_NEAR(comfort.shareOutsideComfortZone, 2.0 / 3.0, 1e-12);
+  // Vergence beyond 1 degree from the focal plane's (63 mm eyes): 0.3 m yes (10.6 degrees against 2.8), the sky
+  // (2.8 degrees off) too.
+  EXPECT_NEAR(comfort.shareBeyondOneDegree, 2.0 / 3.0, 1e-12);
+  EXPECT_THROW((void)eyeViewComfort(depth, 0.0, 0.063, hmd), std::invalid_argument);
+}
+
 TEST(FrameComfort, WindowViolationsAreNegativeParallaxRunsTouchingTheLeftOrRightEdge) {
   // 3 near columns at the left edge and 2 at the right edge of 3 rows; a near block in the middle does not count.
   DepthImage depth(20, 3, 2.0f);

@@ -87,5 +87,31 @@ TEST(DisplayProfile, AJsonProfileWithAnUnknownKeyOrABadValueIsRefused) {
                std::invalid_argument);  // tan(90 deg): no finite virtual screen
 }
 
+TEST(DisplayProfile, AHeadsetProfileCarriesItsEyeViews) {
+  const DisplayProfile headset =
+      loadDisplayProfile(std::string(S3D_TEST_DATA_DIR) + "/../../samples/views/headset-display.json");
+  ASSERT_TRUE(headset.eyeViews.has_value());
+  EXPECT_EQ(headset.eyeViews->eyes[0].width, 1832u);
+  EXPECT_DOUBLE_EQ(headset.eyeViews->eyes[1].positionX, 0.0315);
+  EXPECT_FLOAT_EQ(headset.viewingDistanceMeters, 1.3f);
+  // Written and read back unchanged; a profile without views has none.
+  const DisplayProfile again = displayProfileFromJson(toJson(headset));
+  ASSERT_TRUE(again.eyeViews.has_value());
+  EXPECT_EQ(toJson(*again.eyeViews), toJson(*headset.eyeViews));
+  EXPECT_FALSE(builtInDisplayProfile("hmd").eyeViews.has_value());
+}
+
+TEST(DisplayProfile, BadEyeViewsAreRefusedNamingTheField) {
+  nlohmann::json document = toJson(builtInDisplayProfile("hmd"));
+  document["eyeViews"] = {{"views", {{"left", nlohmann::json::object()}}}};
+  try {
+    (void)displayProfileFromJson(document);
+    FAIL() << "accepted";
+  } catch (const std::invalid_argument& error) {
+    EXPECT_NE(std::string(error.what()).find("display.eyeViews"), std::string::npos) << error.what();
+    EXPECT_NE(std::string(error.what()).find("views.left.position is missing"), std::string::npos) << error.what();
+  }
+}
+
 }  // namespace
 }  // namespace s3d::comfort

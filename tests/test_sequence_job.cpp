@@ -137,5 +137,73 @@ TEST_F(CoverSequence, TheComfortNumbersOfTheFirstFrameMatchAHandComputation) {
   EXPECT_EQ(frame.comfort.shareOutsideComfortZone, 0.0);  // at 2.5 m everything behind 1 m is comfortable
 }
 
+TEST_F(CoverSequence, EveryFrameIsFullFrameWithAGuardBand) {
+  // No edge crop given: the center view is rendered ceil(m W) + 1 columns wider a side (m = 0.02 at 160 px: 5).
+  const SequenceReport& report = coverSequence(context());
+  for (const SequenceFrame& frame : report.frames) {
+    EXPECT_EQ(frame.cropColumns, 0u) << "frame " << frame.index;
+    EXPECT_EQ(frame.guardBandColumns, 5u) << "frame " << frame.index;
+  }
+  EXPECT_EQ(toJson(report).at("frames").at(3).at("cropColumns"), 0);
+}
+
+// A static camera (every frame the path's first), 64x36, without frame images.
+SequenceReport staticCamera(vk::Context& context, stereo::StereoMethod method, bool previousFrameFill) {
+  SequenceJobOptions options;
+  options.width = 64;
+  options.height = 36;
+  options.writeFrames = false;
+  options.writeReport = false;
+  options.holdFrame = 0;
+  options.stereo.method = method;
+  options.stereo.previousFrameFill = previousFrameFill;
+  return runSequenceJob(context, options);
+}
+
+TEST_F(CoverSequence, AStaticCameraDoesNotFlicker) {
+  // Nothing moves and the controls are at rest in the first frame, so every frame repeats the first: the
+  // flicker of the default method, of the forward method and of its previous-frame fill is 0 (1e-9 levels: the
+  // static reprojection's weights are 1 within float rounding), and no pixel counts as newly visible.
+  for (auto [method, fill] : {std::pair{stereo::StereoMethod::Search, false}, std::pair{stereo::StereoMethod::Forward, false},
+                              std::pair{stereo::StereoMethod::Forward, true}}) {
+    const SequenceReport report = staticCamera(context(), method, fill);
+    for (std::size_t i = 1; i < report.frames.size(); ++i) {
+      ASSERT_TRUE(report.frames[i].flicker.has_value());
+      for (const stereo::FlickerStats& eye : *report.frames[i].flicker) {
+        EXPECT_NEAR(eye.all.meanLevels, 0.0, 1e-9) << stereo::methodName(method) << fill << " frame " << i;
+        EXPECT_EQ(eye.newlyVisiblePixels, 0u);
+        EXPECT_EQ(eye.all.pixelCount, 64u * 36u);
+      }
+    }
+  }
+}
+
+// Tolerance: one 8-bit level everywhere, so PSNR >= 48.1 dB. At budget 1 the hybrid method renders every eye pixel
+// from the eye cameras, the reference's cameras on the same wide frame, so each frame's eyes are the reference's
+// with the guard band as with any method (the eye renderer follows the band's width).
+TEST_F(CoverSequence, AHybridSequenceAtBudgetOneIsTheReference) {
+  SequenceJobOptions options;
+  options.width = 64;
+  options.height = 36;
+  options.writeFrames = false;
+  options.writeReport = false;
+  options.stereo.method = stereo::StereoMethod::Hybrid;
+  options.stereo.hybridBudget = 1.0f;
+  const SequenceReport report = runSequenceJob(context(), options);
+  ASSERT_FALSE(report.frames.empty());
+  for (const SequenceFrame& frame : report.frames) {
+    EXPECT_GT(frame.guardBandColumns, 0u);
+    EXPECT_GE(frame.psnrLeftDb, 48.1) << "frame " << frame.index;
+    EXPECT_GE(frame.psnrRightDb, 48.1) << "frame " << frame.index;
+    EXPECT_EQ(frame.stereoPassGpuMs.has_value(), context().timestampPeriodNs() > 0.0) << "frame " << frame.index;
+  }
+}
+
+TEST_F(CoverSequence, ThePreviousFrameFillNeedsTheForwardMethod) {
+  SequenceJobOptions options;
+  options.stereo.previousFrameFill = true;  // with the default method (search)
+  EXPECT_THROW((void)runSequenceJob(context(), options), std::invalid_argument);
+}
+
 }  // namespace
 }  // namespace s3d::app

@@ -127,4 +127,48 @@ WeaponConflicts countWeaponConflicts(const WorldQueries& world, const renderer::
   return result;
 }
 
+EyeViewComfort eyeViewComfort(const DepthImage& eyeDepth, double worldScale, double interocularMeters,
+                              const DisplayProfile& display, std::vector<float>* conflictDiopters) {
+  if (eyeDepth.pixelCount() == 0) throw std::invalid_argument("eye view comfort: the depth image is empty");
+  if (!(worldScale > 0.0) || !std::isfinite(worldScale) || !(interocularMeters > 0.0) || !std::isfinite(interocularMeters))
+    throw std::invalid_argument("eye view comfort: world scale and eye separation must be positive");
+  validate(display);
+  const double focalDiopters = 1.0 / double(display.viewingDistanceMeters);
+  const ComfortZone zone = shibataComfortZone(display);
+  // Vergence angle (radians) of a point at `diopters` for eyes `interocularMeters` apart.
+  auto vergence = [&](double diopters) { return 2.0 * std::atan(0.5 * interocularMeters * diopters); };
+  const double focalVergence = vergence(focalDiopters);
+  constexpr double kOneDegree = 3.14159265358979323846 / 180.0;
+  if (conflictDiopters) conflictDiopters->assign(eyeDepth.pixelCount(), std::numeric_limits<float>::quiet_NaN());
+  std::vector<double> conflicts;
+  conflicts.reserve(eyeDepth.pixelCount());
+  std::uint64_t outside = 0, beyondOneDegree = 0;
+  double nearest = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < eyeDepth.pixelCount(); ++i) {
+    const double depth = eyeDepth.pixels[i];
+    if (!(depth > 0.0)) continue;  // unknown (NaN or <= 0)
+    const double meters = depth / worldScale;
+    const double diopters = std::isinf(meters) ? 0.0 : 1.0 / meters;
+    const double conflict = std::abs(diopters - focalDiopters);
+    conflicts.push_back(conflict);
+    if (conflictDiopters) (*conflictDiopters)[i] = float(conflict);
+    if (meters < zone.nearMeters || meters > zone.farMeters) ++outside;
+    if (std::abs(vergence(diopters) - focalVergence) > kOneDegree) ++beyondOneDegree;
+    nearest = std::min(nearest, meters);
+  }
+  EyeViewComfort comfort;
+  comfort.pixelCount = conflicts.size();
+  if (conflicts.empty()) return comfort;
+  double sum = 0.0;
+  for (double c : conflicts) sum += c;
+  comfort.meanConflictDiopters = sum / double(conflicts.size());
+  std::sort(conflicts.begin(), conflicts.end());
+  comfort.p95ConflictDiopters = conflicts[std::min(conflicts.size() - 1, std::size_t(0.95 * double(conflicts.size())))];
+  comfort.maxConflictDiopters = conflicts.back();
+  comfort.shareOutsideComfortZone = double(outside) / double(conflicts.size());
+  comfort.shareBeyondOneDegree = double(beyondOneDegree) / double(conflicts.size());
+  comfort.nearestMeters = nearest;
+  return comfort;
+}
+
 }  // namespace s3d::comfort

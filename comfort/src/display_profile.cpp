@@ -93,6 +93,13 @@ DisplayProfile displayProfileFromJson(const nlohmann::json& document) {
     reader.number("screenWidthMeters", display.screenWidthMeters, kLengthRange);
     reader.number("viewingDistanceMeters", display.viewingDistanceMeters, kLengthRange);
   }
+  if (const nlohmann::json* views = reader.find("eyeViews")) {
+    try {
+      display.eyeViews = viewConfigurationFromJson(*views);
+    } catch (const std::invalid_argument& error) {
+      throw std::invalid_argument("'" + reader.pathOf("eyeViews") + "': " + error.what());
+    }
+  }
   reader.finish();
   return display;
 }
@@ -106,6 +113,7 @@ nlohmann::json toJson(const DisplayProfile& display) {
     document["screenWidthMeters"] = detail::shortest(display.screenWidthMeters);
     document["viewingDistanceMeters"] = detail::shortest(display.viewingDistanceMeters);
   }
+  if (display.eyeViews) document["eyeViews"] = toJson(*display.eyeViews);
   return document;
 }
 

@@ -83,6 +83,15 @@ ViewConfiguration viewConfigurationFromJson(const nlohmann::json& document) {
   return views;
 }
 
+nlohmann::json toJson(const ViewConfiguration& views) {
+  auto eye = [](const EyeView& e) {
+    return nlohmann::json{{"position", {e.positionX, 0.0, 0.0}}, {"angleLeft", e.angleLeft}, {"angleRight", e.angleRight},
+                          {"angleUp", e.angleUp},   {"angleDown", e.angleDown},         {"width", e.width},
+                          {"height", e.height}};
+  };
+  return {{"worldScale", views.worldScale}, {"views", {{"left", eye(views.eyes[0])}, {"right", eye(views.eyes[1])}}}};
+}
+
 ViewConfiguration loadViewConfiguration(const std::filesystem::path& file) {
   const std::string prefix = "views file '" + file.string() + "': ";
   std::error_code status;

@@ -6,6 +6,7 @@
 
 #include <cstdio>
 #include <exception>
+#include <functional>
 #include <iostream>
 #include <optional>
 #include <string>
@@ -14,6 +15,7 @@
 #include "s3d/io/output_transaction.h"
 #include "s3d/app/bench_job.h"
 #include "s3d/app/render_job.h"
+#include "s3d/app/sequence_bench.h"
 #include "s3d/renderer/scene.h"
 
 namespace s3d::cli {
@@ -60,6 +62,15 @@ class BenchCommand final : public Command {
                      "Anti-aliasing of the center view and the reference eyes: N x N samples per pixel")
         ->check(CLI::Range(1, 4))
         ->capture_default_str();
+    const app::SequenceBenchOptions sequenceDefaults;
+    bench.add_flag("--sequence", sequence_,
+                   "Run each scene's camera path (default --scenes: " + joined(sequenceDefaults.scenes, ",") +
+                       "; --resolution " + std::to_string(sequenceDefaults.width) + "x" +
+                       std::to_string(sequenceDefaults.height) + ") with every method setting (default --methods: " +
+                       joined(sequenceDefaults.methods, ",") +
+                       "; a +previous suffix on forward: the previous-frame fill) and the comfort controls of `s3d "
+                       "render --sequence`, and report per setting the temporal flicker, the mean PSNR and the stereo "
+                       "pass's GPU time (sequence_bench.md, sequence_bench.json)");
     bench.add_flag("--renderer", options_.rendererOnly,
                    "Time the center frame and each renderer pass per scene instead of the stereo sweep");
     bench
@@ -80,6 +91,7 @@ class BenchCommand final : public Command {
   }
 
   int run() override {
+    if (sequence_) return runSequence();
     if (options_.rendererOnly)
       rejectGiven(*subcommand, {"--methods", "--separations", "--bandwidth-gbs", "--target-setting"},
                   "belongs to the stereo sweep: it does not apply to --renderer (the renderer's passes per scene)");
@@ -95,17 +107,7 @@ class BenchCommand final : public Command {
               << options_.width << "x" << options_.height << '\n';
     const bool terminal = ::isatty(::fileno(stderr)) != 0;
     std::size_t previousLength = 0;
-    options_.progress = [&](const app::BenchProgress& progress) {
-      const std::string line = app::formatProgressBar(progress);
-      if (terminal) {  // one bar redrawn in place; spaces wipe the rest of a longer previous line
-        std::cerr << '\r' << line << std::string(previousLength > line.size() ? previousLength - line.size() : 0, ' ');
-        if (progress.done == progress.total) std::cerr << '\n';
-        std::cerr.flush();
-        previousLength = line.size();
-      } else {
-        std::cerr << line << '\n';
-      }
-    };
+    options_.progress = progressPrinter(terminal, previousLength);
 
     std::optional<app::BenchReport> report;
     std::string jobError;
@@ -131,6 +133,66 @@ class BenchCommand final : public Command {
   }
 
  private:
+  // Progress on stderr: one bar redrawn in place on a terminal, a line per step otherwise (CI logs).
+  static std::function<void(const app::BenchProgress&)> progressPrinter(bool terminal, std::size_t& previousLength) {
+    return [terminal, &previousLength](const app::BenchProgress& progress) {
+      const std::string line = app::formatProgressBar(progress);
+      if (terminal) {  // spaces wipe the rest of a longer previous line
+        std::cerr << '\r' << line << std::string(previousLength > line.size() ? previousLength - line.size() : 0, ' ');
+        if (progress.done == progress.total) std::cerr << '\n';
+        std::cerr.flush();
+        previousLength = line.size();
+      } else {
+        std::cerr << line << '\n';
+      }
+    };
+  }
+
+  int runSequence() {
+    rejectGiven(*subcommand,
+                {"--renderer", "--separations", "--repeat", "--bandwidth-gbs", "--target-setting", "--results-md"},
+                "does not apply to --sequence (each setting runs the camera path once, the disparity budget choosing "
+                "the separation every frame; the tables go to sequence_bench.md)");
+    app::SequenceBenchOptions sequence;
+    if (!resolution_.empty()) parseResolution(resolution_, app::kMaxImageSize, sequence.width, sequence.height);
+    if (!options_.scenes.empty()) sequence.scenes = options_.scenes;
+    if (subcommand->count("--methods") > 0) sequence.methods = options_.methods;
+    sequence.supersample = options_.supersample;
+    sequence.outputFolder = options_.outputFolder;
+    // As `s3d render --sequence` runs by default: the disparity budget on the default display.
+    sequence.sequence.disparityBudget = comfort::DisparityBudgetRule::OneDegree;
+    sequence.sequence.memoryLimitBytes = options_.memoryLimitBytes;
+    // Options first: a typo must not cost a Vulkan start-up, and must leave no files behind.
+    app::validateSequenceBenchOptions(sequence);
+    app::requireHostMemory(app::sequenceBenchMemoryEstimate(sequence), options_.memoryLimitBytes,
+                           contextOptions_.device == "cpu");
+    vk::Context context(contextOptions_);
+    std::cerr << "s3d bench --sequence: " << context.deviceName() << ", " << sequence.width << "x" << sequence.height << '\n';
+    std::size_t previousLength = 0;
+    sequence.progress = progressPrinter(::isatty(::fileno(stderr)) != 0, previousLength);
+    std::optional<app::SequenceBenchReport> report;
+    std::string jobError;
+    io::OutputTransaction outputs(options_.outputFolder);  // all files or none
+    try {
+      report = app::runSequenceBench(context, sequence);
+    } catch (const std::exception& error) {
+      jobError = error.what();
+    }
+    const std::vector<std::string> messages = context.validationMessages();
+    for (const std::string& message : messages) std::cerr << "s3d: validation: " << oneLine(message) << '\n';
+    if (!report) return fail(jobError);
+    if (messages.empty()) outputs.commit();
+    std::cout << app::sequenceBenchMarkdown(*report);
+    char wall[32];
+    std::snprintf(wall, sizeof(wall), "%.1f", report->wallSeconds);
+    std::cout << "s3d bench --sequence: " << report->rows.size() << " rows on " << report->deviceName << " in " << wall
+              << " s; wrote " << joined(report->filesWritten, ", ") << " (in " << options_.outputFolder.string() << ")\n";
+    if (!messages.empty())
+      return fail("the Vulkan validation layer reported " + std::to_string(messages.size()) + " message(s)");
+    return 0;
+  }
+
+  bool sequence_ = false;
   app::BenchOptions options_;
   vk::ContextOptions contextOptions_;
   std::string resolution_;

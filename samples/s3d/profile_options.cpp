@@ -58,4 +58,9 @@ comfort::ComfortProfile ProfileOptions::resolve(const CLI::App& command, const S
   return profile;
 }
 
+comfort::DisplayProfile ProfileOptions::resolveDisplay(const CLI::App& command) const {
+  if (command.count("--display") > 0) return comfort::resolveDisplayProfile(display);
+  return load.empty() ? comfort::ComfortProfile{}.display : comfort::loadComfortProfile(load).display;
+}
+
 }  // namespace s3d::cli

@@ -25,6 +25,9 @@ struct ProfileOptions {
   // After parsing (and stereo.finish()): the loaded profile, or the defaults, with every option that was
   // given on `command` (the StereoOptions', --weapon-depth-*, --display, --allow-negative-parallax) applied.
   comfort::ComfortProfile resolve(const CLI::App& command, const StereoOptions& stereo) const;
+  // The display alone, as resolve() would give it: --display, else the --profile's, else the default profile's
+  // (for modes where the profile's stereo parameters do not apply, e.g. `s3d render --views`).
+  comfort::DisplayProfile resolveDisplay(const CLI::App& command) const;
   // --disparity-budget, where the command offers it (addDisparityBudgetOption).
   comfort::DisparityBudgetRule budgetRule() const { return comfort::parseDisparityBudgetRule(disparityBudget); }
 };

@@ -88,10 +88,17 @@ class RenderCommand final : public Command {
     render.add_flag("--sequence", sequence_,
                     "Render the scene's whole camera path with the comfort controls running (zero-parallax "
                     "control, weapon push, crosshair): anaglyph_NNNN.png per frame and a per-frame report.json");
+    render.add_flag("--previous-frame-fill", previousFrameFill_,
+                    "With --sequence and --method forward: each frame's disocclusions take the previous frame's eyes, "
+                    "reprojected with their depth and the camera's motion, where that frame saw them");
     render.add_option("--views", viewsFile_,
                       "Per-eye views as OpenXR reports them (JSON: eye x offsets in metres, angleLeft/Right/Up/Down, "
                       "size per eye, worldScale; samples/views/): render the center view covering both eyes, "
-                      "synthesize each eye in its own projection and compare with the eyes rendered directly");
+                      "synthesize each eye in its own projection and compare with the eyes rendered directly; each "
+                      "eye's comfort is reported on the display of --display or --profile (else " +
+                          app::ViewsJobOptions{}.display.name +
+                          "). A display profile with eyeViews (samples/views/headset-display.json) does the same "
+                          "for its own views in a single frame");
     addDeviceOptions(render, contextOptions_);
     render.add_flag("--list-devices", listDevicesOnly_,
                     "List the Vulkan devices and whether s3d can use them, then exit without rendering");
@@ -102,19 +109,31 @@ class RenderCommand final : public Command {
       listDevices();
       return 0;
     }
+    // Per-eye views: a --views file, or in a single frame a display that reports its own (a display profile's
+    // eyeViews, from --display or the --profile's display).
+    const bool displayViews =
+        viewsFile_.empty() && !sequence_ && displayGiven() && profile_.resolveDisplay(*subcommand).eyeViews;
     // Options that do nothing in the chosen mode are errors naming the mode.
-    if (!viewsFile_.empty())
+    if (!viewsFile_.empty() || displayViews)
       rejectGiven(*subcommand,
-                  {"--sequence", "--width", "--height", "--resolution", "--outputs", "--sbs", "--tab", "--max-separation",
-                   "--zero-parallax-distance", "--edge-crop", "--method", "--taps", "--iterations",
-                   "--weapon-depth-offset", "--weapon-depth-scale", "--supersample", "--profile", "--save-profile",
-                   "--allow-negative-parallax", "--display", "--disparity-budget", "--reversed-z", "--hud"},
-                  "does not apply to --views (each eye's size, projection and offset come from the views file; the "
-                  "eyes are synthesized by the views' own depth search and compared with the eyes rendered directly)");
+                  {"--sequence", "--previous-frame-fill", "--width", "--height", "--resolution", "--outputs", "--sbs",
+                   "--tab", "--max-separation", "--zero-parallax-distance", "--edge-crop", "--method", "--taps",
+                   "--iterations", "--hybrid-budget", "--hybrid-base", "--weapon-depth-offset", "--weapon-depth-scale",
+                   "--supersample", "--save-profile", "--allow-negative-parallax", "--disparity-budget", "--reversed-z",
+                   "--hud"},
+                  std::string("does not apply to ") +
+                      (displayViews ? "a display with eye views (each eye's size, projection and offset come from "
+                                      "the display profile's eyeViews"
+                                    : "--views (each eye's size, projection and offset come from the views file") +
+                      "; the eyes are synthesized by the views' own depth search and compared with the eyes rendered "
+                      "directly; only the display, --display or a --profile's, applies: its focal distance for the "
+                      "comfort report)");
     if (sequence_)
       rejectGiven(*subcommand, {"--outputs", "--sbs", "--tab", "--frame", "--hud"},
                   "does not apply to --sequence (it renders every frame of the camera path and writes "
                   "anaglyph_NNNN.png per frame and report.json, without the HUD)");
+    else
+      rejectGiven(*subcommand, {"--previous-frame-fill"}, "applies to --sequence (a single frame has no previous one)");
     if (!resolution_.empty()) parseResolution(resolution_, app::kMaxImageSize, options_.width, options_.height);
     options_.outputs = std::set<std::string>(outputs_.begin(), outputs_.end());
     if (!options_.outputs.count("sbs.png")) rejectGiven(*subcommand, {"--sbs"}, "packs sbs.png, which --outputs leaves out");
@@ -122,7 +141,7 @@ class RenderCommand final : public Command {
     options_.sideBySide = stereo::parsePackingMode(sideBySide_);
     options_.topBottom = stereo::parsePackingMode(topBottom_);
     options_.hud = app::parseHudMode(hud_);
-    if (!viewsFile_.empty()) return runViews();
+    if (!viewsFile_.empty() || displayViews) return runViews();
     stereo_.finish();
     StereoOptions::rejectSeparationUnderBudget(*subcommand, profile_.disparityBudget);
     const comfort::ComfortProfile profile = profile_.resolve(*subcommand, stereo_);
@@ -134,10 +153,19 @@ class RenderCommand final : public Command {
     options_.allowNegativeParallax = profile.allowNegativeParallax;
     options_.disparityBudget = profile_.budgetRule();
     zeroParallax_ = profile.zeroParallaxSettings();
+    if (previousFrameFill_) {
+      if (options_.stereo.method != stereo::StereoMethod::Forward)
+        rejectGiven(*subcommand, {"--previous-frame-fill"},
+                    std::string("applies to --method forward (the method is ") +
+                        stereo::methodName(options_.stereo.method) + ")");
+      options_.stereo.previousFrameFill = true;
+    }
     return sequence_ ? runSequence() : runSingleFrame();
   }
 
  private:
+  bool displayGiven() const { return subcommand->count("--display") > 0 || !profile_.load.empty(); }
+
   // Before the Vulkan start-up: the host's share of the estimate (all of it on the CPU device).
   void requireHostMemory(const app::MemoryEstimate& estimate) const {
     app::requireHostMemory(estimate, options_.memoryLimitBytes, contextOptions_.device == "cpu");
@@ -146,8 +174,15 @@ class RenderCommand final : public Command {
   int runViews() {
     app::ViewsJobOptions viewsOptions;
     viewsOptions.memoryLimitBytes = options_.memoryLimitBytes;
-    viewsOptions.views = comfort::loadViewConfiguration(viewsFile_);  // one error naming the file and field
-    viewsOptions.viewsFile = viewsFile_;
+    // The comfort report's display: the one given (--display or a profile's), else the head-mounted display.
+    if (displayGiven()) viewsOptions.display = profile_.resolveDisplay(*subcommand);
+    if (!viewsFile_.empty()) {
+      viewsOptions.views = comfort::loadViewConfiguration(viewsFile_);  // one error naming the file and field
+      viewsOptions.viewsFile = viewsFile_;
+    } else {  // the display reports its own per-eye views
+      viewsOptions.views = *viewsOptions.display.eyeViews;
+      viewsOptions.viewsFile = "display profile " + viewsOptions.display.name;
+    }
     viewsOptions.scene = options_.scene;
     viewsOptions.frame = options_.frame;
     viewsOptions.outputFolder = options_.outputFolder;
@@ -156,9 +191,12 @@ class RenderCommand final : public Command {
     const app::ViewsReport report = app::runViewsJob(context, viewsOptions);
     outputs.commit();
     std::printf("s3d render --views: scene %s, center view %ux%u on %s; synthesized vs reference: left %.2f dB, "
-                "right %.2f dB; wrote %zu files to %s\n",
+                "right %.2f dB; outside the zone of comfort at %.2f m (%s): left %.1f %%, right %.1f %%; wrote %zu "
+                "files to %s\n",
                 report.scene.c_str(), report.center.width, report.center.height, report.deviceName.c_str(),
-                report.error[0].psnrDb, report.error[1].psnrDb, report.filesWritten.size(),
+                report.error[0].psnrDb, report.error[1].psnrDb, double(report.display.viewingDistanceMeters),
+                report.display.name.c_str(), 100.0 * report.comfort[0].shareOutsideComfortZone,
+                100.0 * report.comfort[1].shareOutsideComfortZone, report.filesWritten.size(),
                 options_.outputFolder.string().c_str());
     return 0;
   }
@@ -178,7 +216,7 @@ class RenderCommand final : public Command {
     sequenceOptions.reversedZ = options_.reversedZ;
     sequenceOptions.disparityBudget = options_.disparityBudget;
     sequenceOptions.memoryLimitBytes = options_.memoryLimitBytes;
-    requireHostMemory(app::renderMemoryEstimate(options_.width, options_.height, options_.width, options_.supersample));
+    requireHostMemory(app::sequenceMemoryEstimate(sequenceOptions));
     vk::Context context(contextOptions_);
     io::OutputTransaction outputs(options_.outputFolder);  // all files or none
     const app::SequenceReport report = app::runSequenceJob(context, sequenceOptions);
@@ -248,6 +286,7 @@ class RenderCommand final : public Command {
   std::string topBottom_ = "half";
   std::string hud_ = app::hudModeName(app::RenderJobOptions{}.hud);
   bool sequence_ = false;
+  bool previousFrameFill_ = false;
   bool listDevicesOnly_ = false;
 };
 

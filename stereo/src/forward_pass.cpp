@@ -67,6 +67,11 @@ void ForwardStereoPass::record(VkCommandBuffer cmd, const vk::Image& centerColor
   }
 }
 
+const vk::Image& ForwardStereoPass::keys(Eye eye) const {
+  if (!zBuffers_) throw std::logic_error("ForwardStereoPass::keys: nothing recorded yet");
+  return eye == Eye::Left ? zBuffers_->left : zBuffers_->right;
+}
+
 StereoPair synthesizeForwardOnGpu(vk::Context& context, const ImageRGBA8& center, const DepthImage& linearDepth,
                                   const gpu::ForwardConstants& constants) {
   return detail::runOnCpuImages(context, ForwardStereoPass(context), center, linearDepth, constants);

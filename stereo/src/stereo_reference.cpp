@@ -54,13 +54,15 @@ void validate(const StereoParameters& p) {
     if (p.hybridBase == StereoMethod::Hybrid) throw std::invalid_argument("the hybrid method's base must be another method");
     requireFinite(p.hybridBudget, "hybridBudget");
     if (p.hybridBudget < 0.0f || p.hybridBudget > 1.0f)
-      throw std::invalid_argument("hybridBudget " + std::to_string(p.hybridBudget) + " is outside [0, 1]");
+      throw std::invalid_argument("hybridBudget " + numberText(p.hybridBudget) + " is outside [0, 1]");
     StereoParameters base = p;
     base.method = p.hybridBase;
     validate(base);
   }
   if (p.edgeCrop > kMaxSeparationLimit)
     throw std::invalid_argument("edgeCrop " + numberText(p.edgeCrop) + " is above " + numberText(kMaxSeparationLimit));
+  if (p.previousFrameFill && p.method != StereoMethod::Forward)
+    throw std::invalid_argument(std::string("previousFrameFill needs the forward method (got ") + methodName(p.method) + ")");
 }
 
 const char* methodName(StereoMethod method) {

@@ -1,12 +1,13 @@
 #include "s3d/stereo/synthesis.h"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
-#include <memory>
 #include <cstring>
+#include <memory>
+#include <stdexcept>
 #include <string>
 #include <tuple>
-#include <stdexcept>
 
 #include "s3d/stereo/forward_pass.h"
 #include "s3d/stereo/iterative.h"
@@ -31,7 +32,9 @@ std::uint64_t countFillFlags(const ImageRGBA8& eye) {
   return filled;
 }
 
-SynthesisResult run(vk::Context& context, const DisplacementPass& pass, const vk::Image& color, const vk::Image& depth,
+// Pass: anything with record(cmd, color, depth, left, right) (a DisplacementPass, the forward pass with its fill).
+template <typename Pass>
+SynthesisResult run(vk::Context& context, const Pass& pass, const vk::Image& color, const vk::Image& depth,
                     int timedRuns) {
   const VkImageUsageFlags usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
   vk::Image left = vk::createImage(context, StereoPass::kColorFormat, color.width, color.height, usage);
@@ -67,6 +70,24 @@ SynthesisResult run(vk::Context& context, const DisplacementPass& pass, const vk
   }
   SynthesisResult result{{readEye(context, left), readEye(context, right)}, medianMs(gpuMsRuns), gpuMsRuns, 0, 0};
   return result;
+}
+
+// The forward pass and the previous-frame fill as one pass for run().
+struct ForwardWithPreviousFill {
+  const ForwardStereoPass& forward;
+  const PreviousFillPass& fill;
+  const std::array<gpu::EyeMotion, 2>& motion;
+  gpu::ForwardConstants constants;
+  void record(VkCommandBuffer cmd, const vk::Image& color, const vk::Image& depth, const vk::Image& left,
+              const vk::Image& right) const {
+    forward.record(cmd, color, depth, left, right, constants);
+    fill.record(cmd, forward, left, right, constants, motion);
+  }
+};
+
+void requireRendererImages(const vk::Image& centerColor, const vk::Image& linearDepth) {
+  if (centerColor.format != StereoPass::kColorFormat || linearDepth.format != StereoPass::kDepthFormat)
+    throw std::invalid_argument("stereo synthesis needs RGBA8 unorm color and R32 float linear depth");
 }
 
 }  // namespace
@@ -118,12 +139,27 @@ SynthesisResult synthesizeTimed(vk::Context& context, const vk::Image& centerCol
   const StereoParameters parameters = displacementParameters(methodParameters);
   if (timedRuns < 1)
     throw std::invalid_argument("stereo synthesis: timedRuns must be at least 1 (got " + std::to_string(timedRuns) + ")");
-  if (centerColor.format != StereoPass::kColorFormat || linearDepth.format != StereoPass::kDepthFormat)
-    throw std::invalid_argument("stereo synthesis needs RGBA8 unorm color and R32 float linear depth");
+  requireRendererImages(centerColor, linearDepth);
   const DisplacementPass pass(context, parameters, centerColor.width, centerColor.height);
   SynthesisResult result = run(context, pass, centerColor, linearDepth, timedRuns);
   if (parameters.method == StereoMethod::Iterative)
     std::tie(result.filledLeft, result.filledRight) = countIterativeFills(context, centerColor, linearDepth, parameters);
+  return result;
+}
+
+SynthesisResult synthesizeTimed(vk::Context& context, const vk::Image& centerColor, const vk::Image& linearDepth,
+                                const StereoParameters& parameters, PreviousFillPass& fill,
+                                const std::array<gpu::EyeMotion, 2>& motion, int timedRuns) {
+  if (timedRuns < 1)
+    throw std::invalid_argument("stereo synthesis: timedRuns must be at least 1 (got " + std::to_string(timedRuns) + ")");
+  requireRendererImages(centerColor, linearDepth);
+  if (parameters.method != StereoMethod::Forward)
+    throw std::invalid_argument("the previous-frame fill needs the forward method");
+  const ForwardStereoPass forward(context);
+  const ForwardWithPreviousFill pass{forward, fill, motion,
+                                     makeForwardConstants(parameters, centerColor.width, centerColor.height)};
+  SynthesisResult result = run(context, pass, centerColor, linearDepth, timedRuns);
+  fill.advance();
   return result;
 }
 

@@ -12,12 +12,15 @@
 #include "s3d/app/memory_budget.h"
 #include "s3d/app/render_job.h"
 #include "s3d/comfort/crosshair.h"
+#include "s3d/comfort/disparity_budget_controller.h"
 #include "s3d/comfort/world_queries.h"
 #include "s3d/io/image_io.h"
 #include "s3d/renderer/deferred_renderer.h"
 #include "s3d/renderer/scene_file.h"
+#include "s3d/stereo/guard_band.h"
 #include "s3d/stereo/metrics.h"
 #include "s3d/stereo/output_formats.h"
+#include "s3d/stereo/reprojection.h"
 #include "s3d/stereo/synthesis.h"
 
 namespace s3d::app {
@@ -31,12 +34,45 @@ nlohmann::json flickerJson(const std::array<stereo::FlickerStats, 2>& flicker) {
     return nlohmann::json{{"meanLevels", r.meanLevels}, {"pixelCount", r.pixelCount}};
   };
   auto eye = [&](const stereo::FlickerStats& f) {
-    return nlohmann::json{{"all", region(f.all)}, {"halo", region(f.halo)}, {"disocclusion", region(f.disocclusion)}};
+    return nlohmann::json{{"all", region(f.all)},
+                          {"halo", region(f.halo)},
+                          {"disocclusion", region(f.disocclusion)},
+                          {"newlyVisiblePixels", f.newlyVisiblePixels}};
   };
   return {{"left", eye(flicker[0])}, {"right", eye(flicker[1])}};
 }
 
 }  // namespace
+
+stereo::GuardBand widestSequenceGuardBand(const SequenceJobOptions& options) {
+  if (!(options.stereo.edgeCrop < 0.0f)) return {};
+  // The separation's, or the largest the disparity budget's controller may choose (its clamp: a frame of shallow
+  // depth gets more than the display's uncrossed budget), from the zero-parallax plane (no negative parallax:
+  // nothing is nearer). With negative parallax allowed the controls move the plane and the weapon, so the band
+  // may reach its cap (a tiny nearest depth stands for it).
+  float separation = options.stereo.maxSeparation;
+  if (options.disparityBudget != comfort::DisparityBudgetRule::Off)
+    separation = std::max(separation, comfort::DisparityBudgetSettings{}.maximumSeparation);
+  const double plane = options.stereo.zeroParallaxDistance;
+  const double nearest = options.allowNegativeParallax ? plane * 1.0e-9 : plane;
+  return stereo::guardBandFor(separation, plane, nearest, options.width, kMaxImageSize / std::max(options.supersample, 1u));
+}
+
+MemoryEstimate sequenceMemoryEstimate(const SequenceJobOptions& options) {
+  const std::uint32_t renderedWidth = widestSequenceGuardBand(options).renderedWidth(options.width);
+  MemoryEstimate estimate = renderMemoryEstimate(options.width, options.height, renderedWidth, options.supersample,
+                                                 options.stereo.method == stereo::StereoMethod::Hybrid);
+  // The previous frame, kept for the flicker metric: eyes and references 16, reference depths 8, first-person
+  // masks 2 bytes per output pixel; the previous-frame fill's history: two frames of both eyes' colour and depth
+  // (RGBA8 and R32F) on the device per rendered pixel.
+  const std::uint64_t outputPixels = std::uint64_t(options.width) * options.height;
+  estimate.hostBytes += 26 * outputPixels;
+  if (options.stereo.previousFrameFill) estimate.deviceBytes += 32 * std::uint64_t(renderedWidth) * options.height;
+  if (!estimate.what.empty() && estimate.what.back() == ')') estimate.what.pop_back();
+  estimate.what += options.stereo.previousFrameFill ? "; the previous frame and the fill's history)"
+                                                    : "; the previous frame)";
+  return estimate;
+}
 
 SequenceReport runSequenceJob(vk::Context& context, const SequenceJobOptions& options) {
   if (options.width == 0 || options.height == 0 || options.width > kMaxImageSize || options.height > kMaxImageSize)
@@ -54,16 +90,9 @@ SequenceReport runSequenceJob(vk::Context& context, const SequenceJobOptions& op
   comfort::validate(options.display);
   const float crosshairDistance = options.crosshair.distance.value_or(scene.crosshairDistance);
 
-  // One frame's images at a time (no guard band: the sequence crops its edges), checked before any is allocated.
-  requireMemory(context,
-                renderMemoryEstimate(options.width, options.height, options.width, options.supersample,
-                                     options.stereo.method == stereo::StereoMethod::Hybrid),
-                options.memoryLimitBytes);
+  requireMemory(context, sequenceMemoryEstimate(options), options.memoryLimitBytes);  // before any is allocated
   const comfort::WorldQueries world(scene);
-  renderer::DeferredRenderer deferred(context, options.width, options.height, {options.supersample, options.reversedZ});
-  deferred.setScene(scene);
   std::unique_ptr<renderer::DeferredRenderer> eyeRenderer;  // the hybrid method's masked eye renders
-  const float aspect = float(options.width) / float(options.height);
   const glm::vec2 weaponDepths = renderer::firstPersonDepthRange(scene).value_or(glm::vec2(0.0f));
   const bool budgetOn = options.disparityBudget != comfort::DisparityBudgetRule::Off;
   if (!(options.anticipateSeconds >= 0.0f) || options.anticipateSeconds > 10.0f)
@@ -76,11 +105,49 @@ SequenceReport runSequenceJob(vk::Context& context, const SequenceJobOptions& op
   }
   glm::vec3 previousPosition(0.0f);
 
-  // The previous frame's eyes, synthesized and reference, and its crop: the flicker metric's other frame.
+  // Guard band (no edge crop given): the center view is rendered wider by the largest displacement the eyes can
+  // need, as in `s3d render`, so both eyes are full frame. The band follows the frame's parameters; the renderer
+  // is replaced only when a frame needs a wider one (rare: the separation is bounded by the budget).
+  const bool guardBand = options.stereo.edgeCrop < 0.0f;
+  const std::uint32_t width = options.width, height = options.height;
+  auto bandFor = [&](const stereo::StereoParameters& p) {
+    if (!guardBand) return stereo::GuardBand{};
+    float nearest = p.zeroParallaxDistance;
+    if (options.allowNegativeParallax) {
+      nearest = scene.camera.nearPlane;
+      if (weaponDepths.x > 0.0f) nearest = std::min(nearest, p.weaponDepthOffset + p.weaponDepthScale * weaponDepths.x);
+    }
+    return stereo::guardBandFor(p.maxSeparation, p.zeroParallaxDistance, nearest, width,
+                                kMaxImageSize / options.supersample);
+  };
+  stereo::GuardBand band;
+  std::unique_ptr<renderer::DeferredRenderer> deferred;
+  auto useBand = [&](const stereo::GuardBand& wanted) {
+    if (deferred && wanted.columns <= band.columns) return false;
+    band = wanted;
+    deferred = std::make_unique<renderer::DeferredRenderer>(context, band.renderedWidth(width), height,
+                                                            renderer::RendererOptions{options.supersample, options.reversedZ});
+    deferred->setScene(scene);
+    return true;
+  };
+  auto output = [&](const auto& image) { return stereo::cropColumns(image, band.columns, width); };
+  auto outputMask = [&](const std::vector<std::uint8_t>& mask) {
+    return stereo::cropColumns(mask, band.renderedWidth(width), band.columns, width);
+  };
+
+  // The previous frame's eyes (synthesized and reference), the reference's depth and first-person mask, and the
+  // eye cameras: the flicker metric's other frame.
   struct EyeFrames {
     stereo::StereoPair synthesized, reference;
+    std::array<DepthImage, 2> referenceDepth;
+    std::array<std::vector<std::uint8_t>, 2> firstPerson;
+    std::array<glm::mat4, 2> view, projection;  // the output-size eye cameras (the metric's)
+    std::array<glm::mat4, 2> renderedView, renderedProjection;  // on the rendered frame (the previous-frame fill's)
     std::uint32_t crop = 0;
   };
+  // The forward method's previous-frame fill keeps its history of eyes on the GPU between frames.
+  std::optional<stereo::PreviousFillPass> previousFill;
+  if (options.stereo.previousFrameFill) previousFill.emplace(context);
   std::optional<EyeFrames> previous;
   SequenceReport report;
   report.deviceName = context.deviceName();
@@ -88,7 +155,7 @@ SequenceReport runSequenceJob(vk::Context& context, const SequenceJobOptions& op
   for (std::size_t index = 0; index < scene.cameraPath.size(); ++index) {
     SequenceFrame frame;
     frame.index = index;
-    scene.camera = renderer::cameraForFrame(scene, index);
+    scene.camera = renderer::cameraForFrame(scene, options.holdFrame.value_or(index));
     frame.nearestSurface = comfort::nearestSurfaceAhead(world, scene.camera, settings,
                                                         settings.engageDistance + settings.releaseMargin + 1.0f);
     const float seconds = 1.0f / options.framesPerSecond;
@@ -126,13 +193,18 @@ SequenceReport runSequenceJob(vk::Context& context, const SequenceJobOptions& op
     if (placement.hitWorld) frame.aimSurface = placement.surfaceDistance;
     frame.crosshairDepth = crosshair.update(placement, seconds);
 
-    const renderer::ViewMatrices center =
-        renderer::centerViewMatrices(scene, aspect, {parameters.weaponDepthOffset, parameters.weaponDepthScale});
-    deferred.render(center);
-    const DepthImage pushed = deferred.readLinearDepth();
+    (void)useBand(bandFor(parameters));
+    renderer::ViewMatrices center;
+    auto renderCenter = [&] {
+      center = renderer::centerViewMatrices(scene, float(band.renderedWidth(width)) / float(height),
+                                            {parameters.weaponDepthOffset, parameters.weaponDepthScale});
+      deferred->render(center);
+    };
+    renderCenter();
+    DepthImage renderedDepth = deferred->readLinearDepth();
     // ... and no world surface may be nearer than the screen plane either (the control's rays see only a few
-    // directions; the depth image sees every pixel).
-    if (const std::optional<float> nearest = comfort::nearestDepth(pushed)) {
+    // directions; the depth image sees every pixel, the band's included: its content reaches the eyes).
+    if (const std::optional<float> nearest = comfort::nearestDepth(renderedDepth)) {
       frame.nearestDepth = *nearest;
       limitZeroParallax(*nearest);
     }
@@ -145,68 +217,112 @@ SequenceReport runSequenceJob(vk::Context& context, const SequenceJobOptions& op
         ahead.position += (scene.camera.position - previousPosition) * (options.anticipateSeconds * options.framesPerSecond);
         hints.anticipatedNearest = comfort::nearestSurfaceAhead(world, ahead, settings, 8.0f);
       }
-      frame.budget = applyDisparityBudget(context, *reduction, &*budgetControl, deferred.linearDepth(), hints, seconds,
+      frame.budget = applyDisparityBudget(context, *reduction, &*budgetControl, deferred->linearDepth(), hints, seconds,
                                           parameters);
       frame.zeroParallaxDistance = parameters.zeroParallaxDistance;
+      // A larger chosen separation needs a wider band: this frame's center view again at that width.
+      if (useBand(bandFor(parameters))) {
+        renderCenter();
+        renderedDepth = deferred->readLinearDepth();
+      }
     }
     previousPosition = scene.camera.position;
     frame.maxSeparation = parameters.maxSeparation;
-    const std::uint32_t crop = std::uint32_t(stereo::makeStereoConstants(parameters, options.width, options.height).cropBegin);
+    if (guardBand) parameters.edgeCrop = 0.0f;  // the output eyes are full frame
+    const std::uint32_t crop =
+        guardBand ? 0u : std::uint32_t(stereo::makeStereoConstants(parameters, width, height).cropBegin);
+    frame.cropColumns = crop;
+    frame.guardBandColumns = band.columns;
+    // The pass and the reference cameras on the rendered frame: the same parallax in pixels, the band cropped.
+    const stereo::StereoParameters renderedParameters =
+        guardBand ? stereo::guardBandParameters(parameters, width, band) : parameters;
+    const DepthImage pushed = output(renderedDepth);
     // The crosshair not in front of the screen plane either (the plane is never beyond the aimed-at surface).
     if (!options.allowNegativeParallax) frame.crosshairDepth = std::max(frame.crosshairDepth, frame.zeroParallaxDistance);
     frame.comfort = comfort::frameComfort(pushed, parameters, options.display);
-    const comfort::WeaponConflicts conflicts =
-        comfort::countWeaponConflicts(world, scene.camera, center, pushed, deferred.readFirstPersonMask());
+    // The output-size center view's matrices: per-pixel rays over the output's depth, and the eye cameras the
+    // flicker metric moves along.
+    const renderer::ViewMatrices outputCenter = renderer::centerViewMatrices(
+        scene, float(width) / float(height), {parameters.weaponDepthOffset, parameters.weaponDepthScale});
+    const comfort::WeaponConflicts conflicts = comfort::countWeaponConflicts(
+        world, scene.camera, outputCenter, pushed, outputMask(deferred->readFirstPersonMask()));
     frame.weaponPixels = conflicts.weaponPixels;
     frame.weaponConflictPixels = conflicts.conflictPixels;
+    EyeFrames current;
+    for (stereo::Eye eye : {stereo::Eye::Left, stereo::Eye::Right}) {
+      const renderer::ViewMatrices rendered = referenceEyeView(scene, center, eye, renderedParameters);
+      current.renderedView[eye == stereo::Eye::Left ? 0 : 1] = rendered.worldView;
+      current.renderedProjection[eye == stereo::Eye::Left ? 0 : 1] = rendered.worldProjection;
+    }
     stereo::SynthesisResult eyes;
     if (parameters.method == stereo::StereoMethod::Hybrid) {
-      if (!eyeRenderer) {
+      // The eye renderer matches the rendered frame: replaced with the center view's when the band widens.
+      if (!eyeRenderer || eyeRenderer->width() != band.renderedWidth(width)) {
         eyeRenderer = std::make_unique<renderer::DeferredRenderer>(
-            context, options.width, options.height, renderer::RendererOptions{options.supersample, options.reversedZ});
+            context, band.renderedWidth(width), height, renderer::RendererOptions{options.supersample, options.reversedZ});
         eyeRenderer->setScene(scene);
       }
-      HybridSynthesis hybrid = synthesizeHybrid(context, deferred.displayColor(), deferred.linearDepth(), *eyeRenderer,
-                                                scene, center, parameters);
+      HybridSynthesis hybrid = synthesizeHybrid(context, deferred->displayColor(), deferred->linearDepth(), *eyeRenderer,
+                                                scene, center, renderedParameters);
       eyes.eyes = std::move(hybrid.eyes);
       eyes.gpuMs = hybrid.timings.total;
+    } else if (previousFill) {
+      std::array<gpu::EyeMotion, 2> motion{};
+      for (std::size_t e = 0; e < 2 && previous; ++e)
+        motion[e] = stereo::eyeMotion(current.renderedView[e], current.renderedProjection[e], previous->renderedView[e],
+                                      previous->renderedProjection[e]);
+      eyes = stereo::synthesizeTimed(context, deferred->displayColor(), deferred->linearDepth(), renderedParameters,
+                                     *previousFill, motion);
     } else {
-      eyes = stereo::synthesizeTimed(context, deferred.displayColor(), deferred.linearDepth(), parameters);
+      eyes = stereo::synthesizeTimed(context, deferred->displayColor(), deferred->linearDepth(), renderedParameters);
     }
+    frame.stereoPassGpuMs = eyes.gpuMs;
 
-    EyeFrames current{eyes.eyes, {}, crop};
-    std::array<DepthImage, 2> referenceDepth;
-    deferred.render(referenceEyeView(scene, center, stereo::Eye::Left, parameters));
-    current.reference.left = deferred.readDisplayColor();
-    referenceDepth[0] = deferred.readLinearDepth();
-    frame.psnrLeftDb = stereo::compareDisplayImages(eyes.eyes.left, current.reference.left, crop).psnrDb;
-    deferred.render(referenceEyeView(scene, center, stereo::Eye::Right, parameters));
-    current.reference.right = deferred.readDisplayColor();
-    referenceDepth[1] = deferred.readLinearDepth();
-    frame.psnrRightDb = stereo::compareDisplayImages(eyes.eyes.right, current.reference.right, crop).psnrDb;
+    current.synthesized = {output(eyes.eyes.left), output(eyes.eyes.right)};
+    current.crop = crop;
+    for (stereo::Eye eye : {stereo::Eye::Left, stereo::Eye::Right}) {
+      const std::size_t e = eye == stereo::Eye::Left ? 0 : 1;
+      deferred->render(referenceEyeView(scene, center, eye, renderedParameters));
+      (e == 0 ? current.reference.left : current.reference.right) = output(deferred->readDisplayColor());
+      current.referenceDepth[e] = output(deferred->readLinearDepth());
+      current.firstPerson[e] = outputMask(deferred->readFirstPersonMask());
+      const renderer::ViewMatrices eyeView = referenceEyeView(scene, outputCenter, eye, parameters);
+      current.view[e] = eyeView.worldView;
+      current.projection[e] = eyeView.worldProjection;
+    }
+    frame.psnrLeftDb = stereo::compareDisplayImages(current.synthesized.left, current.reference.left, crop).psnrDb;
+    frame.psnrRightDb = stereo::compareDisplayImages(current.synthesized.right, current.reference.right, crop).psnrDb;
     if (previous) {
       const std::vector<std::uint8_t> halo = haloMaskFor(pushed, parameters);
-      const std::uint32_t bothCrops = std::max(crop, previous->crop);
-      frame.flicker = std::array<stereo::FlickerStats, 2>{
-          stereo::temporalFlicker(current.synthesized.left, previous->synthesized.left, current.reference.left,
-                                  previous->reference.left, bothCrops, halo,
-                                  disocclusionMaskFor(referenceDepth[0], pushed, parameters, stereo::Eye::Left)),
-          stereo::temporalFlicker(current.synthesized.right, previous->synthesized.right, current.reference.right,
-                                  previous->reference.right, bothCrops, halo,
-                                  disocclusionMaskFor(referenceDepth[1], pushed, parameters, stereo::Eye::Right))};
+      std::array<stereo::FlickerStats, 2> flicker;
+      for (stereo::Eye eye : {stereo::Eye::Left, stereo::Eye::Right}) {
+        const std::size_t e = eye == stereo::Eye::Left ? 0 : 1;
+        auto eyeFrame = [&](const EyeFrames& f) {
+          return stereo::EyeFrame{e == 0 ? &f.synthesized.left : &f.synthesized.right,
+                                  e == 0 ? &f.reference.left : &f.reference.right, &f.referenceDepth[e],
+                                  f.firstPerson[e], f.crop};
+        };
+        flicker[e] = stereo::temporalFlicker(
+            eyeFrame(current), eyeFrame(*previous),
+            stereo::eyeMotion(current.view[e], current.projection[e], previous->view[e], previous->projection[e]), halo,
+            disocclusionMaskFor(current.referenceDepth[e], pushed, parameters, eye));
+      }
+      frame.flicker = flicker;
     }
     previous = std::move(current);
 
     if (options.writeFrames) {
       char name[48];
       std::snprintf(name, sizeof(name), "anaglyph_%04zu.png", index);
-      io::writePng(options.outputFolder / name, stereo::makeAnaglyphDubois(eyes.eyes.left, eyes.eyes.right));
+      io::writePng(options.outputFolder / name, stereo::makeAnaglyphDubois(previous->synthesized.left, previous->synthesized.right));
       report.filesWritten.push_back(name);
     }
     report.frames.push_back(frame);
   }
-  report.filesWritten.push_back("report.json");
-  io::writeTextFile(options.outputFolder / "report.json", toJson(report).dump(2) + "\n");
+  if (options.writeReport) {
+    report.filesWritten.push_back("report.json");
+    io::writeTextFile(options.outputFolder / "report.json", toJson(report).dump(2) + "\n");
+  }
   return report;
 }
 
@@ -227,6 +343,9 @@ nlohmann::json toJson(const SequenceReport& report) {
                       {"weaponConflictPixels", frame.weaponConflictPixels},
                       {"psnrDb", {{"left", frame.psnrLeftDb}, {"right", frame.psnrRightDb}}},
                       {"maxSeparation", frame.maxSeparation},
+                      {"cropColumns", frame.cropColumns},
+                      {"guardBandColumns", frame.guardBandColumns},
+                      {"stereoPassGpuMs", optionalMs(frame.stereoPassGpuMs)},
                       {"disparityBudget", budgetJson(frame.budget, frame.comfort)},
                       {"flicker", frame.flicker ? flickerJson(*frame.flicker) : nlohmann::json()}});
   return {{"device", report.deviceName}, {"scene", report.scene}, {"frames", frames},
@@ -245,6 +364,7 @@ std::array<stereo::FlickerStats, 2> meanFlicker(const SequenceReport& report) {
       mean[eye].halo.meanLevels += f.halo.meanLevels, mean[eye].halo.pixelCount += f.halo.pixelCount;
       mean[eye].disocclusion.meanLevels += f.disocclusion.meanLevels;
       mean[eye].disocclusion.pixelCount += f.disocclusion.pixelCount;
+      mean[eye].newlyVisiblePixels += f.newlyVisiblePixels;
     }
   }
   for (stereo::FlickerStats& eye : mean)

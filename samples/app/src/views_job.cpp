@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "s3d/app/comfort_json.h"
 #include "s3d/app/eye_comparison.h"
 #include "s3d/app/memory_budget.h"
 #include "s3d/io/image_io.h"
@@ -35,10 +36,12 @@ void bilinear(const ImageRGBA8& image, glm::dvec2 pixel, std::uint8_t* out) {
 }  // namespace
 
 ImageRGBA8 synthesizeEyeForView(const ImageRGBA8& centerColor, const DepthImage& centerDepth,
-                                const comfort::ViewConfiguration& views, const comfort::CenterView& center, int eye) {
+                                const comfort::ViewConfiguration& views, const comfort::CenterView& center, int eye,
+                                DepthImage* eyeDepth) {
   requireSameSize(centerColor, centerDepth, "view synthesis (color vs depth)");
   const comfort::EyeView& view = views.eyes[std::size_t(eye)];
   ImageRGBA8 out(view.width, view.height);
+  if (eyeDepth) *eyeDepth = DepthImage(view.width, view.height);
   for (std::uint32_t y = 0; y < view.height; ++y)
     for (std::uint32_t x = 0; x < view.width; ++x) {
       const glm::dvec2 eyePixel(x + 0.5, y + 0.5);
@@ -50,6 +53,7 @@ ImageRGBA8 synthesizeEyeForView(const ImageRGBA8& centerColor, const DepthImage&
       }
       bilinear(centerColor, source, out.at(x, y));
       out.at(x, y)[3] = 255;
+      if (eyeDepth) *eyeDepth->at(x, y) = float(depth);
     }
   return out;
 }
@@ -88,9 +92,24 @@ ViewsReport runViewsJob(vk::Context& context, const ViewsJobOptions& options) {
   }
 
   std::array<ImageRGBA8, 2> eyes, references;
+  report.display = options.display;
+  report.interocularMeters = options.views.eyes[1].positionX - options.views.eyes[0].positionX;
   for (int i = 0; i < 2; ++i) {
     const comfort::EyeView& eye = options.views.eyes[std::size_t(i)];
-    eyes[std::size_t(i)] = synthesizeEyeForView(centerColor, centerDepth, options.views, center, i);
+    DepthImage eyeDepth;
+    eyes[std::size_t(i)] = synthesizeEyeForView(centerColor, centerDepth, options.views, center, i, &eyeDepth);
+    report.comfort[std::size_t(i)] =
+        comfort::eyeViewComfort(eyeDepth, options.views.worldScale, report.interocularMeters, options.display);
+    double nearest = INFINITY, farthest = 0.0;
+    for (float d : eyeDepth.pixels)
+      if (d > 0.0f) nearest = std::min(nearest, double(d)), farthest = std::max(farthest, double(d));
+    if (farthest > 0.0) {
+      const double separation = report.interocularMeters * options.views.worldScale;  // world units
+      const double range = separation * (1.0 / nearest - 1.0 / farthest);          // tangent units
+      const double pitch = (std::tan(eye.angleRight) - std::tan(eye.angleLeft)) / double(eye.width);
+      report.disparityRangePx[std::size_t(i)] = range / pitch;
+      report.disparityRangeArcmin[std::size_t(i)] = range * 180.0 * 60.0 / 3.14159265358979323846;
+    }
     // The reference: the eye's own camera, offset along x, with its own asymmetric frustum and size.
     renderer::DeferredRenderer eyeRenderer(context, eye.width, eye.height);
     eyeRenderer.setScene(scene);
@@ -130,12 +149,30 @@ nlohmann::json toJson(const ViewsReport& report) {
     return nlohmann::json{{"psnrDb", finiteOrNull(e.psnrDb)}, {"ssim", finiteOrNull(e.ssim)},
                           {"meanAbsoluteError", finiteOrNull(e.meanAbsoluteError)}, {"pixelCount", e.pixelCount}};
   };
+  auto eyeComfort = [](const comfort::EyeViewComfort& e) {
+    return nlohmann::json{{"pixelCount", e.pixelCount},
+                          {"meanConflictDiopters", finiteOrNull(e.meanConflictDiopters)},
+                          {"p95ConflictDiopters", finiteOrNull(e.p95ConflictDiopters)},
+                          {"maxConflictDiopters", finiteOrNull(e.maxConflictDiopters)},
+                          {"shareOutsideComfortZone", finiteOrNull(e.shareOutsideComfortZone)},
+                          {"shareBeyondOneDegree", finiteOrNull(e.shareBeyondOneDegree)},
+                          {"nearestMeters", finiteOrNull(e.nearestMeters)}};
+  };
   const comfort::CenterView& c = report.center;
   return {{"device", report.deviceName},
           {"scene", report.scene},
           {"center", {{"width", c.width}, {"height", c.height}, {"tanLeft", c.tanLeft}, {"tanRight", c.tanRight},
                       {"tanUp", c.tanUp}, {"tanDown", c.tanDown}, {"eyeOffset", c.eyeOffset}}},
           {"error", {{"left", stats(report.error[0])}, {"right", stats(report.error[1])}}},
+          {"disparityRangePx", {{"left", finiteOrNull(report.disparityRangePx[0])},
+                                {"right", finiteOrNull(report.disparityRangePx[1])}}},
+          {"disparityRangeArcmin", {{"left", finiteOrNull(report.disparityRangeArcmin[0])},
+                                    {"right", finiteOrNull(report.disparityRangeArcmin[1])}}},
+          {"comfort", {{"display", displayJson(report.display)},
+                       {"focalDistanceMeters", report.display.viewingDistanceMeters},
+                       {"interocularMeters", report.interocularMeters},
+                       {"left", eyeComfort(report.comfort[0])},
+                       {"right", eyeComfort(report.comfort[1])}}},
           {"files", report.filesWritten}};
 }
 

@@ -68,4 +68,25 @@ WeaponConflicts countWeaponConflicts(const WorldQueries& world, const renderer::
                                      const renderer::ViewMatrices& center, const DepthImage& pushedDepth,
                                      const std::vector<std::uint8_t>& weaponMask);
 
+// Comfort of one eye of a per-eye view configuration (view_configuration.h, a head-mounted display): the eye is
+// the view's own camera, so every pixel shows its surface at its true distance: vergence at the pixel's view depth
+// over the views' world scale (metres), accommodation at the display's focal distance (viewingDistanceMeters; for
+// the "hmd" profile 1.3 m). Both are taken along the view axis (the virtual image is a plane at the focal distance).
+struct EyeViewComfort {
+  std::uint64_t pixelCount = 0;        // pixels with known depth (sky included: vergence at infinity)
+  double meanConflictDiopters = 0.0;   // vergence-accommodation conflict |1 / vergence - 1 / focal|
+  double p95ConflictDiopters = 0.0;
+  double maxConflictDiopters = 0.0;
+  double shareOutsideComfortZone = 0.0;  // vergence outside shibataComfortZone(display)
+  double shareBeyondOneDegree = 0.0;     // vergence angle beyond 60 arcminutes from the focal plane's
+  double nearestMeters = 0.0;            // the nearest vergence distance shown
+};
+
+// `eyeDepth`: the linear view depth each eye pixel shows (world units; +inf sky, NaN or <= 0 unknown and left
+// out); `interocularMeters`: the views' eye separation. When `conflictDiopters` is given it receives the conflict
+// per pixel (row-major; NaN where the depth is unknown). Throws std::invalid_argument for an empty image or a
+// non-positive world scale or separation.
+EyeViewComfort eyeViewComfort(const DepthImage& eyeDepth, double worldScale, double interocularMeters,
+                              const DisplayProfile& display, std::vector<float>* conflictDiopters = nullptr);
+
 }  // namespace s3d::comfort

@@ -2,11 +2,13 @@
 // Viewing geometry for the comfort report: on-screen parallax -> angular disparity for a given display.
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
+#include "s3d/comfort/view_configuration.h"
 #include "s3d/image.h"
 #include "s3d/stereo/stereo.h"
 
@@ -20,6 +22,9 @@ struct DisplayProfile {
   // Head-mounted display only (0: a flat screen): the horizontal field of view in degrees. Its virtual screen
   // lies at the focal distance f = viewingDistanceMeters and spans screenWidthMeters = 2 f tan(fov / 2).
   float fieldOfViewDegrees = 0.0f;
+  // The per-eye views the display reports (a headset's, as OpenXR gives them; view_configuration.h), if known:
+  // `s3d render` then synthesizes those eyes, as with --views.
+  std::optional<ViewConfiguration> eyeViews;
 };
 
 // A head-mounted display focused at `focalDistanceMeters` with a horizontal field of view (degrees).
@@ -37,8 +42,9 @@ void validate(const DisplayProfile& display);
 
 // JSON form. A flat screen: {"name", "screenWidthMeters", "viewingDistanceMeters", "interocularMeters"};
 // a head-mounted display: {"name", "focalDistanceMeters", "fieldOfViewDegrees", "interocularMeters"}.
-// "interocularMeters" may be left out (63 mm), "name" too (then "custom"). Unknown keys, missing or
-// out-of-range values throw std::invalid_argument naming the key.
+// "interocularMeters" may be left out (63 mm), "name" too (then "custom"); either may hold "eyeViews": a views
+// document (view_configuration.h's format). Unknown keys, missing or out-of-range values throw
+// std::invalid_argument naming the key.
 DisplayProfile displayProfileFromJson(const nlohmann::json& document);
 nlohmann::json toJson(const DisplayProfile& display);
 // Reads a JSON display profile; errors name the file (std::runtime_error for I/O, invalid_argument for content).

@@ -29,6 +29,8 @@ struct ViewConfiguration {
 // (-pi/2, pi/2), left < right, down < up), "width", "height" (1..16384) }; the left eye's x below the right's.
 // Unknown keys, missing or bad fields: std::invalid_argument naming the field (e.g. "views.left.angleUp").
 ViewConfiguration viewConfigurationFromJson(const nlohmann::json& document);
+// The inverse (a document viewConfigurationFromJson reads back to the same views).
+nlohmann::json toJson(const ViewConfiguration& views);
 // The same, each message prefixed by "views file 'FILE': ".
 ViewConfiguration loadViewConfiguration(const std::filesystem::path& file);
 

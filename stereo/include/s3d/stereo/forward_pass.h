@@ -21,6 +21,9 @@ class ForwardStereoPass {
   explicit ForwardStereoPass(const vk::Context& context);
   void record(VkCommandBuffer cmd, const vk::Image& centerColor, const vk::Image& linearDepth,
               const vk::Image& leftEye, const vk::Image& rightEye, const gpu::ForwardConstants& constants) const;
+  // The z-buffer of one eye after the last record (R32UI, GENERAL, last accessed by compute shader reads and
+  // writes): a pass recorded after this one reads it to know the holes (previous_fill_pass.h). Throws before a record.
+  const vk::Image& keys(Eye eye) const;
 
  private:
   const vk::Context* context_;

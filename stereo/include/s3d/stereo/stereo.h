@@ -67,6 +67,9 @@ struct StereoParameters {
   // bit for bit, 1 renders every pixel (the two-pass reference).
   StereoMethod hybridBase = StereoMethod::Search;
   float hybridBudget = 0.2f;
+  // Forward only, over frames: disocclusions take the previous frame's eyes, reprojected with their depth and the
+  // camera's motion, where that frame saw them (previous_fill_pass.h); a single frame has no previous one.
+  bool previousFrameFill = false;
 };
 
 // The parameters of a hybrid's displacement (parameters.method = hybridBase); any other method as it is.

@@ -1,11 +1,13 @@
 #pragma once
 // One call for any stereo method on GPU images: what `s3d render` and `s3d convert` run.
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <optional>
 #include <utility>
 #include <vector>
 
+#include "s3d/stereo/previous_fill_pass.h"
 #include "s3d/stereo/stereo.h"
 #include "s3d/vk/context.h"
 #include "s3d/vk/resources.h"
@@ -50,6 +52,13 @@ struct SynthesisResult {
 // timedRuns times (>= 1), each its own submission timed with timestamps, then reads both eyes back.
 SynthesisResult synthesizeTimed(vk::Context& context, const vk::Image& centerColor, const vk::Image& linearDepth,
                                 const StereoParameters& parameters, int timedRuns = 1);
+
+// One frame of the forward method with its disocclusions filled from the previous frame's eyes (parameters.method
+// must be Forward): as above, each run the forward pass followed by `fill`, whose history then advances to this
+// frame. `motion`: each eye's camera from this frame to the previous one (reprojection.h), on these images.
+SynthesisResult synthesizeTimed(vk::Context& context, const vk::Image& centerColor, const vk::Image& linearDepth,
+                                const StereoParameters& parameters, PreviousFillPass& fill,
+                                const std::array<gpu::EyeMotion, 2>& motion, int timedRuns = 1);
 
 // Median of the samples (the mean of the middle two for an even count); empty for no samples.
 std::optional<double> medianMs(std::vector<double> samples);

@@ -1,31 +1,47 @@
 #pragma once
-// Temporal stability of a synthesized eye: how much its error changes from one frame to the next.
+// Temporal stability of a synthesized eye: how much its error changes from one frame to the next along the
+// camera's motion (docs/DESIGN.md "Temporal flicker").
 #include <cstdint>
 #include <vector>
 
 #include "s3d/image.h"
+#include "s3d/stereo/reprojection_shared.h"
 
 namespace s3d::stereo {
 
-// Mean over a region of |(S_t - S_t-1) - (R_t - R_t-1)| = |e_t - e_t-1| (e = S - R), 8-bit levels averaged over
-// R, G and B: the synthesized eye's frame-to-frame change minus the reference's. A static error (a halo that
-// stays put) scores 0, as does an exact method under any motion; an error that comes and goes scores its size.
+// One eye of one frame as the metric reads it.
+struct EyeFrame {
+  const ImageRGBA8* synthesized = nullptr;
+  const ImageRGBA8* reference = nullptr;       // the eye rendered by the two-pass reference
+  const DepthImage* referenceDepth = nullptr;  // its linear depth (+inf: sky)
+  // Its first-person pixels (the weapon, which moves with the camera, not with the world); empty: none.
+  std::vector<std::uint8_t> firstPerson;
+  std::uint32_t cropColumns = 0;  // columns excluded on each side
+};
+
 struct FlickerRegion {
   double meanLevels = 0.0;
   std::uint64_t pixelCount = 0;
 };
 
 struct FlickerStats {
-  FlickerRegion all;           // every compared pixel
-  FlickerRegion halo;          // the current frame's halo mask
-  FlickerRegion disocclusion;  // the current frame's disocclusion mask
+  FlickerRegion all;           // every compared pixel the previous frame saw
+  FlickerRegion halo;          // ... inside the current frame's halo mask
+  FlickerRegion disocclusion;  // ... inside the current frame's (stereo) disocclusion mask
+  // Compared pixels left out: the camera motion disoccluded them (the previous reference showed another
+  // surface there), they came in from outside the previous frame, or their depth is unknown.
+  std::uint64_t newlyVisiblePixels = 0;
 };
 
-// Columns [cropColumns, width - cropColumns) are compared; empty masks select no pixel. All four images share
-// one size, each mask is empty or has one entry per pixel. Throws std::invalid_argument otherwise.
-FlickerStats temporalFlicker(const ImageRGBA8& synthesized, const ImageRGBA8& previousSynthesized,
-                             const ImageRGBA8& reference, const ImageRGBA8& previousReference,
-                             std::uint32_t cropColumns, const std::vector<std::uint8_t>& halo,
-                             const std::vector<std::uint8_t>& disocclusion);
+// For every compared pixel x of the current frame whose surface the previous frame showed: the reference eye's
+// depth at x puts that surface at x' in the previous frame (`motion`; first-person pixels stay where they are);
+// the value is |(S_t(x) - S_t-1(x')) - (R_t(x) - R_t-1(x'))| = |e_t(x) - e_t-1(x')| (e = S - R), 8-bit levels
+// averaged over R, G and B, with e_t-1 filtered bilinearly over the texels around x' that show the same surface
+// (inverse depth within S3D_REPROJECTION_SAME_SURFACE, same layer, inside the previous crop). An error that sticks
+// to the surface as the camera moves scores 0, as does an exact method (and the reference itself) under any
+// motion; an error that changes on the surface scores its change. Masks: empty or one entry per pixel.
+// Throws std::invalid_argument for images of different sizes or a mask of the wrong size.
+FlickerStats temporalFlicker(const EyeFrame& current, const EyeFrame& previous, const gpu::EyeMotion& motion,
+                             const std::vector<std::uint8_t>& halo, const std::vector<std::uint8_t>& disocclusion);
 
 }  // namespace s3d::stereo

@@ -11,9 +11,11 @@
 #include <nlohmann/json.hpp>
 
 #include "s3d/app/budget_frame.h"
+#include "s3d/app/memory_budget.h"
 #include "s3d/comfort/comfort_profile.h"
 #include "s3d/comfort/comfort_report.h"
 #include "s3d/comfort/zero_parallax_control.h"
+#include "s3d/stereo/guard_band.h"
 #include "s3d/stereo/stereo.h"
 #include "s3d/stereo/temporal.h"
 #include "s3d/vk/context.h"
@@ -25,10 +27,13 @@ struct SequenceJobOptions {
   std::uint32_t height = 360;
   std::string scene = "cover";
   std::filesystem::path outputFolder = "out";
-  bool writeFrames = true;          // anaglyph_NNNN.png per frame besides report.json
+  bool writeFrames = true;          // anaglyph_NNNN.png per frame
+  bool writeReport = true;          // report.json
   std::uint32_t supersample = 1;  // renderer anti-aliasing, 1..4
   float framesPerSecond = 12.0f;  // the built-in paths walk at about 2 m/s at this rate
-  stereo::StereoParameters stereo;  // zeroParallaxDistance is the control's rest value
+  // zeroParallaxDistance is the control's rest value; edgeCrop < 0 (the default): a guard band, full-frame eyes
+  // (as in `s3d render`); >= 0: the output-size center view and that crop.
+  stereo::StereoParameters stereo;
   comfort::ZeroParallaxControlSettings zeroParallax;  // its restDistance is taken from stereo
   comfort::CrosshairSettings crosshair;               // distance (nullopt: the scene's), margin, smoothing
   comfort::DisplayProfile display = comfort::builtInDisplayProfile("tv55");  // of the per-frame comfort report
@@ -41,6 +46,8 @@ struct SequenceJobOptions {
   // seconds ahead at its current velocity (0: none; 0.35 s: no forced frame on the cover path, docs/RESULTS.md); a surface they find eases the target down early.
   float anticipateSeconds = 0.35f;
   std::optional<std::uint64_t> memoryLimitBytes;  // --memory-limit; the machine's available memory in any case
+  // Every frame's camera is this frame of the path (a static camera: the controls and the metrics at rest).
+  std::optional<std::size_t> holdFrame;
 };
 
 struct SequenceFrame {
@@ -59,8 +66,12 @@ struct SequenceFrame {
   double psnrLeftDb = 0.0, psnrRightDb = 0.0;  // synthesized vs two-pass reference
   BudgetFrame budget;                           // the disparity budget's reduction and choice (off: empty)
   float maxSeparation = 0.0f;                   // as the stereo pass used it
-  // Left, right: the change of the eye's error since the previous frame (stereo/temporal.h), over the
-  // crop of both frames, the halo and this frame's disocclusion; empty on the first frame.
+  std::uint32_t cropColumns = 0;                // per side, blacked out and not compared (0 with a guard band)
+  std::uint32_t guardBandColumns = 0;           // per side, rendered beyond the output (0 with an edge crop)
+  std::optional<double> stereoPassGpuMs;        // the stereo pass (and the previous-frame fill), GPU timestamps
+  // Left, right: the change of the eye's error since the previous frame along the camera's motion
+  // (stereo/temporal.h), over the pixels both frames saw, the halo and this frame's disocclusion; empty on the
+  // first frame.
   std::optional<std::array<stereo::FlickerStats, 2>> flicker;
 };
 
@@ -73,6 +84,14 @@ struct SequenceReport {
 
 // Mean over the frames that have one of each eye's flicker per region (all, halo, disocclusion).
 std::array<stereo::FlickerStats, 2> meanFlicker(const SequenceReport& report);
+
+// The widest guard band a frame of the sequence can need (none with an edge crop): what the memory estimate counts.
+stereo::GuardBand widestSequenceGuardBand(const SequenceJobOptions& options);
+
+// One frame's images at a time with the widest guard band the sequence can reach, the previous frame (the
+// flicker metric's) and the previous-frame fill's history: checked before the Vulkan start-up and again by
+// runSequenceJob once the device is known.
+MemoryEstimate sequenceMemoryEstimate(const SequenceJobOptions& options);
 
 // Throws std::invalid_argument for bad options (checked before rendering) and anything the renderer throws.
 SequenceReport runSequenceJob(vk::Context& context, const SequenceJobOptions& options);

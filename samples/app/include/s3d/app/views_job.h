@@ -12,6 +12,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "s3d/comfort/comfort_report.h"
+#include "s3d/comfort/display_profile.h"
 #include "s3d/comfort/view_configuration.h"
 #include "s3d/image.h"
 #include "s3d/stereo/metrics.h"
@@ -27,6 +29,8 @@ struct ViewsJobOptions {
   std::filesystem::path outputFolder = "out";
   bool writeImages = true;  // center.png, left.png, right.png, left_reference.png, right_reference.png
   std::optional<std::uint64_t> memoryLimitBytes;  // --memory-limit; the machine's available memory in any case
+  // The display the views are shown on: its focal distance is where the eyes accommodate (the comfort report).
+  comfort::DisplayProfile display = comfort::builtInDisplayProfile("hmd");
 };
 
 struct ViewsReport {
@@ -34,6 +38,14 @@ struct ViewsReport {
   std::string scene;
   comfort::CenterView center;
   std::array<stereo::ErrorStats, 2> error{};  // left, right: synthesized vs reference over the whole eye
+  comfort::DisplayProfile display;
+  double interocularMeters = 0.0;  // the views' eye separation
+  // Left, right: vergence-accommodation conflict and zone of comfort of what each synthesized eye shows.
+  std::array<comfort::EyeViewComfort, 2> comfort{};
+  // Left, right: the range of disparity between the eyes over the depths the eye shows, in its pixels at the
+  // image centre (eye separation in world units times (1 / nearest - 1 / farthest), over the eye's tangent pitch)
+  // and in arcminutes at the eyes (the views are the viewer's: separation in metres over distance in metres).
+  std::array<double, 2> disparityRangePx{}, disparityRangeArcmin{};
   std::vector<std::string> filesWritten;
 };
 
@@ -41,9 +53,11 @@ struct ViewsReport {
 inline constexpr int kViewSearchIterations = 8;
 
 // One eye synthesized from the center view's colour and linear depth (plain C++): per eye pixel centre, the
-// depth is found by the fixed-point search, then the colour is filtered bilinearly at the mapped position.
+// depth is found by the fixed-point search, then the colour is filtered bilinearly at the mapped position. When
+// `eyeDepth` is given it receives the depth each eye pixel shows (the search's last depth).
 ImageRGBA8 synthesizeEyeForView(const ImageRGBA8& centerColor, const DepthImage& centerDepth,
-                                const comfort::ViewConfiguration& views, const comfort::CenterView& center, int eye);
+                                const comfort::ViewConfiguration& views, const comfort::CenterView& center, int eye,
+                                DepthImage* eyeDepth = nullptr);
 
 ViewsReport runViewsJob(vk::Context& context, const ViewsJobOptions& options);
 nlohmann::json toJson(const ViewsReport& report);
