@@ -132,5 +132,14 @@ TEST_F(DepthIoTest, TruncatedExrIsRejected) {
   EXPECT_NE(test::runtimeErrorMessage([&] { readExrChannel(folder_ / "f.exr", "Z"); }).find("f.exr"), std::string::npos);
 }
 
+TEST_F(DepthIoTest, ATiledExrWhoseOffsetsPointPastTheEndIsRejectedNamingIt) {
+  // Found by the exr_channel fuzzer: a tile offset beyond the file's end made the in-memory stream's remaining
+  // byte count wrap around, and the read ran past the buffer (AddressSanitizer: SEGV). Now a clean error.
+  const fs::path file = fs::path(S3D_TEST_DATA_DIR) / ".." / "fuzz" / "corpus" / "exr_channel" / "tiled_offset_past_end.exr";
+  ASSERT_TRUE(fs::exists(file));
+  const std::string message = test::runtimeErrorMessage([&] { readExrChannel(file, "Z"); });
+  EXPECT_NE(message.find("tiled_offset_past_end.exr"), std::string::npos) << message;
+}
+
 }  // namespace
 }  // namespace s3d::io

@@ -23,7 +23,8 @@ class ExrMemoryStream final : public Imf::IStream {
 
   // OpenEXR's contract: throw when fewer than n bytes remain; return false once the last byte was read.
   bool read(char c[], int n) override {
-    if (n < 0 || std::uint64_t(n) > bytes_.size() - position_)
+    // seekg may have moved past the end (a corrupt offset table): the remaining count must not wrap around.
+    if (n < 0 || position_ > bytes_.size() || std::uint64_t(n) > bytes_.size() - position_)
       throw std::runtime_error("early end of file: " + std::to_string(n) + " bytes wanted at offset " +
                                std::to_string(position_) + " of " + std::to_string(bytes_.size()));
     std::memcpy(c, bytes_.data() + position_, std::size_t(n));
