@@ -167,7 +167,7 @@ TEST_F(ConvertJob, FolderModeRefusesAnOutputThatIsAnotherFramesInput) {
 }
 
 TEST_F(ConvertJob, NonFiniteColorIsSanitizedAndCounted) {
-  // Issue #4: NaN or inf color is replaced by 0 and counted in report.json, never propagated into the eyes.
+  // NaN or inf color is replaced by 0 and counted in report.json, never propagated into the eyes.
   writeInputs(depth_);
   ImageRGBA32F color(48, 20, 0.5f);
   color.at(3, 2)[0] = NAN;

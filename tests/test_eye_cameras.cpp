@@ -36,7 +36,7 @@ struct CenterCamera {
 class OffAxisEyeCamera : public ::testing::TestWithParam<double> {};
 
 TEST_P(OffAxisEyeCamera, PointAtEveryDepthLandsWhereTheParallaxFormulaSays) {
-  // Tolerance 1e-4 px: the requirement; double precision leaves ~1e-9 px of rounding.
+  // Tolerance 1e-4 px: the eye cameras' required accuracy; double precision leaves ~1e-9 px of rounding.
   const double maxSeparation = 0.02, zeroParallaxDistance = GetParam();
   CenterCamera center;
   EyeCameraT<double> left = offAxisEyeCamera(center.view, center.projection, Eye::Left, maxSeparation, zeroParallaxDistance);

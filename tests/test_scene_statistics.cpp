@@ -1,4 +1,4 @@
-// Image statistics of every built-in scene (issue 3: "checked against stored statistics (mean, histogram) with
+// Image statistics of every built-in scene (requirement: "checked against stored statistics (mean, histogram) with
 // tolerances, not against exact bytes"): the center view and the synthesized left eye of frame 0 at 96x54,
 // compared with tests/data/scene_statistics.json.
 //

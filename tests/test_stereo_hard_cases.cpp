@@ -1,4 +1,4 @@
-// Numerical hard cases of the stereo pass (issue #4), each with its tolerance and why: the C++ references
+// Numerical hard cases of the stereo pass, each with its tolerance and why: the C++ references
 // against double-precision math where the numbers matter, and the GPU passes against the C++ references.
 #include <gtest/gtest.h>
 

@@ -40,7 +40,7 @@ constexpr int kDefaultSweepIterations[] = {2, 4, 6, 8};
 constexpr float kDefaultSweepBudgets[] = {0.0f, 0.02f, 0.05f, 0.1f, 0.2f, 0.5f, 1.0f};
 constexpr int kMaxRepeat = 1000;
 
-// Issue #4's targets.
+// The speed and error targets the bench judges.
 constexpr double kHaloGainTargetDb = 2.0;         // the default method's halo PSNR over the seed's, each eye
 constexpr double kTimeOverSeedTarget = 2.0;        // at no more than this multiple of the seed's GPU time
 constexpr double kStereoToEyeTarget = 1.0 / 20.0;  // both eyes' stereo pass against one reference eye
@@ -425,7 +425,7 @@ void runRendererTimings(vk::Context& context, const BenchOptions& options, const
   if (options.progress) options.progress({done, bench.scenes.size(), "done"});
 }
 
-// ---- targets (issue #4) ----
+// ---- targets ----
 
 struct TargetCase {
   std::string scope;          // "courtyard sep 2%"
@@ -615,7 +615,7 @@ std::string sweepMarkdown(const BenchReport& report) {
        << count << " |\n";
   }
 
-  md << "\n#### Targets (issue #4), judged on `" << report.targetSetting.name() << "`\n\n";
+  md << "\n#### Targets, judged on `" << report.targetSetting.name() << "`\n\n";
   for (const TargetResult& target : evaluateTargets(report)) {
     md << "- " << target.name << ": " << verdict(target);
     if (!target.note.empty()) md << "; " << target.note;

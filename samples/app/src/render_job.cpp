@@ -102,7 +102,7 @@ ValidatedJob validateJob(const RenderJobOptions& options) {
   comfort::validate(options.display);
   ValidatedJob job{renderer::loadScene(options.scene),  // throws naming the scene (or file) and the choices
                    stereo::makeStereoConstants(options.stereo, options.width, options.height), options.stereo, {}};
-  // Issue #4: a zero-parallax plane at or beyond the far plane, or near zero, is clamped with a warning.
+  // A zero-parallax plane at or beyond the far plane, or near zero, is clamped with a warning.
   const stereo::ClampedZeroParallax zpp = stereo::clampZeroParallaxDistance(
       options.stereo.zeroParallaxDistance, job.scene.camera.nearPlane, job.scene.camera.farPlane);
   job.stereo.zeroParallaxDistance = zpp.zeroParallaxDistance;

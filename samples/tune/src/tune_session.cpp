@@ -123,7 +123,7 @@ TuneFrame TuneSession::renderFrame(TuneState& state, const FrameInput& input, fl
   } else {
     loaded.control.reset();
   }
-  // As `s3d render`: a zero-parallax plane outside the camera's depth range is clamped, with a warning (issue #4).
+  // As `s3d render`: a zero-parallax plane outside the camera's depth range is clamped, with a warning.
   const stereo::ClampedZeroParallax clamped = stereo::clampZeroParallaxDistance(
       parameters.zeroParallaxDistance, scene.camera.nearPlane, scene.camera.farPlane);
   parameters.zeroParallaxDistance = clamped.zeroParallaxDistance;

@@ -1,5 +1,5 @@
 #pragma once
-// The stereo methods applied to the linear HDR center view, for measuring the error in linear HDR (issue #4):
+// The stereo methods applied to the linear HDR center view, for measuring the error in linear HDR:
 // the GPU pass filters display-encoded RGBA8, but where each eye pixel comes from depends on depth only, so
 // the C++ reference's source columns (the math the GPU pass is held to) gather the HDR color the same way.
 #include <vector>

@@ -1,5 +1,5 @@
 #pragma once
-// The iterative gather method (issue #4): per target pixel, solve for the source position whose content the
+// The iterative gather method: per target pixel, solve for the source position whose content the
 // parallax moves onto it, by fixed-point iteration with a fixed iteration count, preferring the nearest
 // surface when several do and the background when none does. The math is in iterative_shared.h (shared with
 // stereo_iterative.comp); this is the plain C++ implementation the GPU pass (iterative_pass.h) is held to.

@@ -53,7 +53,7 @@ ErrorStats compareDisplayImages(const ImageRGBA8& synthesized, const ImageRGBA8&
 // Neighbouring depths differing by more than this fraction of the nearer one form a depth edge.
 constexpr float kDepthEdgeRelativeJump = 0.1f;
 
-// Halo region (issue #4): 1 for pixels within radiusPx columns of a horizontal depth edge of the center view
+// Halo region: 1 for pixels within radiusPx columns of a horizontal depth edge of the center view
 // (surface against sky counts), where the seed clones background next to near objects. Use
 // radiusPx = maxSeparation * width.
 std::vector<std::uint8_t> haloMask(const DepthImage& centerDepth, std::uint32_t radiusPx);
@@ -70,7 +70,7 @@ RegionErrors compareByRegion(const ImageRGBA8& synthesized, const ImageRGBA8& re
 ErrorStats compareWithinMask(const ImageRGBA8& synthesized, const ImageRGBA8& reference, std::uint32_t cropColumns,
                              const std::vector<std::uint8_t>& mask);
 
-// Disocclusion region (issue #4): 1 for the pixels of a reference eye that the center camera did not see.
+// Disocclusion region: 1 for the pixels of a reference eye that the center camera did not see.
 // Each reference pixel at linear depth d is reprojected into the center view (left eye: x + p(d) W, right
 // eye: x - p(d) W, nearest pixel); it was seen when the center's depth there matches d within
 // kSameSurfaceRelativeDepth (or both are sky), and unseen when it lands outside the image or on another
@@ -79,7 +79,7 @@ constexpr float kSameSurfaceRelativeDepth = 0.02f;
 std::vector<std::uint8_t> disocclusionMask(const DepthImage& referenceDepth, const DepthImage& centerDepth,
                                            float maxSeparation, float zeroParallaxDistance, Eye eye);
 
-// The regions of issue #4 as masks over the image (1: in the region); an empty mask is a region without
+// The error regions (whole, halo, disocclusion, rest) as masks over the image (1: in the region); an empty mask is a region without
 // pixels. Regions may overlap; `rest` is every compared pixel in none of them.
 struct RegionMasks {
   std::vector<std::uint8_t> halo;          // haloMask
@@ -95,7 +95,7 @@ ErrorsByRegion<ErrorStats> compareDisplayByRegion(const ImageRGBA8& synthesized,
 ErrorsByRegion<HdrErrorStats> compareHdrByRegion(const ImageRGBA32F& synthesized, const ImageRGBA32F& reference,
                                                  std::uint32_t cropColumns, const RegionMasks& masks);
 
-// Error heat map (issue #4): per pixel the largest R/G/B difference, black at 0 through blue, red and
+// Error heat map: per pixel the largest R/G/B difference, black at 0 through blue, red and
 // yellow to white at fullScaleLevels and above; the cropped border columns stay black.
 ImageRGBA8 makeErrorHeatMap(const ImageRGBA8& synthesized, const ImageRGBA8& reference, std::uint32_t cropColumns,
                             int fullScaleLevels = 32);

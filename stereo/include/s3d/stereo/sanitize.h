@@ -1,5 +1,5 @@
 #pragma once
-// Counted clean-up of the stereo pass's inputs (issue #4: NaN or Inf in color or depth is sanitized and counted,
+// Counted clean-up of the stereo pass's inputs (NaN or Inf in color or depth is sanitized and counted,
 // never propagated), and the zero-parallax distance kept inside the camera's depth range.
 #include <cstdint>
 #include <optional>
