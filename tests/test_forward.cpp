@@ -204,7 +204,8 @@ TEST_F(ForwardPass, UnknownDepthIsFilledFromTheBackgroundNotPlacedAtTheScreen) {
 test::SyntheticView makeNoisyBlockView(std::uint32_t width, std::uint32_t height) {
   test::SyntheticView view = test::makeBlockView(width, height, 5, 0.6f, 9, 3, true);
   std::mt19937 random(4);
-  for (std::uint32_t i = 0; i < width * height / 50; ++i) *view.depth.at(random() % width, random() % height) = NAN;
+  for (std::uint32_t i = 0; i < width * height / 50; ++i)
+    *view.depth.at(std::uint32_t(random() % width), std::uint32_t(random() % height)) = NAN;
   return view;
 }
 
