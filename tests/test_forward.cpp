@@ -1,11 +1,14 @@
 // The forward (scatter) method: exact answers on a disparity ramp, a 40 px step edge, a sub-pixel shift and
-// unknown depth, and the GPU pass held to the C++ implementation pixel by pixel.
+// unknown depth, and the GPU pass held to the C++ implementation pixel by pixel, in both kernels (a row in
+// shared memory; three dispatches over key images) and on rows wider than shared memory.
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <random>
 
 #include "s3d/stereo/forward.h"
+#include "s3d/stereo/detail/eye_pair_pipeline.h"
 #include "s3d/stereo/forward_pass.h"
 #include "stereo_test_views.h"
 #include "vulkan_test.h"
@@ -195,6 +198,103 @@ TEST_F(ForwardPass, UnknownDepthIsFilledFromTheBackgroundNotPlacedAtTheScreen) {
         EXPECT_FALSE(isForeground(eyes.left.at(x, y))) << x << ", " << y;
       }
     }
+}
+
+// Random blocks (sky, behind and in front of the screen) with some unknown pixels: holes, gaps and edges.
+test::SyntheticView makeNoisyBlockView(std::uint32_t width, std::uint32_t height) {
+  test::SyntheticView view = test::makeBlockView(width, height, 5, 0.6f, 9, 3, true);
+  std::mt19937 random(4);
+  for (std::uint32_t i = 0; i < width * height / 50; ++i)
+    *view.depth.at(std::uint32_t(random() % width), std::uint32_t(random() % height)) = NAN;
+  return view;
+}
+
+// The widest row whose shared arrays fit the device (a multiple of the capacity step, less a few columns so the
+// arrays hold more than the row), and the narrowest that does not.
+std::uint32_t maxSharedBytes(const vk::Context& context) {
+  VkPhysicalDeviceProperties properties;
+  vkGetPhysicalDeviceProperties(context.physicalDevice(), &properties);
+  return properties.limits.maxComputeSharedMemorySize;
+}
+std::uint32_t widestFittingRow(const vk::Context& context) {
+  const std::uint32_t columns = maxSharedBytes(context) / S3D_FORWARD_ROW_SHARED_BYTES_PER_COLUMN;
+  return columns / S3D_FORWARD_ROW_CAPACITY_STEP * S3D_FORWARD_ROW_CAPACITY_STEP - 5;
+}
+
+TEST_F(ForwardPass, BothKernelsMatchTheCppReference) {
+  // 300 columns: not a multiple of the row group or the capacity step; the seed's crop on.
+  constexpr std::uint32_t width = 300, height = 24;
+  const test::SyntheticView view = makeNoisyBlockView(width, height);
+  for (float m : {0.02f, 0.08f}) {
+    StereoParameters parameters = separation(m);
+    parameters.edgeCrop = -1.0f;
+    const gpu::ForwardConstants c = makeForwardConstants(parameters, width, height);
+    const StereoPair cpu = synthesizeForwardReference(view.color, view.depth, c);
+    const StereoPair rows = synthesizeForwardOnGpu(context(), view.color, view.depth, c, StereoKernel::RowTiles);
+    const StereoPair keyImages = synthesizeForwardOnGpu(context(), view.color, view.depth, c, StereoKernel::PerPixel);
+    // 1 level: the GPU's unorm conversion of a filtered or averaged value may round the other way.
+    EXPECT_LE(largestChannelDifference(rows.left, cpu.left), 1) << m;
+    EXPECT_LE(largestChannelDifference(rows.right, cpu.right), 1) << m;
+    EXPECT_LE(largestChannelDifference(keyImages.left, cpu.left), 1) << m;
+    EXPECT_LE(largestChannelDifference(keyImages.right, cpu.right), 1) << m;
+  }
+}
+
+TEST_F(ForwardPass, TheRowKernelRunsWhereTheRowFitsSharedMemory) {
+  const ForwardStereoPass automatic(context()), rows(context(), StereoKernel::RowTiles),
+      keyImages(context(), StereoKernel::PerPixel);
+  const int fitting = int(widestFittingRow(context()));
+  EXPECT_TRUE(automatic.usesRowKernel(fitting));
+  EXPECT_TRUE(rows.usesRowKernel(fitting));
+  EXPECT_FALSE(keyImages.usesRowKernel(fitting));
+  const int tooWide = fitting + S3D_FORWARD_ROW_CAPACITY_STEP;
+  EXPECT_GT(forwardRowSharedBytes(tooWide), maxSharedBytes(context()));
+  EXPECT_FALSE(automatic.usesRowKernel(tooWide));
+  EXPECT_FALSE(rows.usesRowKernel(tooWide));
+}
+
+TEST_F(ForwardPass, AWideRowThatFitsAndOneThatDoesNotBothMatchTheCppReference) {
+  // The widest row the shared arrays hold runs the row kernel; 256 columns more falls back to the key images.
+  for (std::uint32_t width : {widestFittingRow(context()), widestFittingRow(context()) + S3D_FORWARD_ROW_CAPACITY_STEP}) {
+    const test::SyntheticView view = makeNoisyBlockView(width, 3);
+    const gpu::ForwardConstants c = makeForwardConstants(separation(0.02f), width, 3);
+    const StereoPair cpu = synthesizeForwardReference(view.color, view.depth, c);
+    const StereoPair gpu = synthesizeForwardOnGpu(context(), view.color, view.depth, c, StereoKernel::Auto);
+    EXPECT_LE(largestChannelDifference(gpu.left, cpu.left), 1) << width;  // 1 level: unorm rounding, as above
+    EXPECT_LE(largestChannelDifference(gpu.right, cpu.right), 1) << width;
+  }
+}
+
+TEST_F(ForwardPass, KeptZBuffersAreTheCppZBuffersInBothKernels) {
+  // What a pass recorded after the forward pass (e.g. a previous-frame fill) reads to find the holes.
+  constexpr std::uint32_t width = 200, height = 6;
+  const test::SyntheticView view = makeNoisyBlockView(width, height);
+  const gpu::ForwardConstants c = makeForwardConstants(separation(0.08f), width, height);
+  constexpr vk::ImageState kKeysAfterThePass{VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                                             VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT};
+  for (StereoKernel kernel : {StereoKernel::RowTiles, StereoKernel::PerPixel}) {
+    const ForwardStereoPass pass(context(), kernel, ForwardKeys::Kept);
+    detail::runOnCpuImages(context(), pass, view.color, view.depth, c);
+    for (auto [eye, direction] : {std::pair{Eye::Left, 1.0f}, std::pair{Eye::Right, -1.0f}}) {
+      const std::vector<std::byte> bytes = vk::readbackImage(context(), pass.keys(eye), kKeysAfterThePass);
+      std::vector<std::uint32_t> keys(width * height);
+      std::memcpy(keys.data(), bytes.data(), bytes.size());
+      for (int y = 0; y < int(height); ++y) {
+        const std::vector<std::uint32_t> expected = forwardSplatRow(view.depth, y, direction, c);
+        const std::vector<std::uint32_t> row(keys.begin() + y * int(width), keys.begin() + (y + 1) * int(width));
+        EXPECT_EQ(row, expected) << kernelName(kernel) << " row " << y << " direction " << direction;
+      }
+    }
+  }
+}
+
+TEST_F(ForwardPass, TheRowKernelStoresNoZBuffersUnlessAsked) {
+  const test::SyntheticView view = makeNoisyBlockView(64, 2);
+  const gpu::ForwardConstants c = makeForwardConstants(separation(0.08f), 64, 2);
+  const ForwardStereoPass pass(context(), StereoKernel::RowTiles);
+  EXPECT_THROW(pass.keys(Eye::Left), std::logic_error);  // nothing recorded
+  detail::runOnCpuImages(context(), pass, view.color, view.depth, c);
+  EXPECT_THROW(pass.keys(Eye::Left), std::logic_error);  // ForwardKeys::Discarded: shared memory only
 }
 
 }  // namespace

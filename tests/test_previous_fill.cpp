@@ -206,7 +206,7 @@ TEST_F(PreviousFillPassTest, GpuMatchesTheCppReferenceOverTwoFrames) {
   auto image = [&](VkFormat format) { return vk::createImage(context(), format, kWidth, kHeight, usage); };
   const vk::Image color = image(VK_FORMAT_R8G8B8A8_UNORM), depth = image(VK_FORMAT_R32_SFLOAT);
   const vk::Image left = image(VK_FORMAT_R8G8B8A8_UNORM), right = image(VK_FORMAT_R8G8B8A8_UNORM);
-  const ForwardStereoPass forward(context());
+  const ForwardStereoPass forward(context(), StereoKernel::Auto, ForwardKeys::Kept);
   PreviousFillPass fill(context());
   std::optional<ForwardWithHistory> cpu;
   for (int f = 0; f < 3; ++f) {

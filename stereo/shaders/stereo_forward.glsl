@@ -1,18 +1,17 @@
-// Bindings and helpers of the three forward-method shaders (forward_shared.h); the C++ twin is forward_reference.cpp.
+// What every forward-method shader shares (forward_shared.h): the four eye-pair bindings, the constants, and
+// placement and filtering on top of depthAt, which each shader defines (image or shared memory). The C++ twin
+// is forward_reference.cpp.
 #include "s3d/stereo/forward_shared.h"
-
-layout(local_size_x = S3D_FORWARD_GROUP_SIZE, local_size_y = S3D_FORWARD_GROUP_SIZE) in;
 
 layout(binding = 0, rgba8) uniform readonly image2D centerColor;
 layout(binding = 1, r32f) uniform readonly image2D linearDepth;
 layout(binding = 2, rgba8) uniform writeonly image2D leftEye;
 layout(binding = 3, rgba8) uniform writeonly image2D rightEye;
-layout(binding = 4, r32ui) uniform coherent uimage2D leftKeys;  // the z-buffers: winning key per eye pixel
-layout(binding = 5, r32ui) uniform coherent uimage2D rightKeys;
 
 layout(push_constant) uniform Push { ForwardConstants c; };
 
-float depthAt(int x, int y) { return imageLoad(linearDepth, ivec2(x, y)).r; }
+// The linear depth of center pixel (x, y), x inside the row.
+float depthAt(int x, int y);
 
 // A pixel's eye position; known is false outside the row or for unknown depth.
 bool place(int x, int y, float direction, out float position) {

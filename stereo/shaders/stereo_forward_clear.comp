@@ -1,7 +1,10 @@
 #version 450
-// Forward method, dispatch 1 of 3: empty z-buffers for both eyes.
+// Forward method, key-image kernel, dispatch 1 of 3: empty z-buffers for both eyes.
 #extension GL_GOOGLE_include_directive : require
 #include "stereo_forward.glsl"
+#include "stereo_forward_key_images.glsl"
+
+layout(local_size_x = S3D_FORWARD_GROUP_SIZE, local_size_y = S3D_FORWARD_GROUP_SIZE) in;
 
 void main() {
   ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);

@@ -1,81 +1,21 @@
 #version 450
-// Forward method, dispatch 3 of 3: each eye pixel shows its winning source at the sub-pixel position, or fills
-// a disocclusion from the background side.
+// Forward method, key-image kernel, dispatch 3 of 3: each eye pixel shows its winning source at the sub-pixel
+// position, or fills a disocclusion from the background side.
 #extension GL_GOOGLE_include_directive : require
 #include "stereo_forward.glsl"
+#include "stereo_forward_key_images.glsl"
+#include "stereo_forward_resolve.glsl"
+
+layout(local_size_x = S3D_FORWARD_GROUP_SIZE, local_size_y = S3D_FORWARD_GROUP_SIZE) in;
+
+float depthAt(int x, int y) { return imageLoad(linearDepth, ivec2(x, y)).r; }
 
 uint keyAt(bool leftEyeKeys, int x, int y) {
   return leftEyeKeys ? imageLoad(leftKeys, ivec2(x, y)).r : imageLoad(rightKeys, ivec2(x, y)).r;
 }
 
-// The mean of the pixels from `first` in steps of `step` (up to S3D_FORWARD_FILL_TAPS, before `stop`) on the
-// surface of parallax `parallax` (within 1 px); count 0 when `first` is not on it.
-vec4 surfaceMean(int y, int first, int step, int stop, float parallax, out int count) {
-  vec4 sum = vec4(0.0);
-  count = 0;
-  for (int x = first; count < S3D_FORWARD_FILL_TAPS && x >= 0 && x < c.width && x != stop; x += step) {
-    float d = depthAt(x, y);
-    if (!forwardKnownDepth(d) || abs(forwardParallaxPx(c, d) - parallax) > 1.0) break;
-    sum += imageLoad(centerColor, ivec2(x, y));
-    ++count;
-  }
-  return count > 0 ? sum / float(count) : sum;
-}
-
-// A hole pixel (forward_shared.h): the background between the hole's two edges in the center row, else the
-// surface behind the farther edge.
-vec4 fillHole(bool leftEyeKeys, int column, int y) {
-  int left = -1, right = -1;
-  for (int i = 1; i <= c.fillSearchPx && left < 0 && column - i >= 0; ++i)
-    if (keyAt(leftEyeKeys, column - i, y) != S3D_FORWARD_EMPTY) left = column - i;
-  for (int i = 1; i <= c.fillSearchPx && right < 0 && column + i < c.width; ++i)
-    if (keyAt(leftEyeKeys, column + i, y) != S3D_FORWARD_EMPTY) right = column + i;
-  if (left < 0 && right < 0) return imageLoad(centerColor, ivec2(column, y));
-  int count;
-  if (left >= 0 && right >= 0) {
-    // Center pixels between the edges' sources behind both edges were hidden in this eye (a gap between occluders).
-    int leftSource = forwardKeySource(keyAt(leftEyeKeys, left, y), left);
-    int rightSource = forwardKeySource(keyAt(leftEyeKeys, right, y), right);
-    int low = min(leftSource, rightSource), high = max(leftSource, rightSource);
-    float farthest = max(forwardParallaxPx(c, depthAt(leftSource, y)), forwardParallaxPx(c, depthAt(rightSource, y))) + 1.0;
-    int background = -1;
-    for (int x = low + 1; x < high && x <= low + c.fillSearchPx; ++x) {
-      float d = depthAt(x, y);
-      if (forwardKnownDepth(d) && forwardParallaxPx(c, d) > farthest) {
-        farthest = forwardParallaxPx(c, d);
-        background = x;
-      }
-    }
-    if (background >= 0) return surfaceMean(y, background, 1, high, farthest, count);
-  }
-  bool useRight = left < 0 || (right >= 0 && forwardKeyDepth(keyAt(leftEyeKeys, right, y)) >
-                                                 forwardKeyDepth(keyAt(leftEyeKeys, left, y)));
-  int edge = useRight ? right : left;
-  int source = forwardKeySource(keyAt(leftEyeKeys, edge, y), edge);
-  int away = useRight ? 1 : -1;
-  vec4 mean = surfaceMean(y, source + away * S3D_FORWARD_FILL_SKIP, away, -1, forwardParallaxPx(c, depthAt(source, y)), count);
-  return count > 0 ? mean : imageLoad(centerColor, ivec2(source, y));
-}
-
-vec4 resolveEye(ivec2 pixel, float direction) {
-  bool leftEyeKeys = direction > 0.0;
-  uint key = keyAt(leftEyeKeys, pixel.x, pixel.y);
-  if (key == S3D_FORWARD_EMPTY) return fillHole(leftEyeKeys, pixel.x, pixel.y);
-  int source = forwardKeySource(key, pixel.x);
-  float position, nextPosition;
-  place(source, pixel.y, direction, position);
-  bool connected = place(source + 1, pixel.y, direction, nextPosition) && forwardConnected(position, nextPosition);
-  return sampleRow(pixel.y, forwardSourcePosition(pixel.x, source, position, connected, nextPosition));
-}
-
 void main() {
   ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
   if (pixel.x >= c.width || pixel.y >= c.height) return;
-  if (pixel.x < c.cropBegin || pixel.x >= c.cropEnd) {  // cropped edges, as in the seed
-    imageStore(leftEye, pixel, vec4(0, 0, 0, 1));
-    imageStore(rightEye, pixel, vec4(0, 0, 0, 1));
-    return;
-  }
-  imageStore(leftEye, pixel, resolveEye(pixel, 1.0));
-  imageStore(rightEye, pixel, resolveEye(pixel, -1.0));
+  resolvePixel(pixel);
 }

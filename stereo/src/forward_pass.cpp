@@ -7,6 +7,8 @@
 // clang-format off
 #include <s3d_spirv/stereo_forward_clear_comp.h>
 #include <s3d_spirv/stereo_forward_resolve_comp.h>
+#include <s3d_spirv/stereo_forward_row_comp.h>
+#include <s3d_spirv/stereo_forward_row_keys_comp.h>
 #include <s3d_spirv/stereo_forward_splat_comp.h>
 // clang-format on
 
@@ -14,20 +16,38 @@ namespace s3d::stereo {
 namespace {
 
 constexpr VkFormat kKeyFormat = VK_FORMAT_R32_UINT;
-// The z-buffers between dispatches: atomics read and write them.
+// The z-buffers between dispatches and for a following pass: atomics and stores write them, loads read them.
 constexpr vk::ImageState kKeysReadWrite{VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                                         VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT};
+constexpr std::uint32_t kBindings = 6;  // center color, linear depth, left eye, right eye, left keys, right keys
+
+int rowCapacity(int width) {
+  return (width + S3D_FORWARD_ROW_CAPACITY_STEP - 1) / S3D_FORWARD_ROW_CAPACITY_STEP * S3D_FORWARD_ROW_CAPACITY_STEP;
+}
+
+std::uint32_t groupsFor(int size, int group) { return std::uint32_t((size + group - 1) / group); }
 
 }  // namespace
 
-ForwardStereoPass::ForwardStereoPass(const vk::Context& context) : context_(&context) {
-  VkDescriptorSetLayoutBinding bindings[6];
-  for (std::uint32_t i = 0; i < 6; ++i)
+std::uint32_t forwardRowSharedBytes(int width) {
+  return std::uint32_t(rowCapacity(width)) * S3D_FORWARD_ROW_SHARED_BYTES_PER_COLUMN;
+}
+
+ForwardStereoPass::ForwardStereoPass(const vk::Context& context, StereoKernel kernel, ForwardKeys keys)
+    : context_(&context), kernel_(kernel), keysWanted_(keys) {
+  VkPhysicalDeviceProperties properties;
+  vkGetPhysicalDeviceProperties(context.physicalDevice(), &properties);
+  // The row group's 128 invocations are Vulkan's guaranteed minimum; its shared arrays are what may not fit.
+  static_assert(S3D_FORWARD_ROW_GROUP_SIZE <= 128);
+  maxSharedBytes_ = properties.limits.maxComputeSharedMemorySize;
+  VkDescriptorSetLayoutBinding bindings[kBindings];
+  for (std::uint32_t i = 0; i < kBindings; ++i)
     bindings[i] = {i, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr};
   layout_ = vk::createPushDescriptorLayout(context, bindings, sizeof(gpu::ForwardConstants), VK_SHADER_STAGE_COMPUTE_BIT);
-  clear_ = vk::createComputePipeline(context, layout_.layout, spirv_stereo_forward_clear_comp);
-  splat_ = vk::createComputePipeline(context, layout_.layout, spirv_stereo_forward_splat_comp);
-  resolve_ = vk::createComputePipeline(context, layout_.layout, spirv_stereo_forward_resolve_comp);
+}
+
+bool ForwardStereoPass::usesRowKernel(int width) const {
+  return kernel_ != StereoKernel::PerPixel && forwardRowSharedBytes(width) <= maxSharedBytes_;
 }
 
 void ForwardStereoPass::record(VkCommandBuffer cmd, const vk::Image& centerColor, const vk::Image& linearDepth,
@@ -36,45 +56,79 @@ void ForwardStereoPass::record(VkCommandBuffer cmd, const vk::Image& centerColor
   for (const vk::Image* image : {&centerColor, &linearDepth, &leftEye, &rightEye})
     if (int(image->width) != c.width || int(image->height) != c.height)
       throw std::invalid_argument("ForwardStereoPass: image size does not match the constants");
-  const bool fresh = !zBuffers_ || int(zBuffers_->left.width) != c.width || int(zBuffers_->left.height) != c.height;
+  const bool rows = usesRowKernel(c.width);
+  const bool keyImages = !rows || keysWanted_ == ForwardKeys::Kept;
+  const bool fresh = keyImages && (!zBuffers_ || int(zBuffers_->left.width) != c.width ||
+                                   int(zBuffers_->left.height) != c.height);
   if (fresh) {
     auto keys = [&] {
       return vk::createImage(*context_, kKeyFormat, std::uint32_t(c.width), std::uint32_t(c.height),
-                             VK_IMAGE_USAGE_STORAGE_BIT);
+                             VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);  // read back in tests
     };
     zBuffers_ = ZBuffers{keys(), keys()};
   }
-  const ZBuffers& z = *zBuffers_;
-  // Undefined first time (or after a resize), else after the previous record's resolve read them.
-  for (const vk::Image* keys : {&z.left, &z.right}) vk::transition(cmd, *keys, fresh ? vk::kUndefined : kKeysReadWrite, kKeysReadWrite);
-  VkDescriptorImageInfo infos[6] = {{VK_NULL_HANDLE, centerColor.view, VK_IMAGE_LAYOUT_GENERAL},
-                                    {VK_NULL_HANDLE, linearDepth.view, VK_IMAGE_LAYOUT_GENERAL},
-                                    {VK_NULL_HANDLE, leftEye.view, VK_IMAGE_LAYOUT_GENERAL},
-                                    {VK_NULL_HANDLE, rightEye.view, VK_IMAGE_LAYOUT_GENERAL},
-                                    {VK_NULL_HANDLE, z.left.view, VK_IMAGE_LAYOUT_GENERAL},
-                                    {VK_NULL_HANDLE, z.right.view, VK_IMAGE_LAYOUT_GENERAL}};
-  VkWriteDescriptorSet writes[6];
-  for (std::uint32_t i = 0; i < 6; ++i) writes[i] = vk::storageImageWrite(i, &infos[i]);
-  const std::uint32_t groupsX = std::uint32_t((c.width + S3D_FORWARD_GROUP_SIZE - 1) / S3D_FORWARD_GROUP_SIZE);
-  const std::uint32_t groupsY = std::uint32_t((c.height + S3D_FORWARD_GROUP_SIZE - 1) / S3D_FORWARD_GROUP_SIZE);
-  for (VkPipeline pipeline : {clear_.get(), splat_.get(), resolve_.get()}) {
-    if (pipeline != clear_.get())
-      for (const vk::Image* keys : {&z.left, &z.right}) vk::transition(cmd, *keys, kKeysReadWrite, kKeysReadWrite);
+  VkDescriptorImageInfo infos[kBindings] = {{VK_NULL_HANDLE, centerColor.view, VK_IMAGE_LAYOUT_GENERAL},
+                                            {VK_NULL_HANDLE, linearDepth.view, VK_IMAGE_LAYOUT_GENERAL},
+                                            {VK_NULL_HANDLE, leftEye.view, VK_IMAGE_LAYOUT_GENERAL},
+                                            {VK_NULL_HANDLE, rightEye.view, VK_IMAGE_LAYOUT_GENERAL},
+                                            {},
+                                            {}};
+  if (keyImages) {
+    // Undefined first time (or after a resize), else after the previous record (or a following pass) used them.
+    for (const vk::Image* keys : {&zBuffers_->left, &zBuffers_->right})
+      vk::transition(cmd, *keys, fresh ? vk::kUndefined : kKeysReadWrite, kKeysReadWrite);
+    infos[4] = {VK_NULL_HANDLE, zBuffers_->left.view, VK_IMAGE_LAYOUT_GENERAL};
+    infos[5] = {VK_NULL_HANDLE, zBuffers_->right.view, VK_IMAGE_LAYOUT_GENERAL};
+  }
+  const std::uint32_t bound = keyImages ? kBindings : 4;  // the row kernel without keys declares four bindings
+  VkWriteDescriptorSet writes[kBindings];
+  for (std::uint32_t i = 0; i < bound; ++i) writes[i] = vk::storageImageWrite(i, &infos[i]);
+  auto dispatch = [&](VkPipeline pipeline, std::uint32_t groupsX, std::uint32_t groupsY) {
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
-    context_->cmdPushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_.layout, 0, 6, writes);
+    context_->cmdPushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_.layout, 0, bound, writes);
     vkCmdPushConstants(cmd, layout_.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(c), &c);
     vkCmdDispatch(cmd, groupsX, groupsY, 1);
+  };
+  keysWritten_ = keyImages;
+  if (rows) {
+    const int capacity = rowCapacity(c.width);
+    if (!row_ || row_->capacity != capacity) {
+      const VkSpecializationMapEntry entry{0, 0, sizeof(int)};
+      const VkSpecializationInfo specialization{1, &entry, sizeof(int), &capacity};
+      row_ = RowPipeline{capacity, vk::createComputePipeline(
+                                       *context_, layout_.layout,
+                                       keysWanted_ == ForwardKeys::Kept ? std::span<const std::uint32_t>(spirv_stereo_forward_row_keys_comp)
+                                                                        : std::span<const std::uint32_t>(spirv_stereo_forward_row_comp),
+                                       &specialization)};
+    }
+    dispatch(row_->pipeline, 1, std::uint32_t(c.height));  // one workgroup per row
+    return;
+  }
+  if (!clear_) {  // created at the first use: lavapipe compiles at creation, and the row kernel needs none
+    clear_ = vk::createComputePipeline(*context_, layout_.layout, spirv_stereo_forward_clear_comp);
+    splat_ = vk::createComputePipeline(*context_, layout_.layout, spirv_stereo_forward_splat_comp);
+    resolve_ = vk::createComputePipeline(*context_, layout_.layout, spirv_stereo_forward_resolve_comp);
+  }
+  const std::uint32_t groupsX = groupsFor(c.width, S3D_FORWARD_GROUP_SIZE);
+  const std::uint32_t groupsY = groupsFor(c.height, S3D_FORWARD_GROUP_SIZE);
+  for (VkPipeline pipeline : {clear_.get(), splat_.get(), resolve_.get()}) {
+    if (pipeline != clear_.get())
+      for (const vk::Image* keys : {&zBuffers_->left, &zBuffers_->right}) vk::transition(cmd, *keys, kKeysReadWrite, kKeysReadWrite);
+    dispatch(pipeline, groupsX, groupsY);
   }
 }
 
 const vk::Image& ForwardStereoPass::keys(Eye eye) const {
   if (!zBuffers_) throw std::logic_error("ForwardStereoPass::keys: nothing recorded yet");
+  if (!keysWritten_)
+    throw std::logic_error("ForwardStereoPass::keys: the row kernel keeps its z-buffers in shared memory; construct "
+                           "the pass with ForwardKeys::Kept to have them stored");
   return eye == Eye::Left ? zBuffers_->left : zBuffers_->right;
 }
 
 StereoPair synthesizeForwardOnGpu(vk::Context& context, const ImageRGBA8& center, const DepthImage& linearDepth,
-                                  const gpu::ForwardConstants& constants) {
-  return detail::runOnCpuImages(context, ForwardStereoPass(context), center, linearDepth, constants);
+                                  const gpu::ForwardConstants& constants, StereoKernel kernel) {
+  return detail::runOnCpuImages(context, ForwardStereoPass(context, kernel), center, linearDepth, constants);
 }
 
 }  // namespace s3d::stereo

@@ -104,7 +104,7 @@ DisplacementPass::DisplacementPass(const vk::Context& context, const StereoParam
     record_ = [pass, constants](VkCommandBuffer cmd, const vk::Image& c, const vk::Image& d, const vk::Image& l,
                                 const vk::Image& r) { pass->record(cmd, c, d, l, r, constants); };
   } else if (parameters.method == StereoMethod::Forward) {
-    auto pass = std::make_shared<ForwardStereoPass>(context);
+    auto pass = std::make_shared<ForwardStereoPass>(context, parameters.kernel);
     const gpu::ForwardConstants constants = makeForwardConstants(parameters, width, height);
     record_ = [pass, constants](VkCommandBuffer cmd, const vk::Image& c, const vk::Image& d, const vk::Image& l,
                                 const vk::Image& r) { pass->record(cmd, c, d, l, r, constants); };
@@ -155,7 +155,7 @@ SynthesisResult synthesizeTimed(vk::Context& context, const vk::Image& centerCol
   requireRendererImages(centerColor, linearDepth);
   if (parameters.method != StereoMethod::Forward)
     throw std::invalid_argument("the previous-frame fill needs the forward method");
-  const ForwardStereoPass forward(context);
+  const ForwardStereoPass forward(context, parameters.kernel, ForwardKeys::Kept);  // the fill reads its z-buffers
   const ForwardWithPreviousFill pass{forward, fill, motion,
                                      makeForwardConstants(parameters, centerColor.width, centerColor.height)};
   SynthesisResult result = run(context, pass, centerColor, linearDepth, timedRuns);

@@ -32,7 +32,12 @@ S3D_INLINE uint floatBitsToUint(float value) { return std::bit_cast<uint>(value)
 
 S3D_GPU_BEGIN
 
-#define S3D_FORWARD_GROUP_SIZE 8
+#define S3D_FORWARD_GROUP_SIZE 8  // the key-image kernel's 8x8 workgroups
+// The row kernel: one workgroup of this many invocations per image row (Vulkan guarantees 128), holding the
+// row's depth and both eyes' z-buffers in shared memory (4 B each per column).
+#define S3D_FORWARD_ROW_GROUP_SIZE 128
+#define S3D_FORWARD_ROW_SHARED_BYTES_PER_COLUMN 12
+#define S3D_FORWARD_ROW_CAPACITY_STEP 256  // the shared arrays hold the width rounded up to a multiple of this
 #define S3D_FORWARD_MAX_GAP_PX 2.0f  // neighbours further apart in the eye are a depth edge, not one slanted surface
 #define S3D_FORWARD_OFFSET_BITS 12u  // the key's low bits: source column - eye column + S3D_FORWARD_OFFSET_BIAS
 #define S3D_FORWARD_OFFSET_BIAS 2048

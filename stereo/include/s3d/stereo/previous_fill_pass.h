@@ -20,8 +20,8 @@ class PreviousFillPass {
  public:
   explicit PreviousFillPass(const vk::Context& context);
 
-  // Reads: the eyes ForwardStereoPass::record just wrote (RGBA8, GENERAL, compute writes) and its z-buffers; the
-  // previous frame's history. Writes: the eyes (filled in place, left in compute-write state) and this frame's
+  // Reads: the eyes ForwardStereoPass::record just wrote (RGBA8, GENERAL, compute writes) and its z-buffers
+  // (construct it with ForwardKeys::Kept); the previous frame's history. Writes: the eyes (filled in place, left in compute-write state) and this frame's
   // history. Records the barriers it needs after the forward pass. Recording it again before advance() redoes the
   // same frame (the same history is read and written again), so a frame may be recorded for warm-up and timing.
   void record(VkCommandBuffer cmd, const ForwardStereoPass& forward, const vk::Image& leftEye, const vk::Image& rightEye,

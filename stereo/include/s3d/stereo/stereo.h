@@ -36,10 +36,13 @@ enum class DepthSource {
 StereoMethod automaticMethod(DepthSource source);
 StereoMethod parseStereoMethod(const std::string& name);  // throws std::invalid_argument listing the choices
 
-// How a method's shader walks the image (same results either way, docs/DESIGN.md "Row tiles").
+// How a method's shader walks the image (same results either way, docs/DESIGN.md "Row tiles"). The forward
+// method reads them as its two kernels (forward_pass.h): RowTiles is a workgroup per whole row in shared
+// memory, PerPixel its three dispatches over key images, and Auto is RowTiles where the row fits.
 enum class StereoKernel {
-  Auto,      // PerPixel: row tiles measured slower on lavapipe (1.3-3x) and on an H100 at 1920x1080 (seed 0.045 vs
-             // 0.029 ms, iterative-2 0.095 vs 0.084 ms; docs/RESULTS.md), so they stay opt-in
+  Auto,      // gather methods: PerPixel: row tiles measured slower on lavapipe (1.3-3x) and on an H100 at
+             // 1920x1080 (seed 0.045 vs 0.029 ms, iterative-2 0.095 vs 0.084 ms; docs/RESULTS.md), so they
+             // stay opt-in
   PerPixel,  // 8x8 workgroups, every tap and filter texel an image load
   RowTiles,  // a workgroup per run of one row, read once into shared memory; PerPixel where the margin does not
              // fit the shared arrays (above S3D_STEREO_ROW_TILE_MARGIN columns, e.g. 25 % of 2100)
