@@ -240,11 +240,11 @@ TEST_F(ForwardPass, BothKernelsMatchTheCppReference) {
   }
 }
 
-TEST_F(ForwardPass, TheRowKernelRunsWhereTheRowFitsSharedMemory) {
+TEST_F(ForwardPass, TheRowKernelRunsWhenAskedForAndTheRowFitsSharedMemory) {
   const ForwardStereoPass automatic(context()), rows(context(), StereoKernel::RowTiles),
       keyImages(context(), StereoKernel::PerPixel);
   const int fitting = int(widestFittingRow(context()));
-  EXPECT_TRUE(automatic.usesRowKernel(fitting));
+  EXPECT_FALSE(automatic.usesRowKernel(fitting));  // opt-in: slower than the three dispatches on a GPU
   EXPECT_TRUE(rows.usesRowKernel(fitting));
   EXPECT_FALSE(keyImages.usesRowKernel(fitting));
   const int tooWide = fitting + S3D_FORWARD_ROW_CAPACITY_STEP;
@@ -259,7 +259,7 @@ TEST_F(ForwardPass, AWideRowThatFitsAndOneThatDoesNotBothMatchTheCppReference) {
     const test::SyntheticView view = makeNoisyBlockView(width, 3);
     const gpu::ForwardConstants c = makeForwardConstants(separation(0.02f), width, 3);
     const StereoPair cpu = synthesizeForwardReference(view.color, view.depth, c);
-    const StereoPair gpu = synthesizeForwardOnGpu(context(), view.color, view.depth, c, StereoKernel::Auto);
+    const StereoPair gpu = synthesizeForwardOnGpu(context(), view.color, view.depth, c, StereoKernel::RowTiles);
     EXPECT_LE(largestChannelDifference(gpu.left, cpu.left), 1) << width;  // 1 level: unorm rounding, as above
     EXPECT_LE(largestChannelDifference(gpu.right, cpu.right), 1) << width;
   }

@@ -47,7 +47,9 @@ ForwardStereoPass::ForwardStereoPass(const vk::Context& context, StereoKernel ke
 }
 
 bool ForwardStereoPass::usesRowKernel(int width) const {
-  return kernel_ != StereoKernel::PerPixel && forwardRowSharedBytes(width) <= maxSharedBytes_;
+  // Opt-in: on an NVIDIA H200 at 1920x1080 the row kernel took 1.4-2.2x the three dispatches (docs/RESULTS.md),
+  // so Auto keeps the three dispatches, as the gather's row tiles stay opt-in.
+  return kernel_ == StereoKernel::RowTiles && forwardRowSharedBytes(width) <= maxSharedBytes_;
 }
 
 void ForwardStereoPass::record(VkCommandBuffer cmd, const vk::Image& centerColor, const vk::Image& linearDepth,

@@ -36,8 +36,8 @@ class ForwardStereoPass {
                              ForwardKeys keys = ForwardKeys::Discarded);
   void record(VkCommandBuffer cmd, const vk::Image& centerColor, const vk::Image& linearDepth,
               const vk::Image& leftEye, const vk::Image& rightEye, const gpu::ForwardConstants& constants) const;
-  // Whether a record at this width runs the row kernel: not forced per pixel, and the row fits the device's
-  // maxComputeSharedMemorySize.
+  // Whether a record at this width runs the row kernel: asked for (StereoKernel::RowTiles; Auto runs the three
+  // dispatches, measured faster on a GPU), and the row fits the device's maxComputeSharedMemorySize.
   bool usesRowKernel(int width) const;
   // The z-buffer of one eye after the last record (R32UI, GENERAL, last accessed by compute shader reads and
   // writes; keys as in forward_shared.h, S3D_FORWARD_EMPTY for a hole): a pass recorded after this one reads
