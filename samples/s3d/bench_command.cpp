@@ -109,26 +109,16 @@ class BenchCommand final : public Command {
     std::size_t previousLength = 0;
     options_.progress = progressPrinter(terminal, previousLength);
 
-    std::optional<app::BenchReport> report;
-    std::string jobError;
-    io::OutputTransaction outputs(options_.outputFolder);  // all files or none
-    try {
-      report = app::runBench(context, options_);
-    } catch (const std::exception& error) {
-      jobError = error.what();
-    }
-    const std::vector<std::string> messages = context.validationMessages();
-    for (const std::string& message : messages) std::cerr << "s3d: validation: " << oneLine(message) << '\n';
-    if (!report) return fail(jobError);
-    if (messages.empty()) outputs.commit();
+    const StagedRun run = runStaged(context, options_.outputFolder, [&] { return app::runBench(context, options_); });
+    if (!run.report) return fail(run.error);
+    const app::BenchReport* report = &*run.report;
     if (report->rendererOnly) std::cout << app::benchMarkdown(*report);
     char wall[32];
     std::snprintf(wall, sizeof(wall), "%.1f", report->wallSeconds);
     std::cout << "s3d bench: " << (report->rendererOnly ? report->rendererRows.size() : report->rows.size())
               << " rows on " << report->deviceName << " in " << wall << " s; wrote " << joined(report->filesWritten, ", ")
               << " (in " << options_.outputFolder.string() << ")\n";
-    if (!messages.empty())
-      return fail("the Vulkan validation layer reported " + std::to_string(messages.size()) + " message(s)");
+    if (run.validationMessages > 0) return failValidation(run.validationMessages);
     return 0;
   }
 
@@ -170,25 +160,16 @@ class BenchCommand final : public Command {
     std::cerr << "s3d bench --sequence: " << context.deviceName() << ", " << sequence.width << "x" << sequence.height << '\n';
     std::size_t previousLength = 0;
     sequence.progress = progressPrinter(::isatty(::fileno(stderr)) != 0, previousLength);
-    std::optional<app::SequenceBenchReport> report;
-    std::string jobError;
-    io::OutputTransaction outputs(options_.outputFolder);  // all files or none
-    try {
-      report = app::runSequenceBench(context, sequence);
-    } catch (const std::exception& error) {
-      jobError = error.what();
-    }
-    const std::vector<std::string> messages = context.validationMessages();
-    for (const std::string& message : messages) std::cerr << "s3d: validation: " << oneLine(message) << '\n';
-    if (!report) return fail(jobError);
-    if (messages.empty()) outputs.commit();
+    const StagedRun run =
+        runStaged(context, options_.outputFolder, [&] { return app::runSequenceBench(context, sequence); });
+    if (!run.report) return fail(run.error);
+    const app::SequenceBenchReport* report = &*run.report;
     std::cout << app::sequenceBenchMarkdown(*report);
     char wall[32];
     std::snprintf(wall, sizeof(wall), "%.1f", report->wallSeconds);
     std::cout << "s3d bench --sequence: " << report->rows.size() << " rows on " << report->deviceName << " in " << wall
               << " s; wrote " << joined(report->filesWritten, ", ") << " (in " << options_.outputFolder.string() << ")\n";
-    if (!messages.empty())
-      return fail("the Vulkan validation layer reported " + std::to_string(messages.size()) + " message(s)");
+    if (run.validationMessages > 0) return failValidation(run.validationMessages);
     return 0;
   }
 

@@ -25,6 +25,10 @@ int fail(const std::string& message) {
   return 1;
 }
 
+int failValidation(std::size_t messages) {
+  return fail("the Vulkan validation layer reported " + std::to_string(messages) + " message(s)");
+}
+
 void warn(const std::string& message) { std::cerr << "s3d: warning: " << oneLine(message) << '\n'; }
 
 std::string joined(const std::vector<std::string>& names, const char* separator) {

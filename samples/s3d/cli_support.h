@@ -3,11 +3,18 @@
 // and the Command interface each command file implements (main.cpp runs the one that was parsed).
 #include <CLI/CLI.hpp>
 
+#include <cstddef>
 #include <cstdint>
+#include <exception>
+#include <filesystem>
+#include <iostream>
 #include <memory>
 #include <optional>
 #include <string>
+#include <type_traits>
 #include <vector>
+
+#include "s3d/io/output_transaction.h"
 
 #include "s3d/stereo/stereo.h"
 #include "s3d/vk/context.h"
@@ -33,6 +40,37 @@ std::string oneLine(std::string text);
 int fail(const std::string& message);
 void warn(const std::string& message);  // "s3d: warning: <message>"
 std::string joined(const std::vector<std::string>& names, const char* separator);
+
+// What runStaged gives back: the job's report (empty when it threw: `error` says why) and how many messages the
+// validation layer reported (each already printed; a non-zero count fails the run: failValidation).
+template <typename Report>
+struct StagedRun {
+  std::optional<Report> report;
+  std::string error;
+  std::size_t validationMessages = 0;
+};
+
+// Runs `job` with every output it writes into `folder` staged (io::OutputTransaction): the files are moved into
+// place only when the job returned and the validation layer reported nothing, so a failed run leaves the folder
+// as it was. The layer's messages are printed as "s3d: validation: ..." lines.
+template <typename Job>
+StagedRun<std::invoke_result_t<Job>> runStaged(vk::Context& context, const std::filesystem::path& folder, Job&& job) {
+  StagedRun<std::invoke_result_t<Job>> run;
+  io::OutputTransaction outputs(folder);  // all files or none
+  try {
+    run.report = job();
+  } catch (const std::exception& error) {
+    run.error = error.what();
+  }
+  const std::vector<std::string> messages = context.validationMessages();
+  for (const std::string& message : messages) std::cerr << "s3d: validation: " << oneLine(message) << '\n';
+  run.validationMessages = messages.size();
+  if (run.report && messages.empty()) outputs.commit();
+  return run;
+}
+
+// "the Vulkan validation layer reported N message(s)" through fail().
+int failValidation(std::size_t messages);
 std::optional<double> parseNumber(const std::string& text);
 std::string formatMs(const std::optional<double>& ms);
 

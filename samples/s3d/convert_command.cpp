@@ -176,7 +176,7 @@ class ConvertCommand final : public Command {
     const std::vector<std::string> messages = context.validationMessages();
     for (const std::string& message : messages) std::cerr << "s3d: validation: " << oneLine(message) << '\n';
     if (!messages.empty())
-      return fail("the Vulkan validation layer reported " + std::to_string(messages.size()) + " message(s)");
+      return failValidation(messages.size());
     if (outputs) outputs->commit();
     std::cout << "s3d convert: " << (folderMode ? std::to_string(frames.size()) + " frames" + kept + "; " : std::string());
     if (width > 0)

@@ -51,7 +51,7 @@ class RegressCommand final : public Command {
     const std::vector<std::string> messages = context.validationMessages();
     for (const std::string& message : messages) std::cerr << "s3d: validation: " << oneLine(message) << '\n';
     if (!messages.empty())
-      return fail("the Vulkan validation layer reported " + std::to_string(messages.size()) + " message(s)");
+      return failValidation(messages.size());
     if (result.failedRuns > 0)
       return fail("regression: " + std::to_string(result.failedRuns) + " of " + std::to_string(result.runs.size()) +
                   " runs failed (see " + result.htmlReport.string() + ")");

@@ -233,23 +233,12 @@ class RenderCommand final : public Command {
     // Options first: a typo must not cost a Vulkan start-up, and must leave no files behind.
     requireHostMemory(app::renderJobMemoryEstimate(options_));  // validates every option on the way
     vk::Context context(contextOptions_);
-    std::optional<app::RenderReport> report;
-    std::string jobError;
-    io::OutputTransaction outputs(options_.outputFolder);  // all files or none
-    try {
-      report = app::runRenderJob(context, options_);
-    } catch (const std::exception& error) {
-      jobError = error.what();
-    }
     // With --validation, the layer's messages explain failures and are themselves failures.
-    const std::vector<std::string> messages = context.validationMessages();
-    for (const std::string& message : messages) std::cerr << "s3d: validation: " << oneLine(message) << '\n';
-    if (!report) return fail(jobError);
-    if (messages.empty()) outputs.commit();
-    for (const std::string& warning : report->warnings) warn(warning);
-    printSummary(*report);
-    if (!messages.empty())
-      return fail("the Vulkan validation layer reported " + std::to_string(messages.size()) + " message(s)");
+    const StagedRun run = runStaged(context, options_.outputFolder, [&] { return app::runRenderJob(context, options_); });
+    if (!run.report) return fail(run.error);
+    for (const std::string& warning : run.report->warnings) warn(warning);
+    printSummary(*run.report);
+    if (run.validationMessages > 0) return failValidation(run.validationMessages);
     return 0;
   }
 

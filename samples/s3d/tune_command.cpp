@@ -103,8 +103,7 @@ class TuneCommand final : public Command {
       std::cout << "s3d tune: " << result.frames << (result.frames == 1 ? " frame" : " frames") << " on "
                 << result.deviceName << '\n';
       if (!result.validationMessages.empty())
-        return fail("the Vulkan validation layer reported " + std::to_string(result.validationMessages.size()) +
-                    " message(s)");
+        return failValidation(result.validationMessages.size());
       return 0;
     } catch (const tune::NoDisplayError& error) {
       fail(error.what());
