@@ -15,7 +15,6 @@
 #include <vector>
 
 #include "s3d/io/output_transaction.h"
-
 #include "s3d/stereo/stereo.h"
 #include "s3d/vk/context.h"
 
@@ -89,8 +88,7 @@ void rejectGiven(const CLI::App& command, const std::vector<std::string>& option
 
 // --max-separation, --zero-parallax-distance, --edge-crop, --method, --taps, --iterations, --hybrid-budget and
 // --hybrid-base on `command`, their defaults read from stereo::StereoParameters (the help prints what a run
-// uses); call finish() after parsing to
-// turn the method name into StereoParameters::method and validate.
+// uses); call finish() after parsing to turn the method name into StereoParameters::method and validate.
 // With offerAuto, --method also takes "auto" (finish() then sets `automatic` and leaves parameters.method).
 struct StereoOptions {
   stereo::StereoParameters parameters;
