@@ -132,6 +132,16 @@ TEST_F(DepthIoTest, TruncatedExrIsRejected) {
   EXPECT_NE(test::runtimeErrorMessage([&] { readExrChannel(folder_ / "f.exr", "Z"); }).find("f.exr"), std::string::npos);
 }
 
+TEST_F(DepthIoTest, AGray16PngWhoseHeaderClaimsAHugeImageIsRejectedBeforeDecoding) {
+  // Found by the png_gray16 fuzzer: 234 x 2293762 pixels claimed by a 77-byte file made the decoder ask for a
+  // wrapped-around 16 EiB buffer (AddressSanitizer: allocation-size-too-big). Now refused from the header.
+  const fs::path file = fs::path(S3D_TEST_DATA_DIR) / ".." / "fuzz" / "corpus" / "png_gray16" / "huge_header_tiny_file.png";
+  ASSERT_TRUE(fs::exists(file));
+  const std::string message = test::runtimeErrorMessage([&] { readPngGray16(file); });
+  EXPECT_NE(message.find("huge_header_tiny_file.png"), std::string::npos) << message;
+  EXPECT_NE(message.find("too large"), std::string::npos) << message;
+}
+
 TEST_F(DepthIoTest, ATiledExrWhoseOffsetsPointPastTheEndIsRejectedNamingIt) {
   // Found by the exr_channel fuzzer: a tile offset beyond the file's end made the in-memory stream's remaining
   // byte count wrap around, and the read ran past the buffer (AddressSanitizer: SEGV). Now a clean error.

@@ -175,6 +175,10 @@ Gray16Image readPngGray16(const fs::path& file) {
     failRead("PNG", file, "an 8-bit PNG: depth or disparity needs a 16-bit grey PNG");
   if (channelsInFile > 2)
     failRead("PNG", file, "a colour PNG: depth or disparity needs a 16-bit grey (single-channel) PNG");
+  // A crafted header can claim a huge image in a tiny file: refuse before the decoder sizes its buffers from it.
+  if (width <= 0 || height <= 0 || std::uint64_t(width) > kMaxSide || std::uint64_t(height) > kMaxSide ||
+      std::uint64_t(width) * std::uint64_t(height) > kMaxPixels)
+    failRead("PNG", file, "image of " + std::to_string(width) + "x" + std::to_string(height) + " is too large");
   std::unique_ptr<stbi_us, void (*)(void*)> decoded(
       stbi_load_16_from_memory(data, size, &width, &height, &channelsInFile, 1), stbi_image_free);
   if (!decoded) {
