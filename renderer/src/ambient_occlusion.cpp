@@ -1,5 +1,7 @@
 #include "ambient_occlusion.h"
 
+#include "nearest_sampler.h"
+
 #include "s3d/renderer/renderer_shared.h"
 #include "s3d/vk/check.h"
 
@@ -29,12 +31,7 @@ AmbientOcclusion::AmbientOcclusion(vk::Context& context, std::uint32_t renderWid
   const VkImageUsageFlags usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
   occlusion_ = vk::createImage(context_, kOcclusionFormat, w, h, usage);
   blurred_ = vk::createImage(context_, kOcclusionFormat, w, h, usage);
-  VkSamplerCreateInfo samplerInfo{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
-  samplerInfo.magFilter = samplerInfo.minFilter = VK_FILTER_NEAREST;
-  samplerInfo.addressModeU = samplerInfo.addressModeV = samplerInfo.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
-  VkSampler sampler = VK_NULL_HANDLE;
-  S3D_VK_CHECK(vkCreateSampler(context_.device(), &samplerInfo, nullptr, &sampler));
-  nearest_ = vk::Unique<VkSampler>(context_.device(), sampler, vkDestroySampler);
+  nearest_ = createNearestClampSampler(context_);
   const VkDescriptorSetLayoutBinding bindings[] = {
       computeBinding(0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER), computeBinding(1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER),
       computeBinding(2, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE), computeBinding(3, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER)};

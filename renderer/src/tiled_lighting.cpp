@@ -1,5 +1,7 @@
 #include "tiled_lighting.h"
 
+#include "nearest_sampler.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -37,12 +39,7 @@ TiledLighting::TiledLighting(vk::Context& context, bool counting) : context_(con
       computeBinding(12, storage), computeBinding(13, storage), computeBinding(14, storage), computeBinding(15, storage)};
   layout_ = vk::createPushDescriptorLayout(context_, bindings, sizeof(gpu::LightingConstants), VK_SHADER_STAGE_COMPUTE_BIT);
   pipelines_ = std::make_unique<TilePipelines>(context_, layout_.layout, spirv_lighting_comp, counting);
-  VkSamplerCreateInfo samplerInfo{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
-  samplerInfo.magFilter = samplerInfo.minFilter = VK_FILTER_NEAREST;
-  samplerInfo.addressModeU = samplerInfo.addressModeV = samplerInfo.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
-  VkSampler sampler = VK_NULL_HANDLE;
-  S3D_VK_CHECK(vkCreateSampler(context_.device(), &samplerInfo, nullptr, &sampler));
-  nearest_ = vk::Unique<VkSampler>(context_.device(), sampler, vkDestroySampler);
+  nearest_ = createNearestClampSampler(context_);
   setScene(Scene{});
 }
 
