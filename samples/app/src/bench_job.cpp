@@ -252,13 +252,7 @@ std::string commandLineOf(const BenchOptions& options, const ValidatedBench& ben
   return command;
 }
 
-std::optional<double> medianOf(const std::vector<std::optional<double>>& samples) {
-  std::vector<double> present;
-  for (const std::optional<double>& sample : samples)
-    if (sample) present.push_back(*sample);
-  return stereo::medianMs(present);
-}
-
+using detail::medianOf;
 using detail::timeFrames;
 
 struct EyeReferences {

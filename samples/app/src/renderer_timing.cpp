@@ -8,17 +8,10 @@
 #include <numeric>
 #include <sstream>
 
+#include "bench_text.h"
 #include "s3d/stereo/synthesis.h"
 
 namespace s3d::app::detail {
-namespace {
-
-std::string ms(const std::optional<double>& value) {
-  if (!value) return "n/a";
-  char text[32];
-  std::snprintf(text, sizeof(text), *value >= 10.0 ? "%.1f" : *value >= 1.0 ? "%.2f" : "%.3f", *value);
-  return text;
-}
 
 std::optional<double> medianOf(const std::vector<std::optional<double>>& samples) {
   std::vector<double> present;
@@ -26,8 +19,6 @@ std::optional<double> medianOf(const std::vector<std::optional<double>>& samples
     if (sample) present.push_back(*sample);
   return stereo::medianMs(present);
 }
-
-}  // namespace
 
 std::pair<std::optional<double>, std::vector<renderer::PassTiming>> timeFrames(renderer::DeferredRenderer& deferred,
                                                                                const renderer::ViewMatrices& view,
@@ -128,11 +119,11 @@ std::string maskedRenderMarkdown(const std::vector<MaskedRenderRow>& rows, int r
       if (pass.name.rfind("shadow-", 0) == 0) shadowMs += pass.gpuMs;
     char share[32];
     std::snprintf(share, sizeof(share), "%g %%", std::round(row.shadedShare * 1000.0) / 10.0);
-    md << "| " << row.scene << " | " << share << " | " << ms(row.frameGpuMs) << " | " << ms(shadowMs) << " |";
+    md << "| " << row.scene << " | " << share << " | " << bench_text::msText(row.frameGpuMs) << " | " << bench_text::msText(shadowMs) << " |";
     for (const std::string& name : names) {
       auto pass = std::find_if(row.passes.begin(), row.passes.end(),
                                [&](const renderer::PassTiming& p) { return p.name == name; });
-      md << ' ' << (pass == row.passes.end() ? std::string("-") : ms(pass->gpuMs)) << " |";
+      md << ' ' << (pass == row.passes.end() ? std::string("-") : bench_text::msText(pass->gpuMs)) << " |";
     }
     md << '\n';
   }

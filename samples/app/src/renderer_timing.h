@@ -14,6 +14,9 @@
 
 namespace s3d::app::detail {
 
+// The median of the samples present (timestamps a device did not give are left out); empty when none is.
+std::optional<double> medianOf(const std::vector<std::optional<double>>& samples);
+
 // Renders `view` `repeat` times after `warmUp` of untimed frames; the median whole-frame time and the median
 // time of each pass (first frame's order).
 std::pair<std::optional<double>, std::vector<renderer::PassTiming>> timeFrames(
