@@ -177,6 +177,30 @@ TEST_F(ForwardPass, ASubPixelParallaxMovesAnEdgeByItsFraction) {
   EXPECT_NEAR(eyes.right.at(50, 0)[0], 191, 1);  // the right eye moves it the other way
 }
 
+TEST_F(ForwardPass, AColumnOnAFootprintBoundaryGoesToTheSurfaceBesideTheDisocclusion) {
+  // A block on columns [30, 45) at parallax exactly 10.5 px (depth 2) over the sky (21 px), width 84: its end
+  // pixels' footprints end exactly on an eye column's center. The right eye's column 55 (pixel 44's right end,
+  // a hole opening to its right) and the left eye's column 19 (pixel 30's left end, the mirror case) show the
+  // block's edge pixel, not a fill; the next columns are holes filled from the sky.
+  constexpr std::uint32_t width = 84;
+  ImageRGBA8 color(width, 1);
+  DepthImage depth(width, 1, INFINITY);
+  for (std::uint32_t x = 0; x < width; ++x) {
+    const bool block = x >= 30 && x < 45;
+    std::uint8_t* pixel = color.at(x, 0);
+    pixel[0] = std::uint8_t(block ? 130 + x : 2 * x % 128);
+    pixel[1] = pixel[2] = 0;
+    pixel[3] = 255;
+    if (block) *depth.at(x, 0) = 2.0f;
+  }
+  const StereoPair eyes =
+      synthesizeForwardOnGpu(context(), color, depth, makeForwardConstants(separation(0.25f), width, 1));
+  EXPECT_EQ(eyes.right.at(55, 0)[0], color.at(44, 0)[0]);
+  EXPECT_FALSE(isForeground(eyes.right.at(56, 0)));
+  EXPECT_EQ(eyes.left.at(19, 0)[0], color.at(30, 0)[0]);
+  EXPECT_FALSE(isForeground(eyes.left.at(18, 0)));
+}
+
 TEST_F(ForwardPass, UnknownDepthIsFilledFromTheBackgroundNotPlacedAtTheScreen) {
   // Two unknown columns (green 255, never otherwise used) beside the block, as a stereo matcher leaves them.
   test::SyntheticView view = makeStepView();

@@ -5,8 +5,9 @@
 void splatKey(bool leftEyeKeys, int column, int y, uint key);
 
 void splatKeys(bool leftEyeKeys, int y, float from, float to, float depth, int source) {
-  int end = min(forwardFirstColumn(to), c.width);
-  for (int column = max(forwardFirstColumn(from), 0); column < end; ++column)
+  float direction = leftEyeKeys ? 1.0 : -1.0;
+  int end = min(forwardFirstColumn(to, direction), c.width);
+  for (int column = max(forwardFirstColumn(from, direction), 0); column < end; ++column)
     splatKey(leftEyeKeys, column, y, forwardKey(depth, source, column));
 }
 

@@ -32,9 +32,9 @@ bool connectedRight(const DepthImage& depth, int x, int y, float direction, cons
   return here.known && next.known && gpu::forwardConnected(here.position, next.position);
 }
 
-void splat(std::vector<std::uint32_t>& keys, float from, float to, float depth, int source) {
-  const int end = std::min(gpu::forwardFirstColumn(to), int(keys.size()));
-  for (int column = std::max(gpu::forwardFirstColumn(from), 0); column < end; ++column)
+void splat(std::vector<std::uint32_t>& keys, float direction, float from, float to, float depth, int source) {
+  const int end = std::min(gpu::forwardFirstColumn(to, direction), int(keys.size()));
+  for (int column = std::max(gpu::forwardFirstColumn(from, direction), 0); column < end; ++column)
     keys[std::size_t(column)] = std::min(keys[std::size_t(column)], gpu::forwardKey(depth, source, column));
 }
 
@@ -120,11 +120,11 @@ std::vector<std::uint32_t> forwardSplatRow(const DepthImage& linearDepth, int y,
     const Placed previous = place(linearDepth, x - 1, y, direction, c);
     const Placed next = place(linearDepth, x + 1, y, direction, c);
     if (!(previous.known && gpu::forwardConnected(previous.position, here.position)))
-      splat(keys, here.position - 0.5f, here.position, depth, x);  // open left end: half a pixel
+      splat(keys, direction, here.position - 0.5f, here.position, depth, x);  // open left end: half a pixel
     if (next.known && gpu::forwardConnected(here.position, next.position))
-      splat(keys, here.position, next.position, std::min(depth, depthAt(linearDepth, x + 1, y)), x);
+      splat(keys, direction, here.position, next.position, std::min(depth, depthAt(linearDepth, x + 1, y)), x);
     else
-      splat(keys, here.position, here.position + 0.5f, depth, x);  // open right end
+      splat(keys, direction, here.position, here.position + 0.5f, depth, x);  // open right end
   }
   return keys;
 }

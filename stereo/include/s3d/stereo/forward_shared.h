@@ -4,9 +4,9 @@
 // Every center pixel s with known depth moves to x(s) = s + 0.5 - direction * P(d(s)) in an eye (direction +1:
 // left eye, -1: right eye; P = parallaxFromDepth * width, bounded to +-maxParallaxPx), the inverse of the gather
 // methods' mapping. Neighbours s, s + 1 whose positions stay in order and at most S3D_FORWARD_MAX_GAP_PX apart
-// are one surface: the eye pixels whose centers fall in [x(s), x(s + 1)) show the center row filtered at
-// s + the fraction of the way (sub-pixel placement, exact on flat and slanted surfaces). An open end (a depth
-// edge) covers half a pixel. Each covered eye pixel keeps the nearest surface: a 32-bit key of the depth's
+// are one surface: the eye pixels whose centers fall in [x(s), x(s + 1)) (left eye; (x(s), x(s + 1)] in the
+// right eye, forwardFirstColumn) show the center row filtered at s + the fraction of the way (sub-pixel
+// placement, exact on flat and slanted surfaces). An open end (a depth edge) covers half a pixel. Each covered eye pixel keeps the nearest surface: a 32-bit key of the depth's
 // upper float bits above the source's column offset, reduced with an atomic minimum (z-buffer). Eye pixels
 // no surface covers are disocclusions. When the center row between the sources of the hole's two edges holds
 // pixels behind both edges (a gap between occluders, whose background the eye sees elsewhere), the hole takes
@@ -80,8 +80,13 @@ S3D_INLINE bool forwardConnected(float a, float b) {
   return gap > 0.0f && gap <= S3D_FORWARD_MAX_GAP_PX;
 }
 
-// First eye column whose center is at or right of `position`.
-S3D_INLINE int forwardFirstColumn(float position) { return int(ceil(position - 0.5f)); }
+// First eye column whose center is right of `position`, or at it in the left eye (direction > 0). A column
+// whose center falls exactly on a footprint boundary goes to the pixel on the side where disocclusions open, so
+// a surface's edge pixel shows there instead of a fill: in the right eye nearer surfaces move left and open
+// holes at their right ends, so the column goes to the pixel left of the boundary; the left eye mirrors it.
+S3D_INLINE int forwardFirstColumn(float position, float direction) {
+  return direction > 0.0f ? int(ceil(position - 0.5f)) : int(floor(position - 0.5f)) + 1;
+}
 
 // The z-buffer key: nearer depth first (positive float bits order like the values), then the source offset.
 S3D_INLINE uint forwardKey(float linearDepth, int source, int column) {
