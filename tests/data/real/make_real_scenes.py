@@ -10,7 +10,8 @@ s3d convert --depth-scale 0.00390625.
 
 Where the originals are read from:
 - aloe: Debian package opencv-doc, /usr/share/doc/opencv-doc/examples/data/aloe{L.jpg,R.jpg,GT.png}.
-- motorcycle: Debian package python3-skimage, /usr/lib/python3/dist-packages/skimage/data/motorcycle_*.
+- motorcycle: Debian package python3-skimage, /usr/lib/python3/dist-packages/skimage/data/motorcycle_* (or the
+  folder given with --skimage-data, e.g. an unpacked .deb).
 - art, bowling1, flowerpots: the Middlebury archives, in a folder given with --middlebury DIR laid out as the
   stereo pages publish them: DIR/scenes2005/FullSize/Art/, DIR/scenes2006/HalfSize/Bowling1/ and
   DIR/scenes2006/HalfSize/Flowerpots/, each holding view1.png, view5.png and disp1.png.
