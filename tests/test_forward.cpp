@@ -312,6 +312,33 @@ TEST_F(ForwardPass, KeptZBuffersAreTheCppZBuffersInBothKernels) {
   }
 }
 
+TEST_F(ForwardPass, EachRecordSplatsIntoZBuffersTheRecordBeforeEmptied) {
+  // The key-image kernel's resolve empties the other pair of z-buffers for the next record instead of a clear
+  // dispatch: records of changing separations on one pass give exactly a fresh pass's eyes and the C++ keys.
+  constexpr std::uint32_t width = 200, height = 6;
+  const test::SyntheticView view = makeNoisyBlockView(width, height);
+  constexpr vk::ImageState kKeysAfterThePass{VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                                             VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT};
+  const ForwardStereoPass pass(context(), StereoKernel::PerPixel, ForwardKeys::Kept);
+  for (float m : {0.08f, 0.02f, 0.08f, 0.0f, 0.04f}) {  // a wide separation leaves keys a narrow one must not see
+    const gpu::ForwardConstants c = makeForwardConstants(separation(m), width, height);
+    const StereoPair eyes = detail::runOnCpuImages(context(), pass, view.color, view.depth, c);
+    const StereoPair fresh = synthesizeForwardOnGpu(context(), view.color, view.depth, c, StereoKernel::PerPixel);
+    EXPECT_EQ(eyes.left.pixels, fresh.left.pixels) << m;
+    EXPECT_EQ(eyes.right.pixels, fresh.right.pixels) << m;
+    for (auto [eye, direction] : {std::pair{Eye::Left, 1.0f}, std::pair{Eye::Right, -1.0f}}) {
+      const std::vector<std::byte> bytes = vk::readbackImage(context(), pass.keys(eye), kKeysAfterThePass);
+      std::vector<std::uint32_t> keys(width * height);
+      std::memcpy(keys.data(), bytes.data(), bytes.size());
+      for (int y = 0; y < int(height); ++y) {
+        const std::vector<std::uint32_t> expected = forwardSplatRow(view.depth, y, direction, c);
+        const std::vector<std::uint32_t> row(keys.begin() + y * int(width), keys.begin() + (y + 1) * int(width));
+        EXPECT_EQ(row, expected) << m << " row " << y << " direction " << direction;
+      }
+    }
+  }
+}
+
 TEST_F(ForwardPass, TheRowKernelStoresNoZBuffersUnlessAsked) {
   const test::SyntheticView view = makeNoisyBlockView(64, 2);
   const gpu::ForwardConstants c = makeForwardConstants(separation(0.08f), 64, 2);

@@ -1,5 +1,6 @@
 #version 450
-// Forward method, key-image kernel, dispatch 1 of 3: empty z-buffers for both eyes.
+// Forward method, key-image kernel: empty z-buffers for both eyes, only where the pair to splat into is not
+// already empty (its first use; after that the previous record's resolve emptied it).
 #extension GL_GOOGLE_include_directive : require
 #include "stereo_forward.glsl"
 #include "stereo_forward_key_images.glsl"

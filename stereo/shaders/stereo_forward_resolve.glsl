@@ -5,27 +5,51 @@
 uint keyAt(bool leftEyeKeys, int x, int y);
 
 // The mean of the pixels from `first` in steps of `step` (up to S3D_FORWARD_FILL_TAPS, before `stop`) on the
-// surface of parallax `parallax` (within 1 px); count 0 when `first` is not on it.
+// surface of parallax `parallax` (within 1 px); count 0 when `first` is not on it. All taps are read before the
+// first is judged (clamped to the row), so their loads are in flight together; the sum is in the same order.
 vec4 surfaceMean(int y, int first, int step, int stop, float parallax, out int count) {
+  float depths[S3D_FORWARD_FILL_TAPS];
+  vec4 colors[S3D_FORWARD_FILL_TAPS];
+  for (int k = 0; k < S3D_FORWARD_FILL_TAPS; ++k) {
+    int x = clamp(first + k * step, 0, c.width - 1);
+    depths[k] = depthAt(x, y);
+    colors[k] = imageLoad(centerColor, ivec2(x, y));
+  }
   vec4 sum = vec4(0.0);
   count = 0;
-  for (int x = first; count < S3D_FORWARD_FILL_TAPS && x >= 0 && x < c.width && x != stop; x += step) {
-    float d = depthAt(x, y);
+  for (int k = 0; k < S3D_FORWARD_FILL_TAPS; ++k) {
+    int x = first + k * step;
+    if (x < 0 || x >= c.width || x == stop) break;
+    float d = depths[k];
     if (!forwardKnownDepth(d) || abs(forwardParallaxPx(c, d) - parallax) > 1.0) break;
-    sum += imageLoad(centerColor, ivec2(x, y));
+    sum += colors[k];
     ++count;
   }
   return count > 0 ? sum / float(count) : sum;
 }
 
+// The nearest covered eye pixel from `column` in steps of `step` (+-1), at most c.fillSearchPx away, or -1. The
+// keys are read S3D_FORWARD_SCAN_CHUNK at a time: independent loads in flight together instead of one memory
+// round trip per pixel of the hole (the hole pixels' latency bounds the resolve on a GPU).
+int nearestCovered(bool leftEyeKeys, int column, int y, int step) {
+  for (int i = 1; i <= c.fillSearchPx; i += S3D_FORWARD_SCAN_CHUNK) {
+    uint keys[S3D_FORWARD_SCAN_CHUNK];
+    for (int j = 0; j < S3D_FORWARD_SCAN_CHUNK; ++j)
+      keys[j] = keyAt(leftEyeKeys, clamp(column + step * (i + j), 0, c.width - 1), y);
+    for (int j = 0; j < S3D_FORWARD_SCAN_CHUNK; ++j) {
+      int x = column + step * (i + j);
+      if (i + j > c.fillSearchPx || x < 0 || x >= c.width) return -1;
+      if (keys[j] != S3D_FORWARD_EMPTY) return x;
+    }
+  }
+  return -1;
+}
+
 // A hole pixel (forward_shared.h): the background between the hole's two edges in the center row, else the
 // surface behind the farther edge.
 vec4 fillHole(bool leftEyeKeys, int column, int y) {
-  int left = -1, right = -1;
-  for (int i = 1; i <= c.fillSearchPx && left < 0 && column - i >= 0; ++i)
-    if (keyAt(leftEyeKeys, column - i, y) != S3D_FORWARD_EMPTY) left = column - i;
-  for (int i = 1; i <= c.fillSearchPx && right < 0 && column + i < c.width; ++i)
-    if (keyAt(leftEyeKeys, column + i, y) != S3D_FORWARD_EMPTY) right = column + i;
+  int left = nearestCovered(leftEyeKeys, column, y, -1);
+  int right = nearestCovered(leftEyeKeys, column, y, 1);
   if (left < 0 && right < 0) return imageLoad(centerColor, ivec2(column, y));
   int count;
   if (left >= 0 && right >= 0) {
@@ -35,11 +59,16 @@ vec4 fillHole(bool leftEyeKeys, int column, int y) {
     int low = min(leftSource, rightSource), high = max(leftSource, rightSource);
     float farthest = max(forwardParallaxPx(c, depthAt(leftSource, y)), forwardParallaxPx(c, depthAt(rightSource, y))) + 1.0;
     int background = -1;
-    for (int x = low + 1; x < high && x <= low + c.fillSearchPx; ++x) {
-      float d = depthAt(x, y);
-      if (forwardKnownDepth(d) && forwardParallaxPx(c, d) > farthest) {
-        farthest = forwardParallaxPx(c, d);
-        background = x;
+    int end = min(high, low + c.fillSearchPx + 1);  // the scanned columns: low + 1 .. end - 1
+    for (int first = low + 1; first < end; first += S3D_FORWARD_SCAN_CHUNK) {
+      float depths[S3D_FORWARD_SCAN_CHUNK];  // read together, judged in order (as the C++ twin)
+      for (int j = 0; j < S3D_FORWARD_SCAN_CHUNK; ++j) depths[j] = depthAt(min(first + j, end - 1), y);
+      for (int j = 0; j < S3D_FORWARD_SCAN_CHUNK && first + j < end; ++j) {
+        float d = depths[j];
+        if (forwardKnownDepth(d) && forwardParallaxPx(c, d) > farthest) {
+          farthest = forwardParallaxPx(c, d);
+          background = first + j;
+        }
       }
     }
     if (background >= 0) return surfaceMean(y, background, 1, high, farthest, count);

@@ -1,5 +1,5 @@
 #version 450
-// Forward method, key-image kernel, dispatch 2 of 3: each center pixel writes its key into every eye pixel it
+// Forward method, key-image kernel, splat: each center pixel writes its key into every eye pixel it
 // covers, nearest wins (a global atomic minimum).
 #extension GL_GOOGLE_include_directive : require
 #include "stereo_forward.glsl"

@@ -19,7 +19,9 @@ constexpr VkFormat kKeyFormat = VK_FORMAT_R32_UINT;
 // The z-buffers between dispatches and for a following pass: atomics and stores write them, loads read them.
 constexpr vk::ImageState kKeysReadWrite{VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                                         VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT};
-constexpr std::uint32_t kBindings = 6;  // center color, linear depth, left eye, right eye, left keys, right keys
+// Center color, linear depth, left eye, right eye, left and right keys splatted into, left and right keys the
+// resolve empties for the next record.
+constexpr std::uint32_t kBindings = 8;
 
 int rowCapacity(int width) {
   return (width + S3D_FORWARD_ROW_CAPACITY_STEP - 1) / S3D_FORWARD_ROW_CAPACITY_STEP * S3D_FORWARD_ROW_CAPACITY_STEP;
@@ -60,29 +62,41 @@ void ForwardStereoPass::record(VkCommandBuffer cmd, const vk::Image& centerColor
       throw std::invalid_argument("ForwardStereoPass: image size does not match the constants");
   const bool rows = usesRowKernel(c.width);
   const bool keyImages = !rows || keysWanted_ == ForwardKeys::Kept;
-  const bool fresh = keyImages && (!zBuffers_ || int(zBuffers_->left.width) != c.width ||
-                                   int(zBuffers_->left.height) != c.height);
+  const bool fresh = keyImages && (!zBuffers_ || int((*zBuffers_)[0].left.width) != c.width ||
+                                   int((*zBuffers_)[0].left.height) != c.height);
   if (fresh) {
     auto keys = [&] {
       return vk::createImage(*context_, kKeyFormat, std::uint32_t(c.width), std::uint32_t(c.height),
                              VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);  // read back in tests
     };
-    zBuffers_ = ZBuffers{keys(), keys()};
+    zBuffers_.emplace();
+    for (KeyPair& pair : *zBuffers_) pair = {keys(), keys(), false};
+    current_ = 0;
+  } else if (keyImages) {
+    current_ = 1 - current_;  // the pair the previous record's resolve emptied (if it ran the three dispatches)
   }
+  KeyPair* splatInto = keyImages ? &(*zBuffers_)[std::size_t(current_)] : nullptr;
+  KeyPair* emptied = keyImages ? &(*zBuffers_)[std::size_t(1 - current_)] : nullptr;
   VkDescriptorImageInfo infos[kBindings] = {{VK_NULL_HANDLE, centerColor.view, VK_IMAGE_LAYOUT_GENERAL},
                                             {VK_NULL_HANDLE, linearDepth.view, VK_IMAGE_LAYOUT_GENERAL},
                                             {VK_NULL_HANDLE, leftEye.view, VK_IMAGE_LAYOUT_GENERAL},
                                             {VK_NULL_HANDLE, rightEye.view, VK_IMAGE_LAYOUT_GENERAL},
                                             {},
+                                            {},
+                                            {},
                                             {}};
   if (keyImages) {
-    // Undefined first time (or after a resize), else after the previous record (or a following pass) used them.
-    for (const vk::Image* keys : {&zBuffers_->left, &zBuffers_->right})
-      vk::transition(cmd, *keys, fresh ? vk::kUndefined : kKeysReadWrite, kKeysReadWrite);
-    infos[4] = {VK_NULL_HANDLE, zBuffers_->left.view, VK_IMAGE_LAYOUT_GENERAL};
-    infos[5] = {VK_NULL_HANDLE, zBuffers_->right.view, VK_IMAGE_LAYOUT_GENERAL};
+    // Undefined first time (or after a resize), else after an earlier record (or a pass after it) used them.
+    for (const KeyPair* pair : {splatInto, emptied})
+      for (const vk::Image* keys : {&pair->left, &pair->right})
+        vk::transition(cmd, *keys, fresh ? vk::kUndefined : kKeysReadWrite, kKeysReadWrite);
+    infos[4] = {VK_NULL_HANDLE, splatInto->left.view, VK_IMAGE_LAYOUT_GENERAL};
+    infos[5] = {VK_NULL_HANDLE, splatInto->right.view, VK_IMAGE_LAYOUT_GENERAL};
+    infos[6] = {VK_NULL_HANDLE, emptied->left.view, VK_IMAGE_LAYOUT_GENERAL};
+    infos[7] = {VK_NULL_HANDLE, emptied->right.view, VK_IMAGE_LAYOUT_GENERAL};
   }
-  const std::uint32_t bound = keyImages ? kBindings : 4;  // the row kernel without keys declares four bindings
+  // The row kernel declares four bindings, or six when it stores its z-buffers; the three dispatches all eight.
+  const std::uint32_t bound = !keyImages ? 4 : rows ? 6 : kBindings;
   VkWriteDescriptorSet writes[kBindings];
   for (std::uint32_t i = 0; i < bound; ++i) writes[i] = vk::storageImageWrite(i, &infos[i]);
   auto dispatch = [&](VkPipeline pipeline, std::uint32_t groupsX, std::uint32_t groupsY) {
@@ -104,6 +118,7 @@ void ForwardStereoPass::record(VkCommandBuffer cmd, const vk::Image& centerColor
                                        &specialization)};
     }
     dispatch(row_->pipeline, 1, std::uint32_t(c.height));  // one workgroup per row
+    if (splatInto) splatInto->empty = false;  // it stores every key; the other pair is as it was
     return;
   }
   if (!clear_) {  // created at the first use: lavapipe compiles at creation, and the row kernel needs none
@@ -113,11 +128,18 @@ void ForwardStereoPass::record(VkCommandBuffer cmd, const vk::Image& centerColor
   }
   const std::uint32_t groupsX = groupsFor(c.width, S3D_FORWARD_GROUP_SIZE);
   const std::uint32_t groupsY = groupsFor(c.height, S3D_FORWARD_GROUP_SIZE);
-  for (VkPipeline pipeline : {clear_.get(), splat_.get(), resolve_.get()}) {
-    if (pipeline != clear_.get())
-      for (const vk::Image* keys : {&zBuffers_->left, &zBuffers_->right}) vk::transition(cmd, *keys, kKeysReadWrite, kKeysReadWrite);
-    dispatch(pipeline, groupsX, groupsY);
+  auto keysBarrier = [&] {
+    for (const vk::Image* keys : {&splatInto->left, &splatInto->right}) vk::transition(cmd, *keys, kKeysReadWrite, kKeysReadWrite);
+  };
+  if (!splatInto->empty) {  // first use (or after a row-kernel record): the previous resolve did not empty it
+    dispatch(clear_.get(), groupsX, groupsY);
+    keysBarrier();
   }
+  dispatch(splat_.get(), groupsX, groupsY);
+  keysBarrier();
+  dispatch(resolve_.get(), groupsX, groupsY);
+  splatInto->empty = false;
+  emptied->empty = true;
 }
 
 const vk::Image& ForwardStereoPass::keys(Eye eye) const {
@@ -125,7 +147,8 @@ const vk::Image& ForwardStereoPass::keys(Eye eye) const {
   if (!keysWritten_)
     throw std::logic_error("ForwardStereoPass::keys: the row kernel keeps its z-buffers in shared memory; construct "
                            "the pass with ForwardKeys::Kept to have them stored");
-  return eye == Eye::Left ? zBuffers_->left : zBuffers_->right;
+  const KeyPair& pair = (*zBuffers_)[std::size_t(current_)];
+  return eye == Eye::Left ? pair.left : pair.right;
 }
 
 StereoPair synthesizeForwardOnGpu(vk::Context& context, const ImageRGBA8& center, const DepthImage& linearDepth,

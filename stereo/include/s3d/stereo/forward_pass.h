@@ -3,10 +3,12 @@
 // with the same eyes bit for bit (docs/DESIGN.md, the forward method):
 // - rows (StereoKernel::RowTiles, and Auto where it fits): one dispatch, a workgroup per image row holding the
 //   row's depth and both eyes' z-buffers in shared memory (12 B per column, the width rounded up to 256);
-// - key images (StereoKernel::PerPixel, and wherever the row does not fit the device's shared memory): three
-//   dispatches over two R32UI z-buffer images (clear; splat with image atomics; resolve).
-// Images the pass owns (z-buffers, the row pipeline sized for the width) are created at the first record for
+// - key images (StereoKernel::PerPixel, and wherever the row does not fit the device's shared memory): two
+//   dispatches over R32UI z-buffer images (splat with image atomics; resolve, which also empties the other pair
+//   of z-buffers for the next record), plus a clear dispatch before the first record at a size.
+// Images the pass owns (two pairs of z-buffers, the row pipeline sized for the width) are created at the first record for
 // the size and reused; a record at another size replaces them: finish command buffers using the old size first.
+#include <array>
 #include <cstdint>
 #include <optional>
 
@@ -36,7 +38,7 @@ class ForwardStereoPass {
                              ForwardKeys keys = ForwardKeys::Discarded);
   void record(VkCommandBuffer cmd, const vk::Image& centerColor, const vk::Image& linearDepth,
               const vk::Image& leftEye, const vk::Image& rightEye, const gpu::ForwardConstants& constants) const;
-  // Whether a record at this width runs the row kernel: asked for (StereoKernel::RowTiles; Auto runs the three
+  // Whether a record at this width runs the row kernel: asked for (StereoKernel::RowTiles; Auto runs the key-image
   // dispatches, measured faster on a GPU), and the row fits the device's maxComputeSharedMemorySize.
   bool usesRowKernel(int width) const;
   // The z-buffer of one eye after the last record (R32UI, GENERAL, last accessed by compute shader reads and
@@ -57,10 +59,14 @@ class ForwardStereoPass {
     vk::Unique<VkPipeline> pipeline;
   };
   mutable std::optional<RowPipeline> row_;
-  struct ZBuffers {
+  struct KeyPair {
     vk::Image left, right;
+    bool empty = false;  // every key is S3D_FORWARD_EMPTY (a resolve emptied it for the next record)
   };
-  mutable std::optional<ZBuffers> zBuffers_;
+  // Two pairs of z-buffers used in turn: each record splats into one while its resolve empties the other for
+  // the next record, which so needs no clear dispatch (and no barrier after one).
+  mutable std::optional<std::array<KeyPair, 2>> zBuffers_;
+  mutable int current_ = 0;  // the pair the last record splatted into (keys())
   mutable bool keysWritten_ = false;  // the last record left its z-buffers in zBuffers_
 };
 
