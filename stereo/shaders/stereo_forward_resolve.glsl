@@ -45,10 +45,11 @@ int nearestCovered(bool leftEyeKeys, int column, int y, int step) {
   return -1;
 }
 
-// A hole pixel (forward_shared.h) whose nearest covered pixels within c.fillSearchPx are `left` and `right` (-1:
-// none): the background between the hole's two edges in the center row, else the surface behind the farther
-// edge. With an edge, the fill depends on the edges alone, not on the column: one hole's pixels share it.
-vec4 fillBetween(bool leftEyeKeys, int column, int y, int left, int right) {
+// A hole pixel (forward_shared.h): the background between the hole's two edges in the center row, else the
+// surface behind the farther edge.
+vec4 fillHole(bool leftEyeKeys, int column, int y) {
+  int left = nearestCovered(leftEyeKeys, column, y, -1);
+  int right = nearestCovered(leftEyeKeys, column, y, 1);
   if (left < 0 && right < 0) return imageLoad(centerColor, ivec2(column, y));
   int count;
   if (left >= 0 && right >= 0) {
@@ -81,13 +82,10 @@ vec4 fillBetween(bool leftEyeKeys, int column, int y, int left, int right) {
   return count > 0 ? mean : imageLoad(centerColor, ivec2(source, y));
 }
 
-vec4 fillHole(bool leftEyeKeys, int column, int y) {
-  return fillBetween(leftEyeKeys, column, y, nearestCovered(leftEyeKeys, column, y, -1),
-                     nearestCovered(leftEyeKeys, column, y, 1));
-}
-
-// A covered eye pixel (its winning key `key`): the source row filtered at the sub-pixel position.
-vec4 resolveCovered(ivec2 pixel, float direction, uint key) {
+vec4 resolveEye(ivec2 pixel, float direction) {
+  bool leftEyeKeys = direction > 0.0;
+  uint key = keyAt(leftEyeKeys, pixel.x, pixel.y);
+  if (key == S3D_FORWARD_EMPTY) return fillHole(leftEyeKeys, pixel.x, pixel.y);
   int source = forwardKeySource(key, pixel.x);
   float position, nextPosition;
   place(source, pixel.y, direction, position);
@@ -95,24 +93,13 @@ vec4 resolveCovered(ivec2 pixel, float direction, uint key) {
   return sampleRow(pixel.y, forwardSourcePosition(pixel.x, source, position, connected, nextPosition));
 }
 
-vec4 resolveEye(ivec2 pixel, float direction) {
-  bool leftEyeKeys = direction > 0.0;
-  uint key = keyAt(leftEyeKeys, pixel.x, pixel.y);
-  return key == S3D_FORWARD_EMPTY ? fillHole(leftEyeKeys, pixel.x, pixel.y) : resolveCovered(pixel, direction, key);
-}
-
-// Stores eye pixel `pixel` (inside the image) of both eyes, black on the cropped edges (as in the seed).
-void storeEyes(ivec2 pixel, vec4 left, vec4 right) {
-  bool cropped = pixel.x < c.cropBegin || pixel.x >= c.cropEnd;
-  imageStore(leftEye, pixel, cropped ? vec4(0, 0, 0, 1) : left);
-  imageStore(rightEye, pixel, cropped ? vec4(0, 0, 0, 1) : right);
-}
-
 // Eye pixel `pixel` (inside the image) of both eyes.
 void resolvePixel(ivec2 pixel) {
-  if (pixel.x < c.cropBegin || pixel.x >= c.cropEnd) {
-    storeEyes(pixel, vec4(0), vec4(0));
+  if (pixel.x < c.cropBegin || pixel.x >= c.cropEnd) {  // cropped edges, as in the seed
+    imageStore(leftEye, pixel, vec4(0, 0, 0, 1));
+    imageStore(rightEye, pixel, vec4(0, 0, 0, 1));
     return;
   }
-  storeEyes(pixel, resolveEye(pixel, 1.0), resolveEye(pixel, -1.0));
+  imageStore(leftEye, pixel, resolveEye(pixel, 1.0));
+  imageStore(rightEye, pixel, resolveEye(pixel, -1.0));
 }

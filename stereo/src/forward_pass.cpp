@@ -7,7 +7,6 @@
 // clang-format off
 #include <s3d_spirv/stereo_forward_clear_comp.h>
 #include <s3d_spirv/stereo_forward_resolve_comp.h>
-#include <s3d_spirv/stereo_forward_resolve_rows_comp.h>
 #include <s3d_spirv/stereo_forward_row_comp.h>
 #include <s3d_spirv/stereo_forward_row_keys_comp.h>
 #include <s3d_spirv/stereo_forward_splat_comp.h>
@@ -30,18 +29,6 @@ int rowCapacity(int width) {
 
 std::uint32_t groupsFor(int size, int group) { return std::uint32_t((size + group - 1) / group); }
 
-// Whether compute shaders have the subgroup operations stereo_forward_resolve_rows.comp uses.
-bool hasSubgroupResolve(const vk::Context& context) {
-  VkPhysicalDeviceSubgroupProperties subgroup{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES};
-  VkPhysicalDeviceProperties2 properties{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, &subgroup};
-  vkGetPhysicalDeviceProperties2(context.physicalDevice(), &properties);
-  constexpr VkSubgroupFeatureFlags kNeeded = VK_SUBGROUP_FEATURE_BASIC_BIT | VK_SUBGROUP_FEATURE_VOTE_BIT |
-                                            VK_SUBGROUP_FEATURE_BALLOT_BIT | VK_SUBGROUP_FEATURE_ARITHMETIC_BIT |
-                                            VK_SUBGROUP_FEATURE_SHUFFLE_BIT;
-  return (subgroup.supportedStages & VK_SHADER_STAGE_COMPUTE_BIT) != 0 &&
-         (subgroup.supportedOperations & kNeeded) == kNeeded;
-}
-
 }  // namespace
 
 std::uint32_t forwardRowSharedBytes(int width) {
@@ -55,7 +42,6 @@ ForwardStereoPass::ForwardStereoPass(const vk::Context& context, StereoKernel ke
   // The row group's 128 invocations are Vulkan's guaranteed minimum; its shared arrays are what may not fit.
   static_assert(S3D_FORWARD_ROW_GROUP_SIZE <= 128);
   maxSharedBytes_ = properties.limits.maxComputeSharedMemorySize;
-  subgroupResolve_ = hasSubgroupResolve(context);
   VkDescriptorSetLayoutBinding bindings[kBindings];
   for (std::uint32_t i = 0; i < kBindings; ++i)
     bindings[i] = {i, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr};
@@ -138,9 +124,7 @@ void ForwardStereoPass::record(VkCommandBuffer cmd, const vk::Image& centerColor
   if (!clear_) {  // created at the first use: lavapipe compiles at creation, and the row kernel needs none
     clear_ = vk::createComputePipeline(*context_, layout_.layout, spirv_stereo_forward_clear_comp);
     splat_ = vk::createComputePipeline(*context_, layout_.layout, spirv_stereo_forward_splat_comp);
-    resolve_ = vk::createComputePipeline(*context_, layout_.layout,
-                                         subgroupResolve_ ? std::span<const std::uint32_t>(spirv_stereo_forward_resolve_rows_comp)
-                                                          : std::span<const std::uint32_t>(spirv_stereo_forward_resolve_comp));
+    resolve_ = vk::createComputePipeline(*context_, layout_.layout, spirv_stereo_forward_resolve_comp);
   }
   const std::uint32_t groupsX = groupsFor(c.width, S3D_FORWARD_GROUP_SIZE);
   const std::uint32_t groupsY = groupsFor(c.height, S3D_FORWARD_GROUP_SIZE);
@@ -153,10 +137,7 @@ void ForwardStereoPass::record(VkCommandBuffer cmd, const vk::Image& centerColor
   }
   dispatch(splat_.get(), groupsX, groupsY);
   keysBarrier();
-  if (subgroupResolve_)
-    dispatch(resolve_.get(), groupsFor(c.width, S3D_FORWARD_RESOLVE_ROW_GROUP_SIZE), std::uint32_t(c.height));
-  else
-    dispatch(resolve_.get(), groupsX, groupsY);
+  dispatch(resolve_.get(), groupsX, groupsY);
   splatInto->empty = false;
   emptied->empty = true;
 }

@@ -52,7 +52,6 @@ class ForwardStereoPass {
   StereoKernel kernel_;
   ForwardKeys keysWanted_;
   std::uint32_t maxSharedBytes_ = 0;
-  bool subgroupResolve_ = false;  // the resolve shares hole work in subgroups (stereo_forward_resolve_rows.comp)
   vk::PipelineLayout layout_;
   mutable vk::Unique<VkPipeline> clear_, splat_, resolve_;  // the key-image kernel, created at its first record
   struct RowPipeline {

@@ -33,8 +33,6 @@ S3D_INLINE uint floatBitsToUint(float value) { return std::bit_cast<uint>(value)
 S3D_GPU_BEGIN
 
 #define S3D_FORWARD_GROUP_SIZE 8  // the key-image kernel's 8x8 workgroups
-// Its resolve with subgroup operations: row segments of this many pixels, so a subgroup is part of one row.
-#define S3D_FORWARD_RESOLVE_ROW_GROUP_SIZE 64
 // The row kernel: one workgroup of this many invocations per image row (Vulkan guarantees 128), holding the
 // row's depth and both eyes' z-buffers in shared memory (4 B each per column).
 #define S3D_FORWARD_ROW_GROUP_SIZE 128
