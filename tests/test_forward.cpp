@@ -1,6 +1,6 @@
 // The forward (scatter) method: exact answers on a disparity ramp, a 40 px step edge, a sub-pixel shift and
 // unknown depth, and the GPU pass held to the C++ implementation pixel by pixel, in both kernels (a row in
-// shared memory; three dispatches over key images) and on rows wider than shared memory.
+// shared memory; splat and resolve dispatches over key images) and on rows wider than shared memory.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -268,7 +268,7 @@ TEST_F(ForwardPass, TheRowKernelRunsWhenAskedForAndTheRowFitsSharedMemory) {
   const ForwardStereoPass automatic(context()), rows(context(), StereoKernel::RowTiles),
       keyImages(context(), StereoKernel::PerPixel);
   const int fitting = int(widestFittingRow(context()));
-  EXPECT_FALSE(automatic.usesRowKernel(fitting));  // opt-in: slower than the three dispatches on a GPU
+  EXPECT_FALSE(automatic.usesRowKernel(fitting));  // opt-in: slower than the key-image dispatches on a GPU
   EXPECT_TRUE(rows.usesRowKernel(fitting));
   EXPECT_FALSE(keyImages.usesRowKernel(fitting));
   const int tooWide = fitting + S3D_FORWARD_ROW_CAPACITY_STEP;

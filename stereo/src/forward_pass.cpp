@@ -49,8 +49,8 @@ ForwardStereoPass::ForwardStereoPass(const vk::Context& context, StereoKernel ke
 }
 
 bool ForwardStereoPass::usesRowKernel(int width) const {
-  // Opt-in: on an NVIDIA H200 at 1920x1080 the row kernel took 1.4-2.2x the three dispatches (docs/RESULTS.md),
-  // so Auto keeps the three dispatches, as the gather's row tiles stay opt-in.
+  // Opt-in: on an NVIDIA H200 at 1920x1080 the row kernel took 1.4-2.2x the key-image kernel (docs/RESULTS.md),
+  // so Auto keeps the key-image dispatches, as the gather's row tiles stay opt-in.
   return kernel_ == StereoKernel::RowTiles && forwardRowSharedBytes(width) <= maxSharedBytes_;
 }
 
@@ -73,7 +73,7 @@ void ForwardStereoPass::record(VkCommandBuffer cmd, const vk::Image& centerColor
     for (KeyPair& pair : *zBuffers_) pair = {keys(), keys(), false};
     current_ = 0;
   } else if (keyImages) {
-    current_ = 1 - current_;  // the pair the previous record's resolve emptied (if it ran the three dispatches)
+    current_ = 1 - current_;  // the pair the previous record's resolve emptied (if it ran the key-image kernel)
   }
   KeyPair* splatInto = keyImages ? &(*zBuffers_)[std::size_t(current_)] : nullptr;
   KeyPair* emptied = keyImages ? &(*zBuffers_)[std::size_t(1 - current_)] : nullptr;
@@ -95,7 +95,7 @@ void ForwardStereoPass::record(VkCommandBuffer cmd, const vk::Image& centerColor
     infos[6] = {VK_NULL_HANDLE, emptied->left.view, VK_IMAGE_LAYOUT_GENERAL};
     infos[7] = {VK_NULL_HANDLE, emptied->right.view, VK_IMAGE_LAYOUT_GENERAL};
   }
-  // The row kernel declares four bindings, or six when it stores its z-buffers; the three dispatches all eight.
+  // The row kernel declares four bindings, or six when it stores its z-buffers; the key-image dispatches all eight.
   const std::uint32_t bound = !keyImages ? 4 : rows ? 6 : kBindings;
   VkWriteDescriptorSet writes[kBindings];
   for (std::uint32_t i = 0; i < bound; ++i) writes[i] = vk::storageImageWrite(i, &infos[i]);

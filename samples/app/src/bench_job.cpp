@@ -777,7 +777,8 @@ StereoTraffic stereoPassTraffic(const stereo::StereoParameters& methodParameters
   gpu::StereoConstants crop{};
   if (parameters.method == stereo::StereoMethod::Forward) {
     // stereo_forward_*.comp per pixel and eye: splat 4 depth loads and about one atomic; resolve the key, 2 depth
-    // and 2 color loads (holes more); clear and atomics write the 4-byte z-buffers, the resolve the eyes.
+    // and 2 color loads (holes more); atomics write the 4-byte z-buffers, the resolve empties the other pair
+    // (for the next frame) and writes the eyes.
     stereo::makeForwardConstants(parameters, width, height);  // throws for parameters the pass refuses
     const std::uint64_t pixels = std::uint64_t(width) * height;
     StereoTraffic traffic;

@@ -33,7 +33,7 @@ constexpr std::uint64_t kHybridFixedBytes = 48ull << 20;
 
 // `s3d convert` per pixel: host: color 4 (an EXR's float color and file bytes 32 more), depth 4 (its file's
 // values 4), eyes 8, anaglyph 4, side-by-side 8, top-bottom 8, two references 8, PNG encoding 4, read-back 8;
-// device: color 4, depth 4, eyes 8, the forward method's per-eye z-buffers 16, staging 16.
+// device: color 4, depth 4, eyes 8, the forward method's two pairs of per-eye z-buffers 16, staging 16.
 constexpr std::uint64_t kConvertHostBytesPerPixel = 4 + 32 + 4 + 4 + 8 + 4 + 8 + 8 + 8 + 4 + 8;
 constexpr std::uint64_t kConvertDeviceBytesPerPixel = 4 + 4 + 8 + 16 + 16;
 

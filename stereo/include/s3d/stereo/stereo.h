@@ -38,7 +38,7 @@ StereoMethod parseStereoMethod(const std::string& name);  // throws std::invalid
 
 // How a method's shader walks the image (same results either way, docs/DESIGN.md "Row tiles"). The forward
 // method reads them as its two kernels (forward_pass.h): RowTiles is a workgroup per whole row in shared
-// memory, PerPixel its three dispatches over key images, and Auto is RowTiles where the row fits.
+// memory, PerPixel its dispatches over key images, and Auto is RowTiles where the row fits.
 enum class StereoKernel {
   Auto,      // gather methods: PerPixel: row tiles measured slower on lavapipe (1.3-3x) and on an H100 at
              // 1920x1080 (seed 0.045 vs 0.029 ms, iterative-2 0.095 vs 0.084 ms; docs/RESULTS.md), so they
