@@ -51,6 +51,16 @@ enum class StereoKernel {
 const char* kernelName(StereoKernel kernel);
 StereoKernel parseStereoKernel(const std::string& name);  // throws std::invalid_argument listing the choices
 
+// How depth becomes parallax (disparity_map.h): the seed's linear m (1 - zpp / d), or through a per-frame
+// monotonic curve over the frame's depth distribution that keeps the frame's parallax range.
+enum class DisparityMapping {
+  Linear,
+  Nonlinear,
+};
+
+const char* disparityMappingName(DisparityMapping mapping);         // "linear", "nonlinear"
+DisparityMapping parseDisparityMapping(const std::string& name);  // throws std::invalid_argument listing them
+
 struct StereoParameters {
   float maxSeparation = 0.02f;        // per-eye displacement at infinity, fraction of the screen width
   float zeroParallaxDistance = 1.0f;  // world units: depth that stays on the screen plane
@@ -73,6 +83,8 @@ struct StereoParameters {
   // Forward only, over frames: disocclusions take the previous frame's eyes, reprojected with their depth and the
   // camera's motion, where that frame saw them (previous_fill_pass.h); a single frame has no previous one.
   bool previousFrameFill = false;
+  // Nonlinear needs the frame's depth distribution (the disparity budget's reduction); the tools apply it.
+  DisparityMapping disparityMapping = DisparityMapping::Linear;
 };
 
 // The parameters of a hybrid's displacement (parameters.method = hybridBase); any other method as it is.
@@ -148,19 +160,33 @@ OffAxisTerms<T> exactParallaxTerms(T projectionScaleX, T maxSeparation, T zeroPa
   return {T(2) * maxSeparation * zeroParallaxDistance / projectionScaleX, T(2) * maxSeparation};
 }
 
-// The first-person layer with its depth pushed (d' = offset + scale d, seed 4.6.2): its parallax
-// m (1 - zpp / d') is a camera's A - B / d only when offset = 0, so the reference uses the chord of 1/d'
-// as a function of 1/d over the weapon's depth range [nearest, farthest]: exact at both ends (and
-// everywhere when offset = 0), within a fraction of a pixel between them (docs/DESIGN.md).
+// The terms for parallax m (1 - zpp w) where w = intercept + slope u is affine in the inverse depth u = 1/d
+// (a camera gives exactly A - B u): exactParallaxTerms is slope 1, intercept 0; the pushed weapon's chord and
+// the nonlinear mapping's segments (disparity_map.h) are others.
 template <typename T>
-OffAxisTerms<T> pushedLayerTerms(T projectionScaleX, T maxSeparation, T zeroParallaxDistance, T offset, T scale,
-                                 T nearest, T farthest) {
+OffAxisTerms<T> affineInverseDepthTerms(T projectionScaleX, T maxSeparation, T zeroParallaxDistance, T slope,
+                                        T intercept) {
+  return {T(2) * maxSeparation * zeroParallaxDistance * slope / projectionScaleX,
+          T(2) * maxSeparation * (T(1) - zeroParallaxDistance * intercept)};
+}
+
+// The first-person layer with its depth pushed (d' = offset + scale d, seed 4.6.2): 1/d' is affine in 1/d only
+// when offset = 0, so the reference uses the chord of 1/d' as a function of 1/d over the weapon's depth range
+// [nearest, farthest]: exact at both ends (and everywhere when offset = 0), within a fraction of a pixel
+// between them (docs/DESIGN.md). Returns {slope, intercept}.
+template <typename T>
+glm::vec<2, T> pushedInverseDepthChord(T offset, T scale, T nearest, T farthest) {
   auto pushedInverse = [&](T inverseDepth) { return inverseDepth / (offset * inverseDepth + scale); };
   const T uNear = T(1) / nearest, uFar = T(1) / farthest;
   const T slope = uNear > uFar ? (pushedInverse(uNear) - pushedInverse(uFar)) / (uNear - uFar) : T(1) / (offset * uFar + scale) / (offset * uFar + scale) * scale;
-  const T intercept = pushedInverse(uFar) - slope * uFar;
-  return {T(2) * maxSeparation * zeroParallaxDistance * slope / projectionScaleX,
-          T(2) * maxSeparation * (T(1) - zeroParallaxDistance * intercept)};
+  return {slope, pushedInverse(uFar) - slope * uFar};
+}
+
+template <typename T>
+OffAxisTerms<T> pushedLayerTerms(T projectionScaleX, T maxSeparation, T zeroParallaxDistance, T offset, T scale,
+                                 T nearest, T farthest) {
+  const glm::vec<2, T> chord = pushedInverseDepthChord(offset, scale, nearest, farthest);
+  return affineInverseDepthTerms(projectionScaleX, maxSeparation, zeroParallaxDistance, chord.x, chord.y);
 }
 
 // Shorthand for the exact terms.
