@@ -44,6 +44,7 @@ ComfortProfile unusualProfile() {
   p.stereo.iterations = 9;
   p.stereo.weaponDepthOffset = 0.4f;
   p.stereo.weaponDepthScale = 1.7f;
+  p.stereo.disparityMapping = stereo::DisparityMapping::Nonlinear;
   p.zeroParallax.engageDistance = 3.5f;
   p.zeroParallax.releaseMargin = 0.6f;
   p.zeroParallax.minimumDistance = 0.3f;
@@ -69,6 +70,7 @@ void expectSameProfile(const ComfortProfile& a, const ComfortProfile& b) {
   EXPECT_EQ(a.stereo.iterations, b.stereo.iterations);
   EXPECT_EQ(a.stereo.weaponDepthOffset, b.stereo.weaponDepthOffset);
   EXPECT_EQ(a.stereo.weaponDepthScale, b.stereo.weaponDepthScale);
+  EXPECT_EQ(a.stereo.disparityMapping, b.stereo.disparityMapping);
   EXPECT_EQ(a.zeroParallax.engageDistance, b.zeroParallax.engageDistance);
   EXPECT_EQ(a.zeroParallax.releaseMargin, b.zeroParallax.releaseMargin);
   EXPECT_EQ(a.zeroParallax.minimumDistance, b.zeroParallax.minimumDistance);
@@ -135,6 +137,8 @@ TEST(ComfortProfile, AnOutOfRangeValueIsNamedWithItsRange) {
   EXPECT_THROW(comfortProfileFromJson(nlohmann::json::parse(R"({"zeroParallaxControl": {"ringRays": 65}})")),
                std::invalid_argument);
   EXPECT_THROW(comfortProfileFromJson(nlohmann::json::parse(R"({"stereo": {"method": "magic"}})")),
+               std::invalid_argument);
+  EXPECT_THROW(comfortProfileFromJson(nlohmann::json::parse(R"({"stereo": {"disparityMapping": "log"}})")),
                std::invalid_argument);
   EXPECT_THROW(comfortProfileFromJson(nlohmann::json::parse(R"({"allowNegativeParallax": 1})")), std::invalid_argument);
 }

@@ -1,4 +1,4 @@
-// The per-frame comfort report: Shibata et al.'s zone of comfort, stereo window violations, and the rules that
+// The per-frame comfort report: pixels beyond the 1-degree rule, stereo window violations, and the rules that
 // keep every pixel at or behind the screen plane.
 #include <gtest/gtest.h>
 
@@ -20,28 +20,14 @@ TEST(VergenceDistance, IsTheScreenAtZeroParallaxAndInfinityAtTheEyeSeparation) {
   EXPECT_EQ(vergenceDistanceMeters(tv, double(tv.interocularMeters)), std::numeric_limits<double>::infinity());
 }
 
-TEST(ShibataComfortZone, HoldsTheScreenAndFollowsTheFitByHand) {
-  // Far limit in diopters (1/v - 0.442) / 1.129, near (1/v + 0.626) / 1.035 (the constants of comfort_report.cpp,
-  // written out here); at 0.7 m both limits are finite, at 2.5 m the far one lies beyond infinity.
-  const ComfortZone monitor = shibataComfortZone(builtInDisplayProfile("monitor27"));
-  EXPECT_NEAR(monitor.farMeters, 1.129 / (1.0 / 0.7 - 0.442), 1e-6);
-  EXPECT_NEAR(monitor.nearMeters, 1.035 / (1.0 / 0.7 + 0.626), 1e-6);
-  EXPECT_LT(monitor.nearMeters, 0.7);
-  EXPECT_GT(monitor.farMeters, 0.7);
-  const ComfortZone tv = shibataComfortZone(builtInDisplayProfile("tv55"));
-  EXPECT_EQ(tv.farMeters, std::numeric_limits<double>::infinity());
-  EXPECT_NEAR(tv.nearMeters, 1.035 / (1.0 / 2.5 + 0.626), 1e-6);
-}
-
-TEST(FrameComfort, CountsPixelsOutsideTheZoneOfComfort) {
-  // Row 0 on the screen plane (inside); row 1 at a quarter of the zero-parallax distance: parallax
-  // 2 * 0.05 * (1 - 4) = -30 % of a 0.62 m monitor, about 18.6 cm crossed, vergence 0.7 * 0.063 / 0.249 = 0.18 m,
-  // far nearer than the 0.5 m near limit.
+TEST(FrameComfort, CountsPixelsBeyondTheOneDegreeRule) {
+  // Row 0 on the screen plane; row 1 at a quarter of the zero-parallax distance: parallax
+  // 2 * 0.05 * (1 - 4) = -30 % of a 0.60 m monitor, about 18 cm crossed: far beyond 60 arcmin at 0.7 m.
   DepthImage depth(40, 2, 1.0f);
   for (std::uint32_t x = 0; x < 40; ++x) *depth.at(x, 1) = 0.25f;
   stereo::StereoParameters parameters{0.05f, 1.0f, 0.0f};
   const FrameComfort comfort = frameComfort(depth, parameters, builtInDisplayProfile("monitor27"));
-  EXPECT_DOUBLE_EQ(comfort.shareOutsideComfortZone, 0.5);
+  EXPECT_DOUBLE_EQ(comfort.parallax.shareBeyondOneDegree, 0.5);
 }
 
 TEST(EyeViewComfort, ConflictAndZoneOfAHeadsetsEyeByHand) {
@@ -89,23 +75,26 @@ TEST(FrameComfort, WindowViolationsAreNegativeParallaxRunsTouchingTheLeftOrRight
 
 TEST(FrameComfort, ViolationFlagsMarkThePixelsItCounts) {
   // The window-violation layout above in one row: the edge runs are flagged, the near block in the middle is
-  // not; on tv55 (comfort zone beyond infinity, near limit 0.97 m) nothing here leaves the zone.
+  // not. On tv55 the near pixels (2 * 0.02 * (1 - 2) = -4 % of 1.22 m: 4.9 cm crossed, 67 arcmin) are beyond
+  // 1 degree, the far ones (+2 %: 34 arcmin) are not.
   DepthImage depth(20, 1, 2.0f);
   for (std::uint32_t x : {0u, 1u, 2u, 18u, 19u, 9u, 10u}) *depth.at(x, 0) = 0.5f;
   stereo::StereoParameters parameters{0.02f, 1.0f, 0.0f};
   std::vector<std::uint8_t> violations;
   const FrameComfort comfort = frameComfort(depth, parameters, builtInDisplayProfile("tv55"), &violations);
   ASSERT_EQ(violations.size(), 20u);
-  for (std::uint32_t x = 0; x < 20; ++x)
-    EXPECT_EQ(violations[x], (x <= 2 || x >= 18) ? kWindowViolation : 0) << x;
+  for (std::uint32_t x = 0; x < 20; ++x) {
+    EXPECT_EQ(violations[x] & kWindowViolation, (x <= 2 || x >= 18) ? kWindowViolation : 0) << x;
+    EXPECT_EQ(violations[x] & kBeyondOneDegree, *depth.at(x, 0) < 1.0f ? kBeyondOneDegree : 0) << x;
+  }
   EXPECT_EQ(comfort.windowViolationPixels, 5u);
-  // The monitor layout of the zone test: the near row is flagged outside the zone, the screen-plane row is not.
+  // The monitor layout of the 1-degree test: the near row is flagged, the screen-plane row is not.
   DepthImage nearRow(4, 2, 1.0f);
   for (std::uint32_t x = 0; x < 4; ++x) *nearRow.at(x, 1) = 0.25f;
   (void)frameComfort(nearRow, {0.05f, 1.0f, 0.0f}, builtInDisplayProfile("monitor27"), &violations);
   for (std::uint32_t x = 0; x < 4; ++x) {
-    EXPECT_EQ(violations[x] & kOutsideComfortZone, 0) << x;
-    EXPECT_EQ(violations[4 + x] & kOutsideComfortZone, kOutsideComfortZone) << x;
+    EXPECT_EQ(violations[x] & kBeyondOneDegree, 0) << x;
+    EXPECT_EQ(violations[4 + x] & kBeyondOneDegree, kBeyondOneDegree) << x;
   }
 }
 

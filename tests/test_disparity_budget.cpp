@@ -211,6 +211,33 @@ TEST(DisparityBudgetController, ADepthDiscontinuityDoesNotMakeItOscillate) {
   for (const BudgetChoice& choice : run.choices) EXPECT_LE(parallaxOf(choice.parameters, 30.0f), budget.uncrossedFraction);
 }
 
+TEST(DisparityBudgetController, WhileTheCameraRecedesMoreDepthIsFollowedAtTheBoundWithoutTheHold) {
+  // Walking back from a wall: the nearest depth recedes by 10 % per frame at 30 fps (ln 0.095, above the
+  // 0.05 bound). Without `receding` the rise waits for the 0.2 s hold; with it ln Z rises from the next frame
+  // on, at the bound, never above the nearest depth.
+  const DisparityBudget budget = disparityBudget(builtInDisplayProfile("tv55"));
+  for (const bool receding : {false, true}) {
+    DisparityBudgetController controller(budget, false);
+    float nearest = 0.4f;
+    BudgetChoice previous = controller.update(frameOf(nearest, kSky), kFrameSeconds);
+    int framesWaited = 0;
+    for (int i = 0; i < 20; ++i) {
+      nearest *= 1.1f;
+      BudgetFrameInput frame = frameOf(nearest, kSky);
+      frame.receding = receding;
+      const BudgetChoice choice = controller.update(frame, kFrameSeconds);
+      const double step = std::log(choice.parameters.zeroParallaxDistance / previous.parameters.zeroParallaxDistance);
+      EXPECT_LE(step, 1.5 * kFrameSeconds + 1e-6) << i;
+      EXPECT_LE(choice.parameters.zeroParallaxDistance, nearest) << i;
+      if (step < 1e-6) ++framesWaited;
+      if (receding && i > 0) EXPECT_NEAR(step, 1.5 * kFrameSeconds, 1e-4) << i;  // at the bound
+      previous = choice;
+    }
+    if (receding) EXPECT_LE(framesWaited, 1);
+    else EXPECT_GE(framesWaited, 5);  // the hold (0.2 s = 6 frames) before the first rise
+  }
+}
+
 TEST(DisparityBudgetController, ACutResetsWithoutARamp) {
   const DisparityBudget budget = disparityBudget(builtInDisplayProfile("tv55"));
   DisparityBudgetController controller(budget, false);

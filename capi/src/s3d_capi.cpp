@@ -3,6 +3,8 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
+#include <limits>
 #include <memory>
 #include <span>
 #include <stdexcept>
@@ -22,6 +24,9 @@ struct s3d_host_pass_t {
 };
 struct s3d_hud_pass_t {
   s3d::hud::HudPass pass;
+};
+struct s3d_budget_controller_t {
+  s3d::comfort::DisparityBudgetController controller;
 };
 struct s3d_device_patch_t {
   std::unique_ptr<s3d::vk::DeviceRequirementsPatch> patch;
@@ -275,6 +280,33 @@ s3d_result s3d_host_pass_record_with_hud(s3d_host_pass pass, VkCommandBuffer cmd
 
 s3d_result s3d_frame_comfort_state_compute(const s3d_frame_comfort_input* input, s3d_frame_comfort_state* out,
                                            s3d_hud_element_state* hud_states) {
+  return s3d_frame_comfort_state_compute_budgeted(input, nullptr, out, hud_states, nullptr);
+}
+
+s3d_result s3d_budget_controller_create(const s3d_display* display, int32_t allow_negative_parallax,
+                                        s3d_budget_controller* out) {
+  return guarded([&] {
+    requireNotNull(display, "the display");
+    requireNotNull(out, "the controller output");
+    s3d::comfort::DisplayProfile profile;
+    profile.name = "host";
+    if (display->field_of_view_degrees != 0.0f) {
+      profile = s3d::comfort::headMountedDisplay("host", display->viewing_distance_meters,
+                                                 display->field_of_view_degrees, display->interocular_meters);
+    } else {
+      profile.screenWidthMeters = display->screen_width_meters;
+      profile.viewingDistanceMeters = display->viewing_distance_meters;
+      profile.interocularMeters = display->interocular_meters;
+    }
+    *out = new s3d_budget_controller_t{
+        s3d::comfort::DisparityBudgetController(s3d::comfort::disparityBudget(profile), allow_negative_parallax != 0)};
+  });
+}
+void s3d_budget_controller_destroy(s3d_budget_controller controller) { delete controller; }
+
+s3d_result s3d_frame_comfort_state_compute_budgeted(const s3d_frame_comfort_input* input,
+                                                    const s3d_frame_budget* budget, s3d_frame_comfort_state* out,
+                                                    s3d_hud_element_state* hud_states, s3d_budget_choice* choice) {
   return guarded([&] {
     requireNotNull(input, "the comfort input");
     requireNotNull(out, "the comfort output");
@@ -303,6 +335,26 @@ s3d_result s3d_frame_comfort_state_compute(const s3d_frame_comfort_input* input,
     if (input->has_nearest_world_depth) cpp.nearestWorldDepth = input->nearest_world_depth;
     for (uint32_t i = 0; i < input->hud_count; ++i) cpp.hud.push_back({"hud" + std::to_string(i), input->hud_depths[i]});
     cpp.allowNegativeParallax = input->allow_negative_parallax != 0;
+    s3d::stereo::DepthRange range;
+    if (budget) {
+      requireNotNull(budget->controller, "s3d_frame_budget.controller");
+      const s3d_depth_range& depth = budget->depth;
+      if (depth.histogram_bins > 0) requireNotNull(depth.histogram, "s3d_depth_range.histogram");
+      if (std::isnan(depth.nearest) || std::isnan(depth.farthest))
+        throw std::invalid_argument("s3d_depth_range: nearest and farthest must not be NaN");
+      const bool finite = depth.nearest <= depth.farthest;
+      if (finite && !(depth.nearest > 0.0f && std::isfinite(depth.farthest)))
+        throw std::invalid_argument("s3d_depth_range: nearest must be positive and farthest finite");
+      range.nearest = finite ? depth.nearest : std::numeric_limits<float>::infinity();
+      range.farthest = finite ? depth.farthest : 0.0f;
+      range.skyPixels = depth.sky_pixels;
+      if (depth.histogram) range.bins.assign(depth.histogram, depth.histogram + depth.histogram_bins);
+      s3d::comfort::FrameBudget frame{&budget->controller->controller, &range, budget->frame_seconds,
+                                      budget->camera_cut != 0};
+      if (budget->has_anticipated_nearest) frame.anticipatedNearest = budget->anticipated_nearest;
+      frame.receding = budget->receding != 0;
+      cpp.budget = frame;
+    }
     const s3d::comfort::FrameComfortState state = s3d::comfort::frameComfortState(cpp);
     out->parameters = toC(state.parameters);
     out->weapon_pushed = state.weaponPushed;
@@ -310,6 +362,16 @@ s3d_result s3d_frame_comfort_state_compute(const s3d_frame_comfort_input* input,
     out->crosshair_hit_world = state.crosshairHitWorld;
     out->crosshair = toC(state.crosshair);
     for (uint32_t i = 0; i < input->hud_count; ++i) hud_states[i] = toC(state.hud[i]);
+    if (choice) {
+      *choice = s3d_budget_choice{};
+      if (state.budget) {
+        const s3d::comfort::BudgetChoice& c = *state.budget;
+        const s3d::comfort::DisparityBudget& b = budget->controller->controller.budget();
+        *choice = {1, c.parameters.maxSeparation, c.parameters.zeroParallaxDistance, c.target.maxSeparation,
+                   c.target.zeroParallaxDistance, float(c.usedShare), c.cut ? 1 : 0, c.forced ? 1 : 0,
+                   float(b.crossedFraction), float(b.uncrossedFraction)};
+      }
+    }
   });
 }
 

@@ -39,6 +39,9 @@ void readStereo(const nlohmann::json& section, stereo::StereoParameters& p) {
   std::string base = stereo::methodName(p.hybridBase);
   reader.choice("hybridBase", base, kHybridBases);
   p.hybridBase = stereo::parseStereoMethod(base);
+  std::string mapping = stereo::disparityMappingName(p.disparityMapping);
+  reader.choice("disparityMapping", mapping, {"linear", "nonlinear"});
+  p.disparityMapping = stereo::parseDisparityMapping(mapping);
   reader.finish();
 }
 
@@ -132,7 +135,8 @@ nlohmann::json toJson(const ComfortProfile& profile) {
             {"searchTaps", s.searchTaps},
             {"iterations", s.iterations},
             {"hybridBudget", detail::shortest(s.hybridBudget)},
-            {"hybridBase", stereo::methodName(s.hybridBase)}}},
+            {"hybridBase", stereo::methodName(s.hybridBase)},
+            {"disparityMapping", stereo::disparityMappingName(s.disparityMapping)}}},
           {"weapon", {{"depthOffset", detail::shortest(s.weaponDepthOffset)}, {"depthScale", detail::shortest(s.weaponDepthScale)}}},
           {"zeroParallaxControl",
            {{"engageDistance", detail::shortest(z.engageDistance)},

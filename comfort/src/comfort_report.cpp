@@ -6,31 +6,11 @@
 #include <stdexcept>
 
 namespace s3d::comfort {
-namespace {
-
-// Shibata et al. 2011, the fit of their zone of comfort (their Figure 23 and equations for the near and far
-// limits): vergence limits in diopters as a linear function of the focal distance in diopters,
-//   far limit  D_vergence = (D_focal - kFarIntercept) / kFarSlope,
-//   near limit D_vergence = (D_focal - kNearIntercept) / kNearSlope.
-// The constants are the paper's fit as recalled from it (m_far 1.129, T_far 0.442 D, m_near 1.035,
-// T_near -0.626 D); they could NOT be verified against the paper's text with the search tool available here
-// (only its abstract was reachable), so check them before relying on this share.
-constexpr double kFarSlope = 1.129, kFarIntercept = 0.442;
-constexpr double kNearSlope = 1.035, kNearIntercept = -0.626;
-
-}  // namespace
 
 double vergenceDistanceMeters(const DisplayProfile& display, double parallaxMeters) {
   const double e = display.interocularMeters;
   if (parallaxMeters >= e) return std::numeric_limits<double>::infinity();
   return e * display.viewingDistanceMeters / (e - parallaxMeters);
-}
-
-ComfortZone shibataComfortZone(const DisplayProfile& display) {
-  const double focalDiopters = 1.0 / display.viewingDistanceMeters;
-  const double farDiopters = (focalDiopters - kFarIntercept) / kFarSlope;
-  const double nearDiopters = (focalDiopters - kNearIntercept) / kNearSlope;
-  return {1.0 / nearDiopters, farDiopters > 0.0 ? 1.0 / farDiopters : std::numeric_limits<double>::infinity()};
 }
 
 FrameComfort frameComfort(const DepthImage& stereoDepth, const stereo::StereoParameters& parameters,
@@ -41,7 +21,6 @@ FrameComfort frameComfort(const DepthImage& stereoDepth, const stereo::StereoPar
   const gpu::StereoConstants constants = stereo::makeStereoConstants(parameters, width, stereoDepth.height);
   const std::uint32_t visibleBegin = std::uint32_t(std::max(constants.cropBegin, 0));
   const std::uint32_t visibleEnd = std::uint32_t(std::clamp(constants.cropEnd, 0, int(width)));
-  const ComfortZone zone = shibataComfortZone(display);
   auto parallaxPxAt = [&](std::uint32_t x, std::uint32_t y) {
     const float depth = gpu::sanitizedDepth(*stereoDepth.at(x, y), parameters.zeroParallaxDistance);
     return 2.0 * double(gpu::parallaxFromDepth(parameters.maxSeparation, parameters.zeroParallaxDistance, depth)) *
@@ -51,16 +30,13 @@ FrameComfort frameComfort(const DepthImage& stereoDepth, const stereo::StereoPar
   auto flag = [&](std::uint32_t x, std::uint32_t y, std::uint8_t rule) {
     if (violations) (*violations)[std::size_t(y) * width + x] |= rule;
   };
-  std::uint64_t outside = 0;
   for (std::uint32_t y = 0; y < stereoDepth.height; ++y) {
-    for (std::uint32_t x = 0; x < width; ++x) {
-      const double distance =
-          vergenceDistanceMeters(display, parallaxPxAt(x, y) / double(width) * display.screenWidthMeters);
-      if (distance < zone.nearMeters || distance > zone.farMeters) {
-        ++outside;
-        flag(x, y, kOutsideComfortZone);
-      }
-    }
+    // The count itself is parallaxStatistics'; the flags mark the same pixels.
+    if (violations)
+      for (std::uint32_t x = 0; x < width; ++x)
+        if (std::abs(disparityArcminutes(display, parallaxPxAt(x, y) / double(width) * display.screenWidthMeters)) >
+            60.0)  // the 1-degree rule, as parallaxStatistics counts it
+          flag(x, y, kBeyondOneDegree);
     // Runs of negative parallax from each visible edge inward.
     std::uint32_t fromLeft = 0, fromRight = 0;
     for (std::uint32_t x = visibleBegin; x < visibleEnd && parallaxPxAt(x, y) < 0.0; ++x) {
@@ -75,7 +51,6 @@ FrameComfort frameComfort(const DepthImage& stereoDepth, const stereo::StereoPar
     comfort.windowViolationPixels += fromLeft + fromRight;
     comfort.windowViolationColumns = std::max({comfort.windowViolationColumns, fromLeft, fromRight});
   }
-  comfort.shareOutsideComfortZone = double(outside) / double(stereoDepth.pixelCount());
   return comfort;
 }
 

@@ -41,6 +41,7 @@ void validate(const DisparityBudgetSettings& s) {
   requireIn(s.maxLogChangePerSecond, 1e-3f, 100.0f, "maxLogChangePerSecond");
   requireIn(s.hysteresis, 0.0f, 1.0f, "hysteresis");
   requireIn(s.holdSeconds, 0.0f, 10.0f, "holdSeconds");
+  requireIn(s.risingResponseSeconds, 1e-3f, 10.0f, "risingResponseSeconds");
   requireIn(s.cutOverlap, 0.0f, 1.0f, "cutOverlap");
   requireIn(s.minimumSeparation, 1e-5f, 0.25f, "minimumSeparation");
   requireIn(s.maximumSeparation, s.minimumSeparation, 0.25f, "maximumSeparation");
@@ -120,21 +121,30 @@ BudgetChoice DisparityBudgetController::update(const BudgetFrameInput& frame, fl
   if (choice.cut) {
     goal_ = choice.target;
     raiseHeldSeconds_ = 0.0f;
+    rising_ = false;
     logSeparation_.hold(std::log(goal_.maxSeparation));
     logZeroParallax_.hold(std::log(goal_.zeroParallaxDistance));
   } else {
-    // Rule 5: less depth at once, more depth only once the target has asked for it long enough.
+    // Rule 5: less depth at once, more depth only once the target has asked for it long enough (at once while
+    // the camera recedes), then all the way up.
     const bool asksMore = std::log(choice.target.maxSeparation) > std::log(goal_.maxSeparation) + settings_.hysteresis ||
                           std::log(choice.target.zeroParallaxDistance) >
                               std::log(goal_.zeroParallaxDistance) + settings_.hysteresis;
     raiseHeldSeconds_ = asksMore ? raiseHeldSeconds_ + seconds : 0.0f;
-    const bool raise = asksMore && raiseHeldSeconds_ >= settings_.holdSeconds;
-    if (raise || choice.target.maxSeparation < goal_.maxSeparation)
-      goal_.maxSeparation = choice.target.maxSeparation;
-    if (raise || choice.target.zeroParallaxDistance < goal_.zeroParallaxDistance)
+    if (asksMore && (raiseHeldSeconds_ >= settings_.holdSeconds || frame.receding))
+      rising_ = true;
+    else if (choice.target.maxSeparation <= goal_.maxSeparation &&
+             choice.target.zeroParallaxDistance <= goal_.zeroParallaxDistance)
+      rising_ = false;  // the target stopped rising
+    if (rising_ || choice.target.maxSeparation < goal_.maxSeparation) goal_.maxSeparation = choice.target.maxSeparation;
+    if (rising_ || choice.target.zeroParallaxDistance < goal_.zeroParallaxDistance)
       goal_.zeroParallaxDistance = choice.target.zeroParallaxDistance;
-    logSeparation_.step(std::log(goal_.maxSeparation), seconds, settings_.responseSeconds, bound);
-    logZeroParallax_.step(std::log(goal_.zeroParallaxDistance), seconds, settings_.responseSeconds, bound);
+    auto response = [&](const CriticallyDamped& filter, float goal) {
+      return rising_ && frame.receding && goal > filter.value ? settings_.risingResponseSeconds : settings_.responseSeconds;
+    };
+    const float logM = std::log(goal_.maxSeparation), logZ = std::log(goal_.zeroParallaxDistance);
+    logSeparation_.step(logM, seconds, response(logSeparation_, logM), bound);
+    logZeroParallax_.step(logZ, seconds, response(logZeroParallax_, logZ), bound);
   }
 
   // Rules 1-3 over whatever the filters say.
@@ -155,6 +165,19 @@ BudgetChoice DisparityBudgetController::update(const BudgetFrameInput& frame, fl
     choice.parameters = goal_;  // exactly the target (exp(log(x)) may differ from x in the last bit)
   choice.usedShare = usedBudgetShare(nearest, frame.farthest, choice.parameters, budget_, allowNegativeParallax_);
   return choice;
+}
+
+std::optional<BudgetChoice> DisparityBudgetController::update(const stereo::DepthRange& depth, BudgetFrameInput hints,
+                                                             float seconds) {
+  if (!depth.hasFinite() && depth.skyPixels == 0) return std::nullopt;
+  hints.nearest = depth.hasFinite() ? depth.nearest : kInfinity;
+  hints.farthest = depth.farthestShown();
+  if (hints.weaponNearestPushed) {  // a range reduced without the weapon, or with it unpushed: the weapon as shown
+    hints.nearest = std::min(hints.nearest, *hints.weaponNearestPushed);
+    hints.farthest = std::max(hints.farthest, *hints.weaponNearestPushed);
+  }
+  hints.histogram = depth.bins.empty() ? nullptr : &depth.bins;
+  return update(hints, seconds);
 }
 
 }  // namespace s3d::comfort

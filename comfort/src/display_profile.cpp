@@ -149,16 +149,27 @@ ParallaxStatistics parallaxStatistics(const DepthImage& stereoDepth, const stere
   stats.maxParallaxPx = -std::numeric_limits<double>::infinity();
   std::uint64_t beyond = 0, negative = 0;
   const double width = double(stereoDepth.width);
+  std::vector<float> parallaxes;
+  parallaxes.reserve(stereoDepth.pixelCount());
   for (float depth : stereoDepth.pixels) {
     const float sanitized = gpu::sanitizedDepth(depth, parameters.zeroParallaxDistance);
     const double parallaxPx =
         2.0 * double(gpu::parallaxFromDepth(parameters.maxSeparation, parameters.zeroParallaxDistance, sanitized)) * width;
     stats.minParallaxPx = std::min(stats.minParallaxPx, parallaxPx);
     stats.maxParallaxPx = std::max(stats.maxParallaxPx, parallaxPx);
+    if (std::isfinite(sanitized)) parallaxes.push_back(float(parallaxPx));
     const double disparity = disparityArcminutes(display, parallaxPx / width * display.screenWidthMeters);
     if (std::abs(disparity) > 60.0) ++beyond;
     if (parallaxPx < 0.0) ++negative;
   }
+  auto percentile = [&](double share) {
+    if (parallaxes.empty()) return 0.0;
+    const auto at = parallaxes.begin() + std::ptrdiff_t(share * double(parallaxes.size() - 1) + 0.5);
+    std::nth_element(parallaxes.begin(), at, parallaxes.end());
+    return double(*at);
+  };
+  stats.p05ParallaxPx = percentile(0.05);
+  stats.p95ParallaxPx = percentile(0.95);
   const double pixels = double(stereoDepth.pixelCount());
   stats.minParallaxPercent = 100.0 * stats.minParallaxPx / width;
   stats.maxParallaxPercent = 100.0 * stats.maxParallaxPx / width;

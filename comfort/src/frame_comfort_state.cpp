@@ -71,6 +71,27 @@ FrameComfortState frameComfortState(const FrameComfortInput& input) {
 
   const CrosshairPlacement placement =
       placeCrosshairAlongAim(input.rayCast, input.camera, input.crosshairDistance, input.crosshairMargin);
+  if (input.budget) {
+    const FrameBudget& budget = *input.budget;
+    if (!budget.controller || !budget.depth)
+      throw std::invalid_argument("frameComfortState: the disparity budget needs its controller and the depth range");
+    if (budget.controller->allowsNegativeParallax() != input.allowNegativeParallax)
+      throw std::invalid_argument(
+          "frameComfortState: the disparity budget controller and the frame disagree on negative parallax");
+    BudgetFrameInput hints;
+    hints.crosshairDepth = placement.depth;
+    if (input.weapon.pixels > 0)
+      hints.weaponNearestPushed =
+          state.parameters.weaponDepthOffset + state.parameters.weaponDepthScale * input.weapon.nearestDepth;
+    hints.anticipatedNearest = budget.anticipatedNearest;
+    hints.receding = budget.receding;
+    hints.cut = budget.cut;
+    state.budget = budget.controller->update(*budget.depth, hints, budget.seconds);
+    if (state.budget) {  // the weapon push stays valid: the controller keeps Z at or before the pushed weapon
+      state.parameters.maxSeparation = state.budget->parameters.maxSeparation;
+      state.parameters.zeroParallaxDistance = state.budget->parameters.zeroParallaxDistance;
+    }
+  }
   state.crosshair = hudElementState("crosshair", placement.depth, state.parameters, input.weapon, input.width,
                                     input.allowNegativeParallax);
   state.crosshairDepth = state.crosshair.depth;

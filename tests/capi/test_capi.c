@@ -1,7 +1,7 @@
 /* The C API from C: a host device adopted, a device without s3d's features refused naming one, a bad format
  * refused, the stereo pass on uniform colour and depth (every visible eye pixel the colour, the cropped border
  * black), the HUD pass after it and inside it (a marker at its parallax in each eye), and the per-frame comfort
- * call with a C ray cast. Exit status 0 when every check holds. */
+ * call with a C ray cast, with and without the disparity budget. Exit status 0 when every check holds. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -308,6 +308,42 @@ int main(void) {
   CHECK(state.crosshair_hit_world && fabsf(state.crosshair.depth - 4.0f) < 1e-6f,
         "the crosshair (2.5 m before the wall) is held at the screen plane, got %f", state.crosshair.depth);
   CHECK(hud[0].depth == 4.0f && hud[1].depth == 8.0f && hud[1].parallax_px > 0.0f, "HUD depths and parallax");
+
+  /* The disparity budget: a 27-inch monitor at 0.7 m, a frame from 3 m to the sky. The first frame jumps to the
+   * target: the plane at the nearest depth, the sky at 90 % of the uncrossed budget between the eyes. */
+  const s3d_display monitor = {0.5977f, 0.7f, 0.063f, 0.0f};
+  s3d_budget_controller controller = NULL;
+  CHECK(s3d_budget_controller_create(&monitor, 0, &controller) == S3D_SUCCESS, "the budget controller is created");
+  s3d_frame_budget budget;
+  memset(&budget, 0, sizeof budget);
+  budget.controller = controller;
+  budget.depth.nearest = 3.0f;
+  budget.depth.farthest = 50.0f;
+  budget.depth.sky_pixels = 100;
+  budget.frame_seconds = 1.0f / 60.0f;
+  s3d_budget_choice choice;
+  CHECK(s3d_frame_comfort_state_compute_budgeted(&input, &budget, &state, hud, &choice) == S3D_SUCCESS,
+        "the budgeted comfort state is computed");
+  CHECK(choice.chosen && choice.cut && state.parameters.zero_parallax_distance == 3.0f &&
+            state.parameters.max_separation == choice.max_separation,
+        "the controller's choice is the frame's parameters (plane %f)", state.parameters.zero_parallax_distance);
+  CHECK(fabsf(2.0f * choice.max_separation - 0.9f * choice.uncrossed_fraction) < 1e-5f &&
+            choice.uncrossed_fraction > 0.015f && choice.uncrossed_fraction < 0.03f,
+        "the sky fills 90 %% of the uncrossed budget (%f of %f)", 2.0f * choice.max_separation,
+        choice.uncrossed_fraction);
+  CHECK(hud[0].depth == 3.0f, "the HUD follows the chosen plane, got %f", hud[0].depth);
+  budget.depth.nearest = NAN;
+  CHECK(s3d_frame_comfort_state_compute_budgeted(&input, &budget, &state, hud, &choice) == S3D_ERROR_INVALID_ARGUMENT,
+        "a NaN depth range is refused");
+  s3d_budget_controller_destroy(controller);
+  const s3d_display badEyes = {0.6f, 0.7f, 0.2f, 0.0f};
+  CHECK(s3d_budget_controller_create(&badEyes, 0, &controller) == S3D_ERROR_INVALID_ARGUMENT &&
+            strstr(s3d_last_error(), "interocularMeters") != NULL,
+        "a 20 cm interocular distance is refused naming the field");
+  const s3d_display headset = {0.0f, 1.3f, 0.063f, 90.0f};
+  CHECK(s3d_budget_controller_create(&headset, 1, &controller) == S3D_SUCCESS, "a head-mounted display's budget");
+  s3d_budget_controller_destroy(controller);
+
   input.width = 0;
   CHECK(s3d_frame_comfort_state_compute(&input, &state, hud) == S3D_ERROR_INVALID_ARGUMENT, "width 0 is refused");
 

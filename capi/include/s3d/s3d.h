@@ -205,6 +205,61 @@ typedef struct s3d_frame_comfort_state {
 s3d_result s3d_frame_comfort_state_compute(const s3d_frame_comfort_input* input, s3d_frame_comfort_state* out,
                                            s3d_hud_element_state* hud_states);
 
+/* ---- Disparity budget (per display; one controller per view stream, it smooths over frames) ---- */
+typedef struct s3d_display {
+  float screen_width_meters;     /* a flat screen: the image's width on it (ignored for a head-mounted display) */
+  float viewing_distance_meters; /* eyes to screen; a head-mounted display: its focal distance */
+  float interocular_meters;      /* 0.04 .. 0.08 */
+  float field_of_view_degrees;   /* a head-mounted display: horizontal field of view; 0: a flat screen */
+} s3d_display;
+
+typedef struct s3d_budget_controller_t* s3d_budget_controller;
+/* The 1-degree rule's budget for the display; allow_negative_parallax must match the frames' setting. */
+s3d_result s3d_budget_controller_create(const s3d_display* display, int32_t allow_negative_parallax,
+                                        s3d_budget_controller* out);
+void s3d_budget_controller_destroy(s3d_budget_controller controller);
+
+/* The frame's linear depth as the stereo pass reads it (the host's reduction, or s3d's DepthRangePass in C++):
+ * nearest and farthest finite positive depth, the count of sky (infinite) pixels, and optionally a histogram of
+ * any fixed binning (the same every frame) for the cut detector. A range without the weapon gets the pushed
+ * weapon added from s3d_frame_comfort_input's weapon fields. */
+typedef struct s3d_depth_range {
+  float nearest;  /* > farthest when no pixel is finite */
+  float farthest;
+  uint64_t sky_pixels;
+  const uint32_t* histogram; /* may be NULL */
+  uint32_t histogram_bins;
+} s3d_depth_range;
+
+typedef struct s3d_frame_budget {
+  s3d_budget_controller controller;
+  s3d_depth_range depth;
+  float frame_seconds;             /* this frame's duration (> 0) */
+  int32_t camera_cut;              /* 1: jump to the target without a ramp */
+  int32_t receding;                /* 1: the camera moves away from what it sees: more depth is followed at once */
+  int32_t has_anticipated_nearest; /* 1: a nearer surface is expected soon (e.g. ray casts ahead) */
+  float anticipated_nearest;
+} s3d_frame_budget;
+
+typedef struct s3d_budget_choice {
+  int32_t chosen; /* 0: the range had no pixel, the host's parameters were kept and the fields below are 0 */
+  float max_separation; /* as in s3d_frame_comfort_state.parameters */
+  float zero_parallax_distance;
+  float target_max_separation; /* what this frame alone asks for */
+  float target_zero_parallax_distance;
+  float used_share;   /* of the budget's usable span, by the frame's depth range */
+  int32_t cut;        /* reset without a ramp (first frame, camera_cut, or the histogram changed) */
+  int32_t forced;     /* a hard rule moved a parameter by more than the per-frame bound */
+  float crossed_fraction;   /* the budget, as fractions of the width between the eyes */
+  float uncrossed_fraction;
+} s3d_budget_choice;
+
+/* s3d_frame_comfort_state_compute with the disparity budget: out->parameters gets the controller's
+ * max_separation and zero_parallax_distance; choice (may be NULL) says what it chose. */
+s3d_result s3d_frame_comfort_state_compute_budgeted(const s3d_frame_comfort_input* input,
+                                                    const s3d_frame_budget* budget, s3d_frame_comfort_state* out,
+                                                    s3d_hud_element_state* hud_states, s3d_budget_choice* choice);
+
 #ifdef __cplusplus
 }
 #endif

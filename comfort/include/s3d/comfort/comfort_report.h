@@ -1,6 +1,8 @@
 #pragma once
-// The per-frame comfort report beyond the parallax range (display_profile.h): Shibata et al. 2011's zone of
-// comfort, stereo window violations, and the rules that keep every pixel at or behind the screen plane.
+// The per-frame comfort report beyond the parallax range (display_profile.h): stereo window violations and the
+// rules that keep every pixel at or behind the screen plane. (No zone of comfort in vergence distance: the
+// constants of Shibata et al. 2011's fit could not be checked against the paper, so the 1-degree rule of
+// display_profile.h is the only disparity limit reported and budgeted; docs/DESIGN.md "Comfort report".)
 #include <cstdint>
 #include <optional>
 #include <vector>
@@ -17,18 +19,8 @@ namespace s3d::comfort {
 // (e v / (e - P)); +inf when they are parallel or diverge (P >= e).
 double vergenceDistanceMeters(const DisplayProfile& display, double parallaxMeters);
 
-// Shibata, Kim, Hoffman & Banks 2011, "The zone of comfort: Predicting visual discomfort with stereo
-// displays" (Journal of Vision 11(8):11): the range of vergence distances comfortable at the display's focal
-// distance. farMeters is +inf where the far limit lies beyond optical infinity.
-struct ComfortZone {
-  double nearMeters = 0.0;
-  double farMeters = 0.0;
-};
-ComfortZone shibataComfortZone(const DisplayProfile& display);
-
 struct FrameComfort {
   ParallaxStatistics parallax;
-  double shareOutsideComfortZone = 0.0;  // pixels whose vergence distance lies outside shibataComfortZone
   // Stereo window violations: negative-parallax pixels in horizontal runs that touch the left or right edge
   // of the visible image (inside the edge crop). The frame's edge cuts off an object in front of it.
   std::uint64_t windowViolationPixels = 0;
@@ -36,8 +28,8 @@ struct FrameComfort {
 };
 
 // The rules of FrameComfort a pixel breaks, as bit flags (frameComfort's `violations`).
-inline constexpr std::uint8_t kOutsideComfortZone = 1;  // counted in shareOutsideComfortZone
-inline constexpr std::uint8_t kWindowViolation = 2;     // counted in windowViolationPixels
+inline constexpr std::uint8_t kBeyondOneDegree = 1;  // |disparity| over 60 arcmin: parallax.shareBeyondOneDegree
+inline constexpr std::uint8_t kWindowViolation = 2;  // counted in windowViolationPixels
 
 // Over the stereo pass's linear depth (weapon pushed), as parallaxStatistics does. When `violations` is
 // given it receives, per pixel (row-major), the flags above (for overlays such as `s3d tune`'s comfort view).

@@ -4,8 +4,8 @@
 // rule. Flat screens and head-mounted displays alike: an HMD's virtual screen lies at its focal distance and
 // spans its field of view (headMountedDisplay), so the same vergence geometry applies.
 //
-// Shibata et al. 2011's zone of comfort is NOT part of the budget: its constants could not be verified
-// against the paper (comfort_report.h reports it, marked unverified).
+// The 1-degree rule is the only limit: Shibata et al. 2011's zone of comfort is not in s3d because its
+// constants could not be verified against the paper (docs/DESIGN.md "Comfort report").
 #include <cstdint>
 #include <string>
 

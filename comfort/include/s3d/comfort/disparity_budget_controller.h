@@ -11,10 +11,13 @@
 //  4. The depth impression is as large as the budget allows: the parameters that map the frame's depth
 //     range onto `targetShare` of the budget (the rest is the margin smoothing may lag into).
 //  5. Smooth: ln m and ln Z follow their targets through a critically damped filter with a bounded change
-//     per frame; a target that asks for more depth is taken only after it has held for `holdSeconds` and
-//     exceeds the current goal by `hysteresis` (no oscillation at a depth discontinuity, no reversal at a
-//     static camera); rules 1-3 override the bound at once when the filter lags (`forced` when that moves a
-//     parameter by more than the bound).
+//     per frame; a rise (a target that asks for more depth) starts only after the target has exceeded the
+//     current goal by `hysteresis` for `holdSeconds` (no oscillation at a depth discontinuity, no reversal at a
+//     static camera), then follows the target until it stops rising. When the host says the camera recedes
+//     from what it sees (`receding`: the depth range grows as a trend, not a flicker), a rise starts at once
+//     and is followed with `risingResponseSeconds`, so the bounded rate, not the filter's lag, limits how fast
+//     the depth impression comes back. Rules 1-3 override the bound at once when the filter lags (`forced`
+//     when that moves a parameter by more than the bound).
 //  6. A camera cut (the frame's depth histogram shares less than `cutOverlap` with the previous one, or the
 //     host says so) jumps straight to the target, without a ramp.
 #include <cstdint>
@@ -33,6 +36,7 @@ struct DisparityBudgetSettings {
   float maxLogChangePerSecond = 1.5f;  // bound on |d ln m| and |d ln Z| per second (0.05 per frame at 30 fps)
   float hysteresis = 0.05f;          // ln units a depth-increasing target must exceed the goal by
   float holdSeconds = 0.2f;          // ... for this long
+  float risingResponseSeconds = 0.05f;  // time constant of a rise while the camera recedes
   float cutOverlap = 0.25f;          // histogram intersection below which a frame is a cut
   float minimumSeparation = 0.0005f;  // fraction of the width per eye
   float maximumSeparation = 0.1f;
@@ -56,6 +60,7 @@ struct BudgetFrameInput {
   std::optional<float> weaponNearestPushed;  // rule 1; none: no weapon
   std::optional<float> anticipatedNearest;  // a nearer surface expected soon (e.g. ray casts ahead): the
                                             // target eases toward it early, the hard rules ignore it
+  bool receding = false;  // the camera moves away from what it sees (e.g. ray casts from ahead reach farther)
   const std::vector<std::uint32_t>* histogram = nullptr;  // for the cut detector (any binning, same every frame)
   bool cut = false;  // the host knows the camera cut
 };
@@ -91,7 +96,14 @@ class DisparityBudgetController {
   // One frame of `seconds`; the first frame behaves as a cut.
   BudgetChoice update(const BudgetFrameInput& frame, float seconds);
 
+  // The frame as a depth range (stereo::DepthRangePass's or the host's own: nearest, farthest, sky, and any
+  // histogram for the cut detector) plus `hints` (crosshair, weapon, anticipation, cut; its depth fields are
+  // replaced). Nothing to choose when the range has no finite pixel and no sky: returns nothing, the state is
+  // left as it was. The pushed weapon's nearest point counts as a depth of the frame.
+  std::optional<BudgetChoice> update(const stereo::DepthRange& depth, BudgetFrameInput hints, float seconds);
+
   const DisparityBudget& budget() const { return budget_; }
+  bool allowsNegativeParallax() const { return allowNegativeParallax_; }
 
  private:
   DisparityBudget budget_;
@@ -101,6 +113,7 @@ class DisparityBudgetController {
   CriticallyDamped logSeparation_, logZeroParallax_;
   BudgetParameters goal_;          // what the filters follow (ln of it)
   float raiseHeldSeconds_ = 0.0f;  // how long the target has asked for more depth than the goal
+  bool rising_ = false;            // a rise has started: the goal follows the target up until it stops rising
   std::vector<std::uint32_t> previousHistogram_;
 };
 

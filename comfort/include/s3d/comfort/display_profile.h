@@ -60,6 +60,10 @@ double disparityArcminutes(const DisplayProfile& display, double parallaxMeters)
 
 struct ParallaxStatistics {
   double minParallaxPx = 0.0, maxParallaxPx = 0.0;            // right-eye minus left-eye position
+  // The 5th and 95th percentile of the parallax of the pixels with finite depth: the range the bulk of the
+  // scene's geometry spans (the depth impression a mapping keeps, without the few nearest and farthest pixels
+  // and without the sky, which sits at the far end of the range whatever the mapping). 0 without geometry.
+  double p05ParallaxPx = 0.0, p95ParallaxPx = 0.0;
   double minParallaxPercent = 0.0, maxParallaxPercent = 0.0;  // of the image width
   double minDisparityArcmin = 0.0, maxDisparityArcmin = 0.0;
   double shareBeyondOneDegree = 0.0;  // pixels whose |disparity| exceeds 60 arcminutes (the 1-degree rule)

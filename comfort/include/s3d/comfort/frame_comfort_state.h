@@ -1,8 +1,10 @@
 #pragma once
 // The per-frame comfort rules in one call a host makes each frame, with no s3d renderer type: the weapon push
 // capped by the zero-parallax plane, the zero-parallax distance held at the nearest depth, the crosshair placed
-// by the host's ray cast, and each HUD element's depth, parallax and fade behind the weapon (seed 4.6.2).
-// s3d render and s3d tune apply the same rules (samples/app frame_rules.h calls these).
+// by the host's ray cast, the disparity budget (the host's controller choosing maxSeparation and the
+// zero-parallax distance from the frame's depth range), and each HUD element's depth, parallax and fade behind
+// the weapon (seed 4.6.2). s3d render and s3d tune apply the same rules (samples/app frame_rules.h and
+// budget_frame.h call these).
 #include <cstdint>
 #include <functional>
 #include <optional>
@@ -12,6 +14,7 @@
 #include <glm/glm.hpp>
 
 #include "s3d/comfort/comfort_report.h"
+#include "s3d/comfort/disparity_budget_controller.h"
 #include "s3d/comfort/display_profile.h"
 #include "s3d/image.h"
 #include "s3d/stereo/stereo.h"
@@ -44,6 +47,19 @@ struct HudElementDepth {
   float depth = 1.0f;  // linear view depth the element should be shown at
 };
 
+// The disparity budget of one frame: the host keeps one controller per view stream (it smooths over frames)
+// and gives it the frame's depth range, reduced on the GPU by stereo::DepthRangePass from the linear depth the
+// stereo pass reads, or the host's own (nearest, farthest, sky count; a histogram of any fixed binning enables
+// the cut detector). The weapon is added from FrameComfortInput::weapon, pushed, when the range lacks it.
+struct FrameBudget {
+  DisparityBudgetController* controller = nullptr;  // must not be null; its display's budget is used
+  const stereo::DepthRange* depth = nullptr;         // must not be null
+  float seconds = 1.0f / 60.0f;                      // this frame's duration (the controller's rate bounds)
+  bool cut = false;                                  // the host knows the camera cut: no ramp
+  std::optional<float> anticipatedNearest;           // a nearer surface expected soon (e.g. ray casts ahead)
+  bool receding = false;  // the camera moves away from what it sees: a deeper range is followed without the hold
+};
+
 struct FrameComfortInput {
   FrameCamera camera;
   RayCast rayCast;  // empty: no world; the crosshair stays at crosshairDistance
@@ -60,6 +76,9 @@ struct FrameComfortInput {
   const DisplayProfile* display = nullptr;
   std::vector<HudElementDepth> hud;
   bool allowNegativeParallax = false;  // off: nothing is shown in front of the screen plane
+  // With it, maxSeparation and the zero-parallax distance are the controller's choice (its negative-parallax
+  // setting must equal allowNegativeParallax); without it, the host's.
+  std::optional<FrameBudget> budget;
 };
 
 struct HudElementState {
@@ -78,9 +97,11 @@ struct FrameComfortState {
   HudElementState crosshair;            // the crosshair as a HUD element
   std::vector<HudElementState> hud;     // in the order given
   std::optional<FrameComfort> statistics;  // with stereoDepth and display
+  std::optional<BudgetChoice> budget;      // with a budget whose depth range has pixels
 };
 
-// Throws std::invalid_argument for a width of 0, a non-positive crosshair distance or HUD depth.
+// Throws std::invalid_argument for a width of 0, a non-positive crosshair distance or HUD depth, a budget
+// without controller or depth range, or one whose controller disagrees on negative parallax.
 FrameComfortState frameComfortState(const FrameComfortInput& input);
 
 // The pieces, for tools that apply them at different points of their frame.
