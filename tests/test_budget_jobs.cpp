@@ -1,4 +1,5 @@
-// The disparity budget in the jobs: `s3d render` and `--sequence` with the 1-degree rule fit every frame.
+// The disparity budget in the jobs: `s3d render` and `--sequence` with the 1-degree rule fit every frame; the
+// nonlinear depth-to-parallax mapping keeps that fit, and its per-layer reference picks each pixel's layer.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -6,8 +7,10 @@
 #include <unistd.h>
 
 #include "s3d/app/convert_job.h"
+#include "s3d/app/layered_reference.h"
 #include "s3d/app/render_job.h"
 #include "s3d/app/sequence_job.h"
+#include "s3d/renderer/scene_file.h"
 #include "vulkan_test.h"
 
 namespace s3d::app {
@@ -96,6 +99,73 @@ TEST_F(BudgetJobs, ConvertFitsAFileDepthMapIntoTheBudget) {
   EXPECT_EQ(report.comfort.parallax.shareBeyondOneDegree, 0.0);
   EXPECT_NEAR(report.budget.choice.usedShare, 0.9, 1e-4);
   EXPECT_EQ(report.stereo.maxSeparation, report.budget.choice.parameters.maxSeparation);
+}
+
+TEST_F(BudgetJobs, TheNonlinearMappingKeepsTheFitAndGivesTheSceneMoreOfTheBudget) {
+  // The courtyard on a monitor, linear and nonlinear: the same parameters and full range (the map keeps the
+  // nearest depth and the sky), nothing beyond 1 degree or in front of the screen, and the 5-95 % of the scene's
+  // pixels spread over more of the budget. The per-layer reference takes one rendering per segment; pixels no
+  // layer claims stay a small share, and the error against it is of the linear error's order.
+  RenderReport reports[2];
+  for (const stereo::DisparityMapping mapping : {stereo::DisparityMapping::Linear, stereo::DisparityMapping::Nonlinear}) {
+    RenderJobOptions options;
+    options.width = 160;
+    options.height = 90;
+    options.outputs = {"report.json"};
+    options.outputFolder = scratch("mapping");
+    options.display = comfort::builtInDisplayProfile("monitor27");
+    options.disparityBudget = comfort::DisparityBudgetRule::OneDegree;
+    options.stereo.disparityMapping = mapping;
+    reports[int(mapping)] = runRenderJob(context(), options);
+    std::error_code ignored;
+    fs::remove_all(options.outputFolder, ignored);
+  }
+  const RenderReport& linear = reports[0];
+  const RenderReport& nonlinear = reports[1];
+  EXPECT_EQ(nonlinear.stereo.maxSeparation, linear.stereo.maxSeparation);
+  EXPECT_EQ(nonlinear.stereo.zeroParallaxDistance, linear.stereo.zeroParallaxDistance);
+  EXPECT_EQ(nonlinear.comfort.parallax.shareBeyondOneDegree, 0.0);
+  EXPECT_GE(nonlinear.comfort.parallax.minParallaxPx, -1e-3);
+  // The full range: float parallax of the same nearest and farthest pixels (1e-3 px).
+  EXPECT_NEAR(nonlinear.comfort.parallax.maxParallaxPx, linear.comfort.parallax.maxParallaxPx, 1e-3);
+  EXPECT_NEAR(nonlinear.comfort.parallax.minParallaxPx, linear.comfort.parallax.minParallaxPx, 1e-3);
+  const auto bulk = [](const RenderReport& r) { return r.comfort.parallax.p95ParallaxPx - r.comfort.parallax.p05ParallaxPx; };
+  EXPECT_GT(bulk(nonlinear), bulk(linear));
+  EXPECT_EQ(linear.disparityMap.referenceLayers, 1u);
+  EXPECT_GT(nonlinear.disparityMap.referenceLayers, 2u);
+  for (std::uint64_t unresolved : nonlinear.disparityMap.unresolvedPixels) EXPECT_LT(unresolved, 160u * 90u / 20u);
+  EXPECT_GT(nonlinear.left.display.psnrDb, linear.left.display.psnrDb - 3.0);
+  EXPECT_GT(nonlinear.right.display.psnrDb, linear.right.display.psnrDb - 3.0);
+  EXPECT_EQ(toJson(nonlinear).at("disparityMapping").at("mapping"), "nonlinear");
+}
+
+TEST(ReferenceLayers, EachPixelTakesTheNearestSurfaceInItsOwnSegment) {
+  // Two segments split at 4 m (u = 0.25). Pixel 0: layer 0 sees 10 m (in its segment), layer 1 sees 2 m (in
+  // its own): the nearer wins. Pixel 1: layer 0 sees 3 m, layer 1 sees 9 m, neither in its own segment:
+  // unresolved, taken from the layer whose segment lies nearer in inverse depth (layer 0: 1/3 is 0.083 past
+  // 0.25; layer 1: 1/9 is 0.139 short of it). Pixel 2: only layer 0 qualifies (its sky).
+  const std::vector<stereo::DisparityMapSegment> segments = {{0.0, 0.25, 0.5, 0.0}, {0.25, INFINITY, 1.5, -0.25}};
+  DepthImage layer0(3, 1), layer1(3, 1);
+  layer0.pixels = {10.0f, 3.0f, INFINITY};
+  layer1.pixels = {2.0f, 9.0f, 7.0f};
+  std::uint64_t unresolved = 0;
+  const std::vector<std::uint8_t> chosen = chooseReferenceLayers({layer0, layer1}, segments, &unresolved);
+  EXPECT_EQ(chosen, (std::vector<std::uint8_t>{1, 0, 0}));
+  EXPECT_EQ(unresolved, 1u);
+}
+
+TEST(ReferenceLayers, TheLinearMappingsReferenceIsTheExactEyeCameras) {
+  // The identity segment gives exactly the cameras of stereo::offAxisEyeCamera (the two-pass reference).
+  renderer::Scene scene = renderer::loadScene("courtyard");
+  const renderer::ViewMatrices center = renderer::centerViewMatrices(scene, 16.0f / 9.0f, {1.0f, 1.0f});
+  stereo::StereoParameters parameters;
+  const renderer::ViewMatrices view = referenceEyeView(scene, center, stereo::Eye::Left, parameters);
+  const stereo::EyeCamera expected =
+      stereo::offAxisEyeCamera(center.worldView, center.worldProjection, stereo::Eye::Left, parameters.maxSeparation,
+                               parameters.zeroParallaxDistance);
+  EXPECT_EQ(view.worldView, expected.view);
+  EXPECT_EQ(view.worldProjection, expected.projection);
+  EXPECT_EQ(stereo::disparityMapSegments(stereo::identityDisparityMap()).size(), 1u);
 }
 
 }  // namespace

@@ -134,7 +134,6 @@ TEST_F(CoverSequence, TheComfortNumbersOfTheFirstFrameMatchAHandComputation) {
   EXPECT_NEAR(p.minParallaxPercent, weaponPx / 160.0 * 100.0, 0.01);
   EXPECT_NEAR(p.maxDisparityArcmin, arcmin(skyPx), 1e-3);  // float screen width: 1e-3 arcmin
   EXPECT_NEAR(p.minDisparityArcmin, arcmin(weaponPx), 0.02);
-  EXPECT_EQ(frame.comfort.shareOutsideComfortZone, 0.0);  // at 2.5 m everything behind 1 m is comfortable
 }
 
 TEST_F(CoverSequence, EveryFrameIsFullFrameWithAGuardBand) {

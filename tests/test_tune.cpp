@@ -55,7 +55,8 @@ TEST(TuneParameters, EveryNamedParameterCanBeSet) {
       {"zppEngageDistance", "3"},     {"zppReleaseMargin", "0.5"},     {"zppMinimumDistance", "0.3"},
       {"zppResponseSeconds", "0.5"},  {"zppMaxChangePerSecond", "2"},  {"crosshairDistance", "6"},
       {"crosshairMargin", "0.5"},     {"display", "monitor27"},        {"allowNegativeParallax", "on"},
-      {"hybridBudget", "0.25"},       {"hybridBase", "iterative"}};
+      {"hybridBudget", "0.25"},       {"hybridBase", "iterative"},
+      {"disparityMapping", "nonlinear"}};
   ASSERT_EQ(values.size(), parameterNames().size());
   for (const auto& [name, value] : values) setParameter(settings, name, value);
   EXPECT_FLOAT_EQ(settings.profile.stereo.maxSeparation, 0.03f);
@@ -78,6 +79,7 @@ TEST(TuneParameters, EveryNamedParameterCanBeSet) {
   EXPECT_EQ(settings.profile.stereo.hybridBase, stereo::StereoMethod::Iterative);
   EXPECT_EQ(settings.profile.display.name, "monitor27");
   EXPECT_TRUE(settings.profile.allowNegativeParallax);
+  EXPECT_EQ(settings.profile.stereo.disparityMapping, stereo::DisparityMapping::Nonlinear);
 }
 
 TEST(TuneParameters, AnInvalidValueNamesTheParameterAndChangesNothing) {
@@ -238,11 +240,10 @@ TEST(TuneViews, ComfortOverlayMarksOnlyPixelsBeyondTheLimit) {
             std::vector<std::uint8_t>(anaglyph.pixels.begin() + 4, anaglyph.pixels.end()));
 }
 
-TEST(TuneViews, ComfortOverlayMarksWindowViolationsAndTheComfortZoneInTheirOwnColours) {
-  // monitor27 (0.60 m wide at 0.7 m, zone of comfort 0.50 .. 1.14 m), maxSeparation 0.03, no crop, 8 x 1:
-  // depth 0.9 at the left edge is a crossed 4 mm run touching the edge (window violation, 20 arcmin);
-  // depth 3 gives 24 mm uncrossed (117 arcmin, beyond 1 degree, vergence 1.13 m: inside the zone);
-  // infinity gives 36 mm (vergence 1.63 m: outside the zone). Depth 1 is the screen plane: unmarked.
+TEST(TuneViews, ComfortOverlayMarksWindowViolationsAndTheOneDegreeRuleInTheirOwnColours) {
+  // monitor27 (0.60 m wide at 0.7 m), maxSeparation 0.03, no crop, 8 x 1: depth 0.9 at the left edge is a
+  // crossed 4 mm run touching the edge (window violation, 20 arcmin); depth 3 gives 24 mm uncrossed
+  // (117 arcmin, beyond 1 degree), infinity 36 mm (beyond too). Depth 1 is the screen plane: unmarked.
   FrameImages frame;
   frame.eyes.left = ImageRGBA8(8, 1, 200);
   frame.eyes.right = ImageRGBA8(8, 1, 60);
@@ -262,7 +263,7 @@ TEST(TuneViews, ComfortOverlayMarksWindowViolationsAndTheComfortZoneInTheirOwnCo
   auto rgb = [&](std::uint32_t x) { return std::vector<int>(overlay.at(x, 0), overlay.at(x, 0) + 3); };
   EXPECT_EQ(rgb(0), marked(0, kWindowViolationColor));
   EXPECT_EQ(rgb(3), marked(3, kBeyondLimitColor));
-  EXPECT_EQ(rgb(5), marked(5, kOutsideComfortZoneColor));
+  EXPECT_EQ(rgb(5), marked(5, kBeyondLimitColor));
   for (std::uint32_t x : {1u, 2u, 4u, 6u, 7u}) EXPECT_EQ(rgb(x), std::vector<int>(anaglyph.at(x, 0), anaglyph.at(x, 0) + 3)) << x;
 }
 

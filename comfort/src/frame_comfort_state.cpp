@@ -44,11 +44,13 @@ bool holdZeroParallax(stereo::StereoParameters& parameters, std::optional<float>
 }
 
 HudElementState hudElementState(const std::string& name, float depth, const stereo::StereoParameters& parameters,
-                                const WeaponMaskStats& weapon, std::uint32_t width, bool allowNegativeParallax) {
+                                const WeaponMaskStats& weapon, std::uint32_t width, bool allowNegativeParallax,
+                                const gpu::DisparityMapConstants& disparityMap) {
   if (!(depth > 0.0f)) throw std::invalid_argument("HUD element '" + name + "': depth must be positive");
   HudElementState state{name, allowNegativeParallax ? depth : std::max(depth, parameters.zeroParallaxDistance)};
-  state.parallaxPx =
-      gpu::parallaxFromDepth(parameters.maxSeparation, parameters.zeroParallaxDistance, state.depth) * float(width);
+  state.parallaxPx = gpu::parallaxFromDepth(parameters.maxSeparation, parameters.zeroParallaxDistance,
+                                            gpu::mappedDepth(disparityMap, state.depth)) *
+                     float(width);
   const float weaponNearestPushed = weapon.pixels > 0
                                         ? parameters.weaponDepthOffset + parameters.weaponDepthScale * weapon.nearestDepth
                                         : std::numeric_limits<float>::infinity();
@@ -93,12 +95,12 @@ FrameComfortState frameComfortState(const FrameComfortInput& input) {
     }
   }
   state.crosshair = hudElementState("crosshair", placement.depth, state.parameters, input.weapon, input.width,
-                                    input.allowNegativeParallax);
+                                    input.allowNegativeParallax, input.disparityMap);
   state.crosshairDepth = state.crosshair.depth;
   state.crosshairHitWorld = placement.hitWorld;
   for (const HudElementDepth& element : input.hud)
     state.hud.push_back(hudElementState(element.name, element.depth, state.parameters, input.weapon, input.width,
-                                        input.allowNegativeParallax));
+                                        input.allowNegativeParallax, input.disparityMap));
   if (input.stereoDepth && input.display)
     state.statistics = frameComfort(*input.stereoDepth, state.parameters, *input.display);
   return state;

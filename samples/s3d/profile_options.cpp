@@ -25,6 +25,14 @@ void ProfileOptions::add(CLI::App& command) {
         return "expected " + joined(names, ", ") + " or a .json display profile (got '" + text + "')";
       })
       ->capture_default_str();
+  command
+      .add_option("--disparity-mapping", disparityMapping,
+                  "How depth becomes parallax: linear (the seed's m (1 - zpp / depth)) or nonlinear (a per-frame "
+                  "monotonic curve over the frame's depth histogram: populated depths get more of the parallax "
+                  "range, empty gaps less; the nearest and farthest depth and the screen plane stay put). Needs "
+                  "the frame's depth reduction, which runs with it even when --disparity-budget is off")
+      ->check(CLI::IsMember({"linear", "nonlinear"}))
+      ->capture_default_str();
 }
 
 void addDisparityBudgetOption(CLI::App& command, std::string& rule) {
@@ -54,6 +62,7 @@ comfort::ComfortProfile ProfileOptions::resolve(const CLI::App& command, const S
   if (given("--weapon-depth-scale")) p.weaponDepthScale = cli.weaponDepthScale;
   if (given("--display")) profile.display = comfort::resolveDisplayProfile(display);
   if (given("--allow-negative-parallax")) profile.allowNegativeParallax = allowNegativeParallax;
+  if (given("--disparity-mapping")) p.disparityMapping = stereo::parseDisparityMapping(disparityMapping);
   comfort::validate(profile);  // the overrides may combine into something the profile's rules refuse
   return profile;
 }

@@ -19,11 +19,13 @@ struct ProfileOptions {
   std::string display = comfort::ComfortProfile{}.display.name;  // the profile's default display
   // `s3d` turns the budget on (the library's jobs default to off, so a host decides for itself).
   std::string disparityBudget = comfort::disparityBudgetRuleName(comfort::DisparityBudgetRule::OneDegree);
+  std::string disparityMapping = stereo::disparityMappingName(stereo::DisparityMapping::Linear);
 
-  // --profile, --save-profile, --allow-negative-parallax and --display on `command`.
+  // --profile, --save-profile, --allow-negative-parallax, --display and --disparity-mapping on `command`.
   void add(CLI::App& command);
   // After parsing (and stereo.finish()): the loaded profile, or the defaults, with every option that was
-  // given on `command` (the StereoOptions', --weapon-depth-*, --display, --allow-negative-parallax) applied.
+  // given on `command` (the StereoOptions', --weapon-depth-*, --display, --allow-negative-parallax,
+  // --disparity-mapping) applied.
   comfort::ComfortProfile resolve(const CLI::App& command, const StereoOptions& stereo) const;
   // The display alone, as resolve() would give it: --display, else the --profile's, else the default profile's
   // (for modes where the profile's stereo parameters do not apply, e.g. `s3d render --views`).

@@ -5,6 +5,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "s3d/stereo/reprojection.h"
+
 namespace s3d::stereo {
 namespace {
 
@@ -26,10 +28,10 @@ void requireFrame(const EyeFrame& frame, const char* which) {
 
 bool flagged(const std::vector<std::uint8_t>& mask, std::size_t i) { return !mask.empty() && mask[i] != 0; }
 
-}  // namespace
-
-FlickerStats temporalFlicker(const EyeFrame& current, const EyeFrame& previous, const gpu::EyeMotion& motion,
-                             const std::vector<std::uint8_t>& halo, const std::vector<std::uint8_t>& disocclusion) {
+// The metric with `reproject(i, pixel, inverseDepth)` giving where pixel i's surface was in the previous frame.
+template <typename Reproject>
+FlickerStats flicker(const EyeFrame& current, const EyeFrame& previous, const std::vector<std::uint8_t>& halo,
+                     const std::vector<std::uint8_t>& disocclusion, Reproject reproject) {
   requireFrame(current, "current");
   requireFrame(previous, "previous");
   requireSameSize(*current.reference, *previous.reference, "temporal flicker (current vs previous frame)");
@@ -55,8 +57,7 @@ FlickerStats temporalFlicker(const EyeFrame& current, const EyeFrame& previous, 
       if (!firstPerson) {
         const float inverseDepth = gpu::inverseDepthOf(*current.referenceDepth->at(x, y));
         was = inverseDepth < 0.0f ? gpu::vec3(0.0f, 0.0f, -1.0f)
-                                  : gpu::reprojectToPrevious(motion, {float(x) + 0.5f, float(y) + 0.5f}, inverseDepth,
-                                                             int(width), int(height));
+                                  : reproject(i, gpu::vec2(float(x) + 0.5f, float(y) + 0.5f), inverseDepth);
         if (was.z < 0.0f) {
           ++newlyVisible;
           continue;
@@ -88,6 +89,69 @@ FlickerStats temporalFlicker(const EyeFrame& current, const EyeFrame& previous, 
       if (flagged(disocclusion, i)) disocclusionSum.add(value);
     }
   return {all.region(), haloSum.region(), disocclusionSum.region(), newlyVisible};
+}
+
+void requireCameras(const ReferenceCameras& cameras, const EyeFrame& frame, const char* which) {
+  const std::size_t layers = cameras.view.size();
+  if (layers == 0 || cameras.projection.size() != layers || cameras.segments.size() != layers || layers > 256)
+    throw std::invalid_argument(std::string("temporal flicker: the ") + which +
+                                " frame's cameras need one view, projection and segment per layer (1..256)");
+  if (cameras.layerOfPixel.empty()) return;
+  if (frame.reference && cameras.layerOfPixel.size() != frame.reference->pixelCount())
+    throw std::invalid_argument(std::string("temporal flicker: the ") + which +
+                                " frame's layer per pixel does not match the image size");
+  for (std::uint8_t layer : cameras.layerOfPixel)
+    if (layer >= layers)
+      throw std::invalid_argument(std::string("temporal flicker: the ") + which + " frame names a layer it has no camera for");
+}
+
+// The layer whose segment holds inverse depth u, else the one whose segment lies nearest (as the per-layer
+// reference chooses for a depth no segment holds).
+std::size_t layerFor(const std::vector<DisparityMapSegment>& segments, double u) {
+  std::size_t best = 0;
+  double bestDistance = INFINITY;
+  for (std::size_t k = 0; k < segments.size(); ++k) {
+    const double distance = u < segments[k].inverseDepthBegin ? segments[k].inverseDepthBegin - u
+                            : u > segments[k].inverseDepthEnd ? u - segments[k].inverseDepthEnd
+                                                              : 0.0;
+    if (distance < bestDistance) best = k, bestDistance = distance;
+  }
+  return best;
+}
+
+}  // namespace
+
+FlickerStats temporalFlicker(const EyeFrame& current, const EyeFrame& previous, const gpu::EyeMotion& motion,
+                             const std::vector<std::uint8_t>& halo, const std::vector<std::uint8_t>& disocclusion) {
+  const int width = current.reference ? int(current.reference->width) : 0;
+  const int height = current.reference ? int(current.reference->height) : 0;
+  return flicker(current, previous, halo, disocclusion, [&](std::size_t, gpu::vec2 pixel, float inverseDepth) {
+    return gpu::reprojectToPrevious(motion, pixel, inverseDepth, width, height);
+  });
+}
+
+FlickerStats temporalFlicker(const EyeFrame& current, const EyeFrame& previous, const ReferenceCameras& currentCameras,
+                             const ReferenceCameras& previousCameras, const std::vector<std::uint8_t>& halo,
+                             const std::vector<std::uint8_t>& disocclusion) {
+  requireCameras(currentCameras, current, "current");
+  requireCameras(previousCameras, previous, "previous");
+  const std::size_t previousLayers = previousCameras.view.size();
+  std::vector<gpu::EyeMotion> motions;  // [current layer * previousLayers + previous layer]
+  for (std::size_t k = 0; k < currentCameras.view.size(); ++k)
+    for (std::size_t j = 0; j < previousLayers; ++j)
+      motions.push_back(eyeMotion(currentCameras.view[k], currentCameras.projection[k], previousCameras.view[j],
+                                  previousCameras.projection[j]));
+  const int width = current.reference ? int(current.reference->width) : 0;
+  const int height = current.reference ? int(current.reference->height) : 0;
+  return flicker(current, previous, halo, disocclusion, [&](std::size_t i, gpu::vec2 pixel, float inverseDepth) {
+    const std::size_t k = currentCameras.layerOfPixel.empty() ? 0 : currentCameras.layerOfPixel[i];
+    const gpu::EyeMotion* fromLayer = &motions[k * previousLayers];
+    gpu::vec3 was = gpu::reprojectToPrevious(fromLayer[0], pixel, inverseDepth, width, height);
+    if (previousLayers == 1 || was.z < 0.0f) return was;
+    // The previous inverse depth is the same under every previous layer's camera; its segment picks the camera.
+    const std::size_t j = layerFor(previousCameras.segments, double(was.z));
+    return j == 0 ? was : gpu::reprojectToPrevious(fromLayer[j], pixel, inverseDepth, width, height);
+  });
 }
 
 }  // namespace s3d::stereo

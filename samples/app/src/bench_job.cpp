@@ -20,6 +20,7 @@
 #include "s3d/io/image_io.h"
 #include "s3d/renderer/scene.h"
 #include "s3d/stereo/depth_range_pass.h"
+#include "s3d/stereo/disparity_map_pass.h"
 #include "s3d/stereo/guard_band.h"
 #include "s3d/stereo/forward.h"
 #include "s3d/stereo/iterative.h"
@@ -312,6 +313,16 @@ void runSweep(vk::Context& context, const BenchOptions& options, const Validated
         reductionRuns.push_back(*ms);
     const std::optional<double> depthReductionGpuMs = stereo::medianMs(reductionRuns);
     const DepthImage centerDepth = deferred.readLinearDepth();
+    // The nonlinear depth-to-parallax mapping of that frame (in place: each separation renders the center again).
+    const stereo::DisparityMapPass mapping(context);
+    const gpu::DisparityMapConstants map =
+        stereo::nonlinearDisparityMap(stereo::reduceDepthRangeReference(centerDepth), options.stereo.zeroParallaxDistance);
+    std::vector<double> mappingRuns;
+    for (int run = 0; run <= options.repeat; ++run)
+      if (const std::optional<double> ms = stereo::mapDepthTimed(context, mapping, deferred.linearDepth(), map);
+          ms && run > 0)
+        mappingRuns.push_back(*ms);
+    const std::optional<double> disparityMapGpuMs = stereo::medianMs(mappingRuns);
 
     for (std::size_t s = 0; s < bench.separations.size(); ++s) {
       stereo::StereoParameters parameters = options.stereo;
@@ -357,6 +368,7 @@ void runSweep(vk::Context& context, const BenchOptions& options, const Validated
         row.stereoGpuMsRuns = synthesis.gpuMsRuns;
         row.centerFrameGpuMs = centerFrameGpuMs;
         row.depthReductionGpuMs = depthReductionGpuMs;
+        row.disparityMapGpuMs = disparityMapGpuMs;
         row.referenceEyeGpuMs = eyes.leftEyeGpuMs;
         row.left = compareEye(synthesis.eyes.left, eyes.leftColor, row.cropColumns, halo, unseenLeft);
         row.right = compareEye(synthesis.eyes.right, eyes.rightColor, row.cropColumns, halo, unseenRight);
@@ -555,7 +567,8 @@ std::string sweepMarkdown(const BenchReport& report) {
     for (const BenchRow& row : report.rows)
       if (row.scene == scene && !first) first = &row;
     md << "\n#### " << scene << " (center frame " << msText(first->centerFrameGpuMs) << " ms, depth reduction "
-       << msText(first->depthReductionGpuMs) << " ms)\n\n";
+       << msText(first->depthReductionGpuMs) << " ms, nonlinear depth mapping " << msText(first->disparityMapGpuMs)
+       << " ms)\n\n";
     md << "| method | setting | sep % | stereo ms | stereo / center | stereo / eye |";
     for (const ErrorRegion& region : kErrorRegions) md << ' ' << region.heading << " |";
     for (const ErrorMeasure& measure : kErrorMeasures) md << ' ' << measure.heading << " |";
@@ -708,6 +721,7 @@ nlohmann::json rowJson(const BenchRow& row) {
             {"stereoPassRuns", row.stereoGpuMsRuns},
             {"centerFrame", optionalMs(row.centerFrameGpuMs)},
             {"depthReduction", optionalMs(row.depthReductionGpuMs)},
+            {"disparityMapping", optionalMs(row.disparityMapGpuMs)},
             {"referenceEye", optionalMs(row.referenceEyeGpuMs)}}},
           {"ratios",
            {{"stereoPassToCenterFrame", optionalMs(ratio(row.stereoGpuMs, row.centerFrameGpuMs))},

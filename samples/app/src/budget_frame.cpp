@@ -14,22 +14,49 @@ BudgetFrame applyDisparityBudget(vk::Context& context, const stereo::DepthRangeP
   frame.rule = comfort::DisparityBudgetRule::OneDegree;
   frame.budget = controller->budget();
   frame.imageWidth = linearDepth.width;
+  frame.spanFraction = frame.budget.uncrossedFraction +
+                       (controller->allowsNegativeParallax() ? frame.budget.crossedFraction : 0.0);
   const stereo::TimedDepthRange reduced = stereo::reduceDepthRangeTimed(context, pass, linearDepth);
   frame.depth = reduced.range;
   frame.reductionGpuMs = reduced.gpuMs;
-  if (!frame.depth.hasFinite() && frame.depth.skyPixels == 0) return frame;  // nothing valid: keep the parameters
   comfort::BudgetFrameInput input;
-  input.nearest = frame.depth.hasFinite() ? frame.depth.nearest : std::numeric_limits<float>::infinity();
-  input.farthest = frame.depth.farthestShown();
   input.crosshairDepth = hints.crosshairDepth;
   input.weaponNearestPushed = hints.weaponNearestPushed;
   input.anticipatedNearest = hints.anticipatedNearest;
-  input.histogram = &frame.depth.bins;
   input.cut = hints.cut;
-  frame.choice = controller->update(input, seconds);
+  input.receding = hints.receding;
+  // The library's per-frame call, as a host makes it (comfort::frameComfortState's budget).
+  const std::optional<comfort::BudgetChoice> choice = controller->update(frame.depth, input, seconds);
+  if (!choice) return frame;  // nothing valid: keep the parameters
+  frame.choice = *choice;
   parameters.maxSeparation = frame.choice.parameters.maxSeparation;
   parameters.zeroParallaxDistance = frame.choice.parameters.zeroParallaxDistance;
   return frame;
+}
+
+DisparityMapReport FrameDisparityMapper::apply(vk::Context& context, const vk::Image& linearDepth,
+                                               const stereo::StereoParameters& parameters) const {
+  DisparityMapReport report;
+  report.mapping = parameters.disparityMapping;
+  if (parameters.disparityMapping == stereo::DisparityMapping::Linear) return report;
+  const stereo::DepthRange range = stereo::reduceDepthRangeTimed(context, reduction_, linearDepth).range;
+  report.map = stereo::nonlinearDisparityMap(range, parameters.zeroParallaxDistance);
+  report.gpuMs = stereo::mapDepthTimed(context, pass_, linearDepth, report.map);
+  report.referenceLayers = std::uint32_t(stereo::disparityMapSegments(report.map).size());
+  return report;
+}
+
+nlohmann::json disparityMapJson(const DisparityMapReport& report) {
+  nlohmann::json knots = nlohmann::json::array();
+  for (int i = 0; i < report.map.knotCount; ++i) {
+    auto depthOf = [](float inverse) { return inverse > 0.0f ? finiteOrNull(tidy(1.0f / inverse)) : nlohmann::json(); };
+    knots.push_back({{"depth", depthOf(report.map.inverseDepth[i])}, {"mappedDepth", depthOf(report.map.mapped[i])}});
+  }
+  return {{"mapping", stereo::disparityMappingName(report.mapping)},
+          {"knots", knots},
+          {"gpuMs", optionalMs(report.gpuMs)},
+          {"referenceLayers", report.referenceLayers},
+          {"unresolvedPixels", {{"left", report.unresolvedPixels[0]}, {"right", report.unresolvedPixels[1]}}}};
 }
 
 std::optional<float> weaponNearestPushed(const stereo::StereoParameters& parameters,
@@ -57,6 +84,8 @@ nlohmann::json budgetJson(const BudgetFrame& frame, const comfort::FrameComfort&
           {"target", parameters(frame.choice.target)},
           {"usedShare", finiteOrNull(frame.choice.usedShare)},
           {"shareOutside", finiteOrNull(shareOutside)},
+          {"bulkShare", finiteOrNull((comfort.parallax.p95ParallaxPx - comfort.parallax.p05ParallaxPx) /
+                                     (frame.spanFraction * double(width)))},
           {"cut", frame.choice.cut},
           {"forced", frame.choice.forced},
           {"depth", {{"nearest", frame.depth.hasFinite() ? finiteOrNull(frame.depth.nearest) : nlohmann::json()},

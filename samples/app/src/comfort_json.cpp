@@ -11,17 +11,14 @@ nlohmann::json comfortJson(const comfort::FrameComfort& comfort) {
           {"disparityArcmin", {{"min", finiteOrNull(p.minDisparityArcmin)}, {"max", finiteOrNull(p.maxDisparityArcmin)}}},
           {"shareBeyondOneDegree", finiteOrNull(p.shareBeyondOneDegree)},
           {"shareInFrontOfScreen", finiteOrNull(p.shareNegative)},
-          {"shareOutsideComfortZone", finiteOrNull(comfort.shareOutsideComfortZone)},
           {"windowViolations", {{"pixels", comfort.windowViolationPixels}, {"columns", comfort.windowViolationColumns}}}};
 }
 
 nlohmann::json displayJson(const comfort::DisplayProfile& display) {
-  const comfort::ComfortZone zone = comfort::shibataComfortZone(display);
   nlohmann::json json{{"name", display.name},
                       {"screenWidthMeters", tidy(display.screenWidthMeters)},
                       {"viewingDistanceMeters", tidy(display.viewingDistanceMeters)},
-                      {"interocularMeters", tidy(display.interocularMeters)},
-                      {"comfortZoneMeters", {{"near", finiteOrNull(zone.nearMeters)}, {"far", finiteOrNull(zone.farMeters)}}}};
+                      {"interocularMeters", tidy(display.interocularMeters)}};
   if (display.fieldOfViewDegrees > 0.0f) json["fieldOfViewDegrees"] = tidy(display.fieldOfViewDegrees);
   return json;
 }

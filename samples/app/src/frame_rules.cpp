@@ -66,7 +66,8 @@ HudFrame drawHud(const HudFrameInput& input, stereo::StereoPair& eyes, ImageRGBA
   // Depth (not in front of the screen plane unless allowed) and fade behind the weapon: the library's rule.
   const comfort::WeaponMaskStats weapon = weaponStats(input.weaponDepths);
   auto state = [&](const std::string& name, float depth) {
-    return comfort::hudElementState(name, depth, parameters, weapon, width, input.allowNegativeParallax);
+    return comfort::hudElementState(name, depth, parameters, weapon, width, input.allowNegativeParallax,
+                                    input.disparityMap);
   };
   HudFrame hud;
   const comfort::HudElementState crosshair = state("crosshair", input.crosshairDepth);

@@ -144,27 +144,6 @@ nlohmann::json hybridJson(const HybridReport& hybrid) {
 
 }  // namespace
 
-// The two-pass reference's view of one eye: both layers get their own off-axis camera, because the
-// first-person layer has its own projection and so its own eye offset (e = 2 m zpp / P00).
-renderer::ViewMatrices referenceEyeView(const renderer::Scene& scene, const renderer::ViewMatrices& center,
-                                       stereo::Eye eye, const stereo::StereoParameters& parameters) {
-  const float m = parameters.maxSeparation;
-  const float zpp = parameters.zeroParallaxDistance;
-  const stereo::EyeCamera world = stereo::offAxisEyeCamera(center.worldView, center.worldProjection, eye, m, zpp);
-  // The weapon's depth is pushed for the stereo pass, so its reference eyes follow the pushed parallax.
-  const glm::vec2 weaponDepths = renderer::firstPersonDepthRange(scene).value_or(glm::vec2(1.0f));
-  const stereo::EyeCamera firstPerson = stereo::offAxisEyeCamera(
-      center.firstPersonView, center.firstPersonProjection, eye,
-      stereo::pushedLayerTerms(center.firstPersonProjection[0][0], m, zpp, parameters.weaponDepthOffset,
-                               parameters.weaponDepthScale, weaponDepths.x, weaponDepths.y));
-  renderer::ViewMatrices view = center;  // worldFromCamera stays: lighting places first-person objects alike
-  view.worldView = world.view;
-  view.worldProjection = world.projection;
-  view.firstPersonView = firstPerson.view;
-  view.firstPersonProjection = firstPerson.projection;
-  return view;
-}
-
 void validateRenderJobOptions(const RenderJobOptions& options) { (void)validateJob(options); }
 
 MemoryEstimate renderJobMemoryEstimate(const RenderJobOptions& options) {
@@ -268,6 +247,11 @@ RenderReport runRenderJob(vk::Context& context, const RenderJobOptions& options)
       readCenter();
     }
   }
+  // Nonlinear depth-to-parallax mapping: the final center view's curve, applied to the stereo pass's depth on the
+  // GPU and, by the same shared function, to the C++ copy the references and the comfort report read.
+  report.disparityMap = FrameDisparityMapper(context).apply(context, deferred->linearDepth(), parameters);
+  const gpu::DisparityMapConstants& map = report.disparityMap.map;
+  const DepthImage stereoDepth = stereo::mappedDepthImage(renderedDepth, map);
   if (band.capped)
     report.warnings.push_back("guard band capped at " + std::to_string(band.columns) + " columns per side (" +
                               std::to_string(band.neededColumns) +
@@ -290,7 +274,7 @@ RenderReport runRenderJob(vk::Context& context, const RenderJobOptions& options)
 
   // 3. Both eyes synthesized on the GPU from the renderer's own images.
   // The same gather on the linear HDR center view, by the C++ reference of the method (hdr_gather.h).
-  stereo::HdrStereoPair renderedEyesHdr = stereo::synthesizeHdrReference(renderedHdr, renderedDepth, renderedParameters);
+  stereo::HdrStereoPair renderedEyesHdr = stereo::synthesizeHdrReference(renderedHdr, stereoDepth, renderedParameters);
   stereo::StereoPair renderedEyes;
   if (parameters.method == stereo::StereoMethod::Hybrid) {
     // The pixels the displacement gets wrong rendered from the eye cameras (HDR eyes: the same pixels).
@@ -315,40 +299,46 @@ RenderReport runRenderJob(vk::Context& context, const RenderJobOptions& options)
   }
   const stereo::StereoPair synthesized{output(renderedEyes.left), output(renderedEyes.right)};
   const stereo::HdrStereoPair synthesizedHdr{output(renderedEyesHdr.left), output(renderedEyesHdr.right)};
-  const DepthImage centerDepth = output(renderedDepth);
+  const DepthImage centerDepth = output(renderedDepth);             // the scene's depth (rays, HUD, center.exr)
+  const DepthImage centerStereoDepth = output(stereoDepth);        // what the stereo pass read (parallax)
   const ImageRGBA32F centerHdr = output(renderedHdr);
 
   // 4. The two-pass reference: each eye rendered with its off-axis camera (on the rendered frame, cropped
-  // to the output: the same rays as an output-size eye, tests/test_guard_band.cpp).
-  const renderer::FrameTimings leftTimings =
-      deferred->render(referenceEyeView(job.scene, center, stereo::Eye::Left, renderedParameters));
-  const ImageRGBA8 leftReference = output(deferred->readDisplayColor());
-  const DepthImage leftReferenceDepth = output(deferred->readLinearDepth());
-  const ImageRGBA32F leftReferenceHdr = output(deferred->readHdrColor());
-  const std::vector<std::uint8_t> leftTransparent = outputMask(deferred->readTransparentMask());
-  (void)deferred->render(referenceEyeView(job.scene, center, stereo::Eye::Right, renderedParameters));
-  const ImageRGBA8 rightReference = output(deferred->readDisplayColor());
-  const DepthImage rightReferenceDepth = output(deferred->readLinearDepth());
-  const ImageRGBA32F rightReferenceHdr = output(deferred->readHdrColor());
-  const std::vector<std::uint8_t> rightTransparent = outputMask(deferred->readTransparentMask());
-  report.referenceEyeGpuMs = leftTimings.totalGpuMs;
+  // to the output: the same rays as an output-size eye, tests/test_guard_band.cpp); a nonlinear map takes one
+  // rendering per segment of its curve (layered_reference.h).
+  const ReferenceEye leftEye =
+      renderReferenceEye(*deferred, job.scene, center, stereo::Eye::Left, renderedParameters, map);
+  const ImageRGBA8 leftReference = output(leftEye.display);
+  const DepthImage leftReferenceDepth = output(stereo::mappedDepthImage(leftEye.depth, map));
+  const ImageRGBA32F leftReferenceHdr = output(leftEye.hdr);
+  const std::vector<std::uint8_t> leftTransparent = outputMask(leftEye.transparent);
+  const ReferenceEye rightEye =
+      renderReferenceEye(*deferred, job.scene, center, stereo::Eye::Right, renderedParameters, map);
+  const ImageRGBA8 rightReference = output(rightEye.display);
+  const DepthImage rightReferenceDepth = output(stereo::mappedDepthImage(rightEye.depth, map));
+  const ImageRGBA32F rightReferenceHdr = output(rightEye.hdr);
+  const std::vector<std::uint8_t> rightTransparent = outputMask(rightEye.transparent);
+  report.referenceEyeGpuMs = leftEye.firstLayerGpuMs;
+  report.disparityMap.referenceLayers = leftEye.layers;
+  report.disparityMap.unresolvedPixels = {leftEye.unresolvedPixels, rightEye.unresolvedPixels};
 
   // 5. Synthesized vs reference over the full frame with a guard band, else without the cropped strips.
   // (region masks and comparison: eye_comparison.h, shared with s3d bench)
-  const std::vector<std::uint8_t> halo = haloMaskFor(centerDepth, parameters);
+  const std::vector<std::uint8_t> halo = haloMaskFor(centerStereoDepth, parameters);
   for (auto [eyeError, eye, reference, referenceDepth, side, eyeHdr, referenceHdr, transparent] :
        {std::tuple{&report.left, &synthesized.left, &leftReference, &leftReferenceDepth, stereo::Eye::Left,
                    &synthesizedHdr.left, &leftReferenceHdr, &leftTransparent},
         std::tuple{&report.right, &synthesized.right, &rightReference, &rightReferenceDepth, stereo::Eye::Right,
                    &synthesizedHdr.right, &rightReferenceHdr, &rightTransparent}}) {
-    const stereo::RegionMasks masks{halo, disocclusionMaskFor(*referenceDepth, centerDepth, parameters, side), *transparent};
+    const stereo::RegionMasks masks{halo, disocclusionMaskFor(*referenceDepth, centerStereoDepth, parameters, side),
+                                    *transparent};
     *eyeError = compareEye(*eye, *reference, report.cropColumns, masks, eyeHdr, referenceHdr);
   }
 
   // Comfort report: the parallax the stereo pass gave every pixel, as angles on the chosen display, and
   // weapon pixels whose pushed depth lies behind the world surface there (Embree rays).
   report.display = options.display;
-  report.comfort = comfort::frameComfort(centerDepth, parameters, report.display);
+  report.comfort = comfort::frameComfort(centerStereoDepth, parameters, report.display);
   report.weaponConflictPixels =
       comfort::countWeaponConflicts(world, job.scene.camera, outputCenter, centerDepth, firstPersonMask).conflictPixels;
 
@@ -362,9 +352,10 @@ RenderReport runRenderJob(vk::Context& context, const RenderJobOptions& options)
   stereo::StereoPair eyesHud = synthesized;
   stereo::StereoPair referenceHud{leftReference, rightReference};
   HudFrame overlay = drawHud({parameters, placement.depth, weaponDepths, options.allowNegativeParallax, &centerDepth,
-                              &firstPersonMask, resolveHudMode(options.hud, options.scene) == HudMode::Game},
+                              &firstPersonMask, resolveHudMode(options.hud, options.scene) == HudMode::Game, map},
                              eyesHud, &centerHud, &referenceHud);
-  const float rightOffset = hud::crosshairEyeOffsetPx(parameters, overlay.crosshairDepth, width, stereo::Eye::Right);
+  const float rightOffset = hud::crosshairEyeOffsetPx(parameters, gpu::mappedDepth(map, overlay.crosshairDepth), width,
+                                                      stereo::Eye::Right);
   report.crosshair = {overlay.crosshairDepth, placement.hitWorld, rightOffset};
   report.hud = std::move(overlay.elements);
   report.hudConflictPixels = overlay.conflictPixels;
@@ -442,6 +433,7 @@ nlohmann::json toJson(const RenderReport& report) {
             {"depthReduction", optionalMs(report.budget.reductionGpuMs)}}},
           {"disparityBudget", budgetJson(report.budget, report.comfort)},
           {"hybrid", report.hybrid ? hybridJson(*report.hybrid) : nlohmann::json()},
+          {"disparityMapping", disparityMapJson(report.disparityMap)},
           {"centerPasses", passes},
           {"ratios", {{"stereoPassToReferenceEye", ratio}}},
           {"error", {{"left", errorJson(report.left)}, {"right", errorJson(report.right)}}},

@@ -103,6 +103,7 @@ SequenceReport runSequenceJob(vk::Context& context, const SequenceJobOptions& op
     budgetControl.emplace(comfort::disparityBudget(options.display), options.allowNegativeParallax);
     reduction.emplace(context);
   }
+  const FrameDisparityMapper mapper(context);
   glm::vec3 previousPosition(0.0f);
 
   // Guard band (no edge crop given): the center view is rendered wider by the largest displacement the eyes can
@@ -141,7 +142,7 @@ SequenceReport runSequenceJob(vk::Context& context, const SequenceJobOptions& op
     stereo::StereoPair synthesized, reference;
     std::array<DepthImage, 2> referenceDepth;
     std::array<std::vector<std::uint8_t>, 2> firstPerson;
-    std::array<glm::mat4, 2> view, projection;  // the output-size eye cameras (the metric's)
+    std::array<stereo::ReferenceCameras, 2> cameras;  // the output-size eye cameras per layer (the metric's)
     std::array<glm::mat4, 2> renderedView, renderedProjection;  // on the rendered frame (the previous-frame fill's)
     std::uint32_t crop = 0;
   };
@@ -216,6 +217,10 @@ SequenceReport runSequenceJob(vk::Context& context, const SequenceJobOptions& op
         renderer::Camera ahead = scene.camera;
         ahead.position += (scene.camera.position - previousPosition) * (options.anticipateSeconds * options.framesPerSecond);
         hints.anticipatedNearest = comfort::nearestSurfaceAhead(world, ahead, settings, 8.0f);
+        // Receding: the same rays reach farther from there than from here (a trend in the depth range, which
+        // the controller follows without its hold).
+        const float here = comfort::nearestSurfaceAhead(world, scene.camera, settings, 8.0f).value_or(INFINITY);
+        hints.receding = hints.anticipatedNearest.value_or(INFINITY) > here;
       }
       frame.budget = applyDisparityBudget(context, *reduction, &*budgetControl, deferred->linearDepth(), hints, seconds,
                                           parameters);
@@ -239,7 +244,11 @@ SequenceReport runSequenceJob(vk::Context& context, const SequenceJobOptions& op
     const DepthImage pushed = output(renderedDepth);
     // The crosshair not in front of the screen plane either (the plane is never beyond the aimed-at surface).
     if (!options.allowNegativeParallax) frame.crosshairDepth = std::max(frame.crosshairDepth, frame.zeroParallaxDistance);
-    frame.comfort = comfort::frameComfort(pushed, parameters, options.display);
+    // Nonlinear mapping: the frame's curve applied to the stereo pass's depth (GPU) and to the C++ copy alike.
+    frame.disparityMap = mapper.apply(context, deferred->linearDepth(), parameters);
+    const gpu::DisparityMapConstants& map = frame.disparityMap.map;
+    const DepthImage stereoDepth = stereo::mappedDepthImage(pushed, map);
+    frame.comfort = comfort::frameComfort(stereoDepth, parameters, options.display);
     // The output-size center view's matrices: per-pixel rays over the output's depth, and the eye cameras the
     // flicker metric moves along.
     const renderer::ViewMatrices outputCenter = renderer::centerViewMatrices(
@@ -280,20 +289,33 @@ SequenceReport runSequenceJob(vk::Context& context, const SequenceJobOptions& op
 
     current.synthesized = {output(eyes.eyes.left), output(eyes.eyes.right)};
     current.crop = crop;
+    // The two-pass reference, one rendering per segment of a nonlinear map (layered_reference.h); its depth as
+    // rendered (the flicker metric's reprojection) and mapped (the disocclusion mask, as the stereo pass's).
+    std::array<DepthImage, 2> mappedReferenceDepth;
+    const std::vector<stereo::DisparityMapSegment> segments = stereo::disparityMapSegments(map);
     for (stereo::Eye eye : {stereo::Eye::Left, stereo::Eye::Right}) {
       const std::size_t e = eye == stereo::Eye::Left ? 0 : 1;
-      deferred->render(referenceEyeView(scene, center, eye, renderedParameters));
-      (e == 0 ? current.reference.left : current.reference.right) = output(deferred->readDisplayColor());
-      current.referenceDepth[e] = output(deferred->readLinearDepth());
-      current.firstPerson[e] = outputMask(deferred->readFirstPersonMask());
-      const renderer::ViewMatrices eyeView = referenceEyeView(scene, outputCenter, eye, parameters);
-      current.view[e] = eyeView.worldView;
-      current.projection[e] = eyeView.worldProjection;
+      ReferenceEye reference = renderReferenceEye(*deferred, scene, center, eye, renderedParameters, map);
+      (e == 0 ? current.reference.left : current.reference.right) = output(reference.display);
+      current.referenceDepth[e] = output(reference.depth);
+      mappedReferenceDepth[e] = stereo::mappedDepthImage(current.referenceDepth[e], map);
+      current.firstPerson[e] = outputMask(reference.firstPerson);
+      if (e == 0) frame.disparityMap.referenceLayers = reference.layers;
+      frame.disparityMap.unresolvedPixels[e] = reference.unresolvedPixels;
+      // The metric's cameras: each layer's, on the output-size frame.
+      stereo::ReferenceCameras& cameras = current.cameras[e];
+      cameras.segments = segments;
+      for (const stereo::DisparityMapSegment& segment : segments) {
+        const renderer::ViewMatrices eyeView = referenceEyeView(scene, outputCenter, eye, parameters, segment);
+        cameras.view.push_back(eyeView.worldView);
+        cameras.projection.push_back(eyeView.worldProjection);
+      }
+      if (segments.size() > 1) cameras.layerOfPixel = outputMask(reference.layerOfPixel);
     }
     frame.psnrLeftDb = stereo::compareDisplayImages(current.synthesized.left, current.reference.left, crop).psnrDb;
     frame.psnrRightDb = stereo::compareDisplayImages(current.synthesized.right, current.reference.right, crop).psnrDb;
     if (previous) {
-      const std::vector<std::uint8_t> halo = haloMaskFor(pushed, parameters);
+      const std::vector<std::uint8_t> halo = haloMaskFor(stereoDepth, parameters);
       std::array<stereo::FlickerStats, 2> flicker;
       for (stereo::Eye eye : {stereo::Eye::Left, stereo::Eye::Right}) {
         const std::size_t e = eye == stereo::Eye::Left ? 0 : 1;
@@ -302,10 +324,9 @@ SequenceReport runSequenceJob(vk::Context& context, const SequenceJobOptions& op
                                   e == 0 ? &f.reference.left : &f.reference.right, &f.referenceDepth[e],
                                   f.firstPerson[e], f.crop};
         };
-        flicker[e] = stereo::temporalFlicker(
-            eyeFrame(current), eyeFrame(*previous),
-            stereo::eyeMotion(current.view[e], current.projection[e], previous->view[e], previous->projection[e]), halo,
-            disocclusionMaskFor(current.referenceDepth[e], pushed, parameters, eye));
+        flicker[e] = stereo::temporalFlicker(eyeFrame(current), eyeFrame(*previous), current.cameras[e],
+                                             previous->cameras[e], halo,
+                                             disocclusionMaskFor(mappedReferenceDepth[e], stereoDepth, parameters, eye));
       }
       frame.flicker = flicker;
     }
@@ -347,6 +368,7 @@ nlohmann::json toJson(const SequenceReport& report) {
                       {"guardBandColumns", frame.guardBandColumns},
                       {"stereoPassGpuMs", optionalMs(frame.stereoPassGpuMs)},
                       {"disparityBudget", budgetJson(frame.budget, frame.comfort)},
+                      {"disparityMapping", disparityMapJson(frame.disparityMap)},
                       {"flicker", frame.flicker ? flickerJson(*frame.flicker) : nlohmann::json()}});
   return {{"device", report.deviceName}, {"scene", report.scene}, {"frames", frames},
           {"flicker", flickerJson(meanFlicker(report))}, {"files", report.filesWritten}};

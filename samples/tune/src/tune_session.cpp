@@ -37,6 +37,7 @@ struct TuneSession::Loaded {
   std::unique_ptr<stereo::DepthRangePass> reduction;
   std::unique_ptr<comfort::DisparityBudgetController> budget;
   nlohmann::json budgetKey;  // the display and rule the controller was made for
+  std::unique_ptr<app::FrameDisparityMapper> mapper;
 };
 
 TuneSession::TuneSession(vk::Context& context, std::uint32_t width, std::uint32_t height)
@@ -164,6 +165,13 @@ TuneFrame TuneSession::renderFrame(TuneState& state, const FrameInput& input, fl
   } else {
     loaded.budget.reset();
   }
+  // The depth-to-parallax mapping, as `s3d render` applies it: the views and comfort numbers read the mapped depth,
+  // the weapon and HUD conflicts the scene's.
+  if (!loaded.mapper) loaded.mapper = std::make_unique<app::FrameDisparityMapper>(context_);
+  numbers.disparityMap = loaded.mapper->apply(context_, deferred.linearDepth(), parameters);
+  const gpu::DisparityMapConstants& map = numbers.disparityMap.map;
+  const DepthImage sceneDepth = images.stereoDepth;
+  stereo::mapDepthReference(images.stereoDepth, map);
   numbers.maxSeparation = parameters.maxSeparation;
   numbers.zeroParallaxDistance = parameters.zeroParallaxDistance;
   numbers.weaponDepthOffset = parameters.weaponDepthOffset;
@@ -193,10 +201,12 @@ TuneFrame TuneSession::renderFrame(TuneState& state, const FrameInput& input, fl
     double referenceMs = 0.0;
     bool timed = true;
     for (auto [eye, image] : {std::pair{stereo::Eye::Left, &reference.left}, std::pair{stereo::Eye::Right, &reference.right}}) {
-      const renderer::FrameTimings eyeTimings = deferred.render(app::referenceEyeView(scene, center, eye, parameters));
-      if (eyeTimings.totalGpuMs) referenceMs += *eyeTimings.totalGpuMs;
+      app::ReferenceEye rendered = app::renderReferenceEye(deferred, scene, center, eye, parameters, map);
+      if (rendered.firstLayerGpuMs) referenceMs += *rendered.firstLayerGpuMs;
       else timed = false;
-      *image = deferred.readDisplayColor();
+      *image = std::move(rendered.display);
+      numbers.disparityMap.referenceLayers = rendered.layers;
+      numbers.disparityMap.unresolvedPixels[eye == stereo::Eye::Left ? 0 : 1] = rendered.unresolvedPixels;
     }
     if (timed) numbers.referenceEyesGpuMs = referenceMs;
     if (images.cropColumns * 2 < width_) {
@@ -212,7 +222,7 @@ TuneFrame TuneSession::renderFrame(TuneState& state, const FrameInput& input, fl
   const std::vector<std::uint8_t> beyond = comfortViolationMask(images.stereoDepth, parameters, images.display);
   numbers.shareBeyondComfort = double(std::count(beyond.begin(), beyond.end(), std::uint8_t(1))) / double(beyond.size());
   numbers.weaponConflictPixels =
-      comfort::countWeaponConflicts(*loaded.world, scene.camera, center, images.stereoDepth, firstPersonMask).conflictPixels;
+      comfort::countWeaponConflicts(*loaded.world, scene.camera, center, sceneDepth, firstPersonMask).conflictPixels;
 
   // HUD: the crosshair, placed by an Embree ray cast along the aim (seed 4.6.2), and the panels, drawn into
   // each eye at its depth's parallax with the weapon-mask fade, by the same code as `s3d render` (drawHud).
@@ -222,8 +232,8 @@ TuneFrame TuneSession::renderFrame(TuneState& state, const FrameInput& input, fl
   images.eyesWithHud = images.eyes;
   if (images.reference) images.referenceWithHud = images.reference;
   const app::HudFrame overlay =
-      app::drawHud({parameters, placement.depth, weaponDepths, allowNegativeParallax, &images.stereoDepth, &firstPersonMask,
-                    app::resolveHudMode(state.hud, state.scene) == app::HudMode::Game},
+      app::drawHud({parameters, placement.depth, weaponDepths, allowNegativeParallax, &sceneDepth, &firstPersonMask,
+                    app::resolveHudMode(state.hud, state.scene) == app::HudMode::Game, map},
                    *images.eyesWithHud, nullptr, images.referenceWithHud ? &*images.referenceWithHud : nullptr);
   numbers.crosshairDepth = overlay.crosshairDepth;
   numbers.crosshairHitWorld = placement.hitWorld;

@@ -65,7 +65,8 @@ const std::vector<std::string>& parameterNames() {
       "taps",              "iterations",           "weaponDepthOffset",  "weaponDepthScale",
       "zppControl",        "zppEngageDistance",    "zppReleaseMargin",   "zppMinimumDistance",
       "zppResponseSeconds", "zppMaxChangePerSecond", "crosshairDistance", "crosshairMargin", "display",
-      "allowNegativeParallax", "hybridBudget", "hybridBase"};
+      "allowNegativeParallax", "hybridBudget", "hybridBase",
+      "disparityMapping"};
   return names;
 }
 
@@ -103,6 +104,13 @@ void assignParameter(TuneSettings& settings, const std::string& name, const std:
   else if (name == "crosshairDistance") next.crosshair.distance = number();
   else if (name == "crosshairMargin") next.crosshair.margin = number();
   else if (name == "allowNegativeParallax") next.allowNegativeParallax = parseSwitchOf(name, value);
+  else if (name == "disparityMapping") {
+    try {
+      next.stereo.disparityMapping = stereo::parseDisparityMapping(value);
+    } catch (const std::invalid_argument& error) {
+      throw std::invalid_argument("disparityMapping: " + std::string(error.what()));
+    }
+  }
   else if (name == "display") {
     try {
       next.display = comfort::resolveDisplayProfile(value);

@@ -77,13 +77,12 @@ ImageRGBA8 composeView(ViewMode mode, const FrameImages& frame) {
     case ViewMode::ComfortOverlay: {
       ImageRGBA8 image = stereo::makeAnaglyphDubois(eyes.left, eyes.right);
       const std::vector<std::uint8_t> beyond = comfortViolationMask(frame.stereoDepth, frame.parameters, frame.display);
-      std::vector<std::uint8_t> violations;  // comfort::kWindowViolation and kOutsideComfortZone flags
+      std::vector<std::uint8_t> violations;  // comfort::kWindowViolation flags
       (void)comfort::frameComfort(frame.stereoDepth, frame.parameters, frame.display, &violations);
       for (std::size_t i = 0; i < image.pixelCount(); ++i) {
-        const std::array<int, 3>* color = violations[i] & comfort::kWindowViolation      ? &kWindowViolationColor
-                                          : violations[i] & comfort::kOutsideComfortZone ? &kOutsideComfortZoneColor
-                                          : beyond[i]                                    ? &kBeyondLimitColor
-                                                                                         : nullptr;
+        const std::array<int, 3>* color = violations[i] & comfort::kWindowViolation ? &kWindowViolationColor
+                                          : beyond[i]                               ? &kBeyondLimitColor
+                                                                                    : nullptr;
         if (!color) continue;
         std::uint8_t* pixel = &image.pixels[i * 4];
         for (std::size_t c = 0; c < 3; ++c) pixel[c] = std::uint8_t((int(pixel[c]) + (*color)[c] + 1) / 2);

@@ -541,6 +541,9 @@ void drawPanel(TuneSession& session, TuneState& state, const FrameNumbers& numbe
     }
     if (s.method == stereo::StereoMethod::Search) ImGui::SliderInt("taps", &s.searchTaps, 1, S3D_STEREO_MAX_TAPS);
     if (s.method == stereo::StereoMethod::Iterative) ImGui::SliderInt("iterations", &s.iterations, 1, 16);
+    std::string mapping = stereo::disparityMappingName(s.disparityMapping);
+    if (comboOfNames("disparity mapping", mapping, {"linear", "nonlinear"}))
+      s.disparityMapping = stereo::parseDisparityMapping(mapping);
   }
   if (ImGui::CollapsingHeader("Comfort", ImGuiTreeNodeFlags_DefaultOpen)) {
     ImGui::SliderFloat("weapon offset", &s.weaponDepthOffset, 0.0f, 5.0f, "%.2f m");
@@ -603,7 +606,6 @@ void drawPanel(TuneSession& session, TuneState& state, const FrameNumbers& numbe
                 p.maxParallaxPercent);
     ImGui::Text("disparity %.1f .. %.1f arcmin", p.minDisparityArcmin, p.maxDisparityArcmin);
     ImGui::Text("beyond 1 deg %.1f %%, in front %.1f %%", 100.0 * numbers.shareBeyondComfort, 100.0 * p.shareNegative);
-    ImGui::Text("outside comfort zone %.1f %%", 100.0 * numbers.comfort.shareOutsideComfortZone);
     ImGui::Text("window violations %llu px (widest %u columns)",
                 (unsigned long long)numbers.comfort.windowViolationPixels, numbers.comfort.windowViolationColumns);
     ImGui::Text("conflicts: weapon %llu px, HUD %llu px", (unsigned long long)numbers.weaponConflictPixels,
@@ -622,6 +624,19 @@ void drawPanel(TuneSession& session, TuneState& state, const FrameNumbers& numbe
       ImGui::Text("budget choice: separation %.2f %% (target %.2f %%), zero parallax %.2f m (target %.2f m)",
                   100.0 * b.choice.parameters.maxSeparation, 100.0 * b.choice.target.maxSeparation,
                   b.choice.parameters.zeroParallaxDistance, b.choice.target.zeroParallaxDistance);
+    }
+    if (numbers.disparityMap.mapping == stereo::DisparityMapping::Nonlinear) {
+      const gpu::DisparityMapConstants& m = numbers.disparityMap.map;
+      std::string knots;
+      for (int i = 0; i < m.knotCount; ++i) {
+        char text[48];
+        auto depth = [](float inverse) { return inverse > 0.0f ? 1.0f / inverse : INFINITY; };
+        std::snprintf(text, sizeof(text), "%s%.2f>%.2f", i ? ", " : "", depth(m.inverseDepth[i]), depth(m.mapped[i]));
+        knots += text;
+      }
+      ImGui::TextWrapped("nonlinear mapping (depth > as shown, m): %s; 5-95 %% of pixels span %.1f px",
+                         knots.empty() ? "identity" : knots.c_str(),
+                         numbers.comfort.parallax.p95ParallaxPx - numbers.comfort.parallax.p05ParallaxPx);
     }
     ImGui::Text("weapon push %.2f + %.2f d, crosshair %.2f m%s", numbers.weaponDepthOffset, numbers.weaponDepthScale,
                 numbers.crosshairDepth, numbers.crosshairHitWorld ? " (hit)" : "");

@@ -17,6 +17,7 @@
 #include "s3d/comfort/disparity_budget_controller.h"
 #include "s3d/comfort/display_profile.h"
 #include "s3d/image.h"
+#include "s3d/stereo/disparity_map_shared.h"
 #include "s3d/stereo/stereo.h"
 
 namespace s3d::comfort {
@@ -76,6 +77,9 @@ struct FrameComfortInput {
   const DisplayProfile* display = nullptr;
   std::vector<HudElementDepth> hud;
   bool allowNegativeParallax = false;  // off: nothing is shown in front of the screen plane
+  // The curve a nonlinear depth-to-parallax mapping applied to the stereo pass's depth (stereo::DisparityMapPass
+  // on the host's linear depth): the crosshair and HUD get the parallax of their mapped depth. Identity: linear.
+  gpu::DisparityMapConstants disparityMap{};
   // With it, maxSeparation and the zero-parallax distance are the controller's choice (its negative-parallax
   // setting must equal allowNegativeParallax); without it, the host's.
   std::optional<FrameBudget> budget;
@@ -110,9 +114,11 @@ stereo::StereoParameters weaponPushForFrame(stereo::StereoParameters parameters,
                                             bool allowNegativeParallax);
 // Without negative parallax allowed, the zero-parallax distance lowered to `nearest` when that is nearer.
 bool holdZeroParallax(stereo::StereoParameters& parameters, std::optional<float> nearest, bool allowNegativeParallax);
-// One HUD element at `depth` for the frame's final parameters.
+// One HUD element at `depth` for the frame's final parameters, at the parallax of its depth mapped by the
+// frame's depth-to-parallax curve (stereo/disparity_map.h; the identity by default), as the scene around it.
 HudElementState hudElementState(const std::string& name, float depth, const stereo::StereoParameters& parameters,
-                                const WeaponMaskStats& weapon, std::uint32_t width, bool allowNegativeParallax);
+                                const WeaponMaskStats& weapon, std::uint32_t width, bool allowNegativeParallax,
+                                const gpu::DisparityMapConstants& disparityMap = {});
 // The crosshair along the aim (the seed's ray cast): `margin` in front of a hit within defaultDistance, never
 // nearer than max(nearPlane, kMinCrosshairDepth); defaultDistance without a hit.
 struct CrosshairPlacement;

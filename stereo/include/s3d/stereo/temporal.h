@@ -4,7 +4,10 @@
 #include <cstdint>
 #include <vector>
 
+#include <glm/glm.hpp>
+
 #include "s3d/image.h"
+#include "s3d/stereo/disparity_map.h"
 #include "s3d/stereo/reprojection_shared.h"
 
 namespace s3d::stereo {
@@ -43,5 +46,23 @@ struct FlickerStats {
 // Throws std::invalid_argument for images of different sizes or a mask of the wrong size.
 FlickerStats temporalFlicker(const EyeFrame& current, const EyeFrame& previous, const gpu::EyeMotion& motion,
                              const std::vector<std::uint8_t>& halo, const std::vector<std::uint8_t>& disocclusion);
+
+// The eye cameras a reference eye was rendered with: one pair of off-axis cameras (the linear mapping), or one
+// per segment of a nonlinear map (the per-layer reference: each segment's cameras are exact for its depths) with
+// per pixel the layer whose rendering it shows.
+struct ReferenceCameras {
+  std::vector<glm::mat4> view, projection;       // per layer (at least one)
+  std::vector<DisparityMapSegment> segments;     // per layer (disparityMapSegments of the frame's map)
+  std::vector<std::uint8_t> layerOfPixel;        // per pixel; empty: every pixel layer 0
+};
+
+// The same metric for references rendered in layers: a pixel's surface moves from the camera of the layer that
+// rendered it to the previous frame's camera of the layer whose segment holds the surface's previous inverse
+// depth (all layers of a frame share the view's depth axis, so that depth is the same in each). With one layer
+// per frame it is temporalFlicker with eyeMotion of the two cameras. Throws std::invalid_argument as above, and
+// for cameras without a layer, lists of different lengths, or a layer index or mask size that does not match.
+FlickerStats temporalFlicker(const EyeFrame& current, const EyeFrame& previous, const ReferenceCameras& currentCameras,
+                             const ReferenceCameras& previousCameras, const std::vector<std::uint8_t>& halo,
+                             const std::vector<std::uint8_t>& disocclusion);
 
 }  // namespace s3d::stereo

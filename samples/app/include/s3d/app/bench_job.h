@@ -98,6 +98,7 @@ struct BenchRow {
   std::vector<double> stereoGpuMsRuns;
   std::optional<double> centerFrameGpuMs;  // the scene's center frame (median)
   std::optional<double> depthReductionGpuMs;  // the disparity budget's depth reduction of that frame (median)
+  std::optional<double> disparityMapGpuMs;    // the nonlinear mapping of that frame's depth in place (median)
   std::optional<double> referenceEyeGpuMs;  // the left reference eye at this separation (median)
   EyeError left{};
   EyeError right{};

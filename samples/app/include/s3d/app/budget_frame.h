@@ -1,6 +1,7 @@
 #pragma once
 // The disparity budget in the jobs (render, sequence, tune, convert): the GPU depth reduction of the frame,
 // the controller's choice applied to the stereo parameters, and its report.json section.
+#include <array>
 #include <cstdint>
 #include <optional>
 
@@ -9,6 +10,8 @@
 #include "s3d/comfort/comfort_report.h"
 #include "s3d/comfort/disparity_budget_controller.h"
 #include "s3d/stereo/depth_range_pass.h"
+#include "s3d/stereo/disparity_map.h"
+#include "s3d/stereo/disparity_map_pass.h"
 #include "s3d/stereo/stereo.h"
 
 namespace s3d::app {
@@ -21,7 +24,35 @@ struct BudgetFrame {
   comfort::BudgetChoice choice;  // parameters, target, used share, cut, forced
   std::optional<double> reductionGpuMs;
   std::uint32_t imageWidth = 0;  // for the budget in pixels
+  double spanFraction = 0.0;     // the budget's usable span (uncrossed, plus crossed with pop-out allowed)
 };
+
+// The frame's depth-to-parallax mapping as applied (stereo/disparity_map.h) and what its reference took.
+struct DisparityMapReport {
+  stereo::DisparityMapping mapping = stereo::DisparityMapping::Linear;
+  gpu::DisparityMapConstants map = stereo::identityDisparityMap();
+  std::optional<double> gpuMs;                     // the mapping dispatch (nonlinear only)
+  std::uint32_t referenceLayers = 1;               // renders per reference eye (layered_reference.h)
+  std::array<std::uint64_t, 2> unresolvedPixels{};  // left, right: no layer qualified
+};
+
+// The passes the mapping needs, made once per job.
+class FrameDisparityMapper {
+ public:
+  explicit FrameDisparityMapper(const vk::Context& context) : reduction_(context), pass_(context) {}
+  // Nonlinear: the frame's curve from a GPU reduction of `linearDepth` (vk::kComputeWrite state, left so) and
+  // the zero-parallax distance, applied to it in place on the GPU; linear: nothing recorded, the identity.
+  DisparityMapReport apply(vk::Context& context, const vk::Image& linearDepth,
+                           const stereo::StereoParameters& parameters) const;
+
+ private:
+  stereo::DepthRangePass reduction_;
+  stereo::DisparityMapPass pass_;
+};
+
+// report.json "disparityMapping": {"mapping", "knots": [{"depth", "mappedDepth"}] (depths as linear depth,
+// +inf as null), "gpuMs", "referenceLayers", "unresolvedPixels": {"left", "right"}}.
+nlohmann::json disparityMapJson(const DisparityMapReport& report);
 
 // What the controller needs besides the depth image.
 struct BudgetFrameHints {
@@ -29,6 +60,7 @@ struct BudgetFrameHints {
   std::optional<float> weaponNearestPushed;
   std::optional<float> anticipatedNearest;
   bool cut = false;
+  bool receding = false;  // comfort::BudgetFrameInput::receding
 };
 
 // With the rule on: reduces `linearDepth` (GPU, vk::kComputeWrite state, left so), lets `controller` choose
@@ -43,7 +75,10 @@ std::optional<float> weaponNearestPushed(const stereo::StereoParameters& paramet
 
 // report.json "disparityBudget": {"rule", "limitArcmin", "budgetPx": {"crossed", "uncrossed"}, "chosen":
 // {"maxSeparation", "zeroParallaxDistance"}, "target": {...}, "usedShare", "shareOutside" (pixels beyond the
-// rule, from the comfort report), "cut", "forced", "depth": {"nearest", "farthest", "p01", "p50", "p99"},
+// rule, from the comfort report), "bulkShare" (the span of the 5th to 95th percentile of the parallax of the
+// pixels with finite depth over the budget's usable span, from the comfort report: the depth impression the
+// bulk of the scene keeps),
+// "cut", "forced", "depth": {"nearest", "farthest", "p01", "p50", "p99"},
 // "reductionGpuMs"}; just {"rule": "off", "shareOutside"} when off.
 nlohmann::json budgetJson(const BudgetFrame& frame, const comfort::FrameComfort& comfort);
 

@@ -8,11 +8,10 @@
 namespace s3d::app {
 
 // {"parallaxPx": {"min", "max"}, "parallaxPercent": {...}, "disparityArcmin": {...}, "shareBeyondOneDegree",
-//  "shareInFrontOfScreen", "shareOutsideComfortZone", "windowViolations": {"pixels", "columns"}}
+//  "shareInFrontOfScreen", "windowViolations": {"pixels", "columns"}}
 nlohmann::json comfortJson(const comfort::FrameComfort& comfort);
 
-// {"name", "screenWidthMeters", "viewingDistanceMeters", "interocularMeters", "fieldOfViewDegrees" (HMD only),
-//  "comfortZoneMeters": {"near", "far" (null: beyond infinity)}}
+// {"name", "screenWidthMeters", "viewingDistanceMeters", "interocularMeters", "fieldOfViewDegrees" (HMD only)}
 nlohmann::json displayJson(const comfort::DisplayProfile& display);
 
 }  // namespace s3d::app

@@ -11,6 +11,7 @@
 #include <glm/glm.hpp>
 
 #include "s3d/image.h"
+#include "s3d/stereo/disparity_map_shared.h"
 #include "s3d/stereo/stereo.h"
 
 namespace s3d::app {
@@ -58,6 +59,9 @@ struct HudFrameInput {
   const DepthImage* stereoDepth = nullptr;                   // the center view's linear depth (weapon pushed)
   const std::vector<std::uint8_t>* firstPersonMask = nullptr;  // the renderer's weapon mask of the center view
   bool draw = true;  // false (HudMode::None): no element is drawn or reported, the images are only made opaque
+  // The frame's depth-to-parallax curve (stereo/disparity_map.h): elements are shown at the parallax of their
+  // mapped depth, as the scene around them.
+  gpu::DisparityMapConstants disparityMap{};
 };
 
 struct HudFrame {

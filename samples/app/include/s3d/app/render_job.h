@@ -17,6 +17,7 @@
 #include "s3d/app/budget_frame.h"
 #include "s3d/app/hybrid_stereo.h"
 #include "s3d/app/memory_budget.h"
+#include "s3d/app/layered_reference.h"
 #include "s3d/comfort/comfort_profile.h"
 #include "s3d/comfort/comfort_report.h"
 #include "s3d/comfort/display_profile.h"
@@ -104,6 +105,7 @@ struct RenderReport {
   std::optional<double> stereoPassGpuMs;    // the stereo compute dispatch producing both eyes
   std::optional<double> referenceEyeGpuMs;  // whole deferred frame of the left reference eye
   BudgetFrame budget;                       // the disparity budget's reduction and choice (rule off: empty)
+  DisparityMapReport disparityMap;          // the depth-to-parallax curve (identity: linear)
   std::vector<renderer::PassTiming> centerPasses;
   EyeError left{};
   EyeError right{};
@@ -124,11 +126,6 @@ struct RenderReport {
   std::vector<std::string> filesWritten;  // file names relative to the output folder, in write order
   MemoryEstimate memory;                  // what the run was estimated to need before it started
 };
-
-// The two-pass reference's view of one eye: both layers get their own off-axis camera (the first-person
-// layer has its own projection, and follows the pushed weapon depth).
-renderer::ViewMatrices referenceEyeView(const renderer::Scene& scene, const renderer::ViewMatrices& center,
-                                        stereo::Eye eye, const stereo::StereoParameters& parameters);
 
 // Throws std::invalid_argument naming the problem: zero or absurd size (> kMaxImageSize), unknown scene,
 // unknown output name, invalid stereo parameters, a crop that leaves no columns to compare, a packing the size
@@ -158,8 +155,8 @@ RenderReport runRenderJob(vk::Context& context, const RenderJobOptions& options)
 //             "right": {...}},
 //   "sanitized": {"colorValues", "depthPixels"},                  (non-finite input replaced, see RenderReport)
 //   "warnings": [...],
-//   "comfort": {comfortJson (comfort_json.h): parallax range in px / % / arcmin, shares beyond 1 degree, in front
-//               of the screen and outside the Shibata zone, windowViolations; "display" (with its comfort zone),
+//   "comfort": {comfortJson (comfort_json.h): parallax range in px / % / arcmin, shares beyond 1 degree and in
+//               front of the screen, windowViolations; "display",
 //               "zeroParallaxDistance", "zeroParallaxLimited", "crosshairDepth", "weaponConflictPixels", "hudConflictPixels"},
 //   "crosshair": {"depth", "hitWorld", "parallaxPx"},              (the HUD crosshair, see CrosshairReport)
 //   "hud": [{"name", "depth", "behindWeapon", "drawnPixels": {"left", "right"}, "fadedPixels": {...}, "conflictPixels"}],

@@ -58,13 +58,14 @@ struct SequenceFrame {
   std::optional<float> aimSurface;      // depth of the surface the aim ray hits within the crosshair distance
   bool zeroParallaxLimited = false;     // the no-negative-parallax rule cut the controller's value this frame
   float nearestDepth = 0.0f;            // nearest finite depth of the stereo pass's input (weapon pushed)
-  comfort::FrameComfort comfort;        // parallax range, comfort-zone shares, window violations
+  comfort::FrameComfort comfort;        // parallax range, share beyond the 1-degree rule, window violations
   float weaponDepthOffset = 0.0f;       // the push, shrunk with the zero-parallax distance
   float weaponDepthScale = 0.0f;
   std::uint64_t weaponPixels = 0;
   std::uint64_t weaponConflictPixels = 0;  // weapon pixels whose pushed depth lies behind the world surface there
   double psnrLeftDb = 0.0, psnrRightDb = 0.0;  // synthesized vs two-pass reference
   BudgetFrame budget;                           // the disparity budget's reduction and choice (off: empty)
+  DisparityMapReport disparityMap;              // the depth-to-parallax curve (identity: linear)
   float maxSeparation = 0.0f;                   // as the stereo pass used it
   std::uint32_t cropColumns = 0;                // per side, blacked out and not compared (0 with a guard band)
   std::uint32_t guardBandColumns = 0;           // per side, rendered beyond the output (0 with an edge crop)

@@ -30,8 +30,8 @@ struct FrameNumbers {
   std::optional<double> stereoPassGpuMs;     // the stereo dispatch producing both eyes
   std::optional<double> referenceEyesGpuMs;  // both two-pass reference eyes (when rendered)
   std::optional<stereo::ErrorStats> errorLeft, errorRight;  // synthesized vs reference (when rendered)
-  // On the display profile, as `s3d render`'s comfort report: parallax range, share outside Shibata et al.'s
-  // zone of comfort, stereo window violations (comfort_report.h).
+  // On the display profile, as `s3d render`'s comfort report: parallax range, share beyond the 1-degree rule,
+  // stereo window violations (comfort_report.h).
   comfort::FrameComfort comfort;
   double shareBeyondComfort = 0.0;           // pixels beyond kComfortLimitArcmin
   std::uint64_t weaponConflictPixels = 0;    // weapon pixels pushed behind the world surface there
@@ -45,6 +45,7 @@ struct FrameNumbers {
   std::uint64_t sanitizedDepthPixels = 0;  // NaN / non-positive depths read as the zero-parallax plane
   std::optional<std::string> warning;      // e.g. the zero-parallax distance clamped into the camera's range
   app::BudgetFrame budget;                 // the disparity budget's reduction and choice (rule off: empty)
+  app::DisparityMapReport disparityMap;    // the depth-to-parallax curve (identity: linear)
   float maxSeparation = 0.0f;              // as used
 };
 

@@ -38,10 +38,9 @@ std::vector<std::uint8_t> comfortViolationMask(const DepthImage& stereoDepth, co
                                                double limitArcmin = kComfortLimitArcmin);
 
 // The comfort overlay's marks (the rules of `s3d render`'s comfort report), each mixing the anaglyph half-way
-// to its colour; a pixel breaking several rules takes the first: a stereo window violation, outside Shibata et
-// al.'s zone of comfort (comfort::frameComfort), beyond 1 degree of disparity (kComfortLimitArcmin).
+// to its colour; a pixel breaking both rules takes the first: a stereo window violation (comfort::frameComfort),
+// beyond 1 degree of disparity (kComfortLimitArcmin).
 inline constexpr std::array<int, 3> kWindowViolationColor{255, 0, 255};
-inline constexpr std::array<int, 3> kOutsideComfortZoneColor{255, 110, 0};
 inline constexpr std::array<int, 3> kBeyondLimitColor{255, 220, 0};
 
 // The image the view area shows. Throws std::invalid_argument for a reference view without reference eyes.
