@@ -9,6 +9,8 @@
 
 #include "s3d/stereo/disparity_map.h"
 #include "s3d/stereo/disparity_map_pass.h"
+#include "s3d/stereo/stereo_pass.h"
+#include "stereo_test_views.h"
 #include "vulkan_test.h"
 
 namespace s3d::stereo {
@@ -172,6 +174,25 @@ TEST_F(DisparityMapGpu, MatchesTheReferencePixelByPixel) {
     differing += !(std::abs(g - e) <= 1e-6f * e);
   }
   EXPECT_EQ(differing, 0);
+}
+
+TEST_F(DisparityMapGpu, TheStereoPassOnTheMappedDepthMatchesTheReferenceOnIt) {
+  // The whole GPU path (map, then the search method) against the C++ one (mapDepthReference, then the C++
+  // reference of the pass): the curve reaches every pixel's parallax alike. Tolerance 1 level of 8 bits, as the
+  // stereo pass's own test (the filter's fused multiply-add and the unorm store).
+  const test::SyntheticView view = test::makeBlockView(96, 24, 5, 0.8f, 8, 6, true);
+  StereoParameters parameters{0.05f, 0.8f, -1.0f};
+  parameters.method = StereoMethod::Search;
+  const gpu::DisparityMapConstants map = nonlinearDisparityMap(reduceDepthRangeReference(view.depth), 0.8f);
+  ASSERT_GE(map.knotCount, 3);
+  const gpu::StereoConstants c = makeStereoConstants(parameters, 96, 24);
+  const StereoPair expected = synthesizeStereoReference(view.color, mappedDepthImage(view.depth, map), c);
+  const StereoPair actual = synthesizeStereoOnGpu(context(), view.color, mapDepthOnGpu(context(), view.depth, map), c);
+  EXPECT_LE(test::largestChannelDifference(actual.left, expected.left), 1);
+  EXPECT_LE(test::largestChannelDifference(actual.right, expected.right), 1);
+  // ... and the map changed the eyes: the curve is not the identity on this frame.
+  const StereoPair linear = synthesizeStereoReference(view.color, view.depth, c);
+  EXPECT_GT(test::largestChannelDifference(linear.left, expected.left), 1);
 }
 
 }  // namespace

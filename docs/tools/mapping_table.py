@@ -7,6 +7,8 @@ impression most of the image keeps), the error against the reference (linear: th
 the per-layer reference) and the per-layer reference's unresolved pixels.
 
 usage: docs/tools/mapping_table.py S3D_BINARY OUT_FOLDER [--resolution 256x144] [--scenes a,b] [--displays a,b]
+                                   [--linear-from BUDGET_OUT_FOLDER]
+--linear-from takes the linear runs from budget_table.py's 1deg folders (the same command) instead of rendering them.
 """
 import json, subprocess, sys
 from pathlib import Path
@@ -15,7 +17,9 @@ SCENES = ["courtyard", "glass", "fence", "cover", "depth-range"]
 DISPLAYS = ["tv55", "monitor27", "hmd"]
 
 
-def run(binary, out, scene, display, mapping, resolution):
+def run(binary, out, scene, display, mapping, resolution, linear_from=None):
+    if mapping == "linear" and linear_from:
+        return json.loads((Path(linear_from) / f"{scene}_{display}_1deg" / "report.json").read_text())["frames"]
     folder = Path(out) / f"{scene}_{display}_{mapping}"
     subprocess.run([binary, "render", "--sequence", "--scene", scene, "--display", display, "--disparity-budget", "1deg",
                     "--disparity-mapping", mapping, "--resolution", resolution, "--output", str(folder)], check=True,
@@ -33,12 +37,13 @@ def main():
     resolution = option("--resolution", "256x144")
     scenes = option("--scenes", ",".join(SCENES)).split(",")
     displays = option("--displays", ",".join(DISPLAYS)).split(",")
+    linear_from = option("--linear-from", None)
     print("| scene | display | beyond 1 deg max, linear / nonlinear | used share mean, linear / nonlinear "
           "| bulk share mean, linear / nonlinear | PSNR mean dB, linear / nonlinear | unresolved reference pixels |")
     print("|---|---|---|---|---|---|---|")
     for scene in scenes:
         for display in displays:
-            rows = {m: run(binary, out, scene, display, m, resolution) for m in ("linear", "nonlinear")}
+            rows = {m: run(binary, out, scene, display, m, resolution, linear_from) for m in ("nonlinear", "linear")}
             beyond = {m: max(f["comfort"]["shareBeyondOneDegree"] for f in rows[m]) for m in rows}
             used = {m: mean([f["disparityBudget"]["usedShare"] for f in rows[m]]) for m in rows}
             bulk = {m: mean([f["disparityBudget"]["bulkShare"] for f in rows[m]]) for m in rows}
