@@ -30,7 +30,7 @@ TEST(FrameComfort, CountsPixelsBeyondTheOneDegreeRule) {
   EXPECT_DOUBLE_EQ(comfort.parallax.shareBeyondOneDegree, 0.5);
 }
 
-TEST(EyeViewComfort, ConflictAndZoneOfAHeadsetsEyeByHand) {
+TEST(EyeViewComfort, ConflictAndOneDegreeShareOfAHeadsetsEyeByHand) {
   // The hmd profile focuses at 1.3 m; world scale 2 (2 world units per metre). Pixels: on the focal plane (2.6
   // units), at 0.3 m (0.6 units), the sky, and one of unknown depth (left out).
   const DisplayProfile hmd = builtInDisplayProfile("hmd");
@@ -48,16 +48,25 @@ TEST(EyeViewComfort, ConflictAndZoneOfAHeadsetsEyeByHand) {
   EXPECT_NEAR(comfort.maxConflictDiopters, 1.0 / 0.3 - focal, 1e-5);
   EXPECT_NEAR(comfort.meanConflictDiopters, (1.0 / 0.3 - focal + focal) / 3.0, 1e-5);
   EXPECT_NEAR(comfort.nearestMeters, 0.3, 1e-6);
-  // The zone at 1.3 m (Shibata's fit): near 1 / ((1/1.3 + 0.626) / 1.035) = 0.74 m, far 1 / ((1/1.3 - 0.442) / 1.129)
-  // = 3.45 m: the 0.3 m pixel and the sky lie outside it.
-  const ComfortZone zone = shibataComfortZone(hmd);
-  ASSERT_GT(zone.nearMeters, 0.3);
-  ASSERT_LT(zone.farMeters, 1000.0);
-  EXPECT_NEAR(comfort.shareOutsideComfortZone, 2.0 / 3.0, 1e-12);
   // Vergence beyond 1 degree from the focal plane's (63 mm eyes): 0.3 m yes (10.6 degrees against 2.8), the sky
   // (2.8 degrees off) too.
   EXPECT_NEAR(comfort.shareBeyondOneDegree, 2.0 / 3.0, 1e-12);
   EXPECT_THROW((void)eyeViewComfort(depth, 0.0, 0.063, hmd), std::invalid_argument);
+}
+
+TEST(EyeViewComfort, TheOneDegreeRuleHoldsOnBothSidesOfTheFocalPlane) {
+  // Focal plane at 1.3 m, 63 mm eyes (vergence 2.776 degrees): the rule's limits lie at 0.956 m and 2.033 m. Just
+  // inside them (0.97 m: 0.94 degrees off, 2.0 m: 0.97) and just beyond (0.94 m: 1.06, 2.07 m: 1.03); world
+  // scale 1.
+  const DisplayProfile hmd = builtInDisplayProfile("hmd");
+  DepthImage depth(5, 1);
+  depth.pixels = {1.3f, 0.97f, 2.0f, 0.94f, 2.07f};
+  const EyeViewComfort comfort = eyeViewComfort(depth, 1.0, 0.063, hmd);
+  EXPECT_EQ(comfort.pixelCount, 5u);
+  EXPECT_NEAR(comfort.shareBeyondOneDegree, 2.0 / 5.0, 1e-12);
+  // Wider eyes turn the same depths' vergence further from the focal plane's: at 80 mm all four off-focal pixels
+  // are beyond (1.20-1.35 degrees off).
+  EXPECT_NEAR(eyeViewComfort(depth, 1.0, 0.080, hmd).shareBeyondOneDegree, 4.0 / 5.0, 1e-12);
 }
 
 TEST(FrameComfort, WindowViolationsAreNegativeParallaxRunsTouchingTheLeftOrRightEdge) {

@@ -53,5 +53,24 @@ TEST_F(ViewsJob, BothEyesOfATvAndAHeadsetPairAreCloseToTheirDirectRenders) {
   }
 }
 
+TEST_F(ViewsJob, ReportsEachEyesShareBeyondTheOneDegreeRuleAgainstTheFocalPlane) {
+  // The headset pair on the hmd profile (focal plane 1.3 m): the default scene's sky verges 2.8 degrees from the
+  // focal plane's, so each eye has pixels beyond the rule, and the report carries that share per eye.
+  ViewsJobOptions options;
+  options.views = smallViews(true);
+  options.writeImages = false;
+  const ViewsReport report = runViewsJob(context(), options);
+  const nlohmann::json document = toJson(report);
+  for (int e = 0; e < 2; ++e) {
+    const comfort::EyeViewComfort& comfort = report.comfort[std::size_t(e)];
+    EXPECT_GT(comfort.shareBeyondOneDegree, 0.0);
+    EXPECT_LT(comfort.shareBeyondOneDegree, 1.0);
+    const nlohmann::json& eye = document["comfort"][e == 0 ? "left" : "right"];
+    EXPECT_DOUBLE_EQ(eye["shareBeyondOneDegree"].get<double>(), comfort.shareBeyondOneDegree);
+    EXPECT_FALSE(eye.contains("shareOutsideComfortZone"));  // no zone of comfort in s3d
+    EXPECT_GT(eye["maxConflictDiopters"].get<double>(), 0.0);
+  }
+}
+
 }  // namespace
 }  // namespace s3d::app

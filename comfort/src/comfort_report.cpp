@@ -109,7 +109,6 @@ EyeViewComfort eyeViewComfort(const DepthImage& eyeDepth, double worldScale, dou
     throw std::invalid_argument("eye view comfort: world scale and eye separation must be positive");
   validate(display);
   const double focalDiopters = 1.0 / double(display.viewingDistanceMeters);
-  const ComfortZone zone = shibataComfortZone(display);
   // Vergence angle (radians) of a point at `diopters` for eyes `interocularMeters` apart.
   auto vergence = [&](double diopters) { return 2.0 * std::atan(0.5 * interocularMeters * diopters); };
   const double focalVergence = vergence(focalDiopters);
@@ -117,7 +116,7 @@ EyeViewComfort eyeViewComfort(const DepthImage& eyeDepth, double worldScale, dou
   if (conflictDiopters) conflictDiopters->assign(eyeDepth.pixelCount(), std::numeric_limits<float>::quiet_NaN());
   std::vector<double> conflicts;
   conflicts.reserve(eyeDepth.pixelCount());
-  std::uint64_t outside = 0, beyondOneDegree = 0;
+  std::uint64_t beyondOneDegree = 0;
   double nearest = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < eyeDepth.pixelCount(); ++i) {
     const double depth = eyeDepth.pixels[i];
@@ -127,7 +126,6 @@ EyeViewComfort eyeViewComfort(const DepthImage& eyeDepth, double worldScale, dou
     const double conflict = std::abs(diopters - focalDiopters);
     conflicts.push_back(conflict);
     if (conflictDiopters) (*conflictDiopters)[i] = float(conflict);
-    if (meters < zone.nearMeters || meters > zone.farMeters) ++outside;
     if (std::abs(vergence(diopters) - focalVergence) > kOneDegree) ++beyondOneDegree;
     nearest = std::min(nearest, meters);
   }
@@ -140,7 +138,6 @@ EyeViewComfort eyeViewComfort(const DepthImage& eyeDepth, double worldScale, dou
   std::sort(conflicts.begin(), conflicts.end());
   comfort.p95ConflictDiopters = conflicts[std::min(conflicts.size() - 1, std::size_t(0.95 * double(conflicts.size())))];
   comfort.maxConflictDiopters = conflicts.back();
-  comfort.shareOutsideComfortZone = double(outside) / double(conflicts.size());
   comfort.shareBeyondOneDegree = double(beyondOneDegree) / double(conflicts.size());
   comfort.nearestMeters = nearest;
   return comfort;

@@ -25,7 +25,7 @@ def row(scene, name, views, report):
     c = report["center"]
     return (f"| {scene} | {name} | {views['worldScale']:.4g} | {rng[0]:.1f} px / {rng[1]:.0f}' | "
             f"{c['width']}x{c['height']} | {psnr[0]:.2f} / {psnr[1]:.2f} | "
-            f"{100 * comfort['left']['shareOutsideComfortZone']:.1f} % / {100 * comfort['right']['shareOutsideComfortZone']:.1f} % | "
+            f"{100 * comfort['left']['shareBeyondOneDegree']:.1f} % / {100 * comfort['right']['shareBeyondOneDegree']:.1f} % | "
             f"{comfort['left']['meanConflictDiopters']:.2f} / {comfort['left']['maxConflictDiopters']:.2f} |")
 
 
@@ -34,7 +34,7 @@ def main():
     scenes = sys.argv[sys.argv.index("--scenes") + 1].split(",") if "--scenes" in sys.argv else ["courtyard", "fence"]
     out.mkdir(parents=True, exist_ok=True)
     print("| scene | views | world scale | disparity range (left eye) | center view | PSNR L / R (dB) | "
-          "outside the zone of comfort L / R (hmd, 1.3 m) | conflict mean / max (D) |")
+          "beyond the 1-degree rule L / R (hmd, 1.3 m) | conflict mean / max (D) |")
     print("|---|---|---|---|---|---|---|---|")
     for scene in scenes:
         tv_views = json.loads((SAMPLES / "tv-pair.json").read_text())

@@ -191,12 +191,12 @@ class RenderCommand final : public Command {
     const app::ViewsReport report = app::runViewsJob(context, viewsOptions);
     outputs.commit();
     std::printf("s3d render --views: scene %s, center view %ux%u on %s; synthesized vs reference: left %.2f dB, "
-                "right %.2f dB; outside the zone of comfort at %.2f m (%s): left %.1f %%, right %.1f %%; wrote %zu "
+                "right %.2f dB; beyond the 1-degree rule at %.2f m (%s): left %.1f %%, right %.1f %%; wrote %zu "
                 "files to %s\n",
                 report.scene.c_str(), report.center.width, report.center.height, report.deviceName.c_str(),
                 report.error[0].psnrDb, report.error[1].psnrDb, double(report.display.viewingDistanceMeters),
-                report.display.name.c_str(), 100.0 * report.comfort[0].shareOutsideComfortZone,
-                100.0 * report.comfort[1].shareOutsideComfortZone, report.filesWritten.size(),
+                report.display.name.c_str(), 100.0 * report.comfort[0].shareBeyondOneDegree,
+                100.0 * report.comfort[1].shareBeyondOneDegree, report.filesWritten.size(),
                 options_.outputFolder.string().c_str());
     return 0;
   }

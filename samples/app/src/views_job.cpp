@@ -154,7 +154,6 @@ nlohmann::json toJson(const ViewsReport& report) {
                           {"meanConflictDiopters", finiteOrNull(e.meanConflictDiopters)},
                           {"p95ConflictDiopters", finiteOrNull(e.p95ConflictDiopters)},
                           {"maxConflictDiopters", finiteOrNull(e.maxConflictDiopters)},
-                          {"shareOutsideComfortZone", finiteOrNull(e.shareOutsideComfortZone)},
                           {"shareBeyondOneDegree", finiteOrNull(e.shareBeyondOneDegree)},
                           {"nearestMeters", finiteOrNull(e.nearestMeters)}};
   };

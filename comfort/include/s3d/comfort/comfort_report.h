@@ -69,8 +69,9 @@ struct EyeViewComfort {
   double meanConflictDiopters = 0.0;   // vergence-accommodation conflict |1 / vergence - 1 / focal|
   double p95ConflictDiopters = 0.0;
   double maxConflictDiopters = 0.0;
-  double shareOutsideComfortZone = 0.0;  // vergence outside shibataComfortZone(display)
-  double shareBeyondOneDegree = 0.0;     // vergence angle beyond 60 arcminutes from the focal plane's
+  // The 1-degree rule of the flat-screen report with the focal plane as the screen: the vergence angle more than
+  // 60 arcminutes from the focal plane's.
+  double shareBeyondOneDegree = 0.0;
   double nearestMeters = 0.0;            // the nearest vergence distance shown
 };
 

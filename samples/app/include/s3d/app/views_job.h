@@ -40,7 +40,8 @@ struct ViewsReport {
   std::array<stereo::ErrorStats, 2> error{};  // left, right: synthesized vs reference over the whole eye
   comfort::DisplayProfile display;
   double interocularMeters = 0.0;  // the views' eye separation
-  // Left, right: vergence-accommodation conflict and zone of comfort of what each synthesized eye shows.
+  // Left, right: vergence-accommodation conflict and the share beyond the 1-degree rule (against the focal
+  // plane) of what each synthesized eye shows.
   std::array<comfort::EyeViewComfort, 2> comfort{};
   // Left, right: the range of disparity between the eyes over the depths the eye shows, in its pixels at the
   // image centre (eye separation in world units times (1 / nearest - 1 / farthest), over the eye's tangent pitch)
