@@ -34,6 +34,17 @@ DepthImage stepDepth() {
   return depth;
 }
 
+TEST(HybridParameters, RefuseTheNonlinearMapping) {
+  // The masked pixels are rendered from one pair of eye cameras; a nonlinear map's parallax needs one per segment.
+  StereoParameters p;
+  p.method = StereoMethod::Hybrid;
+  EXPECT_NO_THROW(validate(p));
+  p.disparityMapping = DisparityMapping::Nonlinear;
+  EXPECT_THROW(validate(p), std::invalid_argument);
+  p.method = p.hybridBase;  // the hybrid's base alone takes the mapped depth like any displacement
+  EXPECT_NO_THROW(validate(p));
+}
+
 TEST(HybridClassification, RanksTheDisoccludedPixelsOfADepthStepByTheirHoleAndFlatFarPixelsZero) {
   const gpu::HybridConstants c = makeHybridConstants(parametersFor(0.1f), 200, 2);
   const HybridClassification classes = classifyHybridReference(stepDepth(), c);

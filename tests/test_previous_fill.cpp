@@ -197,6 +197,16 @@ TEST(PreviousFrameFill, NeedsTheForwardMethod) {
   EXPECT_THROW(validate(p), std::invalid_argument);
 }
 
+TEST(PreviousFrameFill, RefusesTheNonlinearMapping) {
+  // The fill reprojects the previous eyes as views of one pair of eye cameras; a nonlinear map's eyes are not.
+  StereoParameters p = forwardParameters();
+  p.previousFrameFill = true;
+  p.disparityMapping = DisparityMapping::Nonlinear;
+  EXPECT_THROW(validate(p), std::invalid_argument);
+  p.previousFrameFill = false;
+  EXPECT_NO_THROW(validate(p));  // the forward method itself takes the mapped depth like any other
+}
+
 class PreviousFillPassTest : public test::VulkanTest {};
 
 TEST_F(PreviousFillPassTest, GpuMatchesTheCppReferenceOverTwoFrames) {

@@ -94,6 +94,21 @@ TEST(TuneParameters, AnInvalidValueNamesTheParameterAndChangesNothing) {
   EXPECT_EQ(settings.profile.display.name, "tv55");
 }
 
+TEST(TuneParameters, TheNonlinearMappingAndTheHybridMethodRefuseEachOtherInEitherOrder) {
+  // The hybrid method renders its masked pixels from one pair of eye cameras; a nonlinear map has one per segment.
+  TuneSettings settings;
+  setParameter(settings, "method", "hybrid");
+  const std::string mapping = errorOf([&] { setParameter(settings, "disparityMapping", "nonlinear"); });
+  EXPECT_EQ(mapping.rfind("disparityMapping = nonlinear: ", 0), 0u) << mapping;
+  EXPECT_NE(mapping.find("hybrid"), std::string::npos) << mapping;
+  EXPECT_EQ(settings.profile.stereo.disparityMapping, stereo::DisparityMapping::Linear);  // unchanged
+  setParameter(settings, "method", "search");
+  setParameter(settings, "disparityMapping", "nonlinear");
+  EXPECT_NE(errorOf([&] { setParameter(settings, "method", "hybrid"); }).find("disparityMapping nonlinear"),
+            std::string::npos);
+  EXPECT_EQ(settings.profile.stereo.method, stereo::StereoMethod::Search);
+}
+
 TEST(TuneProfiles, SaveAndLoadRoundTripTheComfortProfileAndKeepTheToolsSwitches) {
   TuneSettings settings;
   setParameter(settings, "maxSeparation", "0.035");

@@ -1,6 +1,7 @@
 #include "profile_options.h"
 
 #include <algorithm>
+#include <stdexcept>
 
 namespace s3d::cli {
 
@@ -63,8 +64,19 @@ comfort::ComfortProfile ProfileOptions::resolve(const CLI::App& command, const S
   if (given("--display")) profile.display = comfort::resolveDisplayProfile(display);
   if (given("--allow-negative-parallax")) profile.allowNegativeParallax = allowNegativeParallax;
   if (given("--disparity-mapping")) p.disparityMapping = stereo::parseDisparityMapping(disparityMapping);
+  if (p.disparityMapping == stereo::DisparityMapping::Nonlinear && p.method == stereo::StereoMethod::Hybrid)
+    throw std::invalid_argument(mappingSource(command) + " does not work with " +
+                                (given("--method") ? std::string("--method hybrid")
+                                                   : "the profile's method hybrid (" + load.string() + ")") +
+                                ": the hybrid method renders its masked pixels from one pair of eye cameras, and a "
+                                "nonlinear map has none (one per segment of its curve)");
   comfort::validate(profile);  // the overrides may combine into something the profile's rules refuse
   return profile;
+}
+
+std::string ProfileOptions::mappingSource(const CLI::App& command) const {
+  if (command.count("--disparity-mapping") > 0) return "--disparity-mapping " + disparityMapping;
+  return "the profile's disparityMapping nonlinear (" + load.string() + ")";
 }
 
 comfort::DisplayProfile ProfileOptions::resolveDisplay(const CLI::App& command) const {

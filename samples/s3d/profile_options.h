@@ -30,6 +30,8 @@ struct ProfileOptions {
   // The display alone, as resolve() would give it: --display, else the --profile's, else the default profile's
   // (for modes where the profile's stereo parameters do not apply, e.g. `s3d render --views`).
   comfort::DisplayProfile resolveDisplay(const CLI::App& command) const;
+  // Where a nonlinear mapping came from, for errors: "--disparity-mapping nonlinear" or the --profile file's key.
+  std::string mappingSource(const CLI::App& command) const;
   // --disparity-budget, where the command offers it (addDisparityBudgetOption).
   comfort::DisparityBudgetRule budgetRule() const { return comfort::parseDisparityBudgetRule(disparityBudget); }
 };

@@ -119,8 +119,8 @@ class RenderCommand final : public Command {
                   {"--sequence", "--previous-frame-fill", "--width", "--height", "--resolution", "--outputs", "--sbs",
                    "--tab", "--max-separation", "--zero-parallax-distance", "--edge-crop", "--method", "--taps",
                    "--iterations", "--hybrid-budget", "--hybrid-base", "--weapon-depth-offset", "--weapon-depth-scale",
-                   "--supersample", "--save-profile", "--allow-negative-parallax", "--disparity-budget", "--reversed-z",
-                   "--hud"},
+                   "--supersample", "--save-profile", "--allow-negative-parallax", "--disparity-budget",
+                   "--disparity-mapping", "--reversed-z", "--hud"},
                   std::string("does not apply to ") +
                       (displayViews ? "a display with eye views (each eye's size, projection and offset come from "
                                       "the display profile's eyeViews"
@@ -158,6 +158,11 @@ class RenderCommand final : public Command {
         rejectGiven(*subcommand, {"--previous-frame-fill"},
                     std::string("applies to --method forward (the method is ") +
                         stereo::methodName(options_.stereo.method) + ")");
+      if (options_.stereo.disparityMapping == stereo::DisparityMapping::Nonlinear)
+        rejectGiven(*subcommand, {"--previous-frame-fill"},
+                    "does not work with " + profile_.mappingSource(*subcommand) +
+                        " (the fill reprojects the previous eyes as views of one pair of eye cameras; a nonlinear "
+                        "map has one per segment of its curve)");
       options_.stereo.previousFrameFill = true;
     }
     return sequence_ ? runSequence() : runSingleFrame();

@@ -63,6 +63,15 @@ void validate(const StereoParameters& p) {
     throw std::invalid_argument("edgeCrop " + numberText(p.edgeCrop) + " is above " + numberText(kMaxSeparationLimit));
   if (p.previousFrameFill && p.method != StereoMethod::Forward)
     throw std::invalid_argument(std::string("previousFrameFill needs the forward method (got ") + methodName(p.method) + ")");
+  // A nonlinear map's eyes are no pair of camera views (one pair per segment of its curve): the hybrid method
+  // renders its masked pixels, and the previous-frame fill reprojects the previous eyes, with a single pair.
+  if (p.disparityMapping == DisparityMapping::Nonlinear && p.method == StereoMethod::Hybrid)
+    throw std::invalid_argument("disparityMapping nonlinear does not work with the hybrid method (it renders the "
+                                "masked pixels from one pair of eye cameras; a nonlinear map has none): use "
+                                "disparityMapping linear or another method");
+  if (p.disparityMapping == DisparityMapping::Nonlinear && p.previousFrameFill)
+    throw std::invalid_argument("disparityMapping nonlinear does not work with previousFrameFill (it reprojects the "
+                                "previous eyes as views of one pair of eye cameras; a nonlinear map has none)");
 }
 
 const char* methodName(StereoMethod method) {
