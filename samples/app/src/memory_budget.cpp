@@ -11,6 +11,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "s3d/stereo/disparity_map_shared.h"
+
 namespace s3d::app {
 namespace {
 
@@ -30,6 +32,11 @@ constexpr std::uint64_t kHybridHostBytesPerRenderedPixel = 2 + 32;
 // And once: the second renderer's pipelines and shadow atlases (lavapipe: 19-31 MB more peak resident memory
 // than the search method at 1280x720 and 320x180).
 constexpr std::uint64_t kHybridFixedBytes = 48ull << 20;
+// A nonlinear map's per-layer reference, per rendered pixel: each layer's display 4, depth 4, HDR 16, transparent
+// and first-person masks 2 held at once for one eye, and the composite 26; the mapped depths (the stereo pass's
+// copy, its output crop and two mapped reference depths) 16.
+constexpr std::uint64_t kReferenceLayerHostBytesPerRenderedPixel = 26;
+constexpr std::uint64_t kMappedDepthHostBytesPerRenderedPixel = 16;
 
 // `s3d convert` per pixel: host: color 4 (an EXR's float color and file bytes 32 more), depth 4 (its file's
 // values 4), eyes 8, anaglyph 4, side-by-side 8, top-bottom 8, two references 8, PNG encoding 4, read-back 8;
@@ -69,7 +76,7 @@ std::optional<std::uint64_t> readNumberFile(const char* path) {
 }  // namespace
 
 MemoryEstimate renderMemoryEstimate(std::uint32_t width, std::uint32_t height, std::uint32_t renderedWidth,
-                                    std::uint32_t supersample, bool hybridEyes) {
+                                    std::uint32_t supersample, bool hybridEyes, std::uint32_t referenceLayers) {
   const std::uint64_t outputPixels = std::uint64_t(width) * height;
   const std::uint64_t renderedPixels = std::uint64_t(std::max(renderedWidth, width)) * height;
   const std::uint64_t samples = std::uint64_t(supersample) * supersample;
@@ -81,7 +88,11 @@ MemoryEstimate renderMemoryEstimate(std::uint32_t width, std::uint32_t height, s
     estimate.hostBytes += kHybridFixedBytes + kHybridHostBytesPerRenderedPixel * renderedPixels;
     estimate.deviceBytes += (kDeviceBytesPerSample * samples + kHybridDeviceBytesPerRenderedPixel) * renderedPixels;
   }
+  if (referenceLayers > 1)
+    estimate.hostBytes += (kReferenceLayerHostBytesPerRenderedPixel * (referenceLayers + 1) +
+                           kMappedDepthHostBytesPerRenderedPixel) * renderedPixels;
   estimate.what = std::to_string(width) + "x" + std::to_string(height);
+  if (referenceLayers > 1) estimate.what += ", up to " + std::to_string(referenceLayers) + " reference layers";
   if (supersample > 1) estimate.what += ", supersample " + std::to_string(supersample);
   if (renderedWidth > width)
     estimate.what += ", guard band 2 x " + std::to_string((renderedWidth - width) / 2) + " columns";
@@ -89,6 +100,10 @@ MemoryEstimate renderMemoryEstimate(std::uint32_t width, std::uint32_t height, s
                               : " (center view, eyes and reference eyes)";
   estimate.lower = "--resolution or --supersample";
   return estimate;
+}
+
+std::uint32_t maxReferenceLayers(stereo::DisparityMapping mapping) {
+  return mapping == stereo::DisparityMapping::Nonlinear ? S3D_DISPARITY_MAP_KNOTS - 1 : 1;
 }
 
 MemoryEstimate convertMemoryEstimate(std::uint32_t width, std::uint32_t height) {

@@ -73,7 +73,8 @@ MemoryEstimate memoryEstimateFor(const RenderJobOptions& options, const renderer
                         .renderedWidth(options.width);
   }
   return renderMemoryEstimate(options.width, options.height, renderedWidth, options.supersample,
-                              parameters.method == stereo::StereoMethod::Hybrid);
+                              parameters.method == stereo::StereoMethod::Hybrid,
+                              maxReferenceLayers(parameters.disparityMapping));
 }
 
 // Everything runRenderJob checks before touching the GPU or the file system; returns what it built on the way.

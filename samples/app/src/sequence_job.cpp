@@ -61,12 +61,14 @@ stereo::GuardBand widestSequenceGuardBand(const SequenceJobOptions& options) {
 MemoryEstimate sequenceMemoryEstimate(const SequenceJobOptions& options) {
   const std::uint32_t renderedWidth = widestSequenceGuardBand(options).renderedWidth(options.width);
   MemoryEstimate estimate = renderMemoryEstimate(options.width, options.height, renderedWidth, options.supersample,
-                                                 options.stereo.method == stereo::StereoMethod::Hybrid);
+                                                 options.stereo.method == stereo::StereoMethod::Hybrid,
+                                                 maxReferenceLayers(options.stereo.disparityMapping));
   // The previous frame, kept for the flicker metric: eyes and references 16, reference depths 8, first-person
-  // masks 2 bytes per output pixel; the previous-frame fill's history: two frames of both eyes' colour and depth
-  // (RGBA8 and R32F) on the device per rendered pixel.
+  // masks 2 and (a nonlinear map) reference layers 2 bytes per output pixel; the previous-frame fill's history:
+  // two frames of both eyes' colour and depth (RGBA8 and R32F) on the device per rendered pixel.
   const std::uint64_t outputPixels = std::uint64_t(options.width) * options.height;
-  estimate.hostBytes += 26 * outputPixels;
+  const bool layered = options.stereo.disparityMapping == stereo::DisparityMapping::Nonlinear;
+  estimate.hostBytes += (layered ? 28 : 26) * outputPixels;
   if (options.stereo.previousFrameFill) estimate.deviceBytes += 32 * std::uint64_t(renderedWidth) * options.height;
   if (!estimate.what.empty() && estimate.what.back() == ')') estimate.what.pop_back();
   estimate.what += options.stereo.previousFrameFill ? "; the previous frame and the fill's history)"

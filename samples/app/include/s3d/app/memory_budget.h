@@ -6,6 +6,7 @@
 #include <optional>
 #include <string>
 
+#include "s3d/stereo/stereo.h"
 #include "s3d/vk/context.h"
 
 namespace s3d::app {
@@ -28,9 +29,15 @@ inline constexpr std::uint64_t kDeviceBytesPerRenderedPixel = 40;  // resolved d
 // view and the reference eyes at renderedWidth x height with supersample^2 samples, and every output-size image
 // the job keeps at once (eyes and references in 8-bit and HDR, depth, masks, HUD copies, packed outputs, PNG
 // and EXR encoding). hybridEyes: the hybrid method's second renderer (the eye cameras), its classification and
-// masks on the device and the masks and rendered HDR eyes read back.
+// masks on the device and the masks and rendered HDR eyes read back. referenceLayers: the renderings per reference
+// eye (a nonlinear map's per-layer reference, layered_reference.h: all layers of an eye held at once, and the
+// mapped depths); 1 for the linear mapping.
 MemoryEstimate renderMemoryEstimate(std::uint32_t width, std::uint32_t height, std::uint32_t renderedWidth,
-                                    std::uint32_t supersample, bool hybridEyes = false);
+                                    std::uint32_t supersample, bool hybridEyes = false,
+                                    std::uint32_t referenceLayers = 1);
+
+// The most renderings per reference eye a mapping can take (the nonlinear map's segments).
+std::uint32_t maxReferenceLayers(stereo::DisparityMapping mapping);
 
 // `s3d convert` of one width x height frame (inputs decoded, eyes, packed outputs, GPU copies).
 MemoryEstimate convertMemoryEstimate(std::uint32_t width, std::uint32_t height);
