@@ -147,7 +147,8 @@ TEST_F(CoverSequence, EveryFrameIsFullFrameWithAGuardBand) {
 }
 
 // A static camera (every frame the path's first), 64x36, without frame images.
-SequenceReport staticCamera(vk::Context& context, stereo::StereoMethod method, bool previousFrameFill) {
+SequenceReport staticCamera(vk::Context& context, stereo::StereoMethod method, bool previousFrameFill,
+                            stereo::DisparityMapping mapping = stereo::DisparityMapping::Linear) {
   SequenceJobOptions options;
   options.width = 64;
   options.height = 36;
@@ -156,6 +157,7 @@ SequenceReport staticCamera(vk::Context& context, stereo::StereoMethod method, b
   options.holdFrame = 0;
   options.stereo.method = method;
   options.stereo.previousFrameFill = previousFrameFill;
+  options.stereo.disparityMapping = mapping;
   return runSequenceJob(context, options);
 }
 
@@ -175,6 +177,30 @@ TEST_F(CoverSequence, AStaticCameraDoesNotFlicker) {
       }
     }
   }
+}
+
+TEST_F(CoverSequence, AStaticCameraDoesNotFlickerWithTheNonlinearMappingEither) {
+  // Every frame repeats the first, its curve included, so its per-layer reference too: each pixel moves from its
+  // own layer's camera to the same layer's camera of the previous frame (temporal.h), the identity. A metric that
+  // moved a pixel between the cameras of different layers would see it shift by their offset.
+  const SequenceReport report =
+      staticCamera(context(), stereo::StereoMethod::Search, false, stereo::DisparityMapping::Nonlinear);
+  for (std::size_t i = 1; i < report.frames.size(); ++i) {
+    EXPECT_GT(report.frames[i].disparityMap.referenceLayers, 1u) << "frame " << i;
+    ASSERT_TRUE(report.frames[i].flicker.has_value());
+    for (const stereo::FlickerStats& eye : *report.frames[i].flicker) {
+      EXPECT_NEAR(eye.all.meanLevels, 0.0, 1e-9) << "frame " << i;
+      EXPECT_EQ(eye.newlyVisiblePixels, 0u) << "frame " << i;
+    }
+  }
+}
+
+TEST_F(CoverSequence, ThePreviousFrameFillRefusesTheNonlinearMapping) {
+  SequenceJobOptions options;
+  options.stereo.method = stereo::StereoMethod::Forward;
+  options.stereo.previousFrameFill = true;
+  options.stereo.disparityMapping = stereo::DisparityMapping::Nonlinear;
+  EXPECT_THROW((void)runSequenceJob(context(), options), std::invalid_argument);
 }
 
 // Tolerance: one 8-bit level everywhere, so PSNR >= 48.1 dB. At budget 1 the hybrid method renders every eye pixel

@@ -140,6 +140,88 @@ TEST(TemporalFlicker, TheWeaponStaysOnScreen) {
   EXPECT_NEAR(stats.all.meanLevels, 10.0 / double(kWidth * kHeight), 1e-9);  // 30 levels on one channel of one pixel
 }
 
+// A per-layer reference (a nonlinear map): one eye camera per segment of the frame's curve, each a camera at world
+// x = `x` looking down -z with projection shift P20 = `shift`.
+struct LayerCamera {
+  float x, shift;
+};
+glm::mat4 viewAt(float x) { return glm::translate(glm::mat4(1.0f), glm::vec3(-x, 0.0f, 0.0f)); }
+glm::mat4 projectionWithShift(float shift) {
+  glm::mat4 p = projection();
+  p[2][0] = shift;
+  return p;
+}
+ReferenceCameras layeredCameras(const std::vector<LayerCamera>& layers, const std::vector<double>& boundaries,
+                                std::uint8_t layerOfEveryPixel) {
+  ReferenceCameras cameras;
+  for (std::size_t k = 0; k < layers.size(); ++k) {
+    cameras.view.push_back(viewAt(layers[k].x));
+    cameras.projection.push_back(projectionWithShift(layers[k].shift));
+    cameras.segments.push_back({k == 0 ? 0.0 : boundaries[k - 1], k + 1 == layers.size() ? INFINITY : boundaries[k]});
+  }
+  cameras.layerOfPixel.assign(kWidth * kHeight, layerOfEveryPixel);
+  return cameras;
+}
+// A plane at depth `depth` whose error (synthesized - reference, 8-bit levels) is 7.3 levels per world unit of x
+// (3.65 per pixel at depth 4: the rounding to whole levels differs from pixel to pixel): an error that sticks to
+// the surface, as a layer's camera sees it (x_ndc = X / d - P20 with P00 = 1).
+ImageRGBA8 stuckError(const LayerCamera& camera, float depth) {
+  ImageRGBA8 image(kWidth, kHeight);
+  for (std::uint32_t y = 0; y < kHeight; ++y)
+    for (std::uint32_t x = 0; x < kWidth; ++x) {
+      const float ndc = 2.0f * (float(x) + 0.5f) / float(kWidth) - 1.0f;
+      const float worldX = camera.x + (ndc + camera.shift) * depth;
+      const float value = 100.0f + 7.3f * worldX;  // the reference is 100 everywhere
+      EXPECT_TRUE(value > 0.0f && value < 255.0f) << worldX;
+      for (int c = 0; c < 3; ++c) image.at(x, y)[c] = std::uint8_t(std::lround(value));
+    }
+  return image;
+}
+
+TEST(TemporalFlicker, ALayeredReferenceMovesEachPixelWithItsOwnLayersCameras) {
+  // The plane at depth 4 (inverse depth 0.25). Current frame (centre at x = 0.5): segments [0, 0.2] and
+  // [0.2, inf], so layer 1 renders the plane. Previous frame (centre at x = 0): segments [0, 0.3] and [0.3, inf],
+  // so there layer 0 rendered it. The cameras differ per layer and per frame, as a per-frame curve's do.
+  const float depth = 4.0f;
+  const std::vector<LayerCamera> currentLayers{{0.5f - 0.3f, 0.2f}, {0.5f + 0.2f, -0.05f}};
+  const std::vector<LayerCamera> previousLayers{{0.1f, 0.02f}, {-0.4f, -0.1f}};
+  const ReferenceCameras current = layeredCameras(currentLayers, {0.2}, 1);
+  const ReferenceCameras previous = layeredCameras(previousLayers, {0.3}, 0);
+  const ImageRGBA8 reference(kWidth, kHeight, 100);  // error = eye - 100
+  const DepthImage plane4 = plane(depth);
+  const ImageRGBA8 eyeNow = stuckError(currentLayers[1], depth), eyeBefore = stuckError(previousLayers[0], depth);
+  const EyeFrame now = frame(eyeNow, reference, plane4), before = frame(eyeBefore, reference, plane4);
+  // Tolerance 0.75 levels (the mean of two roundings to whole levels is about 1/3): an error stuck to the surface is
+  // no flicker when every pixel moves from its own layer's camera to the one that rendered it before.
+  const FlickerStats layered = temporalFlicker(now, before, current, previous, {}, {});
+  EXPECT_LT(layered.all.meanLevels, 0.75);
+  EXPECT_GT(layered.all.pixelCount, kWidth * kHeight / 2);
+  // Either camera taken by its index instead (the same layer number before, or layer 0 now) misplaces the surface
+  // by half a world unit or more: 3.6 levels and more on this error.
+  const FlickerStats sameIndex = temporalFlicker(
+      now, before, eyeMotion(current.view[1], current.projection[1], previous.view[1], previous.projection[1]), {}, {});
+  const FlickerStats firstLayer = temporalFlicker(
+      now, before, eyeMotion(current.view[0], current.projection[0], previous.view[0], previous.projection[0]), {}, {});
+  EXPECT_GT(sameIndex.all.meanLevels, 2.5);
+  EXPECT_GT(firstLayer.all.meanLevels, 2.5);
+}
+
+TEST(TemporalFlicker, LayeredCamerasMustMatchTheirSegmentsAndTheImage) {
+  const ImageRGBA8 a = ramp(0);
+  const DepthImage depth = plane(4.0f);
+  const ReferenceCameras good = layeredCameras({{0.0f, 0.0f}, {0.1f, 0.0f}}, {0.5}, 1);
+  ReferenceCameras missingSegment = good;
+  missingSegment.segments.pop_back();
+  ReferenceCameras unknownLayer = good;
+  unknownLayer.layerOfPixel[3] = 2;
+  ReferenceCameras wrongSize = good;
+  wrongSize.layerOfPixel.resize(7);
+  for (const ReferenceCameras* bad : {&missingSegment, &unknownLayer, &wrongSize})
+    EXPECT_THROW((void)temporalFlicker(frame(a, a, depth), frame(a, a, depth), *bad, good, {}, {}), std::invalid_argument);
+  EXPECT_THROW((void)temporalFlicker(frame(a, a, depth), frame(a, a, depth), good, ReferenceCameras{}, {}, {}),
+               std::invalid_argument);
+}
+
 TEST(TemporalFlicker, RejectsImagesOfDifferentSizes) {
   const ImageRGBA8 a = ramp(0);
   const ImageRGBA8 b(5, 4);

@@ -143,14 +143,31 @@ FlickerStats temporalFlicker(const EyeFrame& current, const EyeFrame& previous, 
                                   previousCameras.projection[j]));
   const int width = current.reference ? int(current.reference->width) : 0;
   const int height = current.reference ? int(current.reference->height) : 0;
+  const std::vector<std::uint8_t>& previousLayer = previousCameras.layerOfPixel;
+  // Whether the previous reference shows layer j's rendering at position `was` (its nearest texel).
+  auto shows = [&](std::size_t j, gpu::vec3 was) {
+    if (previousLayer.empty()) return j == 0;
+    const int x = int(std::floor(was.x)), y = int(std::floor(was.y));
+    if (x < 0 || y < 0 || x >= width || y >= height) return false;
+    return previousLayer[std::size_t(y) * std::size_t(width) + std::size_t(x)] == j;
+  };
   return flicker(current, previous, halo, disocclusion, [&](std::size_t i, gpu::vec2 pixel, float inverseDepth) {
     const std::size_t k = currentCameras.layerOfPixel.empty() ? 0 : currentCameras.layerOfPixel[i];
     const gpu::EyeMotion* fromLayer = &motions[k * previousLayers];
-    gpu::vec3 was = gpu::reprojectToPrevious(fromLayer[0], pixel, inverseDepth, width, height);
-    if (previousLayers == 1 || was.z < 0.0f) return was;
-    // The previous inverse depth is the same under every previous layer's camera; its segment picks the camera.
-    const std::size_t j = layerFor(previousCameras.segments, double(was.z));
-    return j == 0 ? was : gpu::reprojectToPrevious(fromLayer[j], pixel, inverseDepth, width, height);
+    const gpu::vec3 first = gpu::reprojectToPrevious(fromLayer[0], pixel, inverseDepth, width, height);
+    if (previousLayers == 1 || first.z < 0.0f) return first;
+    // The previous inverse depth is the same under every previous layer's camera; the layer whose segment holds
+    // it rendered the surface exactly, where the previous reference shows that layer. Elsewhere (depth edges
+    // across segments, pixels no layer claimed) the layer the previous reference does show there.
+    const std::size_t primary = layerFor(previousCameras.segments, double(first.z));
+    const gpu::vec3 was = gpu::reprojectToPrevious(fromLayer[primary], pixel, inverseDepth, width, height);
+    if (shows(primary, was)) return was;
+    for (std::size_t j = 0; j < previousLayers; ++j) {
+      if (j == primary) continue;
+      const gpu::vec3 other = gpu::reprojectToPrevious(fromLayer[j], pixel, inverseDepth, width, height);
+      if (shows(j, other)) return other;
+    }
+    return was;
   });
 }
 

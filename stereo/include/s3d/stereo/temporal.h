@@ -58,9 +58,11 @@ struct ReferenceCameras {
 
 // The same metric for references rendered in layers: a pixel's surface moves from the camera of the layer that
 // rendered it to the previous frame's camera of the layer whose segment holds the surface's previous inverse
-// depth (all layers of a frame share the view's depth axis, so that depth is the same in each). With one layer
-// per frame it is temporalFlicker with eyeMotion of the two cameras. Throws std::invalid_argument as above, and
-// for cameras without a layer, lists of different lengths, or a layer index or mask size that does not match.
+// depth (all layers of a frame share the view's depth axis, so that depth is the same under each), where the
+// previous reference shows that layer; where it does not (depth edges across segments, pixels no layer claimed),
+// to the camera of a layer it does show there. With one layer per frame it is temporalFlicker with eyeMotion of the
+// two cameras. Throws std::invalid_argument as above, and for cameras without a layer, lists of different lengths,
+// or a layer index or a layer list size that does not match.
 FlickerStats temporalFlicker(const EyeFrame& current, const EyeFrame& previous, const ReferenceCameras& currentCameras,
                              const ReferenceCameras& previousCameras, const std::vector<std::uint8_t>& halo,
                              const std::vector<std::uint8_t>& disocclusion);
