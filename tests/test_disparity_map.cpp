@@ -9,6 +9,7 @@
 
 #include "s3d/stereo/disparity_map.h"
 #include "s3d/stereo/disparity_map_pass.h"
+#include "s3d/stereo/guard_band.h"
 #include "s3d/stereo/stereo_pass.h"
 #include "stereo_test_views.h"
 #include "vulkan_test.h"
@@ -104,6 +105,30 @@ TEST(DisparityMap, AZeroParallaxPlaneInsideTheRangeIsAFixedPointSoNoPixelCrosses
   EXPECT_EQ(gpu::mappedDepth(map, 2.0f), 2.0f);
   for (float depth = 1.0f; depth < 60.0f; depth *= 1.01f)
     EXPECT_EQ(gpu::mappedDepth(map, depth) < 2.0f, depth < 2.0f) << depth;
+}
+
+TEST(DisparityMap, TheGuardBandOfTheFramesParametersCoversEveryMappedDepth) {
+  // `s3d render` sizes the guard band from maxSeparation, the zero-parallax distance and the nearest depth allowed
+  // (guard_band.h), before the map exists; the map keeps the frame's nearest and farthest depth, so no mapped depth
+  // needs more displacement than the band gives. The plane at the nearest depth (1 m, no negative parallax) and
+  // inside the range (2 m, negative parallax down to the nearest depth); depths swept from the nearest to 1e5 m
+  // and the sky. Tolerance 1e-6 of the bound: float depths.
+  constexpr double kSeparation = 0.03;
+  constexpr std::uint32_t kWidthPx = 1280;
+  for (const float zeroParallax : {1.0f, 2.0f}) {
+    const gpu::DisparityMapConstants map = corridorMap(zeroParallax);
+    const double bound = maxDisplacement(kSeparation, zeroParallax, 1.0);
+    const GuardBand band = guardBandFor(kSeparation, zeroParallax, 1.0, kWidthPx, 1u << 30);
+    ASSERT_FALSE(band.capped);
+    std::vector<float> depths{kSky};
+    for (float depth = 1.0f; depth < 1e5f; depth *= 1.001f) depths.push_back(depth);
+    for (const float depth : depths) {
+      const double displacement = std::abs(
+          double(gpu::parallaxFromDepth(float(kSeparation), zeroParallax, gpu::mappedDepth(map, depth))));
+      EXPECT_LE(displacement, bound * (1.0 + 1e-6)) << "depth " << depth << ", plane " << zeroParallax;
+      EXPECT_LE(displacement * kWidthPx, double(band.columns - 1) + 1e-3) << "depth " << depth;
+    }
+  }
 }
 
 TEST(DisparityMap, ThePopulatedDepthsGetMoreOfTheParallaxRangeThanTheLinearMapping) {
