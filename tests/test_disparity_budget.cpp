@@ -230,11 +230,16 @@ TEST(DisparityBudgetController, WhileTheCameraRecedesMoreDepthIsFollowedAtTheBou
       EXPECT_LE(step, 1.5 * kFrameSeconds + 1e-6) << i;
       EXPECT_LE(choice.parameters.zeroParallaxDistance, nearest) << i;
       if (step < 1e-6) ++framesWaited;
-      if (receding && i > 0) EXPECT_NEAR(step, 1.5 * kFrameSeconds, 1e-4) << i;  // at the bound
+      if (receding && i > 0) {
+        EXPECT_NEAR(step, 1.5 * kFrameSeconds, 1e-4) << i;  // at the bound
+      }
       previous = choice;
     }
-    if (receding) EXPECT_LE(framesWaited, 1);
-    else EXPECT_GE(framesWaited, 5);  // the hold (0.2 s = 6 frames) before the first rise
+    if (receding) {
+      EXPECT_LE(framesWaited, 1);
+    } else {
+      EXPECT_GE(framesWaited, 5);  // the hold (0.2 s = 6 frames) before the first rise
+    }
   }
 }
 
