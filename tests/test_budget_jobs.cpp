@@ -44,6 +44,26 @@ TEST_F(BudgetJobs, ACourtyardFrameOnAMonitorFitsTheOneDegreeRule) {
   EXPECT_EQ(json.at("shareOutside"), 0.0);
 }
 
+TEST_F(BudgetJobs, TheBudgetInPixelsIsInTheOutputEyesPixelsWithAGuardBand) {
+  // The reduction runs over the wider rendered frame; report.json's budgetPx and bulkShare are in the output eyes'
+  // pixels, as the comfort report's parallax (the rendered width would shrink the bulk share by 128 / 136).
+  RenderJobOptions options;
+  options.width = 128;
+  options.height = 72;
+  options.outputs = {};
+  options.outputFolder = scratch("budget_px");
+  options.display = comfort::builtInDisplayProfile("tv55");
+  options.disparityBudget = comfort::DisparityBudgetRule::OneDegree;
+  const RenderReport report = runRenderJob(context(), options);
+  ASSERT_GT(report.guardBandColumns, 0u);
+  const nlohmann::json json = toJson(report).at("disparityBudget");
+  // Tolerance 1e-4 px: budgetPx is printed as a float.
+  EXPECT_NEAR(json.at("budgetPx").at("uncrossed").get<double>(), report.budget.budget.uncrossedFraction * 128.0, 1e-4);
+  const comfort::ParallaxStatistics& parallax = report.comfort.parallax;
+  EXPECT_NEAR(json.at("bulkShare").get<double>(),
+              (parallax.p95ParallaxPx - parallax.p05ParallaxPx) / (report.budget.budget.uncrossedFraction * 128.0), 1e-9);
+}
+
 // The cover sequence at 96x54 with the disparity budget, run once per test binary.
 SequenceJobOptions budgetSequenceOptions() {
   SequenceJobOptions options;

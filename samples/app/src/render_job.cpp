@@ -242,6 +242,7 @@ RenderReport runRenderJob(vk::Context& context, const RenderJobOptions& options)
     report.budget = applyDisparityBudget(context, reduction, &controller, deferred->linearDepth(),
                                          {placement.depth, weaponNearestPushed(parameters, weaponDepths)}, 1.0f / 30.0f,
                                          parameters);
+    report.budget.imageWidth = width;  // budgetPx and bulkShare in the output eyes' pixels, as the comfort report
     // A larger chosen separation needs a wider band: render the center view again at that width.
     if (const stereo::GuardBand chosen = bandFor(parameters); chosen.columns > band.columns) {
       renderCenter(chosen);

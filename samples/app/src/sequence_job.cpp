@@ -226,6 +226,7 @@ SequenceReport runSequenceJob(vk::Context& context, const SequenceJobOptions& op
       }
       frame.budget = applyDisparityBudget(context, *reduction, &*budgetControl, deferred->linearDepth(), hints, seconds,
                                           parameters);
+      frame.budget.imageWidth = width;  // budgetPx and bulkShare in the output eyes' pixels, as the comfort report
       frame.zeroParallaxDistance = parameters.zeroParallaxDistance;
       // A larger chosen separation needs a wider band: this frame's center view again at that width.
       if (useBand(bandFor(parameters))) {

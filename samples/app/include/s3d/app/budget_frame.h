@@ -23,7 +23,9 @@ struct BudgetFrame {
   stereo::DepthRange depth;      // the reduction's result (empty when the rule is off)
   comfort::BudgetChoice choice;  // parameters, target, used share, cut, forced
   std::optional<double> reductionGpuMs;
-  std::uint32_t imageWidth = 0;  // for the budget in pixels
+  // For the budget in pixels: the reduced image's width; a job with a guard band sets the output eyes' width
+  // (the parallax statistics' pixels), since the reduction ran over the wider rendered frame.
+  std::uint32_t imageWidth = 0;
   double spanFraction = 0.0;     // the budget's usable span (uncrossed, plus crossed with pop-out allowed)
 };
 
