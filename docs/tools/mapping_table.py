@@ -8,7 +8,9 @@ the per-layer reference) and the per-layer reference's unresolved pixels.
 
 usage: docs/tools/mapping_table.py S3D_BINARY OUT_FOLDER [--resolution 256x144] [--scenes a,b] [--displays a,b]
                                    [--linear-from BUDGET_OUT_FOLDER]
+       docs/tools/mapping_table.py S3D_BINARY OUT_FOLDER --single 640x360 [--scenes a,b] [--displays a,b]
 --linear-from takes the linear runs from budget_table.py's 1deg folders (the same command) instead of rendering them.
+--single: single frames (`s3d render`, the scene's first frame) at that resolution instead of camera paths.
 """
 import json, subprocess, sys
 from pathlib import Path
@@ -27,6 +29,32 @@ def run(binary, out, scene, display, mapping, resolution, linear_from=None):
     return json.loads((folder / "report.json").read_text())["frames"]
 
 
+def single(binary, out, scene, display, mapping, resolution):
+    folder = Path(out) / f"single_{scene}_{display}_{mapping}"
+    subprocess.run([binary, "render", "--scene", scene, "--display", display, "--disparity-budget", "1deg",
+                    "--disparity-mapping", mapping, "--resolution", resolution, "--outputs", "report.json", "--output",
+                    str(folder)], check=True, stdout=subprocess.DEVNULL)
+    return json.loads((folder / "report.json").read_text())
+
+
+def single_frames(binary, out, scenes, displays, resolution):
+    print("| scene | display | PSNR dB, linear / nonlinear | SSIM, linear / nonlinear | bulk share, linear / nonlinear "
+          "| reference layers | unresolved |")
+    print("|---|---|---|---|---|---|---|")
+    pixels = int(resolution.split("x")[0]) * int(resolution.split("x")[1]) * 2
+    for scene in scenes:
+        for display in displays:
+            r = {m: single(binary, out, scene, display, m, resolution) for m in ("linear", "nonlinear")}
+            eyes = lambda m, key: (r[m]["error"]["left"][key] + r[m]["error"]["right"][key]) / 2
+            mapping = r["nonlinear"]["disparityMapping"]
+            unresolved = (mapping["unresolvedPixels"]["left"] + mapping["unresolvedPixels"]["right"]) / pixels
+            print(f"| {scene} | {display} | {eyes('linear', 'psnrDb'):.2f} / {eyes('nonlinear', 'psnrDb'):.2f} "
+                  f"| {eyes('linear', 'ssim'):.3f} / {eyes('nonlinear', 'ssim'):.3f} "
+                  f"| {100 * r['linear']['disparityBudget']['bulkShare']:.0f} % / "
+                  f"{100 * r['nonlinear']['disparityBudget']['bulkShare']:.0f} % "
+                  f"| {mapping['referenceLayers']} | {100 * unresolved:.2f} % |", flush=True)
+
+
 def mean(values):
     return sum(values) / len(values)
 
@@ -38,6 +66,9 @@ def main():
     scenes = option("--scenes", ",".join(SCENES)).split(",")
     displays = option("--displays", ",".join(DISPLAYS)).split(",")
     linear_from = option("--linear-from", None)
+    if "--single" in sys.argv:
+        single_frames(binary, out, scenes, displays, option("--single", "640x360"))
+        return
     print("| scene | display | beyond 1 deg max, linear / nonlinear | used share mean, linear / nonlinear "
           "| bulk share mean, linear / nonlinear | PSNR mean dB, linear / nonlinear | unresolved reference pixels |")
     print("|---|---|---|---|---|---|---|")
