@@ -1,7 +1,7 @@
 #pragma once
 // The frame's depth range (depth_range.h) on the GPU: one compute dispatch over the linear depth image into a
-// small buffer (nearest, farthest, sky and invalid counts, 192 histogram bins: 784 bytes), the only thing
-// read back.
+// small device buffer (nearest, farthest, sky and invalid counts, 192 histogram bins: 784 bytes), copied to a
+// host-visible one: the only thing read back.
 #include <optional>
 
 #include <vulkan/vulkan.h>
@@ -25,7 +25,8 @@ class DepthRangePass {
   const vk::Context* context_;
   vk::PipelineLayout layout_;
   vk::Unique<VkPipeline> pipeline_;
-  vk::Buffer buffer_;  // host-visible and coherent: read straight from the mapping
+  vk::Buffer counters_;  // device memory: the dispatch's atomics
+  vk::Buffer buffer_;    // host-visible and coherent: the copy of counters_ read straight from the mapping
 };
 
 struct TimedDepthRange {
