@@ -105,11 +105,13 @@ class MaskedRenderTest : public test::VulkanTest {};
 // The G-buffer counts the render pixels it wrote (each once here: one face, no overdraw), lighting the render
 // pixels it lit, the resolve (a pass of its own with supersampling) the output pixels, ambient occlusion and
 // its blur the half-resolution texels of the masked tiles and their neighbours.
-void expectCountsMatchTheMask(vk::Context& context, std::uint32_t supersample, std::uint32_t threshold) {
+void expectCountsMatchTheMask(vk::Context& context, std::uint32_t supersample, std::uint32_t threshold,
+                              RendererOptions::GBufferShading shading = RendererOptions::GBufferShading::Automatic) {
   const Scene scene = wallScene();
   RendererOptions options;
   options.supersample = supersample;
   options.countShadedPixels = true;
+  options.gbufferShading = shading;
   DeferredRenderer renderer(context, kWidth, kHeight, options);
   renderer.setScene(scene);
   const std::vector<std::uint32_t> values = scatteredMask(kWidth, kHeight, 0.05, 7);
@@ -134,6 +136,11 @@ TEST_F(MaskedRenderTest, EachPassShadesTheMaskedPixelsOrTheirTiles) { expectCoun
 TEST_F(MaskedRenderTest, TheThresholdSelectsTheMaskValuesThatShade) { expectCountsMatchTheMask(context(), 1, 6); }
 
 TEST_F(MaskedRenderTest, WithSupersamplingAMaskPixelShadesAllItsSamples) { expectCountsMatchTheMask(context(), 3, 1); }
+
+// Visibility shading: the G-buffer resolve (which counts for the G-buffer) runs on the masked tiles too.
+TEST_F(MaskedRenderTest, UnderVisibilityShadingTheGBufferResolveShadesTheMaskedPixels) {
+  expectCountsMatchTheMask(context(), 1, 1, RendererOptions::GBufferShading::Visibility);
+}
 
 TEST_F(MaskedRenderTest, AnUnmaskedRenderShadesEveryPixel) {
   const Scene scene = wallScene();

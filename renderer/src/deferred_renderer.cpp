@@ -12,6 +12,7 @@
 
 #include "s3d/renderer/renderer_shared.h"
 #include "ambient_occlusion.h"
+#include "gbuffer_resolve.h"
 #include "s3d/vk/check.h"
 #include "s3d/vk/pipeline.h"
 #include "s3d/vk/timestamps.h"
@@ -23,11 +24,14 @@
 #include <cstdint>
 #include <s3d_spirv/fullscreen_vert.h>
 #include <s3d_spirv/gbuffer_frag.h>
+#include <s3d_spirv/gbuffer_marked_frag.h>
 #include <s3d_spirv/geometry_vert.h>
 #include <s3d_spirv/mask_fill_frag.h>
 #include <s3d_spirv/resolve_comp.h>
 #include <s3d_spirv/shadow_depth_frag.h>
 #include <s3d_spirv/transparent_frag.h>
+#include <s3d_spirv/visibility_frag.h>
+#include <s3d_spirv/visibility_textured_frag.h>
 // clang-format on
 
 namespace s3d::renderer {
@@ -36,6 +40,8 @@ namespace {
 constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
 constexpr VkFormat kNormalFormat = VK_FORMAT_R16G16B16A16_SFLOAT;  // world normal + glossiness
 constexpr VkFormat kMaterialFormat = VK_FORMAT_R32G32_UINT;        // packed albedo (gpu::packAlbedo), object index
+constexpr VkFormat kNarrowVisibilityFormat = VK_FORMAT_R32_UINT;   // gpu::packVisibility, narrow ids
+constexpr VkFormat kWideVisibilityFormat = VK_FORMAT_R32G32_UINT;  // wide ids: object, triangle
 constexpr VkFormat kHdrFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
 constexpr VkFormat kDisplayFormat = VK_FORMAT_R8G8B8A8_UNORM;     // sRGB-encoded by the tone-map pass
 constexpr VkFormat kLinearDepthFormat = VK_FORMAT_R32_SFLOAT;
@@ -177,6 +183,7 @@ struct DeferredRenderer::Impl {
 
   // Render targets (render size), then the resolve's outputs (output size).
   vk::Image depth, normalGlossiness, materialTarget, hdr;
+  vk::Image visibility;           // the G-buffer pass's ids (gpu::packVisibility), sized with the scene's ids
   vk::Image transparentCoverage;  // written by the transparent pass only (scenes with transparent objects)
   vk::Image ambientDepth;         // masked renders with ambient occlusion: depth of every pixel (made at first use)
   vk::Image display, linearDepth, resolvedHdr;
@@ -187,8 +194,14 @@ struct DeferredRenderer::Impl {
   // Passes: layouts and pipelines (the compute passes own theirs: detail::AmbientOcclusion, TiledLighting,
   // TileLists, ShadowMaps).
   vk::PipelineLayout geometryLayout, maskFillLayout, resolveLayout;
-  // G-buffer: one pipeline per texture combination, index gbufferVariant(material).
+  // G-buffer: one pipeline per texture combination, index gbufferVariant(material); made per scene, for its
+  // visibility format and whether it has textured objects (then the pass also binds normal and material).
   std::array<vk::Unique<VkPipeline>, 4> gbufferPipelines;
+  vk::GraphicsPipelineDesc geometryDesc;  // what every pipeline drawing the scene's objects shares
+  glm::uvec2 visibilityPacking{0, 0};      // gpu::FrameConstants::options z, w
+  bool visibilityShading = false;          // RendererOptions::gbufferShading, Automatic resolved for the device
+  bool surfaceTargetsBound = false;        // the G-buffer pass writes normal and material for some objects
+  bool gbufferPipelinesValid = false;
   vk::Unique<VkPipeline> depthOnlyPipeline, maskFillPipeline, transparentPipeline;
   std::unique_ptr<detail::TilePipelines> resolvePipelines;
 
@@ -197,7 +210,15 @@ struct DeferredRenderer::Impl {
   vk::Buffer vertexBuffer, surfaceBuffer, indexBuffer, objectBuffer, frameBuffer;
   std::vector<vk::Image> textures;  // Scene::textures, uploaded
   std::vector<MeshRange> meshRanges;
-  std::vector<std::uint32_t> drawOrder;          // opaque object indices, world layer first
+  std::vector<std::uint32_t> drawOrder;          // opaque object indices, first-person layer first
+  std::vector<BoundingSphere> drawBounds;        // their bounds in their layer's space, same order
+  struct DrawKey {
+    bool world;      // first-person objects first
+    float distance;  // from the layer's eye to the nearest point of the object's bounds
+    std::uint32_t object;
+  };
+  std::vector<DrawKey> drawKeys;             // per frame, kept for its capacity
+  std::vector<std::uint32_t> frontToBack;    // per frame: drawOrder sorted nearest first
   std::vector<std::uint32_t> transparentOrder;   // transparent objects, sorted back to front per frame
 
   vk::TimestampQueries timestamps;
@@ -205,6 +226,7 @@ struct DeferredRenderer::Impl {
   std::unique_ptr<detail::AmbientOcclusion> ambientOcclusion;
   std::unique_ptr<detail::TiledLighting> lighting;
   std::unique_ptr<detail::TileLists> tiles;
+  std::unique_ptr<detail::GBufferResolve> gbufferResolve;
 
   Impl(vk::Context& ctx, std::uint32_t w, std::uint32_t h, RendererOptions rendererOptions)
       : context(ctx),
@@ -221,12 +243,16 @@ struct DeferredRenderer::Impl {
       throw std::invalid_argument("renderer: resolution " + std::to_string(w) + "x" + std::to_string(h) +
                                   (supersample > 1 ? " at supersample " + std::to_string(supersample) : std::string()) +
                                   " renders outside 1..16384");
+    visibilityShading = options.gbufferShading == RendererOptions::GBufferShading::Visibility ||
+                        (options.gbufferShading == RendererOptions::GBufferShading::Automatic && !context.isCpuDevice());
+    surfaceTargetsBound = !visibilityShading;
     createTargets();
     createPipelines();
     shadows = std::make_unique<detail::ShadowMaps>(context, width, height);
     ambientOcclusion = std::make_unique<detail::AmbientOcclusion>(context, width, height, options.countShadedPixels);
     lighting = std::make_unique<detail::TiledLighting>(context, options.countShadedPixels);
     tiles = std::make_unique<detail::TileLists>(context, width, height);
+    gbufferResolve = std::make_unique<detail::GBufferResolve>(context, options.countShadedPixels);
     frameBuffer = vk::createBuffer(context, sizeof(gpu::FrameConstants), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
                                    vk::MemoryLocation::HostVisible);
   }
@@ -237,8 +263,9 @@ struct DeferredRenderer::Impl {
     depth = vk::createImage(context, kDepthFormat, width, height,
                             VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
                                 VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
-    normalGlossiness = vk::createImage(context, kNormalFormat, width, height, attachmentSampled);
-    materialTarget = vk::createImage(context, kMaterialFormat, width, height, attachmentSampled);
+    // Written by the raster pass (textured objects) and the G-buffer resolve (storage).
+    normalGlossiness = vk::createImage(context, kNormalFormat, width, height, attachmentSampled | VK_IMAGE_USAGE_STORAGE_BIT);
+    materialTarget = vk::createImage(context, kMaterialFormat, width, height, attachmentSampled | VK_IMAGE_USAGE_STORAGE_BIT);
     hdr = vk::createImage(context, kHdrFormat, width, height,
                           VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
     const VkImageUsageFlags computeOutput = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
@@ -280,8 +307,10 @@ struct DeferredRenderer::Impl {
     constexpr VkShaderStageFlags fragment = VK_SHADER_STAGE_FRAGMENT_BIT;
     constexpr VkShaderStageFlags compute = VK_SHADER_STAGE_COMPUTE_BIT;
 
-    const VkDescriptorSetLayoutBinding geometryBindings[] = {binding(0, ubo, graphics), binding(1, ssbo, graphics),
-                                                             binding(2, sampled, fragment), binding(3, sampled, fragment)};
+    constexpr VkShaderStageFlags vertex = VK_SHADER_STAGE_VERTEX_BIT;
+    const VkDescriptorSetLayoutBinding geometryBindings[] = {
+        binding(0, ubo, graphics), binding(1, ssbo, graphics), binding(2, sampled, fragment), binding(3, sampled, fragment),
+        binding(4, ssbo, vertex),  binding(5, ssbo, vertex),   binding(6, ssbo, vertex)};  // indices, vertices, surface
     geometryLayout = vk::createPushDescriptorLayout(context, geometryBindings, sizeof(std::uint32_t), graphics);
     const VkDescriptorSetLayoutBinding maskFillBindings[] = {binding(0, ubo, fragment), binding(1, storage, fragment)};
     maskFillLayout = vk::createPushDescriptorLayout(context, maskFillBindings, 0, 0);
@@ -291,30 +320,13 @@ struct DeferredRenderer::Impl {
         binding(6, ssbo, compute),    binding(7, storage, compute)};
     resolveLayout = vk::createPushDescriptorLayout(context, resolveBindings, sizeof(gpu::ResolveConstants), compute);
 
+    // Vertices are pulled from storage buffers (geometry.vert): no vertex input state.
     vk::GraphicsPipelineDesc geometry;
     geometry.vertexSpirv = spirv_geometry_vert;
-    geometry.vertexBindings = {{0, sizeof(Vertex), VK_VERTEX_INPUT_RATE_VERTEX},
-                               {1, sizeof(gpu::SurfaceVertex), VK_VERTEX_INPUT_RATE_VERTEX}};
-    geometry.vertexAttributes = {{0, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, position)},
-                                 {1, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, normal)},
-                                 {2, 1, VK_FORMAT_R32G32_SFLOAT, offsetof(gpu::SurfaceVertex, texCoord)},
-                                 {3, 1, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(gpu::SurfaceVertex, tangent)}};
     geometry.depthFormat = kDepthFormat;
     geometry.depthTest = true;
     geometry.cullMode = VK_CULL_MODE_BACK_BIT;
-
-    vk::GraphicsPipelineDesc gbuffer = geometry;
-    gbuffer.fragmentSpirv = spirv_gbuffer_frag;
-    gbuffer.colorFormats = {kNormalFormat, kMaterialFormat};
-    gbuffer.depthWrite = true;
-    gbuffer.depthCompare = nearer();
-    const VkSpecializationMapEntry textureSwitches[] = {{0, 0, sizeof(VkBool32)}, {1, sizeof(VkBool32), sizeof(VkBool32)}};
-    for (std::uint32_t variant = 0; variant < gbufferPipelines.size(); ++variant) {
-      const VkBool32 values[] = {(variant & 1) != 0 ? VK_TRUE : VK_FALSE, (variant & 2) != 0 ? VK_TRUE : VK_FALSE};
-      const VkSpecializationInfo specialization{2, textureSwitches, sizeof(values), values};
-      gbuffer.fragmentSpecialization = &specialization;
-      gbufferPipelines[variant] = vk::createGraphicsPipeline(context, geometryLayout.layout, gbuffer);
-    }
+    geometryDesc = geometry;
 
     vk::GraphicsPipelineDesc depthOnly = geometry;  // the same vertex module: the same depth as the G-buffer
     depthOnly.fragmentSpirv = spirv_shadow_depth_frag;
@@ -343,6 +355,48 @@ struct DeferredRenderer::Impl {
                                                                 options.countShadedPixels);
   }
 
+  // The G-buffer pass's colour attachments (0 normal/glossiness, 1 material, 2 visibility ids): raster shading
+  // binds the first two; visibility shading the ids alone, or all three for a scene with textured objects, which
+  // write normal and material in the raster pass (gbuffer_marked.frag) while the others write zeros there
+  // (visibility_textured.frag) that the G-buffer resolve overwrites.
+  std::vector<const vk::Image*> gbufferAttachments() const {
+    if (!visibilityShading) return {&normalGlossiness, &materialTarget};
+    if (!surfaceTargetsBound) return {&visibility};
+    return {&normalGlossiness, &materialTarget, &visibility};
+  }
+
+  void createGBufferPipelines() {
+    vk::GraphicsPipelineDesc gbuffer = geometryDesc;
+    gbuffer.depthWrite = true;
+    gbuffer.depthCompare = nearer();
+    gbuffer.colorFormats.clear();
+    for (const vk::Image* image : gbufferAttachments()) gbuffer.colorFormats.push_back(image->format);
+    vk::GraphicsPipelineDesc ids = gbuffer;
+    ids.fragmentSpirv = surfaceTargetsBound ? std::span<const std::uint32_t>(spirv_visibility_textured_frag)
+                                            : std::span<const std::uint32_t>(spirv_visibility_frag);
+    gbuffer.fragmentSpirv = visibilityShading ? std::span<const std::uint32_t>(spirv_gbuffer_marked_frag)
+                                              : std::span<const std::uint32_t>(spirv_gbuffer_frag);
+    const VkSpecializationMapEntry textureSwitches[] = {{0, 0, sizeof(VkBool32)}, {1, sizeof(VkBool32), sizeof(VkBool32)}};
+    for (std::uint32_t variant = 0; variant < gbufferPipelines.size(); ++variant) {
+      if (variant == 0 && visibilityShading) {
+        gbufferPipelines[variant] = vk::createGraphicsPipeline(context, geometryLayout.layout, ids);
+      } else if (!surfaceTargetsBound) {
+        gbufferPipelines[variant] = {};  // no object of the scene uses it
+      } else {
+        const VkBool32 values[] = {(variant & 1) != 0 ? VK_TRUE : VK_FALSE, (variant & 2) != 0 ? VK_TRUE : VK_FALSE};
+        const VkSpecializationInfo specialization{2, textureSwitches, sizeof(values), values};
+        gbuffer.fragmentSpecialization = &specialization;
+        gbufferPipelines[variant] = vk::createGraphicsPipeline(context, geometryLayout.layout, gbuffer);
+      }
+    }
+  }
+
+  static glm::uvec2 visibilityPackingFor(const Scene& scene) {
+    std::uint64_t mostTriangles = 0;
+    for (const Mesh& mesh : scene.meshes) mostTriangles = std::max<std::uint64_t>(mostTriangles, mesh.indices.size() / 3);
+    return gpu::visibilityPacking(scene.objects.size(), mostTriangles);
+  }
+
   // Reversed-Z: nearer surfaces have greater device depth.
   VkCompareOp nearer() const { return options.reversedZ ? VK_COMPARE_OP_GREATER : VK_COMPARE_OP_LESS; }
   float clearedDepth() const { return options.reversedZ ? 0.0f : 1.0f; }  // the far plane: sky
@@ -365,6 +419,9 @@ struct DeferredRenderer::Impl {
     std::vector<std::uint32_t> indices;
     meshRanges.clear();
     for (const Mesh& mesh : newScene.meshes) {
+      if (mesh.indices.size() % 3 != 0)
+        throw std::invalid_argument("scene '" + newScene.name + "': a mesh's index count " +
+                                    std::to_string(mesh.indices.size()) + " is not a multiple of 3 (triangles)");
       meshRanges.push_back({std::uint32_t(indices.size()), std::uint32_t(mesh.indices.size()), std::int32_t(vertices.size())});
       for (std::uint32_t index : mesh.indices)
         if (index >= mesh.vertices.size()) throw std::invalid_argument("scene '" + newScene.name + "': mesh index out of range");
@@ -384,18 +441,17 @@ struct DeferredRenderer::Impl {
     if (newScene.ambientOcclusion && !(newScene.ambientOcclusionRadius > 0.0f && newScene.ambientOcclusionRadius < 1e4f))
       throw std::invalid_argument("scene '" + newScene.name + "': ambient-occlusion radius must be in (0, 1e4) world units");
 
-    vertexBuffer = vk::createBuffer(context, vertices.size() * sizeof(Vertex),
-                                    VK_BUFFER_USAGE_VERTEX_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+    // Vertex and index buffers for the shadow maps' vertex input, storage buffers for geometry.vert and the
+    // G-buffer resolve.
+    constexpr VkBufferUsageFlags pulled = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
+    vertexBuffer = vk::createBuffer(context, vertices.size() * sizeof(Vertex), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT | pulled,
                                     vk::MemoryLocation::Device);
     vk::uploadBuffer(context, vertexBuffer, std::as_bytes(std::span(vertices)));
-    surfaceBuffer = vk::createBuffer(context, surface.size() * sizeof(gpu::SurfaceVertex),
-                                     VK_BUFFER_USAGE_VERTEX_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                                     vk::MemoryLocation::Device);
+    surfaceBuffer = vk::createBuffer(context, surface.size() * sizeof(gpu::SurfaceVertex), pulled, vk::MemoryLocation::Device);
     vk::uploadBuffer(context, surfaceBuffer, std::as_bytes(std::span(surface)));
     textures.clear();
     for (const Texture& texture : newScene.textures) textures.push_back(uploadTexture(texture));
-    indexBuffer = vk::createBuffer(context, indices.size() * sizeof(std::uint32_t),
-                                   VK_BUFFER_USAGE_INDEX_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+    indexBuffer = vk::createBuffer(context, indices.size() * sizeof(std::uint32_t), VK_BUFFER_USAGE_INDEX_BUFFER_BIT | pulled,
                                    vk::MemoryLocation::Device);
     vk::uploadBuffer(context, indexBuffer, std::as_bytes(std::span(indices)));
     objectBuffer = vk::createBuffer(context, std::max<std::size_t>(1, newScene.objects.size()) * sizeof(gpu::ObjectConstants),
@@ -410,9 +466,31 @@ struct DeferredRenderer::Impl {
       if (newScene.objects[i].material.isTransparent() && newScene.objects[i].layer == Layer::FirstPerson)
         throw std::invalid_argument("scene '" + newScene.name + "': transparent first-person objects are not supported");
     }
-    for (Layer layer : {Layer::World, Layer::FirstPerson})
+    // First-person objects first: they are nearest, so their depth rejects the world behind them early.
+    for (Layer layer : {Layer::FirstPerson, Layer::World})
       for (std::uint32_t i = 0; i < newScene.objects.size(); ++i)
         if (newScene.objects[i].layer == layer && !newScene.objects[i].material.isTransparent()) drawOrder.push_back(i);
+    drawBounds.clear();
+    bool textured = false;
+    for (std::uint32_t i : drawOrder) {
+      const Object& object = newScene.objects[i];
+      drawBounds.push_back(objectBounds(newScene.meshes[object.mesh], object.transform));
+      textured = textured || gbufferVariant(object.material) != 0;
+    }
+    const glm::uvec2 packing = visibilityShading ? visibilityPackingFor(newScene) : glm::uvec2(0);
+    const VkFormat visibilityFormat = packing.y != 0 ? kWideVisibilityFormat : kNarrowVisibilityFormat;
+    const bool newFormat = visibilityShading && (visibility.width == 0 || visibility.format != visibilityFormat);
+    if (newFormat)
+      visibility = vk::createImage(context, visibilityFormat, width, height,
+                                   VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT);
+    const bool surfaceTargets = textured || !visibilityShading;
+    const bool newAttachments = surfaceTargets != surfaceTargetsBound;
+    visibilityPacking = packing;
+    surfaceTargetsBound = surfaceTargets;
+    if (!gbufferPipelinesValid || newFormat || newAttachments) {
+      createGBufferPipelines();
+      gbufferPipelinesValid = true;
+    }
     for (std::uint32_t i = 0; i < newScene.objects.size(); ++i)
       if (newScene.objects[i].material.isTransparent()) transparentOrder.push_back(i);
     std::vector<detail::ShadowMeshRange> shadowRanges;
@@ -488,7 +566,7 @@ struct DeferredRenderer::Impl {
                                        float(ambientOcclusion->height()), 0.0f);
     frame.worldViewDepth = -glm::vec4(view.worldView[0][2], view.worldView[1][2], view.worldView[2][2], view.worldView[3][2]);
     frame.tiles = glm::uvec4(tiles->tilesX(), tiles->tilesY(), mask.threshold, 0u);
-    frame.options = glm::uvec4(supersample, scene.ambientOcclusion ? 1u : 0u, 0u, 0u);
+    frame.options = glm::uvec4(supersample, scene.ambientOcclusion ? 1u : 0u, visibilityPacking.x, visibilityPacking.y);
     std::memcpy(frameBuffer.mapped, &frame, sizeof(frame));
 
     auto* objects = static_cast<gpu::ObjectConstants*>(objectBuffer.mapped);
@@ -503,6 +581,8 @@ struct DeferredRenderer::Impl {
       constants.specular = glm::vec4(object.material.specularColor, object.material.glossiness);
       constants.layer = object.layer == Layer::FirstPerson ? S3D_LAYER_FIRST_PERSON : S3D_LAYER_WORLD;
       constants.normalScale = object.material.normalTexture == kNoTexture ? 0.0f : object.material.normalScale;
+      constants.firstIndex = meshRanges[object.mesh].firstIndex;
+      constants.vertexOffset = std::uint32_t(meshRanges[object.mesh].vertexOffset);
     }
   }
 
@@ -513,8 +593,14 @@ struct DeferredRenderer::Impl {
     const std::uint32_t textureBinding = kGeometryTextureBinding;
     VkDescriptorBufferInfo frameInfo{frameBuffer.buffer, 0, VK_WHOLE_SIZE};
     VkDescriptorBufferInfo objectInfo{objectBuffer.buffer, 0, VK_WHOLE_SIZE};
-    std::vector<VkWriteDescriptorSet> writes = {vk::uniformBufferWrite(0, &frameInfo), vk::uniformBufferWrite(1, &objectInfo)};
-    writes[1].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    VkDescriptorBufferInfo indexInfo{indexBuffer.buffer, 0, VK_WHOLE_SIZE};
+    VkDescriptorBufferInfo vertexInfo{vertexBuffer.buffer, 0, VK_WHOLE_SIZE};
+    VkDescriptorBufferInfo surfaceInfo{surfaceBuffer.buffer, 0, VK_WHOLE_SIZE};
+    std::vector<VkWriteDescriptorSet> writes = {vk::uniformBufferWrite(0, &frameInfo), vk::uniformBufferWrite(1, &objectInfo),
+                                                vk::uniformBufferWrite(4, &indexInfo), vk::uniformBufferWrite(5, &vertexInfo),
+                                                vk::uniformBufferWrite(6, &surfaceInfo)};
+    for (VkWriteDescriptorSet& write : writes)
+      if (write.dstBinding != 0) write.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
     auto view = [this](std::int32_t index, const vk::Image& fallback) -> VkImageView {
       return index == kNoTexture ? fallback.view : textures[std::size_t(index)].view;
     };
@@ -536,10 +622,6 @@ struct DeferredRenderer::Impl {
 
   // Draws the objects with the bound pipeline, or with each object's G-buffer variant (`gbuffer`).
   void drawObjects(VkCommandBuffer cmd, const std::vector<std::uint32_t>& objects, bool gbuffer = false) {
-    const VkDeviceSize offsets[] = {0, 0};
-    const VkBuffer streams[] = {vertexBuffer.buffer, surfaceBuffer.buffer};
-    vkCmdBindVertexBuffers(cmd, 0, 2, streams, offsets);
-    vkCmdBindIndexBuffer(cmd, indexBuffer.buffer, 0, VK_INDEX_TYPE_UINT32);
     std::optional<Layer> currentLayer;
     std::optional<std::size_t> currentVariant;
     for (std::uint32_t objectIndex : objects) {
@@ -555,13 +637,31 @@ struct DeferredRenderer::Impl {
       pushGeometryDescriptors(cmd, object.material);  // per object: its textures
       vkCmdPushConstants(cmd, geometryLayout.layout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
                          sizeof(std::uint32_t), &objectIndex);
+      // Non-indexed: geometry.vert reads the index itself (gl_VertexIndex runs over the mesh's index range).
       const MeshRange& range = meshRanges[object.mesh];
-      vkCmdDrawIndexed(cmd, range.indexCount, 1, range.firstIndex, range.vertexOffset, 0);
+      vkCmdDraw(cmd, range.indexCount, 1, range.firstIndex, 0);
     }
   }
 
-  // The G-buffer: normal/glossiness and material targets over cleared depth. A masked render first gives every
-  // pixel outside the mask the nearest depth, so the geometry's fragments there fail the depth test unshaded.
+  // Opaque objects nearest first (first-person ones before the world): the depth test then rejects hidden
+  // fragments before they write anything, and the raster pass's cost follows the bytes its fragments write.
+  void sortFrontToBack(const ViewMatrices& view) {
+    drawKeys.clear();
+    for (std::size_t i = 0; i < drawOrder.size(); ++i) {
+      const bool world = scene.objects[drawOrder[i]].layer == Layer::World;
+      const glm::vec4 center = (world ? view.worldView : view.firstPersonView) * glm::vec4(drawBounds[i].center, 1.0f);
+      drawKeys.push_back({world, glm::length(glm::vec3(center)) - drawBounds[i].radius, drawOrder[i]});
+    }
+    std::sort(drawKeys.begin(), drawKeys.end(), [](const DrawKey& a, const DrawKey& b) {
+      return a.world != b.world ? b.world : a.distance != b.distance ? a.distance < b.distance : a.object < b.object;
+    });
+    frontToBack.clear();
+    for (const DrawKey& key : drawKeys) frontToBack.push_back(key.object);
+  }
+
+  // The G-buffer pass: depth, and normal/glossiness and material (raster shading) or visibility ids (visibility
+  // shading; textured objects write normal and material too). A masked render first gives every pixel outside
+  // the mask the nearest depth, so the geometry's fragments there fail the depth test unshaded.
   void recordGBuffer(VkCommandBuffer cmd, const ShadeMask& mask) {
     vk::transition(cmd, depth, vk::kUndefined, vk::kDepthAttachment);
     if (mask.image != nullptr) {
@@ -578,20 +678,46 @@ struct DeferredRenderer::Impl {
       vkCmdEndRendering(cmd);
       vk::transition(cmd, depth, vk::kDepthAttachment, vk::kDepthAttachment);
     }
-    vk::transition(cmd, normalGlossiness, vk::kUndefined, vk::kColorAttachment);
-    vk::transition(cmd, materialTarget, vk::kUndefined, vk::kColorAttachment);
-    const VkRenderingAttachmentInfo colors[] = {colorAttachment(normalGlossiness, true),
-                                                colorAttachment(materialTarget, true, {.uint32 = {0, S3D_NO_OBJECT << 16, 0, 0}})};
+    // Raster shading clears normal and material (sky and masked-out pixels keep the cleared values); under
+    // visibility shading the G-buffer resolve writes every pixel later passes read, so nothing is cleared.
+    const VkClearColorValue noMaterial{.uint32 = {0, S3D_NO_OBJECT << 16, 0, 0}};
+    std::vector<VkRenderingAttachmentInfo> colors;
+    for (const vk::Image* image : gbufferAttachments()) {
+      colors.push_back(colorAttachment(*image, !visibilityShading, image == &materialTarget ? noMaterial : VkClearColorValue{}));
+      if (visibilityShading) colors.back().loadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
+      vk::transition(cmd, *image, vk::kUndefined, vk::kColorAttachment);
+    }
     const VkRenderingAttachmentInfo depthInfo = depthAttachment(
         depth, mask.image != nullptr ? VK_ATTACHMENT_LOAD_OP_LOAD : VK_ATTACHMENT_LOAD_OP_CLEAR, clearedDepth());
     beginRendering(cmd, width, height, colors, &depthInfo);
     setScissor(cmd, {{0, 0}, {width, height}});
-    drawObjects(cmd, drawOrder, true);
+    drawObjects(cmd, frontToBack, true);
     vkCmdEndRendering(cmd);
-    // Ambient occlusion, lighting, the resolve and the counting pass read depth, normals and material.
+    // Ambient occlusion, lighting and the resolve read depth; the G-buffer resolve reads the ids, lighting (and
+    // the counting pass) the targets the raster pass wrote.
     vk::transition(cmd, depth, vk::kDepthAttachment, kComputeSampled);
-    vk::transition(cmd, normalGlossiness, vk::kColorAttachment, kComputeSampled);
-    vk::transition(cmd, materialTarget, vk::kColorAttachment, kComputeSampled);
+    if (visibilityShading) {
+      vk::transition(cmd, visibility, vk::kColorAttachment, kComputeSampled);
+    } else {
+      vk::transition(cmd, normalGlossiness, vk::kColorAttachment, kComputeSampled);
+      vk::transition(cmd, materialTarget, vk::kColorAttachment, kComputeSampled);
+    }
+  }
+
+  void recordGBufferResolve(VkCommandBuffer cmd, const ShadeMask& mask) {
+    const detail::GBufferResolve::Inputs inputs{depth,
+                                                visibility,
+                                                frameBuffer.buffer,
+                                                objectBuffer.buffer,
+                                                indexBuffer.buffer,
+                                                vertexBuffer.buffer,
+                                                tiles->buffer(),
+                                                tiles->maskDescriptor(mask.image),
+                                                mask.image != nullptr,
+                                                tiles->tilesX(),
+                                                tiles->tilesY()};
+    gbufferResolve->record(cmd, inputs, normalGlossiness, materialTarget,
+                           surfaceTargetsBound ? vk::kColorAttachment : vk::kUndefined);
   }
 
   // Masked renders with ambient occlusion: every pixel's depth (no fragment work), so the occlusion's samples
@@ -605,7 +731,7 @@ struct DeferredRenderer::Impl {
     beginRendering(cmd, width, height, {}, &depthInfo);
     setScissor(cmd, {{0, 0}, {width, height}});
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, depthOnlyPipeline);
-    drawObjects(cmd, drawOrder);
+    drawObjects(cmd, frontToBack);
     vkCmdEndRendering(cmd);
     vk::transition(cmd, ambientDepth, vk::kDepthAttachment, kComputeSampled);
   }
@@ -700,6 +826,7 @@ struct DeferredRenderer::Impl {
   std::vector<ScheduledPass> schedulePasses(const ViewMatrices& view, const ShadeMask& mask) {
     std::vector<ScheduledPass> passes;
     const bool masked = mask.image != nullptr;
+    sortFrontToBack(view);
     const bool withAmbientOcclusion = scene.ambientOcclusion;
     if (masked) {
       passes.push_back({"mask-tiles", [this, mask](VkCommandBuffer cmd) {
@@ -708,13 +835,17 @@ struct DeferredRenderer::Impl {
                         }});
       if (withAmbientOcclusion) passes.push_back({"ssao-depth", [this](VkCommandBuffer cmd) { recordAmbientDepth(cmd); }});
     }
+    // The G-buffer's count (the render pixels with a surface) comes from the G-buffer resolve, or under raster
+    // shading from a counting pass of its own.
     passes.push_back({"gbuffer",
                       [this, mask](VkCommandBuffer cmd) {
                         if (mask.image == nullptr) tiles->recordReset(cmd, nullptr);
                         recordGBuffer(cmd, mask);
                       },
                       S3D_COUNT_GBUFFER});
-    if (options.countShadedPixels)
+    if (visibilityShading)
+      passes.push_back({"gbuffer-resolve", [this, mask](VkCommandBuffer cmd) { recordGBufferResolve(cmd, mask); }});
+    else if (options.countShadedPixels)
       passes.push_back({"gbuffer-count", [this](VkCommandBuffer cmd) {
                           tiles->recordCountGBuffer(cmd, frameBuffer.buffer, materialTarget, nearestSampler);
                         }});
@@ -801,6 +932,24 @@ std::uint32_t DeferredRenderer::width() const { return impl_->outputWidth; }
 std::uint32_t DeferredRenderer::height() const { return impl_->outputHeight; }
 std::uint32_t DeferredRenderer::supersample() const { return impl_->supersample; }
 const RendererOptions& DeferredRenderer::options() const { return impl_->options; }
+RendererOptions::GBufferShading DeferredRenderer::gbufferShading() const {
+  return impl_->visibilityShading ? RendererOptions::GBufferShading::Visibility : RendererOptions::GBufferShading::Raster;
+}
+
+const char* gbufferShadingName(RendererOptions::GBufferShading shading) {
+  switch (shading) {
+    case RendererOptions::GBufferShading::Raster: return "raster";
+    case RendererOptions::GBufferShading::Visibility: return "visibility";
+    default: return "auto";
+  }
+}
+
+std::optional<RendererOptions::GBufferShading> gbufferShadingFromName(std::string_view name) {
+  for (auto shading : {RendererOptions::GBufferShading::Automatic, RendererOptions::GBufferShading::Raster,
+                       RendererOptions::GBufferShading::Visibility})
+    if (name == gbufferShadingName(shading)) return shading;
+  return std::nullopt;
+}
 const vk::Image& DeferredRenderer::displayColor() const { return impl_->display; }
 const vk::Image& DeferredRenderer::linearDepth() const { return impl_->linearDepth; }
 const vk::Image& DeferredRenderer::hdrColor() const { return impl_->resolvedHdr; }

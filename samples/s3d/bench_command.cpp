@@ -74,6 +74,17 @@ class BenchCommand final : public Command {
     bench.add_flag("--renderer", options_.rendererOnly,
                    "Time the center frame and each renderer pass per scene instead of the stereo sweep");
     bench
+        .add_option_function<std::string>(
+            "--gbuffer-shading",
+            [this](const std::string& name) {
+              const auto shading = renderer::gbufferShadingFromName(name);
+              if (!shading) throw CLI::ValidationError("--gbuffer-shading", "must be auto, raster or visibility (got '" + name + "')");
+              options_.gbufferShading = *shading;
+            },
+            "With --renderer: how the G-buffer pass shades: auto (visibility on a GPU, raster on a CPU device), raster "
+            "(the fragment shader writes normal and material) or visibility (triangle ids, then a compute resolve)")
+        ->type_name("auto|raster|visibility");
+    bench
         .add_option("--bandwidth-gbs", bandwidth_,
                     "Memory bandwidth of the device in GB/s for the memory-traffic target (H100 SXM: 3350, "
                     "H100 PCIe: 2000); without it that target is skipped")

@@ -175,6 +175,8 @@ std::string readTextFile(const fs::path& file) {
 }
 
 ValidatedBench validateBench(const BenchOptions& options) {
+  if (!options.rendererOnly && options.gbufferShading != renderer::RendererOptions::GBufferShading::Automatic)
+    throw std::invalid_argument("--gbuffer-shading applies to --renderer timings only");
   if (options.supersample < 1 || options.supersample > 4 ||
       std::max(options.width, options.height) * options.supersample > kMaxImageSize)
     throw std::invalid_argument("supersample must be in [1, 4] and keep the render size within " +
@@ -239,6 +241,8 @@ std::string commandLineOf(const BenchOptions& options, const ValidatedBench& ben
   if (!options.scenes.empty()) command += " --scenes " + joinedNames(bench.scenes, ",");
   if (options.rendererOnly) {
     command += " --renderer";
+    if (options.gbufferShading != renderer::RendererOptions::GBufferShading::Automatic)
+      command += std::string(" --gbuffer-shading ") + renderer::gbufferShadingName(options.gbufferShading);
   } else {
     std::vector<std::string> names;
     for (const MethodSetting& setting : bench.settings) names.push_back(setting.name());
@@ -390,11 +394,14 @@ void runSweep(vk::Context& context, const BenchOptions& options, const Validated
 
 void runRendererTimings(vk::Context& context, const BenchOptions& options, const ValidatedBench& bench,
                         BenchReport& report) {
-  renderer::DeferredRenderer deferred(context, options.width, options.height, {options.supersample});
+  renderer::RendererOptions rendererOptions{options.supersample};
+  rendererOptions.gbufferShading = options.gbufferShading;
+  renderer::DeferredRenderer deferred(context, options.width, options.height, rendererOptions);
+  report.gbufferShading = renderer::gbufferShadingName(deferred.gbufferShading());
   // `s3d render`'s guard band (zero-parallax plane held at the nearest depth: the sky's parallax bounds it).
   const stereo::GuardBand band = stereo::guardBandFor(options.stereo.maxSeparation, 1.0, 1.0, options.width,
                                                       kMaxImageSize / options.supersample);
-  renderer::DeferredRenderer wide(context, band.renderedWidth(options.width), options.height, {options.supersample});
+  renderer::DeferredRenderer wide(context, band.renderedWidth(options.width), options.height, rendererOptions);
   std::size_t done = 0;
   for (const std::string& sceneName : bench.scenes) {
     if (options.progress) options.progress({done, bench.scenes.size(), sceneName + " center frame"});
@@ -679,7 +686,8 @@ std::string rendererMarkdown(const BenchReport& report) {
      << "x" << report.height << "\n\n";
   md << "Command: `" << report.commandLine << "` (wall time " << format("%.1f", report.wallSeconds) << " s).\n";
   md << "Center frame GPU time per scene and per pass (ms), each the median of " << report.repeat
-     << " warm frames; a pass the scene does not need does not run (-).\n\n";
+     << " warm frames; a pass the scene does not need does not run (-). G-buffer shading: "
+     << report.gbufferShading << ".\n\n";
   std::vector<std::string> passNames;
   for (const RendererRow& row : report.rendererRows)
     for (const renderer::PassTiming& pass : row.passes)

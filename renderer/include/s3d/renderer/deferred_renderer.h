@@ -6,6 +6,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -72,7 +73,19 @@ struct RendererOptions {
   bool reversedZ = false;
   // Tests: every frame counts what its passes shaded (PassTiming::shadedPixels), with atomic adds per pixel.
   bool countShadedPixels = false;
+  // How the G-buffer pass gets each pixel's normal and material (the images agree to half-float rounding).
+  enum class GBufferShading {
+    Automatic,   // Visibility on GPUs, Raster on CPU devices: measured the faster on each (docs/RESULTS.md)
+    Raster,      // the fragment shader evaluates and writes them (a CPU rasterizer interpolates cheaply)
+    Visibility,  // fragments write a triangle id only; a compute pass evaluates the surface per pixel (a GPU
+                 // whose raster side is a small part of the chip pays per byte a fragment writes)
+  };
+  GBufferShading gbufferShading = GBufferShading::Automatic;
 };
+
+// "auto", "raster", "visibility"; and back (nullopt for any other name).
+const char* gbufferShadingName(RendererOptions::GBufferShading shading);
+std::optional<RendererOptions::GBufferShading> gbufferShadingFromName(std::string_view name);
 
 // Which pixels a render shades (the hybrid stereo method renders only the eye pixels displacement gets wrong).
 //
@@ -119,6 +132,8 @@ class DeferredRenderer {
   std::uint32_t height() const;
   std::uint32_t supersample() const;
   const RendererOptions& options() const;
+  // The G-buffer shading this renderer runs (Automatic resolved for its device).
+  RendererOptions::GBufferShading gbufferShading() const;
 
   // Outputs of the last render(), left in VK_IMAGE_LAYOUT_GENERAL (vk::kComputeWrite state):
   const vk::Image& displayColor() const;  // RGBA8, tone-mapped, sRGB-encoded

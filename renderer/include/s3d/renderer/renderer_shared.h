@@ -49,7 +49,7 @@ struct FrameConstants {  // uniform buffer, std140 (every member 16-byte aligned
   vec4 ambientOcclusion;  // x: radius in world units; y, z: half-resolution width, height
   vec4 worldViewDepth;    // view depth of a world point p in the world layer's view: dot(worldViewDepth, (p, 1))
   uvec4 tiles;    // x, y: tiles per row and column; z: a masked render's shade-mask value from which a pixel is shaded
-  uvec4 options;  // x: supersample factor, y: 1 = ambient occlusion on
+  uvec4 options;  // x: supersample factor, y: 1 = ambient occlusion on, z, w: visibility ids (packVisibility)
 };
 
 #define S3D_SSAO_SAMPLES 16
@@ -68,8 +68,8 @@ struct ObjectConstants {  // storage buffer, std430, one per object
   vec4 specular;       // rgb: F0, a: glossiness
   uint layer;
   float normalScale;   // tangent-space normal map x/y scale; 0: no normal map (the interpolated normal as is)
-  uint padding1;
-  uint padding2;
+  uint firstIndex;     // its mesh in the scene's index buffer: first index, and the vertex its indices count from
+  uint vertexOffset;
 };
 
 // Per-vertex surface parameterization: the renderer's second vertex stream (zeros for meshes without it).
@@ -190,6 +190,30 @@ S3D_INLINE vec3 unpackAlbedo(uvec2 material) {
   return vec3(float(material.x & 0xffffu), float(material.x >> 16), float(material.y & 0xffffu)) / 65535.0f;
 }
 S3D_INLINE uint unpackObjectIndex(uvec2 material) { return material.y >> 16; }
+
+// The visibility target of the G-buffer pass: which triangle of which object each pixel shows, so the raster
+// pass writes 4 bytes a pixel and the G-buffer resolve (compute) evaluates the surface. Narrow ids (R32_UINT)
+// hold triangle << objectBits | object; a scene whose object count and largest mesh do not fit 32 bits that way
+// gets wide ids (R32G32_UINT: object, triangle). frame.options.z: objectBits, w: 1 for wide ids. Objects whose
+// G-buffer the raster pass writes itself (textured ones) write S3D_RASTER_SHADED, never a valid id.
+#define S3D_RASTER_SHADED 0xffffffffu
+S3D_INLINE uvec2 packVisibility(uint objectIndex, uint triangle, uvec4 options) {
+  return options.w != 0u ? uvec2(objectIndex, triangle) : uvec2((triangle << options.z) | objectIndex, 0u);
+}
+S3D_INLINE uint unpackVisibilityObject(uvec2 id, uvec4 options) {
+  return options.w != 0u ? id.x : id.x & ((1u << options.z) - 1u);
+}
+S3D_INLINE uint unpackVisibilityTriangle(uvec2 id, uvec4 options) { return options.w != 0u ? id.y : id.x >> options.z; }
+#ifdef __cplusplus
+// The packing of a scene's ids (options z, w): narrow when triangle << objectBits | object fits 32 bits with the
+// all-ones value to spare for S3D_RASTER_SHADED (mostTriangles: the largest mesh's triangle count).
+inline uvec2 visibilityPacking(std::uint64_t objectCount, std::uint64_t mostTriangles) {
+  uint objectBits = 0;
+  while (objectBits < 32 && (std::uint64_t(1) << objectBits) < objectCount) ++objectBits;
+  const bool narrow = objectBits < 32 && mostTriangles < (std::uint64_t(1) << (32 - objectBits));
+  return {objectBits, narrow ? 0u : 1u};
+}
+#endif
 
 S3D_GPU_END
 

@@ -33,7 +33,7 @@ struct GraphicsPipelineDesc {
   std::span<const std::uint32_t> fragmentSpirv;
   std::vector<VkVertexInputBindingDescription> vertexBindings;
   std::vector<VkVertexInputAttributeDescription> vertexAttributes;
-  std::vector<VkFormat> colorFormats;
+  std::vector<VkFormat> colorFormats;  // VK_FORMAT_UNDEFINED: a location the render pass binds no image to
   VkFormat depthFormat = VK_FORMAT_UNDEFINED;
   bool depthTest = false;
   bool depthWrite = false;

@@ -61,6 +61,8 @@ struct BenchOptions {
   int repeat = 5;                 // GPU timings per number (median), [1, 1000]
   std::uint32_t supersample = 1;  // renderer anti-aliasing for the center view and the reference eyes, 1..4
   bool rendererOnly = false;      // center frame and pass timings per scene, no stereo sweep
+  // --renderer: how the timed renderers' G-buffer pass shades (Automatic: the device's default).
+  renderer::RendererOptions::GBufferShading gbufferShading = renderer::RendererOptions::GBufferShading::Automatic;
   std::optional<double> bandwidthGBs;  // memory bandwidth for the traffic target; no guess when absent
   std::string targetSetting;      // the setting the targets judge; empty: defaultMethodSetting()
   stereo::StereoParameters stereo;  // zeroParallaxDistance and the weapon push; method and maxSeparation are swept
@@ -135,6 +137,7 @@ struct BenchReport {
   std::uint32_t height = 0;
   int repeat = 0;
   bool rendererOnly = false;
+  std::string gbufferShading;  // --renderer: the G-buffer shading the timed renderers ran ("raster", "visibility")
   std::string commandLine;  // an `s3d bench` command that reproduces the run
   MethodSetting targetSetting;
   std::optional<double> bandwidthGBs;
