@@ -251,6 +251,30 @@ TEST_F(ShadowTest, ASpotLightsBoxShadowGetsOnlyAmbientAndALitPointTheUnshadowedL
   expectLocalShadowedAndLit(context(), scene, glm::dvec3(scene.spotLights[0].color), "shadow-spot-0");
 }
 
+TEST_F(ShadowTest, APointLightsShadowMapRendersOncePerSceneAndLaterFramesKeepIt) {
+  // The second frame runs no point-light pass and shades exactly as the first (the kept map); a moved box
+  // (setScene) renders it again, so its shadow moves with it.
+  Scene scene = makePointLightScene();
+  DeferredRenderer renderer(context(), kWidth, kHeight);
+  renderer.setScene(scene);
+  auto frame = [&] {
+    Rendered result;
+    for (const PassTiming& pass : renderer.render(centerViewMatrices(scene, kAspect)).passes) result.passes.push_back(pass.name);
+    result.hdr = renderer.readHdrColor();
+    return result;
+  };
+  const Rendered first = frame();
+  const Rendered second = frame();
+  EXPECT_TRUE(ran(first, "shadow-point-0"));
+  EXPECT_FALSE(ran(second, "shadow-point-0"));
+  EXPECT_EQ(first.hdr.pixels, second.hdr.pixels);
+  scene.objects[1].transform = glm::translate(scene.objects[1].transform, glm::vec3(0.0f, 0.0f, 2.5f));
+  renderer.setScene(scene);
+  const Rendered moved = frame();
+  EXPECT_TRUE(ran(moved, "shadow-point-0"));
+  EXPECT_NE(moved.hdr.pixels, first.hdr.pixels);
+}
+
 bool anyShadowPass(const Rendered& frame) {
   return std::any_of(frame.passes.begin(), frame.passes.end(),
                      [](const std::string& name) { return name.rfind("shadow-", 0) == 0; });

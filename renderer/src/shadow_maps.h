@@ -2,7 +2,8 @@
 // The deferred renderer's shadow passes (seed 003 8.5.3, 000 4.3.3): sun cascades into one depth atlas,
 // point-light faces and spot views into a second; the lighting pass reads both (the sun's deferred shadow mask
 // is computed there, per pixel, rather than in a screen pass of its own). Planned per frame: a shadow map
-// without a caster in its view does not render.
+// without a caster in its view does not render. Point and spot views depend on the light and the world's casters
+// only, so each renders once per scene (setScene) and later frames reuse it; the sun's cascades follow the view.
 #include <cstdint>
 #include <functional>
 #include <string>
@@ -63,6 +64,7 @@ class ShadowMaps {
     std::uint32_t viewCount;  // 6 for a point light, 1 for a spot
     bool isPoint;
     std::size_t lightIndex;
+    bool rendered = false;  // its views hold this scene's depth (kept from an earlier frame)
   };
   struct ViewDraws {
     glm::mat4 viewProjection;
@@ -71,7 +73,7 @@ class ShadowMaps {
   };
 
   void recordDepthViews(VkCommandBuffer cmd, const vk::Image& atlas, VkPipeline pipeline,
-                        const std::vector<ViewDraws>& views, bool firstUse);
+                        const std::vector<ViewDraws>& views, const vk::ImageState& before);
 
   vk::Context& context_;
   std::uint32_t width_, height_;
@@ -94,6 +96,7 @@ class ShadowMaps {
   // This frame's plan.
   bool sunShadowedThisFrame_ = false;
   bool localAtlasWritten_ = false;
+  bool localAtlasKept_ = false;  // the local atlas holds views rendered in earlier frames (left readable)
   std::vector<int> pointViewsThisFrame_, spotViewsThisFrame_;
 };
 
