@@ -1,12 +1,12 @@
 #version 450
-// Tiled deferred lighting (section 4.3.3 in one compute pass): per tile of S3D_TILE_SIZE^2 render pixels (one
-// thread each), the view-depth range of its surface points culls the point and spot lights (sphereTouchesTile)
-// into a list in light order; then each pixel gets hemisphere ambient x ambient occlusion (depth-aware upsample of the half-resolution
-// image), the sun through its cascaded shadow maps (the deferred shadow mask, fused here), the tile's local
-// lights with their shadow maps, and its material (albedo on diffuse, Schlick Fresnel on specular), or the
-// sky's colour. Writes HDR colour; in a frame without transparent surfaces or supersampling it resolves in place
-// instead (the resolve's outputs, one full-screen pass fewer). A masked render shades only shade-mask pixels of
-// the listed tiles.
+// Tiled deferred lighting (section 4.3.3), after light_tiles.comp culled each tile's lights into its light mask
+// and listed the tile by class: per tile of S3D_TILE_SIZE^2 render pixels (one thread each), each pixel gets
+// hemisphere ambient x ambient occlusion (depth-aware upsample of the half-resolution image), the sun through
+// its cascaded shadow maps (the deferred shadow mask, fused here), the tile's local lights with their shadow
+// maps (in light order), and its material (albedo on diffuse, Schlick Fresnel on specular), or the sky's
+// colour. One variant per tile class (S3D_TILE_*): sky tiles compute the sky only, unlit tiles no light loop.
+// Writes HDR colour; in a frame without transparent surfaces or supersampling it resolves in place instead (the
+// resolve's outputs, one full-screen pass fewer). A masked render shades only shade-mask pixels of its tiles.
 #extension GL_GOOGLE_include_directive : require
 #include "s3d/renderer/renderer_shared.h"
 #include "tonemap.glsl"
@@ -29,51 +29,20 @@ layout(binding = 15, r32f) uniform writeonly image2D linearDepthImage;
 #define S3D_TILES_BINDING 11
 #define S3D_SHADE_MASK_BINDING 12
 #include "tiles.glsl"
+#include "surface.glsl"
 layout(push_constant) uniform Push { LightingConstants lighting; };
 // Whether the frame has sun cascades and point or spot shadow maps: without, their lookups are compiled out.
 layout(constant_id = 2) const bool kSunShadows = true;
 layout(constant_id = 3) const bool kLocalShadows = true;
 // Whether this pass writes the resolve's outputs itself (no transparent pass and no supersampling follow).
 layout(constant_id = 4) const bool kResolveInPlace = false;
+// The tile class this variant shades: sky tiles (constant 5), lit tiles (6), or neither: unlit tiles.
+layout(constant_id = 5) const bool kSkyTiles = false;
+layout(constant_id = 6) const bool kLitTiles = false;
 
-shared uint tileNearest, tileFarthest;  // view depths as order-preserving bits
-shared uint tileHasFirstPerson;
-shared uint tileLightBits[S3D_LIGHT_MASK_WORDS];  // culling's result, one bit per light
+shared uint tileLightBits[S3D_LIGHT_MASK_WORDS];  // culling's result (light_tiles.comp), one bit per light
 shared uint tileLightCount, tileShadowedLightCount;
 shared uint tileLights[S3D_MAX_LIGHTS];  // the same lights as a list, in light order (a fixed summation order)
-
-// Float <-> uint with the same order (negative floats too), for atomicMin/atomicMax.
-uint orderedBits(float value) {
-  uint bits = floatBitsToUint(value);
-  return (bits & 0x80000000u) != 0u ? ~bits : bits | 0x80000000u;
-}
-float orderedFloat(uint bits) {
-  return uintBitsToFloat((bits & 0x80000000u) != 0u ? bits & 0x7fffffffu : ~bits);
-}
-
-struct Surface {
-  vec3 position;  // world
-  uint layer;
-  float linearDepth;
-  vec3 eye;       // the layer's camera position (world)
-};
-
-// Listing 4.3, then the view position from the layer's (possibly off-axis) projection, then the world. The
-// layer's constants are selected, not indexed: an index varying per pixel is a gather on a CPU rasterizer.
-Surface surfaceAt(ivec2 pixel, float device) {
-  Surface s;
-  bool firstPerson = isFirstPersonDeviceDepth(frame.linearDepth, device);
-  s.layer = firstPerson ? S3D_LAYER_FIRST_PERSON : S3D_LAYER_WORLD;
-  s.linearDepth = linearDepthFromDepthBuffer(frame.linearDepth, device);
-  vec2 ndc = (vec2(pixel) + 0.5) * frame.screen.zw * 2.0 - 1.0;
-  vec4 p = firstPerson ? frame.layers[S3D_LAYER_FIRST_PERSON].projection : frame.layers[S3D_LAYER_WORLD].projection;
-  vec3 view = vec3((ndc.x + p.z) * s.linearDepth / p.x, (ndc.y + p.w) * s.linearDepth / p.y, -s.linearDepth);
-  mat4 worldFromView = firstPerson ? frame.layers[S3D_LAYER_FIRST_PERSON].worldFromView
-                                   : frame.layers[S3D_LAYER_WORLD].worldFromView;
-  s.position = (worldFromView * vec4(view, 1.0)).xyz;
-  s.eye = worldFromView[3].xyz;
-  return s;
-}
 
 // Sky at infinite distance: its colour depends on the view direction only.
 vec3 skyColor(ivec2 pixel) {
@@ -199,12 +168,14 @@ vec3 shadeSurface(ivec2 pixel, Surface s) {
   }
 
   // Loops over the tile's list, its shadowed lights first (a CPU rasterizer runs a loop body at least once
-  // and both sides of every branch, so the lists are compact and unshadowed lights skip the shadow code).
-  if (kLocalShadows)
+  // and both sides of every branch, so the lists are compact, unshadowed lights skip the shadow code and tiles
+  // no light reaches have a variant without the loops).
+  if (kLitTiles && kLocalShadows)
     for (uint n = 0u; n < tileShadowedLightCount; ++n)
       addLight(lights[tileLights[n]], true, s.position, normal, toEye, exponent, diffuse, specular);
-  for (uint n = kLocalShadows ? tileShadowedLightCount : 0u; n < tileLightCount; ++n)
-    addLight(lights[tileLights[n]], false, s.position, normal, toEye, exponent, diffuse, specular);
+  if (kLitTiles)
+    for (uint n = kLocalShadows ? tileShadowedLightCount : 0u; n < tileLightCount; ++n)
+      addLight(lights[tileLights[n]], false, s.position, normal, toEye, exponent, diffuse, specular);
 
   uvec2 stored = texelFetch(material, pixel, 0).rg;
   vec3 f0 = objects[unpackObjectIndex(stored)].specular.rgb;
@@ -214,57 +185,42 @@ vec3 shadeSurface(ivec2 pixel, Surface s) {
 
 void main() {
   uint local = gl_LocalInvocationIndex;
-  if (local == 0u) {
-    tileNearest = 0xffffffffu;
-    tileFarthest = 0u;
-    tileHasFirstPerson = 0u;
-  }
-  if (local < S3D_LIGHT_MASK_WORDS) tileLightBits[local] = 0u;
-  barrier();
-
-  // 1. The view-depth range of the tile's shaded surface points (in the world layer's view space).
-  ivec2 tile = maskedTile();
+  uint tileClass = kSkyTiles ? S3D_TILE_SKY : kLitTiles ? S3D_TILE_LIT : S3D_TILE_UNLIT;
+  ivec2 tile = classTile(tileClass);
   ivec2 pixel = tile * S3D_TILE_SIZE + ivec2(gl_LocalInvocationID.xy);
   bool shaded = all(lessThan(pixel, ivec2(frame.screen.xy))) && shadeMasked(pixel);
-  float device = shaded ? texelFetch(deviceDepth, pixel, 0).r : 0.0;
-  bool sky = isSkyDeviceDepth(frame.linearDepth, device);
-  Surface surface = surfaceAt(pixel, device);
-  if (shaded && !sky) {
-    bool firstPerson = surface.layer == S3D_LAYER_FIRST_PERSON;
-    float viewDepth = firstPerson ? dot(frame.worldViewDepth, vec4(surface.position, 1.0)) : surface.linearDepth;
-    atomicMin(tileNearest, orderedBits(viewDepth));
-    atomicMax(tileFarthest, orderedBits(viewDepth));
-    if (firstPerson) atomicOr(tileHasFirstPerson, 1u);
-  }
-  barrier();
 
-  // 2. The lights whose sphere reaches that range within the tile's rays: one thread per light.
-  if (local < lighting.lightCount && tileNearest <= tileFarthest) {
-    vec2 depthRange = vec2(orderedFloat(tileNearest), orderedFloat(tileFarthest));
-    vec2 lo = vec2(tile * S3D_TILE_SIZE) * frame.screen.zw * 2.0 - 1.0;
-    vec2 hi = vec2(min((tile + 1) * S3D_TILE_SIZE, ivec2(frame.screen.xy))) * frame.screen.zw * 2.0 - 1.0;
-    LightConstants light = lights[local];
-    if (sphereTouchesTile(light.viewPosition.xyz, light.positionRadius.w, depthRange, vec4(lo, hi),
-                          frame.layers[S3D_LAYER_WORLD].projection, tileHasFirstPerson == 0u))
-      atomicOr(tileLightBits[local >> 5], 1u << (local & 31u));
-  }
-  barrier();
-  // The list: each culled-in light at its rank among them.
-  if (local < S3D_MAX_LIGHTS) {
-    uint word = local >> 5, bit = 1u << (local & 31u), rank = bitCount(tileLightBits[word] & (bit - 1u));
-    for (uint w = 0u; w < S3D_LIGHT_MASK_WORDS; ++w) rank += w < word ? bitCount(tileLightBits[w]) : 0u;
-    if ((tileLightBits[word] & bit) != 0u) tileLights[rank] = local;
-    if (local == lighting.shadowedLights) tileShadowedLightCount = rank;  // the culled-in lights before it
-    if (local == S3D_MAX_LIGHTS - 1u) {
-      tileLightCount = rank + ((tileLightBits[word] & bit) != 0u ? 1u : 0u);
-      if (lighting.shadowedLights == S3D_MAX_LIGHTS) tileShadowedLightCount = tileLightCount;
+  // Lit tiles: the mask as a list, each culled-in light at its rank among them (a fixed summation order).
+  if (kLitTiles) {
+    if (local < S3D_LIGHT_MASK_WORDS) tileLightBits[local] = tileEntries[tileLightMask(tile) + local];
+    barrier();
+    if (local < S3D_MAX_LIGHTS) {
+      uint word = local >> 5, bit = 1u << (local & 31u), rank = bitCount(tileLightBits[word] & (bit - 1u));
+      for (uint w = 0u; w < S3D_LIGHT_MASK_WORDS; ++w) rank += w < word ? bitCount(tileLightBits[w]) : 0u;
+      if ((tileLightBits[word] & bit) != 0u) tileLights[rank] = local;
+      if (local == lighting.shadowedLights) tileShadowedLightCount = rank;  // the culled-in lights before it
+      if (local == S3D_MAX_LIGHTS - 1u) {
+        tileLightCount = rank + ((tileLightBits[word] & bit) != 0u ? 1u : 0u);
+        if (lighting.shadowedLights == S3D_MAX_LIGHTS) tileShadowedLightCount = tileLightCount;
+      }
     }
+    barrier();
   }
-  barrier();
 
-  // 3. Shade.
   if (!shaded) return;
-  vec4 color = vec4(sky ? skyColor(pixel) : shadeSurface(pixel, surface), 1.0);
+  float device = texelFetch(deviceDepth, pixel, 0).r;
+  // A sky tile's shaded pixels are all sky (light_tiles.comp found no surface among them).
+  bool sky = kSkyTiles || isSkyDeviceDepth(frame.linearDepth, device);
+  Surface surface;
+  vec3 shadedColor;
+  if (kSkyTiles) {
+    surface.layer = S3D_LAYER_WORLD;
+    shadedColor = skyColor(pixel);
+  } else {
+    surface = surfaceAt(pixel, device);
+    shadedColor = sky ? skyColor(pixel) : shadeSurface(pixel, surface);
+  }
+  vec4 color = vec4(shadedColor, 1.0);
   if (kResolveInPlace) {
     // As resolve.comp does with one sample, but from the unrounded colour: Vulkan leaves the rounding of a
     // float16 image store to the implementation (lavapipe truncates), so the HDR output gets the store's own.

@@ -7,7 +7,8 @@ layout(constant_id = 0) const bool kMaskedRender = false;
 layout(constant_id = 1) const bool kCountShaded = false;
 layout(std430, binding = S3D_TILES_BINDING) buffer Tiles {
   TileHeader tileHeader;
-  uint tileEntries[];  // ambient-region flags, masked tiles, ambient-region tiles (tileCount() each)
+  uint tileEntries[];  // ambient-region flags, masked tiles, ambient-region tiles, the lighting classes'
+                       // tiles (tileCount() each), the tiles' light masks (S3D_LIGHT_MASK_WORDS each)
 };
 
 bool maskedRender() { return kMaskedRender; }
@@ -22,6 +23,17 @@ ivec2 workgroupTile(uint listStart) {
 }
 ivec2 maskedTile() { return workgroupTile(tileCount()); }
 ivec2 ambientTile() { return workgroupTile(2u * tileCount()); }
+
+// Lighting classes (S3D_TILE_*): the tiles of a class, dispatched indirectly in masked and unmasked renders.
+uint tileClassList(uint tileClass) { return (3u + tileClass) * tileCount(); }
+ivec2 classTile(uint tileClass) {
+  uint packed = tileEntries[tileClassList(tileClass) + gl_WorkGroupID.x];
+  return ivec2(packed & 0xffffu, packed >> 16);
+}
+// The first word of a tile's light mask (one bit per light of the frame's light buffer).
+uint tileLightMask(ivec2 tile) {
+  return (3u + S3D_TILE_CLASSES) * tileCount() + (uint(tile.y) * frame.tiles.x + uint(tile.x)) * S3D_LIGHT_MASK_WORDS;
+}
 
 // Adds to a pass's shaded-pixel counter when the renderer counts (tests).
 void countShaded(uint slot, uint pixels) {

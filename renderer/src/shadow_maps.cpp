@@ -176,10 +176,18 @@ std::vector<ShadowPass> ShadowMaps::schedule(const ViewMatrices& view) {
   pointViewsThisFrame_.assign(scene_.pointLights.size(), -1);
   spotViewsThisFrame_.assign(scene_.spotLights.size(), -1);
 
+  // The casters a view reaches, nearest the light first: the depth test then rejects hidden fragments before
+  // they write (the map is the nearest depth whatever the order).
   auto castersIn = [this](const glm::mat4& viewProjection) {
-    std::vector<std::uint32_t> inView;
+    std::vector<std::pair<float, std::uint32_t>> keyed;
     for (std::size_t i = 0; i < casters_.size(); ++i)
-      if (sphereTouchesFrustum(viewProjection, casterBounds_[i])) inView.push_back(casters_[i]);
+      if (sphereTouchesFrustum(viewProjection, casterBounds_[i])) {
+        const glm::vec4 clip = viewProjection * glm::vec4(casterBounds_[i].center, 1.0f);
+        keyed.push_back({clip.w > 0.0f ? clip.z / clip.w : -1.0f, casters_[i]});
+      }
+    std::sort(keyed.begin(), keyed.end());
+    std::vector<std::uint32_t> inView;
+    for (const auto& entry : keyed) inView.push_back(entry.second);
     return inView;
   };
 

@@ -67,7 +67,7 @@ TileLists::TileLists(vk::Context& context, std::uint32_t renderWidth, std::uint3
       height_(renderHeight),
       tilesX_(groups(renderWidth, S3D_TILE_SIZE)),
       tilesY_(groups(renderHeight, S3D_TILE_SIZE)) {
-  const VkDeviceSize entries = 3 * VkDeviceSize(tilesX_) * tilesY_ * sizeof(std::uint32_t);
+  const VkDeviceSize entries = S3D_TILE_LIST_WORDS * VkDeviceSize(tilesX_) * tilesY_ * sizeof(std::uint32_t);
   buffer_ = vk::createBuffer(context_, sizeof(gpu::TileHeader) + entries,
                              VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT |
                                  VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
@@ -98,6 +98,7 @@ void TileLists::recordReset(VkCommandBuffer cmd, const vk::Image* mask) {
   gpu::TileHeader header{};
   header.lightingDispatch = glm::uvec4(0, 1, 1, 0);
   header.ambientDispatch = glm::uvec4(0, 1, 1, 0);
+  for (glm::uvec4& dispatch : header.tileClassDispatch) dispatch = glm::uvec4(0, 1, 1, 0);
   vkCmdUpdateBuffer(cmd, buffer_.buffer, 0, sizeof(header), &header);
   if (mask != nullptr) {
     vkCmdFillBuffer(cmd, buffer_.buffer, sizeof(header), VkDeviceSize(tilesX_) * tilesY_ * sizeof(std::uint32_t), 0);
@@ -135,6 +136,11 @@ void TileLists::recordCountGBuffer(VkCommandBuffer cmd, VkBuffer frameBuffer, co
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, count_);
   context_.cmdPushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, countLayout_.layout, 0, 3, writes);
   vkCmdDispatch(cmd, groups(width_, S3D_COMPUTE_GROUP_SIZE), groups(height_, S3D_COMPUTE_GROUP_SIZE), 1);
+}
+
+void TileLists::recordListsVisible(VkCommandBuffer cmd) {
+  memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, kComputeAndIndirect,
+                kStorageAndIndirect);
 }
 
 void TileLists::recordCountReadback(VkCommandBuffer cmd) {

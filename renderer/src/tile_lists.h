@@ -1,8 +1,8 @@
 #pragma once
 // The tile buffer of the renderer's compute passes (gpu::TileHeader, then per tile the ambient-region flag,
-// the masked-tile list and the ambient-region list): the masked render's tile-list pass (mask-tiles), the
-// indirect dispatch counts it leaves for the passes after it, and the shaded-pixel counters of a counting
-// render.
+// the masked-tile list, the ambient-region list, the lighting classes' lists and the light masks): the masked
+// render's tile-list pass (mask-tiles), the indirect dispatch counts it and the lighting's classification leave
+// for the passes after them, and the shaded-pixel counters of a counting render.
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -64,6 +64,11 @@ class TileLists {
   // mask-tiles: reads the frame constants and the mask; writes the lists and dispatch counts, readable by the
   // compute passes and their indirect dispatches after it.
   void recordBuild(VkCommandBuffer cmd, VkBuffer frameBuffer, const vk::Image& mask);
+  // After a compute pass wrote lists or dispatch counts: readable by compute and by indirect dispatches.
+  static void recordListsVisible(VkCommandBuffer cmd);
+  static constexpr VkDeviceSize tileClassDispatch(std::uint32_t tileClass) {
+    return offsetof(gpu::TileHeader, tileClassDispatch) + tileClass * sizeof(glm::uvec4);
+  }
   // Counting renders: the render pixels the G-buffer wrote (material target readable by compute).
   void recordCountGBuffer(VkCommandBuffer cmd, VkBuffer frameBuffer, const vk::Image& material, VkSampler nearest);
   // After the last pass: the counters into host memory (readCounts after the submission completes).

@@ -13,6 +13,7 @@
 
 // clang-format off
 #include <cstdint>
+#include <s3d_spirv/light_tiles_comp.h>
 #include <s3d_spirv/lighting_comp.h>
 // clang-format on
 
@@ -39,6 +40,12 @@ TiledLighting::TiledLighting(vk::Context& context, bool counting) : context_(con
       computeBinding(12, storage), computeBinding(13, storage), computeBinding(14, storage), computeBinding(15, storage)};
   layout_ = vk::createPushDescriptorLayout(context_, bindings, sizeof(gpu::LightingConstants), VK_SHADER_STAGE_COMPUTE_BIT);
   pipelines_ = std::make_unique<TilePipelines>(context_, layout_.layout, spirv_lighting_comp, counting);
+  const VkDescriptorSetLayoutBinding classifyBindings[] = {computeBinding(0, ubo), computeBinding(1, sampled),
+                                                           computeBinding(2, ssbo), computeBinding(3, ssbo),
+                                                           computeBinding(4, storage)};
+  classifyLayout_ = vk::createPushDescriptorLayout(context_, classifyBindings, sizeof(gpu::LightingConstants),
+                                                   VK_SHADER_STAGE_COMPUTE_BIT);
+  classifyPipelines_ = std::make_unique<TilePipelines>(context_, classifyLayout_.layout, spirv_light_tiles_comp, false);
   nearest_ = createNearestClampSampler(context_);
   setScene(Scene{});
 }
@@ -117,14 +124,35 @@ void TiledLighting::record(VkCommandBuffer cmd, const Inputs& in, const ShadowMa
       vk::storageImageWrite(15, &linearInfo)};
   for (std::uint32_t i = 1; i <= 6; ++i) writes[i].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
   for (std::uint32_t i : {8u, 9u, 11u}) writes[i].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelines_->get(in.masked, {sunShadowed_, shadowedLightCount_ > 0, out.resolveInPlace}));
-  context_.cmdPushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_.layout, 0, 16, writes);
   const gpu::LightingConstants constants{lightCount_, shadowedLightCount_, 0, 0};
-  vkCmdPushConstants(cmd, layout_.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(constants), &constants);
+
+  // Classification: each tile's light mask and class list (a masked render: its listed tiles).
+  VkWriteDescriptorSet classifyWrites[] = {vk::uniformBufferWrite(0, &frameInfo), vk::sampledImageWrite(1, &depthInfo),
+                                           vk::uniformBufferWrite(2, &lightInfo), vk::uniformBufferWrite(3, &tileInfo),
+                                           vk::storageImageWrite(4, &maskInfo)};
+  classifyWrites[1].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+  for (std::uint32_t i : {2u, 3u}) classifyWrites[i].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, classifyPipelines_->get(in.masked));
+  context_.cmdPushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, classifyLayout_.layout, 0, 5, classifyWrites);
+  vkCmdPushConstants(cmd, classifyLayout_.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(constants), &constants);
   if (in.masked)
     vkCmdDispatchIndirect(cmd, in.tiles, TileLists::kMaskedTilesDispatch);
   else
     vkCmdDispatch(cmd, in.tilesX, in.tilesY, 1);
+  TileLists::recordListsVisible(cmd);
+
+  // Shading: one variant per class over the class's tiles (the variants share the layout, so the descriptors
+  // and constants pushed once serve all three).
+  for (std::uint32_t tileClass = 0; tileClass < S3D_TILE_CLASSES; ++tileClass) {
+    const bool sky = tileClass == S3D_TILE_SKY, lit = tileClass == S3D_TILE_LIT;
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE,
+                      pipelines_->get(in.masked, {sunShadowed_, shadowedLightCount_ > 0, out.resolveInPlace, sky, lit}));
+    if (tileClass == 0) {
+      context_.cmdPushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_.layout, 0, 16, writes);
+      vkCmdPushConstants(cmd, layout_.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(constants), &constants);
+    }
+    vkCmdDispatchIndirect(cmd, in.tiles, TileLists::tileClassDispatch(tileClass));
+  }
 }
 
 }  // namespace s3d::renderer::detail

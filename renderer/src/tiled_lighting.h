@@ -1,7 +1,9 @@
 #pragma once
-// The tiled deferred lighting pass (shaders/lighting.comp): per tile, point and spot lights culled against the
-// tile's depth range; per pixel, ambient x occlusion, the sun with its cascaded shadow, the tile's lights with
-// their shadow maps and the material, or the sky. Owns its pipeline and the per-frame light buffer.
+// The tiled deferred lighting pass: per tile, point and spot lights culled against the tile's depth range and
+// the tile classed as sky, unlit or lit (shaders/light_tiles.comp); then per class a variant of
+// shaders/lighting.comp, dispatched over the class's tiles: per pixel, ambient x occlusion, the sun with its
+// cascaded shadow, the tile's lights with their shadow maps and the material, or the sky. Owns its pipelines
+// and the per-frame light buffer.
 //
 // Reads: device depth, normal/glossiness and material targets and the half-resolution occlusion (sampled by
 // compute), the shadow atlases and constants, the frame and object constants, the tile buffer (a masked render
@@ -55,8 +57,8 @@ class TiledLighting {
 
  private:
   vk::Context& context_;
-  vk::PipelineLayout layout_;
-  std::unique_ptr<TilePipelines> pipelines_;
+  vk::PipelineLayout layout_, classifyLayout_;
+  std::unique_ptr<TilePipelines> pipelines_, classifyPipelines_;
   vk::Unique<VkSampler> nearest_;
   vk::Buffer lights_;  // gpu::LightConstants, host visible: the frame's shadowed lights, then the others
   std::uint32_t lightCount_ = 0, shadowedLightCount_ = 0;

@@ -98,13 +98,23 @@ struct LightingConstants {  // push constants of the lighting pass
   uint padding2;
 };
 
-// Head of the tile buffer (std430), followed by uint entries: the tile flags of the ambient-occlusion region,
-// the masked tiles and the ambient-occlusion tiles, tilesX * tilesY each (a tile packed as x | y << 16).
+// The lighting pass's tile classes (light_tiles.comp): each shaded by a variant compiled for it, as a CPU
+// rasterizer runs every branch and a loop body at least once.
+#define S3D_TILE_SKY 0      // no shaded surface pixel: the sky's colour only
+#define S3D_TILE_UNLIT 1    // surfaces, no point or spot light reaches them
+#define S3D_TILE_LIT 2      // surfaces and the lights of the tile's light mask
+#define S3D_TILE_CLASSES 3
+
+// Head of the tile buffer (std430), followed by uint entries, tilesX * tilesY each (a tile packed as x | y << 16):
+// the tile flags of the ambient-occlusion region, the masked tiles, the ambient-occlusion tiles, the tiles of
+// each lighting class (S3D_TILE_CLASSES lists), then S3D_LIGHT_MASK_WORDS words per tile (its light mask).
 struct TileHeader {
   uvec4 lightingDispatch;  // vkCmdDispatchIndirect arguments: x = masked tiles
   uvec4 ambientDispatch;   // x = tiles of the ambient-occlusion region (masked tiles and their 8 neighbours)
   uint shadedPixels[S3D_COUNT_SLOTS];
+  uvec4 tileClassDispatch[S3D_TILE_CLASSES];  // x = tiles of each lighting class
 };
+#define S3D_TILE_LIST_WORDS (3 + S3D_TILE_CLASSES + S3D_LIGHT_MASK_WORDS)  // entries per tile, all lists
 
 // Push constants of the resolve pass: the G-buffer and lighting run at supersample x the output size; the
 // resolve averages each output pixel's supersample^2 samples (colour after tone mapping) and keeps the

@@ -1,0 +1,71 @@
+#version 450
+// Lighting, first step (section 4.3.3's light culling): per tile of S3D_TILE_SIZE^2 render pixels (one thread
+// each), the view-depth range of its shaded surface points culls the point and spot lights (sphereTouchesTile,
+// one thread per light) into the tile's light mask; then the tile joins the list of its class: sky only,
+// surfaces no light reaches, or surfaces with lights. The lighting pass shades each list with a variant compiled
+// for it, so a tile pays for the work it needs only, on a CPU rasterizer too (which runs every branch). A masked
+// render classifies the listed tiles by their shade-mask pixels.
+#extension GL_GOOGLE_include_directive : require
+#include "s3d/renderer/renderer_shared.h"
+
+layout(local_size_x = S3D_TILE_SIZE, local_size_y = S3D_TILE_SIZE) in;
+layout(binding = 0) uniform Frame { FrameConstants frame; };
+layout(binding = 1) uniform sampler2D deviceDepth;
+layout(std430, binding = 2) readonly buffer Lights { LightConstants lights[]; };
+#define S3D_TILES_BINDING 3
+#define S3D_SHADE_MASK_BINDING 4
+#include "tiles.glsl"
+#include "surface.glsl"
+layout(push_constant) uniform Push { LightingConstants lighting; };
+
+shared uint tileNearest, tileFarthest;  // view depths as order-preserving bits
+shared uint tileHasFirstPerson;
+shared uint tileLightBits[S3D_LIGHT_MASK_WORDS];
+
+void main() {
+  uint local = gl_LocalInvocationIndex;
+  if (local == 0u) {
+    tileNearest = 0xffffffffu;
+    tileFarthest = 0u;
+    tileHasFirstPerson = 0u;
+  }
+  if (local < S3D_LIGHT_MASK_WORDS) tileLightBits[local] = 0u;
+  barrier();
+
+  // 1. The view-depth range of the tile's shaded surface points (in the world layer's view space).
+  ivec2 tile = maskedTile();
+  ivec2 pixel = tile * S3D_TILE_SIZE + ivec2(gl_LocalInvocationID.xy);
+  bool shaded = all(lessThan(pixel, ivec2(frame.screen.xy))) && shadeMasked(pixel);
+  float device = shaded ? texelFetch(deviceDepth, pixel, 0).r : 0.0;
+  if (shaded && !isSkyDeviceDepth(frame.linearDepth, device)) {
+    Surface surface = surfaceAt(pixel, device);
+    bool firstPerson = surface.layer == S3D_LAYER_FIRST_PERSON;
+    float viewDepth = firstPerson ? dot(frame.worldViewDepth, vec4(surface.position, 1.0)) : surface.linearDepth;
+    atomicMin(tileNearest, orderedBits(viewDepth));
+    atomicMax(tileFarthest, orderedBits(viewDepth));
+    if (firstPerson) atomicOr(tileHasFirstPerson, 1u);
+  }
+  barrier();
+
+  // 2. The lights whose sphere reaches that range within the tile's rays: one thread per light.
+  bool surfaces = tileNearest <= tileFarthest;
+  if (local < lighting.lightCount && surfaces) {
+    vec2 depthRange = vec2(orderedFloat(tileNearest), orderedFloat(tileFarthest));
+    vec2 lo = vec2(tile * S3D_TILE_SIZE) * frame.screen.zw * 2.0 - 1.0;
+    vec2 hi = vec2(min((tile + 1) * S3D_TILE_SIZE, ivec2(frame.screen.xy))) * frame.screen.zw * 2.0 - 1.0;
+    LightConstants light = lights[local];
+    if (sphereTouchesTile(light.viewPosition.xyz, light.positionRadius.w, depthRange, vec4(lo, hi),
+                          frame.layers[S3D_LAYER_WORLD].projection, tileHasFirstPerson == 0u))
+      atomicOr(tileLightBits[local >> 5], 1u << (local & 31u));
+  }
+  barrier();
+
+  // 3. The mask, and the tile into its class's list.
+  if (local < S3D_LIGHT_MASK_WORDS) tileEntries[tileLightMask(tile) + local] = tileLightBits[local];
+  if (local != 0u) return;
+  bool lit = false;
+  for (uint w = 0u; w < S3D_LIGHT_MASK_WORDS; ++w) lit = lit || tileLightBits[w] != 0u;
+  uint tileClass = !surfaces ? S3D_TILE_SKY : lit ? S3D_TILE_LIT : S3D_TILE_UNLIT;
+  uint slot = atomicAdd(tileHeader.tileClassDispatch[tileClass].x, 1u);
+  tileEntries[tileClassList(tileClass) + slot] = packTile(tile);
+}
