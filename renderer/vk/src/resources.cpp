@@ -53,8 +53,6 @@ std::uint32_t texelSize(VkFormat format) {
       return 4;
     case VK_FORMAT_D16_UNORM:
       return 2;
-    case VK_FORMAT_R8_UNORM:
-      return 1;
     case VK_FORMAT_R16G16B16A16_SFLOAT:
     case VK_FORMAT_R32G32_SFLOAT:
       return 8;
