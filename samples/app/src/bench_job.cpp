@@ -427,7 +427,8 @@ void runRendererTimings(vk::Context& context, const BenchOptions& options, const
                                                                      : std::nullopt);
     }
     report.rendererRows.push_back(
-        {sceneName, frameMs, std::move(passes), band.columns, medianOf(wideRuns), medianOf(ratios)});
+        {sceneName, frameMs, std::move(passes), band.columns, medianOf(wideRuns), medianOf(ratios),
+         context.isCpuDevice() ? std::optional(detail::processCpuMsPerFrame(deferred, center, options.repeat)) : std::nullopt});
     if (done == 0) {  // the masked-render cost scaling, on the first scene
       if (options.progress) options.progress({done, bench.scenes.size(), sceneName + " masked frames"});
       (void)deferred.render(center);  // its depth picks the masks
@@ -695,14 +696,21 @@ std::string rendererMarkdown(const BenchReport& report) {
   const std::uint32_t band = report.rendererRows.empty() ? 0 : report.rendererRows.front().guardBandColumns;
   md << "Guard band: the center frame " << band << " columns wider on each side (`s3d render`'s default at "
      << "this separation); ratio: the median of " << report.repeat << " back-to-back pairs of wide / plain frame.\n\n";
-  md << "| scene | frame | guard band frame | ratio |";
+  const bool cpuTimes = std::any_of(report.rendererRows.begin(), report.rendererRows.end(),
+                                    [](const RendererRow& row) { return row.cpuTimePerFrameMs.has_value(); });
+  if (cpuTimes)
+    md << "CPU time: the process's user + system time per center frame over " << report.repeat
+       << " more frames (the device's work summed over its threads), which other load on the machine disturbs "
+          "less than the timestamps.\n\n";
+  md << "| scene | frame |" << (cpuTimes ? " CPU time |" : "") << " guard band frame | ratio |";
   for (const std::string& name : passNames) md << ' ' << name << " |";
-  md << "\n|---|---|---|---|";
+  md << "\n|---|---|" << (cpuTimes ? "---|" : "") << "---|---|";
   for (std::size_t i = 0; i < passNames.size(); ++i) md << "---|";
   md << '\n';
   for (const RendererRow& row : report.rendererRows) {
-    md << "| " << row.scene << " | " << msText(row.frameGpuMs) << " | " << msText(row.guardBandFrameGpuMs) << " | "
-       << ratioText(row.guardBandRatio) << " |";
+    md << "| " << row.scene << " | " << msText(row.frameGpuMs) << " | ";
+    if (cpuTimes) md << msText(row.cpuTimePerFrameMs) << " | ";
+    md << msText(row.guardBandFrameGpuMs) << " | " << ratioText(row.guardBandRatio) << " |";
     for (const std::string& name : passNames) {
       auto pass = std::find_if(row.passes.begin(), row.passes.end(),
                                [&](const renderer::PassTiming& p) { return p.name == name; });
@@ -912,7 +920,8 @@ nlohmann::json toJson(const BenchReport& report) {
     rendererRows.push_back({{"scene", row.scene}, {"frameGpuMs", optionalMs(row.frameGpuMs)}, {"passes", passes},
                             {"guardBandColumns", row.guardBandColumns},
                             {"guardBandFrameGpuMs", optionalMs(row.guardBandFrameGpuMs)},
-                            {"guardBandRatio", optionalMs(row.guardBandRatio)}});
+                            {"guardBandRatio", optionalMs(row.guardBandRatio)},
+                            {"cpuTimePerFrameMs", optionalMs(row.cpuTimePerFrameMs)}});
   }
   nlohmann::json maskedRows = nlohmann::json::array();
   for (const MaskedRenderRow& row : report.maskedRenderRows) {

@@ -1,5 +1,7 @@
 #include "renderer_timing.h"
 
+#include <sys/resource.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -40,6 +42,21 @@ std::pair<std::optional<double>, std::vector<renderer::PassTiming>> timeFrames(r
   }
   for (renderer::PassTiming& pass : order) pass.gpuMs = stereo::medianMs(passTimes[pass.name]).value_or(0.0);
   return {medianOf(totals), order};
+}
+
+namespace {
+double processCpuMs() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  auto ms = [](const timeval& t) { return double(t.tv_sec) * 1e3 + double(t.tv_usec) * 1e-3; };
+  return ms(usage.ru_utime) + ms(usage.ru_stime);
+}
+}  // namespace
+
+double processCpuMsPerFrame(renderer::DeferredRenderer& deferred, const renderer::ViewMatrices& view, int repeat) {
+  const double start = processCpuMs();
+  for (int run = 0; run < repeat; ++run) (void)deferred.render(view);
+  return (processCpuMs() - start) / double(std::max(repeat, 1));
 }
 
 std::vector<std::uint32_t> depthEdgeMask(const DepthImage& depth, double share) {

@@ -23,6 +23,9 @@ std::pair<std::optional<double>, std::vector<renderer::PassTiming>> timeFrames(
     renderer::DeferredRenderer& deferred, const renderer::ViewMatrices& view, int repeat,
     const renderer::ShadeMask& mask = {}, std::chrono::milliseconds warmUp = std::chrono::milliseconds(500));
 
+// The process's user + system CPU time per render of `view`, over `repeat` renders (a CPU device's work).
+double processCpuMsPerFrame(renderer::DeferredRenderer& deferred, const renderer::ViewMatrices& view, int repeat);
+
 // Mask shares the bench times: nothing, the hybrid method's typical budgets, everything.
 inline constexpr double kMaskedRenderShares[] = {0.0, 0.05, 0.2, 1.0};
 

@@ -119,6 +119,9 @@ struct RendererRow {
   std::uint32_t guardBandColumns = 0;         // per side, `s3d render`'s default band at the options' separation
   std::optional<double> guardBandFrameGpuMs;  // median center frame rendered that much wider
   std::optional<double> guardBandRatio;       // median over `repeat` back-to-back pairs of wide / plain frame time
+  // CPU devices: the process's user + system time per center frame (the device's work summed over its threads),
+  // which other load on the machine disturbs less than the wall-clock timestamps.
+  std::optional<double> cpuTimePerFrameMs;
 };
 
 // A masked render of the center view (renderer timings, the first scene only).
