@@ -102,7 +102,8 @@ struct RendererOptions {
 // the nearest depth before it draws, so its fragments fail the depth test before shading; ambient occlusion
 // (with a depth-only pass of its own, so its samples see real depth outside the mask) runs on the tiles of the
 // mask and their neighbours; lighting and the resolve run on the mask's tiles only (found on the GPU) and skip
-// unmasked pixels inside them; shadow maps render as for a full frame.
+// unmasked pixels inside them; shadow maps render as for a full frame (or come from a shadow source: render's
+// third argument).
 //
 // Outputs outside the mask are undefined after a masked render: displayColor, linearDepth, hdrColor and the
 // read*() masks there may hold anything (the previous frame, zeros, the depth fill). Inside it they equal the
