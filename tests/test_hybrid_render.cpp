@@ -85,8 +85,12 @@ TEST_F(HybridRender, AnEyeWithNothingMaskedIsNotRendered) {
   EXPECT_EQ(hybrid.thresholds[1].maskedPixels, 0u);
   EXPECT_TRUE(hybrid.timings.leftEyePasses.empty());
   EXPECT_TRUE(hybrid.timings.rightEyePasses.empty());
-  if (hybrid.timings.eyeGeometry) EXPECT_EQ(*hybrid.timings.eyeGeometry, 0.0);
-  if (hybrid.timings.maskedShading) EXPECT_EQ(*hybrid.timings.maskedShading, 0.0);
+  if (hybrid.timings.eyeGeometry) {
+    EXPECT_EQ(*hybrid.timings.eyeGeometry, 0.0);
+  }
+  if (hybrid.timings.maskedShading) {
+    EXPECT_EQ(*hybrid.timings.maskedShading, 0.0);
+  }
   EXPECT_EQ(hybrid.eyes.left.pixels, displaced.eyes.left.pixels);
   EXPECT_EQ(hybrid.eyes.right.pixels, displaced.eyes.right.pixels);
 }

@@ -34,7 +34,7 @@ bool anyShadowPass(const FrameTimings& frame) {
 // sizes and pipelines), so the lit image is the same bit for bit. Courtyard: sun cascades and a point light;
 // cover: sun cascades and a spot light.
 TEST_F(ShadowSource, AnEyeLitWithTheCenterFramesShadowMapsIsTheSameAsWithItsOwn) {
-  for (const std::string& name : {"courtyard", "cover"}) {
+  for (const std::string name : {"courtyard", "cover"}) {
     const Scene scene = builtIn(name);
     DeferredRenderer center(context(), kWidth, kHeight), eye(context(), kWidth, kHeight);
     center.setScene(scene);
