@@ -5,6 +5,7 @@
 #include <cmath>
 #include <algorithm>
 #include <numeric>
+#include <string>
 #include <tuple>
 
 #include "s3d/stereo/hybrid.h"
@@ -86,6 +87,78 @@ TEST(HybridClassification, MarksTheHaloWhereTheGathersTapsPickTheWrongSurface) {
   EXPECT_GT(hybridPixelScoreReference(stepDepth(), 65, 0, Eye::Left, iterative), 9.0f);
 }
 
+// The definition (hybrid_shared.h) pixel by pixel: every pair of the edge-extended row tested against the pixel.
+gpu::HybridCoverage directCoverage(const DepthImage& depth, int x, int y, Eye eye, const gpu::HybridConstants& c) {
+  auto depthAt = [&](int column) {
+    return gpu::sanitizedDepth(*depth.at(std::uint32_t(std::clamp(column, 0, c.width - 1)), std::uint32_t(y)),
+                               c.zeroParallaxDistance);
+  };
+  const float direction = eye == Eye::Left ? 1.0f : -1.0f;
+  const float eyeX = float(x);
+  gpu::HybridCoverage coverage{false, INFINITY, 0.0f, 0.0f, INFINITY};
+  for (int i = -c.windowPx; i <= c.width + c.windowPx - 2; ++i) {
+    const float dA = depthAt(i), dB = depthAt(i + 1);
+    const float pA = gpu::hybridParallaxPx(dA, c.maxSeparation, c.zeroParallaxDistance, c.width);
+    const float pB = gpu::hybridParallaxPx(dB, c.maxSeparation, c.zeroParallaxDistance, c.width);
+    const float landA = float(i) - direction * pA, landB = float(i + 1) - direction * pB;
+    const gpu::HybridPairTerms terms = gpu::hybridPairTerms(gpu::hybridPair(landA, pA, dA, landB, pB, dB), eyeX);
+    coverage.visibleParallaxPx = std::min(coverage.visibleParallaxPx, terms.coverParallaxPx);
+    coverage.holeJumpPx = std::max(coverage.holeJumpPx, terms.holeJumpPx);
+    coverage.edgeScore = std::max(coverage.edgeScore, terms.edgeScore);
+    if (gpu::hybridSurfaceChange(dA, dB)) {
+      const float lo = std::min(landA, landB), hi = std::max(landA, landB);
+      coverage.nearestChangePx = std::min(coverage.nearestChangePx, std::max(std::max(lo - eyeX, eyeX - hi), 0.0f));
+    }
+  }
+  coverage.covered = coverage.visibleParallaxPx < INFINITY;
+  return coverage;
+}
+
+// Tolerance: none. The row scatter (each pair into the pixels it reaches, the nearest boundary from a prefix maximum
+// and a suffix minimum) is the same float operations as testing every pair at every pixel, so it matches exactly;
+// surfaces nearer than the zero-parallax plane (depth 0.3: parallax -2.3 times the sky's) land beyond the
+// separation window, and variable block widths make holes, occlusions and spans of every size.
+TEST(HybridClassification, TheRowScatterEqualsTestingEveryColumnPairAtEveryPixel) {
+  const test::SyntheticView view = test::makeBlockView(150, 6, 11, 0.3f, 9, 1, true);
+  for (float separation : {0.02f, 0.06f}) {
+    const gpu::HybridConstants c = makeHybridConstants(parametersFor(separation), 150, 6);
+    for (int y = 0; y < 6; ++y)
+      for (const Eye eye : {Eye::Left, Eye::Right}) {
+        const std::vector<gpu::HybridCoverage> row = hybridRowCoverageReference(view.depth, y, eye, c);
+        for (int x = 0; x < 150; ++x) {
+          const gpu::HybridCoverage expected = directCoverage(view.depth, x, y, eye, c);
+          const gpu::HybridCoverage& got = row[std::size_t(x)];
+          const std::string where = "separation " + std::to_string(separation) + " row " + std::to_string(y) +
+                                    (eye == Eye::Left ? " left" : " right") + " pixel " + std::to_string(x);
+          ASSERT_EQ(got.covered, expected.covered) << where;
+          ASSERT_EQ(got.visibleParallaxPx, expected.visibleParallaxPx) << where;
+          ASSERT_EQ(got.holeJumpPx, expected.holeJumpPx) << where;
+          ASSERT_EQ(got.edgeScore, expected.edgeScore) << where;
+          ASSERT_EQ(got.nearestChangePx, expected.nearestChangePx) << where;
+        }
+      }
+  }
+}
+
+// A surface nearer than the zero-parallax plane lands on the far side of its columns, farther than the separation
+// window (which bounds only the parallax behind the screen): the pixels it lands on still see it.
+TEST(HybridClassification, ASurfaceInFrontOfTheScreenCoversWhereItLandsBeyondTheWindow) {
+  DepthImage depth(200, 1, INFINITY);
+  for (std::uint32_t x = 80; x < 100; ++x) *depth.at(x, 0) = 0.25f;  // parallax 0.05 x 200 x (1 - 4) = -30 px
+  const gpu::HybridConstants c = makeHybridConstants(parametersFor(0.05f), 200, 1);
+  ASSERT_EQ(c.windowPx, 11);
+  // Left eye: the block's columns land 30 px to their right, on eye pixels 110..129 (the sky there lands 10 px left).
+  const std::vector<gpu::HybridCoverage> left = hybridRowCoverageReference(depth, 0, Eye::Left, c);
+  for (int x : {112, 120, 128}) {
+    EXPECT_TRUE(left[std::size_t(x)].covered) << "pixel " << x;
+    EXPECT_FLOAT_EQ(left[std::size_t(x)].visibleParallaxPx, -30.0f) << "pixel " << x;
+  }
+  // Where the block's columns were, the sky from columns 30 px to the right shows through: no surface covers
+  // pixels 70..89 (the sky's columns 80..99 were the block's, and the block left for 110..129).
+  EXPECT_FALSE(left[85].covered);
+  EXPECT_GT(hybridPixelScoreReference(depth, 85, 0, Eye::Left, c), 1.0f);
+}
+
 TEST(HybridClassification, LeavesTheCroppedColumnsOutOfBinsAndHistogram) {
   StereoParameters parameters = parametersFor(0.1f);
   parameters.edgeCrop = 0.05f;  // 10 columns each side
@@ -116,18 +189,34 @@ TEST(HybridBudget, ZeroMasksNothingAndOneMasksEveryPixel) {
   EXPECT_EQ(hybridThreshold(histogram, hybridPixelCap(1.0f, 550)).bin, 0);
 }
 
-TEST(HybridBudget, TakesTheHighestScoresFirstAndNeverMoreThanTheBudget) {
+TEST(HybridBudget, TakesTheHighestScoresFirstAndMeetsTheBudgetBySplittingTheTiesOfOneBin) {
   HybridHistogram histogram{};
   histogram[0] = 500;
   histogram[3] = 40;
   histogram[200] = 10;
-  // 2 % of 550 = 11: only the top bin fits; 10 % = 55: both scored bins (50).
-  EXPECT_EQ(hybridThreshold(histogram, 11).maskedPixels, 10u);
-  EXPECT_GT(hybridThreshold(histogram, 11).bin, 3);  // any bin in (3, 200] masks the same pixels
-  EXPECT_LE(hybridThreshold(histogram, 11).bin, 200);
-  EXPECT_EQ(hybridThreshold(histogram, 55).maskedPixels, 50u);
-  EXPECT_EQ(hybridThreshold(histogram, 55).bin, 1);
-  EXPECT_EQ(hybridThreshold(histogram, 5).maskedPixels, 0u);  // the top bin does not fit whole
+  // 2 % of 550 = 11: the top bin whole and one of bin 3's 40 pixels; 10 % = 55: both scored bins (50), and bin 0
+  // (nothing expected wrong) is never split.
+  const HybridThreshold two = hybridThreshold(histogram, 11);
+  EXPECT_EQ(two.maskedPixels, 11u);
+  EXPECT_GT(two.bin, 3);  // any bin in (3, 200] masks the same whole bins
+  EXPECT_LE(two.bin, 200);
+  EXPECT_EQ(two.splitBin, 3);
+  EXPECT_EQ(two.splitPixels, 1u);
+  const HybridThreshold ten = hybridThreshold(histogram, 55);
+  EXPECT_EQ(ten.maskedPixels, 50u);
+  EXPECT_EQ(ten.bin, 1);
+  EXPECT_EQ(ten.splitBin, S3D_HYBRID_NO_PIXEL);
+  EXPECT_EQ(ten.splitPixels, 0u);
+  // The top bin does not fit whole: 5 of its 10 pixels.
+  const HybridThreshold five = hybridThreshold(histogram, 5);
+  EXPECT_EQ(five.maskedPixels, 5u);
+  EXPECT_EQ(five.bin, 201);
+  EXPECT_EQ(five.splitBin, 200);
+  EXPECT_EQ(five.splitPixels, 5u);
+  // A cap that ends exactly at a bin's edge splits nothing.
+  const HybridThreshold exact = hybridThreshold(histogram, 10);
+  EXPECT_EQ(exact.maskedPixels, 10u);
+  EXPECT_EQ(exact.splitBin, S3D_HYBRID_NO_PIXEL);
 }
 
 TEST(HybridMask, MarksTheBinsAtOrAboveTheThresholdInsideTheCropOnly) {
@@ -136,7 +225,9 @@ TEST(HybridMask, MarksTheBinsAtOrAboveTheThresholdInsideTheCropOnly) {
   const gpu::HybridConstants c = makeHybridConstants(parameters, 200, 2);
   std::vector<std::uint32_t> bins(400, 7);
   bins[50] = 3;
-  const std::vector<std::uint8_t> mask = hybridMaskReference(bins, 5, c);
+  HybridThreshold threshold;
+  threshold.bin = 5;
+  const std::vector<std::uint8_t> mask = hybridMaskReference(bins, threshold, c);
   EXPECT_EQ(mask[50], 0);
   EXPECT_EQ(mask[51], 1);
   EXPECT_EQ(mask[5], 0);    // cropped
@@ -144,11 +235,57 @@ TEST(HybridMask, MarksTheBinsAtOrAboveTheThresholdInsideTheCropOnly) {
   EXPECT_EQ(std::count(mask.begin(), mask.end(), 1), 2 * 180 - 1);
 }
 
+TEST(HybridMask, TakesTheSplitBinsFirstPixelsInRasterOrderInsideTheCrop) {
+  StereoParameters parameters = parametersFor(0.1f);
+  parameters.edgeCrop = 0.05f;  // 10 columns each side
+  const gpu::HybridConstants c = makeHybridConstants(parameters, 200, 2);
+  std::vector<std::uint32_t> bins(400, 1);
+  for (std::size_t i : {5u, 20u, 30u, 205u, 220u}) bins[i] = 4;  // 5 and 205 are cropped
+  bins[100] = 9;
+  HybridThreshold threshold;
+  threshold.bin = 5;
+  threshold.splitBin = 4;
+  threshold.splitPixels = 2;
+  const std::vector<std::uint8_t> mask = hybridMaskReference(bins, threshold, c);
+  EXPECT_EQ(mask[100], 1);  // above the threshold
+  EXPECT_EQ(mask[20], 1);   // the split bin's first two inside the crop
+  EXPECT_EQ(mask[30], 1);
+  EXPECT_EQ(mask[220], 0);  // the third
+  EXPECT_EQ(mask[5], 0);    // cropped
+  EXPECT_EQ(mask[205], 0);
+  EXPECT_EQ(std::count(mask.begin(), mask.end(), 1), 3);
+}
+
 // Tolerance: the GPU may round the parallax division differently in the last bit (Vulkan allows 2.5 ulp), which
 // can move a score across a 1/8 px bin boundary; measured: identical on lavapipe.
 TEST_F(HybridPassTest, ClassificationMatchesTheCppReferenceBinForBin) {
   const test::SyntheticView view = test::makeBlockView(160, 24, 7, 1.0f, 9, 4, true);
   const gpu::HybridConstants c = makeHybridConstants(parametersFor(0.05f), 160, 24);
+  const HybridClassification expected = classifyHybridReference(view.depth, c);
+  const HybridClassification gpu = classifyHybridOnGpu(context(), view.depth, c).classification;
+  std::size_t offByOne = 0;
+  for (std::size_t i = 0; i < expected.leftBins.size(); ++i)
+    for (auto [a, b] : {std::pair{expected.leftBins[i], gpu.leftBins[i]}, std::pair{expected.rightBins[i], gpu.rightBins[i]}}) {
+      ASSERT_LE(std::abs(int(a) - int(b)), 1) << "pixel " << i;
+      offByOne += a != b;
+    }
+  EXPECT_LE(offByOne, expected.leftBins.size() / 1000);
+  if (offByOne == 0) {
+    EXPECT_EQ(gpu.leftHistogram, expected.leftHistogram);
+    EXPECT_EQ(gpu.rightHistogram, expected.rightHistogram);
+  }
+}
+
+// Tolerance: as above. A wider image classified in several chunks of a row, inside an edge crop, at a separation
+// whose window and reach (surfaces at depth 0.35 land 1.9 windows away) exceed the chunk's shared span, so the
+// shader reads part of its columns from the image.
+TEST_F(HybridPassTest, ClassificationMatchesTheCppReferenceAcrossChunksCropAndFarReach) {
+  const test::SyntheticView view = test::makeBlockView(700, 6, 5, 0.35f, 14, 1, true);
+  StereoParameters parameters = parametersFor(0.08f);
+  parameters.edgeCrop = 0.03f;
+  parameters.method = StereoMethod::Search;
+  parameters.searchTaps = 8;
+  const gpu::HybridConstants c = makeHybridConstants(parameters, 700, 6);
   const HybridClassification expected = classifyHybridReference(view.depth, c);
   const HybridClassification gpu = classifyHybridOnGpu(context(), view.depth, c).classification;
   std::size_t offByOne = 0;
@@ -180,7 +317,14 @@ TEST_F(HybridPassTest, ThresholdAndMasksMatchTheCppReferenceAtEveryBudget) {
       EXPECT_EQ(threshold->bin, expected.bin) << "budget " << budget;
       EXPECT_EQ(threshold->maskedPixels, expected.maskedPixels) << "budget " << budget;
       EXPECT_LE(threshold->maskedPixels, c.maskedPixelCap);
-      EXPECT_EQ(*mask, hybridMaskReference(*bins, expected.bin, c)) << "budget " << budget;
+      // The budget is met as closely as the scored pixels allow (bin 0 is rendered only at budget 1).
+      const std::uint64_t classified = std::accumulate(histogram->begin(), histogram->end(), std::uint64_t(0));
+      EXPECT_EQ(threshold->maskedPixels,
+                budget >= 1.0f ? classified : std::min<std::uint64_t>(c.maskedPixelCap, classified - (*histogram)[0]))
+          << "budget " << budget;
+      EXPECT_EQ(threshold->splitBin, expected.splitBin) << "budget " << budget;
+      EXPECT_EQ(threshold->splitPixels, expected.splitPixels) << "budget " << budget;
+      EXPECT_EQ(*mask, hybridMaskReference(*bins, *threshold, c)) << "budget " << budget;
       EXPECT_EQ(std::uint64_t(std::count(mask->begin(), mask->end(), 1)), expected.maskedPixels);
     }
   }

@@ -65,12 +65,47 @@ TEST_F(HybridRender, BudgetZeroIsTheBaseDisplacementBitForBit) {
     HybridScene s = renderCenter(context(), "courtyard", 96, 54, parameters);
     const stereo::SynthesisResult displaced = stereo::synthesizeTimed(
         context(), s.centerRenderer->displayColor(), s.centerRenderer->linearDepth(), stereo::displacementParameters(parameters));
-    const HybridSynthesis hybrid = synthesizeHybrid(context(), s.centerRenderer->displayColor(),
-                                                    s.centerRenderer->linearDepth(), *s.eyeRenderer, s.scene, s.center, parameters);
+    const HybridSynthesis hybrid = synthesizeHybrid(context(), *s.centerRenderer, *s.eyeRenderer, s.scene, s.center, parameters);
     EXPECT_EQ(hybrid.thresholds[0].maskedPixels, 0u);
     EXPECT_EQ(hybrid.thresholds[1].maskedPixels, 0u);
     EXPECT_EQ(hybrid.eyes.left.pixels, displaced.eyes.left.pixels) << stereo::methodName(base);
     EXPECT_EQ(hybrid.eyes.right.pixels, displaced.eyes.right.pixels) << stereo::methodName(base);
+  }
+}
+
+// A budget whose share of the pixels rounds down to none (0.0001 of 96 x 54): the eyes are the base displacement
+// bit for bit, and neither eye is rendered (no pass ran, no time spent).
+TEST_F(HybridRender, AnEyeWithNothingMaskedIsNotRendered) {
+  const stereo::StereoParameters parameters = hybridParameters(0.0001f);
+  HybridScene s = renderCenter(context(), "courtyard", 96, 54, parameters);
+  const stereo::SynthesisResult displaced = stereo::synthesizeTimed(
+      context(), s.centerRenderer->displayColor(), s.centerRenderer->linearDepth(), stereo::displacementParameters(parameters));
+  const HybridSynthesis hybrid = synthesizeHybrid(context(), *s.centerRenderer, *s.eyeRenderer, s.scene, s.center, parameters);
+  EXPECT_EQ(hybrid.thresholds[0].maskedPixels, 0u);
+  EXPECT_EQ(hybrid.thresholds[1].maskedPixels, 0u);
+  EXPECT_TRUE(hybrid.timings.leftEyePasses.empty());
+  EXPECT_TRUE(hybrid.timings.rightEyePasses.empty());
+  if (hybrid.timings.eyeGeometry) {
+    EXPECT_EQ(*hybrid.timings.eyeGeometry, 0.0);
+  }
+  if (hybrid.timings.maskedShading) {
+    EXPECT_EQ(*hybrid.timings.maskedShading, 0.0);
+  }
+  EXPECT_EQ(hybrid.eyes.left.pixels, displaced.eyes.left.pixels);
+  EXPECT_EQ(hybrid.eyes.right.pixels, displaced.eyes.right.pixels);
+}
+
+// Depth-range at a small budget: the bin the cap falls in holds many pixels of one score (one eye masked none of
+// them when whole bins were taken), so its ties are split and each eye masks exactly the budget's share.
+TEST_F(HybridRender, EachEyeMasksTheBudgetsShareWhenItsThresholdBinIsTied) {
+  const stereo::StereoParameters parameters = hybridParameters(0.02f);
+  HybridScene s = renderCenter(context(), "depth-range", 320, 180, parameters);
+  const HybridSynthesis hybrid = synthesizeHybrid(context(), *s.centerRenderer, *s.eyeRenderer, s.scene, s.center, parameters);
+  const std::uint32_t cap = stereo::hybridPixelCap(0.02f, hybrid.classifiedPixels);
+  ASSERT_GT(cap, 0u);
+  for (std::size_t eye = 0; eye < 2; ++eye) {
+    EXPECT_EQ(hybrid.thresholds[eye].maskedPixels, cap) << "eye " << eye;
+    EXPECT_EQ(std::uint64_t(std::count(hybrid.masks[eye].begin(), hybrid.masks[eye].end(), 1)), cap) << "eye " << eye;
   }
 }
 
@@ -80,8 +115,7 @@ TEST_F(HybridRender, BudgetOneIsTheTwoPassReferenceOnEveryBuiltInScene) {
   for (const std::string& name : renderer::builtInSceneNames()) {
     const stereo::StereoParameters parameters = hybridParameters(1.0f);
     HybridScene s = renderCenter(context(), name, 96, 54, parameters);
-    const HybridSynthesis hybrid = synthesizeHybrid(context(), s.centerRenderer->displayColor(),
-                                                    s.centerRenderer->linearDepth(), *s.eyeRenderer, s.scene, s.center, parameters);
+    const HybridSynthesis hybrid = synthesizeHybrid(context(), *s.centerRenderer, *s.eyeRenderer, s.scene, s.center, parameters);
     const gpu::StereoConstants crop = stereo::makeStereoConstants(parameters, 96, 54);
     EXPECT_EQ(hybrid.thresholds[0].maskedPixels, hybrid.classifiedPixels) << name;
     for (const stereo::Eye eye : {stereo::Eye::Left, stereo::Eye::Right}) {
@@ -104,8 +138,7 @@ TEST_F(HybridRender, TheDefaultBudgetMasksTheDisocclusionsOfTheCourtyard) {
   HybridScene s = renderCenter(context(), "courtyard", 640, 360, parameters);
   const gpu::StereoConstants crop = stereo::makeStereoConstants(parameters, 640, 360);
   const DepthImage centerDepth = s.centerRenderer->readLinearDepth();
-  const HybridSynthesis hybrid = synthesizeHybrid(context(), s.centerRenderer->displayColor(),
-                                                  s.centerRenderer->linearDepth(), *s.eyeRenderer, s.scene, s.center, parameters);
+  const HybridSynthesis hybrid = synthesizeHybrid(context(), *s.centerRenderer, *s.eyeRenderer, s.scene, s.center, parameters);
   for (const stereo::Eye eye : {stereo::Eye::Left, stereo::Eye::Right}) {
     (void)s.centerRenderer->render(referenceEyeView(s.scene, s.center, eye, parameters));
     const std::vector<std::uint8_t> unseen =

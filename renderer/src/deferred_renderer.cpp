@@ -174,6 +174,10 @@ ViewMatrices centerViewMatrices(const Scene& scene, float aspect, FirstPersonDep
   return view;
 }
 
+ShadowFit shadowFitOf(const ViewMatrices& view) {
+  return view.shadowFit ? *view.shadowFit : ShadowFit{view.worldView, view.worldProjection};
+}
+
 struct DeferredRenderer::Impl {
   vk::Context& context;
   std::uint32_t outputWidth;   // display colour, linear depth, resolved HDR
@@ -741,8 +745,9 @@ struct DeferredRenderer::Impl {
   // No transparent pass and no supersampling: the lighting pass writes the resolve's outputs itself.
   bool resolveInLighting() const { return transparentOrder.empty() && supersample == 1; }
 
-  void recordLighting(VkCommandBuffer cmd, const ShadeMask& mask) {
-    shadows->recordReadableForLighting(cmd);
+  // frameShadows: this renderer's shadow maps, rendered this frame, or a shadow source's (already readable).
+  void recordLighting(VkCommandBuffer cmd, const ShadeMask& mask, const detail::ShadowMaps& frameShadows) {
+    if (&frameShadows == shadows.get()) shadows->recordReadableForLighting(cmd);
     if (!scene.ambientOcclusion) ambientOcclusion->recordUnused(cmd);
     const detail::TiledLighting::Inputs inputs{depth,
                                                normalGlossiness,
@@ -755,7 +760,7 @@ struct DeferredRenderer::Impl {
                                                mask.image != nullptr,
                                                tiles->tilesX(),
                                                tiles->tilesY()};
-    lighting->record(cmd, inputs, *shadows, {hdr, display, resolvedHdr, linearDepth, resolveInLighting()});
+    lighting->record(cmd, inputs, frameShadows, {hdr, display, resolvedHdr, linearDepth, resolveInLighting()});
   }
 
   // Transparent surfaces over the lit image, back to front, depth-tested against the opaque depth (in a masked
@@ -824,8 +829,10 @@ struct DeferredRenderer::Impl {
     int counterSlot = -1;  // S3D_COUNT_*: the pass's shaded-pixel counter
   };
 
-  // The passes this frame needs, in order: a pass that serves nothing in the scene does not run.
-  std::vector<ScheduledPass> schedulePasses(const ViewMatrices& view, const ShadeMask& mask) {
+  // The passes this frame needs, in order: a pass that serves nothing in the scene does not run, nor shadow maps
+  // a shadow source lends.
+  std::vector<ScheduledPass> schedulePasses(const ViewMatrices& view, const ShadeMask& mask,
+                                            const detail::ShadowMaps* lentShadows) {
     std::vector<ScheduledPass> passes;
     const bool masked = mask.image != nullptr;
     sortFrontToBack(view);
@@ -864,10 +871,14 @@ struct DeferredRenderer::Impl {
                         },
                         S3D_COUNT_SSAO_BLUR});
     }
-    for (detail::ShadowPass& shadowPass : shadows->schedule(view))
-      passes.push_back({std::move(shadowPass.name), std::move(shadowPass.record)});
-    lighting->prepareFrame(scene, view, *shadows);
-    passes.push_back({"lighting", [this, mask](VkCommandBuffer cmd) { recordLighting(cmd, mask); }, S3D_COUNT_LIGHTING});
+    if (lentShadows == nullptr)
+      for (detail::ShadowPass& shadowPass : shadows->schedule(view))
+        passes.push_back({std::move(shadowPass.name), std::move(shadowPass.record)});
+    const detail::ShadowMaps* frameShadows = lentShadows != nullptr ? lentShadows : shadows.get();
+    lighting->prepareFrame(scene, view, *frameShadows);
+    passes.push_back({"lighting",
+                      [this, mask, frameShadows](VkCommandBuffer cmd) { recordLighting(cmd, mask, *frameShadows); },
+                      S3D_COUNT_LIGHTING});
     const bool withTransparent = !transparentOrder.empty();
     if (withTransparent) {
       std::vector<std::uint32_t> backToFront = transparentBackToFront(view);
@@ -890,11 +901,28 @@ struct DeferredRenderer::Impl {
                                   "x" + std::to_string(outputHeight));
   }
 
-  FrameTimings render(const ViewMatrices& view, const ShadeMask& mask) {
+  // A shadow source's maps, checked to be the ones this view would render (the scene, the size and the fit).
+  const detail::ShadowMaps& lentShadowMaps(const ViewMatrices& view, const Impl& source) const {
+    if (&source == this) throw std::invalid_argument("renderer: a renderer cannot be its own shadow source");
+    if (source.width != width || source.height != height)
+      throw std::invalid_argument("renderer: the shadow source renders " + std::to_string(source.width) + "x" +
+                                  std::to_string(source.height) + ", this renderer " + std::to_string(width) + "x" +
+                                  std::to_string(height));
+    if (!source.shadows->castsLike(*shadows))
+      throw std::invalid_argument("renderer: the shadow source holds another scene's shadows");
+    const std::optional<ShadowFit> planned = source.shadows->plannedFit();
+    if (!planned) throw std::invalid_argument("renderer: the shadow source has rendered no frame of its scene");
+    if (*planned != shadowFitOf(view))
+      throw std::invalid_argument("renderer: the shadow source's last frame planned its shadow maps for another camera");
+    return *source.shadows;
+  }
+
+  FrameTimings render(const ViewMatrices& view, const ShadeMask& mask, const Impl* shadowSource) {
     if (meshRanges.empty()) throw std::logic_error("DeferredRenderer::render called before setScene");
     validateMask(mask);
+    const detail::ShadowMaps* lentShadows = shadowSource != nullptr ? &lentShadowMaps(view, *shadowSource) : nullptr;
     writeFrameConstants(view, mask);
-    const std::vector<ScheduledPass> passes = schedulePasses(view, mask);
+    const std::vector<ScheduledPass> passes = schedulePasses(view, mask, lentShadows);
     if (passes.size() > kMaxPasses) throw std::logic_error("renderer: more passes than timestamps");
     constexpr VkPipelineStageFlags2 kAll = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
     context.submitAndWait([&](VkCommandBuffer cmd) {
@@ -928,7 +956,11 @@ DeferredRenderer::~DeferredRenderer() = default;
 
 void DeferredRenderer::setScene(const Scene& scene) { impl_->setScene(scene); }
 FrameTimings DeferredRenderer::render(const ViewMatrices& view, const ShadeMask& mask) {
-  return impl_->render(view, mask);
+  return impl_->render(view, mask, nullptr);
+}
+FrameTimings DeferredRenderer::render(const ViewMatrices& view, const ShadeMask& mask,
+                                      const DeferredRenderer& shadowSource) {
+  return impl_->render(view, mask, shadowSource.impl_.get());
 }
 std::uint32_t DeferredRenderer::width() const { return impl_->outputWidth; }
 std::uint32_t DeferredRenderer::height() const { return impl_->outputHeight; }

@@ -163,12 +163,49 @@ void ShadowMaps::setScene(const Scene& scene, VkBuffer vertexBuffer, VkBuffer in
     casterBounds_.push_back(objectBounds(scene.meshes.at(object.mesh), object.transform));
   }
   scene_ = scene;
+  plannedFit_.reset();
   vertexBuffer_ = vertexBuffer;
   indexBuffer_ = indexBuffer;
   meshRanges_ = std::move(meshRanges);
 }
 
+bool ShadowMaps::castsLike(const ShadowMaps& other) const {
+  auto sameSpheres = [](const std::vector<BoundingSphere>& a, const std::vector<BoundingSphere>& b) {
+    return std::equal(a.begin(), a.end(), b.begin(), b.end(), [](const BoundingSphere& x, const BoundingSphere& y) {
+      return x.center == y.center && x.radius == y.radius;
+    });
+  };
+  auto samePoints = [](const std::vector<PointLight>& a, const std::vector<PointLight>& b) {
+    return std::equal(a.begin(), a.end(), b.begin(), b.end(), [](const PointLight& x, const PointLight& y) {
+      return x.position == y.position && x.radius == y.radius && x.castsShadows == y.castsShadows;
+    });
+  };
+  auto sameSpots = [](const std::vector<SpotLight>& a, const std::vector<SpotLight>& b) {
+    return std::equal(a.begin(), a.end(), b.begin(), b.end(), [](const SpotLight& x, const SpotLight& y) {
+      return x.position == y.position && x.direction == y.direction && x.outerConeRadians == y.outerConeRadians &&
+             x.radius == y.radius && x.castsShadows == y.castsShadows;
+    });
+  };
+  auto sameMeshes = [](const std::vector<ShadowMeshRange>& a, const std::vector<ShadowMeshRange>& b) {
+    return std::equal(a.begin(), a.end(), b.begin(), b.end(), [](const ShadowMeshRange& x, const ShadowMeshRange& y) {
+      return x.indexCount == y.indexCount;
+    });
+  };
+  const SunLight& sun = scene_.sun;
+  const SunLight& otherSun = other.scene_.sun;
+  return casters_ == other.casters_ && sameSpheres(casterBounds_, other.casterBounds_) &&
+         sameMeshes(meshRanges_, other.meshRanges_) && samePoints(scene_.pointLights, other.scene_.pointLights) &&
+         sameSpots(scene_.spotLights, other.scene_.spotLights) && sun.castsShadows == otherSun.castsShadows &&
+         sun.directionToSun == otherSun.directionToSun && sun.color == otherSun.color &&
+         sun.cascadeCount == otherSun.cascadeCount && sun.shadowDistance == otherSun.shadowDistance &&
+         scene_.camera.nearPlane == other.scene_.camera.nearPlane &&
+         scene_.camera.farPlane == other.scene_.camera.farPlane && sunMapSize_ == other.sunMapSize_ &&
+         localTileSize_ == other.localTileSize_;
+}
+
 std::vector<ShadowPass> ShadowMaps::schedule(const ViewMatrices& view) {
+  const ShadowFit fit = shadowFitOf(view);
+  plannedFit_ = fit;
   gpu::ShadowConstants constants{};
   std::vector<ShadowPass> passes;
   sunShadowedThisFrame_ = false;
@@ -197,7 +234,7 @@ std::vector<ShadowPass> ShadowMaps::schedule(const ViewMatrices& view) {
   const bool sunLit = glm::length(sun.color) > 0.0f;
   if (sun.castsShadows && sunLit && !casters_.empty() && shadowFar > scene_.camera.nearPlane) {
     const std::vector<float> splits = cascadeSplitDistances(scene_.camera.nearPlane, shadowFar, sun.cascadeCount);
-    const std::vector<SunCascade> cascades = sunCascades(view.worldView, view.worldProjection, splits,
+    const std::vector<SunCascade> cascades = sunCascades(fit.worldView, fit.worldProjection, splits,
                                                          sun.directionToSun, sunMapSize_, casterBounds_);
     const float count = float(cascades.size());
     constants.sunShadow = glm::vec4(count, 1.0f / float(sunAtlas_.width), 1.0f / float(sunAtlas_.height), 0.0f);
@@ -222,7 +259,7 @@ std::vector<ShadowPass> ShadowMaps::schedule(const ViewMatrices& view) {
   }
 
   // Point and spot lights on screen, each only with a caster in one of its views.
-  const glm::mat4 cameraViewProjection = view.worldProjection * view.worldView;
+  const glm::mat4 cameraViewProjection = fit.worldProjection * fit.worldView;
   const std::uint32_t tile = localTileSize_;
   constants.localShadow = glm::vec4(1.0f / float(localAtlas_.width), 1.0f / float(localAtlas_.height), 0.0f, 0.0f);
   for (LocalShadow& local : localShadows_) {

@@ -6,6 +6,7 @@
 // only, so each renders once per scene (setScene) and later frames reuse it; the sun's cascades follow the view.
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -38,9 +39,14 @@ class ShadowMaps {
   // Validates the scene's shadow settings and sizes the atlases. The buffers stay owned by the renderer.
   void setScene(const Scene& scene, VkBuffer vertexBuffer, VkBuffer indexBuffer, std::vector<ShadowMeshRange> meshRanges);
 
-  // Plans the frame: which shadow maps have a caster in reach, their matrices (written to the shadow constants),
-  // and the passes that render them, in order.
+  // Plans the frame for shadowFitOf(view): which shadow maps have a caster in reach, their matrices (written to the
+  // shadow constants), and the passes that render them, in order.
   std::vector<ShadowPass> schedule(const ViewMatrices& view);
+  // The camera the last plan was made for (empty before the first plan of the scene): another renderer may
+  // light a view of the same fit with these maps.
+  const std::optional<ShadowFit>& plannedFit() const { return plannedFit_; }
+  // Whether `other` renders the same shadow maps for the same fit: the same casters, lights and map sizes.
+  bool castsLike(const ShadowMaps& other) const;
 
   // Before lighting: both atlases readable by compute (also when not written this frame).
   void recordReadableForLighting(VkCommandBuffer cmd);
@@ -94,6 +100,7 @@ class ShadowMaps {
   std::uint32_t sunMapSize_ = 0, localTileSize_ = 0;  // the sizes in use (see effectiveShadowMapSize)
 
   // This frame's plan.
+  std::optional<ShadowFit> plannedFit_;
   bool sunShadowedThisFrame_ = false;
   bool localAtlasWritten_ = false;
   bool localAtlasKept_ = false;  // the local atlas holds views rendered in earlier frames (left readable)

@@ -1,58 +1,91 @@
 #version 450
 // Hybrid, pass 1: every eye pixel's score bin (hybrid_shared.h: disoccluded, or the gather base's source not the
-// visible surface) and a histogram of the bins per eye, summed in shared memory per workgroup so the global
-// atomics stay few.
+// visible surface), a histogram of the bins per eye (global, summed in shared memory first so the atomics stay
+// few) and each row's own histogram (the threshold pass splits the ties of one bin by rows).
+//
+// One workgroup per row, in linear time: each pair of neighbouring center texels scatters its terms into the eye
+// pixels it reaches (shared-memory atomics), the change pairs' landing intervals are swept along the row for the
+// nearest boundary (a running maximum and minimum, each invocation along its own run of pixels, then across the
+// runs), then every pixel's coverage is complete. The row is walked in chunks of eye pixels, one eye at a time; a
+// chunk takes the pairs whose landings can reach it or lie within the separation window of it (bounded by the
+// row's parallax range). Six barriers per chunk and eye, none per pixel.
 #extension GL_GOOGLE_include_directive : require
 #include "s3d/stereo/hybrid_shared.h"
 
-// A workgroup classifies a run of one row: the columns its pixels' windows reach are read once into shared
-// memory (depth and parallax), and every window, tap and filter texel of the run is served from there.
-layout(local_size_x = S3D_HYBRID_ROW_RUN) in;
+layout(local_size_x = S3D_HYBRID_ROW_GROUP) in;
 
 layout(binding = 0, r32f) uniform readonly image2D linearDepth;
 layout(binding = 1, r32ui) uniform writeonly uimage2D leftBins;
 layout(binding = 2, r32ui) uniform writeonly uimage2D rightBins;
-layout(binding = 3, r32ui) uniform uimage2D histogram;  // S3D_HYBRID_BINS x 2: row 0 left eye, row 1 right
+layout(binding = 3, r32ui) uniform uimage2D histogram;               // S3D_HYBRID_BINS x 2: row 0 left eye, row 1 right
+layout(binding = 4, r32ui) uniform writeonly uimage2D rowHistograms;  // 2 S3D_HYBRID_BINS x height: left bins, right bins
 
 layout(push_constant) uniform Push { HybridConstants c; };
 
-shared uint groupHistogram[2 * S3D_HYBRID_BINS];
-shared float rowDepth[S3D_HYBRID_ROW_SPAN];     // sanitized linear depth of columns [rowBegin, rowBegin + span)
-shared float rowParallax[S3D_HYBRID_ROW_SPAN];  // their parallax in pixels
-int rowBegin;
+const int kChunk = S3D_HYBRID_CHUNK;
+const int kGroup = S3D_HYBRID_ROW_GROUP;
 
-float imageDepthAt(int x, int y) {
+shared uint groupHistogram[2 * S3D_HYBRID_BINS];
+// Per chunk pixel of the eye at hand, as order-preserving bits of floats:
+shared uint coverBits[kChunk];         // the smallest covering parallax (+inf: none)
+shared uint holeBits[kChunk];          // the largest straddling step
+shared uint edgeBits[kChunk];          // the largest edge band score
+shared uint farthestEndBits[kChunk];   // change pairs starting at this pixel: the largest end (then a running maximum)
+shared uint nearestStartBits[kChunk];  // change pairs starting just after it: the smallest start (then a running minimum)
+shared uint runEnd[kGroup], runStart[kGroup];  // each invocation's run: its largest end, its smallest start
+shared float groupParallaxMin[kGroup], groupParallaxMax[kGroup];
+
+// Floats as unsigned integers in the same order (negative ones too), for atomicMin / atomicMax.
+uint orderedBits(float value) {
+  uint bits = floatBitsToUint(value);
+  return (bits & 0x80000000u) != 0u ? ~bits : bits | 0x80000000u;
+}
+float orderedFloat(uint bits) { return uintBitsToFloat((bits & 0x80000000u) != 0u ? bits & 0x7fffffffu : ~bits); }
+
+// Column x's sanitized depth (beyond the image's edges, the edge column's). Read from the image rather than
+// staged in shared memory: on a CPU driver a shared-memory load costs about twice an image load.
+float sanitizedDepthAt(int x, int y) {
   return sanitizedDepth(imageLoad(linearDepth, ivec2(clamp(x, 0, c.width - 1), y)).r, c.zeroParallaxDistance);
 }
 
-// Column x's sanitized depth and parallax: from shared memory inside the run's span, else from the image
-// (windows wider than the span's margin).
-float sanitizedDepthAt(int x, int y) {
-  int at = x - rowBegin;
-  return at >= 0 && at < S3D_HYBRID_ROW_SPAN ? rowDepth[at] : imageDepthAt(x, y);
-}
-
 float parallaxAt(int x, int y) {
-  int at = x - rowBegin;
-  return at >= 0 && at < S3D_HYBRID_ROW_SPAN ? rowParallax[at]
-                                             : hybridParallaxPx(imageDepthAt(x, y), c.maxSeparation, c.zeroParallaxDistance, c.width);
+  return hybridParallaxPx(sanitizedDepthAt(x, y), c.maxSeparation, c.zeroParallaxDistance, c.width);
 }
 
-// The score of eye pixel x in the eye looking along `direction` (+1 left, -1 right).
-float pixelScore(int x, int y, float direction) {
-  precise float eyeX = float(x);
-  HybridCoverage coverage = hybridCoverageBegin();
-  float dA = sanitizedDepthAt(x - c.windowPx, y);
-  float pA = parallaxAt(x - c.windowPx, y);
-  for (int i = x - c.windowPx; i < x + c.windowPx; ++i) {
-    float dB = sanitizedDepthAt(i + 1, y);
-    float pB = parallaxAt(i + 1, y);
-    precise float landA = float(i) - direction * pA;
-    precise float landB = float(i + 1) - direction * pB;
-    coverage = hybridConsiderColumns(coverage, eyeX, landA, pA, dA, landB, pB, dB);
-    dA = dB;
-    pA = pB;
+// Pair (i, i + 1) into the chunk [x0, x1) of the eye looking along `direction`.
+void scatterPair(float direction, int x0, int x1, int i, int y) {
+  float dA = sanitizedDepthAt(i, y), dB = sanitizedDepthAt(i + 1, y);
+  float pA = hybridParallaxPx(dA, c.maxSeparation, c.zeroParallaxDistance, c.width);
+  float pB = hybridParallaxPx(dB, c.maxSeparation, c.zeroParallaxDistance, c.width);
+  precise float landA = float(i) - direction * pA;
+  precise float landB = float(i + 1) - direction * pB;
+  HybridPair pair = hybridPair(landA, pA, dA, landB, pB, dB);
+  vec2 reach = hybridPairReach(pair);
+  int from = int(clamp(reach.x, float(x0), float(x1)));
+  int to = int(clamp(reach.y, float(x0 - 1), float(x1 - 1)));
+  for (int x = from; x <= to; ++x) {
+    HybridPairTerms terms = hybridPairTerms(pair, float(x));
+    if (terms.coverParallaxPx < S3D_INFINITY) atomicMin(coverBits[x - x0], orderedBits(terms.coverParallaxPx));
+    if (terms.holeJumpPx > 0.0f) atomicMax(holeBits[x - x0], orderedBits(terms.holeJumpPx));
+    if (terms.edgeScore > 0.0f) atomicMax(edgeBits[x - x0], orderedBits(terms.edgeScore));
   }
+  if (pair.edgeBase > 0.0f) {  // a pair between two surfaces: its landings for the nearest boundary
+    float start = ceil(pair.lo);  // the first pixel at or after lo (hybridChangeDistancePx's two extremes)
+    if (start <= float(x1 - 1)) atomicMax(farthestEndBits[int(max(start, float(x0))) - x0], orderedBits(pair.hi));
+    if (start - 1.0f >= float(x0)) atomicMin(nearestStartBits[int(min(start - 1.0f, float(x1 - 1))) - x0], orderedBits(pair.lo));
+  }
+}
+
+// The score of eye pixel x (chunk slot `at`) in the eye looking along `direction`, the nearest boundary's extremes
+// given.
+float pixelScore(int x, int y, int at, float direction, float farthestEnd, float nearestStart) {
+  precise float eyeX = float(x);
+  HybridCoverage coverage;
+  coverage.visibleParallaxPx = orderedFloat(coverBits[at]);
+  coverage.covered = coverage.visibleParallaxPx < S3D_INFINITY;
+  coverage.holeJumpPx = orderedFloat(holeBits[at]);
+  coverage.edgeScore = orderedFloat(edgeBits[at]);
+  coverage.nearestChangePx = hybridChangeDistancePx(eyeX, farthestEnd, nearestStart);
   float gatherError = 0.0f;
   if (c.baseTapCount > 0) {  // the gather's own choice: the nearest depth over its taps (stereo_gather.glsl)
     float minDepth = S3D_INFINITY;
@@ -70,32 +103,98 @@ float pixelScore(int x, int y, float direction) {
   return hybridPixelScore(coverage, gatherError, c.windowPx);
 }
 
-void main() {
-  uint local = gl_LocalInvocationIndex;
-  for (uint i = local; i < 2u * S3D_HYBRID_BINS; i += S3D_HYBRID_ROW_RUN) groupHistogram[i] = 0u;
-  ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
-  rowBegin = int(gl_WorkGroupID.x) * S3D_HYBRID_ROW_RUN - S3D_HYBRID_ROW_MARGIN;
-  for (int i = int(local); i < S3D_HYBRID_ROW_SPAN; i += S3D_HYBRID_ROW_RUN) {
-    float depth = imageDepthAt(rowBegin + i, pixel.y);
-    rowDepth[i] = depth;
-    rowParallax[i] = hybridParallaxPx(depth, c.maxSeparation, c.zeroParallaxDistance, c.width);
-  }
-  barrier();
+void clearSlot(int at) {
+  coverBits[at] = orderedBits(S3D_INFINITY);
+  holeBits[at] = orderedBits(0.0f);
+  edgeBits[at] = orderedBits(0.0f);
+  farthestEndBits[at] = orderedBits(-S3D_INFINITY);
+  nearestStartBits[at] = orderedBits(S3D_INFINITY);
+}
 
-  bool inside = pixel.x < c.width && pixel.y < c.height;
-  if (inside) {
-    bool classified = pixel.x >= c.cropBegin && pixel.x < c.cropEnd;
-    uint leftBin = classified ? hybridScoreBin(pixelScore(pixel.x, pixel.y, 1.0f)) : 0u;
-    uint rightBin = classified ? hybridScoreBin(pixelScore(pixel.x, pixel.y, -1.0f)) : 0u;
-    imageStore(leftBins, pixel, uvec4(leftBin));
-    imageStore(rightBins, pixel, uvec4(rightBin));
-    if (classified) {
-      atomicAdd(groupHistogram[leftBin], 1u);
-      atomicAdd(groupHistogram[S3D_HYBRID_BINS + rightBin], 1u);
+// One eye's pixels [x0, x1) of row y; the slots are clear on entry and left clear.
+void classifyChunk(int eye, int x0, int x1, int y, float parallaxMin, float parallaxMax) {
+  int local = int(gl_LocalInvocationIndex);
+  float direction = eye == 0 ? 1.0f : -1.0f;
+  // Texel i lands within [i - P_max, i + 1 - P_min] (left eye; mirrored right): the pairs that can reach the chunk
+  // or land within the separation window of it, on the edge-extended row.
+  float reachBefore = eye == 0 ? -parallaxMin : parallaxMax, reachAfter = eye == 0 ? parallaxMax : -parallaxMin;
+  int first = int(max(float(x0 - c.windowPx - 3) - max(reachBefore, 0.0f), float(-c.windowPx)));
+  int last = int(min(float(x1 + c.windowPx + 2) + max(reachAfter, 0.0f), float(c.width + c.windowPx - 2)));
+  for (int i = first + local; i <= last; i += kGroup) scatterPair(direction, x0, x1, i, y);
+  barrier();
+  // The nearest boundary: each invocation runs along its own run of pixels, then takes the runs before and after.
+  int n = x1 - x0, runLength = (n + kGroup - 1) / kGroup;
+  int runBegin = min(local * runLength, n), runStop = min(runBegin + runLength, n);
+  uint end = orderedBits(-S3D_INFINITY), start = orderedBits(S3D_INFINITY);
+  for (int at = runBegin; at < runStop; ++at) farthestEndBits[at] = end = max(end, farthestEndBits[at]);
+  for (int at = runStop - 1; at >= runBegin; --at) nearestStartBits[at] = start = min(start, nearestStartBits[at]);
+  runEnd[local] = end;
+  runStart[local] = start;
+  barrier();
+  // Each run's extremes of the runs before and after it (one invocation walks them), then every pixel in turn.
+  if (local == 0) {
+    uint before = orderedBits(-S3D_INFINITY), after = orderedBits(S3D_INFINITY);
+    for (int r = 0; r < kGroup; ++r) {
+      uint own = runEnd[r];
+      runEnd[r] = before;
+      before = max(before, own);
+    }
+    for (int r = kGroup - 1; r >= 0; --r) {
+      uint own = runStart[r];
+      runStart[r] = after;
+      after = min(after, own);
     }
   }
   barrier();
-  for (uint i = local; i < 2u * S3D_HYBRID_BINS; i += S3D_HYBRID_ROW_RUN)
-    if (groupHistogram[i] != 0u)
-      imageAtomicAdd(histogram, ivec2(int(i % S3D_HYBRID_BINS), int(i / S3D_HYBRID_BINS)), groupHistogram[i]);
+  for (int at = local; at < n; at += kGroup) {
+    int run = at / runLength;
+    float farthestEnd = orderedFloat(max(runEnd[run], farthestEndBits[at]));
+    float nearestStart = orderedFloat(min(runStart[run], nearestStartBits[at]));
+    uint bin = hybridScoreBin(pixelScore(x0 + at, y, at, direction, farthestEnd, nearestStart));
+    if (eye == 0) imageStore(leftBins, ivec2(x0 + at, y), uvec4(bin));
+    else imageStore(rightBins, ivec2(x0 + at, y), uvec4(bin));
+    atomicAdd(groupHistogram[eye * S3D_HYBRID_BINS + int(bin)], 1u);
+    clearSlot(at);
+  }
+  barrier();  // the slots are clear again, runEnd and runStart read
+}
+
+void main() {
+  int local = int(gl_LocalInvocationIndex);
+  int y = int(gl_WorkGroupID.x);
+  for (int i = local; i < 2 * S3D_HYBRID_BINS; i += kGroup) groupHistogram[i] = 0u;
+  for (int at = local; at < kChunk; at += kGroup) clearSlot(at);
+  // Columns outside the crop are not classified: bin 0, left out of the histograms. Every column's parallax
+  // bounds where the row's texels land.
+  float parallaxMin = S3D_INFINITY, parallaxMax = -S3D_INFINITY;
+  for (int x = local; x < c.width; x += kGroup) {
+    float p = parallaxAt(x, y);
+    parallaxMin = min(parallaxMin, p);
+    parallaxMax = max(parallaxMax, p);
+    if (x < c.cropBegin || x >= c.cropEnd) {
+      imageStore(leftBins, ivec2(x, y), uvec4(0u));
+      imageStore(rightBins, ivec2(x, y), uvec4(0u));
+    }
+  }
+  groupParallaxMin[local] = parallaxMin;
+  groupParallaxMax[local] = parallaxMax;
+  barrier();
+  for (int r = 0; r < kGroup; ++r) {
+    parallaxMin = min(parallaxMin, groupParallaxMin[r]);
+    parallaxMax = max(parallaxMax, groupParallaxMax[r]);
+  }
+  // (The reach is clamped to the edge-extended row, so an unbounded parallax costs time, never correctness.)
+  parallaxMin = max(parallaxMin, -float(c.width + 2 * c.windowPx));
+  parallaxMax = min(parallaxMax, float(c.width + 2 * c.windowPx));
+  for (int x0 = c.cropBegin; x0 < c.cropEnd; x0 += kChunk) {
+    int x1 = min(x0 + kChunk, c.cropEnd);
+    classifyChunk(0, x0, x1, y, parallaxMin, parallaxMax);
+    classifyChunk(1, x0, x1, y, parallaxMin, parallaxMax);
+  }
+  barrier();
+  for (int i = local; i < 2 * S3D_HYBRID_BINS; i += kGroup) {
+    uint count = groupHistogram[i];
+    imageStore(rowHistograms, ivec2(i, y), uvec4(count));
+    if (count != 0u) imageAtomicAdd(histogram, ivec2(i % S3D_HYBRID_BINS, i / S3D_HYBRID_BINS), count);
+  }
 }

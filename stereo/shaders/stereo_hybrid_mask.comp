@@ -1,24 +1,58 @@
 #version 450
-// Hybrid, pass 3: both eyes' masks (1 = render this pixel from the eye camera) from the bins and the thresholds.
+// Hybrid, pass 3: both eyes' masks (1 = render this pixel from the eye camera) from the bins and the thresholds:
+// every pixel at or above the threshold bin, and the split bin's pixels up to the split count in raster order
+// (hybridMaskReference in hybrid.h). One workgroup per row; each invocation owns a run of its columns, counts the
+// run's split-bin pixels, and ranks them on top of the runs before it and the rows above (the threshold pass's
+// offsets): one barrier per row.
 #extension GL_GOOGLE_include_directive : require
 #include "s3d/stereo/hybrid_shared.h"
 
-layout(local_size_x = S3D_HYBRID_GROUP_SIZE, local_size_y = S3D_HYBRID_GROUP_SIZE) in;
+layout(local_size_x = S3D_HYBRID_ROW_GROUP) in;
 
 layout(binding = 0, r32ui) uniform readonly uimage2D leftBins;
 layout(binding = 1, r32ui) uniform readonly uimage2D rightBins;
-layout(binding = 2, r32ui) uniform readonly uimage2D thresholds;
-layout(binding = 3, r32ui) uniform writeonly uimage2D leftMask;
-layout(binding = 4, r32ui) uniform writeonly uimage2D rightMask;
+layout(binding = 2, r32ui) uniform readonly uimage2D thresholds;    // S3D_HYBRID_THRESHOLD_FIELDS x 2
+layout(binding = 3, r32ui) uniform readonly uimage2D splitOffsets;  // height x 2
+layout(binding = 4, r32ui) uniform writeonly uimage2D leftMask;
+layout(binding = 5, r32ui) uniform writeonly uimage2D rightMask;
 
 layout(push_constant) uniform Push { HybridConstants c; };
 
+const int kGroup = S3D_HYBRID_ROW_GROUP;
+shared uvec2 runSplitPixels[kGroup];  // each run's split-bin pixels, left and right
+
+bool classified(int x) { return x >= c.cropBegin && x < c.cropEnd; }
+
 void main() {
-  ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
-  if (pixel.x >= c.width || pixel.y >= c.height) return;
-  bool classified = pixel.x >= c.cropBegin && pixel.x < c.cropEnd;
-  uint leftThreshold = imageLoad(thresholds, ivec2(0, 0)).r;
-  uint rightThreshold = imageLoad(thresholds, ivec2(0, 1)).r;
-  imageStore(leftMask, pixel, uvec4(classified && imageLoad(leftBins, pixel).r >= leftThreshold ? 1u : 0u));
-  imageStore(rightMask, pixel, uvec4(classified && imageLoad(rightBins, pixel).r >= rightThreshold ? 1u : 0u));
+  int local = int(gl_LocalInvocationIndex);
+  int y = int(gl_WorkGroupID.x);
+  uvec2 threshold = uvec2(imageLoad(thresholds, ivec2(0, 0)).r, imageLoad(thresholds, ivec2(0, 1)).r);
+  uvec2 splitBin = uvec2(imageLoad(thresholds, ivec2(2, 0)).r, imageLoad(thresholds, ivec2(2, 1)).r);
+  uvec2 split = uvec2(imageLoad(thresholds, ivec2(3, 0)).r, imageLoad(thresholds, ivec2(3, 1)).r);
+  int runLength = (c.width + kGroup - 1) / kGroup;
+  int runBegin = min(local * runLength, c.width), runStop = min(runBegin + runLength, c.width);
+  // The split-bin pixels before this run: the rows above, then this row's runs before it.
+  uvec2 before = uvec2(0u);
+  if (split.x > 0u || split.y > 0u) {  // uniform
+    uvec2 own = uvec2(0u);
+    for (int x = runBegin; x < runStop; ++x)
+      if (classified(x)) {
+        own.x += split.x > 0u && imageLoad(leftBins, ivec2(x, y)).r == splitBin.x ? 1u : 0u;
+        own.y += split.y > 0u && imageLoad(rightBins, ivec2(x, y)).r == splitBin.y ? 1u : 0u;
+      }
+    runSplitPixels[local] = own;
+    barrier();
+    if (split.x > 0u) before.x = imageLoad(splitOffsets, ivec2(y, 0)).r;
+    if (split.y > 0u) before.y = imageLoad(splitOffsets, ivec2(y, 1)).r;
+    for (int r = 0; r < local; ++r) before += runSplitPixels[r];
+  }
+  for (int x = runBegin; x < runStop; ++x) {
+    bool inside = classified(x);
+    uvec2 bins = inside ? uvec2(imageLoad(leftBins, ivec2(x, y)).r, imageLoad(rightBins, ivec2(x, y)).r) : uvec2(0u);
+    bool left = inside && bins.x >= threshold.x, right = inside && bins.y >= threshold.y;
+    if (inside && bins.x == splitBin.x) left = before.x++ < split.x;  // (the split bin lies below the threshold)
+    if (inside && bins.y == splitBin.y) right = before.y++ < split.y;
+    imageStore(leftMask, ivec2(x, y), uvec4(left ? 1u : 0u));
+    imageStore(rightMask, ivec2(x, y), uvec4(right ? 1u : 0u));
+  }
 }

@@ -2,6 +2,7 @@
 
 #include <cstring>
 #include <stdexcept>
+#include <string>
 
 // clang-format off
 #include <s3d_spirv/stereo_hybrid_classify_comp.h>
@@ -12,6 +13,9 @@
 
 namespace s3d::stereo {
 namespace {
+
+// The classification's chunk arrays fit the shared memory every Vulkan device has.
+static_assert(S3D_HYBRID_CLASSIFY_SHARED_BYTES <= 16384);
 
 constexpr VkFormat kUintFormat = VK_FORMAT_R32_UINT;
 constexpr vk::ImageState kCleared{VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
@@ -24,7 +28,7 @@ constexpr vk::ImageState kReadAnywhere{VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAG
                                        VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT};
 
 vk::PipelineLayout storageImageLayout(const vk::Context& context, std::uint32_t count) {
-  VkDescriptorSetLayoutBinding bindings[5];
+  VkDescriptorSetLayoutBinding bindings[6];
   for (std::uint32_t i = 0; i < count; ++i)
     bindings[i] = {i, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr};
   return vk::createPushDescriptorLayout(context, std::span(bindings, count), sizeof(gpu::HybridConstants),
@@ -42,8 +46,8 @@ std::uint32_t groups(int size) { return std::uint32_t((size + S3D_HYBRID_GROUP_S
 void dispatch(const vk::Context& context, VkCommandBuffer cmd, VkPipeline pipeline, VkPipelineLayout layout,
               std::initializer_list<const vk::Image*> images, const gpu::HybridConstants& c, std::uint32_t groupsX,
               std::uint32_t groupsY) {
-  VkDescriptorImageInfo infos[5];
-  VkWriteDescriptorSet writes[5];
+  VkDescriptorImageInfo infos[6];
+  VkWriteDescriptorSet writes[6];
   std::uint32_t count = 0;
   for (const vk::Image* image : images) {
     infos[count] = {VK_NULL_HANDLE, image->view, VK_IMAGE_LAYOUT_GENERAL};
@@ -67,9 +71,9 @@ std::vector<std::uint32_t> readUints(vk::Context& context, const vk::Image& imag
 
 HybridPass::HybridPass(const vk::Context& context)
     : context_(&context),
-      classifyLayout_(storageImageLayout(context, 4)),
-      thresholdLayout_(storageImageLayout(context, 2)),
-      maskLayout_(storageImageLayout(context, 5)),
+      classifyLayout_(storageImageLayout(context, 5)),
+      thresholdLayout_(storageImageLayout(context, 4)),
+      maskLayout_(storageImageLayout(context, 6)),
       compositeLayout_(storageImageLayout(context, 3)) {
   classify_ = vk::createComputePipeline(context, classifyLayout_.layout, spirv_stereo_hybrid_classify_comp);
   threshold_ = vk::createComputePipeline(context, thresholdLayout_.layout, spirv_stereo_hybrid_threshold_comp);
@@ -81,17 +85,27 @@ HybridPass::Images HybridPass::createImages(std::uint32_t width, std::uint32_t h
   const VkImageUsageFlags usage =
       VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
   auto image = [&](std::uint32_t w, std::uint32_t h) { return vk::createImage(*context_, kUintFormat, w, h, usage); };
-  return {image(width, height), image(width, height), image(S3D_HYBRID_BINS, 2), image(2, 2),
-          image(width, height), image(width, height)};
+  return {image(width, height),
+          image(width, height),
+          image(S3D_HYBRID_BINS, 2),
+          image(2 * S3D_HYBRID_BINS, height),
+          image(S3D_HYBRID_THRESHOLD_FIELDS, 2),
+          image(height, 2),
+          image(width, height),
+          image(width, height)};
 }
 
 void HybridPass::recordMasks(VkCommandBuffer cmd, const vk::Image& linearDepth, Images& images,
-                             const gpu::HybridConstants& c) const {
+                             const gpu::HybridConstants& c, const std::function<void()>& afterEachDispatch) const {
+  auto mark = [&] {
+    if (afterEachDispatch) afterEachDispatch();
+  };
   requireSize(linearDepth, c, "linear depth");
   for (const vk::Image* image : {&images.leftBins, &images.rightBins, &images.leftMask, &images.rightMask})
     requireSize(*image, c, "bins or mask");
   const vk::ImageState previous = images.written ? kReadAnywhere : vk::kUndefined;
-  for (const vk::Image* image : {&images.leftBins, &images.rightBins, &images.thresholds, &images.leftMask, &images.rightMask})
+  for (const vk::Image* image : {&images.leftBins, &images.rightBins, &images.rowHistograms, &images.thresholds,
+                                 &images.splitOffsets, &images.leftMask, &images.rightMask})
     vk::transition(cmd, *image, previous, vk::kComputeWrite);
   vk::transition(cmd, images.histogram, previous, kCleared);
   const VkClearColorValue zero{};
@@ -100,18 +114,24 @@ void HybridPass::recordMasks(VkCommandBuffer cmd, const vk::Image& linearDepth, 
   vk::transition(cmd, images.histogram, kCleared, kAtomics);
 
   dispatch(*context_, cmd, classify_.get(), classifyLayout_.layout,
-           {&linearDepth, &images.leftBins, &images.rightBins, &images.histogram}, c,
-           std::uint32_t((c.width + S3D_HYBRID_ROW_RUN - 1) / S3D_HYBRID_ROW_RUN), std::uint32_t(c.height));
+           {&linearDepth, &images.leftBins, &images.rightBins, &images.histogram, &images.rowHistograms}, c,
+           std::uint32_t(c.height), 1);
+  mark();
   vk::transition(cmd, images.histogram, kAtomics, vk::kComputeRead);
-  dispatch(*context_, cmd, threshold_.get(), thresholdLayout_.layout, {&images.histogram, &images.thresholds}, c, 2, 1);
-  vk::transition(cmd, images.thresholds, vk::kComputeWrite, vk::kComputeRead);
-  vk::transition(cmd, images.leftBins, vk::kComputeWrite, vk::kComputeRead);
-  vk::transition(cmd, images.rightBins, vk::kComputeWrite, vk::kComputeRead);
+  vk::transition(cmd, images.rowHistograms, vk::kComputeWrite, vk::kComputeRead);
+  dispatch(*context_, cmd, threshold_.get(), thresholdLayout_.layout,
+           {&images.histogram, &images.rowHistograms, &images.thresholds, &images.splitOffsets}, c, 2, 1);
+  mark();
+  for (const vk::Image* image : {&images.thresholds, &images.splitOffsets, &images.leftBins, &images.rightBins})
+    vk::transition(cmd, *image, vk::kComputeWrite, vk::kComputeRead);
   dispatch(*context_, cmd, mask_.get(), maskLayout_.layout,
-           {&images.leftBins, &images.rightBins, &images.thresholds, &images.leftMask, &images.rightMask}, c,
-           groups(c.width), groups(c.height));
+           {&images.leftBins, &images.rightBins, &images.thresholds, &images.splitOffsets, &images.leftMask,
+            &images.rightMask},
+           c, std::uint32_t(c.height), 1);
+  mark();
   // Everything ends in one state, so the next frame (and the read-backs) start from one.
-  for (const vk::Image* image : {&images.leftBins, &images.rightBins, &images.histogram, &images.thresholds})
+  for (const vk::Image* image : {&images.leftBins, &images.rightBins, &images.histogram, &images.rowHistograms,
+                                 &images.thresholds, &images.splitOffsets})
     vk::transition(cmd, *image, vk::kComputeRead, vk::kComputeWrite);
   images.written = true;
 }
@@ -134,7 +154,8 @@ HybridHistogram HybridPass::readHistogram(vk::Context& context, const vk::Image&
 
 HybridThreshold HybridPass::readThreshold(vk::Context& context, const vk::Image& thresholds, int row) {
   const std::vector<std::uint32_t> values = readUints(context, thresholds);
-  return {int(values[std::size_t(row) * 2]), values[std::size_t(row) * 2 + 1]};
+  const std::uint32_t* eye = values.data() + std::size_t(row) * S3D_HYBRID_THRESHOLD_FIELDS;
+  return {int(eye[0]), eye[1], int(eye[2]), eye[3]};
 }
 
 std::vector<std::uint32_t> HybridPass::readBins(vk::Context& context, const vk::Image& bins) {

@@ -43,44 +43,102 @@ std::uint32_t hybridPixelCap(float budget, std::uint64_t classifiedPixels) {
                         : std::uint32_t(std::floor(double(budget) * double(classifiedPixels) * (1.0 + 1e-7)));
 }
 
-float hybridPixelScoreReference(const DepthImage& linearDepth, int x, int y, Eye eye, const gpu::HybridConstants& c) {
+std::vector<gpu::HybridCoverage> hybridRowCoverageReference(const DepthImage& linearDepth, int y, Eye eye,
+                                                             const gpu::HybridConstants& c) {
+  if (int(linearDepth.width) != c.width || int(linearDepth.height) != c.height || y < 0 || y >= c.height)
+    throw std::invalid_argument("hybrid coverage: depth size or row does not match the constants");
+  auto sanitizedDepthAt = [&](int column) {
+    return gpu::sanitizedDepth(*linearDepth.at(std::uint32_t(std::clamp(column, 0, c.width - 1)), std::uint32_t(y)),
+                               c.zeroParallaxDistance);
+  };
+  const float direction = eye == Eye::Left ? 1.0f : -1.0f;
+  const int width = c.width;
+  const std::size_t n = std::size_t(width);
+  std::vector<float> cover(n, S3D_INFINITY), hole(n, 0.0f), edge(n, 0.0f);
+  std::vector<float> farthestEnd(n, -S3D_INFINITY), nearestStart(n, S3D_INFINITY);
+  for (int i = -c.windowPx; i <= width + c.windowPx - 2; ++i) {
+    const float dA = sanitizedDepthAt(i), dB = sanitizedDepthAt(i + 1);
+    const float pA = gpu::hybridParallaxPx(dA, c.maxSeparation, c.zeroParallaxDistance, c.width);
+    const float pB = gpu::hybridParallaxPx(dB, c.maxSeparation, c.zeroParallaxDistance, c.width);
+    const gpu::HybridPair pair =
+        gpu::hybridPair(float(i) - direction * pA, pA, dA, float(i + 1) - direction * pB, pB, dB);
+    const glm::vec2 reach = gpu::hybridPairReach(pair);
+    const int from = int(std::clamp(reach.x, 0.0f, float(width)));
+    const int to = int(std::clamp(reach.y, -1.0f, float(width - 1)));
+    for (int x = from; x <= to; ++x) {
+      const gpu::HybridPairTerms terms = gpu::hybridPairTerms(pair, float(x));
+      const std::size_t at = std::size_t(x);
+      cover[at] = std::min(cover[at], terms.coverParallaxPx);
+      hole[at] = std::max(hole[at], terms.holeJumpPx);
+      edge[at] = std::max(edge[at], terms.edgeScore);
+    }
+    if (pair.edgeBase > 0.0f) {  // a pair between two surfaces: its landings for the nearest boundary
+      const float start = std::ceil(pair.lo);  // the first pixel at or after lo: the pixels from here on have lo <= x
+      if (start <= float(width - 1)) {
+        const std::size_t at = std::size_t(std::max(start, 0.0f));
+        farthestEnd[at] = std::max(farthestEnd[at], pair.hi);
+      }
+      if (start - 1.0f >= 0.0f) {  // the pixels up to start - 1 have lo > x
+        const std::size_t at = std::size_t(std::min(start - 1.0f, float(width - 1)));
+        nearestStart[at] = std::min(nearestStart[at], pair.lo);
+      }
+    }
+  }
+  for (std::size_t x = 1; x < n; ++x) farthestEnd[x] = std::max(farthestEnd[x], farthestEnd[x - 1]);
+  for (std::size_t x = n - 1; x-- > 0;) nearestStart[x] = std::min(nearestStart[x], nearestStart[x + 1]);
+
+  std::vector<gpu::HybridCoverage> coverage(n);
+  for (std::size_t x = 0; x < n; ++x) {
+    coverage[x].covered = cover[x] < S3D_INFINITY;
+    coverage[x].visibleParallaxPx = cover[x];
+    coverage[x].holeJumpPx = hole[x];
+    coverage[x].edgeScore = edge[x];
+    coverage[x].nearestChangePx = gpu::hybridChangeDistancePx(float(x), farthestEnd[x], nearestStart[x]);
+  }
+  return coverage;
+}
+
+namespace {
+
+// Every eye pixel's score in row y: its coverage, and a gather base's own choice of source checked against it.
+std::vector<float> rowScores(const DepthImage& linearDepth, int y, Eye eye, const gpu::HybridConstants& c) {
   auto depthAt = [&](int column) {
     return *linearDepth.at(std::uint32_t(std::clamp(column, 0, c.width - 1)), std::uint32_t(y));
   };
   auto parallaxAt = [&](int column) {
     return gpu::hybridParallaxPx(depthAt(column), c.maxSeparation, c.zeroParallaxDistance, c.width);
   };
-  const float direction = eye == Eye::Left ? 1.0f : -1.0f;
-  const float eyeX = float(x);
-  gpu::HybridCoverage coverage = gpu::hybridCoverageBegin();
   auto sanitizedDepthAt = [&](int column) { return gpu::sanitizedDepth(depthAt(column), c.zeroParallaxDistance); };
-  float dA = sanitizedDepthAt(x - c.windowPx);
-  float pA = gpu::hybridParallaxPx(dA, c.maxSeparation, c.zeroParallaxDistance, c.width);
-  for (int i = x - c.windowPx; i < x + c.windowPx; ++i) {
-    const float dB = sanitizedDepthAt(i + 1);
-    const float pB = gpu::hybridParallaxPx(dB, c.maxSeparation, c.zeroParallaxDistance, c.width);
-    const float landA = float(i) - direction * pA;
-    const float landB = float(i + 1) - direction * pB;
-    coverage = gpu::hybridConsiderColumns(coverage, eyeX, landA, pA, dA, landB, pB, dB);
-    dA = dB;
-    pA = pB;
+  const float direction = eye == Eye::Left ? 1.0f : -1.0f;
+  const std::vector<gpu::HybridCoverage> coverage = hybridRowCoverageReference(linearDepth, y, eye, c);
+  std::vector<float> scores(coverage.size(), 0.0f);
+  for (int x = 0; x < c.width; ++x) {
+    const std::size_t at = std::size_t(x);
+    const float eyeX = float(x);
+    float gatherError = 0.0f;
+    if (c.baseTapCount > 0) {  // the gather's own choice: the nearest depth over its taps (stereo_reference.cpp)
+      float minDepth = S3D_INFINITY;
+      for (int t = 0; t < c.baseTapCount; ++t)
+        minDepth = std::min(minDepth, sanitizedDepthAt(x + int(direction) * c.baseTapOffsetPx[t]));
+      const float u =
+          eyeX + direction * (gpu::parallaxFromDepth(c.maxSeparation, c.zeroParallaxDistance, minDepth) * float(c.width));
+      const float base = std::floor(u);
+      const float fraction = u - base;
+      const float pLow = parallaxAt(int(base)), pHigh = parallaxAt(int(base) + 1);
+      const float pNearest = fraction < 0.5f ? pLow : pHigh;
+      const float landing = u - direction * pNearest;
+      gatherError = gpu::hybridGatherErrorPx(coverage[at], pNearest, std::abs(landing - eyeX), pLow, pHigh, fraction);
+    }
+    scores[at] = gpu::hybridPixelScore(coverage[at], gatherError, c.windowPx);
   }
-  float gatherError = 0.0f;
-  if (c.baseTapCount > 0) {  // the gather's own choice: the nearest depth over its taps (stereo_reference.cpp)
-    float minDepth = S3D_INFINITY;
-    for (int t = 0; t < c.baseTapCount; ++t)
-      minDepth = std::min(minDepth, gpu::sanitizedDepth(depthAt(x + int(direction) * c.baseTapOffsetPx[t]),
-                                                        c.zeroParallaxDistance));
-    const float u =
-        float(x) + direction * (gpu::parallaxFromDepth(c.maxSeparation, c.zeroParallaxDistance, minDepth) * float(c.width));
-    const float base = std::floor(u);
-    const float fraction = u - base;
-    const float pLow = parallaxAt(int(base)), pHigh = parallaxAt(int(base) + 1);
-    const float pNearest = fraction < 0.5f ? pLow : pHigh;
-    const float landing = u - direction * pNearest;
-    gatherError = gpu::hybridGatherErrorPx(coverage, pNearest, std::abs(landing - eyeX), pLow, pHigh, fraction);
-  }
-  return gpu::hybridPixelScore(coverage, gatherError, c.windowPx);
+  return scores;
+}
+
+}  // namespace
+
+float hybridPixelScoreReference(const DepthImage& linearDepth, int x, int y, Eye eye, const gpu::HybridConstants& c) {
+  if (x < 0 || x >= c.width || y < 0 || y >= c.height) throw std::invalid_argument("hybrid score: pixel outside the image");
+  return rowScores(linearDepth, y, eye, c)[std::size_t(x)];
 }
 
 HybridClassification classifyHybridReference(const DepthImage& linearDepth, const gpu::HybridConstants& c) {
@@ -88,14 +146,17 @@ HybridClassification classifyHybridReference(const DepthImage& linearDepth, cons
     throw std::invalid_argument("hybrid classification: depth size does not match the constants");
   const std::size_t count = std::size_t(c.width) * std::size_t(c.height);
   HybridClassification result{std::vector<std::uint32_t>(count, 0u), std::vector<std::uint32_t>(count, 0u), {}, {}};
-  for (int y = 0; y < c.height; ++y)
+  for (int y = 0; y < c.height; ++y) {
+    const std::vector<float> left = rowScores(linearDepth, y, Eye::Left, c);
+    const std::vector<float> right = rowScores(linearDepth, y, Eye::Right, c);
     for (int x = c.cropBegin; x < c.cropEnd; ++x) {
       const std::size_t index = std::size_t(y) * std::size_t(c.width) + std::size_t(x);
-      result.leftBins[index] = gpu::hybridScoreBin(hybridPixelScoreReference(linearDepth, x, y, Eye::Left, c));
-      result.rightBins[index] = gpu::hybridScoreBin(hybridPixelScoreReference(linearDepth, x, y, Eye::Right, c));
+      result.leftBins[index] = gpu::hybridScoreBin(left[std::size_t(x)]);
+      result.rightBins[index] = gpu::hybridScoreBin(right[std::size_t(x)]);
       ++result.leftHistogram[result.leftBins[index]];
       ++result.rightHistogram[result.rightBins[index]];
     }
+  }
   return result;
 }
 
@@ -103,21 +164,32 @@ HybridThreshold hybridThreshold(const HybridHistogram& histogram, std::uint32_t 
   HybridThreshold threshold;
   for (int bin = S3D_HYBRID_BINS - 1; bin >= 0; --bin) {
     const std::uint64_t masked = threshold.maskedPixels + histogram[std::size_t(bin)];
-    if (masked > maskedPixelCap) break;
-    threshold = {bin, masked};
+    if (masked > maskedPixelCap) {
+      if (bin > 0) {  // the cap falls inside this bin: split its ties
+        threshold.splitBin = bin;
+        threshold.splitPixels = maskedPixelCap - threshold.maskedPixels;
+        threshold.maskedPixels = maskedPixelCap;
+      }
+      break;
+    }
+    threshold.bin = bin;
+    threshold.maskedPixels = masked;
   }
+  if (threshold.splitPixels == 0) threshold.splitBin = S3D_HYBRID_NO_PIXEL;
   return threshold;
 }
 
-std::vector<std::uint8_t> hybridMaskReference(const std::vector<std::uint32_t>& bins, int thresholdBin,
+std::vector<std::uint8_t> hybridMaskReference(const std::vector<std::uint32_t>& bins, const HybridThreshold& threshold,
                                               const gpu::HybridConstants& c) {
   if (bins.size() != std::size_t(c.width) * std::size_t(c.height))
     throw std::invalid_argument("hybrid mask: bins size does not match the constants");
   std::vector<std::uint8_t> mask(bins.size(), 0);
+  std::uint64_t split = 0;
   for (int y = 0; y < c.height; ++y)
     for (int x = c.cropBegin; x < c.cropEnd; ++x) {
       const std::size_t i = std::size_t(y) * std::size_t(c.width) + std::size_t(x);
-      mask[i] = int(bins[i]) >= thresholdBin ? 1 : 0;
+      const int bin = int(bins[i]);
+      if (bin >= threshold.bin || (bin == threshold.splitBin && split++ < threshold.splitPixels)) mask[i] = 1;
     }
   return mask;
 }

@@ -31,9 +31,10 @@ std::string hybridBenchMarkdown(const BenchReport& report) {
   std::ostringstream md;
   md << "\n#### Hybrid: budget against error and time (both eyes)\n\n"
         "Masked: the share of each eye's compared pixels rendered from the eye camera (left / right). Times: the base\n"
-        "displacement, the classification (classify, threshold, masks), both eyes' G-buffer rasterization, both eyes'\n"
-        "other renderer passes (shadows, lighting and resolve of the masked pixels) and both composites; / eye: the\n"
-        "total over one reference eye. PSNR and SSIM left / right against the two-pass reference.\n\n"
+        "displacement, the classification (classify, threshold, masks), both eyes' rasterized depth (G-buffer and\n"
+        "occlusion depth), both eyes' other renderer passes (mask tiles, occlusion, lighting and resolve of the masked\n"
+        "pixels; the shadow maps are the center frame's) and both composites; / eye: the total over one reference eye.\n"
+        "PSNR and SSIM left / right against the two-pass reference.\n\n"
         "| scene | sep % | budget | masked % | displace ms | classify ms | geometry ms | shading ms | composite ms | "
         "total ms | / eye | PSNR all | halo | disocclusion | SSIM |\n"
         "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
@@ -48,6 +49,33 @@ std::string hybridBenchMarkdown(const BenchReport& report) {
        << dbPair(row->left.halo.psnrDb, row->right.halo.psnrDb) << " | "
        << dbPair(row->left.disocclusion.psnrDb, row->right.disocclusion.psnrDb) << " | "
        << format("%.4f", row->left.display.ssim) << " / " << format("%.4f", row->right.display.ssim) << " |\n";
+  }
+
+  // Per pass: the classification's three, then each renderer pass of the eye renders, both eyes summed (an eye
+  // with nothing masked is not rendered; the shadow maps are the center frame's, so none runs here).
+  std::vector<std::string> eyePasses;
+  for (const BenchRow* row : rows)
+    if (row->hybridTimings)
+      for (const auto* passes : {&row->hybridTimings->leftEyePasses, &row->hybridTimings->rightEyePasses})
+        for (const renderer::PassTiming& pass : *passes)
+          if (std::find(eyePasses.begin(), eyePasses.end(), pass.name) == eyePasses.end()) eyePasses.push_back(pass.name);
+  md << "\n#### Hybrid: GPU time per pass (both eyes, ms)\n\n| scene | sep % | budget | classify | threshold | mask |";
+  for (const std::string& name : eyePasses) md << " eye " << name << " |";
+  md << "\n|---|---|---|---|---|---|";
+  for (std::size_t i = 0; i < eyePasses.size(); ++i) md << "---|";
+  md << "\n";
+  for (const BenchRow* row : rows) {
+    const HybridTimings& t = row->hybridTimings ? *row->hybridTimings : HybridTimings{};
+    md << "| " << row->scene << " | " << percentText(row->maxSeparation) << " | " << format("%g", row->setting.budget)
+       << " | " << msText(t.classify) << " | " << msText(t.threshold) << " | " << msText(t.mask) << " |";
+    for (const std::string& name : eyePasses) {
+      std::optional<double> both;
+      for (const auto* passes : {&t.leftEyePasses, &t.rightEyePasses})
+        for (const renderer::PassTiming& pass : *passes)
+          if (pass.name == name) both = both.value_or(0.0) + pass.gpuMs;
+      md << " " << (both ? msText(both) : std::string("-")) << " |";
+    }
+    md << "\n";
   }
 
   const float budget = stereo::StereoParameters{}.hybridBudget;

@@ -342,7 +342,7 @@ void runSweep(vk::Context& context, const BenchOptions& options, const Validated
       for (const MethodSetting& setting : bench.settings) {
         progress(sceneName + " " + setting.name() + " sep " + percentText(parameters.maxSeparation) + "%");
         if (setting.method == stereo::StereoMethod::Hybrid) {
-          HybridSynthesis hybrid = synthesizeHybrid(context, deferred.displayColor(), deferred.linearDepth(), *eyeRenderer,
+          HybridSynthesis hybrid = synthesizeHybrid(context, deferred, *eyeRenderer,
                                                     scene, center, setting.applyTo(parameters), options.repeat);
           syntheses.push_back({std::move(hybrid.eyes), hybrid.timings.total, {}, hybrid.filledLeft, hybrid.filledRight});
           hybrids.push_back(std::move(hybrid));

@@ -57,23 +57,24 @@ std::vector<std::optional<double>> timeSections(vk::Context& context, int timedR
   return medians;
 }
 
-// The eye renders, masked (renderer::ShadeMask: only the mask's pixels are shaded): median total and median
-// per pass; "gbuffer" and "ssao-depth" passes are the eye's rasterized geometry (every pixel's depth), all
-// others shade the masked pixels (shadow maps included: they render as for a full frame).
+// The eye renders, masked (renderer::ShadeMask: only the mask's pixels are shaded) and lit with the center
+// frame's shadow maps (the eye views plan theirs for the center camera, so they are the same maps): median total
+// and median per pass; "gbuffer" and "ssao-depth" passes are the eye's rasterized geometry (every pixel's depth),
+// all others shade the masked pixels.
 struct EyeRenderTimes {
   std::optional<double> geometry, shading;
   std::vector<renderer::PassTiming> passes;
 };
 
-EyeRenderTimes renderEye(renderer::DeferredRenderer& eyeRenderer, const renderer::ViewMatrices& view,
-                         const vk::Image& mask, int timedRuns) {
+EyeRenderTimes renderEye(renderer::DeferredRenderer& eyeRenderer, const renderer::DeferredRenderer& centerRenderer,
+                         const renderer::ViewMatrices& view, const vk::Image& mask, int timedRuns) {
   const renderer::ShadeMask shadeMask{&mask, 1};  // HybridPass masks: 1 where the eye camera renders the pixel
-  (void)eyeRenderer.render(view, shadeMask);
+  (void)eyeRenderer.render(view, shadeMask, centerRenderer);
   std::vector<double> totals;
   std::map<std::string, std::vector<double>> passTimes;
   std::vector<renderer::PassTiming> order;
   for (int run = 0; run < timedRuns; ++run) {
-    const renderer::FrameTimings frame = eyeRenderer.render(view, shadeMask);
+    const renderer::FrameTimings frame = eyeRenderer.render(view, shadeMask, centerRenderer);
     if (!frame.totalGpuMs) continue;
     totals.push_back(*frame.totalGpuMs);
     if (order.empty()) order = frame.passes;
@@ -97,17 +98,21 @@ EyeRenderTimes renderEye(renderer::DeferredRenderer& eyeRenderer, const renderer
 
 nlohmann::json toJson(const HybridTimings& t) {
   return {{"displacement", optionalMs(t.displacement)}, {"classification", optionalMs(t.classification)},
+          {"classify", optionalMs(t.classify)},         {"threshold", optionalMs(t.threshold)},
+          {"mask", optionalMs(t.mask)},
           {"eyeGeometry", optionalMs(t.eyeGeometry)},   {"maskedShading", optionalMs(t.maskedShading)},
           {"composite", optionalMs(t.composite)},       {"total", optionalMs(t.total)}};
 }
 
-HybridSynthesis synthesizeHybrid(vk::Context& context, const vk::Image& centerColor, const vk::Image& linearDepth,
+HybridSynthesis synthesizeHybrid(vk::Context& context, const renderer::DeferredRenderer& centerRenderer,
                                  renderer::DeferredRenderer& eyeRenderer, const renderer::Scene& scene,
                                  const renderer::ViewMatrices& center, const stereo::StereoParameters& parameters,
                                  int timedRuns) {
   if (parameters.method != stereo::StereoMethod::Hybrid)
     throw std::invalid_argument("synthesizeHybrid needs the hybrid method's parameters");
   if (timedRuns < 1) throw std::invalid_argument("synthesizeHybrid: timedRuns must be at least 1");
+  const vk::Image& centerColor = centerRenderer.displayColor();
+  const vk::Image& linearDepth = centerRenderer.linearDepth();
   const std::uint32_t width = centerColor.width, height = centerColor.height;
   if (eyeRenderer.width() != width || eyeRenderer.height() != height)
     throw std::invalid_argument("synthesizeHybrid: the eye renderer's size differs from the center view's");
@@ -124,26 +129,36 @@ HybridSynthesis synthesizeHybrid(vk::Context& context, const vk::Image& centerCo
 
   // Displacement, classification, threshold and masks: one submission, nothing read back in between.
   const std::vector<std::optional<double>> front =
-      timeSections(context, timedRuns, 2, [&](VkCommandBuffer cmd, const std::function<void()>& mark) {
+      timeSections(context, timedRuns, 4, [&](VkCommandBuffer cmd, const std::function<void()>& mark) {
         stereo::StereoPass::recordInputBarriers(cmd, centerColor, linearDepth, left, right);
         displacement.record(cmd, centerColor, linearDepth, left, right);
         mark();
-        hybrid.recordMasks(cmd, linearDepth, images, constants);
-        mark();
+        hybrid.recordMasks(cmd, linearDepth, images, constants, mark);
         stereo::StereoPass::recordInputRelease(cmd, centerColor, linearDepth);
       });
   HybridTimings& timings = result.timings;
   timings.displacement = front[0];
-  timings.classification = front[1];
+  timings.classify = front[1];
+  timings.threshold = front[2];
+  timings.mask = front[3];
+  timings.classification = sum(sum(front[1], front[2]), front[3]);
   timings.eyeGeometry = timings.maskedShading = timings.composite = 0.0;
 
-  // Each eye: its masked pixels rendered from the eye camera, then composited into the displaced eye.
+  // Each eye: its masked pixels rendered from the eye camera, then composited into the displaced eye. The
+  // masked counts come back first (the submission above was waited for anyway): an eye with nothing masked is
+  // the displaced eye as it is, and costs no render.
   for (const stereo::Eye eye : {stereo::Eye::Left, stereo::Eye::Right}) {
     const std::size_t index = eye == stereo::Eye::Left ? 0 : 1;
     const vk::Image& target = index == 0 ? left : right;
     const vk::Image& mask = index == 0 ? images.leftMask : images.rightMask;
+    result.thresholds[index] = stereo::HybridPass::readThreshold(context, images.thresholds, int(index));
+    if (result.thresholds[index].maskedPixels == 0) {
+      result.masks[index].assign(std::size_t(width) * height, 0);
+      result.renderedHdr[index] = ImageRGBA32F(width, height);
+      continue;
+    }
     const EyeRenderTimes render =
-        renderEye(eyeRenderer, referenceEyeView(scene, center, eye, parameters), mask, timedRuns);
+        renderEye(eyeRenderer, centerRenderer, referenceEyeView(scene, center, eye, parameters), mask, timedRuns);
     timings.eyeGeometry = sum(timings.eyeGeometry, render.geometry);
     timings.maskedShading = sum(timings.maskedShading, render.shading);
     (index == 0 ? timings.leftEyePasses : timings.rightEyePasses) = render.passes;
@@ -161,7 +176,6 @@ HybridSynthesis synthesizeHybrid(vk::Context& context, const vk::Image& centerCo
     timings.composite = sum(timings.composite, composite[0]);
     result.renderedHdr[index] = eyeRenderer.readHdrColor();
     result.masks[index] = stereo::HybridPass::readMask(context, mask);
-    result.thresholds[index] = stereo::HybridPass::readThreshold(context, images.thresholds, int(index));
   }
   timings.total =
       sum(sum(sum(sum(timings.displacement, timings.classification), timings.eyeGeometry), timings.maskedShading),

@@ -56,6 +56,7 @@ renderer::ViewMatrices referenceEyeView(const renderer::Scene& scene, const rend
   view.worldProjection = world.projection;
   view.firstPersonView = firstPerson.view;
   view.firstPersonProjection = firstPerson.projection;
+  view.shadowFit = renderer::shadowFitOf(center);  // one set of shadow maps for the frame: the center view's
   return view;
 }
 

@@ -29,6 +29,8 @@ constexpr std::uint64_t kRenderHostBytesPerRenderedPixel = 84;
 // score bins and masks 16, the displaced eyes 8; host: masks 2, rendered HDR eyes 32.
 constexpr std::uint64_t kHybridDeviceBytesPerRenderedPixel = kDeviceBytesPerRenderedPixel + 16 + 8;
 constexpr std::uint64_t kHybridHostBytesPerRenderedPixel = 2 + 32;
+// And per row: the classification's row histograms (2 x 256 bins) and the threshold's split offsets (2).
+constexpr std::uint64_t kHybridDeviceBytesPerRow = 4 * (2 * 256 + 2);
 // And once: the second renderer's pipelines and shadow atlases (lavapipe: 19-31 MB more peak resident memory
 // than the search method at 1280x720 and 320x180).
 constexpr std::uint64_t kHybridFixedBytes = 48ull << 20;
@@ -86,7 +88,8 @@ MemoryEstimate renderMemoryEstimate(std::uint32_t width, std::uint32_t height, s
   estimate.deviceBytes = (kDeviceBytesPerSample * samples + kDeviceBytesPerRenderedPixel) * renderedPixels;
   if (hybridEyes) {
     estimate.hostBytes += kHybridFixedBytes + kHybridHostBytesPerRenderedPixel * renderedPixels;
-    estimate.deviceBytes += (kDeviceBytesPerSample * samples + kHybridDeviceBytesPerRenderedPixel) * renderedPixels;
+    estimate.deviceBytes += (kDeviceBytesPerSample * samples + kHybridDeviceBytesPerRenderedPixel) * renderedPixels +
+                            kHybridDeviceBytesPerRow * height;
   }
   if (referenceLayers > 1)
     estimate.hostBytes += (kReferenceLayerHostBytesPerRenderedPixel * (referenceLayers + 1) +

@@ -131,6 +131,8 @@ ValidatedJob validateJob(const RenderJobOptions& options) {
 nlohmann::json hybridJson(const HybridReport& hybrid) {
   auto eyeJson = [&](const stereo::HybridThreshold& threshold) {
     return nlohmann::json{{"thresholdBin", threshold.bin},
+                          {"splitBin", threshold.splitBin < S3D_HYBRID_BINS ? nlohmann::json(threshold.splitBin) : nlohmann::json()},
+                          {"splitPixels", threshold.splitPixels},
                           {"maskedPixels", threshold.maskedPixels},
                           {"maskedShare", finiteOrNull(tidy(float(threshold.maskedPixels) /
                                                             float(std::max<std::uint64_t>(hybrid.classifiedPixels, 1))))}};
@@ -283,7 +285,7 @@ RenderReport runRenderJob(vk::Context& context, const RenderJobOptions& options)
     renderer::DeferredRenderer eyeRenderer(context, renderedWidth, height,
                                            renderer::RendererOptions{options.supersample, options.reversedZ});
     eyeRenderer.setScene(job.scene);
-    HybridSynthesis hybrid = synthesizeHybrid(context, deferred->displayColor(), deferred->linearDepth(), eyeRenderer,
+    HybridSynthesis hybrid = synthesizeHybrid(context, *deferred, eyeRenderer,
                                               job.scene, center, renderedParameters);
     report.stereoPassGpuMs = hybrid.timings.total;
     report.filledPixels = {hybrid.filledLeft, hybrid.filledRight};

@@ -274,7 +274,7 @@ SequenceReport runSequenceJob(vk::Context& context, const SequenceJobOptions& op
             context, band.renderedWidth(width), height, renderer::RendererOptions{options.supersample, options.reversedZ});
         eyeRenderer->setScene(scene);
       }
-      HybridSynthesis hybrid = synthesizeHybrid(context, deferred->displayColor(), deferred->linearDepth(), *eyeRenderer,
+      HybridSynthesis hybrid = synthesizeHybrid(context, *deferred, *eyeRenderer,
                                                 scene, center, renderedParameters);
       eyes.eyes = std::move(hybrid.eyes);
       eyes.gpuMs = hybrid.timings.total;

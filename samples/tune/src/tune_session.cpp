@@ -182,7 +182,7 @@ TuneFrame TuneSession::renderFrame(TuneState& state, const FrameInput& input, fl
                                                                         renderer::RendererOptions{loaded.supersample});
       loaded.eyeRenderer->setScene(scene);
     }
-    app::HybridSynthesis hybrid = app::synthesizeHybrid(context_, deferred.displayColor(), deferred.linearDepth(),
+    app::HybridSynthesis hybrid = app::synthesizeHybrid(context_, deferred,
                                                         *loaded.eyeRenderer, scene, center, parameters);
     numbers.stereoPassGpuMs = hybrid.timings.total;
     images.eyes = std::move(hybrid.eyes);

@@ -26,6 +26,14 @@ struct FirstPersonDepthPush {
   float scale = 1.0f;
 };
 
+// The camera a frame's shadow maps are planned for: the sun's cascades cover the slices of its frustum (seed 000
+// 4.3.3) and the point and spot lights it can see get their maps.
+struct ShadowFit {
+  glm::mat4 worldView{1.0f};
+  glm::mat4 worldProjection{1.0f};
+  bool operator==(const ShadowFit&) const = default;
+};
+
 // Matrices of one rendered view. Vulkan clip space (y down, depth 0..1).
 struct ViewMatrices {
   glm::mat4 worldView{1.0f};        // world -> view of the world layer
@@ -34,7 +42,15 @@ struct ViewMatrices {
   glm::mat4 firstPersonProjection{1.0f};
   glm::mat4 worldFromCamera{1.0f};  // inverse of the center camera's view: places first-person objects for lighting
   FirstPersonDepthPush firstPersonDepthPush;  // applied to linearDepth() only
+  // Where the shadow maps are planned from; empty: this view's own world camera. A stereo frame's eye views name
+  // their center view's camera, so every view of the frame has the same shadow maps (the eyes see what the center
+  // sees inside the compared columns, whose cascades cover it) and an eye render can reuse the center frame's
+  // (DeferredRenderer::render with a shadow source).
+  std::optional<ShadowFit> shadowFit;
 };
+
+// The camera `view`'s shadow maps are planned from: its shadowFit, else its own world camera.
+ShadowFit shadowFitOf(const ViewMatrices& view);
 
 // Perspective projection with Vulkan's downward y and zero-to-one depth.
 glm::mat4 vulkanPerspective(float verticalFovRadians, float aspect, float nearPlane, float farPlane);
@@ -99,7 +115,8 @@ std::optional<RendererOptions::GBufferShading> gbufferShadingFromName(std::strin
 // the nearest depth before it draws, so its fragments fail the depth test before shading; ambient occlusion
 // (with a depth-only pass of its own, so its samples see real depth outside the mask) runs on the tiles of the
 // mask and their neighbours; lighting and the resolve run on the mask's tiles only (found on the GPU) and skip
-// unmasked pixels inside them; shadow maps render as for a full frame.
+// unmasked pixels inside them; shadow maps render as for a full frame (or come from a shadow source: render's
+// third argument).
 //
 // Outputs outside the mask are undefined after a masked render: displayColor, linearDepth, hdrColor and the
 // read*() masks there may hold anything (the previous frame, zeros, the depth fill). Inside it they equal the
@@ -127,6 +144,13 @@ class DeferredRenderer {
   // Renders one view; the results stay on the GPU until read back. With a mask (its image non-null), only the
   // mask's pixels (ShadeMask). Throws std::invalid_argument for a mask of another size or format.
   FrameTimings render(const ViewMatrices& view, const ShadeMask& mask = {});
+  // The same, lit with the shadow maps `shadowSource` rendered for its last frame instead of rendering its own (a
+  // stereo frame's eye renders reuse the center frame's): no shadow pass runs. shadowSource must hold the same
+  // scene (setScene with equal scenes), have the same render size, and its last frame's shadowFitOf must equal
+  // `view`'s; its maps are read in this render's lighting pass on the same queue, after its own frame made them
+  // readable, so they must not be re-rendered until this render returns (render() waits for the GPU). Throws
+  // std::invalid_argument when shadowSource has no frame or another scene, size or shadow fit.
+  FrameTimings render(const ViewMatrices& view, const ShadeMask& mask, const DeferredRenderer& shadowSource);
 
   std::uint32_t width() const;   // output size
   std::uint32_t height() const;

@@ -31,21 +31,34 @@ std::uint32_t hybridPixelCap(float budget, std::uint64_t classifiedPixels);
 // gather base's taps.
 gpu::HybridConstants makeHybridConstants(const StereoParameters& parameters, std::uint32_t width, std::uint32_t height);
 
+// What the center view shows at every eye pixel of row y (hybrid_shared.h): each pair of neighbouring center
+// texels of the edge-extended row scatters its terms into the pixels it reaches, and the change pairs' landing
+// intervals are swept along the row once each way for the nearest boundary.
+std::vector<gpu::HybridCoverage> hybridRowCoverageReference(const DepthImage& linearDepth, int y, Eye eye,
+                                                             const gpu::HybridConstants& constants);
+
 // The expected error of one eye pixel in pixels of parallax (hybrid_shared.h), and every pixel's bin.
 float hybridPixelScoreReference(const DepthImage& linearDepth, int x, int y, Eye eye, const gpu::HybridConstants& constants);
 HybridClassification classifyHybridReference(const DepthImage& linearDepth, const gpu::HybridConstants& constants);
 
 struct HybridThreshold {
   int bin = S3D_HYBRID_NO_PIXEL;  // pixels with bin >= this are rendered
-  std::uint64_t maskedPixels = 0;
+  std::uint64_t maskedPixels = 0;  // all of them, the split bin's share included
+  // The bin just below, where the cap falls inside it: its first splitPixels pixels in raster order (inside the
+  // crop) are rendered too, so the masked count meets the cap. S3D_HYBRID_NO_PIXEL and 0: no split.
+  int splitBin = S3D_HYBRID_NO_PIXEL;
+  std::uint64_t splitPixels = 0;
 };
 
-// The lowest threshold whose masked pixels stay within maskedPixelCap: the highest scores first, and a bin is
-// taken whole or not at all (a cap of 0 masks nothing, the classified count masks everything).
+// The masked pixels for a cap: whole bins from the highest score down while they stay within maskedPixelCap, then
+// as many pixels of the next bin as the cap leaves (its ties split in raster order), so min(cap, scored pixels)
+// are masked. Bin 0 (nothing expected wrong) is never split: a cap of 0 masks nothing, the classified count
+// everything.
 HybridThreshold hybridThreshold(const HybridHistogram& histogram, std::uint32_t maskedPixelCap);
 
-// 1 for the pixels inside the crop whose bin is >= thresholdBin, else 0 (what the renderer shades).
-std::vector<std::uint8_t> hybridMaskReference(const std::vector<std::uint32_t>& bins, int thresholdBin,
+// 1 for the pixels inside the crop whose bin is >= threshold.bin, and for the first threshold.splitPixels pixels of
+// threshold.splitBin inside the crop in raster order; else 0 (what the renderer shades).
+std::vector<std::uint8_t> hybridMaskReference(const std::vector<std::uint32_t>& bins, const HybridThreshold& threshold,
                                               const gpu::HybridConstants& constants);
 
 // Eye pixels whose mask is set take `rendered`'s color (in place); the others keep the displaced color. Display

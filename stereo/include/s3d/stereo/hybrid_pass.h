@@ -5,6 +5,8 @@
 // classify, renders each eye's masked pixels with its own renderer, then composites.
 #include <vulkan/vulkan.h>
 
+#include <functional>
+
 #include "s3d/stereo/hybrid.h"
 #include "s3d/vk/context.h"
 #include "s3d/vk/pipeline.h"
@@ -20,17 +22,23 @@ class HybridPass {
   struct Images {
     vk::Image leftBins, rightBins;  // score bin per eye pixel
     vk::Image histogram;            // S3D_HYBRID_BINS x 2, row 0 the left eye
-    vk::Image thresholds;           // 2 x 2: (0, eye) the threshold bin, (1, eye) the masked pixel count
+    vk::Image rowHistograms;        // 2 S3D_HYBRID_BINS x height: each row's left-eye bins, then its right-eye bins
+    // S3D_HYBRID_THRESHOLD_FIELDS x 2: (0, eye) the threshold bin, (1, eye) the masked pixel count, (2, eye) the
+    // split bin, (3, eye) its masked pixels (HybridThreshold)
+    vk::Image thresholds;
+    vk::Image splitOffsets;         // height x 2: the split bin's pixels in the rows above each row
     vk::Image leftMask, rightMask;  // 1 where the eye camera renders the pixel
     bool written = false;           // set by recordMasks: later frames wait for the earlier frame's reads
   };
   Images createImages(std::uint32_t width, std::uint32_t height) const;
 
-  // Classification, threshold and masks in three dispatches. linearDepth: the center view's (R32F, GENERAL,
+  // Classification, threshold and masks in three dispatches (one workgroup per row, two, one per row). linearDepth: the center view's (R32F, GENERAL,
   // written by an earlier compute pass and made visible by the caller). Leaves every image of `images` in
   // vk::kComputeWrite state: a consumer of the masks (the renderer) transitions them to what it reads with.
+  // afterEachDispatch (optional) is called right after each of the three dispatches is recorded (a caller's
+  // timestamps: classify, threshold, mask).
   void recordMasks(VkCommandBuffer cmd, const vk::Image& linearDepth, Images& images,
-                   const gpu::HybridConstants& constants) const;
+                   const gpu::HybridConstants& constants, const std::function<void()>& afterEachDispatch = {}) const;
   // eye (RGBA8) takes renderedEye's (RGBA8) colour where mask is set; all three in VK_IMAGE_LAYOUT_GENERAL with
   // earlier writes made visible by the caller; eye is left in vk::kComputeWrite state.
   void recordComposite(VkCommandBuffer cmd, const vk::Image& eye, const vk::Image& renderedEye, const vk::Image& mask,

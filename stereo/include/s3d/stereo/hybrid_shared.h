@@ -15,16 +15,21 @@ using glm::floor;
 
 S3D_GPU_BEGIN
 
-#define S3D_HYBRID_GROUP_SIZE 8        // threshold-free passes (mask, composite): 8 x 8 workgroups
-#define S3D_HYBRID_ROW_RUN 64          // the classification: one workgroup per run of 64 pixels of a row
-#define S3D_HYBRID_ROW_MARGIN 96       // columns each side of the run held in shared memory (wider windows read the image)
-#define S3D_HYBRID_ROW_SPAN (S3D_HYBRID_ROW_RUN + 2 * S3D_HYBRID_ROW_MARGIN)
+#define S3D_HYBRID_GROUP_SIZE 8        // the composite: 8 x 8 workgroups
+// The classification and the mask pass: one workgroup per row, each invocation owning a run of its pixels (few
+// invocations and barriers: a CPU driver such as lavapipe switches between invocations at every barrier).
+#define S3D_HYBRID_ROW_GROUP 16
+#define S3D_HYBRID_CHUNK 512          // the classification's eye pixels per step along its row (shared arrays)
 #define S3D_HYBRID_BINS 256           // score histogram per eye; bin 0 = nothing expected wrong
 #define S3D_HYBRID_FINE_BINS 64       // scores below 1 px: 1/64 px per bin (the edge band's ranks)
 #define S3D_HYBRID_BINS_PER_PIXEL 8.0f // scores from 1 px on: 1/8 px per bin, the top bin open-ended
 #define S3D_HYBRID_MIN_JUMP_PX 0.015625f // expected errors below this (pixels of parallax) are none: 1/64 px
 #define S3D_HYBRID_NO_PIXEL 256       // threshold bin that masks nothing
 #define S3D_HYBRID_THRESHOLD_GROUP 256 // the threshold pass: one invocation per bin, one workgroup per eye
+#define S3D_HYBRID_THRESHOLD_FIELDS 4  // per eye: threshold bin, masked pixels, split bin, split pixels
+// The classification's shared memory: five per-pixel arrays of a chunk, both histograms and the row group's
+// partial results (HybridPass checks the device's limit against it).
+#define S3D_HYBRID_CLASSIFY_SHARED_BYTES (4 * (5 * S3D_HYBRID_CHUNK + 2 * S3D_HYBRID_BINS + 4 * S3D_HYBRID_ROW_GROUP))
 
 // Push constants of the hybrid passes; scalars only, so the std430 and C++ layouts agree.
 struct HybridConstants {
@@ -34,7 +39,7 @@ struct HybridConstants {
   int cropEnd;
   int width;
   int height;
-  int windowPx;         // center columns each side of a pixel whose content can land on it
+  int windowPx;         // the separation window: the largest parallax behind the screen + 1 px (the nearness tier's reach)
   uint maskedPixelCap;  // the budget: at most this many pixels per eye are masked (hybridPixelCap in hybrid.h)
   int baseTapCount;     // a gather base (seed, search): its taps, so its choice of source can be checked;
   int padding0;         // 0 for a base that lands on the visible surface by design (iterative, forward)
@@ -49,14 +54,20 @@ S3D_INLINE float hybridParallaxPx(float linearDepth, float maxSeparation, float 
          float(width);
 }
 
-// What the center view's columns show at one eye pixel x. Center texel i (texel centers at integers) lands at
-// l_i = i - direction * P_i in the eye (direction +1 left, -1 right; P the parallax in pixels). A texel covers
-// the eye pixels within half a pixel of its landing; two neighbouring texels that land in order at most
-// S3D_HYBRID_SPAN_PX apart are one surface and cover what lies between (the forward method's rule). The
-// nearest covering surface (the smallest parallax) is visible; an eye pixel nothing covers is disoccluded, and
-// the depth step that opened the hole says how wide it is. Where two surfaces meet (depths more than
-// S3D_HYBRID_SURFACE_CHANGE apart), the pixels within a pixel of the step's landings show their boundary,
-// which a displacement resamples where the eye camera rasterizes: the edge band.
+// What the center view's columns show at one eye pixel x. Center texel i (texel centers at integers; beyond the
+// image's edges the edge column repeats, out to windowPx columns) lands at l_i = i - direction * P_i in the eye
+// (direction +1 left, -1 right; P the parallax in pixels). A texel covers the eye pixels within half a pixel of
+// its landing; two neighbouring texels that land in order at most S3D_HYBRID_SPAN_PX apart are one surface and
+// cover what lies between (the forward method's rule). The nearest covering surface (the smallest parallax) is
+// visible; an eye pixel nothing covers is disoccluded, and the depth step that opened the hole says how wide it
+// is. Where two surfaces meet (depths more than S3D_HYBRID_SURFACE_CHANGE apart), the pixels within a pixel of
+// the step's landings show their boundary, which a displacement resamples where the eye camera rasterizes: the
+// edge band.
+//
+// Every term is one pair of neighbouring texels' (hybridPairTerms), and a pair reaches only the eye pixels
+// within a pixel of its landings (hybridPairReach), so a row is classified by scattering each pair into the
+// pixels it reaches, linear in the row plus the width of its holes, where testing every pixel against every
+// column that might land on it cost the row times the window.
 #define S3D_HYBRID_SPAN_PX 2.0f
 #define S3D_HYBRID_SURFACE_CHANGE 0.005f  // relative depth step between two surfaces (the metrics' same-surface rule)
 struct HybridCoverage {
@@ -67,48 +78,81 @@ struct HybridCoverage {
   float nearestChangePx;    // distance to the nearest landing of a step between two surfaces (infinite: none)
 };
 
-S3D_INLINE HybridCoverage hybridCoverageBegin() {
-  HybridCoverage coverage;
-  coverage.covered = false;
-  coverage.visibleParallaxPx = S3D_INFINITY;
-  coverage.holeJumpPx = 0.0f;
-  coverage.edgeScore = 0.0f;
-  coverage.nearestChangePx = S3D_INFINITY;
-  return coverage;
-}
-
 // Two sanitized linear depths belong to different surfaces (sky against a surface too).
 S3D_INLINE bool hybridSurfaceChange(float depthA, float depthB) {
   if (depthA == S3D_INFINITY || depthB == S3D_INFINITY) return depthA != depthB;
   return abs(depthA - depthB) > S3D_HYBRID_SURFACE_CHANGE * min(depthA, depthB);
 }
 
-// Texel i (parallax pA, landing landA, sanitized depth depthA) and its right neighbour, for eye pixel eyeX.
-S3D_INLINE HybridCoverage hybridConsiderColumns(HybridCoverage coverage, float eyeX, float landA, float pA,
-                                                float depthA, float landB, float pB, float depthB) {
-  if (abs(eyeX - landA) <= 0.5f && pA < coverage.visibleParallaxPx) {
-    coverage.covered = true;
-    coverage.visibleParallaxPx = pA;
+// A pair of neighbouring center texels seen from one eye: texel i (parallax pA, landing landA) and its right
+// neighbour, with what does not depend on the eye pixel worked out once.
+struct HybridPair {
+  float landA, pA, landB, pB;
+  float lo, hi;    // the landings in order
+  bool span;       // one surface, resampled between the texels: landings in order, at most S3D_HYBRID_SPAN_PX apart
+  float jumpPx;    // the parallax step |pA - pB|
+  float edgeBase;  // a pair between two surfaces: the edge band's score at its landings (0.25 to 0.5 px by the
+                   // step, up to 2 px); 0 for a pair on one surface
+};
+
+S3D_INLINE HybridPair hybridPair(float landA, float pA, float depthA, float landB, float pB, float depthB) {
+  HybridPair pair;
+  pair.landA = landA;
+  pair.pA = pA;
+  pair.landB = landB;
+  pair.pB = pB;
+  pair.lo = min(landA, landB);
+  pair.hi = max(landA, landB);
+  pair.span = landB > landA && landB - landA <= S3D_HYBRID_SPAN_PX;
+  pair.jumpPx = abs(pA - pB);
+  pair.edgeBase = hybridSurfaceChange(depthA, depthB) ? 0.25f + 0.125f * min(pair.jumpPx, 2.0f) : 0.0f;
+  return pair;
+}
+
+// What a pair tells eye pixel eyeX: the parallax of the surface it shows there (infinite: none), the parallax
+// step of a hole or occlusion whose landings straddle the pixel (0: none), and the edge band's score (0: none). A
+// pixel's coverage is the smallest parallax, the largest step and the largest edge score over all pairs.
+struct HybridPairTerms {
+  float coverParallaxPx;
+  float holeJumpPx;
+  float edgeScore;
+};
+
+S3D_INLINE HybridPairTerms hybridPairTerms(HybridPair pair, float eyeX) {
+  HybridPairTerms terms;
+  terms.coverParallaxPx = abs(eyeX - pair.landA) <= 0.5f ? pair.pA : S3D_INFINITY;
+  terms.holeJumpPx = 0.0f;
+  terms.edgeScore = 0.0f;
+  if (eyeX >= pair.lo && eyeX <= pair.hi) {
+    if (pair.span)  // one surface, resampled between the texels
+      terms.coverParallaxPx =
+          min(terms.coverParallaxPx, mix(pair.pA, pair.pB, (eyeX - pair.landA) / (pair.landB - pair.landA)));
+    else  // a depth step: what lies between its landings belongs to neither side
+      terms.holeJumpPx = pair.jumpPx;
   }
-  float lo = min(landA, landB), hi = max(landA, landB);
-  if (eyeX >= lo && eyeX <= hi) {
-    if (landB > landA && landB - landA <= S3D_HYBRID_SPAN_PX) {  // one surface, resampled between the texels
-      float p = mix(pA, pB, (eyeX - landA) / (landB - landA));
-      if (p < coverage.visibleParallaxPx) {
-        coverage.covered = true;
-        coverage.visibleParallaxPx = p;
-      }
-    } else {  // a depth step: what lies between its landings belongs to neither side
-      coverage.holeJumpPx = max(coverage.holeJumpPx, abs(pA - pB));
-    }
+  if (pair.edgeBase > 0.0f) {
+    float outside = max(max(pair.lo - eyeX, eyeX - pair.hi), 0.0f);
+    if (outside <= 1.0f) terms.edgeScore = pair.edgeBase * (1.0f - 0.5f * outside);
   }
-  float outside = max(max(lo - eyeX, eyeX - hi), 0.0f);
-  if (hybridSurfaceChange(depthA, depthB)) {
-    coverage.nearestChangePx = min(coverage.nearestChangePx, outside);
-    if (outside <= 1.0f)
-      coverage.edgeScore = max(coverage.edgeScore, (0.25f + 0.125f * min(abs(pA - pB), 2.0f)) * (1.0f - 0.5f * outside));
-  }
-  return coverage;
+  return terms;
+}
+
+// The eye pixels a pair's terms can be non-empty at, as floats (the caller clamps): within half a pixel of its
+// landings [lo, hi] (the covered half pixel and the straddled interval: integer bounds of lo - 0.5 and hi + 0.5,
+// exact after rounding, as integers are representable), and for a pair between two surfaces the edge band's pixel
+// each side too ([floor(lo) - 1, ceil(hi) + 1], whatever the rounding of the distances).
+S3D_INLINE vec2 hybridPairReach(HybridPair pair) {
+  if (pair.edgeBase > 0.0f) return vec2(floor(pair.lo) - 1.0f, -floor(-pair.hi) + 1.0f);
+  return vec2(-floor(-(pair.lo - 0.5f)), floor(pair.hi + 0.5f));
+}
+
+// The distance from eye pixel eyeX to the nearest landing interval [lo, hi] of a pair between two surfaces,
+// from two running extremes along the row: `farthestEnd`, the largest hi among such pairs with lo <= eyeX (-inf:
+// none), and `nearestStart`, the smallest lo among those with lo > eyeX (+inf: none). An interval starting at or
+// before the pixel is max(eyeX - hi, 0) away, one starting after it lo - eyeX, so the nearest is the smaller of
+// the two extremes' distances.
+S3D_INLINE float hybridChangeDistancePx(float eyeX, float farthestEnd, float nearestStart) {
+  return min(max(eyeX - farthestEnd, 0.0f), nearestStart - eyeX);
 }
 
 // A gather base's source for the pixel: the color is filtered at u between texels floor(u) and floor(u) + 1,
@@ -129,9 +173,9 @@ S3D_INLINE float hybridGatherErrorPx(HybridCoverage coverage, float pNearest, fl
 // Expected error of an eye pixel, in pixels of parallax, in tiers: a disoccluded pixel the width of its hole
 // (at least 1: the center never saw it); a covered pixel what its base's source got wrong (0 for a base that
 // lands on the visible surface by design), at least its edge band score; below those, a pixel near a boundary
-// between surfaces (within windowPx: screen-space shading and resampling differ most there), up to 0.2 px
-// falling with the distance; 0 for a pixel with no boundary in its window. Scores below S3D_HYBRID_MIN_JUMP_PX
-// count as 0.
+// between surfaces (a boundary's landing within windowPx: screen-space shading and resampling differ most there),
+// up to 0.2 px falling with the distance; 0 for a pixel with no boundary that near. Scores below
+// S3D_HYBRID_MIN_JUMP_PX count as 0.
 S3D_INLINE float hybridPixelScore(HybridCoverage coverage, float gatherErrorPx, int windowPx) {
   float near = 0.2f * max(1.0f - coverage.nearestChangePx / float(windowPx), 0.0f);
   float score = coverage.covered ? max(max(gatherErrorPx, coverage.edgeScore), near) : max(coverage.holeJumpPx, 1.0f);

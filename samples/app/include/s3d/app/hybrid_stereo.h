@@ -21,9 +21,11 @@ namespace s3d::app {
 // GPU milliseconds of one hybrid frame, both eyes (empty without timestamps).
 struct HybridTimings {
   std::optional<double> displacement;    // the base method's pass
-  std::optional<double> classification;  // classification, threshold and masks
+  std::optional<double> classification;  // classification, threshold and masks (the sum of the next three)
+  std::optional<double> classify, threshold, mask;  // each of the three passes
   std::optional<double> eyeGeometry;     // both eyes' rasterized depth (the masked renders' "gbuffer", "ssao-depth")
-  std::optional<double> maskedShading;   // both eyes' other passes (mask tiles, shadows, SSAO, lighting, resolve)
+  std::optional<double> maskedShading;   // both eyes' other passes (mask tiles, SSAO, lighting, resolve; the
+                                         // shadow maps are the center frame's)
   std::optional<double> composite;       // both eyes
   std::optional<double> total;           // the sum
   std::vector<renderer::PassTiming> leftEyePasses, rightEyePasses;  // the masked renders' passes
@@ -37,17 +39,19 @@ struct HybridSynthesis {
   std::array<stereo::HybridThreshold, 2> thresholds;  // left, right
   std::uint64_t classifiedPixels = 0;                 // per eye (the crop's area)
   std::array<std::vector<std::uint8_t>, 2> masks;     // left, right: 1 where the eye camera rendered the pixel
-  std::array<ImageRGBA32F, 2> renderedHdr;            // the masked renders' HDR colour (valid where masked)
+  std::array<ImageRGBA32F, 2> renderedHdr;            // the masked renders' HDR colour (valid where masked; zero
+                                                      // for an eye with nothing masked, which is not rendered)
   std::uint64_t filledLeft = 0, filledRight = 0;      // the iterative base's filled pixels that stayed displaced
   HybridTimings timings;
 };
 
-// centerColor (RGBA8) and linearDepth (R32F): the center view of `center` (the renderer's outputs, in
-// vk::kComputeWrite state, left so). eyeRenderer: a renderer of the same size with `scene` set, used for the eye
-// cameras' masked renders (it holds the right eye's afterwards). parameters (method Hybrid) are for that size
-// (the guard band's rescaled ones when it has one). Every GPU part runs once untimed (first use compiles on
-// lavapipe), then timedRuns times; the timings are medians.
-HybridSynthesis synthesizeHybrid(vk::Context& context, const vk::Image& centerColor, const vk::Image& linearDepth,
+// centerRenderer: its last frame is the center view `center` (its displayColor and linearDepth, in
+// vk::kComputeWrite state, left so, are what the eyes are displaced from, and its shadow maps light the eye
+// renders). eyeRenderer: a renderer of the same size with `scene` set, used for the eye cameras' masked renders (it
+// holds the right eye's afterwards); an eye with no masked pixel is not rendered. parameters (method Hybrid) are
+// for that size (the guard band's rescaled ones when it has one). Every GPU part runs once untimed (first use
+// compiles on lavapipe), then timedRuns times; the timings are medians.
+HybridSynthesis synthesizeHybrid(vk::Context& context, const renderer::DeferredRenderer& centerRenderer,
                                  renderer::DeferredRenderer& eyeRenderer, const renderer::Scene& scene,
                                  const renderer::ViewMatrices& center, const stereo::StereoParameters& parameters,
                                  int timedRuns = 1);

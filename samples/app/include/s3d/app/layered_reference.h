@@ -21,7 +21,8 @@ namespace s3d::app {
 
 // The view of one eye with cameras exact for parallax m (1 - zpp w), w = intercept + slope / d (the identity
 // segment: the linear mapping). Both layers get their own off-axis camera: the first-person layer has its own
-// projection, and follows the pushed weapon depth (its chord composed with the segment).
+// projection, and follows the pushed weapon depth (its chord composed with the segment). Its shadow maps are
+// planned for the center view's camera (renderer::ViewMatrices::shadowFit), as every view of the stereo frame's.
 renderer::ViewMatrices referenceEyeView(const renderer::Scene& scene, const renderer::ViewMatrices& center,
                                         stereo::Eye eye, const stereo::StereoParameters& parameters,
                                         const stereo::DisparityMapSegment& segment = {});
