@@ -207,7 +207,9 @@ TEST_F(BenchJobTest, RendererModeTimesEveryPassOfEachScene) {
   EXPECT_EQ(row.guardBandColumns, 3u);  // s3d render's band at the default 2 %: ceil(1.28) + 1
   // A CPU device's work also as process CPU time per frame (some milliseconds at least, even at 64x48).
   EXPECT_EQ(row.cpuTimePerFrameMs.has_value(), context().isCpuDevice());
-  if (row.cpuTimePerFrameMs) EXPECT_GT(*row.cpuTimePerFrameMs, 0.0);
+  if (row.cpuTimePerFrameMs) {
+    EXPECT_GT(*row.cpuTimePerFrameMs, 0.0);
+  }
   const std::string markdown = readText(folder / "bench.md");
   EXPECT_NE(markdown.find("| courtyard | "), std::string::npos) << markdown;
   EXPECT_NE(markdown.find(row.passes.front().name), std::string::npos);
