@@ -16,8 +16,8 @@ DepthRangePass::DepthRangePass(const vk::Context& context) : context_(&context) 
       {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr}};
   layout_ = vk::createPushDescriptorLayout(context, bindings, 0, VK_SHADER_STAGE_COMPUTE_BIT);
   pipeline_ = vk::createComputePipeline(context, layout_.layout, spirv_depth_range_comp);
-  // The atomics land in device memory (on a discrete GPU, atomics into host-visible memory cross the bus: the
-  // reduction took 0.025 ms at 1920x1080 on an H200 that way); one small copy then brings the result back.
+  // The atomics land in device memory (host-visible memory may sit across the bus on a discrete GPU); one small
+  // copy brings the result back. On an H200 at 1920x1080 both layouts measured 0.025-0.027 ms (docs/RESULTS.md).
   counters_ = vk::createBuffer(context, sizeof(gpu::DepthRangeBuffer),
                                VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT |
                                    VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
