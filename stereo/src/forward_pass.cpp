@@ -69,8 +69,8 @@ void ForwardStereoPass::record(VkCommandBuffer cmd, const vk::Image& centerColor
       return vk::createImage(*context_, kKeyFormat, std::uint32_t(c.width), std::uint32_t(c.height),
                              VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);  // read back in tests
     };
-    zBuffers_.emplace();
-    for (KeyPair& pair : *zBuffers_) pair = {keys(), keys(), false};
+    // Built whole: clang does not default-construct a nested aggregate with a member initializer here.
+    zBuffers_ = std::array<KeyPair, 2>{KeyPair{keys(), keys(), false}, KeyPair{keys(), keys(), false}};
     current_ = 0;
   } else if (keyImages) {
     current_ = 1 - current_;  // the pair the previous record's resolve emptied (if it ran the key-image kernel)
