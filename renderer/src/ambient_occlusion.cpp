@@ -1,5 +1,7 @@
 #include "ambient_occlusion.h"
 
+#include "compute_binding.h"
+
 #include "nearest_sampler.h"
 
 #include "s3d/renderer/renderer_shared.h"
@@ -18,9 +20,7 @@ constexpr VkFormat kOcclusionFormat = VK_FORMAT_R16G16_SFLOAT;  // occlusion, li
 constexpr vk::ImageState kSampledByCompute{VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
                                            VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT};
 
-VkDescriptorSetLayoutBinding computeBinding(std::uint32_t index, VkDescriptorType type) {
-  return {index, type, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr};
-}
+using detail::computeBinding;
 
 }  // namespace
 

@@ -1,5 +1,7 @@
 #include "gbuffer_resolve.h"
 
+#include "compute_binding.h"
+
 #include "nearest_sampler.h"
 
 #include "s3d/renderer/renderer_shared.h"
@@ -12,9 +14,7 @@
 namespace s3d::renderer::detail {
 namespace {
 
-VkDescriptorSetLayoutBinding computeBinding(std::uint32_t index, VkDescriptorType type) {
-  return {index, type, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr};
-}
+using detail::computeBinding;
 
 // The targets once resolved: sampled by compute (ambient occlusion does not read them; lighting does).
 constexpr vk::ImageState kComputeSampled{VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,

@@ -1,5 +1,7 @@
 #include "tile_lists.h"
 
+#include "compute_binding.h"
+
 #include <cstring>
 #include <vector>
 
@@ -14,9 +16,7 @@ namespace {
 
 constexpr std::uint32_t groups(std::uint32_t size, std::uint32_t group) { return (size + group - 1) / group; }
 
-VkDescriptorSetLayoutBinding computeBinding(std::uint32_t index, VkDescriptorType type) {
-  return {index, type, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr};
-}
+using detail::computeBinding;
 
 void memoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess,
                    VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess) {

@@ -1,5 +1,7 @@
 #include "tiled_lighting.h"
 
+#include "compute_binding.h"
+
 #include "nearest_sampler.h"
 
 #include <algorithm>
@@ -22,9 +24,7 @@ namespace {
 
 static_assert(S3D_TILE_SIZE * S3D_TILE_SIZE >= S3D_MAX_LIGHTS, "the lighting pass culls one light per thread");
 
-VkDescriptorSetLayoutBinding computeBinding(std::uint32_t index, VkDescriptorType type) {
-  return {index, type, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr};
-}
+using detail::computeBinding;
 
 }  // namespace
 
