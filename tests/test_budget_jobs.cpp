@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <unistd.h>
 
 #include "s3d/app/convert_job.h"
@@ -103,6 +104,57 @@ TEST_F(BudgetJobs, TheSequenceMemoryEstimateCoversEveryFramesGuardBand) {
     EXPECT_LE(frame.guardBandColumns, widest.columns) << "frame " << frame.index;
   EXPECT_NE(sequenceMemoryEstimate(budgetSequenceOptions()).what.find("guard band 2 x " + std::to_string(widest.columns)),
             std::string::npos);
+}
+
+// The textured quad seen from 0.5 m filling the frame: one depth, no sky, so the controller chooses its largest
+// separation (a wider guard band than the run's first estimate assumed).
+fs::path flatWallScene(const fs::path& folder) {
+  fs::create_directories(folder);
+  const fs::path data = S3D_TEST_DATA_DIR;
+  for (const char* name : {"textured_quad.gltf", "textured_quad.bin", "textured_quad_base_color.png",
+                           "textured_quad_normal.png", "textured_quad.scene.json"})
+    fs::copy_file(data / name, folder / name, fs::copy_options::overwrite_existing);
+  std::ifstream in(folder / "textured_quad.scene.json");
+  nlohmann::json description = nlohmann::json::parse(in);
+  description["camera"] = {{"position", {0.0, 0.0, 0.5}}, {"verticalFovDegrees", 60.0}};
+  std::ofstream(folder / "textured_quad.scene.json") << description.dump();
+  return folder / "textured_quad.gltf";
+}
+
+RenderJobOptions flatWallOptions(const std::string& name) {
+  RenderJobOptions options;
+  options.width = 128;
+  options.height = 72;
+  options.outputs = {"report.json"};
+  options.scene = flatWallScene(scratch(name + "_scene")).string();
+  options.outputFolder = scratch(name);
+  options.display = comfort::builtInDisplayProfile("tv55");
+  options.disparityBudget = comfort::DisparityBudgetRule::OneDegree;
+  return options;
+}
+
+TEST_F(BudgetJobs, TheReportedMemoryEstimateCountsTheGuardBandTheControllerChose) {
+  const RenderJobOptions options = flatWallOptions("wall_estimate");
+  const RenderReport report = runRenderJob(context(), options);
+  ASSERT_GT(report.guardBandColumns, 0u);
+  EXPECT_NEAR(report.stereo.maxSeparation, comfort::DisparityBudgetSettings{}.maximumSeparation, 1e-6);
+  EXPECT_GT(report.memory.totalBytes(), renderJobMemoryEstimate(options).totalBytes());
+  EXPECT_NE(report.memory.what.find("guard band 2 x " + std::to_string(report.guardBandColumns) + " columns"),
+            std::string::npos);
+}
+
+TEST_F(BudgetJobs, AChosenGuardBandBeyondTheMemoryLimitFailsBeforeAnyOutput) {
+  // The limit admits the first estimate (the display's budget) but not the band the controller then chooses.
+  RenderJobOptions options = flatWallOptions("wall_limit");
+  options.memoryLimitBytes = renderJobMemoryEstimate(options).totalBytes();
+  try {
+    (void)runRenderJob(context(), options);
+    FAIL() << "the run should stop at the chosen guard band's estimate";
+  } catch (const std::invalid_argument& error) {
+    EXPECT_NE(std::string(error.what()).find("--disparity-budget chose"), std::string::npos) << error.what();
+    EXPECT_NE(std::string(error.what()).find("--memory-limit"), std::string::npos) << error.what();
+  }
+  EXPECT_FALSE(fs::exists(options.outputFolder / "report.json"));
 }
 
 TEST_F(BudgetJobs, ConvertFitsAFileDepthMapIntoTheBudget) {

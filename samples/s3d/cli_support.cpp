@@ -147,6 +147,14 @@ void StereoOptions::rejectSeparationUnderBudget(const CLI::App& command, const s
                   " from the frame's depth range; add --disparity-budget off to set it");
 }
 
+namespace {
+std::vector<std::string> methodChoices(bool offerAuto) {
+  std::vector<std::string> names = stereo::stereoMethodNames();
+  if (offerAuto) names.insert(names.begin(), "auto");
+  return names;
+}
+}  // namespace
+
 void StereoOptions::add(CLI::App& command, const std::string& depthUnits, bool offerAuto) {
   command
       .add_option("--max-separation", parameters.maxSeparation,
@@ -174,8 +182,7 @@ void StereoOptions::add(CLI::App& command, const std::string& depthUnits, bool o
                       (offerAuto ? "; auto: forward for depth or disparity from files (measured on real photographs, "
                                    "docs/RESULTS.md)"
                                  : ""))
-      ->check(offerAuto ? CLI::IsMember({"auto", "seed", "search", "iterative", "forward", "hybrid"})
-                        : CLI::IsMember({"seed", "search", "iterative", "forward", "hybrid"}))
+      ->check(CLI::IsMember(methodChoices(offerAuto)))
       ->capture_default_str();
   command
       .add_option("--hybrid-budget", parameters.hybridBudget,
@@ -185,7 +192,7 @@ void StereoOptions::add(CLI::App& command, const std::string& depthUnits, bool o
       ->capture_default_str();
   command
       .add_option("--hybrid-base", hybridBase, "--method hybrid: the displacement it starts from")
-      ->check(CLI::IsMember({"seed", "search", "iterative", "forward"}))
+      ->check(CLI::IsMember(stereo::stereoMethodNames(false)))
       ->capture_default_str();
   command.add_option("--taps", parameters.searchTaps, "Depth-search taps of --method search")
       ->check(CLI::Range(1, S3D_STEREO_MAX_TAPS))

@@ -89,11 +89,24 @@ StereoMethod automaticMethod(DepthSource source) {
   return source == DepthSource::External ? StereoMethod::Forward : StereoParameters{}.method;
 }
 
+namespace {
+constexpr StereoMethod kStereoMethods[] = {StereoMethod::Seed, StereoMethod::Search, StereoMethod::Iterative,
+                                           StereoMethod::Forward, StereoMethod::Hybrid};
+}
+
+std::vector<std::string> stereoMethodNames(bool withHybrid) {
+  std::vector<std::string> names;
+  for (StereoMethod method : kStereoMethods)
+    if (withHybrid || method != StereoMethod::Hybrid) names.push_back(methodName(method));
+  return names;
+}
+
 StereoMethod parseStereoMethod(const std::string& name) {
-  for (StereoMethod method : {StereoMethod::Seed, StereoMethod::Search, StereoMethod::Iterative, StereoMethod::Forward,
-                              StereoMethod::Hybrid})
+  for (StereoMethod method : kStereoMethods)
     if (name == methodName(method)) return method;
-  throw std::invalid_argument("unknown stereo method '" + name + "' (expected seed, search, iterative, forward or hybrid)");
+  std::string choices;
+  for (const std::string& known : stereoMethodNames()) choices += (choices.empty() ? "" : ", ") + known;
+  throw std::invalid_argument("unknown stereo method '" + name + "' (expected one of " + choices + ")");
 }
 
 StereoParameters displacementParameters(StereoParameters parameters) {

@@ -58,8 +58,17 @@ void requireImageSize(std::uint32_t value, const char* name) {
                                 std::to_string(value) + ")");
 }
 
-// The memory estimate with the widest guard band the run can reach: the separation's (or the disparity budget's
-// largest on the display), from the zero-parallax plane, or from the near plane with negative parallax allowed.
+MemoryEstimate estimateAtRenderedWidth(const RenderJobOptions& options, const stereo::StereoParameters& parameters,
+                                       std::uint32_t renderedWidth) {
+  return renderMemoryEstimate(options.width, options.height, renderedWidth, options.supersample,
+                              parameters.method == stereo::StereoMethod::Hybrid,
+                              maxReferenceLayers(parameters.disparityMapping));
+}
+
+// The memory estimate before the first frame, with the guard band of the separation (or the disparity budget's
+// uncrossed side on the display, what the controller fills), from the zero-parallax plane, or from the near
+// plane with negative parallax allowed. The controller may choose a wider band for a shallow frame (up to its
+// maximumSeparation): that width is checked again once chosen, before anything is rendered at it.
 MemoryEstimate memoryEstimateFor(const RenderJobOptions& options, const renderer::Scene& scene,
                                  const stereo::StereoParameters& parameters) {
   std::uint32_t renderedWidth = options.width;
@@ -72,9 +81,7 @@ MemoryEstimate memoryEstimateFor(const RenderJobOptions& options, const renderer
                                          kMaxImageSize / options.supersample)
                         .renderedWidth(options.width);
   }
-  return renderMemoryEstimate(options.width, options.height, renderedWidth, options.supersample,
-                              parameters.method == stereo::StereoMethod::Hybrid,
-                              maxReferenceLayers(parameters.disparityMapping));
+  return estimateAtRenderedWidth(options, parameters, renderedWidth);
 }
 
 // Everything runRenderJob checks before touching the GPU or the file system; returns what it built on the way.
@@ -247,6 +254,10 @@ RenderReport runRenderJob(vk::Context& context, const RenderJobOptions& options)
     report.budget.imageWidth = width;  // budgetPx and bulkShare in the output eyes' pixels, as the comfort report
     // A larger chosen separation needs a wider band: render the center view again at that width.
     if (const stereo::GuardBand chosen = bandFor(parameters); chosen.columns > band.columns) {
+      report.memory = estimateAtRenderedWidth(options, parameters, chosen.renderedWidth(width));
+      report.memory.what += " at the separation --disparity-budget chose (" + numberText(parameters.maxSeparation) + ")";
+      report.memory.lower += " or give --disparity-budget off";
+      requireMemory(context, report.memory, options.memoryLimitBytes);
       renderCenter(chosen);
       readCenter();
     }
@@ -310,33 +321,38 @@ RenderReport runRenderJob(vk::Context& context, const RenderJobOptions& options)
   // 4. The two-pass reference: each eye rendered with its off-axis camera (on the rendered frame, cropped
   // to the output: the same rays as an output-size eye, tests/test_guard_band.cpp); a nonlinear map takes one
   // rendering per segment of its curve (layered_reference.h).
-  const ReferenceEye leftEye =
-      renderReferenceEye(*deferred, job.scene, center, stereo::Eye::Left, renderedParameters, map);
-  const ImageRGBA8 leftReference = output(leftEye.display);
-  const DepthImage leftReferenceDepth = output(stereo::mappedDepthImage(leftEye.depth, map));
-  const ImageRGBA32F leftReferenceHdr = output(leftEye.hdr);
-  const std::vector<std::uint8_t> leftTransparent = outputMask(leftEye.transparent);
-  const ReferenceEye rightEye =
-      renderReferenceEye(*deferred, job.scene, center, stereo::Eye::Right, renderedParameters, map);
-  const ImageRGBA8 rightReference = output(rightEye.display);
-  const DepthImage rightReferenceDepth = output(stereo::mappedDepthImage(rightEye.depth, map));
-  const ImageRGBA32F rightReferenceHdr = output(rightEye.hdr);
-  const std::vector<std::uint8_t> rightTransparent = outputMask(rightEye.transparent);
-  report.referenceEyeGpuMs = leftEye.firstLayerGpuMs;
-  report.disparityMap.referenceLayers = leftEye.layers;
-  report.disparityMap.unresolvedPixels = {leftEye.unresolvedPixels, rightEye.unresolvedPixels};
+  struct OutputReference {  // one reference eye cropped to the output
+    ReferenceEye rendered;
+    ImageRGBA8 display;
+    DepthImage depth;  // mapped as the stereo pass's depth (disocclusion regions)
+    ImageRGBA32F hdr;
+    std::vector<std::uint8_t> transparent;
+  };
+  auto referenceFor = [&](stereo::Eye side) {
+    OutputReference eye{renderReferenceEye(*deferred, job.scene, center, side, renderedParameters, map), {}, {}, {}, {}};
+    eye.display = output(eye.rendered.display);
+    eye.depth = output(stereo::mappedDepthImage(eye.rendered.depth, map));
+    eye.hdr = output(eye.rendered.hdr);
+    eye.transparent = outputMask(eye.rendered.transparent);
+    return eye;
+  };
+  const OutputReference leftEye = referenceFor(stereo::Eye::Left);
+  const OutputReference rightEye = referenceFor(stereo::Eye::Right);
+  const ImageRGBA8& leftReference = leftEye.display;
+  const ImageRGBA8& rightReference = rightEye.display;
+  report.referenceEyeGpuMs = leftEye.rendered.firstLayerGpuMs;
+  report.disparityMap.referenceLayers = leftEye.rendered.layers;
+  report.disparityMap.unresolvedPixels = {leftEye.rendered.unresolvedPixels, rightEye.rendered.unresolvedPixels};
 
   // 5. Synthesized vs reference over the full frame with a guard band, else without the cropped strips.
   // (region masks and comparison: eye_comparison.h, shared with s3d bench)
   const std::vector<std::uint8_t> halo = haloMaskFor(centerStereoDepth, parameters);
-  for (auto [eyeError, eye, reference, referenceDepth, side, eyeHdr, referenceHdr, transparent] :
-       {std::tuple{&report.left, &synthesized.left, &leftReference, &leftReferenceDepth, stereo::Eye::Left,
-                   &synthesizedHdr.left, &leftReferenceHdr, &leftTransparent},
-        std::tuple{&report.right, &synthesized.right, &rightReference, &rightReferenceDepth, stereo::Eye::Right,
-                   &synthesizedHdr.right, &rightReferenceHdr, &rightTransparent}}) {
-    const stereo::RegionMasks masks{halo, disocclusionMaskFor(*referenceDepth, centerStereoDepth, parameters, side),
-                                    *transparent};
-    *eyeError = compareEye(*eye, *reference, report.cropColumns, masks, eyeHdr, referenceHdr);
+  for (auto [eyeError, eye, eyeHdr, reference, side] :
+       {std::tuple{&report.left, &synthesized.left, &synthesizedHdr.left, &leftEye, stereo::Eye::Left},
+        std::tuple{&report.right, &synthesized.right, &synthesizedHdr.right, &rightEye, stereo::Eye::Right}}) {
+    const stereo::RegionMasks masks{halo, disocclusionMaskFor(reference->depth, centerStereoDepth, parameters, side),
+                                    reference->transparent};
+    *eyeError = compareEye(*eye, reference->display, report.cropColumns, masks, eyeHdr, &reference->hdr);
   }
 
   // Comfort report: the parallax the stereo pass gave every pixel, as angles on the chosen display, and

@@ -531,11 +531,11 @@ void drawPanel(TuneSession& session, TuneState& state, const FrameNumbers& numbe
     if (ImGui::Checkbox("crop = separation", &autoCrop)) s.edgeCrop = autoCrop ? -1.0f : s.maxSeparation;
     if (!autoCrop) ImGui::SliderFloat("edge crop", &s.edgeCrop, 0.0f, 0.08f, "%.4f");
     std::string method = stereo::methodName(s.method);
-    if (comboOfNames("method", method, {"seed", "search", "iterative", "forward", "hybrid"}))
+    if (comboOfNames("method", method, stereo::stereoMethodNames()))
       s.method = stereo::parseStereoMethod(method);
     if (s.method == stereo::StereoMethod::Hybrid) {
       std::string base = stereo::methodName(s.hybridBase);
-      if (comboOfNames("hybrid base", base, {"seed", "search", "iterative", "forward"}))
+      if (comboOfNames("hybrid base", base, stereo::stereoMethodNames(false)))
         s.hybridBase = stereo::parseStereoMethod(base);
       ImGui::SliderFloat("hybrid budget", &s.hybridBudget, 0.0f, 1.0f, "%.3f");
     }

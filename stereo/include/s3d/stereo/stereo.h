@@ -3,6 +3,7 @@
 // two-pass reference. Depends on GLM (and, for the GPU pass in stereo_pass.h, on Vulkan) only.
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include <glm/glm.hpp>
 
@@ -35,6 +36,9 @@ enum class DepthSource {
 // depth at 1920x1080 the highest SSIM of all methods); the default otherwise (its cost on an H100 is open).
 StereoMethod automaticMethod(DepthSource source);
 StereoMethod parseStereoMethod(const std::string& name);  // throws std::invalid_argument listing the choices
+// The names parseStereoMethod accepts, in declaration order, for option checks and menus; without hybrid, the
+// displacements a hybrid can start from.
+std::vector<std::string> stereoMethodNames(bool withHybrid = true);
 
 // How a method's shader walks the image (same results either way, docs/DESIGN.md "Row tiles"). The forward
 // method reads them as its two kernels (forward_pass.h): RowTiles is a workgroup per whole row in shared
