@@ -1,11 +1,10 @@
 #version 450
-// Forward method, key-image kernel, resolve: each covered eye pixel shows its winning source at the sub-pixel
-// position; the hole pixels are left to stereo_forward_fill.comp, recorded beside it. It also empties the other pair of z-buffers for
+// Forward method, key-image kernel, last dispatch: each eye pixel shows its winning source at the sub-pixel
+// position, or fills a disocclusion from the background side. It also empties the other pair of z-buffers for
 // the next record's splat (ForwardStereoPass alternates two pairs), so no frame needs a clear dispatch.
 #extension GL_GOOGLE_include_directive : require
 #include "stereo_forward.glsl"
 #include "stereo_forward_key_images.glsl"
-#define S3D_FORWARD_HOLES_APART
 #include "stereo_forward_resolve.glsl"
 
 layout(binding = 6, r32ui) uniform writeonly uimage2D nextLeftKeys;

@@ -120,9 +120,7 @@ void resolveEye(ivec2 pixel, float direction) {
   bool leftEyeKeys = direction > 0.0;
   uint key = keyAt(leftEyeKeys, pixel.x, pixel.y);
   if (key == S3D_FORWARD_EMPTY) {
-#ifndef S3D_FORWARD_HOLES_APART  // else stereo_forward_fill.comp fills the holes
     fillHoleRun(leftEyeKeys, pixel.x, pixel.y);
-#endif
     return;
   }
   int source = forwardKeySource(key, pixel.x);

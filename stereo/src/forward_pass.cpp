@@ -6,7 +6,6 @@
 
 // clang-format off
 #include <s3d_spirv/stereo_forward_clear_comp.h>
-#include <s3d_spirv/stereo_forward_fill_comp.h>
 #include <s3d_spirv/stereo_forward_resolve_comp.h>
 #include <s3d_spirv/stereo_forward_row_comp.h>
 #include <s3d_spirv/stereo_forward_row_keys_comp.h>
@@ -100,11 +99,11 @@ void ForwardStereoPass::record(VkCommandBuffer cmd, const vk::Image& centerColor
   const std::uint32_t bound = !keyImages ? 4 : rows ? 6 : kBindings;
   VkWriteDescriptorSet writes[kBindings];
   for (std::uint32_t i = 0; i < bound; ++i) writes[i] = vk::storageImageWrite(i, &infos[i]);
-  auto dispatch = [&](VkPipeline pipeline, std::uint32_t groupsX, std::uint32_t groupsY, std::uint32_t groupsZ = 1) {
+  auto dispatch = [&](VkPipeline pipeline, std::uint32_t groupsX, std::uint32_t groupsY) {
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
     context_->cmdPushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_.layout, 0, bound, writes);
     vkCmdPushConstants(cmd, layout_.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(c), &c);
-    vkCmdDispatch(cmd, groupsX, groupsY, groupsZ);
+    vkCmdDispatch(cmd, groupsX, groupsY, 1);
   };
   keysWritten_ = keyImages;
   if (rows) {
@@ -126,7 +125,6 @@ void ForwardStereoPass::record(VkCommandBuffer cmd, const vk::Image& centerColor
     clear_ = vk::createComputePipeline(*context_, layout_.layout, spirv_stereo_forward_clear_comp);
     splat_ = vk::createComputePipeline(*context_, layout_.layout, spirv_stereo_forward_splat_comp);
     resolve_ = vk::createComputePipeline(*context_, layout_.layout, spirv_stereo_forward_resolve_comp);
-    fill_ = vk::createComputePipeline(*context_, layout_.layout, spirv_stereo_forward_fill_comp);
   }
   const std::uint32_t groupsX = groupsFor(c.width, S3D_FORWARD_GROUP_SIZE);
   const std::uint32_t groupsY = groupsFor(c.height, S3D_FORWARD_GROUP_SIZE);
@@ -140,9 +138,6 @@ void ForwardStereoPass::record(VkCommandBuffer cmd, const vk::Image& centerColor
   dispatch(splat_.get(), groupsX, groupsY);
   keysBarrier();
   dispatch(resolve_.get(), groupsX, groupsY);
-  // The hole fill reads what the splat wrote and writes only the pixels the resolve leaves: no barrier between.
-  const int segments = (c.width + S3D_FORWARD_FILL_SEGMENT - 1) / S3D_FORWARD_FILL_SEGMENT;
-  dispatch(fill_.get(), groupsFor(segments, S3D_FORWARD_GROUP_SIZE), groupsY, 2);  // z: the left eye, the right
   splatInto->empty = false;
   emptied->empty = true;
 }

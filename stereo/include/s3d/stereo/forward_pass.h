@@ -3,10 +3,9 @@
 // with the same eyes bit for bit (docs/DESIGN.md, the forward method):
 // - rows (StereoKernel::RowTiles, and Auto where it fits): one dispatch, a workgroup per image row holding the
 //   row's depth and both eyes' z-buffers in shared memory (12 B per column, the width rounded up to 256);
-// - key images (StereoKernel::PerPixel, and wherever the row does not fit the device's shared memory): three
-//   dispatches over R32UI z-buffer images (splat with image atomics; then, after one barrier, the resolve of
-//   covered pixels, which also empties the other pair of z-buffers for the next record, and the hole fill, one
-//   invocation per hole run and segment), plus a clear dispatch before the first record at a size.
+// - key images (StereoKernel::PerPixel, and wherever the row does not fit the device's shared memory): two
+//   dispatches over R32UI z-buffer images (splat with image atomics; resolve, which also empties the other pair
+//   of z-buffers for the next record), plus a clear dispatch before the first record at a size.
 // Images the pass owns (two pairs of z-buffers, the row pipeline sized for the width) are created at the first record for
 // the size and reused; a record at another size replaces them: finish command buffers using the old size first.
 #include <array>
@@ -54,7 +53,7 @@ class ForwardStereoPass {
   ForwardKeys keysWanted_;
   std::uint32_t maxSharedBytes_ = 0;
   vk::PipelineLayout layout_;
-  mutable vk::Unique<VkPipeline> clear_, splat_, resolve_, fill_;  // the key-image kernel, created at its first record
+  mutable vk::Unique<VkPipeline> clear_, splat_, resolve_;  // the key-image kernel, created at its first record
   struct RowPipeline {
     int capacity = 0;  // columns its shared arrays hold
     vk::Unique<VkPipeline> pipeline;
