@@ -28,26 +28,29 @@ vec4 surfaceMean(int y, int first, int step, int stop, float parallax, out int c
   return count > 0 ? sum / float(count) : sum;
 }
 
-// The nearest covered eye pixel from `column` in steps of `step` (+-1), at most `limit` away, or -1. The keys
-// are read S3D_FORWARD_SCAN_CHUNK at a time: independent loads in flight together instead of one memory round
-// trip per pixel of the hole (the hole pixels' latency bounds the resolve on a GPU).
-int nearestCovered(bool leftEyeKeys, int column, int y, int step, int limit) {
-  for (int i = 1; i <= limit; i += S3D_FORWARD_SCAN_CHUNK) {
+// The nearest covered eye pixel from `column` in steps of `step` (+-1), at most c.fillSearchPx away, or -1. The
+// keys are read S3D_FORWARD_SCAN_CHUNK at a time: independent loads in flight together instead of one memory
+// round trip per pixel of the hole (the hole pixels' latency bounds the resolve on a GPU).
+int nearestCovered(bool leftEyeKeys, int column, int y, int step) {
+  for (int i = 1; i <= c.fillSearchPx; i += S3D_FORWARD_SCAN_CHUNK) {
     uint keys[S3D_FORWARD_SCAN_CHUNK];
     for (int j = 0; j < S3D_FORWARD_SCAN_CHUNK; ++j)
       keys[j] = keyAt(leftEyeKeys, clamp(column + step * (i + j), 0, c.width - 1), y);
     for (int j = 0; j < S3D_FORWARD_SCAN_CHUNK; ++j) {
       int x = column + step * (i + j);
-      if (i + j > limit || x < 0 || x >= c.width) return -1;
+      if (i + j > c.fillSearchPx || x < 0 || x >= c.width) return -1;
       if (keys[j] != S3D_FORWARD_EMPTY) return x;
     }
   }
   return -1;
 }
 
-// The fill of a hole whose nearest covered pixels within c.fillSearchPx are `left` and `right` (-1: none; not
-// both): the background between the two edges in the center row, else the surface behind the farther edge.
-vec4 holeFill(bool leftEyeKeys, int left, int right, int y) {
+// A hole pixel (forward_shared.h): the background between the hole's two edges in the center row, else the
+// surface behind the farther edge.
+vec4 fillHole(bool leftEyeKeys, int column, int y) {
+  int left = nearestCovered(leftEyeKeys, column, y, -1);
+  int right = nearestCovered(leftEyeKeys, column, y, 1);
+  if (left < 0 && right < 0) return imageLoad(centerColor, ivec2(column, y));
   int count;
   if (left >= 0 && right >= 0) {
     // Center pixels between the edges' sources behind both edges were hidden in this eye (a gap between occluders).
@@ -79,64 +82,24 @@ vec4 holeFill(bool leftEyeKeys, int left, int right, int y) {
   return count > 0 ? mean : imageLoad(centerColor, ivec2(source, y));
 }
 
-// Writes one eye (the left where leftEyeKeys).
-void storeEye(bool leftEyeKeys, ivec2 pixel, vec4 color) {
-  if (leftEyeKeys) imageStore(leftEye, pixel, color);
-  else imageStore(rightEye, pixel, color);
-}
-
-// Hole pixel `column` (forward_shared.h). A hole pixel's fill depends only on the covered pixels it sees within
-// c.fillSearchPx either side, the same for a whole run of hole pixels but where an edge lies beyond that reach.
-// So the first hole pixel of a run within each segment of S3D_FORWARD_FILL_SEGMENT columns finds the run's edges
-// once, computes the fill once per distinct pair of edges seen, and writes every hole pixel of the run in the
-// segment; the run's other pixels write nothing. Per pixel the fill scanned the hole once each: its loads grew
-// with the square of the hole's width (docs/RESULTS.md).
-void fillHoleRun(bool leftEyeKeys, int column, int y) {
-  int segmentBegin = max(column / S3D_FORWARD_FILL_SEGMENT * S3D_FORWARD_FILL_SEGMENT, c.cropBegin);
-  bool previousCovered = column > 0 && keyAt(leftEyeKeys, column - 1, y) != S3D_FORWARD_EMPTY;
-  if (!previousCovered && column != segmentBegin) return;  // the run's first pixel in this segment writes it
-  int segmentEnd = min((column / S3D_FORWARD_FILL_SEGMENT + 1) * S3D_FORWARD_FILL_SEGMENT, min(c.cropEnd, c.width));
-  int left = previousCovered ? column - 1 : nearestCovered(leftEyeKeys, column, y, -1, c.fillSearchPx);
-  // Far enough that the segment's last pixel sees an edge within its reach.
-  int right = nearestCovered(leftEyeKeys, column, y, 1, segmentEnd - 1 - column + c.fillSearchPx);
-  int runEnd = right >= 0 ? min(right, segmentEnd) : segmentEnd;
-  int filledFor = -1;  // which edges `fill` was computed for: bit 0 the left, bit 1 the right
-  vec4 fill = vec4(0.0);
-  for (int x = column; x < runEnd; ++x) {
-    int seenLeft = left >= 0 && x - left <= c.fillSearchPx ? left : -1;
-    int seenRight = right >= 0 && right - x <= c.fillSearchPx ? right : -1;
-    int edges = (seenLeft >= 0 ? 1 : 0) | (seenRight >= 0 ? 2 : 0);
-    if (edges != 0 && edges != filledFor) {
-      fill = holeFill(leftEyeKeys, seenLeft, seenRight, y);
-      filledFor = edges;
-    }
-    // Nothing lands near: the center pixel itself.
-    storeEye(leftEyeKeys, ivec2(x, y), edges == 0 ? imageLoad(centerColor, ivec2(x, y)) : fill);
-  }
-}
-
-// Eye pixel `pixel` of one eye: its winning source at the sub-pixel position, or its hole run's fill.
-void resolveEye(ivec2 pixel, float direction) {
+vec4 resolveEye(ivec2 pixel, float direction) {
   bool leftEyeKeys = direction > 0.0;
   uint key = keyAt(leftEyeKeys, pixel.x, pixel.y);
-  if (key == S3D_FORWARD_EMPTY) {
-    fillHoleRun(leftEyeKeys, pixel.x, pixel.y);
-    return;
-  }
+  if (key == S3D_FORWARD_EMPTY) return fillHole(leftEyeKeys, pixel.x, pixel.y);
   int source = forwardKeySource(key, pixel.x);
   float position, nextPosition;
   place(source, pixel.y, direction, position);
   bool connected = place(source + 1, pixel.y, direction, nextPosition) && forwardConnected(position, nextPosition);
-  storeEye(leftEyeKeys, pixel, sampleRow(pixel.y, forwardSourcePosition(pixel.x, source, position, connected, nextPosition)));
+  return sampleRow(pixel.y, forwardSourcePosition(pixel.x, source, position, connected, nextPosition));
 }
 
-// Eye pixel `pixel` (inside the image) of both eyes; a hole pixel may write its run's other pixels instead.
+// Eye pixel `pixel` (inside the image) of both eyes.
 void resolvePixel(ivec2 pixel) {
   if (pixel.x < c.cropBegin || pixel.x >= c.cropEnd) {  // cropped edges, as in the seed
     imageStore(leftEye, pixel, vec4(0, 0, 0, 1));
     imageStore(rightEye, pixel, vec4(0, 0, 0, 1));
     return;
   }
-  resolveEye(pixel, 1.0);
-  resolveEye(pixel, -1.0);
+  imageStore(leftEye, pixel, resolveEye(pixel, 1.0));
+  imageStore(rightEye, pixel, resolveEye(pixel, -1.0));
 }

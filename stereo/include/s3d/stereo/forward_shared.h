@@ -45,7 +45,6 @@ S3D_GPU_BEGIN
 #define S3D_FORWARD_FILL_SKIP 0  // background pixels skipped at a hole's edge (skipping 1 or 2 measured worse: RESULTS.md)
 #define S3D_FORWARD_FILL_TAPS 3  // background pixels averaged (1: the plain warp's rule; 3 best SSIM, RESULTS.md)
 #define S3D_FORWARD_SCAN_CHUNK 4  // the GPU hole fill reads this many keys or depths of its scans at once
-#define S3D_FORWARD_FILL_SEGMENT 8  // the GPU hole fill runs once per hole run in each segment of this many columns
 
 // Push constants of the forward pass; scalars only, so the std430 and C++ layouts agree.
 struct ForwardConstants {
