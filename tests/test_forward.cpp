@@ -265,8 +265,8 @@ TEST_F(ForwardPass, BothKernelsMatchTheCppReference) {
 }
 
 TEST_F(ForwardPass, HolesWiderThanTheFillReachMatchTheCppReferenceInBothKernels) {
-  // The GPU fills a hole once per run and fill segment: runs longer than c.fillSearchPx (whose middle sees no
-  // edge and whose ends see one), runs at the image's edges, across segments and into the crop, as the C++ twin.
+  // Unknown bands make holes longer than c.fillSearchPx (whose middle sees no edge and whose ends see one
+  // edge), holes at the image's edges and holes reaching into the crop: filled as the C++ twin fills them.
   test::SyntheticView view = makeStepView();
   for (std::uint32_t y = 0; y < kStepHeight; ++y)
     for (std::uint32_t x = 0; x < kStepWidth; ++x)
