@@ -264,6 +264,30 @@ TEST_F(ForwardPass, BothKernelsMatchTheCppReference) {
   }
 }
 
+TEST_F(ForwardPass, HolesWiderThanTheFillReachMatchTheCppReferenceInBothKernels) {
+  // Unknown bands make holes longer than c.fillSearchPx (whose middle sees no edge and whose ends see one
+  // edge), holes at the image's edges and holes reaching into the crop: filled as the C++ twin fills them.
+  test::SyntheticView view = makeStepView();
+  for (std::uint32_t y = 0; y < kStepHeight; ++y)
+    for (std::uint32_t x = 0; x < kStepWidth; ++x)
+      if (x < 21 || (x >= 97 && x < 150 + y) || x >= 190) *view.depth.at(x, y) = NAN;
+  for (float m : {0.02f, 0.08f}) {
+    for (float edgeCrop : {0.0f, -1.0f}) {  // none, and the seed's crop
+      StereoParameters parameters = separation(m);
+      parameters.edgeCrop = edgeCrop;
+      const gpu::ForwardConstants c = makeForwardConstants(parameters, kStepWidth, kStepHeight);
+      ASSERT_LT(c.fillSearchPx, 50);
+      const StereoPair cpu = synthesizeForwardReference(view.color, view.depth, c);
+      for (StereoKernel kernel : {StereoKernel::RowTiles, StereoKernel::PerPixel}) {
+        const StereoPair gpu = synthesizeForwardOnGpu(context(), view.color, view.depth, c, kernel);
+        // 1 level: the GPU's unorm conversion of a filtered or averaged value may round the other way.
+        EXPECT_LE(largestChannelDifference(gpu.left, cpu.left), 1) << m << " " << edgeCrop;
+        EXPECT_LE(largestChannelDifference(gpu.right, cpu.right), 1) << m << " " << edgeCrop;
+      }
+    }
+  }
+}
+
 TEST_F(ForwardPass, TheRowKernelRunsWhenAskedForAndTheRowFitsSharedMemory) {
   const ForwardStereoPass automatic(context()), rows(context(), StereoKernel::RowTiles),
       keyImages(context(), StereoKernel::PerPixel);

@@ -82,10 +82,8 @@ vec4 fillHole(bool leftEyeKeys, int column, int y) {
   return count > 0 ? mean : imageLoad(centerColor, ivec2(source, y));
 }
 
-vec4 resolveEye(ivec2 pixel, float direction) {
-  bool leftEyeKeys = direction > 0.0;
-  uint key = keyAt(leftEyeKeys, pixel.x, pixel.y);
-  if (key == S3D_FORWARD_EMPTY) return fillHole(leftEyeKeys, pixel.x, pixel.y);
+// A covered eye pixel (key not S3D_FORWARD_EMPTY): its winning source at the sub-pixel position.
+vec4 resolveCovered(ivec2 pixel, float direction, uint key) {
   int source = forwardKeySource(key, pixel.x);
   float position, nextPosition;
   place(source, pixel.y, direction, position);
@@ -93,13 +91,23 @@ vec4 resolveEye(ivec2 pixel, float direction) {
   return sampleRow(pixel.y, forwardSourcePosition(pixel.x, source, position, connected, nextPosition));
 }
 
-// Eye pixel `pixel` (inside the image) of both eyes.
+// Eye pixel `pixel` (inside the image) of both eyes. The hole fill is one code path whose eye is data: a
+// subgroup with left-eye holes in some lanes and right-eye holes in others waits for one chain of dependent
+// hole reads, not for the left eye's and then the right eye's (the fill's cost is that latency, docs/RESULTS.md).
 void resolvePixel(ivec2 pixel) {
   if (pixel.x < c.cropBegin || pixel.x >= c.cropEnd) {  // cropped edges, as in the seed
     imageStore(leftEye, pixel, vec4(0, 0, 0, 1));
     imageStore(rightEye, pixel, vec4(0, 0, 0, 1));
     return;
   }
-  imageStore(leftEye, pixel, resolveEye(pixel, 1.0));
-  imageStore(rightEye, pixel, resolveEye(pixel, -1.0));
+  uint leftKey = keyAt(true, pixel.x, pixel.y);
+  uint rightKey = keyAt(false, pixel.x, pixel.y);
+  bool leftHole = leftKey == S3D_FORWARD_EMPTY, rightHole = rightKey == S3D_FORWARD_EMPTY;
+  if (!leftHole) imageStore(leftEye, pixel, resolveCovered(pixel, 1.0, leftKey));
+  if (!rightHole) imageStore(rightEye, pixel, resolveCovered(pixel, -1.0, rightKey));
+  if (!leftHole && !rightHole) return;
+  vec4 fill = fillHole(leftHole, pixel.x, pixel.y);  // the left eye's hole if it has one, else the right's
+  if (leftHole) imageStore(leftEye, pixel, fill);
+  else imageStore(rightEye, pixel, fill);
+  if (leftHole && rightHole) imageStore(rightEye, pixel, fillHole(false, pixel.x, pixel.y));
 }
