@@ -22,21 +22,22 @@ class HybridPassTest : public test::VulkanTest {};
 
 // The GPUs' row group with a chunk every test device holds (lavapipe has 32 KiB of shared memory, the GPUs' chunk
 // needs 46): the same code, its scan of the runs in parallel, only the chunk's length differs.
-constexpr HybridRowShape kGpuGroupSmallChunk{S3D_HYBRID_GPU_ROW_GROUP, 1024};
+constexpr HybridRowShape kGpuGroupSmallChunk{S3D_HYBRID_GPU_ROW_GROUP, 1024, S3D_HYBRID_GPU_MASK_GROUP};
 
 // Every row shape gives the same bins and masks: the CPU devices' (a few invocations walk the runs), the GPUs'
 // (many invocations scan them in parallel, one chunk for a short row; where the device holds it) or its group with
 // a smaller chunk, and a large group with small chunks (the parallel scan across several chunks of a row).
 std::vector<HybridRowShape> rowShapesToCheck(const vk::Context& context) {
   std::vector<HybridRowShape> shapes;
-  for (HybridRowShape shape : {kHybridCpuRowShape, kHybridGpuRowShape, kGpuGroupSmallChunk, HybridRowShape{64, 128}})
+  for (HybridRowShape shape : {kHybridCpuRowShape, kHybridGpuRowShape, kGpuGroupSmallChunk, HybridRowShape{64, 128, 64}})
     if (hybridRowShapeFits(context, shape)) shapes.push_back(shape);
   EXPECT_GE(shapes.size(), 1u);
   return shapes;
 }
 
 std::string shapeName(HybridRowShape shape) {
-  return "row group " + std::to_string(shape.rowGroup) + ", chunk " + std::to_string(shape.chunk);
+  return "row group " + std::to_string(shape.rowGroup) + ", chunk " + std::to_string(shape.chunk) + ", mask group " +
+         std::to_string(shape.maskGroup);
 }
 
 StereoParameters parametersFor(float maxSeparation) {
@@ -369,6 +370,7 @@ TEST_F(HybridPassTest, ACpuDeviceGetsTheFewInvocationsShapeAndAShapeBeyondTheDev
   EXPECT_TRUE(hybridRowShapeFits(context(), hybridRowShapeFor(context())));
   EXPECT_THROW(HybridPass(context(), HybridRowShape{1 << 20, 512}), std::invalid_argument);
   EXPECT_THROW(HybridPass(context(), HybridRowShape{16, 1 << 20}), std::invalid_argument);
+  EXPECT_THROW(HybridPass(context(), HybridRowShape{16, 512, 1 << 20}), std::invalid_argument);
 }
 
 TEST_F(HybridPassTest, CompositeMatchesTheCppReferenceExactly) {

@@ -72,7 +72,8 @@ HybridRowShape checkedShape(const vk::Context& context, std::optional<HybridRowS
   const HybridRowShape chosen = shape.value_or(hybridRowShapeFor(context));
   if (!hybridRowShapeFits(context, chosen))
     throw std::invalid_argument("hybrid stereo: the device cannot run a row group of " + std::to_string(chosen.rowGroup) +
-                                " invocations with a chunk of " + std::to_string(chosen.chunk) + " pixels");
+                                " invocations with a chunk of " + std::to_string(chosen.chunk) +
+                                " pixels, or a mask row group of " + std::to_string(chosen.maskGroup));
   return chosen;
 }
 
@@ -82,10 +83,14 @@ bool hybridRowShapeFits(const vk::Context& context, HybridRowShape shape) {
   VkPhysicalDeviceProperties properties;
   vkGetPhysicalDeviceProperties(context.physicalDevice(), &properties);
   const VkPhysicalDeviceLimits& limits = properties.limits;
-  return shape.rowGroup > 0 && shape.chunk > 0 && std::uint32_t(shape.rowGroup) <= limits.maxComputeWorkGroupInvocations &&
-         std::uint32_t(shape.rowGroup) <= limits.maxComputeWorkGroupSize[0] &&
+  auto groupFits = [&](int group) {
+    return group > 0 && std::uint32_t(group) <= limits.maxComputeWorkGroupInvocations &&
+           std::uint32_t(group) <= limits.maxComputeWorkGroupSize[0];
+  };
+  return groupFits(shape.rowGroup) && groupFits(shape.maskGroup) && shape.chunk > 0 &&
          std::uint64_t(S3D_HYBRID_CLASSIFY_SHARED_BYTES(std::uint64_t(shape.rowGroup), std::uint64_t(shape.chunk))) <=
-             limits.maxComputeSharedMemorySize;
+             limits.maxComputeSharedMemorySize &&
+         8u * std::uint64_t(shape.maskGroup) <= limits.maxComputeSharedMemorySize;  // the mask pass's run counts
 }
 
 HybridRowShape hybridRowShapeFor(const vk::Context& context) {
@@ -104,7 +109,7 @@ HybridPass::HybridPass(const vk::Context& context, std::optional<HybridRowShape>
   const std::int32_t values[] = {shape_.rowGroup, shape_.chunk};
   const VkSpecializationMapEntry entries[] = {{0, 0, sizeof(std::int32_t)}, {1, sizeof(std::int32_t), sizeof(std::int32_t)}};
   const VkSpecializationInfo classifyShape{2, entries, sizeof(values), values};
-  const VkSpecializationInfo maskShape{1, entries, sizeof(std::int32_t), values};
+  const VkSpecializationInfo maskShape{1, entries, sizeof(std::int32_t), &shape_.maskGroup};
   classify_ = vk::createComputePipeline(context, classifyLayout_.layout, spirv_stereo_hybrid_classify_comp, &classifyShape);
   threshold_ = vk::createComputePipeline(context, thresholdLayout_.layout, spirv_stereo_hybrid_threshold_comp);
   mask_ = vk::createComputePipeline(context, maskLayout_.layout, spirv_stereo_hybrid_mask_comp, &maskShape);

@@ -15,19 +15,22 @@
 
 namespace s3d::stereo {
 
-// The classification's and the mask pass's workgroup: invocations per row and the classification's chunk of eye
-// pixels (hybrid_shared.h). Any shape the device can run gives the same bins and masks; only the time differs.
+// The classification's and the mask pass's workgroups: the classification's invocations per row and chunk of eye
+// pixels, the mask pass's invocations per row (hybrid_shared.h). Any shape the device can run gives the same bins
+// and masks; only the time differs.
 struct HybridRowShape {
   int rowGroup = S3D_HYBRID_ROW_GROUP;
   int chunk = S3D_HYBRID_CHUNK;
+  int maskGroup = S3D_HYBRID_ROW_GROUP;
   bool operator==(const HybridRowShape&) const = default;
 };
-inline constexpr HybridRowShape kHybridCpuRowShape{S3D_HYBRID_ROW_GROUP, S3D_HYBRID_CHUNK};
-inline constexpr HybridRowShape kHybridGpuRowShape{S3D_HYBRID_GPU_ROW_GROUP, S3D_HYBRID_GPU_CHUNK};
+inline constexpr HybridRowShape kHybridCpuRowShape{S3D_HYBRID_ROW_GROUP, S3D_HYBRID_CHUNK, S3D_HYBRID_ROW_GROUP};
+inline constexpr HybridRowShape kHybridGpuRowShape{S3D_HYBRID_GPU_ROW_GROUP, S3D_HYBRID_GPU_CHUNK,
+                                                   S3D_HYBRID_GPU_MASK_GROUP};
 // The fast shape for the device: few invocations on a CPU device, many on a GPU (the CPU shape where the GPU's
 // exceeds the device's workgroup or shared-memory limits).
 HybridRowShape hybridRowShapeFor(const vk::Context& context);
-// Whether the device can run `shape` (invocations, shared memory; the chunk and group positive).
+// Whether the device can run `shape` (invocations, shared memory; the chunk and groups positive).
 bool hybridRowShapeFits(const vk::Context& context, HybridRowShape shape);
 
 class HybridPass {

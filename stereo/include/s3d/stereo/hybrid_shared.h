@@ -24,6 +24,7 @@ S3D_GPU_BEGIN
 #define S3D_HYBRID_CHUNK 512          // CPU devices: the classification's eye pixels per step along its row
 #define S3D_HYBRID_GPU_ROW_GROUP 512  // GPUs: the fastest measured on an NVIDIA H200 (docs/RESULTS.md)
 #define S3D_HYBRID_GPU_CHUNK 2048     // a 1920-pixel row in one chunk per eye (46 KiB of shared memory)
+#define S3D_HYBRID_GPU_MASK_GROUP 1024 // GPUs: the mask pass's invocations per row (its own measured best)
 #define S3D_HYBRID_BINS 256           // score histogram per eye; bin 0 = nothing expected wrong
 #define S3D_HYBRID_FINE_BINS 64       // scores below 1 px: 1/64 px per bin (the edge band's ranks)
 #define S3D_HYBRID_BINS_PER_PIXEL 8.0f // scores from 1 px on: 1/8 px per bin, the top bin open-ended
