@@ -5,8 +5,10 @@
 #include <cmath>
 #include <algorithm>
 #include <numeric>
+#include <stdexcept>
 #include <string>
 #include <tuple>
+#include <vector>
 
 #include "s3d/stereo/hybrid.h"
 #include "s3d/stereo/hybrid_pass.h"
@@ -17,6 +19,26 @@ namespace s3d::stereo {
 namespace {
 
 class HybridPassTest : public test::VulkanTest {};
+
+// The GPUs' row group with a chunk every test device holds (lavapipe has 32 KiB of shared memory, the GPUs' chunk
+// needs 46): the same code, its scan of the runs in parallel, only the chunk's length differs.
+constexpr HybridRowShape kGpuGroupSmallChunk{S3D_HYBRID_GPU_ROW_GROUP, 1024, S3D_HYBRID_GPU_MASK_GROUP};
+
+// Every row shape gives the same bins and masks: the CPU devices' (a few invocations walk the runs), the GPUs'
+// (many invocations scan them in parallel, one chunk for a short row; where the device holds it) or its group with
+// a smaller chunk, and a large group with small chunks (the parallel scan across several chunks of a row).
+std::vector<HybridRowShape> rowShapesToCheck(const vk::Context& context) {
+  std::vector<HybridRowShape> shapes;
+  for (HybridRowShape shape : {kHybridCpuRowShape, kHybridGpuRowShape, kGpuGroupSmallChunk, HybridRowShape{64, 128, 64}})
+    if (hybridRowShapeFits(context, shape)) shapes.push_back(shape);
+  EXPECT_GE(shapes.size(), 1u);
+  return shapes;
+}
+
+std::string shapeName(HybridRowShape shape) {
+  return "row group " + std::to_string(shape.rowGroup) + ", chunk " + std::to_string(shape.chunk) + ", mask group " +
+         std::to_string(shape.maskGroup);
+}
 
 StereoParameters parametersFor(float maxSeparation) {
   StereoParameters parameters;
@@ -262,17 +284,20 @@ TEST_F(HybridPassTest, ClassificationMatchesTheCppReferenceBinForBin) {
   const test::SyntheticView view = test::makeBlockView(160, 24, 7, 1.0f, 9, 4, true);
   const gpu::HybridConstants c = makeHybridConstants(parametersFor(0.05f), 160, 24);
   const HybridClassification expected = classifyHybridReference(view.depth, c);
-  const HybridClassification gpu = classifyHybridOnGpu(context(), view.depth, c).classification;
-  std::size_t offByOne = 0;
-  for (std::size_t i = 0; i < expected.leftBins.size(); ++i)
-    for (auto [a, b] : {std::pair{expected.leftBins[i], gpu.leftBins[i]}, std::pair{expected.rightBins[i], gpu.rightBins[i]}}) {
-      ASSERT_LE(std::abs(int(a) - int(b)), 1) << "pixel " << i;
-      offByOne += a != b;
+  for (HybridRowShape shape : rowShapesToCheck(context())) {
+    SCOPED_TRACE(shapeName(shape));
+    const HybridClassification gpu = classifyHybridOnGpu(context(), view.depth, c, shape).classification;
+    std::size_t offByOne = 0;
+    for (std::size_t i = 0; i < expected.leftBins.size(); ++i)
+      for (auto [a, b] : {std::pair{expected.leftBins[i], gpu.leftBins[i]}, std::pair{expected.rightBins[i], gpu.rightBins[i]}}) {
+        ASSERT_LE(std::abs(int(a) - int(b)), 1) << "pixel " << i;
+        offByOne += a != b;
+      }
+    EXPECT_LE(offByOne, expected.leftBins.size() / 1000);
+    if (offByOne == 0) {
+      EXPECT_EQ(gpu.leftHistogram, expected.leftHistogram);
+      EXPECT_EQ(gpu.rightHistogram, expected.rightHistogram);
     }
-  EXPECT_LE(offByOne, expected.leftBins.size() / 1000);
-  if (offByOne == 0) {
-    EXPECT_EQ(gpu.leftHistogram, expected.leftHistogram);
-    EXPECT_EQ(gpu.rightHistogram, expected.rightHistogram);
   }
 }
 
@@ -287,47 +312,65 @@ TEST_F(HybridPassTest, ClassificationMatchesTheCppReferenceAcrossChunksCropAndFa
   parameters.searchTaps = 8;
   const gpu::HybridConstants c = makeHybridConstants(parameters, 700, 6);
   const HybridClassification expected = classifyHybridReference(view.depth, c);
-  const HybridClassification gpu = classifyHybridOnGpu(context(), view.depth, c).classification;
-  std::size_t offByOne = 0;
-  for (std::size_t i = 0; i < expected.leftBins.size(); ++i)
-    for (auto [a, b] : {std::pair{expected.leftBins[i], gpu.leftBins[i]}, std::pair{expected.rightBins[i], gpu.rightBins[i]}}) {
-      ASSERT_LE(std::abs(int(a) - int(b)), 1) << "pixel " << i;
-      offByOne += a != b;
+  for (HybridRowShape shape : rowShapesToCheck(context())) {
+    SCOPED_TRACE(shapeName(shape));
+    const HybridClassification gpu = classifyHybridOnGpu(context(), view.depth, c, shape).classification;
+    std::size_t offByOne = 0;
+    for (std::size_t i = 0; i < expected.leftBins.size(); ++i)
+      for (auto [a, b] : {std::pair{expected.leftBins[i], gpu.leftBins[i]}, std::pair{expected.rightBins[i], gpu.rightBins[i]}}) {
+        ASSERT_LE(std::abs(int(a) - int(b)), 1) << "pixel " << i;
+        offByOne += a != b;
+      }
+    EXPECT_LE(offByOne, expected.leftBins.size() / 1000);
+    if (offByOne == 0) {
+      EXPECT_EQ(gpu.leftHistogram, expected.leftHistogram);
+      EXPECT_EQ(gpu.rightHistogram, expected.rightHistogram);
     }
-  EXPECT_LE(offByOne, expected.leftBins.size() / 1000);
-  if (offByOne == 0) {
-    EXPECT_EQ(gpu.leftHistogram, expected.leftHistogram);
-    EXPECT_EQ(gpu.rightHistogram, expected.rightHistogram);
   }
 }
 
 // The threshold and the masks follow from the GPU's own histogram exactly (integer math), at every budget.
 TEST_F(HybridPassTest, ThresholdAndMasksMatchTheCppReferenceAtEveryBudget) {
   const test::SyntheticView view = test::makeBlockView(160, 24, 7, 1.0f, 9, 4, true);
-  for (float budget : {0.0f, 0.01f, 0.05f, 0.2f, 0.5f, 0.99f, 1.0f}) {
-    StereoParameters parameters = parametersFor(0.05f);
-    parameters.hybridBudget = budget;
-    const gpu::HybridConstants c = makeHybridConstants(parameters, 160, 24);
-    const HybridGpuResult gpu = classifyHybridOnGpu(context(), view.depth, c);
-    for (auto [histogram, threshold, bins, mask] :
-         {std::tuple{&gpu.classification.leftHistogram, &gpu.leftThreshold, &gpu.classification.leftBins, &gpu.leftMask},
-          std::tuple{&gpu.classification.rightHistogram, &gpu.rightThreshold, &gpu.classification.rightBins,
-                     &gpu.rightMask}}) {
-      const HybridThreshold expected = hybridThreshold(*histogram, c.maskedPixelCap);
-      EXPECT_EQ(threshold->bin, expected.bin) << "budget " << budget;
-      EXPECT_EQ(threshold->maskedPixels, expected.maskedPixels) << "budget " << budget;
-      EXPECT_LE(threshold->maskedPixels, c.maskedPixelCap);
-      // The budget is met as closely as the scored pixels allow (bin 0 is rendered only at budget 1).
-      const std::uint64_t classified = std::accumulate(histogram->begin(), histogram->end(), std::uint64_t(0));
-      EXPECT_EQ(threshold->maskedPixels,
-                budget >= 1.0f ? classified : std::min<std::uint64_t>(c.maskedPixelCap, classified - (*histogram)[0]))
-          << "budget " << budget;
-      EXPECT_EQ(threshold->splitBin, expected.splitBin) << "budget " << budget;
-      EXPECT_EQ(threshold->splitPixels, expected.splitPixels) << "budget " << budget;
-      EXPECT_EQ(*mask, hybridMaskReference(*bins, *threshold, c)) << "budget " << budget;
-      EXPECT_EQ(std::uint64_t(std::count(mask->begin(), mask->end(), 1)), expected.maskedPixels);
+  for (HybridRowShape shape : rowShapesToCheck(context())) {
+    SCOPED_TRACE(shapeName(shape));
+    for (float budget : {0.0f, 0.01f, 0.05f, 0.2f, 0.5f, 0.99f, 1.0f}) {
+      StereoParameters parameters = parametersFor(0.05f);
+      parameters.hybridBudget = budget;
+      const gpu::HybridConstants c = makeHybridConstants(parameters, 160, 24);
+      const HybridGpuResult gpu = classifyHybridOnGpu(context(), view.depth, c, shape);
+      for (auto [histogram, threshold, bins, mask] :
+           {std::tuple{&gpu.classification.leftHistogram, &gpu.leftThreshold, &gpu.classification.leftBins, &gpu.leftMask},
+            std::tuple{&gpu.classification.rightHistogram, &gpu.rightThreshold, &gpu.classification.rightBins,
+                       &gpu.rightMask}}) {
+        const HybridThreshold expected = hybridThreshold(*histogram, c.maskedPixelCap);
+        EXPECT_EQ(threshold->bin, expected.bin) << "budget " << budget;
+        EXPECT_EQ(threshold->maskedPixels, expected.maskedPixels) << "budget " << budget;
+        EXPECT_LE(threshold->maskedPixels, c.maskedPixelCap);
+        // The budget is met as closely as the scored pixels allow (bin 0 is rendered only at budget 1).
+        const std::uint64_t classified = std::accumulate(histogram->begin(), histogram->end(), std::uint64_t(0));
+        EXPECT_EQ(threshold->maskedPixels,
+                  budget >= 1.0f ? classified : std::min<std::uint64_t>(c.maskedPixelCap, classified - (*histogram)[0]))
+            << "budget " << budget;
+        EXPECT_EQ(threshold->splitBin, expected.splitBin) << "budget " << budget;
+        EXPECT_EQ(threshold->splitPixels, expected.splitPixels) << "budget " << budget;
+        EXPECT_EQ(*mask, hybridMaskReference(*bins, *threshold, c)) << "budget " << budget;
+        EXPECT_EQ(std::uint64_t(std::count(mask->begin(), mask->end(), 1)), expected.maskedPixels);
+      }
     }
   }
+}
+
+TEST_F(HybridPassTest, ACpuDeviceGetsTheFewInvocationsShapeAndAShapeBeyondTheDeviceIsRefused) {
+  if (context().isCpuDevice()) {
+    EXPECT_EQ(hybridRowShapeFor(context()), kHybridCpuRowShape);
+    // lavapipe runs the GPUs' row group too, so the tests above hold its code to the reference.
+    EXPECT_TRUE(hybridRowShapeFits(context(), kGpuGroupSmallChunk));
+  }
+  EXPECT_TRUE(hybridRowShapeFits(context(), hybridRowShapeFor(context())));
+  EXPECT_THROW(HybridPass(context(), HybridRowShape{1 << 20, 512}), std::invalid_argument);
+  EXPECT_THROW(HybridPass(context(), HybridRowShape{16, 1 << 20}), std::invalid_argument);
+  EXPECT_THROW(HybridPass(context(), HybridRowShape{16, 512, 1 << 20}), std::invalid_argument);
 }
 
 TEST_F(HybridPassTest, CompositeMatchesTheCppReferenceExactly) {

@@ -7,6 +7,7 @@
 #include <map>
 #include <random>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -177,17 +178,42 @@ TEST_F(MaskedRenderTest, AMaskOfAnotherSizeOrFormatIsRejected) {
   EXPECT_THROW(renderer.render(view, {&bytes}), std::invalid_argument);
 }
 
+bool hasPass(const FrameTimings& timings, const std::string& pass) {
+  return std::any_of(timings.passes.begin(), timings.passes.end(), [&](const PassTiming& t) { return t.name == pass; });
+}
+
+// Ambient occlusion needs every pixel's depth in a masked render: under visibility shading (untextured scene) the
+// G-buffer pass rasterizes every pixel and the occlusion reads its depth, so no depth-only pass runs; under raster
+// shading the G-buffer stays within the mask and a depth-only pass ("ssao-depth") rasterizes the rest.
+TEST_F(MaskedRenderTest, OnlyRasterShadingAddsADepthOnlyPassForTheOcclusion) {
+  const Scene scene = wallScene();
+  const vk::Image mask = uploadMask(context(), kWidth, kHeight, scatteredMask(kWidth, kHeight, 0.05, 7));
+  for (auto [shading, depthPass] : {std::pair{RendererOptions::GBufferShading::Visibility, false},
+                                    std::pair{RendererOptions::GBufferShading::Raster, true}}) {
+    RendererOptions options;
+    options.gbufferShading = shading;
+    DeferredRenderer renderer(context(), kWidth, kHeight, options);
+    renderer.setScene(scene);
+    const ViewMatrices view = centerViewMatrices(scene, float(kWidth) / float(kHeight));
+    EXPECT_EQ(hasPass(renderer.render(view, {&mask}), "ssao-depth"), depthPass) << gbufferShadingName(shading);
+    EXPECT_FALSE(hasPass(renderer.render(view), "ssao-depth")) << gbufferShadingName(shading);
+  }
+}
+
 // Every built-in scene (SSAO, sun and local shadows, a weapon, glass), masked pixels against the unmasked
-// render. Tolerance: one 8-bit level of display colour and 1e-5 relative linear depth. The passes compute the
-// same values from the same inputs, except that ambient occlusion reads a depth-only pass's depth in a masked
-// render, and Vulkan's invariance rules promise the same depth from two pipelines only when they share all
-// state (they share the vertex module, not the fragment stage).
-class MaskedSceneTest : public test::VulkanTest, public ::testing::WithParamInterface<std::string> {};
+// render, under both G-buffer shadings. Tolerance: one 8-bit level of display colour and 1e-5 relative linear
+// depth. The passes compute the same values from the same inputs, except that under raster shading ambient
+// occlusion reads a depth-only pass's depth in a masked render, and Vulkan's invariance rules promise the same
+// depth from two pipelines only when they share all state (they share the vertex module, not the fragment stage).
+class MaskedSceneTest : public test::VulkanTest,
+                        public ::testing::WithParamInterface<std::tuple<std::string, RendererOptions::GBufferShading>> {};
 
 TEST_P(MaskedSceneTest, MaskedPixelsEqualTheUnmaskedRender) {
-  Scene scene = makeBuiltInScene(GetParam());
+  Scene scene = makeBuiltInScene(std::get<0>(GetParam()));
   scene.camera = cameraForFrame(scene, 0);
-  DeferredRenderer renderer(context(), kWidth, kHeight);
+  RendererOptions options;
+  options.gbufferShading = std::get<1>(GetParam());
+  DeferredRenderer renderer(context(), kWidth, kHeight, options);
   renderer.setScene(scene);
   const ViewMatrices view = centerViewMatrices(scene, float(kWidth) / float(kHeight));
   renderer.render(view);
@@ -212,11 +238,14 @@ TEST_P(MaskedSceneTest, MaskedPixelsEqualTheUnmaskedRender) {
   EXPECT_LE(worst, 1);
 }
 
-INSTANTIATE_TEST_SUITE_P(BuiltInScenes, MaskedSceneTest, ::testing::ValuesIn(builtInSceneNames()),
-                         [](const ::testing::TestParamInfo<std::string>& param) {
-                           std::string name = param.param;
+INSTANTIATE_TEST_SUITE_P(BuiltInScenes, MaskedSceneTest,
+                         ::testing::Combine(::testing::ValuesIn(builtInSceneNames()),
+                                            ::testing::Values(RendererOptions::GBufferShading::Raster,
+                                                              RendererOptions::GBufferShading::Visibility)),
+                         [](const auto& param) {
+                           std::string name = std::get<0>(param.param);
                            std::replace(name.begin(), name.end(), '-', '_');
-                           return name;
+                           return name + "_" + gbufferShadingName(std::get<1>(param.param));
                          });
 
 // The culling test never drops a light that reaches a point of the tile: points sampled in random spheres that

@@ -2,7 +2,7 @@
 // Screen-space ambient occlusion (world layer) at half resolution: per texel (the render pixel 2i, 2j), the
 // share of a normal-oriented hemisphere of sample points around the surface point that the depth buffer shows
 // to be behind a nearer surface. The normal comes from the depth buffer (neighbours on the smoother side), so
-// the pass needs depth only: a masked render gives it a depth-only pass, not normals, outside the mask. Writes
+// the pass needs depth only: a masked render gives it every pixel's depth (its G-buffer's or a depth-only pass's). Writes
 // the occlusion and the texel's linear depth (+inf for sky and weapon) for the depth-aware blur and upsample.
 #extension GL_GOOGLE_include_directive : require
 #include "s3d/renderer/renderer_shared.h"

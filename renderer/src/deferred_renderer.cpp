@@ -665,25 +665,38 @@ struct DeferredRenderer::Impl {
     for (const DrawKey& key : drawKeys) frontToBack.push_back(key.object);
   }
 
+  // A masked render with ambient occlusion needs every pixel's depth (the occlusion samples outside the mask).
+  // Under visibility shading of a scene without textured objects the G-buffer's fragments only write ids, so the
+  // G-buffer pass rasterizes every pixel and the occlusion reads its depth; otherwise (costly fragments) the
+  // G-buffer pass stays within the mask and a depth-only pass gives the occlusion its depth (recordAmbientDepth).
+  bool maskedGBufferWritesEveryPixel() const { return visibilityShading && !surfaceTargetsBound && scene.ambientOcclusion; }
+
+  // Masked render: every pixel outside the mask gets the nearest depth, so later depth tests there fail unshaded.
+  // `loadOp` CLEAR first clears to the far plane (before the G-buffer), LOAD keeps the G-buffer's depth inside the
+  // mask (before the transparent pass, after a G-buffer pass that wrote every pixel). Leaves depth an attachment.
+  void recordMaskDepthFill(VkCommandBuffer cmd, const ShadeMask& mask, VkAttachmentLoadOp loadOp) {
+    const VkRenderingAttachmentInfo fillDepth = depthAttachment(depth, loadOp, clearedDepth());
+    beginRendering(cmd, width, height, {}, &fillDepth);
+    setViewport(cmd, width, height, nearestDepth(), nearestDepth());
+    setScissor(cmd, {{0, 0}, {width, height}});
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, maskFillPipeline);
+    VkDescriptorBufferInfo frameInfo{frameBuffer.buffer, 0, VK_WHOLE_SIZE};
+    VkDescriptorImageInfo maskInfo = tiles->maskDescriptor(mask.image);
+    VkWriteDescriptorSet writes[] = {vk::uniformBufferWrite(0, &frameInfo), vk::storageImageWrite(1, &maskInfo)};
+    context.cmdPushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, maskFillLayout.layout, 0, 2, writes);
+    vkCmdDraw(cmd, 3, 1, 0, 0);
+    vkCmdEndRendering(cmd);
+    vk::transition(cmd, depth, vk::kDepthAttachment, vk::kDepthAttachment);
+  }
+
   // The G-buffer pass: depth, and normal/glossiness and material (raster shading) or visibility ids (visibility
   // shading; textured objects write normal and material too). A masked render first gives every pixel outside
-  // the mask the nearest depth, so the geometry's fragments there fail the depth test unshaded.
+  // the mask the nearest depth, so the geometry's fragments there fail the depth test unshaded, unless the pass
+  // writes every pixel (maskedGBufferWritesEveryPixel).
   void recordGBuffer(VkCommandBuffer cmd, const ShadeMask& mask) {
     vk::transition(cmd, depth, vk::kUndefined, vk::kDepthAttachment);
-    if (mask.image != nullptr) {
-      const VkRenderingAttachmentInfo fillDepth = depthAttachment(depth, VK_ATTACHMENT_LOAD_OP_CLEAR, clearedDepth());
-      beginRendering(cmd, width, height, {}, &fillDepth);
-      setViewport(cmd, width, height, nearestDepth(), nearestDepth());
-      setScissor(cmd, {{0, 0}, {width, height}});
-      vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, maskFillPipeline);
-      VkDescriptorBufferInfo frameInfo{frameBuffer.buffer, 0, VK_WHOLE_SIZE};
-      VkDescriptorImageInfo maskInfo = tiles->maskDescriptor(mask.image);
-      VkWriteDescriptorSet writes[] = {vk::uniformBufferWrite(0, &frameInfo), vk::storageImageWrite(1, &maskInfo)};
-      context.cmdPushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, maskFillLayout.layout, 0, 2, writes);
-      vkCmdDraw(cmd, 3, 1, 0, 0);
-      vkCmdEndRendering(cmd);
-      vk::transition(cmd, depth, vk::kDepthAttachment, vk::kDepthAttachment);
-    }
+    const bool filled = mask.image != nullptr && !maskedGBufferWritesEveryPixel();
+    if (filled) recordMaskDepthFill(cmd, mask, VK_ATTACHMENT_LOAD_OP_CLEAR);
     // Raster shading clears normal and material (sky and masked-out pixels keep the cleared values); under
     // visibility shading the G-buffer resolve writes every pixel later passes read, so nothing is cleared.
     const VkClearColorValue noMaterial{.uint32 = {0, S3D_NO_OBJECT << 16, 0, 0}};
@@ -693,8 +706,8 @@ struct DeferredRenderer::Impl {
       if (visibilityShading) colors.back().loadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
       vk::transition(cmd, *image, vk::kUndefined, vk::kColorAttachment);
     }
-    const VkRenderingAttachmentInfo depthInfo = depthAttachment(
-        depth, mask.image != nullptr ? VK_ATTACHMENT_LOAD_OP_LOAD : VK_ATTACHMENT_LOAD_OP_CLEAR, clearedDepth());
+    const VkRenderingAttachmentInfo depthInfo =
+        depthAttachment(depth, filled ? VK_ATTACHMENT_LOAD_OP_LOAD : VK_ATTACHMENT_LOAD_OP_CLEAR, clearedDepth());
     beginRendering(cmd, width, height, colors, &depthInfo);
     setScissor(cmd, {{0, 0}, {width, height}});
     drawObjects(cmd, frontToBack, true);
@@ -842,7 +855,8 @@ struct DeferredRenderer::Impl {
                           tiles->recordReset(cmd, mask.image);
                           tiles->recordBuild(cmd, frameBuffer.buffer, *mask.image);
                         }});
-      if (withAmbientOcclusion) passes.push_back({"ssao-depth", [this](VkCommandBuffer cmd) { recordAmbientDepth(cmd); }});
+      if (withAmbientOcclusion && !maskedGBufferWritesEveryPixel())
+        passes.push_back({"ssao-depth", [this](VkCommandBuffer cmd) { recordAmbientDepth(cmd); }});
     }
     // The G-buffer's count (the render pixels with a surface) comes from the G-buffer resolve, or under raster
     // shading from a counting pass of its own.
@@ -859,7 +873,7 @@ struct DeferredRenderer::Impl {
                           tiles->recordCountGBuffer(cmd, frameBuffer.buffer, materialTarget, nearestSampler);
                         }});
     if (withAmbientOcclusion) {
-      const vk::Image& occlusionDepth = masked ? ambientDepth : depth;
+      const vk::Image& occlusionDepth = masked && !maskedGBufferWritesEveryPixel() ? ambientDepth : depth;
       passes.push_back({"ssao",
                         [this, &occlusionDepth, masked](VkCommandBuffer cmd) {
                           ambientOcclusion->recordOcclusion(cmd, occlusionDepth, frameBuffer.buffer, tiles->buffer(), masked);
@@ -880,6 +894,12 @@ struct DeferredRenderer::Impl {
                       [this, mask, frameShadows](VkCommandBuffer cmd) { recordLighting(cmd, mask, *frameShadows); },
                       S3D_COUNT_LIGHTING});
     const bool withTransparent = !transparentOrder.empty();
+    if (withTransparent && masked && maskedGBufferWritesEveryPixel())  // keeps the transparent pass within the mask
+      passes.push_back({"mask-depth", [this, mask](VkCommandBuffer cmd) {
+                          vk::transition(cmd, depth, kComputeSampled, vk::kDepthAttachment);
+                          recordMaskDepthFill(cmd, mask, VK_ATTACHMENT_LOAD_OP_LOAD);
+                          vk::transition(cmd, depth, vk::kDepthAttachment, kComputeSampled);
+                        }});
     if (withTransparent) {
       std::vector<std::uint32_t> backToFront = transparentBackToFront(view);
       passes.push_back({"transparent", [this, backToFront](VkCommandBuffer cmd) { recordTransparent(cmd, backToFront); }});

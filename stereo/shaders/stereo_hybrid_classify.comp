@@ -8,11 +8,15 @@
 // nearest boundary (a running maximum and minimum, each invocation along its own run of pixels, then across the
 // runs), then every pixel's coverage is complete. The row is walked in chunks of eye pixels, one eye at a time; a
 // chunk takes the pairs whose landings can reach it or lie within the separation window of it (bounded by the
-// row's parallax range). Six barriers per chunk and eye, none per pixel.
+// row's parallax range). The row group and the chunk are specialization constants (hybrid_shared.h): a small
+// group walks the runs' extremes with one invocation (four barriers per chunk and eye), a large one scans them in
+// parallel (two barriers per doubling); every order of the atomics and scans gives the same bits.
 #extension GL_GOOGLE_include_directive : require
 #include "s3d/stereo/hybrid_shared.h"
 
-layout(local_size_x = S3D_HYBRID_ROW_GROUP) in;
+layout(constant_id = 0) const int kGroup = S3D_HYBRID_ROW_GROUP;  // invocations per row
+layout(constant_id = 1) const int kChunk = S3D_HYBRID_CHUNK;      // eye pixels per step along the row
+layout(local_size_x_id = 0) in;
 
 layout(binding = 0, r32f) uniform readonly image2D linearDepth;
 layout(binding = 1, r32ui) uniform writeonly uimage2D leftBins;
@@ -22,9 +26,6 @@ layout(binding = 4, r32ui) uniform writeonly uimage2D rowHistograms;  // 2 S3D_H
 
 layout(push_constant) uniform Push { HybridConstants c; };
 
-const int kChunk = S3D_HYBRID_CHUNK;
-const int kGroup = S3D_HYBRID_ROW_GROUP;
-
 shared uint groupHistogram[2 * S3D_HYBRID_BINS];
 // Per chunk pixel of the eye at hand, as order-preserving bits of floats:
 shared uint coverBits[kChunk];         // the smallest covering parallax (+inf: none)
@@ -33,7 +34,7 @@ shared uint edgeBits[kChunk];          // the largest edge band score
 shared uint farthestEndBits[kChunk];   // change pairs starting at this pixel: the largest end (then a running maximum)
 shared uint nearestStartBits[kChunk];  // change pairs starting just after it: the smallest start (then a running minimum)
 shared uint runEnd[kGroup], runStart[kGroup];  // each invocation's run: its largest end, its smallest start
-shared float groupParallaxMin[kGroup], groupParallaxMax[kGroup];
+shared uint rowParallaxMin, rowParallaxMax;    // the row's parallax range, as ordered bits
 
 // Floats as unsigned integers in the same order (negative ones too), for atomicMin / atomicMax.
 uint orderedBits(float value) {
@@ -111,6 +112,8 @@ void clearSlot(int at) {
   nearestStartBits[at] = orderedBits(S3D_INFINITY);
 }
 
+uint unscoredPixels[2];  // this invocation's pixels in bin 0, per eye
+
 // One eye's pixels [x0, x1) of row y; the slots are clear on entry and left clear.
 void classifyChunk(int eye, int x0, int x1, int y, float parallaxMin, float parallaxMax) {
   int local = int(gl_LocalInvocationIndex);
@@ -131,29 +134,36 @@ void classifyChunk(int eye, int x0, int x1, int y, float parallaxMin, float para
   runEnd[local] = end;
   runStart[local] = start;
   barrier();
-  // Each run's extremes of the runs before and after it (one invocation walks them), then every pixel in turn.
-  if (local == 0) {
-    uint before = orderedBits(-S3D_INFINITY), after = orderedBits(S3D_INFINITY);
-    for (int r = 0; r < kGroup; ++r) {
-      uint own = runEnd[r];
-      runEnd[r] = before;
-      before = max(before, own);
+  // Each run's extremes of itself and the runs before it (the end) or after it (the start): one invocation walks a
+  // few runs; many scan in parallel (Hillis-Steele).
+  if (kGroup <= 32) {
+    if (local == 0) {
+      for (int r = 1; r < kGroup; ++r) runEnd[r] = max(runEnd[r], runEnd[r - 1]);
+      for (int r = kGroup - 2; r >= 0; --r) runStart[r] = min(runStart[r], runStart[r + 1]);
     }
-    for (int r = kGroup - 1; r >= 0; --r) {
-      uint own = runStart[r];
-      runStart[r] = after;
-      after = min(after, own);
+    barrier();
+  } else {
+    for (int step = 1; step < kGroup; step <<= 1) {
+      uint endBefore = local >= step ? runEnd[local - step] : orderedBits(-S3D_INFINITY);
+      uint startAfter = local + step < kGroup ? runStart[local + step] : orderedBits(S3D_INFINITY);
+      barrier();
+      runEnd[local] = max(runEnd[local], endBefore);
+      runStart[local] = min(runStart[local], startAfter);
+      barrier();
     }
   }
-  barrier();
+  // Then every pixel in turn, with the runs before and after its own.
   for (int at = local; at < n; at += kGroup) {
     int run = at / runLength;
-    float farthestEnd = orderedFloat(max(runEnd[run], farthestEndBits[at]));
-    float nearestStart = orderedFloat(min(runStart[run], nearestStartBits[at]));
+    uint endBefore = run > 0 ? runEnd[run - 1] : orderedBits(-S3D_INFINITY);
+    uint startAfter = run + 1 < kGroup ? runStart[run + 1] : orderedBits(S3D_INFINITY);
+    float farthestEnd = orderedFloat(max(endBefore, farthestEndBits[at]));
+    float nearestStart = orderedFloat(min(startAfter, nearestStartBits[at]));
     uint bin = hybridScoreBin(pixelScore(x0 + at, y, at, direction, farthestEnd, nearestStart));
     if (eye == 0) imageStore(leftBins, ivec2(x0 + at, y), uvec4(bin));
     else imageStore(rightBins, ivec2(x0 + at, y), uvec4(bin));
-    atomicAdd(groupHistogram[eye * S3D_HYBRID_BINS + int(bin)], 1u);
+    if (bin != 0u) atomicAdd(groupHistogram[eye * S3D_HYBRID_BINS + int(bin)], 1u);
+    else ++unscoredPixels[eye];  // most pixels: counted privately, one atomic per invocation at the end
     clearSlot(at);
   }
   barrier();  // the slots are clear again, runEnd and runStart read
@@ -164,6 +174,12 @@ void main() {
   int y = int(gl_WorkGroupID.x);
   for (int i = local; i < 2 * S3D_HYBRID_BINS; i += kGroup) groupHistogram[i] = 0u;
   for (int at = local; at < kChunk; at += kGroup) clearSlot(at);
+  if (local == 0) {
+    rowParallaxMin = orderedBits(S3D_INFINITY);
+    rowParallaxMax = orderedBits(-S3D_INFINITY);
+  }
+  unscoredPixels[0] = unscoredPixels[1] = 0u;
+  barrier();
   // Columns outside the crop are not classified: bin 0, left out of the histograms. Every column's parallax
   // bounds where the row's texels land.
   float parallaxMin = S3D_INFINITY, parallaxMax = -S3D_INFINITY;
@@ -176,13 +192,11 @@ void main() {
       imageStore(rightBins, ivec2(x, y), uvec4(0u));
     }
   }
-  groupParallaxMin[local] = parallaxMin;
-  groupParallaxMax[local] = parallaxMax;
+  atomicMin(rowParallaxMin, orderedBits(parallaxMin));
+  atomicMax(rowParallaxMax, orderedBits(parallaxMax));
   barrier();
-  for (int r = 0; r < kGroup; ++r) {
-    parallaxMin = min(parallaxMin, groupParallaxMin[r]);
-    parallaxMax = max(parallaxMax, groupParallaxMax[r]);
-  }
+  parallaxMin = orderedFloat(rowParallaxMin);
+  parallaxMax = orderedFloat(rowParallaxMax);
   // (The reach is clamped to the edge-extended row, so an unbounded parallax costs time, never correctness.)
   parallaxMin = max(parallaxMin, -float(c.width + 2 * c.windowPx));
   parallaxMax = min(parallaxMax, float(c.width + 2 * c.windowPx));
@@ -191,6 +205,8 @@ void main() {
     classifyChunk(0, x0, x1, y, parallaxMin, parallaxMax);
     classifyChunk(1, x0, x1, y, parallaxMin, parallaxMax);
   }
+  if (unscoredPixels[0] != 0u) atomicAdd(groupHistogram[0], unscoredPixels[0]);
+  if (unscoredPixels[1] != 0u) atomicAdd(groupHistogram[S3D_HYBRID_BINS], unscoredPixels[1]);
   barrier();
   for (int i = local; i < 2 * S3D_HYBRID_BINS; i += kGroup) {
     uint count = groupHistogram[i];

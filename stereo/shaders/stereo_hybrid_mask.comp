@@ -3,11 +3,13 @@
 // every pixel at or above the threshold bin, and the split bin's pixels up to the split count in raster order
 // (hybridMaskReference in hybrid.h). One workgroup per row; each invocation owns a run of its columns, counts the
 // run's split-bin pixels, and ranks them on top of the runs before it and the rows above (the threshold pass's
-// offsets): one barrier per row.
+// offsets): one barrier per row, or a parallel scan of the runs for a large group (the row group is a
+// specialization constant, hybrid_shared.h).
 #extension GL_GOOGLE_include_directive : require
 #include "s3d/stereo/hybrid_shared.h"
 
-layout(local_size_x = S3D_HYBRID_ROW_GROUP) in;
+layout(constant_id = 0) const int kGroup = S3D_HYBRID_ROW_GROUP;  // invocations per row
+layout(local_size_x_id = 0) in;
 
 layout(binding = 0, r32ui) uniform readonly uimage2D leftBins;
 layout(binding = 1, r32ui) uniform readonly uimage2D rightBins;
@@ -18,7 +20,6 @@ layout(binding = 5, r32ui) uniform writeonly uimage2D rightMask;
 
 layout(push_constant) uniform Push { HybridConstants c; };
 
-const int kGroup = S3D_HYBRID_ROW_GROUP;
 shared uvec2 runSplitPixels[kGroup];  // each run's split-bin pixels, left and right
 
 bool classified(int x) { return x >= c.cropBegin && x < c.cropEnd; }
@@ -44,7 +45,17 @@ void main() {
     barrier();
     if (split.x > 0u) before.x = imageLoad(splitOffsets, ivec2(y, 0)).r;
     if (split.y > 0u) before.y = imageLoad(splitOffsets, ivec2(y, 1)).r;
-    for (int r = 0; r < local; ++r) before += runSplitPixels[r];
+    if (kGroup <= 32) {
+      for (int r = 0; r < local; ++r) before += runSplitPixels[r];
+    } else {  // inclusive prefix sums over the runs (Hillis-Steele), less this run's own
+      for (int step = 1; step < kGroup; step <<= 1) {
+        uvec2 add = local >= step ? runSplitPixels[local - step] : uvec2(0u);
+        barrier();
+        runSplitPixels[local] += add;
+        barrier();
+      }
+      before += runSplitPixels[local] - own;
+    }
   }
   for (int x = runBegin; x < runStop; ++x) {
     bool inside = classified(x);

@@ -14,8 +14,9 @@
 namespace s3d::stereo {
 namespace {
 
-// The classification's chunk arrays fit the shared memory every Vulkan device has.
-static_assert(S3D_HYBRID_CLASSIFY_SHARED_BYTES <= 16384);
+// The CPU shape fits what every Vulkan device has (16 KiB of shared memory, 128 invocations): the fallback.
+static_assert(S3D_HYBRID_CLASSIFY_SHARED_BYTES(S3D_HYBRID_ROW_GROUP, S3D_HYBRID_CHUNK) <= 16384);
+static_assert(S3D_HYBRID_ROW_GROUP <= 128);
 
 constexpr VkFormat kUintFormat = VK_FORMAT_R32_UINT;
 constexpr vk::ImageState kCleared{VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
@@ -67,17 +68,51 @@ std::vector<std::uint32_t> readUints(vk::Context& context, const vk::Image& imag
   return result;
 }
 
+HybridRowShape checkedShape(const vk::Context& context, std::optional<HybridRowShape> shape) {
+  const HybridRowShape chosen = shape.value_or(hybridRowShapeFor(context));
+  if (!hybridRowShapeFits(context, chosen))
+    throw std::invalid_argument("hybrid stereo: the device cannot run a row group of " + std::to_string(chosen.rowGroup) +
+                                " invocations with a chunk of " + std::to_string(chosen.chunk) +
+                                " pixels, or a mask row group of " + std::to_string(chosen.maskGroup));
+  return chosen;
+}
+
 }  // namespace
 
-HybridPass::HybridPass(const vk::Context& context)
+bool hybridRowShapeFits(const vk::Context& context, HybridRowShape shape) {
+  VkPhysicalDeviceProperties properties;
+  vkGetPhysicalDeviceProperties(context.physicalDevice(), &properties);
+  const VkPhysicalDeviceLimits& limits = properties.limits;
+  auto groupFits = [&](int group) {
+    return group > 0 && std::uint32_t(group) <= limits.maxComputeWorkGroupInvocations &&
+           std::uint32_t(group) <= limits.maxComputeWorkGroupSize[0];
+  };
+  return groupFits(shape.rowGroup) && groupFits(shape.maskGroup) && shape.chunk > 0 &&
+         std::uint64_t(S3D_HYBRID_CLASSIFY_SHARED_BYTES(std::uint64_t(shape.rowGroup), std::uint64_t(shape.chunk))) <=
+             limits.maxComputeSharedMemorySize &&
+         8u * std::uint64_t(shape.maskGroup) <= limits.maxComputeSharedMemorySize;  // the mask pass's run counts
+}
+
+HybridRowShape hybridRowShapeFor(const vk::Context& context) {
+  if (context.isCpuDevice() || !hybridRowShapeFits(context, kHybridGpuRowShape)) return kHybridCpuRowShape;
+  return kHybridGpuRowShape;
+}
+
+HybridPass::HybridPass(const vk::Context& context, std::optional<HybridRowShape> shape)
     : context_(&context),
+      shape_(checkedShape(context, shape)),
       classifyLayout_(storageImageLayout(context, 5)),
       thresholdLayout_(storageImageLayout(context, 4)),
       maskLayout_(storageImageLayout(context, 6)),
       compositeLayout_(storageImageLayout(context, 3)) {
-  classify_ = vk::createComputePipeline(context, classifyLayout_.layout, spirv_stereo_hybrid_classify_comp);
+  // Specialization: constant 0 the row group (also the workgroup size), 1 the classification's chunk.
+  const std::int32_t values[] = {shape_.rowGroup, shape_.chunk};
+  const VkSpecializationMapEntry entries[] = {{0, 0, sizeof(std::int32_t)}, {1, sizeof(std::int32_t), sizeof(std::int32_t)}};
+  const VkSpecializationInfo classifyShape{2, entries, sizeof(values), values};
+  const VkSpecializationInfo maskShape{1, entries, sizeof(std::int32_t), &shape_.maskGroup};
+  classify_ = vk::createComputePipeline(context, classifyLayout_.layout, spirv_stereo_hybrid_classify_comp, &classifyShape);
   threshold_ = vk::createComputePipeline(context, thresholdLayout_.layout, spirv_stereo_hybrid_threshold_comp);
-  mask_ = vk::createComputePipeline(context, maskLayout_.layout, spirv_stereo_hybrid_mask_comp);
+  mask_ = vk::createComputePipeline(context, maskLayout_.layout, spirv_stereo_hybrid_mask_comp, &maskShape);
   composite_ = vk::createComputePipeline(context, compositeLayout_.layout, spirv_stereo_hybrid_composite_comp);
 }
 
@@ -168,8 +203,8 @@ std::vector<std::uint8_t> HybridPass::readMask(vk::Context& context, const vk::I
 }
 
 HybridGpuResult classifyHybridOnGpu(vk::Context& context, const DepthImage& linearDepth,
-                                    const gpu::HybridConstants& constants) {
-  const HybridPass pass(context);
+                                    const gpu::HybridConstants& constants, std::optional<HybridRowShape> shape) {
+  const HybridPass pass(context, shape);
   const VkImageUsageFlags usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
   const vk::Image depth = vk::createImage(context, VK_FORMAT_R32_SFLOAT, linearDepth.width, linearDepth.height, usage);
   vk::uploadImage(context, depth, std::as_bytes(std::span(linearDepth.pixels)), vk::kComputeRead);

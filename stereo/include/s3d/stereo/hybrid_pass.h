@@ -6,6 +6,7 @@
 #include <vulkan/vulkan.h>
 
 #include <functional>
+#include <optional>
 
 #include "s3d/stereo/hybrid.h"
 #include "s3d/vk/context.h"
@@ -14,9 +15,29 @@
 
 namespace s3d::stereo {
 
+// The classification's and the mask pass's workgroups: the classification's invocations per row and chunk of eye
+// pixels, the mask pass's invocations per row (hybrid_shared.h). Any shape the device can run gives the same bins
+// and masks; only the time differs.
+struct HybridRowShape {
+  int rowGroup = S3D_HYBRID_ROW_GROUP;
+  int chunk = S3D_HYBRID_CHUNK;
+  int maskGroup = S3D_HYBRID_ROW_GROUP;
+  bool operator==(const HybridRowShape&) const = default;
+};
+inline constexpr HybridRowShape kHybridCpuRowShape{S3D_HYBRID_ROW_GROUP, S3D_HYBRID_CHUNK, S3D_HYBRID_ROW_GROUP};
+inline constexpr HybridRowShape kHybridGpuRowShape{S3D_HYBRID_GPU_ROW_GROUP, S3D_HYBRID_GPU_CHUNK,
+                                                   S3D_HYBRID_GPU_MASK_GROUP};
+// The fast shape for the device: few invocations on a CPU device, many on a GPU (the CPU shape where the GPU's
+// exceeds the device's workgroup or shared-memory limits).
+HybridRowShape hybridRowShapeFor(const vk::Context& context);
+// Whether the device can run `shape` (invocations, shared memory; the chunk and groups positive).
+bool hybridRowShapeFits(const vk::Context& context, HybridRowShape shape);
+
 class HybridPass {
  public:
-  explicit HybridPass(const vk::Context& context);
+  // shape: the device's (hybridRowShapeFor) unless given; throws std::invalid_argument for one the device cannot run.
+  explicit HybridPass(const vk::Context& context, std::optional<HybridRowShape> shape = std::nullopt);
+  HybridRowShape rowShape() const { return shape_; }
 
   // One size's intermediate images, created once and reused every frame. All R32_UINT.
   struct Images {
@@ -53,6 +74,7 @@ class HybridPass {
 
  private:
   const vk::Context* context_;
+  HybridRowShape shape_;
   vk::PipelineLayout classifyLayout_, thresholdLayout_, maskLayout_, compositeLayout_;
   vk::Unique<VkPipeline> classify_, threshold_, mask_, composite_;
 };
@@ -64,7 +86,8 @@ struct HybridGpuResult {
   std::vector<std::uint8_t> leftMask, rightMask;
 };
 HybridGpuResult classifyHybridOnGpu(vk::Context& context, const DepthImage& linearDepth,
-                                    const gpu::HybridConstants& constants);
+                                    const gpu::HybridConstants& constants,
+                                    std::optional<HybridRowShape> shape = std::nullopt);
 // Uploads the images, composites on the GPU and reads the eye back (tests).
 ImageRGBA8 compositeHybridOnGpu(vk::Context& context, const ImageRGBA8& eye, const ImageRGBA8& rendered,
                                 const std::vector<std::uint8_t>& mask, const gpu::HybridConstants& constants);

@@ -16,10 +16,15 @@ using glm::floor;
 S3D_GPU_BEGIN
 
 #define S3D_HYBRID_GROUP_SIZE 8        // the composite: 8 x 8 workgroups
-// The classification and the mask pass: one workgroup per row, each invocation owning a run of its pixels (few
-// invocations and barriers: a CPU driver such as lavapipe switches between invocations at every barrier).
-#define S3D_HYBRID_ROW_GROUP 16
-#define S3D_HYBRID_CHUNK 512          // the classification's eye pixels per step along its row (shared arrays)
+// The classification and the mask pass: one workgroup per row, each invocation owning a run of its pixels. Its
+// invocations and the classification's chunk of eye pixels (shared arrays) are specialization constants, chosen
+// per device (hybridRowShapeFor): a CPU driver such as lavapipe switches between invocations at every barrier, so
+// it gets few invocations; a GPU needs many rows' worth of warps in flight, so it gets many invocations per row.
+#define S3D_HYBRID_ROW_GROUP 16       // CPU devices: invocations per row
+#define S3D_HYBRID_CHUNK 512          // CPU devices: the classification's eye pixels per step along its row
+#define S3D_HYBRID_GPU_ROW_GROUP 512  // GPUs: the fastest measured on an NVIDIA H200 (docs/RESULTS.md)
+#define S3D_HYBRID_GPU_CHUNK 2048     // a 1920-pixel row in one chunk per eye (46 KiB of shared memory)
+#define S3D_HYBRID_GPU_MASK_GROUP 1024 // GPUs: the mask pass's invocations per row (its own measured best)
 #define S3D_HYBRID_BINS 256           // score histogram per eye; bin 0 = nothing expected wrong
 #define S3D_HYBRID_FINE_BINS 64       // scores below 1 px: 1/64 px per bin (the edge band's ranks)
 #define S3D_HYBRID_BINS_PER_PIXEL 8.0f // scores from 1 px on: 1/8 px per bin, the top bin open-ended
@@ -27,9 +32,9 @@ S3D_GPU_BEGIN
 #define S3D_HYBRID_NO_PIXEL 256       // threshold bin that masks nothing
 #define S3D_HYBRID_THRESHOLD_GROUP 256 // the threshold pass: one invocation per bin, one workgroup per eye
 #define S3D_HYBRID_THRESHOLD_FIELDS 4  // per eye: threshold bin, masked pixels, split bin, split pixels
-// The classification's shared memory: five per-pixel arrays of a chunk, both histograms and the row group's
-// partial results (HybridPass checks the device's limit against it).
-#define S3D_HYBRID_CLASSIFY_SHARED_BYTES (4 * (5 * S3D_HYBRID_CHUNK + 2 * S3D_HYBRID_BINS + 4 * S3D_HYBRID_ROW_GROUP))
+// The classification's shared memory for a row group and chunk: five per-pixel arrays of a chunk, both
+// histograms, each invocation's run extremes and the row's parallax range (HybridPass checks the device's limit).
+#define S3D_HYBRID_CLASSIFY_SHARED_BYTES(group, chunk) (4 * (5 * (chunk) + 2 * S3D_HYBRID_BINS + 2 * (group) + 2))
 
 // Push constants of the hybrid passes; scalars only, so the std430 and C++ layouts agree.
 struct HybridConstants {
