@@ -1,0 +1,118 @@
+#include "transparent_pass.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "compute_binding.h"
+#include "nearest_sampler.h"
+#include "s3d/renderer/renderer_shared.h"
+
+// clang-format off
+#include <cstdint>
+#include <s3d_spirv/transparent_comp.h>
+// clang-format on
+
+namespace s3d::renderer::detail {
+namespace {
+
+constexpr VkFormat kCoverageFormat = VK_FORMAT_R8G8B8A8_UNORM;  // storage-image writable without extended formats
+// The HDR image and the coverage between two objects' dispatches: each reads what the one before wrote.
+constexpr vk::ImageState kComputeReadWrite{VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                                           VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT};
+
+std::uint32_t tilesFor(std::uint32_t pixels) { return (pixels + S3D_TILE_SIZE - 1) / S3D_TILE_SIZE; }
+
+}  // namespace
+
+TransparentPass::TransparentPass(vk::Context& context, std::uint32_t width, std::uint32_t height)
+    : context_(context), width_(width), height_(height) {
+  constexpr VkDescriptorType ubo = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+  constexpr VkDescriptorType ssbo = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+  constexpr VkDescriptorType sampled = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+  constexpr VkDescriptorType storage = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
+  const VkDescriptorSetLayoutBinding bindings[] = {
+      computeBinding(0, ubo),     computeBinding(1, ssbo),    computeBinding(2, ssbo),    computeBinding(3, ssbo),
+      computeBinding(4, ssbo),    computeBinding(5, sampled), computeBinding(6, storage), computeBinding(7, storage),
+      computeBinding(8, sampled), computeBinding(9, sampled)};
+  layout_ = vk::createPushDescriptorLayout(context_, bindings, sizeof(gpu::TransparentConstants), VK_SHADER_STAGE_COMPUTE_BIT);
+  pipeline_ = vk::createComputePipeline(context_, layout_.layout, spirv_transparent_comp);
+  nearest_ = createNearestClampSampler(context_);
+  coverage_ = vk::createImage(context_, kCoverageFormat, width, height,
+                              VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
+}
+
+glm::uvec4 TransparentPass::tileRect(const glm::mat4& viewProjection, const BoundingSphere& bounds, std::uint32_t width,
+                                     std::uint32_t height) {
+  const glm::uvec4 all(0, 0, tilesFor(width), tilesFor(height));
+  if (!sphereTouchesFrustum(viewProjection, bounds)) return glm::uvec4(0);
+  // The projection of the cube around the sphere: the hull of its corners' projections while all lie ahead.
+  glm::vec2 lo(INFINITY), hi(-INFINITY);
+  for (int corner = 0; corner < 8; ++corner) {
+    const glm::vec3 offset((corner & 1) ? 1.0f : -1.0f, (corner & 2) ? 1.0f : -1.0f, (corner & 4) ? 1.0f : -1.0f);
+    const glm::vec4 clip = viewProjection * glm::vec4(bounds.center + bounds.radius * offset, 1.0f);
+    if (!(clip.w > 1e-6f)) return all;  // reaches the eye plane: unbounded on screen
+    const glm::vec2 pixel = (glm::vec2(clip) / clip.w * 0.5f + 0.5f) * glm::vec2(float(width), float(height));
+    lo = glm::min(lo, pixel);
+    hi = glm::max(hi, pixel);
+  }
+  // A pixel of slack each side for rounding; tiles whose pixel centres fall in [lo, hi].
+  auto tile = [](float pixel, std::uint32_t tiles) {
+    return std::uint32_t(std::clamp(std::floor(pixel / float(S3D_TILE_SIZE)), 0.0f, float(tiles)));
+  };
+  const glm::uvec2 first(tile(lo.x - 1.0f, all.z), tile(lo.y - 1.0f, all.w));
+  const glm::uvec2 last(tile(hi.x + 1.0f, all.z - 1) + 1, tile(hi.y + 1.0f, all.w - 1) + 1);
+  if (hi.x + 1.0f < 0.0f || hi.y + 1.0f < 0.0f || lo.x - 1.0f > float(width) || lo.y - 1.0f > float(height))
+    return glm::uvec4(0);
+  return {first, glm::max(first, last)};
+}
+
+void TransparentPass::record(VkCommandBuffer cmd, const Inputs& in, std::span<const Object> backToFront) {
+  if (backToFront.empty()) throw std::logic_error("transparent pass: recorded without transparent objects");
+  vk::transition(cmd, in.hdr, vk::kComputeWrite, kComputeReadWrite);
+  vk::transition(cmd, coverage_, vk::kUndefined, kComputeReadWrite);
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_);
+  VkDescriptorBufferInfo frameInfo{in.frameConstants, 0, VK_WHOLE_SIZE};
+  VkDescriptorBufferInfo objectInfo{in.objectConstants, 0, VK_WHOLE_SIZE};
+  VkDescriptorBufferInfo indexInfo{in.indices, 0, VK_WHOLE_SIZE};
+  VkDescriptorBufferInfo vertexInfo{in.vertices, 0, VK_WHOLE_SIZE};
+  VkDescriptorBufferInfo surfaceInfo{in.surfaces, 0, VK_WHOLE_SIZE};
+  VkDescriptorImageInfo depthInfo{nearest_, in.depth.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+  VkDescriptorImageInfo hdrInfo{VK_NULL_HANDLE, in.hdr.view, VK_IMAGE_LAYOUT_GENERAL};
+  VkDescriptorImageInfo coverageInfo{VK_NULL_HANDLE, coverage_.view, VK_IMAGE_LAYOUT_GENERAL};
+  const glm::uvec2 tiles(tilesFor(width_), tilesFor(height_));
+  for (std::size_t i = 0; i < backToFront.size(); ++i) {
+    const Object& object = backToFront[i];
+    gpu::TransparentConstants constants{};
+    constants.tileRect = tileRect(in.worldViewProjection, object.bounds, width_, height_);
+    constants.depthRange = in.depthRange;
+    constants.objectIndex = object.index;
+    constants.triangleCount = object.triangleCount;
+    constants.reversedZ = in.reversedZ ? 1u : 0u;
+    constants.initializesCoverage = i == 0 ? 1u : 0u;  // the farthest object's dispatch covers the whole image
+    const glm::uvec2 groups = i == 0 ? tiles : glm::uvec2(constants.tileRect.z - constants.tileRect.x,
+                                                          constants.tileRect.w - constants.tileRect.y);
+    if (groups.x == 0 || groups.y == 0) continue;  // off screen
+    if (i > 0) {
+      vk::transition(cmd, in.hdr, kComputeReadWrite, kComputeReadWrite);
+      vk::transition(cmd, coverage_, kComputeReadWrite, kComputeReadWrite);
+    }
+    VkDescriptorImageInfo baseColorInfo{in.textureSampler, object.baseColor, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+    VkDescriptorImageInfo normalMapInfo{in.textureSampler, object.normalMap, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+    VkWriteDescriptorSet writes[] = {
+        vk::uniformBufferWrite(0, &frameInfo),   vk::uniformBufferWrite(1, &objectInfo),
+        vk::uniformBufferWrite(2, &indexInfo),   vk::uniformBufferWrite(3, &vertexInfo),
+        vk::uniformBufferWrite(4, &surfaceInfo), vk::sampledImageWrite(5, &depthInfo),
+        vk::storageImageWrite(6, &hdrInfo),      vk::storageImageWrite(7, &coverageInfo),
+        vk::sampledImageWrite(8, &baseColorInfo), vk::sampledImageWrite(9, &normalMapInfo)};
+    for (std::uint32_t b : {1u, 2u, 3u, 4u}) writes[b].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    for (std::uint32_t b : {5u, 8u, 9u}) writes[b].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+    context_.cmdPushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_.layout, 0, 10, writes);
+    vkCmdPushConstants(cmd, layout_.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(constants), &constants);
+    vkCmdDispatch(cmd, groups.x, groups.y, 1);
+  }
+  vk::transition(cmd, in.hdr, kComputeReadWrite, vk::kComputeRead);
+  vk::transition(cmd, coverage_, kComputeReadWrite, kCoverageState);
+}
+
+}  // namespace s3d::renderer::detail
