@@ -1,11 +1,10 @@
 #version 450
-// Transparent pass, one dispatch per transparent object (farthest first): its triangles composited over the
-// lit HDR image in compute, in the order a blended raster draw would (primitive order within the object), and
-// the transparent coverage (the error metrics' mask) accumulated beside it. On a GPU whose raster side is a
-// small part of the chip a blended raster pass costs the bytes each fragment reads and writes; here each pixel
-// reads and writes the HDR image once per object. Surfaces are forward-lit by hemisphere ambient and the sun
-// (point lights live in the deferred light buffers); they write no depth, which is the case the seed says image
-// displacement gets wrong: the stereo pass sees the surface behind them.
+// Transparent pass, compute implementation (GPUs; transparent.frag serves CPU devices): one dispatch per
+// transparent object, farthest first, composites its triangles over the lit HDR image in the order a blended
+// raster draw would (primitive order) and accumulates the transparent coverage (the error metrics' mask). On a GPU
+// whose raster side is a small part of the chip a blended raster pass costs the bytes each fragment reads and
+// writes; here each pixel reads and writes the HDR image once per object. No depth is written (the seed's
+// transparency case: the stereo pass sees the surface behind).
 //
 // One workgroup per render tile of the object's screen rectangle: its threads set up a chunk of triangles
 // (clip positions from the same transforms as geometry.vert, the tile's bounding-box test), then every pixel
@@ -54,7 +53,9 @@ bool overlaps(vec4 c0, vec4 c1, vec4 c2, vec2 tileFirstCentre, vec2 tileLastCent
   return all(lessThanEqual(lo, tileLastCentre)) && all(greaterThanEqual(hi, tileFirstCentre));
 }
 
-// The transparent fragment's colour and opacity (before blending), as the former raster pass's fragment shader.
+#include "transparent.glsl"
+
+// The triangle's surface at barycentrics b, interpolated as the raster implementation's varyings are, shaded.
 vec4 shade(uvec3 v, vec3 b) {
   ObjectConstants object = objects[pass.objectIndex];
   vec3 localPosition = b.x * vertexPosition(v.x) + b.y * vertexPosition(v.y) + b.z * vertexPosition(v.z);
@@ -64,20 +65,7 @@ vec4 shade(uvec3 v, vec3 b) {
   vec3 worldPosition = (object.objectToWorld * vec4(localPosition, 1.0)).xyz;
   vec3 worldNormal = mat3(object.normalToWorld) * localNormal;
   vec4 worldTangent = vec4(mat3(object.objectToWorld) * localTangent.xyz, localTangent.w);
-
-  vec3 toEye = normalize(frame.layers[object.layer].worldFromView[3].xyz - worldPosition);
-  vec3 normal = shadingNormal(worldNormal, worldTangent, texCoord, object.normalScale, normalMap);
-  if (dot(normal, toEye) < 0.0) normal = -normal;  // panes are seen from both sides
-  vec3 toSun = frame.directionToSun.xyz;
-  float nDotL = max(dot(normal, toSun), 0.0);
-  vec3 diffuse = frame.ambientColor.rgb * (normal.y * 0.7 + 0.3) + frame.sunColor.rgb * nDotL;
-  float exponent = blinnPhongExponent(object.specular.a);
-  vec3 specular = frame.sunColor.rgb * (nDotL * normalizedBlinnPhong(dot(normal, normalize(toSun + toEye)), exponent));
-  float nDotV = clamp(dot(normal, toEye), 0.0, 1.0);
-  vec3 fresnel = object.specular.rgb + (1.0 - object.specular.rgb) * pow(1.0 - nDotV, 5.0);  // Schlick
-  // Specular is not dimmed by the opacity: glass reflects even where it lets most light through.
-  vec4 albedo = object.albedo * textureLod(baseColor, texCoord, 0.0);  // texture alpha scales the opacity
-  return vec4(albedo.rgb * diffuse + fresnel * specular / max(albedo.a, 1e-3), albedo.a);
+  return shadeTransparent(object, worldPosition, worldNormal, worldTangent, texCoord, baseColor, normalMap);
 }
 
 void main() {

@@ -252,7 +252,13 @@ struct DeferredRenderer::Impl {
     lighting = std::make_unique<detail::TiledLighting>(context, options.countShadedPixels);
     tiles = std::make_unique<detail::TileLists>(context, width, height);
     gbufferResolve = std::make_unique<detail::GBufferResolve>(context, options.countShadedPixels);
-    transparentPass = std::make_unique<detail::TransparentPass>(context, width, height);
+    vk::GraphicsPipelineDesc transparentGeometry = geometryDesc;
+    transparentGeometry.depthCompare = nearer();
+    const bool transparentCompute =
+        options.transparentCompositing == RendererOptions::TransparentCompositing::Compute ||
+        (options.transparentCompositing == RendererOptions::TransparentCompositing::Automatic && !context.isCpuDevice());
+    transparentPass = std::make_unique<detail::TransparentPass>(context, width, height, transparentCompute,
+                                                                transparentGeometry, geometryLayout.layout);
     frameBuffer = vk::createBuffer(context, sizeof(gpu::FrameConstants), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
                                    vk::MemoryLocation::HostVisible);
   }
@@ -781,7 +787,12 @@ struct DeferredRenderer::Impl {
                                                  textureSampler,
                                                  view.worldProjection * view.worldView,
                                                  depthRange,
-                                                 options.reversedZ};
+                                                 options.reversedZ,
+                                                 [this, &backToFront](VkCommandBuffer drawCmd) {
+                                                   std::vector<std::uint32_t> objects;
+                                                   for (const auto& object : backToFront) objects.push_back(object.index);
+                                                   drawObjects(drawCmd, objects);
+                                                 }};
     transparentPass->record(cmd, inputs, backToFront);
   }
 
@@ -1042,7 +1053,7 @@ std::vector<std::uint8_t> DeferredRenderer::readTransparentMask() {
   std::vector<std::uint8_t> mask(std::size_t(r.outputWidth) * r.outputHeight, 0);
   if (r.transparentOrder.empty()) return mask;  // the transparent pass did not run
   std::vector<std::byte> bytes = vk::readbackImage(impl_->context, r.transparentPass->coverage(),
-                                                   detail::TransparentPass::kCoverageState);
+                                                   r.transparentPass->coverageState());
   // With supersampling, an output pixel is transparent where any of its samples is.
   for (std::uint32_t y = 0; y < r.height; ++y)
     for (std::uint32_t x = 0; x < r.width; ++x)

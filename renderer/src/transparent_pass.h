@@ -1,16 +1,21 @@
 #pragma once
-// The transparent pass (shaders/transparent.comp): after lighting, the transparent objects are composited over
-// the lit HDR image back to front, each one dispatch over the render tiles its bounds cover, and their coverage
-// (1 - prod(1 - opacity), the error metrics' transparent region) is written beside it. Compute, not a blended
-// raster pass: on a GPU whose raster side is a small part of the chip (the H100) the raster pass cost the bytes
-// its fragments read and wrote (0.47 ms for the glass scene at 1920x1080), while compute runs on all of it.
+// The transparent pass: after lighting, the transparent objects are composited over the lit HDR image back to
+// front, and their coverage (1 - prod(1 - opacity), the error metrics' transparent region) is written beside it.
+// Two implementations of the same blending (RendererOptions::TransparentCompositing; by default picked by the
+// device, as the G-buffer's shading is):
+//  - GPUs: compute (shaders/transparent.comp), each object one dispatch over the render tiles its bounds cover.
+//    On a GPU whose raster side is a small part of the chip (the H100) a blended raster pass costs the bytes its
+//    fragments read and write (0.47 ms for the glass scene at 1920x1080), while compute runs on all of it.
+//  - CPU devices: a blended raster pass (shaders/transparent.frag) that shades only covered fragments; the
+//    compute pass took 40x its time on lavapipe (glass, 1280x720: 6.6 s against 0.16 s).
 //
 // Reads: the opaque device depth (sampled by compute; depth-tested, never written), the frame and object
 // constants, the index, vertex and surface buffers, each object's textures. Writes: the HDR image (storage,
-// GENERAL; left readable by compute for the resolve) and the coverage image (storage, GENERAL).
-// Synchronization: expects the HDR image as the lighting pass leaves it (vk::kComputeWrite); leaves it in
-// vk::kComputeRead and the coverage in vk::kComputeWrite.
+// GENERAL; left readable by compute for the resolve) and the coverage image. Synchronization: expects the HDR
+// image as the lighting pass leaves it (vk::kComputeWrite) and the depth sampled by compute; leaves the HDR image
+// in vk::kComputeRead, the depth as it was and the coverage in coverageState().
 #include <cstdint>
+#include <functional>
 #include <span>
 
 #include <glm/glm.hpp>
@@ -24,8 +29,13 @@ namespace s3d::renderer::detail {
 
 class TransparentPass {
  public:
-  // width, height: the render size (the HDR and depth images' size).
-  TransparentPass(vk::Context& context, std::uint32_t width, std::uint32_t height);
+  // width, height: the render size (the HDR and depth images' size). compute: the compute implementation, else
+  // the raster one. `geometry`, `geometryLayout`: what the
+  // renderer's pipelines drawing scene objects share (geometry.vert, the depth test's comparison), for the raster
+  // implementation.
+  TransparentPass(vk::Context& context, std::uint32_t width, std::uint32_t height, bool compute,
+                  const vk::GraphicsPipelineDesc& geometry, VkPipelineLayout geometryLayout);
+  bool usesCompute() const { return pipeline_ != VK_NULL_HANDLE; }
 
   struct Inputs {
     const vk::Image& depth;  // sampled by compute
@@ -35,6 +45,8 @@ class TransparentPass {
     glm::mat4 worldViewProjection;  // the world layer's, for each object's screen rectangle
     glm::vec2 depthRange;           // the world layer's viewport depth range
     bool reversedZ;
+    // The raster implementation: draws the objects, farthest first, with the bound pipeline.
+    std::function<void(VkCommandBuffer)> drawBackToFront;
   };
   struct Object {
     std::uint32_t index;          // into the object constants
@@ -46,9 +58,9 @@ class TransparentPass {
   // the first one's dispatch runs over the whole image and writes every pixel's coverage.
   void record(VkCommandBuffer cmd, const Inputs& inputs, std::span<const Object> backToFront);
 
-  // Red: the coverage of the last recorded frame (RGBA8).
+  // Red: the coverage of the last recorded frame (RGBA8), in coverageState().
   const vk::Image& coverage() const { return coverage_; }
-  static constexpr vk::ImageState kCoverageState = vk::kComputeWrite;
+  vk::ImageState coverageState() const { return usesCompute() ? vk::kComputeWrite : vk::kColorAttachment; }
 
   // The render tiles [min, max) whose pixel centres the sphere's projection can reach (all of them when the
   // sphere reaches the eye plane), clamped to the screen; empty (min == max) when off screen.
@@ -59,7 +71,9 @@ class TransparentPass {
   vk::Context& context_;
   std::uint32_t width_, height_;
   vk::PipelineLayout layout_;
-  vk::Unique<VkPipeline> pipeline_;
+  vk::Unique<VkPipeline> pipeline_;        // compute (GPUs)
+  vk::Unique<VkPipeline> rasterPipeline_;  // blended raster (CPU devices)
+  void recordRaster(VkCommandBuffer cmd, const Inputs& inputs);
   vk::Unique<VkSampler> nearest_;
   vk::Image coverage_;
 };
