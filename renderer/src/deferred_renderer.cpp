@@ -217,7 +217,7 @@ struct DeferredRenderer::Impl {
   std::vector<DrawKey> drawKeys;             // per frame, kept for its capacity
   std::vector<std::uint32_t> frontToBack;    // per frame: drawOrder sorted nearest first
   std::vector<std::uint32_t> transparentOrder;   // transparent objects, sorted back to front per frame
-  std::vector<BoundingSphere> transparentBounds;  // their bounds in the world, same order
+  std::vector<glm::mat4> transparentBoxes;  // their meshes' bounding boxes in the world, same order
 
   vk::TimestampQueries timestamps;
   std::unique_ptr<detail::ShadowMaps> shadows;  // sun cascades, point/spot shadow maps (shadow_maps.cpp)
@@ -489,17 +489,27 @@ struct DeferredRenderer::Impl {
       createGBufferPipelines();
       gbufferPipelinesValid = true;
     }
-    transparentBounds.clear();
+    transparentBoxes.clear();
     for (std::uint32_t i = 0; i < newScene.objects.size(); ++i)
       if (newScene.objects[i].material.isTransparent()) {
         transparentOrder.push_back(i);
-        transparentBounds.push_back(objectBounds(newScene.meshes[newScene.objects[i].mesh], newScene.objects[i].transform));
+        transparentBoxes.push_back(newScene.objects[i].transform * boundingBoxOfCube(newScene.meshes[newScene.objects[i].mesh]));
       }
     std::vector<detail::ShadowMeshRange> shadowRanges;
     for (const MeshRange& range : meshRanges) shadowRanges.push_back({range.firstIndex, range.indexCount, range.vertexOffset});
     shadows->setScene(newScene, vertexBuffer.buffer, indexBuffer.buffer, std::move(shadowRanges));
     lighting->setScene(newScene);
     scene = newScene;
+  }
+
+  // The mesh's bounding box as the image of the cube [-1, 1]^3 (object space).
+  static glm::mat4 boundingBoxOfCube(const Mesh& mesh) {
+    glm::vec3 lo(INFINITY), hi(-INFINITY);
+    for (const Vertex& vertex : mesh.vertices) {
+      lo = glm::min(lo, vertex.position);
+      hi = glm::max(hi, vertex.position);
+    }
+    return glm::scale(glm::translate(glm::mat4(1.0f), 0.5f * (lo + hi)), 0.5f * (hi - lo));
   }
 
   // The mesh's texture coordinates and tangents as the second vertex stream (zeros where it has none).
@@ -809,7 +819,7 @@ struct DeferredRenderer::Impl {
     for (const auto& entry : keyed) {
       const Object& object = scene.objects[transparentOrder[entry.second]];
       sorted.push_back({transparentOrder[entry.second], meshRanges[object.mesh].indexCount / 3,
-                        transparentBounds[entry.second], textureView(object.material.baseColorTexture, whiteTexture),
+                        transparentBoxes[entry.second], textureView(object.material.baseColorTexture, whiteTexture),
                         textureView(object.material.normalTexture, flatNormalTexture)});
     }
     return sorted;

@@ -67,17 +67,27 @@ TransparentPass::TransparentPass(vk::Context& context, std::uint32_t width, std:
                               VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
 }
 
-glm::uvec4 TransparentPass::tileRect(const glm::mat4& viewProjection, const BoundingSphere& bounds, std::uint32_t width,
+glm::uvec4 TransparentPass::tileRect(const glm::mat4& viewProjection, const glm::mat4& boxToWorld, std::uint32_t width,
                                      std::uint32_t height) {
   const glm::uvec4 all(0, 0, tilesFor(width), tilesFor(height));
-  if (!sphereTouchesFrustum(viewProjection, bounds)) return glm::uvec4(0);
-  // The projection of the cube around the sphere: the hull of its corners' projections while all lie ahead.
+  const glm::mat4 boxToClip = viewProjection * boxToWorld;
+  glm::vec4 clip[8];
+  for (int corner = 0; corner < 8; ++corner)
+    clip[corner] = boxToClip * glm::vec4((corner & 1) ? 1.0f : -1.0f, (corner & 2) ? 1.0f : -1.0f,
+                                         (corner & 4) ? 1.0f : -1.0f, 1.0f);
+  // Outside the view volume: every corner beyond one of its planes (w +- x >= 0, w +- y >= 0, z >= 0, w - z >= 0).
+  auto allBeyond = [&clip](auto distance) {
+    return std::all_of(clip, clip + 8, [&distance](const glm::vec4& c) { return distance(c) < 0.0f; });
+  };
+  if (allBeyond([](glm::vec4 c) { return c.w + c.x; }) || allBeyond([](glm::vec4 c) { return c.w - c.x; }) ||
+      allBeyond([](glm::vec4 c) { return c.w + c.y; }) || allBeyond([](glm::vec4 c) { return c.w - c.y; }) ||
+      allBeyond([](glm::vec4 c) { return c.z; }) || allBeyond([](glm::vec4 c) { return c.w - c.z; }))
+    return glm::uvec4(0);
+  // The box's projection: the hull of its corners' projections while all lie ahead of the eye.
   glm::vec2 lo(INFINITY), hi(-INFINITY);
-  for (int corner = 0; corner < 8; ++corner) {
-    const glm::vec3 offset((corner & 1) ? 1.0f : -1.0f, (corner & 2) ? 1.0f : -1.0f, (corner & 4) ? 1.0f : -1.0f);
-    const glm::vec4 clip = viewProjection * glm::vec4(bounds.center + bounds.radius * offset, 1.0f);
-    if (!(clip.w > 1e-6f)) return all;  // reaches the eye plane: unbounded on screen
-    const glm::vec2 pixel = (glm::vec2(clip) / clip.w * 0.5f + 0.5f) * glm::vec2(float(width), float(height));
+  for (const glm::vec4& c : clip) {
+    if (!(c.w > 1e-6f)) return all;  // reaches the eye plane: unbounded on screen
+    const glm::vec2 pixel = (glm::vec2(c) / c.w * 0.5f + 0.5f) * glm::vec2(float(width), float(height));
     lo = glm::min(lo, pixel);
     hi = glm::max(hi, pixel);
   }
@@ -110,7 +120,7 @@ void TransparentPass::record(VkCommandBuffer cmd, const Inputs& in, std::span<co
   for (std::size_t i = 0; i < backToFront.size(); ++i) {
     const Object& object = backToFront[i];
     gpu::TransparentConstants constants{};
-    constants.tileRect = tileRect(in.worldViewProjection, object.bounds, width_, height_);
+    constants.tileRect = tileRect(in.worldViewProjection, object.boxToWorld, width_, height_);
     constants.depthRange = in.depthRange;
     constants.objectIndex = object.index;
     constants.triangleCount = object.triangleCount;

@@ -21,7 +21,6 @@
 
 #include <glm/glm.hpp>
 
-#include "s3d/renderer/shadows.h"
 #include "s3d/vk/context.h"
 #include "s3d/vk/pipeline.h"
 #include "s3d/vk/resources.h"
@@ -52,7 +51,7 @@ class TransparentPass {
   struct Object {
     std::uint32_t index;          // into the object constants
     std::uint32_t triangleCount;  // of its mesh
-    BoundingSphere bounds;        // in the world
+    glm::mat4 boxToWorld;         // its mesh's bounding box as the image of the cube [-1, 1]^3
     VkImageView baseColor, normalMap;  // its textures or the 1x1 defaults
   };
   // `backToFront`: the transparent objects, farthest first (the order they are composited in), at least one;
@@ -63,9 +62,9 @@ class TransparentPass {
   const vk::Image& coverage() const { return coverage_; }
   vk::ImageState coverageState() const { return usesCompute() ? vk::kComputeWrite : vk::kColorAttachment; }
 
-  // The render tiles [min, max) whose pixel centres the sphere's projection can reach (all of them when the
-  // sphere reaches the eye plane), clamped to the screen; empty (min == max) when off screen.
-  static glm::uvec4 tileRect(const glm::mat4& viewProjection, const BoundingSphere& bounds, std::uint32_t width,
+  // The render tiles [min, max) whose pixel centres the box's projection can reach (all of them when the box
+  // reaches the eye plane), clamped to the screen; empty (min == max) when the box is outside the view volume.
+  static glm::uvec4 tileRect(const glm::mat4& viewProjection, const glm::mat4& boxToWorld, std::uint32_t width,
                              std::uint32_t height);
 
  private:
