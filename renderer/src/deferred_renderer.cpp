@@ -216,8 +216,6 @@ struct DeferredRenderer::Impl {
   };
   std::vector<DrawKey> drawKeys;             // per frame, kept for its capacity
   std::vector<std::uint32_t> frontToBack;    // per frame: drawOrder sorted nearest first
-  std::vector<std::uint32_t> transparentOrder;   // transparent objects, sorted back to front per frame
-  std::vector<glm::mat4> transparentBoxes;  // their meshes' bounding boxes in the world, same order
 
   vk::TimestampQueries timestamps;
   std::unique_ptr<detail::ShadowMaps> shadows;  // sun cascades, point/spot shadow maps (shadow_maps.cpp)
@@ -254,10 +252,7 @@ struct DeferredRenderer::Impl {
     gbufferResolve = std::make_unique<detail::GBufferResolve>(context, options.countShadedPixels);
     vk::GraphicsPipelineDesc transparentGeometry = geometryDesc;
     transparentGeometry.depthCompare = nearer();
-    const bool transparentCompute =
-        options.transparentCompositing == RendererOptions::TransparentCompositing::Compute ||
-        (options.transparentCompositing == RendererOptions::TransparentCompositing::Automatic && !context.isCpuDevice());
-    transparentPass = std::make_unique<detail::TransparentPass>(context, width, height, transparentCompute,
+    transparentPass = std::make_unique<detail::TransparentPass>(context, width, height, options.transparentCompositing,
                                                                 transparentGeometry, geometryLayout.layout);
     frameBuffer = vk::createBuffer(context, sizeof(gpu::FrameConstants), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
                                    vk::MemoryLocation::HostVisible);
@@ -455,7 +450,6 @@ struct DeferredRenderer::Impl {
     objectBuffer = vk::createBuffer(context, std::max<std::size_t>(1, newScene.objects.size()) * sizeof(gpu::ObjectConstants),
                                     VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryLocation::HostVisible);
     drawOrder.clear();
-    transparentOrder.clear();
     for (std::uint32_t i = 0; i < newScene.objects.size(); ++i) {
       const float opacity = newScene.objects[i].material.opacity;
       if (!(opacity > 0.0f && opacity <= 1.0f))
@@ -489,27 +483,14 @@ struct DeferredRenderer::Impl {
       createGBufferPipelines();
       gbufferPipelinesValid = true;
     }
-    transparentBoxes.clear();
-    for (std::uint32_t i = 0; i < newScene.objects.size(); ++i)
-      if (newScene.objects[i].material.isTransparent()) {
-        transparentOrder.push_back(i);
-        transparentBoxes.push_back(newScene.objects[i].transform * boundingBoxOfCube(newScene.meshes[newScene.objects[i].mesh]));
-      }
+    std::vector<std::uint32_t> meshTriangles;
+    for (const MeshRange& range : meshRanges) meshTriangles.push_back(range.indexCount / 3);
+    transparentPass->setScene(newScene, meshTriangles, textures, whiteTexture, flatNormalTexture);
     std::vector<detail::ShadowMeshRange> shadowRanges;
     for (const MeshRange& range : meshRanges) shadowRanges.push_back({range.firstIndex, range.indexCount, range.vertexOffset});
     shadows->setScene(newScene, vertexBuffer.buffer, indexBuffer.buffer, std::move(shadowRanges));
     lighting->setScene(newScene);
     scene = newScene;
-  }
-
-  // The mesh's bounding box as the image of the cube [-1, 1]^3 (object space).
-  static glm::mat4 boundingBoxOfCube(const Mesh& mesh) {
-    glm::vec3 lo(INFINITY), hi(-INFINITY);
-    for (const Vertex& vertex : mesh.vertices) {
-      lo = glm::min(lo, vertex.position);
-      hi = glm::max(hi, vertex.position);
-    }
-    return glm::scale(glm::translate(glm::mat4(1.0f), 0.5f * (lo + hi)), 0.5f * (hi - lo));
   }
 
   // The mesh's texture coordinates and tangents as the second vertex stream (zeros where it has none).
@@ -762,7 +743,7 @@ struct DeferredRenderer::Impl {
   }
 
   // No transparent pass and no supersampling: the lighting pass writes the resolve's outputs itself.
-  bool resolveInLighting() const { return transparentOrder.empty() && supersample == 1; }
+  bool resolveInLighting() const { return !transparentPass->hasObjects() && supersample == 1; }
 
   // frameShadows: this renderer's shadow maps, rendered this frame, or a shadow source's (already readable).
   void recordLighting(VkCommandBuffer cmd, const ShadeMask& mask, const detail::ShadowMaps& frameShadows) {
@@ -784,45 +765,13 @@ struct DeferredRenderer::Impl {
 
   // Transparent surfaces over the lit image, back to front, depth-tested against the opaque depth (in a masked
   // render the depth fill hides them outside the mask too).
-  void recordTransparent(VkCommandBuffer cmd, const ViewMatrices& view,
-                         const std::vector<detail::TransparentPass::Object>& backToFront) {
-    const glm::vec2 depthRange = layerDepthRange(Layer::World);
-    const detail::TransparentPass::Inputs inputs{depth,
-                                                 hdr,
-                                                 frameBuffer.buffer,
-                                                 objectBuffer.buffer,
-                                                 indexBuffer.buffer,
-                                                 vertexBuffer.buffer,
-                                                 surfaceBuffer.buffer,
-                                                 textureSampler,
-                                                 view.worldProjection * view.worldView,
-                                                 depthRange,
-                                                 options.reversedZ,
-                                                 [this, &backToFront](VkCommandBuffer drawCmd) {
-                                                   std::vector<std::uint32_t> objects;
-                                                   for (const auto& object : backToFront) objects.push_back(object.index);
-                                                   drawObjects(drawCmd, objects);
-                                                 }};
-    transparentPass->record(cmd, inputs, backToFront);
-  }
-
-  // Transparent objects sorted by the view depth of their origin, farthest first.
-  std::vector<detail::TransparentPass::Object> transparentBackToFront(const ViewMatrices& view) const {
-    std::vector<std::pair<float, std::size_t>> keyed;
-    for (std::size_t i = 0; i < transparentOrder.size(); ++i)
-      keyed.push_back({(view.worldView * scene.objects[transparentOrder[i]].transform[3]).z, i});
-    std::sort(keyed.begin(), keyed.end());  // most negative view z = farthest
-    auto textureView = [this](std::int32_t index, const vk::Image& fallback) -> VkImageView {
-      return index == kNoTexture ? fallback.view : textures[std::size_t(index)].view;
-    };
-    std::vector<detail::TransparentPass::Object> sorted;
-    for (const auto& entry : keyed) {
-      const Object& object = scene.objects[transparentOrder[entry.second]];
-      sorted.push_back({transparentOrder[entry.second], meshRanges[object.mesh].indexCount / 3,
-                        transparentBoxes[entry.second], textureView(object.material.baseColorTexture, whiteTexture),
-                        textureView(object.material.normalTexture, flatNormalTexture)});
-    }
-    return sorted;
+  void recordTransparent(VkCommandBuffer cmd, const ViewMatrices& view) {
+    const detail::TransparentPass::Inputs inputs{
+        depth, hdr, frameBuffer.buffer, objectBuffer.buffer, indexBuffer.buffer, vertexBuffer.buffer, surfaceBuffer.buffer,
+        textureSampler, view.worldView, view.worldProjection * view.worldView, layerDepthRange(Layer::World),
+        options.reversedZ,
+        [this](VkCommandBuffer drawCmd, const std::vector<std::uint32_t>& objects) { drawObjects(drawCmd, objects); }};
+    transparentPass->record(cmd, inputs);
   }
 
   void recordResolve(VkCommandBuffer cmd, const ShadeMask& mask, bool afterTransparent) {
@@ -912,7 +861,7 @@ struct DeferredRenderer::Impl {
     passes.push_back({"lighting",
                       [this, mask, frameShadows](VkCommandBuffer cmd) { recordLighting(cmd, mask, *frameShadows); },
                       S3D_COUNT_LIGHTING});
-    const bool withTransparent = !transparentOrder.empty();
+    const bool withTransparent = transparentPass->hasObjects();
     if (withTransparent && masked && maskedGBufferWritesEveryPixel())  // keeps the transparent pass within the mask
       passes.push_back({"mask-depth", [this, mask](VkCommandBuffer cmd) {
                           vk::transition(cmd, depth, kComputeSampled, vk::kDepthAttachment);
@@ -920,9 +869,7 @@ struct DeferredRenderer::Impl {
                           vk::transition(cmd, depth, vk::kDepthAttachment, kComputeSampled);
                         }});
     if (withTransparent) {
-      passes.push_back({"transparent", [this, view, backToFront = transparentBackToFront(view)](VkCommandBuffer cmd) {
-                          recordTransparent(cmd, view, backToFront);
-                        }});
+      passes.push_back({"transparent", [this, view](VkCommandBuffer cmd) { recordTransparent(cmd, view); }});
     }
     if (!resolveInLighting())
       passes.push_back({"resolve",
@@ -1061,7 +1008,7 @@ std::vector<std::uint8_t> DeferredRenderer::readFirstPersonMask() {
 std::vector<std::uint8_t> DeferredRenderer::readTransparentMask() {
   const Impl& r = *impl_;
   std::vector<std::uint8_t> mask(std::size_t(r.outputWidth) * r.outputHeight, 0);
-  if (r.transparentOrder.empty()) return mask;  // the transparent pass did not run
+  if (!r.transparentPass->hasObjects()) return mask;  // the transparent pass did not run
   std::vector<std::byte> bytes = vk::readbackImage(impl_->context, r.transparentPass->coverage(),
                                                    r.transparentPass->coverageState());
   // With supersampling, an output pixel is transparent where any of its samples is.

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include <glm/gtc/matrix_transform.hpp>
+
 #include "compute_binding.h"
 #include "nearest_sampler.h"
 #include "s3d/renderer/renderer_shared.h"
@@ -34,12 +36,25 @@ constexpr vk::ImageState kComputeReadWrite{VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_
 
 std::uint32_t tilesFor(std::uint32_t pixels) { return (pixels + S3D_TILE_SIZE - 1) / S3D_TILE_SIZE; }
 
+// The mesh's bounding box as the image of the cube [-1, 1]^3 (object space).
+glm::mat4 boundingBoxOfCube(const Mesh& mesh) {
+  glm::vec3 lo(INFINITY), hi(-INFINITY);
+  for (const Vertex& vertex : mesh.vertices) {
+    lo = glm::min(lo, vertex.position);
+    hi = glm::max(hi, vertex.position);
+  }
+  if (mesh.vertices.empty()) lo = hi = glm::vec3(0.0f);
+  return glm::scale(glm::translate(glm::mat4(1.0f), 0.5f * (lo + hi)), 0.5f * (hi - lo));
+}
+
 }  // namespace
 
-TransparentPass::TransparentPass(vk::Context& context, std::uint32_t width, std::uint32_t height, bool compute,
+TransparentPass::TransparentPass(vk::Context& context, std::uint32_t width, std::uint32_t height,
+                                 RendererOptions::TransparentCompositing compositing,
                                  const vk::GraphicsPipelineDesc& geometry, VkPipelineLayout geometryLayout)
     : context_(context), width_(width), height_(height) {
-  if (!compute) {
+  using Compositing = RendererOptions::TransparentCompositing;
+  if (compositing == Compositing::Raster || (compositing == Compositing::Automatic && context_.isCpuDevice())) {
     vk::GraphicsPipelineDesc transparent = geometry;
     transparent.fragmentSpirv = spirv_transparent_frag;
     transparent.colorFormats = {kHdrFormat, kCoverageFormat};  // coverage blends to 1 - prod(1 - opacity)
@@ -65,6 +80,21 @@ TransparentPass::TransparentPass(vk::Context& context, std::uint32_t width, std:
   nearest_ = createNearestClampSampler(context_);
   coverage_ = vk::createImage(context_, kCoverageFormat, width, height,
                               VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
+}
+
+void TransparentPass::setScene(const Scene& scene, std::span<const std::uint32_t> meshTriangleCounts,
+                               std::span<const vk::Image> textures, const vk::Image& white, const vk::Image& flatNormal) {
+  auto textureView = [&textures](std::int32_t index, const vk::Image& fallback) -> VkImageView {
+    return index == kNoTexture ? fallback.view : textures[std::size_t(index)].view;
+  };
+  objects_.clear();
+  for (std::uint32_t i = 0; i < scene.objects.size(); ++i) {
+    const renderer::Object& object = scene.objects[i];
+    if (!object.material.isTransparent()) continue;
+    objects_.push_back({i, meshTriangleCounts[object.mesh], object.transform * boundingBoxOfCube(scene.meshes[object.mesh]),
+                        object.transform[3], textureView(object.material.baseColorTexture, white),
+                        textureView(object.material.normalTexture, flatNormal)});
+  }
 }
 
 glm::uvec4 TransparentPass::tileRect(const glm::mat4& viewProjection, const glm::mat4& boxToWorld, std::uint32_t width,
@@ -102,9 +132,19 @@ glm::uvec4 TransparentPass::tileRect(const glm::mat4& viewProjection, const glm:
   return {first, glm::max(first, last)};
 }
 
-void TransparentPass::record(VkCommandBuffer cmd, const Inputs& in, std::span<const Object> backToFront) {
-  if (backToFront.empty()) throw std::logic_error("transparent pass: recorded without transparent objects");
-  if (!usesCompute()) return recordRaster(cmd, in);
+void TransparentPass::record(VkCommandBuffer cmd, const Inputs& in) {
+  if (objects_.empty()) throw std::logic_error("transparent pass: recorded without transparent objects");
+  // Back to front by the view depth of each object's origin (most negative view z = farthest).
+  sorted_.clear();
+  for (std::size_t i = 0; i < objects_.size(); ++i) sorted_.push_back({(in.worldView * objects_[i].origin).z, i});
+  std::sort(sorted_.begin(), sorted_.end());
+  if (usesCompute()) return recordCompute(cmd, in);
+  drawOrder_.clear();
+  for (const auto& entry : sorted_) drawOrder_.push_back(objects_[entry.second].index);
+  recordRaster(cmd, in);
+}
+
+void TransparentPass::recordCompute(VkCommandBuffer cmd, const Inputs& in) {
   vk::transition(cmd, in.hdr, vk::kComputeWrite, kComputeReadWrite);
   vk::transition(cmd, coverage_, vk::kUndefined, kComputeReadWrite);
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_);
@@ -117,8 +157,8 @@ void TransparentPass::record(VkCommandBuffer cmd, const Inputs& in, std::span<co
   VkDescriptorImageInfo hdrInfo{VK_NULL_HANDLE, in.hdr.view, VK_IMAGE_LAYOUT_GENERAL};
   VkDescriptorImageInfo coverageInfo{VK_NULL_HANDLE, coverage_.view, VK_IMAGE_LAYOUT_GENERAL};
   const glm::uvec2 tiles(tilesFor(width_), tilesFor(height_));
-  for (std::size_t i = 0; i < backToFront.size(); ++i) {
-    const Object& object = backToFront[i];
+  for (std::size_t i = 0; i < sorted_.size(); ++i) {
+    const Object& object = objects_[sorted_[i].second];
     gpu::TransparentConstants constants{};
     constants.tileRect = tileRect(in.worldViewProjection, object.boxToWorld, width_, height_);
     constants.depthRange = in.depthRange;
@@ -180,7 +220,7 @@ void TransparentPass::recordRaster(VkCommandBuffer cmd, const Inputs& in) {
   const VkRect2D scissor{{0, 0}, {width_, height_}};
   vkCmdSetScissor(cmd, 0, 1, &scissor);
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, rasterPipeline_);
-  in.drawBackToFront(cmd);  // sets each layer's viewport
+  in.drawObjects(cmd, drawOrder_);  // sets each layer's viewport
   vkCmdEndRendering(cmd);
   vk::transition(cmd, in.hdr, vk::kColorAttachment, vk::kComputeRead);
   vk::transition(cmd, in.depth, kDepthReadOnlyAttachment, kComputeSampled);

@@ -18,9 +18,13 @@
 #include <cstdint>
 #include <functional>
 #include <span>
+#include <utility>
+#include <vector>
 
 #include <glm/glm.hpp>
 
+#include "s3d/renderer/deferred_renderer.h"
+#include "s3d/renderer/scene.h"
 #include "s3d/vk/context.h"
 #include "s3d/vk/pipeline.h"
 #include "s3d/vk/resources.h"
@@ -29,34 +33,36 @@ namespace s3d::renderer::detail {
 
 class TransparentPass {
  public:
-  // width, height: the render size (the HDR and depth images' size). compute: the compute implementation, else
-  // the raster one. `geometry`, `geometryLayout`: what the
+  // width, height: the render size (the HDR and depth images' size). compositing: which implementation
+  // (Automatic: compute on GPUs, raster on CPU devices). `geometry`, `geometryLayout`: what the
   // renderer's pipelines drawing scene objects share (geometry.vert, the depth test's comparison), for the raster
   // implementation.
-  TransparentPass(vk::Context& context, std::uint32_t width, std::uint32_t height, bool compute,
+  TransparentPass(vk::Context& context, std::uint32_t width, std::uint32_t height,
+                  RendererOptions::TransparentCompositing compositing,
                   const vk::GraphicsPipelineDesc& geometry, VkPipelineLayout geometryLayout);
   bool usesCompute() const { return pipeline_ != VK_NULL_HANDLE; }
+
+  // The scene's transparent objects (world layer) with their meshes' triangle counts (per mesh) and textures;
+  // `white` and `flatNormal`: what objects without a texture sample. Kept until the next setScene.
+  void setScene(const Scene& scene, std::span<const std::uint32_t> meshTriangleCounts, std::span<const vk::Image> textures,
+                const vk::Image& white, const vk::Image& flatNormal);
+  bool hasObjects() const { return !objects_.empty(); }
 
   struct Inputs {
     const vk::Image& depth;  // sampled by compute
     const vk::Image& hdr;    // lit, as the lighting pass leaves it
     VkBuffer frameConstants, objectConstants, indices, vertices, surfaces;
     VkSampler textureSampler;
+    glm::mat4 worldView;            // sorts the objects by their origins' view depth, farthest first
     glm::mat4 worldViewProjection;  // the world layer's, for each object's screen rectangle
     glm::vec2 depthRange;           // the world layer's viewport depth range
     bool reversedZ;
-    // The raster implementation: draws the objects, farthest first, with the bound pipeline.
-    std::function<void(VkCommandBuffer)> drawBackToFront;
+    // The raster implementation: draws these objects in this order with the bound pipeline.
+    std::function<void(VkCommandBuffer, const std::vector<std::uint32_t>& objects)> drawObjects;
   };
-  struct Object {
-    std::uint32_t index;          // into the object constants
-    std::uint32_t triangleCount;  // of its mesh
-    glm::mat4 boxToWorld;         // its mesh's bounding box as the image of the cube [-1, 1]^3
-    VkImageView baseColor, normalMap;  // its textures or the 1x1 defaults
-  };
-  // `backToFront`: the transparent objects, farthest first (the order they are composited in), at least one;
-  // the first one's dispatch runs over the whole image and writes every pixel's coverage.
-  void record(VkCommandBuffer cmd, const Inputs& inputs, std::span<const Object> backToFront);
+  // Composites the scene's transparent objects (hasObjects() must hold); the farthest object's dispatch runs over
+  // the whole image and writes every pixel's coverage.
+  void record(VkCommandBuffer cmd, const Inputs& inputs);
 
   // Red: the coverage of the last recorded frame (RGBA8), in coverageState().
   const vk::Image& coverage() const { return coverage_; }
@@ -68,14 +74,26 @@ class TransparentPass {
                              std::uint32_t height);
 
  private:
+  struct Object {
+    std::uint32_t index;          // into the object constants
+    std::uint32_t triangleCount;  // of its mesh
+    glm::mat4 boxToWorld;         // its mesh's bounding box as the image of the cube [-1, 1]^3
+    glm::vec4 origin;             // of its transform, in the world: its sort key
+    VkImageView baseColor, normalMap;  // its textures or the 1x1 defaults
+  };
+  void recordCompute(VkCommandBuffer cmd, const Inputs& inputs);
+  void recordRaster(VkCommandBuffer cmd, const Inputs& inputs);
+
   vk::Context& context_;
   std::uint32_t width_, height_;
   vk::PipelineLayout layout_;
   vk::Unique<VkPipeline> pipeline_;        // compute (GPUs)
   vk::Unique<VkPipeline> rasterPipeline_;  // blended raster (CPU devices)
-  void recordRaster(VkCommandBuffer cmd, const Inputs& inputs);
   vk::Unique<VkSampler> nearest_;
   vk::Image coverage_;
+  std::vector<Object> objects_;                        // the scene's transparent objects, in scene order
+  std::vector<std::pair<float, std::size_t>> sorted_;  // per frame: view depth, index into objects_
+  std::vector<std::uint32_t> drawOrder_;               // per frame: object indices, farthest first (raster)
 };
 
 }  // namespace s3d::renderer::detail
