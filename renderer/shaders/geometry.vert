@@ -1,7 +1,8 @@
 #version 450
-// Shared by the G-buffer, the depth-only pass of a masked render and the transparent pass: one module gives them
-// the same depth. Vertices are pulled from storage buffers (non-indexed draws of the mesh's index range), so
-// each triangle knows its index within the mesh: the G-buffer's visibility id (packVisibility).
+// Shared by the G-buffer, the depth-only pass of a masked render and the transparent raster pass: one module
+// gives them the same depth (transparent.comp repeats its transforms). Vertices are pulled from storage buffers
+// (non-indexed draws of the mesh's index range), so each triangle knows its index within the mesh: the
+// G-buffer's visibility id.
 #extension GL_GOOGLE_include_directive : require
 #include "s3d/renderer/renderer_shared.h"
 

@@ -19,6 +19,7 @@
 #include "shadow_maps.h"
 #include "tile_lists.h"
 #include "tiled_lighting.h"
+#include "transparent_pass.h"
 
 // clang-format off
 #include <cstdint>
@@ -29,7 +30,6 @@
 #include <s3d_spirv/mask_fill_frag.h>
 #include <s3d_spirv/resolve_comp.h>
 #include <s3d_spirv/shadow_depth_frag.h>
-#include <s3d_spirv/transparent_frag.h>
 #include <s3d_spirv/visibility_frag.h>
 #include <s3d_spirv/visibility_textured_frag.h>
 // clang-format on
@@ -45,9 +45,6 @@ constexpr VkFormat kWideVisibilityFormat = VK_FORMAT_R32G32_UINT;  // wide ids: 
 constexpr VkFormat kHdrFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
 constexpr VkFormat kDisplayFormat = VK_FORMAT_R8G8B8A8_UNORM;     // sRGB-encoded by the tone-map pass
 constexpr VkFormat kLinearDepthFormat = VK_FORMAT_R32_SFLOAT;
-// Red: transparent coverage (the metrics' mask). RGBA8, not R8: on an H100 the glass scene's transparent pass
-// took 0.81 ms with an R8 target against 0.47 ms with this one.
-constexpr VkFormat kCoverageFormat = VK_FORMAT_R8G8B8A8_UNORM;
 
 // Material textures (section 4.3's "sRGB textures read as linear"): colour through an sRGB format, data not.
 VkFormat textureFormat(Texture::Encoding encoding) {
@@ -59,11 +56,6 @@ constexpr std::uint32_t kGeometryTextureBinding = 2;
 // The G-buffer's targets once drawn: sampled by compute (ambient occlusion, lighting, resolve, counting).
 constexpr vk::ImageState kComputeSampled{VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
                                          VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT};
-// Depth tested by the transparent pass, read-only.
-constexpr vk::ImageState kDepthReadOnlyAttachment{VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL,
-                                                  VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT |
-                                                      VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
-                                                  VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT};
 
 // Timestamps: one before the first pass and one after each (shadow maps: up to 52 passes, the rest up to 9).
 constexpr std::uint32_t kMaxPasses = 64;
@@ -190,7 +182,6 @@ struct DeferredRenderer::Impl {
   // Render targets (render size), then the resolve's outputs (output size).
   vk::Image depth, normalGlossiness, materialTarget, hdr;
   vk::Image visibility;           // the G-buffer pass's ids (gpu::packVisibility), sized with the scene's ids
-  vk::Image transparentCoverage;  // written by the transparent pass only (scenes with transparent objects)
   vk::Image ambientDepth;         // masked renders with ambient occlusion: depth of every pixel (made at first use)
   vk::Image display, linearDepth, resolvedHdr;
   vk::Unique<VkSampler> nearestSampler;
@@ -208,7 +199,7 @@ struct DeferredRenderer::Impl {
   bool visibilityShading = false;          // RendererOptions::gbufferShading, Automatic resolved for the device
   bool surfaceTargetsBound = false;        // the G-buffer pass writes normal and material for some objects
   bool gbufferPipelinesValid = false;
-  vk::Unique<VkPipeline> depthOnlyPipeline, maskFillPipeline, transparentPipeline;
+  vk::Unique<VkPipeline> depthOnlyPipeline, maskFillPipeline;
   std::unique_ptr<detail::TilePipelines> resolvePipelines;
 
   // Scene data.
@@ -225,7 +216,6 @@ struct DeferredRenderer::Impl {
   };
   std::vector<DrawKey> drawKeys;             // per frame, kept for its capacity
   std::vector<std::uint32_t> frontToBack;    // per frame: drawOrder sorted nearest first
-  std::vector<std::uint32_t> transparentOrder;   // transparent objects, sorted back to front per frame
 
   vk::TimestampQueries timestamps;
   std::unique_ptr<detail::ShadowMaps> shadows;  // sun cascades, point/spot shadow maps (shadow_maps.cpp)
@@ -233,6 +223,7 @@ struct DeferredRenderer::Impl {
   std::unique_ptr<detail::TiledLighting> lighting;
   std::unique_ptr<detail::TileLists> tiles;
   std::unique_ptr<detail::GBufferResolve> gbufferResolve;
+  std::unique_ptr<detail::TransparentPass> transparentPass;
 
   Impl(vk::Context& ctx, std::uint32_t w, std::uint32_t h, RendererOptions rendererOptions)
       : context(ctx),
@@ -259,6 +250,10 @@ struct DeferredRenderer::Impl {
     lighting = std::make_unique<detail::TiledLighting>(context, options.countShadedPixels);
     tiles = std::make_unique<detail::TileLists>(context, width, height);
     gbufferResolve = std::make_unique<detail::GBufferResolve>(context, options.countShadedPixels);
+    vk::GraphicsPipelineDesc transparentGeometry = geometryDesc;
+    transparentGeometry.depthCompare = nearer();
+    transparentPass = std::make_unique<detail::TransparentPass>(context, width, height, options.transparentCompositing,
+                                                                transparentGeometry, geometryLayout.layout);
     frameBuffer = vk::createBuffer(context, sizeof(gpu::FrameConstants), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
                                    vk::MemoryLocation::HostVisible);
   }
@@ -278,8 +273,6 @@ struct DeferredRenderer::Impl {
     display = vk::createImage(context, kDisplayFormat, outputWidth, outputHeight, computeOutput);
     linearDepth = vk::createImage(context, kLinearDepthFormat, outputWidth, outputHeight, computeOutput);
     resolvedHdr = vk::createImage(context, kHdrFormat, outputWidth, outputHeight, computeOutput);
-    transparentCoverage = vk::createImage(context, kCoverageFormat, width, height,
-                                          VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
 
     VkSamplerCreateInfo samplerInfo{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
     samplerInfo.magFilter = samplerInfo.minFilter = VK_FILTER_NEAREST;
@@ -349,14 +342,6 @@ struct DeferredRenderer::Impl {
     maskFill.depthCompare = VK_COMPARE_OP_ALWAYS;
     maskFillPipeline = vk::createGraphicsPipeline(context, maskFillLayout.layout, maskFill);
 
-    vk::GraphicsPipelineDesc transparent = geometry;
-    transparent.fragmentSpirv = spirv_transparent_frag;
-    transparent.colorFormats = {kHdrFormat, kCoverageFormat};  // coverage blends to 1 - prod(1 - opacity)
-    transparent.depthCompare = nearer();  // behind opaque surfaces is hidden; no depth write
-    transparent.cullMode = VK_CULL_MODE_NONE;
-    transparent.blend = vk::GraphicsPipelineDesc::Blend::Alpha;
-    transparentPipeline = vk::createGraphicsPipeline(context, geometryLayout.layout, transparent);
-
     resolvePipelines = std::make_unique<detail::TilePipelines>(context, resolveLayout.layout, spirv_resolve_comp,
                                                                 options.countShadedPixels);
   }
@@ -410,13 +395,15 @@ struct DeferredRenderer::Impl {
 
   // A layer's viewport depth range (Listing 4.3): first-person in [0, split], the world in [split, 1]; reversed-Z
   // mirrors both (the world in [0, 1 - split], first-person in [1 - split, 1]).
-  void setLayerViewport(VkCommandBuffer cmd, Layer layer) const {
+  glm::vec2 layerDepthRange(Layer layer) const {
     const bool firstPerson = layer == Layer::FirstPerson;
     if (options.reversedZ)
-      setViewport(cmd, width, height, firstPerson ? 1.0f - kFirstPersonDeviceDepthMax : 0.0f,
-                  firstPerson ? 1.0f : 1.0f - kFirstPersonDeviceDepthMax);
-    else
-      setViewport(cmd, width, height, firstPerson ? 0.0f : kFirstPersonDeviceDepthMax, firstPerson ? kFirstPersonDeviceDepthMax : 1.0f);
+      return {firstPerson ? 1.0f - kFirstPersonDeviceDepthMax : 0.0f, firstPerson ? 1.0f : 1.0f - kFirstPersonDeviceDepthMax};
+    return {firstPerson ? 0.0f : kFirstPersonDeviceDepthMax, firstPerson ? kFirstPersonDeviceDepthMax : 1.0f};
+  }
+  void setLayerViewport(VkCommandBuffer cmd, Layer layer) const {
+    const glm::vec2 range = layerDepthRange(layer);
+    setViewport(cmd, width, height, range.x, range.y);
   }
 
   void setScene(const Scene& newScene) {
@@ -463,7 +450,6 @@ struct DeferredRenderer::Impl {
     objectBuffer = vk::createBuffer(context, std::max<std::size_t>(1, newScene.objects.size()) * sizeof(gpu::ObjectConstants),
                                     VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryLocation::HostVisible);
     drawOrder.clear();
-    transparentOrder.clear();
     for (std::uint32_t i = 0; i < newScene.objects.size(); ++i) {
       const float opacity = newScene.objects[i].material.opacity;
       if (!(opacity > 0.0f && opacity <= 1.0f))
@@ -497,8 +483,9 @@ struct DeferredRenderer::Impl {
       createGBufferPipelines();
       gbufferPipelinesValid = true;
     }
-    for (std::uint32_t i = 0; i < newScene.objects.size(); ++i)
-      if (newScene.objects[i].material.isTransparent()) transparentOrder.push_back(i);
+    std::vector<std::uint32_t> meshTriangles;
+    for (const MeshRange& range : meshRanges) meshTriangles.push_back(range.indexCount / 3);
+    transparentPass->setScene(newScene, meshTriangles, textures, whiteTexture, flatNormalTexture);
     std::vector<detail::ShadowMeshRange> shadowRanges;
     for (const MeshRange& range : meshRanges) shadowRanges.push_back({range.firstIndex, range.indexCount, range.vertexOffset});
     shadows->setScene(newScene, vertexBuffer.buffer, indexBuffer.buffer, std::move(shadowRanges));
@@ -756,7 +743,7 @@ struct DeferredRenderer::Impl {
   }
 
   // No transparent pass and no supersampling: the lighting pass writes the resolve's outputs itself.
-  bool resolveInLighting() const { return transparentOrder.empty() && supersample == 1; }
+  bool resolveInLighting() const { return !transparentPass->hasObjects() && supersample == 1; }
 
   // frameShadows: this renderer's shadow maps, rendered this frame, or a shadow source's (already readable).
   void recordLighting(VkCommandBuffer cmd, const ShadeMask& mask, const detail::ShadowMaps& frameShadows) {
@@ -778,32 +765,13 @@ struct DeferredRenderer::Impl {
 
   // Transparent surfaces over the lit image, back to front, depth-tested against the opaque depth (in a masked
   // render the depth fill hides them outside the mask too).
-  void recordTransparent(VkCommandBuffer cmd, const std::vector<std::uint32_t>& backToFront) {
-    vk::transition(cmd, hdr, vk::kComputeWrite, vk::kColorAttachment);
-    vk::transition(cmd, depth, kComputeSampled, kDepthReadOnlyAttachment);
-    vk::transition(cmd, transparentCoverage, vk::kUndefined, vk::kColorAttachment);
-    const VkRenderingAttachmentInfo colors[] = {colorAttachment(hdr, false), colorAttachment(transparentCoverage, true)};
-    VkRenderingAttachmentInfo depthInfo = depthAttachment(depth, VK_ATTACHMENT_LOAD_OP_LOAD, 0.0f);
-    depthInfo.imageLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL;
-    depthInfo.storeOp = VK_ATTACHMENT_STORE_OP_NONE;
-    beginRendering(cmd, width, height, colors, &depthInfo);
-    setScissor(cmd, {{0, 0}, {width, height}});
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, transparentPipeline);
-    drawObjects(cmd, backToFront);
-    vkCmdEndRendering(cmd);
-    vk::transition(cmd, hdr, vk::kColorAttachment, vk::kComputeRead);
-    vk::transition(cmd, depth, kDepthReadOnlyAttachment, kComputeSampled);
-  }
-
-  // Transparent objects sorted by the view depth of their origin, farthest first.
-  std::vector<std::uint32_t> transparentBackToFront(const ViewMatrices& view) const {
-    std::vector<std::pair<float, std::uint32_t>> keyed;
-    for (std::uint32_t index : transparentOrder)
-      keyed.push_back({(view.worldView * scene.objects[index].transform[3]).z, index});
-    std::sort(keyed.begin(), keyed.end());  // most negative view z = farthest
-    std::vector<std::uint32_t> sorted;
-    for (const auto& entry : keyed) sorted.push_back(entry.second);
-    return sorted;
+  void recordTransparent(VkCommandBuffer cmd, const ViewMatrices& view) {
+    const detail::TransparentPass::Inputs inputs{
+        depth, hdr, frameBuffer.buffer, objectBuffer.buffer, indexBuffer.buffer, vertexBuffer.buffer, surfaceBuffer.buffer,
+        textureSampler, view.worldView, view.worldProjection * view.worldView, layerDepthRange(Layer::World),
+        options.reversedZ,
+        [this](VkCommandBuffer drawCmd, const std::vector<std::uint32_t>& objects) { drawObjects(drawCmd, objects); }};
+    transparentPass->record(cmd, inputs);
   }
 
   void recordResolve(VkCommandBuffer cmd, const ShadeMask& mask, bool afterTransparent) {
@@ -893,7 +861,7 @@ struct DeferredRenderer::Impl {
     passes.push_back({"lighting",
                       [this, mask, frameShadows](VkCommandBuffer cmd) { recordLighting(cmd, mask, *frameShadows); },
                       S3D_COUNT_LIGHTING});
-    const bool withTransparent = !transparentOrder.empty();
+    const bool withTransparent = transparentPass->hasObjects();
     if (withTransparent && masked && maskedGBufferWritesEveryPixel())  // keeps the transparent pass within the mask
       passes.push_back({"mask-depth", [this, mask](VkCommandBuffer cmd) {
                           vk::transition(cmd, depth, kComputeSampled, vk::kDepthAttachment);
@@ -901,8 +869,7 @@ struct DeferredRenderer::Impl {
                           vk::transition(cmd, depth, vk::kDepthAttachment, kComputeSampled);
                         }});
     if (withTransparent) {
-      std::vector<std::uint32_t> backToFront = transparentBackToFront(view);
-      passes.push_back({"transparent", [this, backToFront](VkCommandBuffer cmd) { recordTransparent(cmd, backToFront); }});
+      passes.push_back({"transparent", [this, view](VkCommandBuffer cmd) { recordTransparent(cmd, view); }});
     }
     if (!resolveInLighting())
       passes.push_back({"resolve",
@@ -1041,8 +1008,9 @@ std::vector<std::uint8_t> DeferredRenderer::readFirstPersonMask() {
 std::vector<std::uint8_t> DeferredRenderer::readTransparentMask() {
   const Impl& r = *impl_;
   std::vector<std::uint8_t> mask(std::size_t(r.outputWidth) * r.outputHeight, 0);
-  if (r.transparentOrder.empty()) return mask;  // the transparent pass did not run
-  std::vector<std::byte> bytes = vk::readbackImage(impl_->context, impl_->transparentCoverage, vk::kColorAttachment);
+  if (!r.transparentPass->hasObjects()) return mask;  // the transparent pass did not run
+  std::vector<std::byte> bytes = vk::readbackImage(impl_->context, r.transparentPass->coverage(),
+                                                   r.transparentPass->coverageState());
   // With supersampling, an output pixel is transparent where any of its samples is.
   for (std::uint32_t y = 0; y < r.height; ++y)
     for (std::uint32_t x = 0; x < r.width; ++x)

@@ -97,6 +97,15 @@ struct RendererOptions {
                  // whose raster side is a small part of the chip pays per byte a fragment writes)
   };
   GBufferShading gbufferShading = GBufferShading::Automatic;
+  // How transparent objects are blended over the lit image (the images agree to half-float rounding and the
+  // rare pixel centre on a triangle edge).
+  enum class TransparentCompositing {
+    Automatic,  // Compute on GPUs, Raster on CPU devices: measured the faster on each (docs/RESULTS.md)
+    Raster,     // a blended raster pass: only covered fragments are shaded (cheap on a CPU rasterizer)
+    Compute,    // a compute pass per object over the tiles its bounds cover (a GPU whose raster side is a small
+                // part of the chip pays per byte a blended fragment reads and writes)
+  };
+  TransparentCompositing transparentCompositing = TransparentCompositing::Automatic;
 };
 
 // "auto", "raster", "visibility"; and back (nullopt for any other name).

@@ -126,6 +126,19 @@ struct ResolveConstants {
   int padding0;
 };
 
+// Push constants of the transparent pass (transparent.comp), one dispatch per transparent object, farthest
+// first: the object's triangles composited over the lit HDR image in the render tiles its bounds cover.
+struct TransparentConstants {
+  uvec4 tileRect;         // xy: the object's first render tile, zw: one past its last
+  vec2 depthRange;        // the world layer's viewport depth range (Listing 4.3): min, max device depth
+  uint objectIndex;
+  uint triangleCount;
+  uint reversedZ;         // 1: nearer surfaces have greater device depth
+  uint initializesCoverage;  // 1: the dispatch runs over every tile (else over tileRect) and writes all coverage
+  uint padding0;
+  uint padding1;
+};
+
 // Whether a light can reach a tile (the lighting pass's culling, tested against brute force in C++): its
 // sphere (centre in the world layer's view space, radius) must overlap the view-depth range of the tile's
 // surface points and, when sidePlanes, the wedge between the rays through the tile's edges (ndcRect: x0, y0,
