@@ -208,19 +208,18 @@ TEST_F(MaskedRenderTest, OnlyRasterShadingAddsADepthOnlyPassForTheOcclusion) {
 class MaskedSceneTest : public test::VulkanTest,
                         public ::testing::WithParamInterface<std::tuple<std::string, RendererOptions::GBufferShading>> {};
 
-TEST_P(MaskedSceneTest, MaskedPixelsEqualTheUnmaskedRender) {
-  Scene scene = makeBuiltInScene(std::get<0>(GetParam()));
+void expectMaskedPixelsEqualTheUnmaskedRender(vk::Context& context, const std::string& sceneName,
+                                              const RendererOptions& options) {
+  Scene scene = makeBuiltInScene(sceneName);
   scene.camera = cameraForFrame(scene, 0);
-  RendererOptions options;
-  options.gbufferShading = std::get<1>(GetParam());
-  DeferredRenderer renderer(context(), kWidth, kHeight, options);
+  DeferredRenderer renderer(context, kWidth, kHeight, options);
   renderer.setScene(scene);
   const ViewMatrices view = centerViewMatrices(scene, float(kWidth) / float(kHeight));
   renderer.render(view);
   const ImageRGBA8 fullColor = renderer.readDisplayColor();
   const DepthImage fullDepth = renderer.readLinearDepth();
   const std::vector<std::uint32_t> values = scatteredMask(kWidth, kHeight, 0.2, 11);
-  const vk::Image mask = uploadMask(context(), kWidth, kHeight, values);
+  const vk::Image mask = uploadMask(context, kWidth, kHeight, values);
   renderer.render(view, {&mask});
   const ImageRGBA8 color = renderer.readDisplayColor();
   const DepthImage depth = renderer.readLinearDepth();
@@ -236,6 +235,71 @@ TEST_P(MaskedSceneTest, MaskedPixelsEqualTheUnmaskedRender) {
         EXPECT_NEAR(*depth.at(x, y), expected, 1e-5f * expected) << "(" << x << ", " << y << ")";
     }
   EXPECT_LE(worst, 1);
+}
+
+
+TEST_P(MaskedSceneTest, MaskedPixelsEqualTheUnmaskedRender) {
+  RendererOptions options;
+  options.gbufferShading = std::get<1>(GetParam());
+  expectMaskedPixelsEqualTheUnmaskedRender(context(), std::get<0>(GetParam()), options);
+}
+
+// The compute transparent pass (a GPU's) reads the shade mask itself instead of a depth fill before it; same
+// tolerance as above.
+TEST_F(MaskedRenderTest, TheComputeTransparentPassKeepsTheMaskedGlassPixels) {
+  RendererOptions options;
+  options.gbufferShading = RendererOptions::GBufferShading::Visibility;
+  options.transparentCompositing = RendererOptions::TransparentCompositing::Compute;
+  expectMaskedPixelsEqualTheUnmaskedRender(context(), "glass", options);
+}
+
+// The compute transparent pass composites nothing outside the mask: the transparent coverage (the metrics' region)
+// is zero there and, in the mask, what the unmasked render gives. Exact: the same pass on the same inputs.
+TEST_F(MaskedRenderTest, TheComputeTransparentPassCompositesOnlyTheMaskedPixels) {
+  Scene scene = makeBuiltInScene("glass");
+  scene.camera = cameraForFrame(scene, 0);
+  RendererOptions options;
+  options.gbufferShading = RendererOptions::GBufferShading::Visibility;
+  options.transparentCompositing = RendererOptions::TransparentCompositing::Compute;
+  DeferredRenderer renderer(context(), kWidth, kHeight, options);
+  renderer.setScene(scene);
+  const ViewMatrices view = centerViewMatrices(scene, float(kWidth) / float(kHeight));
+  renderer.render(view);
+  const std::vector<std::uint8_t> full = renderer.readTransparentMask();
+  const std::vector<std::uint32_t> values = scatteredMask(kWidth, kHeight, 0.2, 11);
+  const vk::Image mask = uploadMask(context(), kWidth, kHeight, values);
+  renderer.render(view, {&mask});
+  const std::vector<std::uint8_t> masked = renderer.readTransparentMask();
+  ASSERT_EQ(masked.size(), values.size());
+  std::size_t coveredOutside = 0, coveredInside = 0;
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    if (values[i] == 0) {
+      coveredOutside += masked[i] != 0 ? 1 : 0;
+    } else {
+      EXPECT_EQ(masked[i], full[i]) << "pixel " << i;
+      coveredInside += masked[i] != 0 ? 1 : 0;
+    }
+  }
+  EXPECT_EQ(coveredOutside, 0u);
+  EXPECT_GT(coveredInside, 0u);  // the mask does meet the panes
+}
+
+// Under visibility shading the masked G-buffer writes every pixel's depth, so a raster transparent pass needs the
+// mask's depth fill before it ("mask-depth"); the compute pass skips unshaded pixels and needs none.
+TEST_F(MaskedRenderTest, OnlyARasterTransparentPassNeedsTheMaskDepthFill) {
+  Scene scene = makeBuiltInScene("glass");
+  scene.camera = cameraForFrame(scene, 0);
+  const vk::Image mask = uploadMask(context(), kWidth, kHeight, scatteredMask(kWidth, kHeight, 0.05, 7));
+  for (auto [compositing, fill] : {std::pair{RendererOptions::TransparentCompositing::Compute, false},
+                                   std::pair{RendererOptions::TransparentCompositing::Raster, true}}) {
+    RendererOptions options;
+    options.gbufferShading = RendererOptions::GBufferShading::Visibility;
+    options.transparentCompositing = compositing;
+    DeferredRenderer renderer(context(), kWidth, kHeight, options);
+    renderer.setScene(scene);
+    const ViewMatrices view = centerViewMatrices(scene, float(kWidth) / float(kHeight));
+    EXPECT_EQ(hasPass(renderer.render(view, {&mask}), "mask-depth"), fill) << (fill ? "raster" : "compute");
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(BuiltInScenes, MaskedSceneTest,

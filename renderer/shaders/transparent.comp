@@ -27,6 +27,7 @@ layout(binding = 6, rgba16f) uniform image2D hdrColor;
 layout(binding = 7, rgba8) uniform image2D coverage;  // red: 1 - prod(1 - opacity) of the layers over the pixel
 layout(binding = 8) uniform sampler2D baseColor;  // sRGB format: read as linear; white 1x1 when untextured
 layout(binding = 9) uniform sampler2D normalMap;  // flat 1x1 when the object has none
+layout(binding = 10, r32ui) uniform readonly uimage2D shadeMask;  // output size; read only when pass.masked
 layout(push_constant) uniform Push { TransparentConstants pass; };
 
 shared vec4 clip0[CHUNK], clip1[CHUNK], clip2[CHUNK];
@@ -73,6 +74,8 @@ void main() {
   uvec2 tile = (pass.initializesCoverage != 0u ? uvec2(0u) : pass.tileRect.xy) + gl_WorkGroupID.xy;
   ivec2 pixel = ivec2(tile * S3D_TILE_SIZE + gl_LocalInvocationID.xy);
   bool onScreen = all(lessThan(pixel, ivec2(frame.screen.xy)));
+  // A masked render composites only the shaded pixels: the rest of the image is not lit and not used.
+  bool shaded = onScreen && (pass.masked == 0u || imageLoad(shadeMask, pixel / int(frame.options.x)).r >= frame.tiles.z);
   bool inRect = all(greaterThanEqual(tile, pass.tileRect.xy)) && all(lessThan(tile, pass.tileRect.zw));
   vec2 ndc = (vec2(pixel) + 0.5) * frame.screen.zw * 2.0 - 1.0;
   float opaqueDepth = onScreen && inRect ? texelFetch(deviceDepth, pixel, 0).r : 0.0;
@@ -102,7 +105,7 @@ void main() {
     overlapsTile[local] = tileOverlap ? 1u : 0u;
     barrier();
     uint count = min(uint(CHUNK), pass.triangleCount - chunk);
-    for (uint i = 0u; onScreen && i < count; ++i) {
+    for (uint i = 0u; shaded && i < count; ++i) {
       if (overlapsTile[i] == 0u) continue;
       vec4 c0 = clip0[i], c1 = clip1[i], c2 = clip2[i];
       // The surface point b0 c0 + b1 c1 + b2 c2 (b summing to 1) that projects to the pixel centre.

@@ -74,7 +74,7 @@ TransparentPass::TransparentPass(vk::Context& context, std::uint32_t width, std:
   const VkDescriptorSetLayoutBinding bindings[] = {
       computeBinding(0, ubo),     computeBinding(1, ssbo),    computeBinding(2, ssbo),    computeBinding(3, ssbo),
       computeBinding(4, ssbo),    computeBinding(5, sampled), computeBinding(6, storage), computeBinding(7, storage),
-      computeBinding(8, sampled), computeBinding(9, sampled)};
+      computeBinding(8, sampled), computeBinding(9, sampled), computeBinding(10, storage)};
   layout_ = vk::createPushDescriptorLayout(context_, bindings, sizeof(gpu::TransparentConstants), VK_SHADER_STAGE_COMPUTE_BIT);
   pipeline_ = vk::createComputePipeline(context_, layout_.layout, spirv_transparent_comp);
   nearest_ = createNearestClampSampler(context_);
@@ -156,6 +156,7 @@ void TransparentPass::recordCompute(VkCommandBuffer cmd, const Inputs& in) {
   VkDescriptorImageInfo depthInfo{nearest_, in.depth.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
   VkDescriptorImageInfo hdrInfo{VK_NULL_HANDLE, in.hdr.view, VK_IMAGE_LAYOUT_GENERAL};
   VkDescriptorImageInfo coverageInfo{VK_NULL_HANDLE, coverage_.view, VK_IMAGE_LAYOUT_GENERAL};
+  VkDescriptorImageInfo maskInfo{VK_NULL_HANDLE, in.shadeMask, VK_IMAGE_LAYOUT_GENERAL};
   const glm::uvec2 tiles(tilesFor(width_), tilesFor(height_));
   for (std::size_t i = 0; i < sorted_.size(); ++i) {
     const Object& object = objects_[sorted_[i].second];
@@ -166,6 +167,7 @@ void TransparentPass::recordCompute(VkCommandBuffer cmd, const Inputs& in) {
     constants.triangleCount = object.triangleCount;
     constants.reversedZ = in.reversedZ ? 1u : 0u;
     constants.initializesCoverage = i == 0 ? 1u : 0u;  // the farthest object's dispatch covers the whole image
+    constants.masked = in.masked ? 1u : 0u;
     const glm::uvec2 groups = i == 0 ? tiles : glm::uvec2(constants.tileRect.z - constants.tileRect.x,
                                                           constants.tileRect.w - constants.tileRect.y);
     if (groups.x == 0 || groups.y == 0) continue;  // off screen
@@ -180,10 +182,11 @@ void TransparentPass::recordCompute(VkCommandBuffer cmd, const Inputs& in) {
         vk::uniformBufferWrite(2, &indexInfo),   vk::uniformBufferWrite(3, &vertexInfo),
         vk::uniformBufferWrite(4, &surfaceInfo), vk::sampledImageWrite(5, &depthInfo),
         vk::storageImageWrite(6, &hdrInfo),      vk::storageImageWrite(7, &coverageInfo),
-        vk::sampledImageWrite(8, &baseColorInfo), vk::sampledImageWrite(9, &normalMapInfo)};
+        vk::sampledImageWrite(8, &baseColorInfo), vk::sampledImageWrite(9, &normalMapInfo),
+        vk::storageImageWrite(10, &maskInfo)};
     for (std::uint32_t b : {1u, 2u, 3u, 4u}) writes[b].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
     for (std::uint32_t b : {5u, 8u, 9u}) writes[b].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-    context_.cmdPushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_.layout, 0, 10, writes);
+    context_.cmdPushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_.layout, 0, 11, writes);
     vkCmdPushConstants(cmd, layout_.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(constants), &constants);
     vkCmdDispatch(cmd, groups.x, groups.y, 1);
   }

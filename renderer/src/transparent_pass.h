@@ -57,6 +57,10 @@ class TransparentPass {
     glm::mat4 worldViewProjection;  // the world layer's, for each object's screen rectangle
     glm::vec2 depthRange;           // the world layer's viewport depth range
     bool reversedZ;
+    // A masked render's shade mask (R32_UINT, output size, GENERAL; a placeholder otherwise) and whether to
+    // composite only the pixels it shades: compute only (a raster pass relies on the depth fill before it).
+    VkImageView shadeMask;
+    bool masked;
     // The raster implementation: draws these objects in this order with the bound pipeline.
     std::function<void(VkCommandBuffer, const std::vector<std::uint32_t>& objects)> drawObjects;
   };

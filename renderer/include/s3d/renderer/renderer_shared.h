@@ -135,7 +135,7 @@ struct TransparentConstants {
   uint triangleCount;
   uint reversedZ;         // 1: nearer surfaces have greater device depth
   uint initializesCoverage;  // 1: the dispatch runs over every tile (else over tileRect) and writes all coverage
-  uint padding0;
+  uint masked;               // 1: only pixels the shade mask shades are composited (frame.tiles.z, as the lighting)
   uint padding1;
 };
 
