@@ -23,17 +23,23 @@ fs::path scratch(const std::string& name) {
   return fs::temp_directory_path() / ("s3d_budget_" + name + "_" + std::to_string(::getpid()));
 }
 
-class BudgetJobs : public test::VulkanTest {};
-
-TEST_F(BudgetJobs, ACourtyardFrameOnAMonitorFitsTheOneDegreeRule) {
-  // With the defaults (2 % separation) the sky alone, at 4 % of the width, breaks the 2.05 % budget of a 27-inch monitor.
+// A small single-frame render under the 1-degree rule on `display`, writing nothing.
+RenderJobOptions oneDegreeRender(const std::string& name, const std::string& display) {
   RenderJobOptions options;
   options.width = 128;
   options.height = 72;
   options.outputs = {};
-  options.outputFolder = scratch("render");
-  options.display = comfort::builtInDisplayProfile("monitor27");
+  options.outputFolder = scratch(name);
+  options.display = comfort::builtInDisplayProfile(display);
   options.disparityBudget = comfort::DisparityBudgetRule::OneDegree;
+  return options;
+}
+
+class BudgetJobs : public test::VulkanTest {};
+
+TEST_F(BudgetJobs, ACourtyardFrameOnAMonitorFitsTheOneDegreeRule) {
+  // With the defaults (2 % separation) the sky alone, at 4 % of the width, breaks the 2.05 % budget of a 27-inch monitor.
+  const RenderJobOptions options = oneDegreeRender("render", "monitor27");
   const RenderReport report = runRenderJob(context(), options);
   EXPECT_EQ(report.comfort.parallax.shareBeyondOneDegree, 0.0);
   EXPECT_GE(report.budget.choice.usedShare, 0.8);
@@ -48,13 +54,7 @@ TEST_F(BudgetJobs, ACourtyardFrameOnAMonitorFitsTheOneDegreeRule) {
 TEST_F(BudgetJobs, TheBudgetInPixelsIsInTheOutputEyesPixelsWithAGuardBand) {
   // The reduction runs over the wider rendered frame; report.json's budgetPx and bulkShare are in the output eyes'
   // pixels, as the comfort report's parallax (the rendered width would shrink the bulk share by 128 / 136).
-  RenderJobOptions options;
-  options.width = 128;
-  options.height = 72;
-  options.outputs = {};
-  options.outputFolder = scratch("budget_px");
-  options.display = comfort::builtInDisplayProfile("tv55");
-  options.disparityBudget = comfort::DisparityBudgetRule::OneDegree;
+  const RenderJobOptions options = oneDegreeRender("budget_px", "tv55");
   const RenderReport report = runRenderJob(context(), options);
   ASSERT_GT(report.guardBandColumns, 0u);
   const nlohmann::json json = toJson(report).at("disparityBudget");
@@ -122,14 +122,9 @@ fs::path flatWallScene(const fs::path& folder) {
 }
 
 RenderJobOptions flatWallOptions(const std::string& name) {
-  RenderJobOptions options;
-  options.width = 128;
-  options.height = 72;
+  RenderJobOptions options = oneDegreeRender(name, "tv55");
   options.outputs = {"report.json"};
   options.scene = flatWallScene(scratch(name + "_scene")).string();
-  options.outputFolder = scratch(name);
-  options.display = comfort::builtInDisplayProfile("tv55");
-  options.disparityBudget = comfort::DisparityBudgetRule::OneDegree;
   return options;
 }
 
