@@ -16,6 +16,7 @@
 #include <utility>
 
 #include "bench_text.h"
+#include "s3d/app/interleaved_timing.h"
 #include "s3d/app/render_job.h"
 #include "s3d/io/image_io.h"
 #include "s3d/renderer/scene.h"
@@ -263,7 +264,6 @@ using detail::timeFrames;
 struct EyeReferences {
   ImageRGBA8 leftColor, rightColor;
   DepthImage leftDepth, rightDepth;
-  std::optional<double> leftEyeGpuMs;
 };
 
 void runSweep(vk::Context& context, const BenchOptions& options, const ValidatedBench& bench, BenchReport& report) {
@@ -290,16 +290,15 @@ void runSweep(vk::Context& context, const BenchOptions& options, const Validated
                                      {options.stereo.weaponDepthOffset, options.stereo.weaponDepthScale});
     (void)deferred.render(center);  // warm-up: lavapipe compiles pipelines at first use
 
-    // The reference eyes depend on maxSeparation: rendered once per separation, before the center frames so the
-    // renderer's images hold the center view when the stereo settings run on them.
+    // The reference eyes depend on maxSeparation: rendered once per separation, before the center view that the
+    // stereo settings run on. Untimed here: their time is measured below, interleaved with the center frame's.
     std::vector<EyeReferences> references;
     for (float separation : bench.separations) {
       progress(sceneName + " references sep " + percentText(separation) + "%");
       stereo::StereoParameters parameters = options.stereo;
       parameters.maxSeparation = separation;
       EyeReferences eyes;
-      eyes.leftEyeGpuMs =
-          timeFrames(deferred, referenceEyeView(scene, center, stereo::Eye::Left, parameters), options.repeat).first;
+      (void)deferred.render(referenceEyeView(scene, center, stereo::Eye::Left, parameters));
       eyes.leftColor = deferred.readDisplayColor();
       eyes.leftDepth = deferred.readLinearDepth();
       (void)deferred.render(referenceEyeView(scene, center, stereo::Eye::Right, parameters));
@@ -307,36 +306,47 @@ void runSweep(vk::Context& context, const BenchOptions& options, const Validated
       eyes.rightDepth = deferred.readLinearDepth();
       references.push_back(std::move(eyes));
     }
-    const std::optional<double> centerFrameGpuMs = timeFrames(deferred, center, options.repeat).first;
-    // The disparity budget's depth reduction of the same frame (one untimed run, then `repeat` timed).
-    const stereo::DepthRangePass reduction(context);
-    std::vector<double> reductionRuns;
-    for (int run = 0; run <= options.repeat; ++run)
-      if (const std::optional<double> ms = stereo::reduceDepthRangeTimed(context, reduction, deferred.linearDepth()).gpuMs;
-          ms && run > 0)
-        reductionRuns.push_back(*ms);
-    const std::optional<double> depthReductionGpuMs = stereo::medianMs(reductionRuns);
+    (void)deferred.render(center);
     const DepthImage centerDepth = deferred.readLinearDepth();
-    // The nonlinear depth-to-parallax mapping of that frame (in place: each separation renders the center again).
+    const stereo::DepthRangePass reduction(context);
     const stereo::DisparityMapPass mapping(context);
     const gpu::DisparityMapConstants map =
         stereo::nonlinearDisparityMap(stereo::reduceDepthRangeReference(centerDepth), options.stereo.zeroParallaxDistance);
-    std::vector<double> mappingRuns;
-    for (int run = 0; run <= options.repeat; ++run)
-      if (const std::optional<double> ms = stereo::mapDepthTimed(context, mapping, deferred.linearDepth(), map);
-          ms && run > 0)
-        mappingRuns.push_back(*ms);
-    const std::optional<double> disparityMapGpuMs = stereo::medianMs(mappingRuns);
+    std::optional<double> depthReductionGpuMs, disparityMapGpuMs;
 
     for (std::size_t s = 0; s < bench.separations.size(); ++s) {
       stereo::StereoParameters parameters = options.stereo;
       parameters.maxSeparation = bench.separations[s];
-      parameters.edgeCrop = -1.0f;  // the crop follows the separation, as in `s3d render`
       const EyeReferences& eyes = references[s];
-      // Every setting is timed back to back before any error is computed, right after rendering the center
-      // view for 500 ms: seconds of host-side metrics let the GPU drop its clocks, and neither tiny stereo
-      // dispatches nor 50 ms of frames brought them back (an H100 timed the pass 4x slow).
-      (void)timeFrames(deferred, center, 1);  // leaves the center view in displayColor / linearDepth
+      // Every GPU time of this separation comes from one warm stretch right before the settings run on the GPU:
+      // the reference eye and the center frame in back-to-back pairs after 500 ms of untimed pairs, then the
+      // settings back to back before any error is computed. Seconds of host-side work (metrics, readbacks, a
+      // scene upload) let the GPU drop its clocks; an eye timed on its own first read twice the center frame's
+      // time on an H200, and 50 ms of frames did not bring an H100's clocks back for the stereo pass.
+      const renderer::ViewMatrices leftEye = referenceEyeView(scene, center, stereo::Eye::Left, parameters);
+      const InterleavedTiming frames = timeInterleaved(
+          {[&] { return deferred.render(leftEye).totalGpuMs; }, [&] { return deferred.render(center).totalGpuMs; }},
+          options.repeat, std::chrono::milliseconds(500));  // ends on the center frame: the settings' input
+      const std::optional<double> referenceEyeGpuMs = frames.medians[0];
+      const std::optional<double> centerFrameGpuMs = frames.medians[1];
+      if (s == 0) {
+        // The disparity budget's depth reduction and the nonlinear depth-to-parallax mapping of the center frame
+        // (one untimed run each, then `repeat` timed). The mapping rewrites linearDepth in place, so the center
+        // view is rendered again after it.
+        std::vector<double> reductionRuns, mappingRuns;
+        for (int run = 0; run <= options.repeat; ++run)
+          if (const std::optional<double> ms = stereo::reduceDepthRangeTimed(context, reduction, deferred.linearDepth()).gpuMs;
+              ms && run > 0)
+            reductionRuns.push_back(*ms);
+        for (int run = 0; run <= options.repeat; ++run)
+          if (const std::optional<double> ms = stereo::mapDepthTimed(context, mapping, deferred.linearDepth(), map);
+              ms && run > 0)
+            mappingRuns.push_back(*ms);
+        depthReductionGpuMs = stereo::medianMs(reductionRuns);
+        disparityMapGpuMs = stereo::medianMs(mappingRuns);
+        (void)deferred.render(center);
+      }
+      parameters.edgeCrop = -1.0f;  // the crop follows the separation, as in `s3d render`
       std::vector<stereo::SynthesisResult> syntheses;
       std::vector<std::optional<HybridSynthesis>> hybrids;
       for (const MethodSetting& setting : bench.settings) {
@@ -373,7 +383,7 @@ void runSweep(vk::Context& context, const BenchOptions& options, const Validated
         row.centerFrameGpuMs = centerFrameGpuMs;
         row.depthReductionGpuMs = depthReductionGpuMs;
         row.disparityMapGpuMs = disparityMapGpuMs;
-        row.referenceEyeGpuMs = eyes.leftEyeGpuMs;
+        row.referenceEyeGpuMs = referenceEyeGpuMs;
         row.left = compareEye(synthesis.eyes.left, eyes.leftColor, row.cropColumns, halo, unseenLeft);
         row.right = compareEye(synthesis.eyes.right, eyes.rightColor, row.cropColumns, halo, unseenRight);
         row.filledLeft = synthesis.filledLeft;
@@ -562,7 +572,8 @@ std::string sweepMarkdown(const BenchReport& report) {
   md << "Every time is the median of " << report.repeat
      << " GPU timestamp measurements of warm runs; per scene and separation the center view and both reference eyes\n"
         "are rendered once and every setting runs on that center view. Stereo: both eyes in one dispatch; eye: one\n"
-        "two-pass reference eye (the left). PSNR left / right in dB against the two-pass reference over the cropped\n"
+        "two-pass reference eye (the left), timed in back-to-back pairs with the center frame right before the\n"
+        "settings. PSNR left / right in dB against the two-pass reference over the cropped\n"
         "area (maxSeparation columns each side) and its regions: halo (within maxSeparation of a center-view depth\n"
         "edge), disocclusion (reference pixels the center view never saw), rest (neither); the last columns are\n"
         "over the whole cropped area (SSIM: 11x11 Gaussian window on luma, Wang et al. 2004).\n";
