@@ -319,14 +319,14 @@ void runSweep(vk::Context& context, const BenchOptions& options, const Validated
       parameters.maxSeparation = bench.separations[s];
       const EyeReferences& eyes = references[s];
       // Every GPU time of this separation comes from one warm stretch right before the settings run on the GPU:
-      // the reference eye and the center frame in back-to-back pairs after 500 ms of untimed pairs, then the
-      // settings back to back before any error is computed. Seconds of host-side work (metrics, readbacks, a
-      // scene upload) let the GPU drop its clocks; an eye timed on its own first read twice the center frame's
-      // time on an H200, and 50 ms of frames did not bring an H100's clocks back for the stereo pass.
+      // the reference eye and the center frame in back-to-back pairs once untimed pairs stop getting faster, then
+      // the settings back to back before any error is computed. Seconds of host-side work (metrics, readbacks, a
+      // scene upload) let the GPU drop its clocks, and bringing them back takes most of a second of frames: an
+      // eye timed in the first 500 ms read twice the center frame timed after it on an H200.
       const renderer::ViewMatrices leftEye = referenceEyeView(scene, center, stereo::Eye::Left, parameters);
       const InterleavedTiming frames = timeInterleaved(
           {[&] { return deferred.render(leftEye).totalGpuMs; }, [&] { return deferred.render(center).totalGpuMs; }},
-          options.repeat, std::chrono::milliseconds(500));  // ends on the center frame: the settings' input
+          options.repeat);  // ends on the center frame: the settings' input
       const std::optional<double> referenceEyeGpuMs = frames.medians[0];
       const std::optional<double> centerFrameGpuMs = frames.medians[1];
       if (s == 0) {
@@ -384,6 +384,8 @@ void runSweep(vk::Context& context, const BenchOptions& options, const Validated
         row.depthReductionGpuMs = depthReductionGpuMs;
         row.disparityMapGpuMs = disparityMapGpuMs;
         row.referenceEyeGpuMs = referenceEyeGpuMs;
+        row.frameWarmUpMs = frames.warmUpMs;
+        row.frameWarmUpSettled = frames.settled;
         row.left = compareEye(synthesis.eyes.left, eyes.leftColor, row.cropColumns, halo, unseenLeft);
         row.right = compareEye(synthesis.eyes.right, eyes.rightColor, row.cropColumns, halo, unseenRight);
         row.filledLeft = synthesis.filledLeft;
@@ -578,6 +580,26 @@ std::string sweepMarkdown(const BenchReport& report) {
         "edge), disocclusion (reference pixels the center view never saw), rest (neither); the last columns are\n"
         "over the whole cropped area (SSIM: 11x11 Gaussian window on luma, Wang et al. 2004).\n";
 
+  if (!report.rows.empty()) {
+    auto [shortest, longest] = std::minmax_element(report.rows.begin(), report.rows.end(), [](const BenchRow& a, const BenchRow& b) {
+      return a.frameWarmUpMs < b.frameWarmUpMs;
+    });
+    md << "The eye and the center frame were timed after " << format("%.0f", shortest->frameWarmUpMs) << "-"
+       << format("%.0f", longest->frameWarmUpMs)
+       << " ms of untimed pairs per scene and separation (until their times stopped falling: a GPU idle during the\n"
+          "metrics lowers its clocks).";
+    std::vector<std::string> unsettled;
+    for (const BenchRow& row : report.rows) {
+      const std::string scope = row.scene + " sep " + percentText(row.maxSeparation) + "%";
+      if (!row.frameWarmUpSettled && std::find(unsettled.begin(), unsettled.end(), scope) == unsettled.end())
+        unsettled.push_back(scope);
+    }
+    if (!unsettled.empty())
+      md << " **Not settled** (still getting faster when the warm-up's limit ended it): " << joinedNames(unsettled, ", ")
+         << ".";
+    md << "\n";
+  }
+
   std::vector<std::string> scenes;
   for (const BenchRow& row : report.rows)
     if (std::find(scenes.begin(), scenes.end(), row.scene) == scenes.end()) scenes.push_back(row.scene);
@@ -750,6 +772,7 @@ nlohmann::json rowJson(const BenchRow& row) {
             {"depthReduction", optionalMs(row.depthReductionGpuMs)},
             {"disparityMapping", optionalMs(row.disparityMapGpuMs)},
             {"referenceEye", optionalMs(row.referenceEyeGpuMs)}}},
+          {"frameWarmUp", {{"hostMs", finiteOrNull(std::round(row.frameWarmUpMs))}, {"settled", row.frameWarmUpSettled}}},
           {"ratios",
            {{"stereoPassToCenterFrame", optionalMs(ratio(row.stereoGpuMs, row.centerFrameGpuMs))},
             {"stereoPassToReferenceEye", optionalMs(ratio(row.stereoGpuMs, row.referenceEyeGpuMs))}}},

@@ -102,6 +102,10 @@ struct BenchRow {
   std::optional<double> depthReductionGpuMs;  // the disparity budget's depth reduction of that frame (median)
   std::optional<double> disparityMapGpuMs;    // the nonlinear mapping of that frame's depth in place (median)
   std::optional<double> referenceEyeGpuMs;  // the left reference eye at this separation (median)
+  // The untimed eye and center frames before those two were timed (interleaved_timing.h): host milliseconds,
+  // and whether their times had stopped falling (false: the warm-up's maximum ended it).
+  double frameWarmUpMs = 0.0;
+  bool frameWarmUpSettled = false;
   EyeError left{};
   EyeError right{};
   std::uint64_t filledLeft = 0;  // iterative: disoccluded pixels filled from the background side

@@ -1,8 +1,9 @@
 #pragma once
 // Timing GPU frames that a bench compares with each other (a reference eye and the center frame): every series
-// is measured in the same rounds, one frame of each back to back, right after untimed warm-up rounds. Series
-// timed one after another, the first right after host-side work and a scene upload, read unlike each other on
-// an H200 (the first up to twice the second) although both frames cost the same.
+// is measured in the same rounds, one frame of each back to back, right after untimed warm-up rounds that last
+// until the frames stop getting faster. A GPU idle through seconds of host-side work drops its clocks (an H200
+// fell to 345 MHz from 1980 MHz within a second) and takes most of a second of frames to raise them again; a
+// series timed during that ramp read up to twice its time.
 #include <chrono>
 #include <functional>
 #include <optional>
@@ -14,15 +15,31 @@ namespace s3d::app {
 // gives no timestamps).
 using TimedFrame = std::function<std::optional<double>()>;
 
+// When warm-up ends: untimed rounds (at least one) for at least `minimum` and `minRounds`, then until a `window` of rounds is
+// no faster than the window before it (medians of the rounds' summed GPU times, within `tolerance`), or
+// `maximum` has passed. Windows count from the first round, so a GPU already at its clocks stops at `minimum`.
+struct WarmUp {
+  std::chrono::milliseconds minimum{500};
+  std::chrono::milliseconds window{250};  // longer than the steps a GPU takes its clocks up in (about 200 ms)
+  double tolerance = 0.02;
+  std::chrono::milliseconds maximum{4000};
+  int minRounds = 1;
+};
+
 struct InterleavedTiming {
   std::vector<std::optional<double>> medians;  // per series: the median of its timed frames (empty when none had a time)
   int warmUpRounds = 0;                        // untimed rounds run first
+  double warmUpMs = 0.0;                       // how long they took (host clock)
+  bool settled = false;                        // the last warm-up window was no faster than the one before
 };
 
-// Rounds of every frame in `series` order: untimed rounds until `warmUp` has passed and at least `minWarmUpRounds`
-// ran, then `repeat` timed rounds. The last frame run is the last series' (a renderer's outputs hold its view).
-// Throws std::invalid_argument for no series, an empty frame, repeat < 1 or minWarmUpRounds < 0.
-InterleavedTiming timeInterleaved(const std::vector<TimedFrame>& series, int repeat, std::chrono::milliseconds warmUp,
-                                  int minWarmUpRounds = 1);
+using SteadyNow = std::function<std::chrono::steady_clock::time_point()>;
+
+// Rounds of every frame in `series` order: warm-up rounds as `warmUp` says, then `repeat` timed rounds. The last
+// frame run is the last series' (a renderer's outputs hold its view). `now` is the clock warm-up is measured on.
+// Throws std::invalid_argument for no series, an empty frame, repeat < 1, minRounds < 0, a window that is not
+// positive, a tolerance outside [0, 1) or a maximum below the minimum.
+InterleavedTiming timeInterleaved(const std::vector<TimedFrame>& series, int repeat, const WarmUp& warmUp = {},
+                                  const SteadyNow& now = std::chrono::steady_clock::now);
 
 }  // namespace s3d::app
