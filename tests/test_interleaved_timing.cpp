@@ -98,6 +98,22 @@ TEST(InterleavedTiming, KeepsWarmingUpWhileTheFramesGetFaster) {
   EXPECT_EQ(timing.medians[0], 10.0);
 }
 
+TEST(InterleavedTiming, KeepsWarmingUpWhileTheFramesGetSlower) {
+  // A GPU lowering its clocks at a low duty cycle and raising them again: 10 ms frames for 500 ms, 30 ms frames
+  // for 300 ms, then 10 ms frames. A window slower than the one before does not end the warm-up.
+  std::vector<double> dip(50, 10.0);
+  dip.insert(dip.end(), 10, 30.0);
+  dip.push_back(10.0);
+  std::vector<std::string> log;
+  FakeClock clock;
+  WarmUp warmUp;
+  warmUp.minimum = milliseconds(750);
+  const InterleavedTiming timing = timeInterleaved({loggedFrame(log, clock, "frame", dip)}, 5, warmUp, clock.now());
+  EXPECT_TRUE(timing.settled);
+  EXPECT_GE(timing.warmUpMs, 800.0 + 250.0);  // past the dip, then a window of fast frames at least
+  EXPECT_EQ(timing.medians[0], 10.0);
+}
+
 TEST(InterleavedTiming, GivesUpSettlingAtTheMaximum) {
   // Frames 0.5 % faster each (over 2 % faster each window) without end: warm-up stops at the maximum and says
   // it did not settle.

@@ -313,44 +313,48 @@ void runSweep(vk::Context& context, const BenchOptions& options, const Validated
     const gpu::DisparityMapConstants map =
         stereo::nonlinearDisparityMap(stereo::reduceDepthRangeReference(centerDepth), options.stereo.zeroParallaxDistance);
     std::optional<double> depthReductionGpuMs, disparityMapGpuMs;
+    // A CPU device has no clocks to bring back, and other load on the machine would keep its frame times from
+    // settling: its warm-up is the minimum.
+    WarmUp frameWarmUp;
+    if (context.isCpuDevice()) frameWarmUp.maximum = frameWarmUp.minimum;
 
     for (std::size_t s = 0; s < bench.separations.size(); ++s) {
       stereo::StereoParameters parameters = options.stereo;
       parameters.maxSeparation = bench.separations[s];
       const EyeReferences& eyes = references[s];
-      // Every GPU time of this separation comes from one warm stretch right before the settings run on the GPU:
-      // the reference eye and the center frame in back-to-back pairs once untimed pairs stop getting faster, then
-      // the settings back to back before any error is computed. Seconds of host-side work (metrics, readbacks, a
-      // scene upload) let the GPU drop its clocks, and bringing them back takes most of a second of frames: an
-      // eye timed in the first 500 ms read twice the center frame timed after it on an H200.
       const renderer::ViewMatrices leftEye = referenceEyeView(scene, center, stereo::Eye::Left, parameters);
-      const InterleavedTiming frames = timeInterleaved(
-          {[&] { return deferred.render(leftEye).totalGpuMs; }, [&] { return deferred.render(center).totalGpuMs; }},
-          options.repeat);  // ends on the center frame: the settings' input
-      const std::optional<double> referenceEyeGpuMs = frames.medians[0];
-      const std::optional<double> centerFrameGpuMs = frames.medians[1];
-      if (s == 0) {
-        // The disparity budget's depth reduction and the nonlinear depth-to-parallax mapping of the center frame
-        // (one untimed run each, then `repeat` timed). The mapping rewrites linearDepth in place, so the center
-        // view is rendered again after it.
-        std::vector<double> reductionRuns, mappingRuns;
-        for (int run = 0; run <= options.repeat; ++run)
-          if (const std::optional<double> ms = stereo::reduceDepthRangeTimed(context, reduction, deferred.linearDepth()).gpuMs;
-              ms && run > 0)
-            reductionRuns.push_back(*ms);
-        for (int run = 0; run <= options.repeat; ++run)
-          if (const std::optional<double> ms = stereo::mapDepthTimed(context, mapping, deferred.linearDepth(), map);
-              ms && run > 0)
-            mappingRuns.push_back(*ms);
-        depthReductionGpuMs = stereo::medianMs(reductionRuns);
-        disparityMapGpuMs = stereo::medianMs(mappingRuns);
-        (void)deferred.render(center);
-      }
       parameters.edgeCrop = -1.0f;  // the crop follows the separation, as in `s3d render`
+      // Each setting is timed in one warm stretch with the frames it is compared with: the reference eye and the
+      // center frame in back-to-back pairs once untimed pairs run at a steady speed, then the setting, before any
+      // error is computed. A GPU lowers its clocks through host-side work (metrics, readbacks, a scene upload)
+      // and at a low duty cycle, and takes most of a second of frames to raise them: on an H200 an eye timed in
+      // the first 500 ms of a scene read twice the center frame timed after it, and a hybrid setting late in a
+      // scene's sweep read 1.8x its time.
+      std::vector<InterleavedTiming> frames;
       std::vector<stereo::SynthesisResult> syntheses;
       std::vector<std::optional<HybridSynthesis>> hybrids;
       for (const MethodSetting& setting : bench.settings) {
         progress(sceneName + " " + setting.name() + " sep " + percentText(parameters.maxSeparation) + "%");
+        frames.push_back(timeInterleaved(
+            {[&] { return deferred.render(leftEye).totalGpuMs; }, [&] { return deferred.render(center).totalGpuMs; }},
+            options.repeat, frameWarmUp));  // ends on the center frame: the setting's input
+        if (s == 0 && frames.size() == 1) {
+          // The disparity budget's depth reduction and the nonlinear depth-to-parallax mapping of the center
+          // frame (one untimed run each, then `repeat` timed). The mapping rewrites linearDepth in place, so the
+          // center view is rendered again after it.
+          std::vector<double> reductionRuns, mappingRuns;
+          for (int run = 0; run <= options.repeat; ++run)
+            if (const std::optional<double> ms = stereo::reduceDepthRangeTimed(context, reduction, deferred.linearDepth()).gpuMs;
+                ms && run > 0)
+              reductionRuns.push_back(*ms);
+          for (int run = 0; run <= options.repeat; ++run)
+            if (const std::optional<double> ms = stereo::mapDepthTimed(context, mapping, deferred.linearDepth(), map);
+                ms && run > 0)
+              mappingRuns.push_back(*ms);
+          depthReductionGpuMs = stereo::medianMs(reductionRuns);
+          disparityMapGpuMs = stereo::medianMs(mappingRuns);
+          (void)deferred.render(center);
+        }
         if (setting.method == stereo::StereoMethod::Hybrid) {
           HybridSynthesis hybrid = synthesizeHybrid(context, deferred, *eyeRenderer,
                                                     scene, center, setting.applyTo(parameters), options.repeat);
@@ -380,12 +384,12 @@ void runSweep(vk::Context& context, const BenchOptions& options, const Validated
             std::uint32_t(stereo::makeStereoConstants(methodParameters, options.width, options.height).cropBegin);
         row.stereoGpuMs = synthesis.gpuMs;
         row.stereoGpuMsRuns = synthesis.gpuMsRuns;
-        row.centerFrameGpuMs = centerFrameGpuMs;
+        row.referenceEyeGpuMs = frames[i].medians[0];
+        row.centerFrameGpuMs = frames[i].medians[1];
         row.depthReductionGpuMs = depthReductionGpuMs;
         row.disparityMapGpuMs = disparityMapGpuMs;
-        row.referenceEyeGpuMs = referenceEyeGpuMs;
-        row.frameWarmUpMs = frames.warmUpMs;
-        row.frameWarmUpSettled = frames.settled;
+        row.frameWarmUpMs = frames[i].warmUpMs;
+        row.frameWarmUpSettled = frames[i].settled;
         row.left = compareEye(synthesis.eyes.left, eyes.leftColor, row.cropColumns, halo, unseenLeft);
         row.right = compareEye(synthesis.eyes.right, eyes.rightColor, row.cropColumns, halo, unseenRight);
         row.filledLeft = synthesis.filledLeft;
@@ -574,8 +578,8 @@ std::string sweepMarkdown(const BenchReport& report) {
   md << "Every time is the median of " << report.repeat
      << " GPU timestamp measurements of warm runs; per scene and separation the center view and both reference eyes\n"
         "are rendered once and every setting runs on that center view. Stereo: both eyes in one dispatch; eye: one\n"
-        "two-pass reference eye (the left), timed in back-to-back pairs with the center frame right before the\n"
-        "settings. PSNR left / right in dB against the two-pass reference over the cropped\n"
+        "two-pass reference eye (the left), timed in back-to-back pairs with the center frame right before each\n"
+        "setting. PSNR left / right in dB against the two-pass reference over the cropped\n"
         "area (maxSeparation columns each side) and its regions: halo (within maxSeparation of a center-view depth\n"
         "edge), disocclusion (reference pixels the center view never saw), rest (neither); the last columns are\n"
         "over the whole cropped area (SSIM: 11x11 Gaussian window on luma, Wang et al. 2004).\n";
@@ -584,20 +588,21 @@ std::string sweepMarkdown(const BenchReport& report) {
     auto [shortest, longest] = std::minmax_element(report.rows.begin(), report.rows.end(), [](const BenchRow& a, const BenchRow& b) {
       return a.frameWarmUpMs < b.frameWarmUpMs;
     });
+    const bool cpuDevice = report.deviceKind == "cpu";
     md << "The eye and the center frame were timed after " << format("%.0f", shortest->frameWarmUpMs) << "-"
-       << format("%.0f", longest->frameWarmUpMs)
-       << " ms of untimed pairs per scene and separation (until their times stopped falling: a GPU idle during the\n"
-          "metrics lowers its clocks).";
+       << format("%.0f", longest->frameWarmUpMs) << " ms of untimed pairs before each setting"
+       << (cpuDevice ? " (a CPU device: the minimum).\n"
+                     : " (until they ran at a steady speed: a GPU lowers its clocks\nwhile the host computes metrics).");
     std::vector<std::string> unsettled;
     for (const BenchRow& row : report.rows) {
+      if (cpuDevice) break;
       const std::string scope = row.scene + " sep " + percentText(row.maxSeparation) + "%";
-      if (!row.frameWarmUpSettled && std::find(unsettled.begin(), unsettled.end(), scope) == unsettled.end())
-        unsettled.push_back(scope);
+      if (!row.frameWarmUpSettled) unsettled.push_back(scope + " " + row.setting.name());
     }
     if (!unsettled.empty())
-      md << " **Not settled** (still getting faster when the warm-up's limit ended it): " << joinedNames(unsettled, ", ")
+      md << " **Not settled** (still changing speed when the warm-up's limit ended it): " << joinedNames(unsettled, ", ")
          << ".";
-    md << "\n";
+    if (!cpuDevice) md << "\n";
   }
 
   std::vector<std::string> scenes;

@@ -1,5 +1,6 @@
 #include "s3d/app/interleaved_timing.h"
 
+#include <cmath>
 #include <stdexcept>
 
 #include "s3d/stereo/synthesis.h"
@@ -47,7 +48,7 @@ InterleavedTiming timeInterleaved(const std::vector<TimedFrame>& series, int rep
     const std::optional<double> windowMs = stereo::medianMs(std::move(window));
     window.clear();
     while (windowEnd <= at) windowEnd += warmUp.window;
-    timing.settled = windowMs && previousWindowMs && *windowMs >= *previousWindowMs * (1.0 - warmUp.tolerance);
+    timing.settled = windowMs && previousWindowMs && std::abs(*windowMs - *previousWindowMs) <= *previousWindowMs * warmUp.tolerance;
     previousWindowMs = windowMs;
     if (pastMinimum && (timing.settled || timesMissing)) break;  // without timestamps nothing can settle
   }

@@ -1,7 +1,7 @@
 #pragma once
 // Timing GPU frames that a bench compares with each other (a reference eye and the center frame): every series
 // is measured in the same rounds, one frame of each back to back, right after untimed warm-up rounds that last
-// until the frames stop getting faster. A GPU idle through seconds of host-side work drops its clocks (an H200
+// until the frames run at a steady speed. A GPU idle through seconds of host-side work drops its clocks (an H200
 // fell to 345 MHz from 1980 MHz within a second) and takes most of a second of frames to raise them again; a
 // series timed during that ramp read up to twice its time.
 #include <chrono>
@@ -15,9 +15,10 @@ namespace s3d::app {
 // gives no timestamps).
 using TimedFrame = std::function<std::optional<double>()>;
 
-// When warm-up ends: untimed rounds (at least one) for at least `minimum` and `minRounds`, then until a `window` of rounds is
-// no faster than the window before it (medians of the rounds' summed GPU times, within `tolerance`), or
-// `maximum` has passed. Windows count from the first round, so a GPU already at its clocks stops at `minimum`.
+// When warm-up ends: untimed rounds (at least one) for at least `minimum` and `minRounds`, then until a `window`
+// of rounds runs as fast as the window before it (medians of the rounds' summed GPU times, within `tolerance`
+// either way: clocks rising or falling go on), or `maximum` has passed. Windows count from the first round, so a
+// GPU already at steady clocks stops at `minimum`.
 struct WarmUp {
   std::chrono::milliseconds minimum{500};
   std::chrono::milliseconds window{250};  // longer than the steps a GPU takes its clocks up in (about 200 ms)
@@ -30,7 +31,7 @@ struct InterleavedTiming {
   std::vector<std::optional<double>> medians;  // per series: the median of its timed frames (empty when none had a time)
   int warmUpRounds = 0;                        // untimed rounds run first
   double warmUpMs = 0.0;                       // how long they took (host clock)
-  bool settled = false;                        // the last warm-up window was no faster than the one before
+  bool settled = false;                        // the last warm-up window ran as fast as the one before
 };
 
 using SteadyNow = std::function<std::chrono::steady_clock::time_point()>;
