@@ -16,6 +16,7 @@
 #include <utility>
 
 #include "bench_text.h"
+#include "s3d/app/interleaved_timing.h"
 #include "s3d/app/render_job.h"
 #include "s3d/io/image_io.h"
 #include "s3d/renderer/scene.h"
@@ -263,7 +264,6 @@ using detail::timeFrames;
 struct EyeReferences {
   ImageRGBA8 leftColor, rightColor;
   DepthImage leftDepth, rightDepth;
-  std::optional<double> leftEyeGpuMs;
 };
 
 void runSweep(vk::Context& context, const BenchOptions& options, const ValidatedBench& bench, BenchReport& report) {
@@ -290,16 +290,15 @@ void runSweep(vk::Context& context, const BenchOptions& options, const Validated
                                      {options.stereo.weaponDepthOffset, options.stereo.weaponDepthScale});
     (void)deferred.render(center);  // warm-up: lavapipe compiles pipelines at first use
 
-    // The reference eyes depend on maxSeparation: rendered once per separation, before the center frames so the
-    // renderer's images hold the center view when the stereo settings run on them.
+    // The reference eyes depend on maxSeparation: rendered once per separation, before the center view that the
+    // stereo settings run on. Untimed here: their time is measured below, interleaved with the center frame's.
     std::vector<EyeReferences> references;
     for (float separation : bench.separations) {
       progress(sceneName + " references sep " + percentText(separation) + "%");
       stereo::StereoParameters parameters = options.stereo;
       parameters.maxSeparation = separation;
       EyeReferences eyes;
-      eyes.leftEyeGpuMs =
-          timeFrames(deferred, referenceEyeView(scene, center, stereo::Eye::Left, parameters), options.repeat).first;
+      (void)deferred.render(referenceEyeView(scene, center, stereo::Eye::Left, parameters));
       eyes.leftColor = deferred.readDisplayColor();
       eyes.leftDepth = deferred.readLinearDepth();
       (void)deferred.render(referenceEyeView(scene, center, stereo::Eye::Right, parameters));
@@ -307,40 +306,55 @@ void runSweep(vk::Context& context, const BenchOptions& options, const Validated
       eyes.rightDepth = deferred.readLinearDepth();
       references.push_back(std::move(eyes));
     }
-    const std::optional<double> centerFrameGpuMs = timeFrames(deferred, center, options.repeat).first;
-    // The disparity budget's depth reduction of the same frame (one untimed run, then `repeat` timed).
-    const stereo::DepthRangePass reduction(context);
-    std::vector<double> reductionRuns;
-    for (int run = 0; run <= options.repeat; ++run)
-      if (const std::optional<double> ms = stereo::reduceDepthRangeTimed(context, reduction, deferred.linearDepth()).gpuMs;
-          ms && run > 0)
-        reductionRuns.push_back(*ms);
-    const std::optional<double> depthReductionGpuMs = stereo::medianMs(reductionRuns);
+    (void)deferred.render(center);
     const DepthImage centerDepth = deferred.readLinearDepth();
-    // The nonlinear depth-to-parallax mapping of that frame (in place: each separation renders the center again).
+    const stereo::DepthRangePass reduction(context);
     const stereo::DisparityMapPass mapping(context);
     const gpu::DisparityMapConstants map =
         stereo::nonlinearDisparityMap(stereo::reduceDepthRangeReference(centerDepth), options.stereo.zeroParallaxDistance);
-    std::vector<double> mappingRuns;
-    for (int run = 0; run <= options.repeat; ++run)
-      if (const std::optional<double> ms = stereo::mapDepthTimed(context, mapping, deferred.linearDepth(), map);
-          ms && run > 0)
-        mappingRuns.push_back(*ms);
-    const std::optional<double> disparityMapGpuMs = stereo::medianMs(mappingRuns);
+    std::optional<double> depthReductionGpuMs, disparityMapGpuMs;
+    // A CPU device has no clocks to bring back, and other load on the machine would keep its frame times from
+    // settling: its warm-up is the minimum.
+    WarmUp frameWarmUp;
+    if (context.isCpuDevice()) frameWarmUp.maximum = frameWarmUp.minimum;
 
     for (std::size_t s = 0; s < bench.separations.size(); ++s) {
       stereo::StereoParameters parameters = options.stereo;
       parameters.maxSeparation = bench.separations[s];
-      parameters.edgeCrop = -1.0f;  // the crop follows the separation, as in `s3d render`
       const EyeReferences& eyes = references[s];
-      // Every setting is timed back to back before any error is computed, right after rendering the center
-      // view for 500 ms: seconds of host-side metrics let the GPU drop its clocks, and neither tiny stereo
-      // dispatches nor 50 ms of frames brought them back (an H100 timed the pass 4x slow).
-      (void)timeFrames(deferred, center, 1);  // leaves the center view in displayColor / linearDepth
+      const renderer::ViewMatrices leftEye = referenceEyeView(scene, center, stereo::Eye::Left, parameters);
+      parameters.edgeCrop = -1.0f;  // the crop follows the separation, as in `s3d render`
+      // Each setting is timed in one warm stretch with the frames it is compared with: the reference eye and the
+      // center frame in back-to-back pairs once untimed pairs run at a steady speed, then the setting, before any
+      // error is computed. A GPU lowers its clocks through host-side work (metrics, readbacks, a scene upload)
+      // and at a low duty cycle, and takes most of a second of frames to raise them: on an H200 an eye timed in
+      // the first 500 ms of a scene read twice the center frame timed after it, and a hybrid setting late in a
+      // scene's sweep read 1.8x its time.
+      std::vector<InterleavedTiming> frames;
       std::vector<stereo::SynthesisResult> syntheses;
       std::vector<std::optional<HybridSynthesis>> hybrids;
       for (const MethodSetting& setting : bench.settings) {
         progress(sceneName + " " + setting.name() + " sep " + percentText(parameters.maxSeparation) + "%");
+        frames.push_back(timeInterleaved(
+            {[&] { return deferred.render(leftEye).totalGpuMs; }, [&] { return deferred.render(center).totalGpuMs; }},
+            options.repeat, frameWarmUp));  // ends on the center frame: the setting's input
+        if (s == 0 && frames.size() == 1) {
+          // The disparity budget's depth reduction and the nonlinear depth-to-parallax mapping of the center
+          // frame (one untimed run each, then `repeat` timed). The mapping rewrites linearDepth in place, so the
+          // center view is rendered again after it.
+          std::vector<double> reductionRuns, mappingRuns;
+          for (int run = 0; run <= options.repeat; ++run)
+            if (const std::optional<double> ms = stereo::reduceDepthRangeTimed(context, reduction, deferred.linearDepth()).gpuMs;
+                ms && run > 0)
+              reductionRuns.push_back(*ms);
+          for (int run = 0; run <= options.repeat; ++run)
+            if (const std::optional<double> ms = stereo::mapDepthTimed(context, mapping, deferred.linearDepth(), map);
+                ms && run > 0)
+              mappingRuns.push_back(*ms);
+          depthReductionGpuMs = stereo::medianMs(reductionRuns);
+          disparityMapGpuMs = stereo::medianMs(mappingRuns);
+          (void)deferred.render(center);
+        }
         if (setting.method == stereo::StereoMethod::Hybrid) {
           HybridSynthesis hybrid = synthesizeHybrid(context, deferred, *eyeRenderer,
                                                     scene, center, setting.applyTo(parameters), options.repeat);
@@ -370,10 +384,12 @@ void runSweep(vk::Context& context, const BenchOptions& options, const Validated
             std::uint32_t(stereo::makeStereoConstants(methodParameters, options.width, options.height).cropBegin);
         row.stereoGpuMs = synthesis.gpuMs;
         row.stereoGpuMsRuns = synthesis.gpuMsRuns;
-        row.centerFrameGpuMs = centerFrameGpuMs;
+        row.referenceEyeGpuMs = frames[i].medians[0];
+        row.centerFrameGpuMs = frames[i].medians[1];
         row.depthReductionGpuMs = depthReductionGpuMs;
         row.disparityMapGpuMs = disparityMapGpuMs;
-        row.referenceEyeGpuMs = eyes.leftEyeGpuMs;
+        row.frameWarmUpMs = frames[i].warmUpMs;
+        row.frameWarmUpSettled = frames[i].settled;
         row.left = compareEye(synthesis.eyes.left, eyes.leftColor, row.cropColumns, halo, unseenLeft);
         row.right = compareEye(synthesis.eyes.right, eyes.rightColor, row.cropColumns, halo, unseenRight);
         row.filledLeft = synthesis.filledLeft;
@@ -562,10 +578,32 @@ std::string sweepMarkdown(const BenchReport& report) {
   md << "Every time is the median of " << report.repeat
      << " GPU timestamp measurements of warm runs; per scene and separation the center view and both reference eyes\n"
         "are rendered once and every setting runs on that center view. Stereo: both eyes in one dispatch; eye: one\n"
-        "two-pass reference eye (the left). PSNR left / right in dB against the two-pass reference over the cropped\n"
+        "two-pass reference eye (the left), timed in back-to-back pairs with the center frame right before each\n"
+        "setting. PSNR left / right in dB against the two-pass reference over the cropped\n"
         "area (maxSeparation columns each side) and its regions: halo (within maxSeparation of a center-view depth\n"
         "edge), disocclusion (reference pixels the center view never saw), rest (neither); the last columns are\n"
         "over the whole cropped area (SSIM: 11x11 Gaussian window on luma, Wang et al. 2004).\n";
+
+  if (!report.rows.empty()) {
+    auto [shortest, longest] = std::minmax_element(report.rows.begin(), report.rows.end(), [](const BenchRow& a, const BenchRow& b) {
+      return a.frameWarmUpMs < b.frameWarmUpMs;
+    });
+    const bool cpuDevice = report.deviceKind == "cpu";
+    md << "The eye and the center frame were timed after " << format("%.0f", shortest->frameWarmUpMs) << "-"
+       << format("%.0f", longest->frameWarmUpMs) << " ms of untimed pairs before each setting"
+       << (cpuDevice ? " (a CPU device: the minimum).\n"
+                     : " (until they ran at a steady speed: a GPU lowers its clocks\nwhile the host computes metrics).");
+    std::vector<std::string> unsettled;
+    for (const BenchRow& row : report.rows) {
+      if (cpuDevice) break;
+      const std::string scope = row.scene + " sep " + percentText(row.maxSeparation) + "%";
+      if (!row.frameWarmUpSettled) unsettled.push_back(scope + " " + row.setting.name());
+    }
+    if (!unsettled.empty())
+      md << " **Not settled** (still changing speed when the warm-up's limit ended it): " << joinedNames(unsettled, ", ")
+         << ".";
+    if (!cpuDevice) md << "\n";
+  }
 
   std::vector<std::string> scenes;
   for (const BenchRow& row : report.rows)
@@ -739,6 +777,7 @@ nlohmann::json rowJson(const BenchRow& row) {
             {"depthReduction", optionalMs(row.depthReductionGpuMs)},
             {"disparityMapping", optionalMs(row.disparityMapGpuMs)},
             {"referenceEye", optionalMs(row.referenceEyeGpuMs)}}},
+          {"frameWarmUp", {{"hostMs", finiteOrNull(std::round(row.frameWarmUpMs))}, {"settled", row.frameWarmUpSettled}}},
           {"ratios",
            {{"stereoPassToCenterFrame", optionalMs(ratio(row.stereoGpuMs, row.centerFrameGpuMs))},
             {"stereoPassToReferenceEye", optionalMs(ratio(row.stereoGpuMs, row.referenceEyeGpuMs))}}},

@@ -98,10 +98,15 @@ struct BenchRow {
   std::uint32_t cropColumns = 0;
   std::optional<double> stereoGpuMs;     // median over the repeats; empty without timestamps
   std::vector<double> stereoGpuMsRuns;
-  std::optional<double> centerFrameGpuMs;  // the scene's center frame (median)
+  std::optional<double> centerFrameGpuMs;  // the scene's center frame (median, timed with the eye before this setting)
   std::optional<double> depthReductionGpuMs;  // the disparity budget's depth reduction of that frame (median)
   std::optional<double> disparityMapGpuMs;    // the nonlinear mapping of that frame's depth in place (median)
-  std::optional<double> referenceEyeGpuMs;  // the left reference eye at this separation (median)
+  std::optional<double> referenceEyeGpuMs;  // the left reference eye at this separation (median, likewise)
+  // The untimed eye and center frames run right before those two and this setting were timed
+  // (interleaved_timing.h): host milliseconds, and whether they had reached a steady speed (false: the warm-up's
+  // maximum ended it; always on a CPU device, whose warm-up is its minimum).
+  double frameWarmUpMs = 0.0;
+  bool frameWarmUpSettled = false;
   EyeError left{};
   EyeError right{};
   std::uint64_t filledLeft = 0;  // iterative: disoccluded pixels filled from the background side
