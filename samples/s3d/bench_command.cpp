@@ -42,7 +42,7 @@ class BenchCommand final : public Command {
         .add_option("--methods", options_.methods,
                     "Comma-separated method settings: seed, forward, search-N (N taps), iterative-K (K iterations), hybrid-B "
                     "(hybrid budget B in [0, 1], search-4 base); search, iterative and hybrid alone sweep taps 4,8,16, "
-                    "iterations 2,4,6,8 and budgets 0,0.02,0.05,0.1,0.2,0.5,1; a /pixel or /tiles suffix (search-4/pixel) "
+                    "iterations 2,4,6,8 and budgets 0,0.02,0.05,0.1,0.2,0.5,0.6,1; a /pixel or /tiles suffix (search-4/pixel) "
                     "forces the per-pixel or the row-tiled kernel (default: the library's choice, " +
                         std::string(stereo::kernelName(stereo::StereoParameters{}.kernel)) +
                         ": per pixel, as row tiles measured slower)")

@@ -39,7 +39,7 @@ using namespace bench_text;
 // The default sweeps of "search" and "iterative" in --methods.
 constexpr int kDefaultSweepTaps[] = {4, 8, 16};
 constexpr int kDefaultSweepIterations[] = {2, 4, 6, 8};
-constexpr float kDefaultSweepBudgets[] = {0.0f, 0.02f, 0.05f, 0.1f, 0.2f, 0.5f, 1.0f};
+constexpr float kDefaultSweepBudgets[] = {0.0f, 0.02f, 0.05f, 0.1f, 0.2f, 0.5f, 0.6f, 1.0f};
 constexpr int kMaxRepeat = 1000;
 
 // The speed and error targets the bench judges.

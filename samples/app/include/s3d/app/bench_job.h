@@ -36,7 +36,7 @@ struct MethodSetting {
 
 // Parses --methods items: "seed", "search-N" (N in [1, S3D_STEREO_MAX_TAPS]), "iterative-K" (K in [1, 16]),
 // "hybrid-B" (B in [0, 1]), and "search" / "iterative" / "hybrid" for their default sweeps (taps 4, 8, 16;
-// iterations 2, 4, 6, 8; budgets 0, 0.02, 0.05, 0.1, 0.2, 0.5, 1), each but hybrid optionally followed by
+// iterations 2, 4, 6, 8; budgets 0, 0.02, 0.05, 0.1, 0.2, 0.5, 0.6, 1), each but hybrid optionally followed by
 // "/pixel" or "/tiles" to force a kernel (stereo::StereoKernel; none: Auto). Repeats are dropped.
 // Throws std::invalid_argument naming the bad item and the accepted forms.
 std::vector<MethodSetting> parseMethodSettings(const std::vector<std::string>& items);
