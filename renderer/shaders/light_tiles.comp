@@ -1,14 +1,19 @@
 #version 450
-// Lighting, first step (section 4.3.3's light culling): per tile of S3D_TILE_SIZE^2 render pixels (one thread
-// each), the view-depth range of its shaded surface points culls the point and spot lights (sphereTouchesTile,
-// one thread per light) into the tile's light mask; then the tile joins the list of its class: sky only,
-// surfaces no light reaches, or surfaces with lights. The lighting pass shades each list with a variant compiled
-// for it, so a tile pays for the work it needs only, on a CPU rasterizer too (which runs every branch). A masked
-// render classifies the listed tiles by their shade-mask pixels.
+// Lighting, first step (section 4.3.3's light culling): per tile of S3D_TILE_SIZE^2 render pixels, the
+// view-depth range of its shaded surface points culls the point and spot lights (sphereTouchesTile) into the
+// tile's light mask; then the tile joins the list of its class: sky only, surfaces no light reaches, or surfaces
+// with lights. The lighting pass shades each list with a variant compiled for it, so a tile pays for the work it
+// needs only, on a CPU rasterizer too (which runs every branch). A masked render classifies the listed tiles by
+// their shade-mask pixels.
 #extension GL_GOOGLE_include_directive : require
 #include "s3d/renderer/renderer_shared.h"
 
-layout(local_size_x = S3D_TILE_SIZE, local_size_y = S3D_TILE_SIZE) in;
+// Each thread reduces a row strip of kStripPixels pixels in registers before one shared atomic per strip: a CPU
+// rasterizer pays per invocation and runs shared atomics lane by lane, so fewer invocations and atomics are
+// cheaper there, and a GPU does the same work with fewer atomics.
+const uint kStripPixels = 4u;
+const uint kThreads = S3D_TILE_SIZE * S3D_TILE_SIZE / kStripPixels;
+layout(local_size_x = S3D_TILE_SIZE / kStripPixels, local_size_y = S3D_TILE_SIZE) in;
 layout(binding = 0) uniform Frame { FrameConstants frame; };
 layout(binding = 1) uniform sampler2D deviceDepth;
 layout(std430, binding = 2) readonly buffer Lights { LightConstants lights[]; };
@@ -32,31 +37,52 @@ void main() {
   if (local < S3D_LIGHT_MASK_WORDS) tileLightBits[local] = 0u;
   barrier();
 
-  // 1. The view-depth range of the tile's shaded surface points (in the world layer's view space).
+  // 1. The view-depth range of the tile's shaded surface points (in the world layer's view space). A world-layer
+  // point's view depth is its linear depth; a first-person point's is its world position's depth in the world
+  // layer's view, so only those pixels (rare: the weapon) reconstruct the position, in a loop over them.
   ivec2 tile = maskedTile();
-  ivec2 pixel = tile * S3D_TILE_SIZE + ivec2(gl_LocalInvocationID.xy);
-  bool shaded = all(lessThan(pixel, ivec2(frame.screen.xy))) && shadeMasked(pixel);
-  float device = shaded ? texelFetch(deviceDepth, pixel, 0).r : 0.0;
-  if (shaded && !isSkyDeviceDepth(frame.linearDepth, device)) {
-    Surface surface = surfaceAt(pixel, device);
-    bool firstPerson = surface.layer == S3D_LAYER_FIRST_PERSON;
-    float viewDepth = firstPerson ? dot(frame.worldViewDepth, vec4(surface.position, 1.0)) : surface.linearDepth;
-    atomicMin(tileNearest, orderedBits(viewDepth));
-    atomicMax(tileFarthest, orderedBits(viewDepth));
-    if (firstPerson) atomicOr(tileHasFirstPerson, 1u);
+  ivec2 strip = tile * S3D_TILE_SIZE + ivec2(gl_LocalInvocationID.x * kStripPixels, gl_LocalInvocationID.y);
+  uint nearest = 0xffffffffu, farthest = 0u, firstPersonPixels = 0u;
+  for (uint i = 0u; i < kStripPixels; ++i) {
+    ivec2 pixel = strip + ivec2(i, 0);
+    bool shaded = all(lessThan(pixel, ivec2(frame.screen.xy))) && shadeMasked(pixel);
+    float device = shaded ? texelFetch(deviceDepth, pixel, 0).r : 0.0;
+    if (shaded && !isSkyDeviceDepth(frame.linearDepth, device)) {
+      if (isFirstPersonDeviceDepth(frame.linearDepth, device)) {
+        firstPersonPixels |= 1u << i;
+      } else {
+        uint bits = orderedBits(linearDepthFromDepthBuffer(frame.linearDepth, device));
+        nearest = min(nearest, bits);
+        farthest = max(farthest, bits);
+      }
+    }
   }
+  for (uint pixels = firstPersonPixels; pixels != 0u; pixels &= pixels - 1u) {
+    ivec2 pixel = strip + ivec2(findLSB(pixels), 0);
+    Surface surface = surfaceAt(pixel, texelFetch(deviceDepth, pixel, 0).r);
+    uint bits = orderedBits(dot(frame.worldViewDepth, vec4(surface.position, 1.0)));
+    nearest = min(nearest, bits);
+    farthest = max(farthest, bits);
+  }
+  if (nearest <= farthest) {
+    atomicMin(tileNearest, nearest);
+    atomicMax(tileFarthest, farthest);
+  }
+  if (firstPersonPixels != 0u) atomicOr(tileHasFirstPerson, 1u);
   barrier();
 
-  // 2. The lights whose sphere reaches that range within the tile's rays: one thread per light.
+  // 2. The lights whose sphere reaches that range within the tile's rays: each thread every kThreads-th light.
   bool surfaces = tileNearest <= tileFarthest;
-  if (local < lighting.lightCount && surfaces) {
+  if (surfaces) {
     vec2 depthRange = vec2(orderedFloat(tileNearest), orderedFloat(tileFarthest));
     vec2 lo = vec2(tile * S3D_TILE_SIZE) * frame.screen.zw * 2.0 - 1.0;
     vec2 hi = vec2(min((tile + 1) * S3D_TILE_SIZE, ivec2(frame.screen.xy))) * frame.screen.zw * 2.0 - 1.0;
-    LightConstants light = lights[local];
-    if (sphereTouchesTile(light.viewPosition.xyz, light.positionRadius.w, depthRange, vec4(lo, hi),
-                          frame.layers[S3D_LAYER_WORLD].projection, tileHasFirstPerson == 0u))
-      atomicOr(tileLightBits[local >> 5], 1u << (local & 31u));
+    for (uint index = local; index < lighting.lightCount; index += kThreads) {
+      LightConstants light = lights[index];
+      if (sphereTouchesTile(light.viewPosition.xyz, light.positionRadius.w, depthRange, vec4(lo, hi),
+                            frame.layers[S3D_LAYER_WORLD].projection, tileHasFirstPerson == 0u))
+        atomicOr(tileLightBits[index >> 5], 1u << (index & 31u));
+    }
   }
   barrier();
 
