@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -174,6 +175,41 @@ TEST_F(DeferredRendererTest, MoreObjectsThanTheGBufferCanIndexAreRejected) {
   scene.objects.assign(S3D_NO_OBJECT, scene.objects.front());
   DeferredRenderer renderer(context(), kWidth, kHeight);
   EXPECT_THROW(renderer.setScene(scene), std::invalid_argument);
+}
+
+// A tile's light list holds the lights that reach its surfaces in light order, wherever they stand in the light
+// buffer: four lights on the wall (one shadowed) among 196 small ones that float 1.5 m ahead, far in front of
+// the wall's depth range, so every tile culls those. The four end up at buffer positions up to 199 (every word of
+// the culling's mask, every round of its light loop) yet must light the wall bit for bit as they do alone, in the
+// same order (a fixed summation order).
+TEST_F(DeferredRendererTest, TheWallIsLitByTheLightsThatReachItWhereverTheyStandInTheLightBuffer) {
+  Scene alone = makeWallScene(5.0f, false);
+  const PointLight reaching[] = {{glm::vec3(-1.5f, -1.0f, -4.0f), glm::vec3(1.5f, 0.2f, 0.2f), 3.0f, true},
+                                 {glm::vec3(-0.5f, -1.5f, -4.2f), glm::vec3(0.2f, 1.5f, 0.2f), 2.5f},
+                                 {glm::vec3(0.6f, -1.2f, -4.1f), glm::vec3(0.2f, 0.2f, 1.5f), 3.0f},
+                                 {glm::vec3(1.6f, -0.8f, -4.3f), glm::vec3(1.0f, 1.0f, 0.2f), 2.0f}};
+  alone.pointLights.assign(std::begin(reaching), std::end(reaching));
+  Scene among = makeWallScene(5.0f, false);
+  for (int i = 0; i < 200; ++i) {
+    const int slot = i == 70 ? 1 : i == 140 ? 2 : i == 199 ? 3 : i == 0 ? 0 : -1;  // the shadowed one goes first anyway
+    if (slot >= 0) {
+      among.pointLights.push_back(reaching[slot]);
+    } else {
+      const glm::vec3 ahead(-0.4f + 0.05f * float(i % 16), -0.3f + 0.05f * float(i / 16), -1.5f);
+      among.pointLights.push_back({ahead, glm::vec3(1.0f), 0.2f});
+    }
+  }
+  const ViewMatrices view = centerViewMatrices(alone, float(kWidth) / float(kHeight));
+  DeferredRenderer renderer(context(), kWidth, kHeight);
+  renderer.setScene(alone);
+  renderer.render(view);
+  const ImageRGBA32F litAlone = renderer.readHdrColor();
+  renderer.setScene(among);
+  renderer.render(view);
+  EXPECT_EQ(renderer.readHdrColor().pixels, litAlone.pixels);
+  renderer.setScene(makeWallScene(5.0f, false));
+  renderer.render(view);
+  EXPECT_NE(renderer.readHdrColor().pixels, litAlone.pixels);  // the four lights do reach the wall
 }
 
 TEST_F(DeferredRendererTest, MoreThanTheMaximumOfLightsIsRejected) {

@@ -1,8 +1,8 @@
 #version 450
 // Lighting, first step (section 4.3.3's light culling): per tile of S3D_TILE_SIZE^2 render pixels, the
 // view-depth range of its shaded surface points culls the point and spot lights (sphereTouchesTile) into the
-// tile's light mask; then the tile joins the list of its class: sky only, surfaces no light reaches, or surfaces
-// with lights. The lighting pass shades each list with a variant compiled for it, so a tile pays for the work it
+// tile's light list (in light order: a fixed summation order); then the tile joins the list of its class: sky
+// only, surfaces no light reaches, or surfaces with lights. The lighting pass shades each list with a variant compiled for it, so a tile pays for the work it
 // needs only, on a CPU rasterizer too (which runs every branch). A masked render classifies the listed tiles by
 // their shade-mask pixels.
 #extension GL_GOOGLE_include_directive : require
@@ -25,7 +25,11 @@ layout(push_constant) uniform Push { LightingConstants lighting; };
 
 shared uint tileNearest, tileFarthest;  // view depths as order-preserving bits
 shared uint tileHasFirstPerson;
-shared uint tileLightBits[S3D_LIGHT_MASK_WORDS];
+shared uint tileLightBits[S3D_LIGHT_MASK_WORDS];       // culled-in lights, one bit each
+shared uint tileLightIndices[S3D_LIGHT_LIST_WORDS - 1];  // the same as a list (byte entries, as stored)
+
+// Bits [0, n) of a 32-bit word (n clamped to 0..32).
+uint bitsBelow(int n) { return n >= 32 ? 0xffffffffu : n <= 0 ? 0u : (1u << uint(n)) - 1u; }
 
 void main() {
   uint local = gl_LocalInvocationIndex;
@@ -35,6 +39,7 @@ void main() {
     tileHasFirstPerson = 0u;
   }
   if (local < S3D_LIGHT_MASK_WORDS) tileLightBits[local] = 0u;
+  for (uint w = local; w < S3D_LIGHT_LIST_WORDS - 1u; w += kThreads) tileLightIndices[w] = 0u;
   barrier();
 
   // 1. The view-depth range of the tile's shaded surface points (in the world layer's view space). A world-layer
@@ -86,12 +91,29 @@ void main() {
   }
   barrier();
 
-  // 3. The mask, and the tile into its class's list.
-  if (local < S3D_LIGHT_MASK_WORDS) tileEntries[tileLightMask(tile) + local] = tileLightBits[local];
+  // 3. The mask as a list: each culled-in light at its rank among them (light order, so the shadowed lights,
+  // which the light buffer holds first, come first), stored for the lighting pass's lit tiles.
+  uint count = 0u, shadowed = 0u;
+  for (uint w = 0u; w < S3D_LIGHT_MASK_WORDS; ++w) {
+    count += bitCount(tileLightBits[w]);
+    shadowed += bitCount(tileLightBits[w] & bitsBelow(int(lighting.shadowedLights) - int(w) * 32));
+  }
+  uint list = tileLightList(tile);
+  if (count > 0u) {
+    for (uint index = local; index < lighting.lightCount; index += kThreads) {
+      uint word = index >> 5, bit = 1u << (index & 31u);
+      uint rank = bitCount(tileLightBits[word] & (bit - 1u));
+      for (uint w = 0u; w < S3D_LIGHT_MASK_WORDS; ++w) rank += w < word ? bitCount(tileLightBits[w]) : 0u;
+      if ((tileLightBits[word] & bit) != 0u) atomicOr(tileLightIndices[rank >> 2], index << ((rank & 3u) * 8u));
+    }
+    barrier();
+    for (uint w = local; w < (count + 3u) / 4u; w += kThreads) tileEntries[list + 1u + w] = tileLightIndices[w];
+  }
+
+  // 4. The tile into its class's list.
   if (local != 0u) return;
-  bool lit = false;
-  for (uint w = 0u; w < S3D_LIGHT_MASK_WORDS; ++w) lit = lit || tileLightBits[w] != 0u;
-  uint tileClass = !surfaces ? S3D_TILE_SKY : lit ? S3D_TILE_LIT : S3D_TILE_UNLIT;
+  tileEntries[list] = count | (shadowed << 16);
+  uint tileClass = !surfaces ? S3D_TILE_SKY : count > 0u ? S3D_TILE_LIT : S3D_TILE_UNLIT;
   uint slot = atomicAdd(tileHeader.tileClassDispatch[tileClass].x, 1u);
   tileEntries[tileClassList(tileClass) + slot] = packTile(tile);
 }

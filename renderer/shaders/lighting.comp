@@ -1,5 +1,5 @@
 #version 450
-// Tiled deferred lighting (section 4.3.3), after light_tiles.comp culled each tile's lights into its light mask
+// Tiled deferred lighting (section 4.3.3), after light_tiles.comp culled each tile's lights into its light list
 // and listed the tile by class: per tile of S3D_TILE_SIZE^2 render pixels (one thread each), each pixel gets
 // hemisphere ambient x ambient occlusion (depth-aware upsample of the half-resolution image), the sun through
 // its cascaded shadow maps (the deferred shadow mask, fused here), the tile's local lights with their shadow
@@ -40,9 +40,6 @@ layout(constant_id = 4) const bool kResolveInPlace = false;
 layout(constant_id = 5) const bool kSkyTiles = false;
 layout(constant_id = 6) const bool kLitTiles = false;
 
-shared uint tileLightBits[S3D_LIGHT_MASK_WORDS];  // culling's result (light_tiles.comp), one bit per light
-shared uint tileLightCount, tileShadowedLightCount;
-shared uint tileLights[S3D_MAX_LIGHTS];  // the same lights as a list, in light order (a fixed summation order)
 
 // Sky at infinite distance: its colour depends on the view direction only.
 vec3 skyColor(ivec2 pixel) {
@@ -148,7 +145,7 @@ void addLight(LightConstants light, bool shadowed, vec3 position, vec3 normal, v
 
 // The lit colour of a surface pixel: ambient, sun and the tile's lights, accumulated as diffuse and specular
 // light (normalized Blinn-Phong), then albedo and Fresnel applied.
-vec3 shadeSurface(ivec2 pixel, Surface s) {
+vec3 shadeSurface(ivec2 pixel, Surface s, uint lightList) {
   vec4 normalAndGloss = texelFetch(normalGlossiness, pixel, 0);
   vec3 normal = normalize(normalAndGloss.xyz);
   float exponent = blinnPhongExponent(normalAndGloss.w);
@@ -170,12 +167,15 @@ vec3 shadeSurface(ivec2 pixel, Surface s) {
   // Loops over the tile's list, its shadowed lights first (a CPU rasterizer runs a loop body at least once
   // and both sides of every branch, so the lists are compact, unshadowed lights skip the shadow code and tiles
   // no light reaches have a variant without the loops).
-  if (kLitTiles && kLocalShadows)
-    for (uint n = 0u; n < tileShadowedLightCount; ++n)
-      addLight(lights[tileLights[n]], true, s.position, normal, toEye, exponent, diffuse, specular);
-  if (kLitTiles)
-    for (uint n = kLocalShadows ? tileShadowedLightCount : 0u; n < tileLightCount; ++n)
-      addLight(lights[tileLights[n]], false, s.position, normal, toEye, exponent, diffuse, specular);
+  if (kLitTiles) {
+    uint counts = tileEntries[lightList];  // lights, shadowed lights << 16
+    uint shadowedCount = counts >> 16;
+    if (kLocalShadows)
+      for (uint n = 0u; n < shadowedCount; ++n)
+        addLight(lights[listedLight(lightList, n)], true, s.position, normal, toEye, exponent, diffuse, specular);
+    for (uint n = kLocalShadows ? shadowedCount : 0u; n < (counts & 0xffffu); ++n)
+      addLight(lights[listedLight(lightList, n)], false, s.position, normal, toEye, exponent, diffuse, specular);
+  }
 
   uvec2 stored = texelFetch(material, pixel, 0).rg;
   vec3 f0 = objects[unpackObjectIndex(stored)].specular.rgb;
@@ -184,28 +184,10 @@ vec3 shadeSurface(ivec2 pixel, Surface s) {
 }
 
 void main() {
-  uint local = gl_LocalInvocationIndex;
   uint tileClass = kSkyTiles ? S3D_TILE_SKY : kLitTiles ? S3D_TILE_LIT : S3D_TILE_UNLIT;
   ivec2 tile = classTile(tileClass);
   ivec2 pixel = tile * S3D_TILE_SIZE + ivec2(gl_LocalInvocationID.xy);
   bool shaded = all(lessThan(pixel, ivec2(frame.screen.xy))) && shadeMasked(pixel);
-
-  // Lit tiles: the mask as a list, each culled-in light at its rank among them (a fixed summation order).
-  if (kLitTiles) {
-    if (local < S3D_LIGHT_MASK_WORDS) tileLightBits[local] = tileEntries[tileLightMask(tile) + local];
-    barrier();
-    if (local < S3D_MAX_LIGHTS) {
-      uint word = local >> 5, bit = 1u << (local & 31u), rank = bitCount(tileLightBits[word] & (bit - 1u));
-      for (uint w = 0u; w < S3D_LIGHT_MASK_WORDS; ++w) rank += w < word ? bitCount(tileLightBits[w]) : 0u;
-      if ((tileLightBits[word] & bit) != 0u) tileLights[rank] = local;
-      if (local == lighting.shadowedLights) tileShadowedLightCount = rank;  // the culled-in lights before it
-      if (local == S3D_MAX_LIGHTS - 1u) {
-        tileLightCount = rank + ((tileLightBits[word] & bit) != 0u ? 1u : 0u);
-        if (lighting.shadowedLights == S3D_MAX_LIGHTS) tileShadowedLightCount = tileLightCount;
-      }
-    }
-    barrier();
-  }
 
   if (!shaded) return;
   float device = texelFetch(deviceDepth, pixel, 0).r;
@@ -218,7 +200,7 @@ void main() {
     shadedColor = skyColor(pixel);
   } else {
     surface = surfaceAt(pixel, device);
-    shadedColor = sky ? skyColor(pixel) : shadeSurface(pixel, surface);
+    shadedColor = sky ? skyColor(pixel) : shadeSurface(pixel, surface, tileLightList(tile));
   }
   vec4 color = vec4(shadedColor, 1.0);
   if (kResolveInPlace) {

@@ -8,7 +8,7 @@ layout(constant_id = 1) const bool kCountShaded = false;
 layout(std430, binding = S3D_TILES_BINDING) buffer Tiles {
   TileHeader tileHeader;
   uint tileEntries[];  // ambient-region flags, masked tiles, ambient-region tiles, the lighting classes'
-                       // tiles (tileCount() each), the tiles' light masks (S3D_LIGHT_MASK_WORDS each)
+                       // tiles (tileCount() each), the tiles' light lists (S3D_LIGHT_LIST_WORDS each)
 };
 
 bool maskedRender() { return kMaskedRender; }
@@ -30,10 +30,12 @@ ivec2 classTile(uint tileClass) {
   uint packed = tileEntries[tileClassList(tileClass) + gl_WorkGroupID.x];
   return ivec2(packed & 0xffffu, packed >> 16);
 }
-// The first word of a tile's light mask (one bit per light of the frame's light buffer).
-uint tileLightMask(ivec2 tile) {
-  return (3u + S3D_TILE_CLASSES) * tileCount() + (uint(tile.y) * frame.tiles.x + uint(tile.x)) * S3D_LIGHT_MASK_WORDS;
+// The first word of a tile's light list: its counts, then its lights' indices in the frame's light buffer.
+uint tileLightList(ivec2 tile) {
+  return (3u + S3D_TILE_CLASSES) * tileCount() + (uint(tile.y) * frame.tiles.x + uint(tile.x)) * S3D_LIGHT_LIST_WORDS;
 }
+// The light buffer index of a list's n-th light.
+uint listedLight(uint list, uint n) { return (tileEntries[list + 1u + (n >> 2)] >> ((n & 3u) * 8u)) & 0xffu; }
 
 // Adds to a pass's shaded-pixel counter when the renderer counts (tests).
 void countShaded(uint slot, uint pixels) {

@@ -1,6 +1,6 @@
 #pragma once
 // The tile buffer of the renderer's compute passes (gpu::TileHeader, then per tile the ambient-region flag,
-// the masked-tile list, the ambient-region list, the lighting classes' lists and the light masks): the masked
+// the masked-tile list, the ambient-region list, the lighting classes' lists and the light lists): the masked
 // render's tile-list pass (mask-tiles), the indirect dispatch counts it and the lighting's classification leave
 // for the passes after them, and the shaded-pixel counters of a counting render.
 #include <array>

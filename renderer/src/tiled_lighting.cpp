@@ -22,7 +22,7 @@
 namespace s3d::renderer::detail {
 namespace {
 
-static_assert(S3D_TILE_SIZE * S3D_TILE_SIZE >= S3D_MAX_LIGHTS, "the lighting pass culls one light per thread");
+static_assert(S3D_MAX_LIGHTS <= 256, "a tile's light list holds each light's index in one byte");
 
 using detail::computeBinding;
 
@@ -126,7 +126,7 @@ void TiledLighting::record(VkCommandBuffer cmd, const Inputs& in, const ShadowMa
   for (std::uint32_t i : {8u, 9u, 11u}) writes[i].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
   const gpu::LightingConstants constants{lightCount_, shadowedLightCount_, 0, 0};
 
-  // Classification: each tile's light mask and class list (a masked render: its listed tiles).
+  // Classification: each tile's light list and class list (a masked render: its listed tiles).
   VkWriteDescriptorSet classifyWrites[] = {vk::uniformBufferWrite(0, &frameInfo), vk::sampledImageWrite(1, &depthInfo),
                                            vk::uniformBufferWrite(2, &lightInfo), vk::uniformBufferWrite(3, &tileInfo),
                                            vk::storageImageWrite(4, &maskInfo)};

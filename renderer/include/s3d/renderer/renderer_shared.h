@@ -18,6 +18,9 @@ S3D_GPU_BEGIN
 #define S3D_TILE_SIZE 16
 #define S3D_MAX_LIGHTS 256  // point and spot lights of a scene: one bit each in a tile's light mask
 #define S3D_LIGHT_MASK_WORDS (S3D_MAX_LIGHTS / 32)
+// A tile's light list: a word with the count of its lights and (bits 16-31) of its shadowed ones, then the lights'
+// indices, one byte each, four to a word, in light order (so S3D_MAX_LIGHTS <= 256).
+#define S3D_LIGHT_LIST_WORDS (1 + S3D_MAX_LIGHTS / 4)
 
 // Slots of the shaded-pixel counters (RendererOptions::countShadedPixels).
 #define S3D_COUNT_GBUFFER 0   // render pixels the G-buffer wrote
@@ -102,19 +105,19 @@ struct LightingConstants {  // push constants of the lighting pass
 // rasterizer runs every branch and a loop body at least once.
 #define S3D_TILE_SKY 0      // no shaded surface pixel: the sky's colour only
 #define S3D_TILE_UNLIT 1    // surfaces, no point or spot light reaches them
-#define S3D_TILE_LIT 2      // surfaces and the lights of the tile's light mask
+#define S3D_TILE_LIT 2      // surfaces and the lights of the tile's light list
 #define S3D_TILE_CLASSES 3
 
 // Head of the tile buffer (std430), followed by uint entries, tilesX * tilesY each (a tile packed as x | y << 16):
 // the tile flags of the ambient-occlusion region, the masked tiles, the ambient-occlusion tiles, the tiles of
-// each lighting class (S3D_TILE_CLASSES lists), then S3D_LIGHT_MASK_WORDS words per tile (its light mask).
+// each lighting class (S3D_TILE_CLASSES lists), then S3D_LIGHT_LIST_WORDS words per tile (its light list).
 struct TileHeader {
   uvec4 lightingDispatch;  // vkCmdDispatchIndirect arguments: x = masked tiles
   uvec4 ambientDispatch;   // x = tiles of the ambient-occlusion region (masked tiles and their 8 neighbours)
   uint shadedPixels[S3D_COUNT_SLOTS];
   uvec4 tileClassDispatch[S3D_TILE_CLASSES];  // x = tiles of each lighting class
 };
-#define S3D_TILE_LIST_WORDS (3 + S3D_TILE_CLASSES + S3D_LIGHT_MASK_WORDS)  // entries per tile, all lists
+#define S3D_TILE_LIST_WORDS (3 + S3D_TILE_CLASSES + S3D_LIGHT_LIST_WORDS)  // entries per tile, all lists
 
 // Push constants of the resolve pass: the G-buffer and lighting run at supersample x the output size; the
 // resolve averages each output pixel's supersample^2 samples (colour after tone mapping) and keeps the
