@@ -2,7 +2,7 @@
 // Lighting, first step (section 4.3.3's light culling): per tile of S3D_TILE_SIZE^2 render pixels, the
 // view-depth range of its shaded surface points culls the point and spot lights (sphereTouchesTile) into the
 // tile's light list (in light order: a fixed summation order); then the tile joins the list of its class: sky
-// only, surfaces no light reaches, or surfaces with lights. The lighting pass shades each list with a variant compiled for it, so a tile pays for the work it
+// only, surfaces no light reaches, surfaces with lights, or surfaces with lights some of which cast shadows. The lighting pass shades each list with a variant compiled for it, so a tile pays for the work it
 // needs only, on a CPU rasterizer too (which runs every branch). A masked render classifies the listed tiles by
 // their shade-mask pixels.
 #extension GL_GOOGLE_include_directive : require
@@ -113,7 +113,10 @@ void main() {
   // 4. The tile into its class's list.
   if (local != 0u) return;
   tileEntries[list] = count | (shadowed << 16);
-  uint tileClass = !surfaces ? S3D_TILE_SKY : count > 0u ? S3D_TILE_LIT : S3D_TILE_UNLIT;
+  uint tileClass = !surfaces      ? S3D_TILE_SKY
+                  : count == 0u   ? S3D_TILE_UNLIT
+                  : shadowed > 0u ? S3D_TILE_LIT_SHADOWED
+                                  : S3D_TILE_LIT;
   uint slot = atomicAdd(tileHeader.tileClassDispatch[tileClass].x, 1u);
   tileEntries[tileClassList(tileClass) + slot] = packTile(tile);
 }

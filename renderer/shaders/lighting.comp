@@ -4,7 +4,8 @@
 // hemisphere ambient x ambient occlusion (depth-aware upsample of the half-resolution image), the sun through
 // its cascaded shadow maps (the deferred shadow mask, fused here), the tile's local lights with their shadow
 // maps (in light order), and its material (albedo on diffuse, Schlick Fresnel on specular), or the sky's
-// colour. One variant per tile class (S3D_TILE_*): sky tiles compute the sky only, unlit tiles no light loop.
+// colour. One variant per tile class (S3D_TILE_*): sky tiles compute the sky only, unlit tiles no light loop,
+// lit tiles without shadowed lights no shadow-map lookup.
 // Writes HDR colour; in a frame without transparent surfaces or supersampling it resolves in place instead (the
 // resolve's outputs, one full-screen pass fewer). A masked render shades only shade-mask pixels of its tiles.
 #extension GL_GOOGLE_include_directive : require
@@ -31,14 +32,15 @@ layout(binding = 15, r32f) uniform writeonly image2D linearDepthImage;
 #include "tiles.glsl"
 #include "surface.glsl"
 layout(push_constant) uniform Push { LightingConstants lighting; };
-// Whether the frame has sun cascades and point or spot shadow maps: without, their lookups are compiled out.
+// Whether the frame has sun cascades: without, their lookup is compiled out.
 layout(constant_id = 2) const bool kSunShadows = true;
-layout(constant_id = 3) const bool kLocalShadows = true;
 // Whether this pass writes the resolve's outputs itself (no transparent pass and no supersampling follow).
 layout(constant_id = 4) const bool kResolveInPlace = false;
-// The tile class this variant shades: sky tiles (constant 5), lit tiles (6), or neither: unlit tiles.
+// The tile class this variant shades: sky tiles (constant 5), lit tiles (6), lit tiles some of whose lights have
+// shadow maps (6 and 3: only they run the shadowed lights' loop), or none of these: unlit tiles.
 layout(constant_id = 5) const bool kSkyTiles = false;
 layout(constant_id = 6) const bool kLitTiles = false;
+layout(constant_id = 3) const bool kShadowedLightTiles = false;
 
 
 // Sky at infinite distance: its colour depends on the view direction only.
@@ -165,15 +167,15 @@ vec3 shadeSurface(ivec2 pixel, Surface s, uint lightList) {
   }
 
   // Loops over the tile's list, its shadowed lights first (a CPU rasterizer runs a loop body at least once
-  // and both sides of every branch, so the lists are compact, unshadowed lights skip the shadow code and tiles
-  // no light reaches have a variant without the loops).
+  // and both sides of every branch, so the lists are compact, unshadowed lights skip the shadow code, and tiles
+  // without shadowed lights or without any light have variants without those loops).
   if (kLitTiles) {
     uint counts = tileEntries[lightList];  // lights, shadowed lights << 16
     uint shadowedCount = counts >> 16;
-    if (kLocalShadows)
+    if (kShadowedLightTiles)
       for (uint n = 0u; n < shadowedCount; ++n)
         addLight(lights[listedLight(lightList, n)], true, s.position, normal, toEye, exponent, diffuse, specular);
-    for (uint n = kLocalShadows ? shadowedCount : 0u; n < (counts & 0xffffu); ++n)
+    for (uint n = kShadowedLightTiles ? shadowedCount : 0u; n < (counts & 0xffffu); ++n)
       addLight(lights[listedLight(lightList, n)], false, s.position, normal, toEye, exponent, diffuse, specular);
   }
 
@@ -184,7 +186,10 @@ vec3 shadeSurface(ivec2 pixel, Surface s, uint lightList) {
 }
 
 void main() {
-  uint tileClass = kSkyTiles ? S3D_TILE_SKY : kLitTiles ? S3D_TILE_LIT : S3D_TILE_UNLIT;
+  uint tileClass = kSkyTiles              ? S3D_TILE_SKY
+                  : kShadowedLightTiles ? S3D_TILE_LIT_SHADOWED
+                  : kLitTiles           ? S3D_TILE_LIT
+                                        : S3D_TILE_UNLIT;
   ivec2 tile = classTile(tileClass);
   ivec2 pixel = tile * S3D_TILE_SIZE + ivec2(gl_LocalInvocationID.xy);
   bool shaded = all(lessThan(pixel, ivec2(frame.screen.xy))) && shadeMasked(pixel);

@@ -142,11 +142,13 @@ void TiledLighting::record(VkCommandBuffer cmd, const Inputs& in, const ShadowMa
   TileLists::recordListsVisible(cmd);
 
   // Shading: one variant per class over the class's tiles (the variants share the layout, so the descriptors
-  // and constants pushed once serve all three).
+  // and constants pushed once serve them all).
   for (std::uint32_t tileClass = 0; tileClass < S3D_TILE_CLASSES; ++tileClass) {
-    const bool sky = tileClass == S3D_TILE_SKY, lit = tileClass == S3D_TILE_LIT;
+    const bool shadowedLights = tileClass == S3D_TILE_LIT_SHADOWED;
+    if (shadowedLights && shadowedLightCount_ == 0) continue;  // no tile can be in that class this frame
+    const bool sky = tileClass == S3D_TILE_SKY, lit = tileClass == S3D_TILE_LIT || shadowedLights;
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE,
-                      pipelines_->get(in.masked, {sunShadowed_, shadowedLightCount_ > 0, out.resolveInPlace, sky, lit}));
+                      pipelines_->get(in.masked, {sunShadowed_, shadowedLights, out.resolveInPlace, sky, lit}));
     if (tileClass == 0) {
       context_.cmdPushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_.layout, 0, 16, writes);
       vkCmdPushConstants(cmd, layout_.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(constants), &constants);

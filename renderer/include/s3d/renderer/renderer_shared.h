@@ -105,8 +105,9 @@ struct LightingConstants {  // push constants of the lighting pass
 // rasterizer runs every branch and a loop body at least once.
 #define S3D_TILE_SKY 0      // no shaded surface pixel: the sky's colour only
 #define S3D_TILE_UNLIT 1    // surfaces, no point or spot light reaches them
-#define S3D_TILE_LIT 2      // surfaces and the lights of the tile's light list
-#define S3D_TILE_CLASSES 3
+#define S3D_TILE_LIT 2      // surfaces and the lights of the tile's light list, none with a shadow map
+#define S3D_TILE_LIT_SHADOWED 3  // surfaces and the lights of the tile's light list, some with a shadow map
+#define S3D_TILE_CLASSES 4
 
 // Head of the tile buffer (std430), followed by uint entries, tilesX * tilesY each (a tile packed as x | y << 16):
 // the tile flags of the ambient-occlusion region, the masked tiles, the ambient-occlusion tiles, the tiles of
