@@ -8,12 +8,13 @@
 #extension GL_GOOGLE_include_directive : require
 #include "s3d/renderer/renderer_shared.h"
 
-// Each thread reduces a row strip of kStripPixels pixels in registers before one shared atomic per strip: a CPU
-// rasterizer pays per invocation and runs shared atomics lane by lane, so fewer invocations and atomics are
-// cheaper there, and a GPU does the same work with fewer atomics.
-const uint kStripPixels = 4u;
-const uint kThreads = S3D_TILE_SIZE * S3D_TILE_SIZE / kStripPixels;
-layout(local_size_x = S3D_TILE_SIZE / kStripPixels, local_size_y = S3D_TILE_SIZE) in;
+// Each thread reduces kThreadPixels pixels (row-major within the tile) in registers before one shared atomic. The
+// thread count is specialized (constant 2) per device: a CPU rasterizer pays per invocation and per barrier, and
+// runs shared atomics lane by lane, so it takes one SIMD vector of threads; one-dimensional, as it fills its lanes
+// along x only. At most 32 pixels a thread (a bit mask of its first-person pixels).
+layout(constant_id = 2) const uint kThreads = 64u;
+layout(local_size_x_id = 2) in;
+const uint kThreadPixels = S3D_TILE_SIZE * S3D_TILE_SIZE / kThreads;
 layout(binding = 0) uniform Frame { FrameConstants frame; };
 layout(binding = 1) uniform sampler2D deviceDepth;
 layout(std430, binding = 2) readonly buffer Lights { LightConstants lights[]; };
@@ -31,6 +32,9 @@ shared uint tileLightIndices[S3D_LIGHT_LIST_WORDS - 1];  // the same as a list (
 // Bits [0, n) of a 32-bit word (n clamped to 0..32).
 uint bitsBelow(int n) { return n >= 32 ? 0xffffffffu : n <= 0 ? 0u : (1u << uint(n)) - 1u; }
 
+// The render pixel of a tile's n-th pixel (row-major).
+ivec2 tilePixel(ivec2 tile, uint n) { return tile * S3D_TILE_SIZE + ivec2(n % S3D_TILE_SIZE, n / S3D_TILE_SIZE); }
+
 void main() {
   uint local = gl_LocalInvocationIndex;
   if (local == 0u) {
@@ -46,10 +50,10 @@ void main() {
   // point's view depth is its linear depth; a first-person point's is its world position's depth in the world
   // layer's view, so only those pixels (rare: the weapon) reconstruct the position, in a loop over them.
   ivec2 tile = maskedTile();
-  ivec2 strip = tile * S3D_TILE_SIZE + ivec2(gl_LocalInvocationID.x * kStripPixels, gl_LocalInvocationID.y);
+  uint first = local * kThreadPixels;  // this thread's first pixel in the tile, row-major
   uint nearest = 0xffffffffu, farthest = 0u, firstPersonPixels = 0u;
-  for (uint i = 0u; i < kStripPixels; ++i) {
-    ivec2 pixel = strip + ivec2(i, 0);
+  for (uint i = 0u; i < kThreadPixels; ++i) {
+    ivec2 pixel = tilePixel(tile, first + i);
     bool shaded = all(lessThan(pixel, ivec2(frame.screen.xy))) && shadeMasked(pixel);
     float device = shaded ? texelFetch(deviceDepth, pixel, 0).r : 0.0;
     if (shaded && !isSkyDeviceDepth(frame.linearDepth, device)) {
@@ -63,7 +67,7 @@ void main() {
     }
   }
   for (uint pixels = firstPersonPixels; pixels != 0u; pixels &= pixels - 1u) {
-    ivec2 pixel = strip + ivec2(findLSB(pixels), 0);
+    ivec2 pixel = tilePixel(tile, first + uint(findLSB(pixels)));
     Surface surface = surfaceAt(pixel, texelFetch(deviceDepth, pixel, 0).r);
     uint bits = orderedBits(dot(frame.worldViewDepth, vec4(surface.position, 1.0)));
     nearest = min(nearest, bits);

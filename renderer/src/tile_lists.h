@@ -9,6 +9,8 @@
 #include <initializer_list>
 #include <map>
 #include <span>
+#include <utility>
+#include <vector>
 
 #include "s3d/renderer/renderer_shared.h"
 #include "s3d/vk/context.h"
@@ -25,17 +27,20 @@ inline constexpr vk::ImageState kShadeMaskRead{VK_IMAGE_LAYOUT_GENERAL,
                                                VK_ACCESS_2_SHADER_STORAGE_READ_BIT};
 
 // A compute pass that runs over tiles (tiles.glsl), specialized: constant 0 a masked render, 1 shaded-pixel
-// counting, 2... the pass's own switches (`switches`, in order).
+// counting, 2... the pass's own switches (`switches`, in order), then its 32-bit values (`values`, in order).
 vk::Unique<VkPipeline> createTilePipeline(const vk::Context& context, VkPipelineLayout layout,
                                           std::span<const std::uint32_t> spirv, bool masked, bool counting,
-                                          std::span<const bool> switches = {});
+                                          std::span<const bool> switches = {},
+                                          std::span<const std::uint32_t> values = {});
 
 // The variants of a tile pass a renderer uses (its counting fixed), each made at its first use: a CPU rasterizer
 // runs both sides of every branch, so what a frame does not need is compiled out rather than skipped.
 class TilePipelines {
  public:
-  TilePipelines(const vk::Context& context, VkPipelineLayout layout, std::span<const std::uint32_t> spirv, bool counting)
-      : context_(&context), layout_(layout), spirv_(spirv), counting_(counting) {}
+  // values: the pass's 32-bit specialization constants, the same in every variant (after its switches).
+  TilePipelines(const vk::Context& context, VkPipelineLayout layout, std::span<const std::uint32_t> spirv, bool counting,
+                std::vector<std::uint32_t> values = {})
+      : context_(&context), layout_(layout), spirv_(spirv), counting_(counting), values_(std::move(values)) {}
   VkPipeline get(bool masked, std::initializer_list<bool> switches = {});
 
  private:
@@ -43,6 +48,7 @@ class TilePipelines {
   VkPipelineLayout layout_;
   std::span<const std::uint32_t> spirv_;
   bool counting_;
+  std::vector<std::uint32_t> values_;
   std::map<std::uint32_t, vk::Unique<VkPipeline>> pipelines_;
 };
 

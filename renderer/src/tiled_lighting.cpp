@@ -23,6 +23,8 @@ namespace s3d::renderer::detail {
 namespace {
 
 static_assert(S3D_MAX_LIGHTS <= 256, "a tile's light list holds each light's index in one byte");
+constexpr std::uint32_t kCpuClassifyThreads = 8, kGpuClassifyThreads = 64;
+static_assert(S3D_TILE_SIZE * S3D_TILE_SIZE / kCpuClassifyThreads <= 32, "light_tiles.comp: a thread's pixels fit a bit mask");
 
 using detail::computeBinding;
 
@@ -45,7 +47,11 @@ TiledLighting::TiledLighting(vk::Context& context, bool counting) : context_(con
                                                            computeBinding(4, storage)};
   classifyLayout_ = vk::createPushDescriptorLayout(context_, classifyBindings, sizeof(gpu::LightingConstants),
                                                    VK_SHADER_STAGE_COMPUTE_BIT);
-  classifyPipelines_ = std::make_unique<TilePipelines>(context_, classifyLayout_.layout, spirv_light_tiles_comp, false);
+  // The classification's threads per tile: on a CPU rasterizer one SIMD vector (it pays per invocation and per
+  // barrier, and runs shared atomics lane by lane), on a GPU enough to fill its wide warps.
+  const std::uint32_t classifyThreads = context_.isCpuDevice() ? kCpuClassifyThreads : kGpuClassifyThreads;
+  classifyPipelines_ = std::make_unique<TilePipelines>(context_, classifyLayout_.layout, spirv_light_tiles_comp, false,
+                                                       std::vector<std::uint32_t>{classifyThreads});
   nearest_ = createNearestClampSampler(context_);
   setScene(Scene{});
 }
