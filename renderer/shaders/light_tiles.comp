@@ -2,9 +2,10 @@
 // Lighting, first step (section 4.3.3's light culling): per tile of S3D_TILE_SIZE^2 render pixels, the
 // view-depth range of its shaded surface points culls the point and spot lights (sphereTouchesTile) into the
 // tile's light list (in light order: a fixed summation order); then the tile joins the list of its class: sky
-// only, surfaces no light reaches, surfaces with lights, or surfaces with lights some of which cast shadows. The lighting pass shades each list with a variant compiled for it, so a tile pays for the work it
-// needs only, on a CPU rasterizer too (which runs every branch). A masked render classifies the listed tiles by
-// their shade-mask pixels.
+// only, surfaces no light reaches, surfaces with lights none of which has a shadow map, or with some that do. The
+// lighting pass shades each list with a variant compiled for it, so a tile pays for the work it needs only, on a
+// CPU rasterizer too (which runs every branch and every loop body at least once). A masked render classifies the
+// listed tiles by their shade-mask pixels.
 #extension GL_GOOGLE_include_directive : require
 #include "s3d/renderer/renderer_shared.h"
 

@@ -38,8 +38,8 @@ vk::Unique<VkPipeline> createTilePipeline(const vk::Context& context, VkPipeline
 class TilePipelines {
  public:
   // values: the pass's 32-bit specialization constants, the same in every variant (after its switches).
-  TilePipelines(const vk::Context& context, VkPipelineLayout layout, std::span<const std::uint32_t> spirv, bool counting,
-                std::vector<std::uint32_t> values = {})
+  TilePipelines(const vk::Context& context, VkPipelineLayout layout, std::span<const std::uint32_t> spirv,
+                bool counting, std::vector<std::uint32_t> values = {})
       : context_(&context), layout_(layout), spirv_(spirv), counting_(counting), values_(std::move(values)) {}
   VkPipeline get(bool masked, std::initializer_list<bool> switches = {});
 

@@ -24,7 +24,8 @@ namespace {
 
 static_assert(S3D_MAX_LIGHTS <= 256, "a tile's light list holds each light's index in one byte");
 constexpr std::uint32_t kCpuClassifyThreads = 8, kGpuClassifyThreads = 64;
-static_assert(S3D_TILE_SIZE * S3D_TILE_SIZE / kCpuClassifyThreads <= 32, "light_tiles.comp: a thread's pixels fit a bit mask");
+static_assert(S3D_TILE_SIZE * S3D_TILE_SIZE / kCpuClassifyThreads <= 32,
+              "light_tiles.comp: a thread's pixels fit a bit mask");
 
 using detail::computeBinding;
 
