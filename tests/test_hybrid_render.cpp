@@ -109,6 +109,30 @@ TEST_F(HybridRender, EachEyeMasksTheBudgetsShareWhenItsThresholdBinIsTied) {
   }
 }
 
+// The budget's ends are the base displacement and the two-pass reference whatever the scores, so nothing is
+// classified there (no classification time), and at budget 1 the eyes are rendered whole (no masked-render pass).
+TEST_F(HybridRender, TheBudgetsEndsSkipTheClassification) {
+  for (const float budget : {0.0f, 1.0f}) {
+    const stereo::StereoParameters parameters = hybridParameters(budget);
+    HybridScene s = renderCenter(context(), "courtyard", 96, 54, parameters);
+    const HybridSynthesis hybrid = synthesizeHybrid(context(), *s.centerRenderer, *s.eyeRenderer, s.scene, s.center, parameters);
+    ASSERT_TRUE(hybrid.timings.classification.has_value()) << budget;
+    EXPECT_EQ(*hybrid.timings.classification, 0.0) << budget;
+    for (const auto* passes : {&hybrid.timings.leftEyePasses, &hybrid.timings.rightEyePasses}) {
+      EXPECT_EQ(passes->empty(), budget == 0.0f) << budget;
+      for (const renderer::PassTiming& pass : *passes) EXPECT_NE(pass.name, "mask-tiles") << budget;
+    }
+  }
+  const HybridSynthesis between = [&] {
+    const stereo::StereoParameters parameters = hybridParameters(0.5f);
+    HybridScene s = renderCenter(context(), "courtyard", 96, 54, parameters);
+    return synthesizeHybrid(context(), *s.centerRenderer, *s.eyeRenderer, s.scene, s.center, parameters);
+  }();
+  if (between.timings.classification) {  // a device with timestamps times what did run
+    EXPECT_GT(*between.timings.classification, 0.0);
+  }
+}
+
 // Tolerance: one 8-bit level. At budget 1 every compared pixel is the eye camera's render, the same renderer and
 // camera as the reference eye; only the composite's copy stands between them (measured: identical).
 TEST_F(HybridRender, BudgetOneIsTheTwoPassReferenceOnEveryBuiltInScene) {

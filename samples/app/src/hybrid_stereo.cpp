@@ -57,7 +57,7 @@ std::vector<std::optional<double>> timeSections(vk::Context& context, int timedR
   return medians;
 }
 
-// The eye renders, masked (renderer::ShadeMask: only the mask's pixels are shaded) and lit with the center
+// The eye renders, masked (renderer::ShadeMask: only the mask's pixels are shaded) or whole, and lit with the center
 // frame's shadow maps (the eye views plan theirs for the center camera, so they are the same maps): median total
 // and median per pass; "gbuffer" and "ssao-depth" passes are the eye's rasterized geometry (every pixel's depth),
 // all others shade the masked pixels.
@@ -67,8 +67,9 @@ struct EyeRenderTimes {
 };
 
 EyeRenderTimes renderEye(renderer::DeferredRenderer& eyeRenderer, const renderer::DeferredRenderer& centerRenderer,
-                         const renderer::ViewMatrices& view, const vk::Image& mask, int timedRuns) {
-  const renderer::ShadeMask shadeMask{&mask, 1};  // HybridPass masks: 1 where the eye camera renders the pixel
+                         const renderer::ViewMatrices& view, const vk::Image* mask, int timedRuns) {
+  // HybridPass masks: 1 where the eye camera renders the pixel; none: every pixel (an unmasked render).
+  const renderer::ShadeMask shadeMask{mask, 1};
   (void)eyeRenderer.render(view, shadeMask, centerRenderer);
   std::vector<double> totals;
   std::map<std::string, std::vector<double>> passTimes;
@@ -126,23 +127,40 @@ HybridSynthesis synthesizeHybrid(vk::Context& context, const renderer::DeferredR
   const vk::Image right = vk::createImage(context, stereo::StereoPass::kColorFormat, width, height, usage);
   HybridSynthesis result;
   result.classifiedPixels = std::uint64_t(constants.cropEnd - constants.cropBegin) * height;
+  // The budget's ends need no classification: none masks nothing (the base displacement), all masks every
+  // classified pixel (the eyes rendered whole, the two-pass reference), whatever the scores.
+  const bool nothingMasked = constants.maskedPixelCap == 0;
+  const bool everythingMasked = !nothingMasked && constants.maskedPixelCap >= result.classifiedPixels;
+  const bool classify = !nothingMasked && !everythingMasked;
 
   // Displacement, classification, threshold and masks: one submission, nothing read back in between.
   const std::vector<std::optional<double>> front =
-      timeSections(context, timedRuns, 4, [&](VkCommandBuffer cmd, const std::function<void()>& mark) {
+      timeSections(context, timedRuns, classify ? 4 : 1, [&](VkCommandBuffer cmd, const std::function<void()>& mark) {
         stereo::StereoPass::recordInputBarriers(cmd, centerColor, linearDepth, left, right);
         displacement.record(cmd, centerColor, linearDepth, left, right);
         mark();
-        hybrid.recordMasks(cmd, linearDepth, images, constants, mark);
+        if (classify) hybrid.recordMasks(cmd, linearDepth, images, constants, mark);
         stereo::StereoPass::recordInputRelease(cmd, centerColor, linearDepth);
       });
   HybridTimings& timings = result.timings;
   timings.displacement = front[0];
-  timings.classify = front[1];
-  timings.threshold = front[2];
-  timings.mask = front[3];
-  timings.classification = sum(sum(front[1], front[2]), front[3]);
+  if (classify) {
+    timings.classify = front[1];
+    timings.threshold = front[2];
+    timings.mask = front[3];
+  } else {
+    timings.classify = timings.threshold = timings.mask = 0.0;
+  }
+  timings.classification = sum(sum(timings.classify, timings.threshold), timings.mask);
   timings.eyeGeometry = timings.maskedShading = timings.composite = 0.0;
+  // Every classified pixel: the crop, as the mask pass would leave it at budget 1.
+  if (everythingMasked) {
+    std::vector<std::uint32_t> crop(std::size_t(width) * height, 0);
+    for (std::uint32_t y = 0; y < height; ++y)
+      for (int x = constants.cropBegin; x < constants.cropEnd; ++x) crop[std::size_t(y) * width + std::size_t(x)] = 1;
+    for (const vk::Image* mask : {&images.leftMask, &images.rightMask})
+      vk::uploadImage(context, *mask, std::as_bytes(std::span(crop)), vk::kComputeWrite);
+  }
 
   // Each eye: its masked pixels rendered from the eye camera, then composited into the displaced eye. The
   // masked counts come back first (the submission above was waited for anyway): an eye with nothing masked is
@@ -151,14 +169,18 @@ HybridSynthesis synthesizeHybrid(vk::Context& context, const renderer::DeferredR
     const std::size_t index = eye == stereo::Eye::Left ? 0 : 1;
     const vk::Image& target = index == 0 ? left : right;
     const vk::Image& mask = index == 0 ? images.leftMask : images.rightMask;
-    result.thresholds[index] = stereo::HybridPass::readThreshold(context, images.thresholds, int(index));
+    if (classify)
+      result.thresholds[index] = stereo::HybridPass::readThreshold(context, images.thresholds, int(index));
+    else if (everythingMasked)  // bin 0 and up: every classified pixel, no split (hybridThreshold's)
+      result.thresholds[index] = {0, result.classifiedPixels, S3D_HYBRID_NO_PIXEL, 0};
     if (result.thresholds[index].maskedPixels == 0) {
       result.masks[index].assign(std::size_t(width) * height, 0);
       result.renderedHdr[index] = ImageRGBA32F(width, height);
       continue;
     }
     const EyeRenderTimes render =
-        renderEye(eyeRenderer, centerRenderer, referenceEyeView(scene, center, eye, parameters), mask, timedRuns);
+        renderEye(eyeRenderer, centerRenderer, referenceEyeView(scene, center, eye, parameters),
+                  everythingMasked ? nullptr : &mask, timedRuns);
     timings.eyeGeometry = sum(timings.eyeGeometry, render.geometry);
     timings.maskedShading = sum(timings.maskedShading, render.shading);
     (index == 0 ? timings.leftEyePasses : timings.rightEyePasses) = render.passes;
