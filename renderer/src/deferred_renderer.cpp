@@ -13,6 +13,7 @@
 #include "s3d/renderer/renderer_shared.h"
 #include "ambient_occlusion.h"
 #include "gbuffer_resolve.h"
+#include "resolve_pass.h"
 #include "s3d/vk/check.h"
 #include "s3d/vk/pipeline.h"
 #include "s3d/vk/timestamps.h"
@@ -28,7 +29,6 @@
 #include <s3d_spirv/gbuffer_marked_frag.h>
 #include <s3d_spirv/geometry_vert.h>
 #include <s3d_spirv/mask_fill_frag.h>
-#include <s3d_spirv/resolve_comp.h>
 #include <s3d_spirv/shadow_depth_frag.h>
 #include <s3d_spirv/visibility_frag.h>
 #include <s3d_spirv/visibility_textured_frag.h>
@@ -114,62 +114,6 @@ struct MeshRange {
 
 }  // namespace
 
-glm::mat4 vulkanPerspective(float verticalFovRadians, float aspect, float nearPlane, float farPlane) {
-  glm::mat4 projection = glm::perspectiveRH_ZO(verticalFovRadians, aspect, nearPlane, farPlane);
-  projection[1][1] = -projection[1][1];  // Vulkan's clip-space y points down
-  return projection;
-}
-
-glm::mat4 reversedDepthProjection(const glm::mat4& projection, float nearPlane, float farPlane) {
-  // A zero-to-one perspective with near and far swapped: z_ndc = n / (n - f) + n f / ((f - n) d), 1 at the near
-  // plane and 0 at the far plane. Only the depth row changes, so off-axis terms (P20, P21) stay; the two terms
-  // are computed in double from n and f (not as w - z from the matrix, which would cancel to ~1e-4 relative).
-  glm::mat4 reversed = projection;
-  const double n = nearPlane, f = farPlane;
-  reversed[2][2] = float(n / (f - n));
-  reversed[3][2] = float(n * f / (f - n));
-  return reversed;
-}
-
-glm::mat4 cameraView(const Camera& camera) {
-  glm::vec3 forward(-std::sin(camera.yawRadians) * std::cos(camera.pitchRadians), std::sin(camera.pitchRadians),
-                    -std::cos(camera.yawRadians) * std::cos(camera.pitchRadians));
-  return glm::lookAt(camera.position, camera.position + forward, glm::vec3(0.0f, 1.0f, 0.0f));
-}
-
-std::optional<glm::vec2> firstPersonDepthRange(const Scene& scene) {
-  std::optional<glm::vec2> range;
-  for (const Object& object : scene.objects) {
-    if (object.layer != Layer::FirstPerson) continue;
-    for (const Vertex& vertex : scene.meshes.at(object.mesh).vertices) {
-      float depth = -(object.transform * glm::vec4(vertex.position, 1.0f)).z;
-      range = range ? glm::vec2(std::min(range->x, depth), std::max(range->y, depth)) : glm::vec2(depth);
-    }
-  }
-  return range;
-}
-
-ViewMatrices centerViewMatrices(const Scene& scene, float aspect, FirstPersonDepthPush push) {
-  if (!std::isfinite(push.offset) || push.offset < 0.0f)
-    throw std::invalid_argument("weapon depth offset must be finite and >= 0 (got " + std::to_string(push.offset) + ")");
-  if (!std::isfinite(push.scale) || push.scale <= 0.0f)
-    throw std::invalid_argument("weapon depth scale must be finite and > 0 (got " + std::to_string(push.scale) + ")");
-  ViewMatrices view;
-  view.firstPersonDepthPush = push;
-  view.worldView = cameraView(scene.camera);
-  view.worldProjection =
-      vulkanPerspective(scene.camera.verticalFovRadians, aspect, scene.camera.nearPlane, scene.camera.farPlane);
-  view.firstPersonView = glm::mat4(1.0f);
-  view.firstPersonProjection = vulkanPerspective(scene.firstPerson.verticalFovRadians, aspect,
-                                                 scene.firstPerson.nearPlane, scene.firstPerson.farPlane);
-  view.worldFromCamera = glm::inverse(view.worldView);
-  return view;
-}
-
-ShadowFit shadowFitOf(const ViewMatrices& view) {
-  return view.shadowFit ? *view.shadowFit : ShadowFit{view.worldView, view.worldProjection};
-}
-
 struct DeferredRenderer::Impl {
   vk::Context& context;
   std::uint32_t outputWidth;   // display colour, linear depth, resolved HDR
@@ -190,7 +134,7 @@ struct DeferredRenderer::Impl {
 
   // Passes: layouts and pipelines (the compute passes own theirs: detail::AmbientOcclusion, TiledLighting,
   // TileLists, ShadowMaps).
-  vk::PipelineLayout geometryLayout, maskFillLayout, resolveLayout;
+  vk::PipelineLayout geometryLayout, maskFillLayout;
   // G-buffer: one pipeline per texture combination, index gbufferVariant(material); made per scene, for its
   // visibility format and whether it has textured objects (then the pass also binds normal and material).
   std::array<vk::Unique<VkPipeline>, 4> gbufferPipelines;
@@ -200,7 +144,6 @@ struct DeferredRenderer::Impl {
   bool surfaceTargetsBound = false;        // the G-buffer pass writes normal and material for some objects
   bool gbufferPipelinesValid = false;
   vk::Unique<VkPipeline> depthOnlyPipeline, maskFillPipeline;
-  std::unique_ptr<detail::TilePipelines> resolvePipelines;
 
   // Scene data.
   Scene scene;
@@ -223,6 +166,7 @@ struct DeferredRenderer::Impl {
   std::unique_ptr<detail::TiledLighting> lighting;
   std::unique_ptr<detail::TileLists> tiles;
   std::unique_ptr<detail::GBufferResolve> gbufferResolve;
+  std::unique_ptr<detail::ResolvePass> resolvePass;
   std::unique_ptr<detail::TransparentPass> transparentPass;
 
   Impl(vk::Context& ctx, std::uint32_t w, std::uint32_t h, RendererOptions rendererOptions)
@@ -304,8 +248,6 @@ struct DeferredRenderer::Impl {
     constexpr VkDescriptorType sampled = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
     constexpr VkDescriptorType storage = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
     constexpr VkShaderStageFlags fragment = VK_SHADER_STAGE_FRAGMENT_BIT;
-    constexpr VkShaderStageFlags compute = VK_SHADER_STAGE_COMPUTE_BIT;
-
     constexpr VkShaderStageFlags vertex = VK_SHADER_STAGE_VERTEX_BIT;
     const VkDescriptorSetLayoutBinding geometryBindings[] = {
         binding(0, ubo, graphics), binding(1, ssbo, graphics), binding(2, sampled, fragment), binding(3, sampled, fragment),
@@ -313,11 +255,6 @@ struct DeferredRenderer::Impl {
     geometryLayout = vk::createPushDescriptorLayout(context, geometryBindings, sizeof(std::uint32_t), graphics);
     const VkDescriptorSetLayoutBinding maskFillBindings[] = {binding(0, ubo, fragment), binding(1, storage, fragment)};
     maskFillLayout = vk::createPushDescriptorLayout(context, maskFillBindings, 0, 0);
-    const VkDescriptorSetLayoutBinding resolveBindings[] = {
-        binding(0, ubo, compute),     binding(1, storage, compute), binding(2, storage, compute),
-        binding(3, storage, compute), binding(4, sampled, compute), binding(5, storage, compute),
-        binding(6, ssbo, compute),    binding(7, storage, compute)};
-    resolveLayout = vk::createPushDescriptorLayout(context, resolveBindings, sizeof(gpu::ResolveConstants), compute);
 
     // Vertices are pulled from storage buffers (geometry.vert): no vertex input state.
     vk::GraphicsPipelineDesc geometry;
@@ -342,8 +279,7 @@ struct DeferredRenderer::Impl {
     maskFill.depthCompare = VK_COMPARE_OP_ALWAYS;
     maskFillPipeline = vk::createGraphicsPipeline(context, maskFillLayout.layout, maskFill);
 
-    resolvePipelines = std::make_unique<detail::TilePipelines>(context, resolveLayout.layout, spirv_resolve_comp,
-                                                                options.countShadedPixels);
+    resolvePass = std::make_unique<detail::ResolvePass>(context, options.countShadedPixels);
   }
 
   // The G-buffer pass's colour attachments (0 normal/glossiness, 1 material, 2 visibility ids): raster shading
@@ -775,33 +711,17 @@ struct DeferredRenderer::Impl {
   }
 
   void recordResolve(VkCommandBuffer cmd, const ShadeMask& mask, bool afterTransparent) {
-    if (!afterTransparent) vk::transition(cmd, hdr, vk::kComputeWrite, vk::kComputeRead);
-    vk::transition(cmd, display, vk::kUndefined, vk::kComputeWrite);
-    vk::transition(cmd, linearDepth, vk::kUndefined, vk::kComputeWrite);
-    vk::transition(cmd, resolvedHdr, vk::kUndefined, vk::kComputeWrite);
-    const gpu::ResolveConstants resolve{int(supersample), int(outputWidth), int(outputHeight), 0};
-    VkDescriptorBufferInfo frameInfo{frameBuffer.buffer, 0, VK_WHOLE_SIZE};
-    VkDescriptorImageInfo hdrInfo{VK_NULL_HANDLE, hdr.view, VK_IMAGE_LAYOUT_GENERAL};
-    VkDescriptorImageInfo displayInfo{VK_NULL_HANDLE, display.view, VK_IMAGE_LAYOUT_GENERAL};
-    VkDescriptorImageInfo resolvedHdrInfo{VK_NULL_HANDLE, resolvedHdr.view, VK_IMAGE_LAYOUT_GENERAL};
-    VkDescriptorImageInfo depthInfo{nearestSampler, depth.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
-    VkDescriptorImageInfo linearInfo{VK_NULL_HANDLE, linearDepth.view, VK_IMAGE_LAYOUT_GENERAL};
-    VkDescriptorBufferInfo tileInfo = tiles->descriptor();
-    VkDescriptorImageInfo maskInfo = tiles->maskDescriptor(mask.image);
-    VkWriteDescriptorSet writes[] = {vk::uniformBufferWrite(0, &frameInfo),  vk::storageImageWrite(1, &hdrInfo),
-                                     vk::storageImageWrite(2, &displayInfo), vk::storageImageWrite(3, &resolvedHdrInfo),
-                                     vk::sampledImageWrite(4, &depthInfo),   vk::storageImageWrite(5, &linearInfo),
-                                     vk::uniformBufferWrite(6, &tileInfo),   vk::storageImageWrite(7, &maskInfo)};
-    writes[4].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-    writes[6].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, resolvePipelines->get(mask.image != nullptr));
-    context.cmdPushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, resolveLayout.layout, 0, 8, writes);
-    vkCmdPushConstants(cmd, resolveLayout.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(resolve), &resolve);
-    // Masked: one workgroup per listed render tile (its output pixels); else one per 16x16 output pixels.
-    if (mask.image != nullptr)
-      vkCmdDispatchIndirect(cmd, tiles->buffer(), detail::TileLists::kMaskedTilesDispatch);
-    else
-      vkCmdDispatch(cmd, (outputWidth + S3D_TILE_SIZE - 1) / S3D_TILE_SIZE, (outputHeight + S3D_TILE_SIZE - 1) / S3D_TILE_SIZE, 1);
+    const detail::ResolvePass::Inputs inputs{hdr,
+                                             !afterTransparent,
+                                             depth,
+                                             frameBuffer.buffer,
+                                             tiles->buffer(),
+                                             tiles->maskDescriptor(mask.image),
+                                             mask.image != nullptr,
+                                             supersample,
+                                             outputWidth,
+                                             outputHeight};
+    resolvePass->record(cmd, inputs, {display, resolvedHdr, linearDepth});
   }
 
   struct ScheduledPass {
