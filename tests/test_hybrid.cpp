@@ -29,7 +29,8 @@ constexpr HybridRowShape kGpuGroupSmallChunk{S3D_HYBRID_GPU_ROW_GROUP, 1024, S3D
 // a smaller chunk, and a large group with small chunks (the parallel scan across several chunks of a row).
 std::vector<HybridRowShape> rowShapesToCheck(const vk::Context& context) {
   std::vector<HybridRowShape> shapes;
-  for (HybridRowShape shape : {kHybridCpuRowShape, kHybridGpuRowShape, kGpuGroupSmallChunk, HybridRowShape{64, 128, 64}})
+  for (HybridRowShape shape : {kHybridCpuRowShape, kHybridFallbackRowShape, kHybridGpuRowShape, kGpuGroupSmallChunk,
+                               HybridRowShape{64, 128, 64}, HybridRowShape{8, 64, 16, true}})
     if (hybridRowShapeFits(context, shape)) shapes.push_back(shape);
   EXPECT_GE(shapes.size(), 1u);
   return shapes;

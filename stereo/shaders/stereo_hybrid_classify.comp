@@ -16,6 +16,9 @@
 
 layout(constant_id = 0) const int kGroup = S3D_HYBRID_ROW_GROUP;  // invocations per row
 layout(constant_id = 1) const int kChunk = S3D_HYBRID_CHUNK;      // eye pixels per step along the row
+// Each invocation classifies its own run of the chunk alone (slots of its own, no atomics, no barriers)
+layout(constant_id = 2) const bool kIndependentRuns = false;
+const int kRunSlots = kChunk / kGroup;  // independent runs: each invocation's slots (the chunk a multiple of the group)
 layout(local_size_x_id = 0) in;
 
 layout(binding = 0, r32f) uniform readonly image2D linearDepth;
@@ -49,31 +52,56 @@ float sanitizedDepthAt(int x, int y) {
   return sanitizedDepth(imageLoad(linearDepth, ivec2(clamp(x, 0, c.width - 1), y)).r, c.zeroParallaxDistance);
 }
 
-float parallaxAt(int x, int y) {
-  return hybridParallaxPx(sanitizedDepthAt(x, y), c.maxSeparation, c.zeroParallaxDistance, c.width);
+float parallaxFromSanitized(float depth) {
+  return hybridParallaxPx(depth, c.maxSeparation, c.zeroParallaxDistance, c.width);
 }
 
-// Pair (i, i + 1) into the chunk [x0, x1) of the eye looking along `direction`.
-void scatterPair(float direction, int x0, int x1, int i, int y) {
-  float dA = sanitizedDepthAt(i, y), dB = sanitizedDepthAt(i + 1, y);
-  float pA = hybridParallaxPx(dA, c.maxSeparation, c.zeroParallaxDistance, c.width);
-  float pB = hybridParallaxPx(dB, c.maxSeparation, c.zeroParallaxDistance, c.width);
+float parallaxAt(int x, int y) { return parallaxFromSanitized(sanitizedDepthAt(x, y)); }
+
+// A slot's terms joined with one pair's: shared-memory atomics where the group's invocations share the slots,
+// plain reads and writes where each invocation owns its run's slots.
+void lowerCover(int at, uint bits) {
+  if (kIndependentRuns) coverBits[at] = min(coverBits[at], bits);
+  else atomicMin(coverBits[at], bits);
+}
+void raiseHole(int at, uint bits) {
+  if (kIndependentRuns) holeBits[at] = max(holeBits[at], bits);
+  else atomicMax(holeBits[at], bits);
+}
+void raiseEdge(int at, uint bits) {
+  if (kIndependentRuns) edgeBits[at] = max(edgeBits[at], bits);
+  else atomicMax(edgeBits[at], bits);
+}
+void raiseFarthestEnd(int at, uint bits) {
+  if (kIndependentRuns) farthestEndBits[at] = max(farthestEndBits[at], bits);
+  else atomicMax(farthestEndBits[at], bits);
+}
+void lowerNearestStart(int at, uint bits) {
+  if (kIndependentRuns) nearestStartBits[at] = min(nearestStartBits[at], bits);
+  else atomicMin(nearestStartBits[at], bits);
+}
+
+// Pair (i, i + 1), its sanitized depths and parallaxes given, into the eye pixels [x0, x1) of the eye looking
+// along `direction`, whose slots start at `slot0`.
+void scatterPair(float direction, int x0, int x1, int slot0, int i, float dA, float pA, float dB, float pB) {
   precise float landA = float(i) - direction * pA;
   precise float landB = float(i + 1) - direction * pB;
   HybridPair pair = hybridPair(landA, pA, dA, landB, pB, dB);
   vec2 reach = hybridPairReach(pair);
   int from = int(clamp(reach.x, float(x0), float(x1)));
   int to = int(clamp(reach.y, float(x0 - 1), float(x1 - 1)));
+  int slotOffset = slot0 - x0;
   for (int x = from; x <= to; ++x) {
     HybridPairTerms terms = hybridPairTerms(pair, float(x));
-    if (terms.coverParallaxPx < S3D_INFINITY) atomicMin(coverBits[x - x0], orderedBits(terms.coverParallaxPx));
-    if (terms.holeJumpPx > 0.0f) atomicMax(holeBits[x - x0], orderedBits(terms.holeJumpPx));
-    if (terms.edgeScore > 0.0f) atomicMax(edgeBits[x - x0], orderedBits(terms.edgeScore));
+    if (terms.coverParallaxPx < S3D_INFINITY) lowerCover(x + slotOffset, orderedBits(terms.coverParallaxPx));
+    if (terms.holeJumpPx > 0.0f) raiseHole(x + slotOffset, orderedBits(terms.holeJumpPx));
+    if (terms.edgeScore > 0.0f) raiseEdge(x + slotOffset, orderedBits(terms.edgeScore));
   }
   if (pair.edgeBase > 0.0f) {  // a pair between two surfaces: its landings for the nearest boundary
     float start = ceil(pair.lo);  // the first pixel at or after lo (hybridChangeDistancePx's two extremes)
-    if (start <= float(x1 - 1)) atomicMax(farthestEndBits[int(max(start, float(x0))) - x0], orderedBits(pair.hi));
-    if (start - 1.0f >= float(x0)) atomicMin(nearestStartBits[int(min(start - 1.0f, float(x1 - 1))) - x0], orderedBits(pair.lo));
+    if (start <= float(x1 - 1)) raiseFarthestEnd(int(max(start, float(x0))) + slotOffset, orderedBits(pair.hi));
+    if (start - 1.0f >= float(x0))
+      lowerNearestStart(int(min(start - 1.0f, float(x1 - 1))) + slotOffset, orderedBits(pair.lo));
   }
 }
 
@@ -114,16 +142,61 @@ void clearSlot(int at) {
 
 uint unscoredPixels[2];  // this invocation's pixels in bin 0, per eye
 
+// The pairs whose landings can reach the eye pixels [x0, x1) or lie within the separation window of them, on the
+// edge-extended row: texel i lands within [i - P_max, i + 1 - P_min] (left eye; mirrored right).
+ivec2 pairRange(int eye, int x0, int x1, float parallaxMin, float parallaxMax) {
+  float reachBefore = eye == 0 ? -parallaxMin : parallaxMax, reachAfter = eye == 0 ? parallaxMax : -parallaxMin;
+  int first = int(max(float(x0 - c.windowPx - 3) - max(reachBefore, 0.0f), float(-c.windowPx)));
+  int last = int(min(float(x1 + c.windowPx + 2) + max(reachAfter, 0.0f), float(c.width + c.windowPx - 2)));
+  return ivec2(first, last);
+}
+
+// Eye pixel x's bin into the images and the group's histogram.
+void storeBin(int eye, int x, int y, uint bin) {
+  if (eye == 0) imageStore(leftBins, ivec2(x, y), uvec4(bin));
+  else imageStore(rightBins, ivec2(x, y), uvec4(bin));
+  if (bin != 0u) atomicAdd(groupHistogram[eye * S3D_HYBRID_BINS + int(bin)], 1u);
+  else ++unscoredPixels[eye];  // most pixels: counted privately, one atomic per invocation at the end
+}
+
+// Independent runs: this invocation's run of the eye pixels [x0, x1) of row y, classified alone in its own slots
+// (cleared here): its pairs walked in order (each pair's right texel is the next one's left), the nearest
+// boundary swept backwards then forwards along the run.
+void classifyRun(int eye, int x0, int x1, int y, float parallaxMin, float parallaxMax) {
+  int local = int(gl_LocalInvocationIndex);
+  float direction = eye == 0 ? 1.0f : -1.0f;
+  int n = x1 - x0, runLength = (n + kGroup - 1) / kGroup;
+  int runX0 = x0 + min(local * runLength, n), runX1 = x0 + min(local * runLength + runLength, n);
+  if (runX0 == runX1) return;  // a chunk narrower than the group leaves some invocations none
+  int slot0 = local * kRunSlots, slot1 = slot0 + (runX1 - runX0);
+  for (int at = slot0; at < slot1; ++at) clearSlot(at);
+  ivec2 pairs = pairRange(eye, runX0, runX1, parallaxMin, parallaxMax);
+  float dA = sanitizedDepthAt(pairs.x, y), pA = parallaxFromSanitized(dA);
+  for (int i = pairs.x; i <= pairs.y; ++i) {
+    float dB = sanitizedDepthAt(i + 1, y), pB = parallaxFromSanitized(dB);
+    scatterPair(direction, runX0, runX1, slot0, i, dA, pA, dB, pB);
+    dA = dB;
+    pA = pB;
+  }
+  uint start = orderedBits(S3D_INFINITY);
+  for (int at = slot1 - 1; at >= slot0; --at) nearestStartBits[at] = start = min(start, nearestStartBits[at]);
+  uint end = orderedBits(-S3D_INFINITY);
+  for (int at = slot0; at < slot1; ++at) {
+    end = max(end, farthestEndBits[at]);
+    int x = runX0 + (at - slot0);
+    storeBin(eye, x, y, hybridScoreBin(pixelScore(x, y, at, direction, orderedFloat(end), orderedFloat(nearestStartBits[at]))));
+  }
+}
+
 // One eye's pixels [x0, x1) of row y; the slots are clear on entry and left clear.
 void classifyChunk(int eye, int x0, int x1, int y, float parallaxMin, float parallaxMax) {
   int local = int(gl_LocalInvocationIndex);
   float direction = eye == 0 ? 1.0f : -1.0f;
-  // Texel i lands within [i - P_max, i + 1 - P_min] (left eye; mirrored right): the pairs that can reach the chunk
-  // or land within the separation window of it, on the edge-extended row.
-  float reachBefore = eye == 0 ? -parallaxMin : parallaxMax, reachAfter = eye == 0 ? parallaxMax : -parallaxMin;
-  int first = int(max(float(x0 - c.windowPx - 3) - max(reachBefore, 0.0f), float(-c.windowPx)));
-  int last = int(min(float(x1 + c.windowPx + 2) + max(reachAfter, 0.0f), float(c.width + c.windowPx - 2)));
-  for (int i = first + local; i <= last; i += kGroup) scatterPair(direction, x0, x1, i, y);
+  ivec2 pairs = pairRange(eye, x0, x1, parallaxMin, parallaxMax);
+  for (int i = pairs.x + local; i <= pairs.y; i += kGroup) {
+    float dA = sanitizedDepthAt(i, y), dB = sanitizedDepthAt(i + 1, y);
+    scatterPair(direction, x0, x1, 0, i, dA, parallaxFromSanitized(dA), dB, parallaxFromSanitized(dB));
+  }
   barrier();
   // The nearest boundary: each invocation runs along its own run of pixels, then takes the runs before and after.
   int n = x1 - x0, runLength = (n + kGroup - 1) / kGroup;
@@ -159,11 +232,7 @@ void classifyChunk(int eye, int x0, int x1, int y, float parallaxMin, float para
     uint startAfter = run + 1 < kGroup ? runStart[run + 1] : orderedBits(S3D_INFINITY);
     float farthestEnd = orderedFloat(max(endBefore, farthestEndBits[at]));
     float nearestStart = orderedFloat(min(startAfter, nearestStartBits[at]));
-    uint bin = hybridScoreBin(pixelScore(x0 + at, y, at, direction, farthestEnd, nearestStart));
-    if (eye == 0) imageStore(leftBins, ivec2(x0 + at, y), uvec4(bin));
-    else imageStore(rightBins, ivec2(x0 + at, y), uvec4(bin));
-    if (bin != 0u) atomicAdd(groupHistogram[eye * S3D_HYBRID_BINS + int(bin)], 1u);
-    else ++unscoredPixels[eye];  // most pixels: counted privately, one atomic per invocation at the end
+    storeBin(eye, x0 + at, y, hybridScoreBin(pixelScore(x0 + at, y, at, direction, farthestEnd, nearestStart)));
     clearSlot(at);
   }
   barrier();  // the slots are clear again, runEnd and runStart read
@@ -173,7 +242,8 @@ void main() {
   int local = int(gl_LocalInvocationIndex);
   int y = int(gl_WorkGroupID.x);
   for (int i = local; i < 2 * S3D_HYBRID_BINS; i += kGroup) groupHistogram[i] = 0u;
-  for (int at = local; at < kChunk; at += kGroup) clearSlot(at);
+  if (!kIndependentRuns)
+    for (int at = local; at < kChunk; at += kGroup) clearSlot(at);
   if (local == 0) {
     rowParallaxMin = orderedBits(S3D_INFINITY);
     rowParallaxMax = orderedBits(-S3D_INFINITY);
@@ -202,8 +272,10 @@ void main() {
   parallaxMax = min(parallaxMax, float(c.width + 2 * c.windowPx));
   for (int x0 = c.cropBegin; x0 < c.cropEnd; x0 += kChunk) {
     int x1 = min(x0 + kChunk, c.cropEnd);
-    classifyChunk(0, x0, x1, y, parallaxMin, parallaxMax);
-    classifyChunk(1, x0, x1, y, parallaxMin, parallaxMax);
+    for (int eye = 0; eye < 2; ++eye) {
+      if (kIndependentRuns) classifyRun(eye, x0, x1, y, parallaxMin, parallaxMax);
+      else classifyChunk(eye, x0, x1, y, parallaxMin, parallaxMax);
+    }
   }
   if (unscoredPixels[0] != 0u) atomicAdd(groupHistogram[0], unscoredPixels[0]);
   if (unscoredPixels[1] != 0u) atomicAdd(groupHistogram[S3D_HYBRID_BINS], unscoredPixels[1]);

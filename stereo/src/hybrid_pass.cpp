@@ -14,7 +14,7 @@
 namespace s3d::stereo {
 namespace {
 
-// The CPU shape fits what every Vulkan device has (16 KiB of shared memory, 128 invocations): the fallback.
+// The fallback shape fits what every Vulkan device has (16 KiB of shared memory, 128 invocations).
 static_assert(S3D_HYBRID_CLASSIFY_SHARED_BYTES(S3D_HYBRID_ROW_GROUP, S3D_HYBRID_CHUNK) <= 16384);
 static_assert(S3D_HYBRID_ROW_GROUP <= 128);
 
@@ -88,14 +88,16 @@ bool hybridRowShapeFits(const vk::Context& context, HybridRowShape shape) {
            std::uint32_t(group) <= limits.maxComputeWorkGroupSize[0];
   };
   return groupFits(shape.rowGroup) && groupFits(shape.maskGroup) && shape.chunk > 0 &&
+         (!shape.independentRuns || shape.chunk % shape.rowGroup == 0) &&
          std::uint64_t(S3D_HYBRID_CLASSIFY_SHARED_BYTES(std::uint64_t(shape.rowGroup), std::uint64_t(shape.chunk))) <=
              limits.maxComputeSharedMemorySize &&
          8u * std::uint64_t(shape.maskGroup) <= limits.maxComputeSharedMemorySize;  // the mask pass's run counts
 }
 
 HybridRowShape hybridRowShapeFor(const vk::Context& context) {
-  if (context.isCpuDevice() || !hybridRowShapeFits(context, kHybridGpuRowShape)) return kHybridCpuRowShape;
-  return kHybridGpuRowShape;
+  if (context.isCpuDevice() && hybridRowShapeFits(context, kHybridCpuRowShape)) return kHybridCpuRowShape;
+  if (!context.isCpuDevice() && hybridRowShapeFits(context, kHybridGpuRowShape)) return kHybridGpuRowShape;
+  return kHybridFallbackRowShape;
 }
 
 HybridPass::HybridPass(const vk::Context& context, std::optional<HybridRowShape> shape)
@@ -106,9 +108,12 @@ HybridPass::HybridPass(const vk::Context& context, std::optional<HybridRowShape>
       maskLayout_(storageImageLayout(context, 6)),
       compositeLayout_(storageImageLayout(context, 3)) {
   // Specialization: constant 0 the row group (also the workgroup size), 1 the classification's chunk.
-  const std::int32_t values[] = {shape_.rowGroup, shape_.chunk};
-  const VkSpecializationMapEntry entries[] = {{0, 0, sizeof(std::int32_t)}, {1, sizeof(std::int32_t), sizeof(std::int32_t)}};
-  const VkSpecializationInfo classifyShape{2, entries, sizeof(values), values};
+  // 2 whether the invocations classify independent runs (a 32-bit VkBool32).
+  const std::int32_t values[] = {shape_.rowGroup, shape_.chunk, std::int32_t(shape_.independentRuns ? VK_TRUE : VK_FALSE)};
+  const VkSpecializationMapEntry entries[] = {{0, 0, sizeof(std::int32_t)},
+                                              {1, sizeof(std::int32_t), sizeof(std::int32_t)},
+                                              {2, 2 * sizeof(std::int32_t), sizeof(VkBool32)}};
+  const VkSpecializationInfo classifyShape{3, entries, sizeof(values), values};
   const VkSpecializationInfo maskShape{1, entries, sizeof(std::int32_t), &shape_.maskGroup};
   classify_ = vk::createComputePipeline(context, classifyLayout_.layout, spirv_stereo_hybrid_classify_comp, &classifyShape);
   threshold_ = vk::createComputePipeline(context, thresholdLayout_.layout, spirv_stereo_hybrid_threshold_comp);

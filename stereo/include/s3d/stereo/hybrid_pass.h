@@ -22,9 +22,12 @@ struct HybridRowShape {
   int rowGroup = S3D_HYBRID_ROW_GROUP;
   int chunk = S3D_HYBRID_CHUNK;
   int maskGroup = S3D_HYBRID_ROW_GROUP;
+  bool independentRuns = false;  // each invocation classifies its own run alone (the chunk a multiple of the group)
   bool operator==(const HybridRowShape&) const = default;
 };
-inline constexpr HybridRowShape kHybridCpuRowShape{S3D_HYBRID_ROW_GROUP, S3D_HYBRID_CHUNK, S3D_HYBRID_ROW_GROUP};
+inline constexpr HybridRowShape kHybridCpuRowShape{S3D_HYBRID_CPU_ROW_GROUP, S3D_HYBRID_CPU_CHUNK, S3D_HYBRID_ROW_GROUP,
+                                                   true};
+inline constexpr HybridRowShape kHybridFallbackRowShape{S3D_HYBRID_ROW_GROUP, S3D_HYBRID_CHUNK, S3D_HYBRID_ROW_GROUP};
 inline constexpr HybridRowShape kHybridGpuRowShape{S3D_HYBRID_GPU_ROW_GROUP, S3D_HYBRID_GPU_CHUNK,
                                                    S3D_HYBRID_GPU_MASK_GROUP};
 // The fast shape for the device: few invocations on a CPU device, many on a GPU (the CPU shape where the GPU's

@@ -20,8 +20,10 @@ S3D_GPU_BEGIN
 // invocations and the classification's chunk of eye pixels (shared arrays) are specialization constants, chosen
 // per device (hybridRowShapeFor): a CPU driver such as lavapipe switches between invocations at every barrier, so
 // it gets few invocations; a GPU needs many rows' worth of warps in flight, so it gets many invocations per row.
-#define S3D_HYBRID_ROW_GROUP 16       // CPU devices: invocations per row
-#define S3D_HYBRID_CHUNK 512          // CPU devices: the classification's eye pixels per step along its row
+#define S3D_HYBRID_ROW_GROUP 16       // the fallback (and the CPU devices' mask pass): invocations per row
+#define S3D_HYBRID_CHUNK 512          // the fallback: the classification's eye pixels per step along its row
+#define S3D_HYBRID_CPU_ROW_GROUP 8    // CPU devices: one SIMD batch of lavapipe's, each invocation a run of its own
+#define S3D_HYBRID_CPU_CHUNK 1280     // CPU devices: a 1280-pixel row in one chunk per eye (27 KiB of shared memory)
 #define S3D_HYBRID_GPU_ROW_GROUP 512  // GPUs: the fastest measured on an NVIDIA H200 (docs/RESULTS.md)
 #define S3D_HYBRID_GPU_CHUNK 2048     // a 1920-pixel row in one chunk per eye (46 KiB of shared memory)
 #define S3D_HYBRID_GPU_MASK_GROUP 1024 // GPUs: the mask pass's invocations per row (its own measured best)
