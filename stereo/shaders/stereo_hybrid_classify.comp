@@ -181,11 +181,24 @@ void classifyRun(int eye, int x0, int x1, int y, float parallaxMin, float parall
   uint start = orderedBits(S3D_INFINITY);
   for (int at = slot1 - 1; at >= slot0; --at) nearestStartBits[at] = start = min(start, nearestStartBits[at]);
   uint end = orderedBits(-S3D_INFINITY);
+  uint sameBin = 0u, sameBinPixels = 0u;  // a stretch of neighbours in one scored bin: one histogram atomic
   for (int at = slot0; at < slot1; ++at) {
     end = max(end, farthestEndBits[at]);
     int x = runX0 + (at - slot0);
-    storeBin(eye, x, y, hybridScoreBin(pixelScore(x, y, at, direction, orderedFloat(end), orderedFloat(nearestStartBits[at]))));
+    uint bin = hybridScoreBin(pixelScore(x, y, at, direction, orderedFloat(end), orderedFloat(nearestStartBits[at])));
+    if (eye == 0) imageStore(leftBins, ivec2(x, y), uvec4(bin));
+    else imageStore(rightBins, ivec2(x, y), uvec4(bin));
+    if (bin == 0u) {
+      ++unscoredPixels[eye];
+    } else if (bin == sameBin) {
+      ++sameBinPixels;
+    } else {
+      if (sameBinPixels != 0u) atomicAdd(groupHistogram[eye * S3D_HYBRID_BINS + int(sameBin)], sameBinPixels);
+      sameBin = bin;
+      sameBinPixels = 1u;
+    }
   }
+  if (sameBinPixels != 0u) atomicAdd(groupHistogram[eye * S3D_HYBRID_BINS + int(sameBin)], sameBinPixels);
 }
 
 // One eye's pixels [x0, x1) of row y; the slots are clear on entry and left clear.

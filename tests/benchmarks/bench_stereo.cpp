@@ -9,6 +9,8 @@
 #include <vector>
 
 #include "s3d/renderer/deferred_renderer.h"
+#include "s3d/stereo/hybrid.h"
+#include "s3d/stereo/hybrid_pass.h"
 #include "s3d/stereo/stereo.h"
 #include "s3d/stereo/iterative.h"
 #include "s3d/stereo/iterative_pass.h"
@@ -129,6 +131,48 @@ void IterativePass(benchmark::State& state) {
                                                       setup.deferred.height()));
 }
 
+// The hybrid method's classification (both eyes, default budget and search base) in a row shape (third argument:
+// 0 the device's own, hybridRowShapeFor; 1 the fallback, many invocations sharing each chunk's slots), timed from
+// before its dispatch to after it.
+void HybridClassify(benchmark::State& state) {
+  Setup& setup = setupFor(std::uint32_t(state.range(0)), std::uint32_t(state.range(1)));
+  vk::Context& context = benchContext();
+  const stereo::HybridRowShape shape =
+      state.range(2) == 0 ? stereo::hybridRowShapeFor(context) : stereo::kHybridFallbackRowShape;
+  const stereo::HybridPass pass(context, shape);
+  stereo::StereoParameters parameters = setup.parameters;
+  parameters.method = stereo::StereoMethod::Hybrid;
+  const std::uint32_t width = setup.deferred.width(), height = setup.deferred.height();
+  const gpu::HybridConstants constants = stereo::makeHybridConstants(parameters, width, height);
+  stereo::HybridPass::Images images = pass.createImages(width, height);
+  vk::Image left = vk::createImage(context, stereo::StereoPass::kColorFormat, width, height, VK_IMAGE_USAGE_STORAGE_BIT);
+  vk::Image right = vk::createImage(context, stereo::StereoPass::kColorFormat, width, height, VK_IMAGE_USAGE_STORAGE_BIT);
+  const vk::Image& color = setup.deferred.displayColor();
+  const vk::Image& depth = setup.deferred.linearDepth();
+  vk::TimestampQueries timestamps(context, 2);
+  bool timed = false;
+  auto record = [&](VkCommandBuffer cmd) {
+    stereo::StereoPass::recordInputBarriers(cmd, color, depth, left, right);
+    if (timed) {
+      timestamps.reset(cmd);
+      timestamps.write(cmd, 0, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT);
+    }
+    int dispatches = 0;
+    pass.recordMasks(cmd, depth, images, constants, [&] {
+      if (timed && dispatches++ == 0) timestamps.write(cmd, 1, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT);
+    });
+    stereo::StereoPass::recordInputRelease(cmd, color, depth);
+  };
+  context.submitAndWait(record);  // warm-up
+  timed = true;
+  for (auto _ : state) {
+    context.submitAndWait(record);
+    state.SetIterationTime(timestamps.elapsedMs(0, 1).value_or(0.0) * 1e-3);
+  }
+  state.SetLabel(context.deviceName() + ", row group " + std::to_string(shape.rowGroup) + " x chunk " +
+                 std::to_string(shape.chunk) + (shape.independentRuns ? ", independent runs" : ", shared slots"));
+}
+
 void resolutions(benchmark::internal::Benchmark* benchmark) {
   benchmark->Args({1280, 720})->Args({1920, 1080})->UseManualTime()->Unit(benchmark::kMillisecond);
 }
@@ -142,6 +186,11 @@ void methods(benchmark::internal::Benchmark* benchmark) {
 BENCHMARK(CenterFrame)->Apply(resolutions)->MinTime(0.2);
 BENCHMARK(ReferenceEye)->Apply(resolutions)->MinTime(0.2);
 BENCHMARK(StereoPass)->Apply(methods)->MinTime(0.2);
+BENCHMARK(HybridClassify)
+    ->ArgsProduct({{1280}, {720}, {0, 1}})
+    ->ArgNames({"width", "height", "fallbackShape"})
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK(IterativePass)
     ->Args({1280, 720, 6, 0})
     ->Args({1920, 1080, 6, 0})
