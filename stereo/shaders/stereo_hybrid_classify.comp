@@ -16,9 +16,8 @@
 
 layout(constant_id = 0) const int kGroup = S3D_HYBRID_ROW_GROUP;  // invocations per row
 layout(constant_id = 1) const int kChunk = S3D_HYBRID_CHUNK;      // eye pixels per step along the row
-// Each invocation classifies its own run of the chunk alone (slots of its own, no atomics, no barriers)
+// Each invocation classifies its own run of the chunk alone (private slots, no atomics, no barriers)
 layout(constant_id = 2) const bool kIndependentRuns = false;
-const int kRunSlots = kChunk / kGroup;  // independent runs: each invocation's slots (the chunk a multiple of the group)
 layout(local_size_x_id = 0) in;
 
 layout(binding = 0, r32f) uniform readonly image2D linearDepth;
@@ -30,12 +29,19 @@ layout(binding = 4, r32ui) uniform writeonly uimage2D rowHistograms;  // 2 S3D_H
 layout(push_constant) uniform Push { HybridConstants c; };
 
 shared uint groupHistogram[2 * S3D_HYBRID_BINS];
-// Per chunk pixel of the eye at hand, as order-preserving bits of floats:
-shared uint coverBits[kChunk];         // the smallest covering parallax (+inf: none)
-shared uint holeBits[kChunk];          // the largest straddling step
-shared uint edgeBits[kChunk];          // the largest edge band score
-shared uint farthestEndBits[kChunk];   // change pairs starting at this pixel: the largest end (then a running maximum)
-shared uint nearestStartBits[kChunk];  // change pairs starting just after it: the smallest start (then a running minimum)
+// Per chunk pixel of the eye at hand, as order-preserving bits of floats, shared by the group's invocations (one
+// slot each with independent runs):
+const int kSharedSlots = kIndependentRuns ? 1 : kChunk;
+shared uint coverBits[kSharedSlots];         // the smallest covering parallax (+inf: none)
+shared uint holeBits[kSharedSlots];          // the largest straddling step
+shared uint edgeBits[kSharedSlots];          // the largest edge band score
+shared uint farthestEndBits[kSharedSlots];   // change pairs starting at this pixel: the largest end (then a running maximum)
+shared uint nearestStartBits[kSharedSlots];  // change pairs starting just after it: the smallest start (then a running minimum)
+// The same per pixel of an independent run, in the invocation's private memory (on lavapipe about twice as fast
+// as shared memory); one slot each otherwise. The chunk is a multiple of the group.
+const int kRunSlots = kIndependentRuns ? kChunk / kGroup : 1;
+uint runCoverBits[kRunSlots], runHoleBits[kRunSlots], runEdgeBits[kRunSlots];
+uint runFarthestEndBits[kRunSlots], runNearestStartBits[kRunSlots];
 shared uint runEnd[kGroup], runStart[kGroup];  // each invocation's run: its largest end, its smallest start
 shared uint rowParallaxMin, rowParallaxMax;    // the row's parallax range, as ordered bits
 
@@ -61,23 +67,23 @@ float parallaxAt(int x, int y) { return parallaxFromSanitized(sanitizedDepthAt(x
 // A slot's terms joined with one pair's: shared-memory atomics where the group's invocations share the slots,
 // plain reads and writes where each invocation owns its run's slots.
 void lowerCover(int at, uint bits) {
-  if (kIndependentRuns) coverBits[at] = min(coverBits[at], bits);
+  if (kIndependentRuns) runCoverBits[at] = min(runCoverBits[at], bits);
   else atomicMin(coverBits[at], bits);
 }
 void raiseHole(int at, uint bits) {
-  if (kIndependentRuns) holeBits[at] = max(holeBits[at], bits);
+  if (kIndependentRuns) runHoleBits[at] = max(runHoleBits[at], bits);
   else atomicMax(holeBits[at], bits);
 }
 void raiseEdge(int at, uint bits) {
-  if (kIndependentRuns) edgeBits[at] = max(edgeBits[at], bits);
+  if (kIndependentRuns) runEdgeBits[at] = max(runEdgeBits[at], bits);
   else atomicMax(edgeBits[at], bits);
 }
 void raiseFarthestEnd(int at, uint bits) {
-  if (kIndependentRuns) farthestEndBits[at] = max(farthestEndBits[at], bits);
+  if (kIndependentRuns) runFarthestEndBits[at] = max(runFarthestEndBits[at], bits);
   else atomicMax(farthestEndBits[at], bits);
 }
 void lowerNearestStart(int at, uint bits) {
-  if (kIndependentRuns) nearestStartBits[at] = min(nearestStartBits[at], bits);
+  if (kIndependentRuns) runNearestStartBits[at] = min(runNearestStartBits[at], bits);
   else atomicMin(nearestStartBits[at], bits);
 }
 
@@ -110,10 +116,10 @@ void scatterPair(float direction, int x0, int x1, int slot0, int i, float dA, fl
 float pixelScore(int x, int y, int at, float direction, float farthestEnd, float nearestStart) {
   precise float eyeX = float(x);
   HybridCoverage coverage;
-  coverage.visibleParallaxPx = orderedFloat(coverBits[at]);
+  coverage.visibleParallaxPx = orderedFloat(kIndependentRuns ? runCoverBits[at] : coverBits[at]);
   coverage.covered = coverage.visibleParallaxPx < S3D_INFINITY;
-  coverage.holeJumpPx = orderedFloat(holeBits[at]);
-  coverage.edgeScore = orderedFloat(edgeBits[at]);
+  coverage.holeJumpPx = orderedFloat(kIndependentRuns ? runHoleBits[at] : holeBits[at]);
+  coverage.edgeScore = orderedFloat(kIndependentRuns ? runEdgeBits[at] : edgeBits[at]);
   coverage.nearestChangePx = hybridChangeDistancePx(eyeX, farthestEnd, nearestStart);
   float gatherError = 0.0f;
   if (c.baseTapCount > 0) {  // the gather's own choice: the nearest depth over its taps (stereo_gather.glsl)
@@ -133,11 +139,19 @@ float pixelScore(int x, int y, int at, float direction, float farthestEnd, float
 }
 
 void clearSlot(int at) {
-  coverBits[at] = orderedBits(S3D_INFINITY);
-  holeBits[at] = orderedBits(0.0f);
-  edgeBits[at] = orderedBits(0.0f);
-  farthestEndBits[at] = orderedBits(-S3D_INFINITY);
-  nearestStartBits[at] = orderedBits(S3D_INFINITY);
+  if (kIndependentRuns) {
+    runCoverBits[at] = orderedBits(S3D_INFINITY);
+    runHoleBits[at] = orderedBits(0.0f);
+    runEdgeBits[at] = orderedBits(0.0f);
+    runFarthestEndBits[at] = orderedBits(-S3D_INFINITY);
+    runNearestStartBits[at] = orderedBits(S3D_INFINITY);
+  } else {
+    coverBits[at] = orderedBits(S3D_INFINITY);
+    holeBits[at] = orderedBits(0.0f);
+    edgeBits[at] = orderedBits(0.0f);
+    farthestEndBits[at] = orderedBits(-S3D_INFINITY);
+    nearestStartBits[at] = orderedBits(S3D_INFINITY);
+  }
 }
 
 uint unscoredPixels[2];  // this invocation's pixels in bin 0, per eye
@@ -159,8 +173,8 @@ void storeBin(int eye, int x, int y, uint bin) {
   else ++unscoredPixels[eye];  // most pixels: counted privately, one atomic per invocation at the end
 }
 
-// Independent runs: this invocation's run of the eye pixels [x0, x1) of row y, classified alone in its own slots
-// (cleared here): its pairs walked in order (each pair's right texel is the next one's left), the nearest
+// Independent runs: this invocation's run of the eye pixels [x0, x1) of row y, classified alone in its private
+// slots (cleared here): its pairs walked in order (each pair's right texel is the next one's left), the nearest
 // boundary swept backwards then forwards along the run.
 void classifyRun(int eye, int x0, int x1, int y, float parallaxMin, float parallaxMax) {
   int local = int(gl_LocalInvocationIndex);
@@ -168,7 +182,7 @@ void classifyRun(int eye, int x0, int x1, int y, float parallaxMin, float parall
   int n = x1 - x0, runLength = (n + kGroup - 1) / kGroup;
   int runX0 = x0 + min(local * runLength, n), runX1 = x0 + min(local * runLength + runLength, n);
   if (runX0 == runX1) return;  // a chunk narrower than the group leaves some invocations none
-  int slot0 = local * kRunSlots, slot1 = slot0 + (runX1 - runX0);
+  int slot0 = 0, slot1 = runX1 - runX0;
   for (int at = slot0; at < slot1; ++at) clearSlot(at);
   ivec2 pairs = pairRange(eye, runX0, runX1, parallaxMin, parallaxMax);
   float dA = sanitizedDepthAt(pairs.x, y), pA = parallaxFromSanitized(dA);
@@ -179,13 +193,13 @@ void classifyRun(int eye, int x0, int x1, int y, float parallaxMin, float parall
     pA = pB;
   }
   uint start = orderedBits(S3D_INFINITY);
-  for (int at = slot1 - 1; at >= slot0; --at) nearestStartBits[at] = start = min(start, nearestStartBits[at]);
+  for (int at = slot1 - 1; at >= slot0; --at) runNearestStartBits[at] = start = min(start, runNearestStartBits[at]);
   uint end = orderedBits(-S3D_INFINITY);
   uint sameBin = 0u, sameBinPixels = 0u;  // a stretch of neighbours in one scored bin: one histogram atomic
   for (int at = slot0; at < slot1; ++at) {
-    end = max(end, farthestEndBits[at]);
+    end = max(end, runFarthestEndBits[at]);
     int x = runX0 + (at - slot0);
-    uint bin = hybridScoreBin(pixelScore(x, y, at, direction, orderedFloat(end), orderedFloat(nearestStartBits[at])));
+    uint bin = hybridScoreBin(pixelScore(x, y, at, direction, orderedFloat(end), orderedFloat(runNearestStartBits[at])));
     if (eye == 0) imageStore(leftBins, ivec2(x, y), uvec4(bin));
     else imageStore(rightBins, ivec2(x, y), uvec4(bin));
     if (bin == 0u) {

@@ -87,9 +87,11 @@ bool hybridRowShapeFits(const vk::Context& context, HybridRowShape shape) {
     return group > 0 && std::uint32_t(group) <= limits.maxComputeWorkGroupInvocations &&
            std::uint32_t(group) <= limits.maxComputeWorkGroupSize[0];
   };
+  // Independent runs keep the chunk's slots in private memory (one shared slot each), split evenly by the group.
+  const std::uint64_t sharedSlots = shape.independentRuns ? 1 : std::uint64_t(shape.chunk);
   return groupFits(shape.rowGroup) && groupFits(shape.maskGroup) && shape.chunk > 0 &&
          (!shape.independentRuns || shape.chunk % shape.rowGroup == 0) &&
-         std::uint64_t(S3D_HYBRID_CLASSIFY_SHARED_BYTES(std::uint64_t(shape.rowGroup), std::uint64_t(shape.chunk))) <=
+         std::uint64_t(S3D_HYBRID_CLASSIFY_SHARED_BYTES(std::uint64_t(shape.rowGroup), sharedSlots)) <=
              limits.maxComputeSharedMemorySize &&
          8u * std::uint64_t(shape.maskGroup) <= limits.maxComputeSharedMemorySize;  // the mask pass's run counts
 }

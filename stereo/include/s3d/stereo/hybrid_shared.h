@@ -23,7 +23,7 @@ S3D_GPU_BEGIN
 #define S3D_HYBRID_ROW_GROUP 16       // the fallback (and the CPU devices' mask pass): invocations per row
 #define S3D_HYBRID_CHUNK 512          // the fallback: the classification's eye pixels per step along its row
 #define S3D_HYBRID_CPU_ROW_GROUP 8    // CPU devices: one SIMD batch of lavapipe's, each invocation a run of its own
-#define S3D_HYBRID_CPU_CHUNK 1280     // CPU devices: a 1280-pixel row in one chunk per eye (27 KiB of shared memory)
+#define S3D_HYBRID_CPU_CHUNK 2048     // CPU devices: a 1920-pixel row in one chunk per eye (private slots: no limit)
 #define S3D_HYBRID_GPU_ROW_GROUP 512  // GPUs: the fastest measured on an NVIDIA H200 (docs/RESULTS.md)
 #define S3D_HYBRID_GPU_CHUNK 2048     // a 1920-pixel row in one chunk per eye (46 KiB of shared memory)
 #define S3D_HYBRID_GPU_MASK_GROUP 1024 // GPUs: the mask pass's invocations per row (its own measured best)
@@ -34,9 +34,10 @@ S3D_GPU_BEGIN
 #define S3D_HYBRID_NO_PIXEL 256       // threshold bin that masks nothing
 #define S3D_HYBRID_THRESHOLD_GROUP 256 // the threshold pass: one invocation per bin, one workgroup per eye
 #define S3D_HYBRID_THRESHOLD_FIELDS 4  // per eye: threshold bin, masked pixels, split bin, split pixels
-// The classification's shared memory for a row group and chunk: five per-pixel arrays of a chunk, both
-// histograms, each invocation's run extremes and the row's parallax range (HybridPass checks the device's limit).
-#define S3D_HYBRID_CLASSIFY_SHARED_BYTES(group, chunk) (4 * (5 * (chunk) + 2 * S3D_HYBRID_BINS + 2 * (group) + 2))
+// The classification's shared memory for a row group and its shared slots (the chunk; 1 with independent runs):
+// five per-pixel arrays, both histograms, each invocation's run extremes and the row's parallax range (HybridPass
+// checks the device's limit).
+#define S3D_HYBRID_CLASSIFY_SHARED_BYTES(group, slots) (4 * (5 * (slots) + 2 * S3D_HYBRID_BINS + 2 * (group) + 2))
 
 // Push constants of the hybrid passes; scalars only, so the std430 and C++ layouts agree.
 struct HybridConstants {
