@@ -24,9 +24,11 @@ class HybridPassTest : public test::VulkanTest {};
 // needs 46): the same code, its scan of the runs in parallel, only the chunk's length differs.
 constexpr HybridRowShape kGpuGroupSmallChunk{S3D_HYBRID_GPU_ROW_GROUP, 1024, S3D_HYBRID_GPU_MASK_GROUP};
 
-// Every row shape gives the same bins and masks: the CPU devices' (a few invocations walk the runs), the GPUs'
-// (many invocations scan them in parallel, one chunk for a short row; where the device holds it) or its group with
-// a smaller chunk, and a large group with small chunks (the parallel scan across several chunks of a row).
+// Every row shape gives the same bins and masks: the CPU devices' (each invocation classifies its run alone, one
+// chunk for a short row), the fallback (a few invocations share the slots and walk the runs), the GPUs' (many
+// invocations scan them in parallel, one chunk for a short row; where the device holds it) or its group with a
+// smaller chunk, a large group with small chunks (the parallel scan across several chunks of a row), and
+// independent runs in many small chunks (each run's window reaching across its neighbours').
 std::vector<HybridRowShape> rowShapesToCheck(const vk::Context& context) {
   std::vector<HybridRowShape> shapes;
   for (HybridRowShape shape : {kHybridCpuRowShape, kHybridFallbackRowShape, kHybridGpuRowShape, kGpuGroupSmallChunk,
@@ -354,16 +356,19 @@ TEST_F(HybridPassTest, ThresholdAndMasksMatchTheCppReferenceAtEveryBudget) {
   }
 }
 
-TEST_F(HybridPassTest, ACpuDeviceGetsTheFewInvocationsShapeAndAShapeBeyondTheDeviceIsRefused) {
+TEST_F(HybridPassTest, ACpuDeviceGetsIndependentRunsAndAShapeBeyondTheDeviceIsRefused) {
   if (context().isCpuDevice()) {
     EXPECT_EQ(hybridRowShapeFor(context()), kHybridCpuRowShape);
-    // lavapipe runs the GPUs' row group too, so the tests above hold its code to the reference.
+    // lavapipe runs the fallback and the GPUs' row group too, so the tests above hold their code to the reference.
+    EXPECT_TRUE(hybridRowShapeFits(context(), kHybridFallbackRowShape));
     EXPECT_TRUE(hybridRowShapeFits(context(), kGpuGroupSmallChunk));
   }
   EXPECT_TRUE(hybridRowShapeFits(context(), hybridRowShapeFor(context())));
   EXPECT_THROW(HybridPass(context(), HybridRowShape{1 << 20, 512}), std::invalid_argument);
   EXPECT_THROW(HybridPass(context(), HybridRowShape{16, 1 << 20}), std::invalid_argument);
   EXPECT_THROW(HybridPass(context(), HybridRowShape{16, 512, 1 << 20}), std::invalid_argument);
+  // Independent runs split the chunk's private slots evenly: a chunk that is no multiple of the group is refused.
+  EXPECT_THROW(HybridPass(context(), HybridRowShape{8, 100, 16, true}), std::invalid_argument);
 }
 
 TEST_F(HybridPassTest, CompositeMatchesTheCppReferenceExactly) {

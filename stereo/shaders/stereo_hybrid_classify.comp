@@ -8,9 +8,13 @@
 // nearest boundary (a running maximum and minimum, each invocation along its own run of pixels, then across the
 // runs), then every pixel's coverage is complete. The row is walked in chunks of eye pixels, one eye at a time; a
 // chunk takes the pairs whose landings can reach it or lie within the separation window of it (bounded by the
-// row's parallax range). The row group and the chunk are specialization constants (hybrid_shared.h): a small
-// group walks the runs' extremes with one invocation (four barriers per chunk and eye), a large one scans them in
-// parallel (two barriers per doubling); every order of the atomics and scans gives the same bits.
+// row's parallax range). The row group, the chunk and the runs' independence are specialization constants
+// (hybrid_shared.h). Shared slots (GPUs): a small group walks the runs' extremes with one invocation (four barriers
+// per chunk and eye), a large one scans them in parallel (two barriers per doubling). Independent runs (CPU
+// devices: lavapipe scalarizes every shared-memory atomic per SIMD lane and switches between invocations at each
+// barrier): each invocation classifies its run of the chunk alone, as a chunk of its own (its pairs, window
+// included), in private slots with plain reads and writes and no barrier. Every order of the atomics and scans,
+// and every split into runs, gives the same bits.
 #extension GL_GOOGLE_include_directive : require
 #include "s3d/stereo/hybrid_shared.h"
 
@@ -87,27 +91,26 @@ void lowerNearestStart(int at, uint bits) {
   else atomicMin(nearestStartBits[at], bits);
 }
 
-// Pair (i, i + 1), its sanitized depths and parallaxes given, into the eye pixels [x0, x1) of the eye looking
-// along `direction`, whose slots start at `slot0`.
-void scatterPair(float direction, int x0, int x1, int slot0, int i, float dA, float pA, float dB, float pB) {
+// Pair (i, i + 1), its sanitized depths and parallaxes given, into the eye pixels [x0, x1) (slots from 0) of the
+// eye looking along `direction`.
+void scatterPair(float direction, int x0, int x1, int i, float dA, float pA, float dB, float pB) {
   precise float landA = float(i) - direction * pA;
   precise float landB = float(i + 1) - direction * pB;
   HybridPair pair = hybridPair(landA, pA, dA, landB, pB, dB);
   vec2 reach = hybridPairReach(pair);
   int from = int(clamp(reach.x, float(x0), float(x1)));
   int to = int(clamp(reach.y, float(x0 - 1), float(x1 - 1)));
-  int slotOffset = slot0 - x0;
   for (int x = from; x <= to; ++x) {
     HybridPairTerms terms = hybridPairTerms(pair, float(x));
-    if (terms.coverParallaxPx < S3D_INFINITY) lowerCover(x + slotOffset, orderedBits(terms.coverParallaxPx));
-    if (terms.holeJumpPx > 0.0f) raiseHole(x + slotOffset, orderedBits(terms.holeJumpPx));
-    if (terms.edgeScore > 0.0f) raiseEdge(x + slotOffset, orderedBits(terms.edgeScore));
+    if (terms.coverParallaxPx < S3D_INFINITY) lowerCover(x - x0, orderedBits(terms.coverParallaxPx));
+    if (terms.holeJumpPx > 0.0f) raiseHole(x - x0, orderedBits(terms.holeJumpPx));
+    if (terms.edgeScore > 0.0f) raiseEdge(x - x0, orderedBits(terms.edgeScore));
   }
   if (pair.edgeBase > 0.0f) {  // a pair between two surfaces: its landings for the nearest boundary
     float start = ceil(pair.lo);  // the first pixel at or after lo (hybridChangeDistancePx's two extremes)
-    if (start <= float(x1 - 1)) raiseFarthestEnd(int(max(start, float(x0))) + slotOffset, orderedBits(pair.hi));
+    if (start <= float(x1 - 1)) raiseFarthestEnd(int(max(start, float(x0))) - x0, orderedBits(pair.hi));
     if (start - 1.0f >= float(x0))
-      lowerNearestStart(int(min(start - 1.0f, float(x1 - 1))) + slotOffset, orderedBits(pair.lo));
+      lowerNearestStart(int(min(start - 1.0f, float(x1 - 1))) - x0, orderedBits(pair.lo));
   }
 }
 
@@ -182,23 +185,23 @@ void classifyRun(int eye, int x0, int x1, int y, float parallaxMin, float parall
   int n = x1 - x0, runLength = (n + kGroup - 1) / kGroup;
   int runX0 = x0 + min(local * runLength, n), runX1 = x0 + min(local * runLength + runLength, n);
   if (runX0 == runX1) return;  // a chunk narrower than the group leaves some invocations none
-  int slot0 = 0, slot1 = runX1 - runX0;
-  for (int at = slot0; at < slot1; ++at) clearSlot(at);
+  int slots = runX1 - runX0;
+  for (int at = 0; at < slots; ++at) clearSlot(at);
   ivec2 pairs = pairRange(eye, runX0, runX1, parallaxMin, parallaxMax);
   float dA = sanitizedDepthAt(pairs.x, y), pA = parallaxFromSanitized(dA);
   for (int i = pairs.x; i <= pairs.y; ++i) {
     float dB = sanitizedDepthAt(i + 1, y), pB = parallaxFromSanitized(dB);
-    scatterPair(direction, runX0, runX1, slot0, i, dA, pA, dB, pB);
+    scatterPair(direction, runX0, runX1, i, dA, pA, dB, pB);
     dA = dB;
     pA = pB;
   }
   uint start = orderedBits(S3D_INFINITY);
-  for (int at = slot1 - 1; at >= slot0; --at) runNearestStartBits[at] = start = min(start, runNearestStartBits[at]);
+  for (int at = slots - 1; at >= 0; --at) runNearestStartBits[at] = start = min(start, runNearestStartBits[at]);
   uint end = orderedBits(-S3D_INFINITY);
   uint sameBin = 0u, sameBinPixels = 0u;  // a stretch of neighbours in one scored bin: one histogram atomic
-  for (int at = slot0; at < slot1; ++at) {
+  for (int at = 0; at < slots; ++at) {
     end = max(end, runFarthestEndBits[at]);
-    int x = runX0 + (at - slot0);
+    int x = runX0 + at;
     uint bin = hybridScoreBin(pixelScore(x, y, at, direction, orderedFloat(end), orderedFloat(runNearestStartBits[at])));
     if (eye == 0) imageStore(leftBins, ivec2(x, y), uvec4(bin));
     else imageStore(rightBins, ivec2(x, y), uvec4(bin));
@@ -222,7 +225,7 @@ void classifyChunk(int eye, int x0, int x1, int y, float parallaxMin, float para
   ivec2 pairs = pairRange(eye, x0, x1, parallaxMin, parallaxMax);
   for (int i = pairs.x + local; i <= pairs.y; i += kGroup) {
     float dA = sanitizedDepthAt(i, y), dB = sanitizedDepthAt(i + 1, y);
-    scatterPair(direction, x0, x1, 0, i, dA, parallaxFromSanitized(dA), dB, parallaxFromSanitized(dB));
+    scatterPair(direction, x0, x1, i, dA, parallaxFromSanitized(dA), dB, parallaxFromSanitized(dB));
   }
   barrier();
   // The nearest boundary: each invocation runs along its own run of pixels, then takes the runs before and after.
