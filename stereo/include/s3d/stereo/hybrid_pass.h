@@ -30,8 +30,8 @@ inline constexpr HybridRowShape kHybridCpuRowShape{S3D_HYBRID_CPU_ROW_GROUP, S3D
 inline constexpr HybridRowShape kHybridFallbackRowShape{S3D_HYBRID_ROW_GROUP, S3D_HYBRID_CHUNK, S3D_HYBRID_ROW_GROUP};
 inline constexpr HybridRowShape kHybridGpuRowShape{S3D_HYBRID_GPU_ROW_GROUP, S3D_HYBRID_GPU_CHUNK,
                                                    S3D_HYBRID_GPU_MASK_GROUP};
-// The fast shape for the device: few invocations on a CPU device, many on a GPU (the CPU shape where the GPU's
-// exceeds the device's workgroup or shared-memory limits).
+// The fast shape for the device: independent runs on a CPU device, many invocations on a GPU (the fallback where
+// the device's workgroup or shared-memory limits refuse its own).
 HybridRowShape hybridRowShapeFor(const vk::Context& context);
 // Whether the device can run `shape` (invocations, shared memory; the chunk and groups positive).
 bool hybridRowShapeFits(const vk::Context& context, HybridRowShape shape);

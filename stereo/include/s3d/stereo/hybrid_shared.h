@@ -17,9 +17,11 @@ S3D_GPU_BEGIN
 
 #define S3D_HYBRID_GROUP_SIZE 8        // the composite: 8 x 8 workgroups
 // The classification and the mask pass: one workgroup per row, each invocation owning a run of its pixels. Its
-// invocations and the classification's chunk of eye pixels (shared arrays) are specialization constants, chosen
-// per device (hybridRowShapeFor): a CPU driver such as lavapipe switches between invocations at every barrier, so
-// it gets few invocations; a GPU needs many rows' worth of warps in flight, so it gets many invocations per row.
+// invocations, the classification's chunk of eye pixels and whether the runs are classified independently are
+// specialization constants, chosen per device (hybridRowShapeFor): a CPU driver such as lavapipe scalarizes
+// shared-memory atomics per SIMD lane and switches between invocations at every barrier, so it gets one SIMD
+// batch of invocations, each classifying its run alone in private memory; a GPU needs many rows' worth of warps
+// in flight, so it gets many invocations per row sharing the chunk's slots in shared memory.
 #define S3D_HYBRID_ROW_GROUP 16       // the fallback (and the CPU devices' mask pass): invocations per row
 #define S3D_HYBRID_CHUNK 512          // the fallback: the classification's eye pixels per step along its row
 #define S3D_HYBRID_CPU_ROW_GROUP 8    // CPU devices: one SIMD batch of lavapipe's, each invocation a run of its own
