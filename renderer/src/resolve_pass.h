@@ -25,7 +25,7 @@ class ResolvePass {
 
   struct Inputs {
     const vk::Image& hdr;    // render size
-    bool hdrJustWritten;     // by a compute pass with nothing after it (else already kComputeRead)
+    bool hdrJustWritten;     // lighting wrote it last (kComputeWrite); false: the transparent pass left it kComputeRead
     const vk::Image& depth;  // sampled by compute
     VkBuffer frameConstants, tiles;
     VkDescriptorImageInfo shadeMask;  // the tile lists' mask descriptor (placeholder when unmasked)
