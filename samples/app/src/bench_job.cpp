@@ -594,11 +594,10 @@ std::string sweepMarkdown(const BenchReport& report) {
        << (cpuDevice ? " (a CPU device: the minimum).\n"
                      : " (until they ran at a steady speed: a GPU lowers its clocks\nwhile the host computes metrics).");
     std::vector<std::string> unsettled;
-    for (const BenchRow& row : report.rows) {
-      if (cpuDevice) break;
-      const std::string scope = row.scene + " sep " + percentText(row.maxSeparation) + "%";
-      if (!row.frameWarmUpSettled) unsettled.push_back(scope + " " + row.setting.name());
-    }
+    if (!cpuDevice)
+      for (const BenchRow& row : report.rows)
+        if (!row.frameWarmUpSettled)
+          unsettled.push_back(row.scene + " sep " + percentText(row.maxSeparation) + "% " + row.setting.name());
     if (!unsettled.empty())
       md << " **Not settled** (still changing speed when the warm-up's limit ended it): " << joinedNames(unsettled, ", ")
          << ".";
