@@ -117,7 +117,7 @@ TEST(ViewConfiguration, BadFilesAreRejectedWithOneErrorNamingTheFileAndField) {
   EXPECT_EQ(errorFor("{\"worldScale\": -1, \"views\": {" + left + ", \"right\": {" + eye + "}}}"), "worldScale must be positive");
   EXPECT_EQ(errorFor("{\"views\": {\"left\": {" + eye + "}, \"right\": {" + eye + "}}}"),
             "views.right.position[0] must be greater than the left eye's (the right eye is to the right)");
-  EXPECT_EQ(errorFor("{\"views\": ").rfind("is not valid JSON", 0), 0u);
+  EXPECT_EQ(errorFor("{\"views\": ").rfind("not valid JSON: parse error at line 1", 0), 0u);
   EXPECT_EQ(errorFor("[]"), "the document must be an object");
 }
 

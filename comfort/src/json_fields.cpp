@@ -1,5 +1,7 @@
 #include "json_fields.h"
 
+#include "s3d/json_document.h"
+
 #include <fcntl.h>
 #include <unistd.h>
 
@@ -19,20 +21,7 @@
 namespace s3d::comfort::detail {
 
 nlohmann::json readJsonFile(const std::filesystem::path& file, const char* what) {
-  const std::string name = std::string(what) + " '" + file.string() + "'";
-  std::error_code error;
-  if (std::filesystem::is_directory(file, error)) throw std::runtime_error(name + ": is a folder, not a file");
-  if (!std::filesystem::is_regular_file(file, error)) throw std::runtime_error(name + ": no such file");
-  std::ifstream stream(file, std::ios::binary);
-  if (!stream) throw std::runtime_error(name + ": cannot open: " + std::strerror(errno));
-  const std::string text((std::istreambuf_iterator<char>(stream)), std::istreambuf_iterator<char>());
-  if (stream.bad()) throw std::runtime_error(name + ": read failed");
-  try {
-    return nlohmann::json::parse(text);
-  } catch (const nlohmann::json::exception& parseError) {
-    // parse_error, and out_of_range for a number beyond double's range (e.g. 1e400; found by fuzz_comfort_profile).
-    throw std::runtime_error(name + ": not valid JSON: " + parseError.what());
-  }
+  return s3d::readJsonDocument(file, what);
 }
 
 void writeTextAtomically(const std::filesystem::path& file, const std::string& text, const char* what) {

@@ -2,9 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <numbers>
 #include <stdexcept>
+
+#include "s3d/json_document.h"
 
 namespace s3d::comfort {
 namespace {
@@ -93,22 +94,16 @@ nlohmann::json toJson(const ViewConfiguration& views) {
 }
 
 ViewConfiguration loadViewConfiguration(const std::filesystem::path& file) {
-  const std::string prefix = "views file '" + file.string() + "': ";
-  std::error_code status;
-  if (std::filesystem::is_directory(file, status)) throw std::invalid_argument(prefix + "is a folder, not a file");
-  if (!std::filesystem::exists(file, status)) throw std::invalid_argument(prefix + "does not exist");
-  std::ifstream stream(file);
-  if (!stream) throw std::invalid_argument(prefix + "cannot be read");
   nlohmann::json document;
   try {
-    document = nlohmann::json::parse(stream);
-  } catch (const nlohmann::json::parse_error& error) {
-    throw std::invalid_argument(prefix + "is not valid JSON (" + error.what() + ")");
+    document = readJsonDocument(file, "views file");
+  } catch (const InputFileError& error) {
+    throw std::invalid_argument(error.what());
   }
   try {
     return viewConfigurationFromJson(document);
   } catch (const std::invalid_argument& error) {
-    throw std::invalid_argument(prefix + error.what());
+    throw std::invalid_argument("views file '" + file.string() + "': " + error.what());
   }
 }
 

@@ -12,6 +12,8 @@
 #include <utility>
 
 #include "s3d/app/comfort_json.h"
+#include "s3d/app/frame_rules.h"
+#include "s3d/json_document.h"
 #include "s3d/gpu/linear_depth.h"
 #include "s3d/io/depth_io.h"
 #include "s3d/io/image_io.h"
@@ -436,10 +438,9 @@ std::map<std::string, nlohmann::json> readManifest(const fs::path& folder, const
   const std::string where = "--resume: '" + file.string() + "'";
   nlohmann::json manifest;
   try {
-    std::ifstream stream(file, std::ios::binary);
-    manifest = nlohmann::json::parse(stream);
-  } catch (const nlohmann::json::exception&) {
-    throw std::invalid_argument(where + " is not valid JSON: remove it or run without --resume");
+    manifest = readJsonDocument(file, "--resume: report");
+  } catch (const InputFileError& unreadable) {
+    throw std::invalid_argument(std::string(unreadable.what()) + "; remove it or run without --resume");
   }
   if (!manifest.is_object() || !manifest.contains("frames") || !manifest["frames"].is_array() ||
       !manifest.contains("settings"))

@@ -9,7 +9,10 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "s3d/image_limits.h"
+#include "s3d/input_file.h"
 #include "s3d/io/image_io.h"
+#include "s3d/json_document.h"
 #include "s3d/renderer/scene.h"
 #include "s3d/stereo/metrics.h"
 #include "s3d/stereo/output_formats.h"
@@ -206,11 +209,7 @@ RegressCase parseCase(const json& object, const Where& where, const RegressToler
 
 // --- Running ---
 
-std::string readBytes(const fs::path& file) {
-  std::ifstream stream(file, std::ios::binary);
-  if (!stream) throw std::runtime_error("cannot read '" + file.string() + "'");
-  return std::string((std::istreambuf_iterator<char>(stream)), std::istreambuf_iterator<char>());
-}
+std::string readBytes(const fs::path& file) { return readInputFile(file, "image", kMaxImagePixels * 8); }
 
 const stereo::ErrorStats& region(const EyeError& error, const std::string& name) {
   if (name == "halo") return error.halo;
@@ -278,9 +277,9 @@ void compareWithBaseline(RegressRun& run, const RegressCase& entry, const fs::pa
   }
   json baseline;
   try {
-    baseline = json::parse(readBytes(statsFile));
-  } catch (const std::exception& error) {
-    run.problem = "baseline '" + statsFile.string() + "' is not valid JSON: " + error.what();
+    baseline = readJsonDocument(statsFile, "baseline");
+  } catch (const InputFileError& error) {
+    run.problem = error.what();
     return;
   }
   const RegressTolerances& tolerance = entry.tolerances;
@@ -439,13 +438,11 @@ RegressSuite parseRegressSuite(const json& document, const fs::path& suiteFolder
 }
 
 RegressSuite loadRegressSuite(const fs::path& file) {
-  if (fs::is_directory(file)) throw std::invalid_argument("suite file '" + file.string() + "' is a folder, not a file");
-  if (!fs::is_regular_file(file)) throw std::invalid_argument("suite file '" + file.string() + "' does not exist");
   json document;
   try {
-    document = json::parse(readBytes(file));
-  } catch (const json::exception& error) {  // parse_error, and out_of_range for a number such as 1e400
-    throw std::invalid_argument(file.string() + ": not valid JSON: " + error.what());
+    document = readJsonDocument(file, "suite file");
+  } catch (const InputFileError& error) {
+    throw std::invalid_argument(error.what());
   }
   return parseRegressSuite(document, file.parent_path(), file.string());
 }

@@ -7,6 +7,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "s3d/input_file.h"
 #include "s3d/renderer/scene.h"
 
 namespace s3d::tune {
@@ -95,11 +96,7 @@ std::vector<ScriptCommand> parseScript(const std::string& text, const std::strin
 }
 
 std::vector<ScriptCommand> loadScript(const std::filesystem::path& path) {
-  std::ifstream file(path);
-  if (!file) throw std::runtime_error("cannot open script '" + path.string() + "'");
-  std::ostringstream text;
-  text << file.rdbuf();
-  return parseScript(text.str(), path.string());
+  return parseScript(readInputFile(path, "script"), path.string());
 }
 
 ScriptFrame ScriptPlayer::next() {
