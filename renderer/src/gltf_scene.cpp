@@ -25,6 +25,8 @@
 #include <tiny_gltf.h>
 
 #include "s3d/image_limits.h"
+#include "s3d/input_file.h"
+#include "s3d/json_document.h"
 
 
 namespace s3d::renderer {
@@ -32,16 +34,35 @@ namespace fs = std::filesystem;
 
 namespace {
 
+// What a scene takes in memory as it is loaded (decoded textures, vertices, indices): each allocation is counted
+// before it is made, so a small file cannot declare its way past the limit (scene_file.h, kMaxSceneBytes).
+struct SceneMemory {
+  std::uint64_t limit = kMaxSceneBytes;
+  std::uint64_t used = 0;
+
+  std::string limitText() const {
+    return limit >= (1u << 20) ? std::to_string(limit >> 20) + " MiB" : std::to_string(limit) + " bytes";
+  }
+  // False when `bytes` more do not fit; else counts them.
+  bool reserve(std::uint64_t bytes) {
+    if (bytes > limit - used) return false;
+    used += bytes;
+    return true;
+  }
+};
+
 // Every error names the file it comes from.
 class GltfReader {
  public:
-  GltfReader(const fs::path& file, const tinygltf::Model& model) : file_(file), model_(model) {}
+  GltfReader(const fs::path& file, const tinygltf::Model& model, SceneMemory& memory)
+      : file_(file), model_(model), memory_(memory) {}
 
   [[noreturn]] void corrupt(const std::string& what) const {
     throw std::runtime_error("glTF file '" + file_.string() + "' is corrupt: " + what);
   }
-  [[noreturn]] void unsupported(const std::string& what) const {
-    throw std::invalid_argument("glTF file '" + file_.string() + "': " + what + " is not supported");
+  [[noreturn]] void unsupported(const std::string& what) const { refuse(what + " is not supported"); }
+  [[noreturn]] void refuse(const std::string& why) const {
+    throw std::invalid_argument("glTF file '" + file_.string() + "': " + why);
   }
 
   // An accessor's elements as floats (components per element), normalized integers mapped to [0, 1] / [-1, 1].
@@ -49,8 +70,9 @@ class GltfReader {
     const tinygltf::Accessor& accessor = accessorAt(accessorIndex, what);
     if (accessor.type != type) corrupt(std::string(what) + " accessor has the wrong element type");
     const int components = tinygltf::GetNumComponentsInType(std::uint32_t(type));
-    std::vector<float> values(accessor.count * std::size_t(components));
-    forEachComponent(accessor, components, what, [&](std::size_t i, const unsigned char* p) {
+    const Span span = spanOf(accessor, components, what);
+    std::vector<float> values(allocationFor<float>(accessor.count * std::size_t(components), what));
+    forEachComponent(span, accessor.count, components, [&](std::size_t i, const unsigned char* p) {
       switch (accessor.componentType) {
         case TINYGLTF_COMPONENT_TYPE_FLOAT: std::memcpy(&values[i], p, 4); break;
         case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: values[i] = float(*p) / 255.0f; break;
@@ -80,8 +102,9 @@ class GltfReader {
   std::vector<std::uint32_t> readIndices(int accessorIndex) const {
     const tinygltf::Accessor& accessor = accessorAt(accessorIndex, "index");
     if (accessor.type != TINYGLTF_TYPE_SCALAR) corrupt("index accessor is not scalar");
-    std::vector<std::uint32_t> indices(accessor.count);
-    forEachComponent(accessor, 1, "index", [&](std::size_t i, const unsigned char* p) {
+    const Span span = spanOf(accessor, 1, "index");
+    std::vector<std::uint32_t> indices(allocationFor<std::uint32_t>(accessor.count, "index"));
+    forEachComponent(span, accessor.count, 1, [&](std::size_t i, const unsigned char* p) {
       switch (accessor.componentType) {
         case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: indices[i] = *p; break;
         case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
@@ -99,6 +122,15 @@ class GltfReader {
 
   const fs::path& file() const { return file_; }
 
+  // Counts `count` elements of T against the scene's memory before they are allocated; returns `count`.
+  template <typename T>
+  std::size_t allocationFor(std::size_t count, const std::string& what) const {
+    if (!memory_.reserve(std::uint64_t(count) * sizeof(T)))
+      refuse("its " + what + " data would take the scene past the " + memory_.limitText() +
+             " a scene may take in memory");
+    return count;
+  }
+
  private:
   const tinygltf::Accessor& accessorAt(int index, const char* what) const {
     if (index < 0 || std::size_t(index) >= model_.accessors.size())
@@ -108,10 +140,15 @@ class GltfReader {
     return accessor;
   }
 
-  // Calls visit(component index, bytes) for every component, after checking the whole range lies in the buffer.
-  void forEachComponent(const tinygltf::Accessor& accessor, int components, const char* what,
-                        const std::function<void(std::size_t, const unsigned char*)>& visit) const {
-    if (accessor.count == 0) return;
+  // Where an accessor's elements lie: checked to lie inside its buffer view and buffer before anything is
+  // allocated for them (a count of 2^32 in a small file must not allocate first).
+  struct Span {
+    const unsigned char* begin = nullptr;
+    std::size_t stride = 0, componentSize = 0;
+  };
+
+  Span spanOf(const tinygltf::Accessor& accessor, int components, const char* what) const {
+    if (accessor.count == 0) return {};
     if (accessor.bufferView < 0 || std::size_t(accessor.bufferView) >= model_.bufferViews.size())
       corrupt(std::string(what) + " accessor has no buffer view");
     const tinygltf::BufferView& view = model_.bufferViews[std::size_t(accessor.bufferView)];
@@ -121,19 +158,30 @@ class GltfReader {
     const int componentSize = tinygltf::GetComponentSizeInBytes(std::uint32_t(accessor.componentType));
     const int stride = accessor.ByteStride(view);
     if (componentSize <= 0 || stride <= 0) corrupt(std::string(what) + " accessor has an invalid layout");
-    const std::size_t begin = view.byteOffset + accessor.byteOffset;
     const std::size_t elementSize = std::size_t(componentSize) * std::size_t(components);
-    const std::size_t end = begin + std::size_t(stride) * (accessor.count - 1) + elementSize;
-    if (end > view.byteOffset + view.byteLength || end > data.size())
+    // In overflow-free steps (every offset and count is the file's): the view lies in the buffer, and
+    // accessor.byteOffset + stride * (count - 1) + elementSize lies in the view.
+    if (view.byteOffset > data.size()) corrupt(std::string(what) + " buffer view starts past the end of its buffer");
+    const std::size_t viewBytes = std::min(view.byteLength, data.size() - view.byteOffset);
+    if (accessor.byteOffset > viewBytes || viewBytes - accessor.byteOffset < elementSize ||
+        (accessor.count - 1) > (viewBytes - accessor.byteOffset - elementSize) / std::size_t(stride))
       corrupt(std::string(what) + " accessor reads past the end of its buffer");
-    for (std::size_t element = 0; element < accessor.count; ++element)
+    const std::size_t begin = view.byteOffset + accessor.byteOffset;
+    return {data.data() + begin, std::size_t(stride), std::size_t(componentSize)};
+  }
+
+  // Calls visit(component index, bytes) for every component of a span checked by spanOf.
+  static void forEachComponent(const Span& span, std::size_t count, int components,
+                               const std::function<void(std::size_t, const unsigned char*)>& visit) {
+    for (std::size_t element = 0; element < count; ++element)
       for (int c = 0; c < components; ++c)
         visit(element * std::size_t(components) + std::size_t(c),
-              data.data() + begin + element * std::size_t(stride) + std::size_t(c * componentSize));
+              span.begin + element * span.stride + std::size_t(c) * span.componentSize);
   }
 
   fs::path file_;
   const tinygltf::Model& model_;
+  SceneMemory& memory_;
 };
 
 glm::mat4 nodeTransform(const tinygltf::Node& node) {
@@ -148,6 +196,13 @@ glm::mat4 nodeTransform(const tinygltf::Node& node) {
   if (node.scale.size() == 3) s = {node.scale[0], node.scale[1], node.scale[2]};
   if (node.rotation.size() == 4) r = glm::dquat(node.rotation[3], node.rotation[0], node.rotation[1], node.rotation[2]);
   return glm::mat4(glm::translate(glm::dmat4(1.0), t) * glm::mat4_cast(r) * glm::scale(glm::dmat4(1.0), s));
+}
+
+bool isFinite(const glm::mat4& m) {
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 4; ++r)
+      if (!std::isfinite(m[c][r])) return false;
+  return true;
 }
 
 glm::vec3 colorOf(const std::vector<double>& values, glm::vec3 fallback) {
@@ -202,7 +257,8 @@ void generateTangents(Mesh& mesh) {
 
 class SceneBuilder {
  public:
-  SceneBuilder(const fs::path& file, const tinygltf::Model& model) : reader_(file, model), model_(model) {}
+  SceneBuilder(const fs::path& file, const tinygltf::Model& model, SceneMemory& memory)
+      : reader_(file, model, memory), model_(model), visited_(model.nodes.size(), false) {}
 
   Scene build() {
     for (const std::string& extension : model_.extensionsRequired)
@@ -218,11 +274,19 @@ class SceneBuilder {
   }
 
  private:
+  // glTF node hierarchies are disjoint strict trees: a node reached a second time (listed by two parents, twice
+  // by one, or in a cycle) is refused, so a small file of shared children cannot make the walk exponential.
   void visit(int nodeIndex, const glm::mat4& parent, int depth) {
-    if (nodeIndex < 0 || std::size_t(nodeIndex) >= model_.nodes.size()) reader_.corrupt("node " + std::to_string(nodeIndex) + " does not exist");
-    if (depth > 64) reader_.corrupt("its node hierarchy is deeper than 64 levels (a cycle?)");
+    const std::string name = "node " + std::to_string(nodeIndex);
+    if (nodeIndex < 0 || std::size_t(nodeIndex) >= model_.nodes.size()) reader_.corrupt(name + " does not exist");
+    if (visited_[std::size_t(nodeIndex)])
+      reader_.corrupt(name + " is reached twice (glTF node hierarchies are trees: one parent per node, no cycles)");
+    visited_[std::size_t(nodeIndex)] = true;
+    if (depth > 64) reader_.corrupt("its node hierarchy is deeper than 64 levels");
     const tinygltf::Node& node = model_.nodes[std::size_t(nodeIndex)];
     const glm::mat4 world = parent * nodeTransform(node);
+    if (!isFinite(world))
+      reader_.corrupt(name + "'s transform overflows single precision (an entry beyond 3.4e38 after its parents')");
     if (node.skin >= 0) reader_.unsupported("skinning (node '" + node.name + "')");
     if (node.mesh >= 0) addMesh(node.mesh, world);
     if (node.camera >= 0) addCamera(node.camera, world);
@@ -251,6 +315,8 @@ class SceneBuilder {
       scene_.objects.push_back(object);
       for (const Vertex& v : mesh.vertices) {
         const glm::vec3 position(world * glm::vec4(v.position, 1.0f));
+        if (!std::isfinite(position.x) || !std::isfinite(position.y) || !std::isfinite(position.z))
+          reader_.corrupt("mesh " + std::to_string(meshIndex) + " placed by its node lies beyond single precision's range");
         boundsMin_ = glm::min(boundsMin_, position);
         boundsMax_ = glm::max(boundsMax_, position);
       }
@@ -328,6 +394,10 @@ class SceneBuilder {
       generateTangents(mesh);
     if (mirrored)  // the mirrored transform flips cross(normal, tangent): keep the bitangent on its side
       for (glm::vec4& tangent : mesh.tangents) tangent.w = -tangent.w;
+    reader_.allocationFor<unsigned char>(mesh.vertices.size() * sizeof(Vertex) + mesh.indices.size() * 4 +
+                                             mesh.texCoords.size() * sizeof(glm::vec2) +
+                                             mesh.tangents.size() * sizeof(glm::vec4),
+                                         "mesh");
     scene_.meshes.push_back(std::move(mesh));
     return std::uint32_t(scene_.meshes.size() - 1);
   }
@@ -383,7 +453,7 @@ class SceneBuilder {
     texture.encoding = encoding;
     const std::size_t count = std::size_t(image.width) * std::size_t(image.height) * 4;
     if (image.image.size() != count * std::size_t(image.bits / 8)) reader_.corrupt("image " + std::to_string(source) + " has the wrong size");
-    texture.rgba.resize(count);
+    texture.rgba.resize(reader_.allocationFor<std::uint8_t>(count, "image " + std::to_string(source)));
     for (std::size_t i = 0; i < count; ++i)  // 16-bit channels keep their high byte
       texture.rgba[i] = image.bits == 8 ? image.image[i] : image.image[2 * i + 1];
     scene_.textures.push_back(std::move(texture));
@@ -399,10 +469,13 @@ class SceneBuilder {
     const tinygltf::PerspectiveCamera& p = camera.perspective;
     if (!(p.yfov > 0.0 && p.yfov < 3.14) || !(p.znear > 0.0) || (p.zfar != 0.0 && !(p.zfar > p.znear)))
       reader_.corrupt("camera " + std::to_string(cameraIndex) + " has an invalid field of view or depth range");
+    const double far = p.zfar > 0.0 ? p.zfar : std::max(1000.0, 1e4 * p.znear);  // infinite: far
     scene_.camera.position = glm::vec3(world[3]);
     scene_.camera.verticalFovRadians = float(p.yfov);
     scene_.camera.nearPlane = float(p.znear);
-    scene_.camera.farPlane = p.zfar > 0.0 ? float(p.zfar) : std::max(1000.0f, 1e4f * float(p.znear));  // infinite: far
+    scene_.camera.farPlane = float(far);
+    if (const std::string problem = depthRangeProblem(p.znear, far); !problem.empty())
+      reader_.refuse("camera " + std::to_string(cameraIndex) + ": " + problem);
     // The renderer's camera has yaw and pitch, no roll: the node's -Z axis gives both.
     const glm::vec3 forward = glm::normalize(-glm::vec3(world[2]));
     scene_.camera.yawRadians = std::atan2(-forward.x, -forward.z);
@@ -448,6 +521,7 @@ class SceneBuilder {
 
   GltfReader reader_;
   const tinygltf::Model& model_;
+  std::vector<bool> visited_;  // per node
   Scene scene_;
   std::map<std::tuple<int, std::size_t, bool>, std::uint32_t> meshes_;  // (mesh, primitive, mirrored) -> mesh
   std::map<std::pair<int, Texture::Encoding>, std::int32_t> textures_;  // (image, encoding) -> texture
@@ -499,18 +573,13 @@ class DescriptionReader {
     if (object.contains("near")) camera.nearPlane = number(object["near"], where + ".near", 1e-5f, 1e6f);
     if (object.contains("far")) camera.farPlane = number(object["far"], where + ".far", 1e-4f, 1e9f);
     if (!(camera.farPlane > camera.nearPlane)) fail(where + ": far must be greater than near");
+    if (const std::string problem = depthRangeProblem(camera.nearPlane, camera.farPlane); !problem.empty())
+      fail(where + ": " + problem);
     return camera;
   }
 
   void apply(Scene& scene) const {
-    std::ifstream in(file_);
-    if (!in) throw std::runtime_error("scene description '" + file_.string() + "' cannot be read");
-    nlohmann::json doc;
-    try {
-      doc = nlohmann::json::parse(in);
-    } catch (const nlohmann::json::exception& error) {
-      throw std::runtime_error("scene description '" + file_.string() + "' is not valid JSON: " + error.what());
-    }
+    nlohmann::json doc = readJsonDocument(file_, "scene description");
     onlyKeys(doc, "the document",
              {"sun", "ambient", "pointLights", "sky", "camera", "cameraPath", "exposure", "ambientOcclusion",
               "ambientOcclusionRadius", "crosshairDistance"});
@@ -619,10 +688,14 @@ bool isInside(const fs::path& folder, const fs::path& path) {
   return !relative.empty() && *relative.begin() != "..";
 }
 
-// The JSON part of a .gltf or .glb; null when it cannot be read (tinygltf then reports why).
+// Largest glTF file, .bin buffer or image file a scene may name (a .gltf embeds its buffers as base64 text).
+constexpr std::uint64_t kMaxSceneFileBytes = std::uint64_t(2) << 30;
+
+// The JSON part of a .gltf or .glb, parsed with the nesting limit (s3d/json_document.h) before tinygltf's
+// recursive reader sees it; null when a .glb's container is broken (tinygltf then reports why). Throws
+// InputFileError naming the file when it cannot be read, is not JSON or nests too deep.
 nlohmann::json gltfJson(const fs::path& file, bool binary) {
-  std::ifstream in(file, std::ios::binary);
-  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::string bytes = readInputFile(file, "glTF file", kMaxSceneFileBytes);
   if (binary) {
     if (bytes.size() < 20 || bytes.compare(0, 4, "glTF") != 0) return nullptr;
     std::uint32_t length = 0;
@@ -630,8 +703,7 @@ nlohmann::json gltfJson(const fs::path& file, bool binary) {
     if (length > bytes.size() - 20) return nullptr;
     bytes = bytes.substr(20, length);
   }
-  nlohmann::json json = nlohmann::json::parse(bytes, nullptr, false);
-  return json.is_discarded() ? nlohmann::json(nullptr) : json;
+  return parseJsonDocument(bytes, "glTF file '" + file.string() + "'");
 }
 
 void requireUrisInsideFolder(const fs::path& file, const fs::path& folder, bool binary) {
@@ -677,7 +749,14 @@ bool readWholeFileInside(std::vector<unsigned char>* out, std::string* error, co
     if (error) *error += "file '" + path + "' is not in the scene's folder\n";
     return false;
   }
-  return tinygltf::ReadWholeFile(out, error, path, nullptr);
+  try {
+    const std::string bytes = readInputFile(path, "file", kMaxSceneFileBytes);
+    out->assign(bytes.begin(), bytes.end());
+    return true;
+  } catch (const InputFileError& failure) {
+    if (error) *error += std::string(failure.what()) + "\n";
+    return false;
+  }
 }
 
 bool writeNothing(std::string* error, const std::string&, const std::vector<unsigned char>&, void*) {
@@ -687,8 +766,9 @@ bool writeNothing(std::string* error, const std::string&, const std::vector<unsi
 
 // Every texture is held to the readers' size limits (s3d/image_limits.h) before it is decoded: a PNG of a few
 // hundred bytes can declare 20000x20000 pixels, 1.6 GB decoded (6 GB was measured through the renderer).
+// The decoded pixels count against the scene's memory (SceneMemory) the same way, before decoding.
 bool loadImageWithinLimits(tinygltf::Image* image, const int index, std::string* error, std::string* warning,
-                           int requestedWidth, int requestedHeight, const unsigned char* bytes, int size, void*) {
+                           int requestedWidth, int requestedHeight, const unsigned char* bytes, int size, void* memory) {
   int width = 0, height = 0, channels = 0;
   if (stbi_info_from_memory(bytes, size, &width, &height, &channels) != 0 &&
       (std::uint32_t(width) > kMaxImageSide || std::uint32_t(height) > kMaxImageSide ||
@@ -699,20 +779,30 @@ bool loadImageWithinLimits(tinygltf::Image* image, const int index, std::string*
                 std::to_string(kMaxImagePixels) + " pixels in all\n";
     return false;
   }
+  auto& sceneMemory = *static_cast<SceneMemory*>(memory);
+  const std::uint64_t bytesPerChannel = stbi_is_16_bit_from_memory(bytes, size) ? 2 : 1;
+  if (!sceneMemory.reserve(std::uint64_t(width) * std::uint64_t(height) * 4 * bytesPerChannel)) {
+    if (error)
+      *error += "image " + std::to_string(index) + " would take the scene past the " + sceneMemory.limitText() +
+                " a scene may take in memory\n";
+    return false;
+  }
   return tinygltf::LoadImageData(image, index, error, warning, requestedWidth, requestedHeight, bytes, size, nullptr);
 }
 
 }  // namespace
 
-Scene loadGltfScene(const fs::path& file) {
+Scene loadGltfScene(const fs::path& file, std::uint64_t memoryLimit) {
   std::error_code error;
-  if (!fs::is_regular_file(file, error)) throw std::runtime_error("glTF file '" + file.string() + "' does not exist");
+  if (const std::string problem = inputFileProblem(file); !problem.empty())
+    throw std::runtime_error("glTF file '" + file.string() + "' " + problem);
   const bool binary = lowercase(file.extension().string()) == ".glb";
   SceneFolderSandbox sandbox{fs::weakly_canonical(fs::absolute(file).parent_path(), error)};
   requireUrisInsideFolder(file, sandbox.folder, binary);
   tinygltf::TinyGLTF loader;
   loader.SetFsCallbacks({fileExistsInside, expandNothing, readWholeFileInside, writeNothing, &sandbox});
-  loader.SetImageLoader(loadImageWithinLimits, nullptr);
+  SceneMemory memory{memoryLimit};
+  loader.SetImageLoader(loadImageWithinLimits, &memory);
   tinygltf::Model model;
   std::string errors, warnings;
   const bool loaded = binary ? loader.LoadBinaryFromFile(&model, &errors, &warnings, file.string())
@@ -723,7 +813,7 @@ Scene loadGltfScene(const fs::path& file) {
     std::replace(reason.begin(), reason.end(), '\n', ' ');
     throw std::runtime_error("glTF file '" + file.string() + "' cannot be loaded: " + reason);
   }
-  Scene scene = SceneBuilder(file, model).build();
+  Scene scene = SceneBuilder(file, model, memory).build();
   const fs::path description = sceneDescriptionPath(file);
   if (fs::exists(description, error)) DescriptionReader(description).apply(scene);
   return scene;
@@ -731,7 +821,11 @@ Scene loadGltfScene(const fs::path& file) {
 
 std::vector<fs::path> sceneFileInputs(const fs::path& file) {
   const bool binary = lowercase(file.extension().string()) == ".glb";
-  const nlohmann::json json = gltfJson(file, binary);
+  nlohmann::json json;
+  try {
+    json = gltfJson(file, binary);
+  } catch (const InputFileError&) {  // loadGltfScene names the problem
+  }
   std::vector<fs::path> inputs{file};
   std::error_code error;
   if (fs::exists(sceneDescriptionPath(file), error)) inputs.push_back(sceneDescriptionPath(file));

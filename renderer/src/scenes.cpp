@@ -22,6 +22,8 @@
 
 #include "s3d/renderer/scene.h"
 
+#include "s3d/number_text.h"
+
 namespace s3d::renderer {
 namespace {
 
@@ -527,6 +529,17 @@ Scene makeBuiltInScene(const std::string& name) {
   std::string choices;
   for (const std::string& n : builtInSceneNames()) choices += (choices.empty() ? "" : ", ") + n;
   throw std::invalid_argument("unknown scene '" + name + "' (choices: " + choices + ")");
+}
+
+std::string depthRangeProblem(double nearPlane, double farPlane) {
+  if (!(nearPlane > 0.0) || !std::isfinite(farPlane) || !(farPlane > nearPlane))
+    return "its depth range " + numberText(nearPlane) + " to " + numberText(farPlane) +
+           " is not 0 < near < far, both finite";
+  if (farPlane / nearPlane > kMaxDepthRangeRatio)
+    return "its depth range " + numberText(nearPlane) + " to " + numberText(farPlane) + " spans a far/near ratio of " +
+           numberText(farPlane / nearPlane) + ", past the " + numberText(kMaxDepthRangeRatio) +
+           " a 32-bit depth buffer resolves (the frame would be empty): raise near or lower far";
+  return "";
 }
 
 Camera cameraForFrame(const Scene& scene, std::size_t frame) {

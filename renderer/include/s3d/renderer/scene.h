@@ -105,6 +105,12 @@ struct Camera {
   float farPlane = 1000.0f;
 };
 
+// Largest far/near ratio a camera may have: past 2^24 a 32-bit float depth buffer cannot tell the far plane's
+// depth from the cleared one, and the frame comes out empty.
+inline constexpr double kMaxDepthRangeRatio = 16777216.0;
+// Why a camera's depth range cannot render ("the far/near ratio 1e+60 is past ..."), or "" when it can.
+std::string depthRangeProblem(double nearPlane, double farPlane);
+
 // The first-person layer's own projection (Listing 4.2/4.3: different FOV and depth range).
 struct FirstPersonView {
   float verticalFovRadians = 0.9f;
