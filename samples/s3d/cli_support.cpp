@@ -9,6 +9,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "s3d/number_text.h"
 #include "s3d/app/memory_budget.h"
 
 namespace s3d::cli {
@@ -55,21 +56,21 @@ std::string formatMs(const std::optional<double>& ms) {
   return text;
 }
 
-CLI::Validator floatRange(double low, double high, bool lowOpen, const std::string& what) {
-  std::ostringstream description;
-  description << "FLOAT in " << (lowOpen ? "(" : "[") << low << ", " << high << "]";
+CLI::Validator floatRange(double low, double high, bool lowOpen, const std::string& what, bool highOpen) {
+  std::ostringstream interval;
+  interval << (lowOpen ? "(" : "[") << low << ", " << high << (highOpen ? ")" : "]");
   return CLI::Validator(
-      [low, high, lowOpen, what](std::string& input) -> std::string {
-        std::optional<double> value = parseNumber(input);
-        if (!value || *value > high || (lowOpen ? *value <= low : *value < low)) {
-          std::ostringstream message;
-          message << "expected " << what << ", a number in " << (lowOpen ? "(" : "[") << low << ", " << high
-                  << "] (got '" << input << "')";
-          return message.str();
-        }
-        return {};
+      [low, high, lowOpen, highOpen, what, range = interval.str()](std::string& input) -> std::string {
+        const std::optional<double> parsed = parseNumber(input);
+        const double value = parsed ? double(float(*parsed)) : 0.0;
+        const bool inside = parsed && std::isfinite(value) && (highOpen ? value < high : value <= high) &&
+                            (lowOpen ? value > low : value >= low);
+        if (inside) return {};
+        std::string message = "expected " + what + ", a number in " + range + " (got '" + input + "'";
+        if (parsed && value != *parsed && std::isfinite(*parsed)) message += ", which is " + numberText(float(value)) + " as a float";
+        return message + ")";
       },
-      description.str());
+      "FLOAT in " + interval.str());
 }
 
 bool parseResolution(const std::string& text, std::uint32_t maxSize, std::uint32_t& width, std::uint32_t& height) {

@@ -73,8 +73,9 @@ int failValidation(std::size_t messages);
 std::optional<double> parseNumber(const std::string& text);
 std::string formatMs(const std::optional<double>& ms);
 
-// A finite float in [low, high] (or (low, high] when lowOpen); CLI11 puts the option's name before the message.
-CLI::Validator floatRange(double low, double high, bool lowOpen, const std::string& what);
+// A finite float in [low, high] (open at an end when lowOpen / highOpen), judged as the float it is stored in
+// (1e-300 is 0 there); CLI11 puts the option's name before the message.
+CLI::Validator floatRange(double low, double high, bool lowOpen, const std::string& what, bool highOpen = false);
 // "WxH" with both parts in [1, maxSize].
 bool parseResolution(const std::string& text, std::uint32_t maxSize, std::uint32_t& width, std::uint32_t& height);
 CLI::Validator resolutionValidator(std::uint32_t maxSize);

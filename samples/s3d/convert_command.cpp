@@ -76,7 +76,7 @@ class ConvertCommand final : public Command {
     convert.add_option("--near", options_.nearPlane, "Near plane of the projection, for --depth-kind hardware");
     convert.add_option("--far", options_.farPlane, "Far plane of the projection, for --depth-kind hardware");
     auto* fov = convert.add_option("--fov-y", fovY_, "Vertical field of view in degrees, for --depth-kind distance")
-                    ->check(floatRange(0.0, 180.0, true, "degrees"));
+                    ->check(floatRange(0.0, 180.0, true, "degrees", true));
     convert.add_option("--focal-px", focalPx_, "Focal length in pixels, for --depth-kind distance")
         ->check(floatRange(0.0, 1.0e7, true, "pixels"))
         ->excludes(fov);

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include "s3d/number_text.h"
+
 namespace s3d::cli {
 
 void ProfileOptions::add(CLI::App& command) {
@@ -70,8 +72,22 @@ comfort::ComfortProfile ProfileOptions::resolve(const CLI::App& command, const S
                                                    : "the profile's method hybrid (" + load.string() + ")") +
                                 ": the hybrid method renders its masked pixels from one pair of eye cameras, and a "
                                 "nonlinear map has none (one per segment of its curve)");
+  requireProfileSeparationUnderBudget(profile);
   comfort::validate(profile);  // the overrides may combine into something the profile's rules refuse
   return profile;
+}
+
+void ProfileOptions::requireProfileSeparationUnderBudget(const comfort::ComfortProfile& profile) const {
+  if (load.empty() || budgetRule() == comfort::DisparityBudgetRule::Off) return;
+  const stereo::StereoParameters defaults;
+  const auto check = [&](float value, float fallback, const char* key) {
+    if (value != fallback)
+      throw std::invalid_argument("the profile '" + load.string() + "' sets stereo." + key + " " + numberText(value) +
+                                  ", which --disparity-budget " + disparityBudget + " chooses every frame from the "
+                                  "frame's depth range; add --disparity-budget off to use it");
+  };
+  check(profile.stereo.maxSeparation, defaults.maxSeparation, "maxSeparation");
+  check(profile.stereo.zeroParallaxDistance, defaults.zeroParallaxDistance, "zeroParallaxDistance");
 }
 
 std::string ProfileOptions::mappingSource(const CLI::App& command) const {

@@ -32,6 +32,9 @@ struct ProfileOptions {
   comfort::DisplayProfile resolveDisplay(const CLI::App& command) const;
   // Where a nonlinear mapping came from, for errors: "--disparity-mapping nonlinear" or the --profile file's key.
   std::string mappingSource(const CLI::App& command) const;
+  // With the budget on, a --profile whose stereo.maxSeparation or zeroParallaxDistance differs from the default is
+  // refused as the same command-line options are (the budget would silently replace it).
+  void requireProfileSeparationUnderBudget(const comfort::ComfortProfile& profile) const;
   // --disparity-budget, where the command offers it (addDisparityBudgetOption).
   comfort::DisparityBudgetRule budgetRule() const { return comfort::parseDisparityBudgetRule(disparityBudget); }
 };

@@ -140,7 +140,7 @@ ImageRGBA8 makeSideBySide(const ImageRGBA8& left, const ImageRGBA8& right, Packi
     copyEye(right, frame, eyeWidth, 0);
     return frame;
   }
-  if (eyeWidth < 2) throw std::invalid_argument("makeSideBySide: half packing needs eyes at least 2 pixels wide");
+  if (eyeWidth < 2) throw std::invalid_argument("side-by-side half packing needs eyes at least 2 pixels wide");
   const std::uint32_t leftColumns = (eyeWidth + 1) / 2;  // odd width: the left eye takes the spare column
   const std::uint32_t rightColumns = eyeWidth - leftColumns;
   ImageRGBA8 frame(eyeWidth, eyeHeight);
@@ -159,7 +159,7 @@ ImageRGBA8 makeTopAndBottom(const ImageRGBA8& left, const ImageRGBA8& right, Pac
     copyEye(right, frame, 0, eyeHeight);
     return frame;
   }
-  if (eyeHeight < 2) throw std::invalid_argument("makeTopAndBottom: half packing needs eyes at least 2 pixels tall");
+  if (eyeHeight < 2) throw std::invalid_argument("top-and-bottom half packing needs eyes at least 2 pixels tall");
   const std::uint32_t topRows = (eyeHeight + 1) / 2;  // odd height: the top (left) eye takes the spare row
   const std::uint32_t bottomRows = eyeHeight - topRows;
   ImageRGBA8 frame(eyeWidth, eyeHeight);

@@ -141,9 +141,17 @@ std::uint32_t chooseDevice(const std::vector<PhysicalDeviceInfo>& infos, const s
   } else {
     throw std::invalid_argument("unknown device choice '" + choice + "' (expected auto, cpu, gpu or an index)");
   }
-  if (chosen == UINT32_MAX)
+  if (chosen == UINT32_MAX) {
+    // Advice that fits what is there: a GPU driver when only the CPU device exists, lavapipe when nothing does.
+    const bool hasCpu = std::any_of(infos.begin(), infos.end(), [](const PhysicalDeviceInfo& i) {
+      return i.type == VK_PHYSICAL_DEVICE_TYPE_CPU && i.usable;
+    });
+    const std::string advice = choice == "gpu" && hasCpu ? "no usable GPU: install its Vulkan driver, or use --device cpu"
+                               : hasCpu                  ? "--device auto picks a usable one"
+                                                         : "install mesa-vulkan-drivers for the CPU device lavapipe";
     throw std::runtime_error("no usable Vulkan device for --device " + choice + "; devices found:" + listing(infos) +
-                             "\n(install mesa-vulkan-drivers for the CPU device lavapipe)");
+                             "\n(" + advice + ")");
+  }
   return chosen;
 }
 

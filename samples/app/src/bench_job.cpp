@@ -4,6 +4,7 @@
 #include <charconv>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <cstdio>
 #include <fstream>
 #include <iterator>
@@ -209,6 +210,9 @@ ValidatedBench validateBench(const BenchOptions& options) {
         throw std::invalid_argument("separation " + format("%g", percent) + " % is outside (0, " +
                                     format("%g", limitPercent) + "] % of the screen width");
       const float separation = float(percent / 100.0);
+      if (!(separation > 0.0f))
+        throw std::invalid_argument("separation " + format("%g", percent) + " % is 0 as a float: give at least " +
+                                    format("%g", 100.0 * double(std::numeric_limits<float>::min())) + " %");
       if (std::find(bench.separations.begin(), bench.separations.end(), separation) != bench.separations.end()) continue;
       stereo::StereoParameters parameters = options.stereo;
       parameters.maxSeparation = separation;

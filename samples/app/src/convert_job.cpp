@@ -272,6 +272,7 @@ ConvertReport runConvertJob(vk::Context& context, const ConvertJobOptions& optio
   // The frame's memory from the color file's header, before a pixel is decoded.
   requireFile(options.color, "color");
   const io::ImageSize size = io::readImageSize(options.color);
+  requirePackableEyes(size.width, size.height, true, options.sideBySide, true, options.topBottom, false);
   report.memory = convertMemoryEstimate(size.width, size.height);
   requireMemory(context, report.memory, options.memoryLimitBytes);
   const ImageRGBA8 color = readColor(options.color, &report.sanitizedColorValues);

@@ -51,6 +51,20 @@ stereo::StereoParameters pushWeaponUnlessNegativeParallaxAllowed(stereo::StereoP
   return comfort::weaponPushForFrame(parameters, weapon, allowNegativeParallax);
 }
 
+void requirePackableEyes(std::uint32_t width, std::uint32_t height, bool writesSideBySide, stereo::PackingMode sideBySide,
+                         bool writesTopBottom, stereo::PackingMode topBottom, bool outputsSelectable) {
+  auto require = [&](bool squeezed, std::uint32_t size, const char* option, const char* across, const char* units,
+                     const char* file) {
+    if (!squeezed || size >= 2) return;
+    throw std::invalid_argument(std::string(option) + " half squeezes each eye to half its " + across +
+                                ", which needs at least 2 " + units + " (the " + across + " is " + std::to_string(size) +
+                                "): use " + option + " full" +
+                                (outputsSelectable ? std::string(" or leave ") + file + " out of --outputs" : ""));
+  };
+  require(writesSideBySide && sideBySide == stereo::PackingMode::Half, width, "--sbs", "width", "columns", "sbs.png");
+  require(writesTopBottom && topBottom == stereo::PackingMode::Half, height, "--tab", "height", "rows", "tab.png");
+}
+
 bool holdZeroParallaxAtNearestDepth(stereo::StereoParameters& parameters, const DepthImage& stereoDepth,
                                     bool allowNegativeParallax) {
   return comfort::holdZeroParallax(parameters, comfort::nearestDepth(stereoDepth), allowNegativeParallax);

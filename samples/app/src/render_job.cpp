@@ -122,12 +122,8 @@ ValidatedJob validateJob(const RenderJobOptions& options) {
     throw std::invalid_argument("edgeCrop " + numberText(options.stereo.edgeCrop) + " blacks out all " +
                                 std::to_string(options.width) + " columns: nothing left to compare");
   // Packing limits, so a size the options accept cannot fail after the whole render.
-  if (options.outputs.count("sbs.png") && options.sideBySide == stereo::PackingMode::Half && options.width < 2)
-    throw std::invalid_argument("--sbs half squeezes each eye to half its width, which needs at least 2 columns (the "
-                                "width is 1): use --sbs full or leave sbs.png out of --outputs");
-  if (options.outputs.count("tab.png") && options.topBottom == stereo::PackingMode::Half && options.height < 2)
-    throw std::invalid_argument("--tab half squeezes each eye to half its height, which needs at least 2 rows (the "
-                                "height is 1): use --tab full or leave tab.png out of --outputs");
+  requirePackableEyes(options.width, options.height, options.outputs.count("sbs.png") != 0, options.sideBySide,
+                      options.outputs.count("tab.png") != 0, options.topBottom, true);
   // Memory last: the estimate needs the scene (near plane) and the valid parameters.
   requireHostMemory(memoryEstimateFor(options, job.scene, job.stereo), options.memoryLimitBytes, false);
   return job;

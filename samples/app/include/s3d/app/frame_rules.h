@@ -12,6 +12,7 @@
 
 #include "s3d/image.h"
 #include "s3d/stereo/disparity_map_shared.h"
+#include "s3d/stereo/output_formats.h"
 #include "s3d/stereo/stereo.h"
 
 namespace s3d::app {
@@ -27,6 +28,12 @@ stereo::StereoParameters pushWeaponUnlessNegativeParallaxAllowed(stereo::StereoP
 // whether it was lowered.
 bool holdZeroParallaxAtNearestDepth(stereo::StereoParameters& parameters, const DepthImage& stereoDepth,
                                     bool allowNegativeParallax);
+
+// Before a run: throws std::invalid_argument naming --sbs / --tab when half packing cannot squeeze eyes of this
+// size (it needs 2 columns / rows), so a size the options accept cannot fail after the whole run. `writes...`:
+// whether sbs.png / tab.png are written; `outputsSelectable`: whether --outputs can leave them out.
+void requirePackableEyes(std::uint32_t width, std::uint32_t height, bool writesSideBySide, stereo::PackingMode sideBySide,
+                         bool writesTopBottom, stereo::PackingMode topBottom, bool outputsSelectable);
 
 // The game HUD of the built-in scenes (health and ammo panels, crosshair). A glTF file is the user's own scene:
 // a game's HUD drawn over it would be ours, not theirs, so Auto leaves it out there.
