@@ -163,7 +163,7 @@ void validate(const s3d_frame_comfort_input& input) {
   if (!(std::abs(aimLength - 1.0f) <= 1e-3f))
     fail("s3d_frame_comfort_input.camera_aim must be a unit vector (its length is " + numberText(aimLength) + ")");
   requirePositive(input.camera_near, name / "camera_near");
-  validate(input.parameters, name / "parameters");
+  validate(input.parameters, {"s3d_frame_comfort_input.parameters"});
   if (input.width == 0) fail("s3d_frame_comfort_input.width is 0");
   requirePositive(input.crosshair_distance, name / "crosshair_distance");
   requireNonNegative(input.crosshair_margin, name / "crosshair_margin");

@@ -7,7 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "s3d/s3d.h"
+#include "capi_fixture.h"
 
 static int failures = 0;
 #define CHECK(condition, ...)                                  \
@@ -286,6 +286,13 @@ int main(void) {
     }
     CHECK(wrong == 0, "round %d: %d channels differ from the orange eyes with the white marker", round, wrong);
   }
+  /* Every refusal a careless caller is owed, recorded into a command buffer that is then dropped. */
+  VK(vkResetCommandPool(device, pool, 0));
+  VK(vkBeginCommandBuffer(cmd, &begin));
+  const capi_fixture fixture = {physical, host, &deviceInfo, context, pass, hudPass, cmd, color, depth, left, right};
+  failures += capi_argument_checks(&fixture);
+  VK(vkEndCommandBuffer(cmd));
+  VK(vkResetCommandPool(device, pool, 0));
   s3d_hud_pass_destroy(hudPass);
 
   /* Per-frame comfort through a C ray cast. */
