@@ -222,6 +222,10 @@ static void hudPassDescriptions(const capi_fixture* f) {
     s3d_hud_pass hud = NULL;
     REFUSED(s3d_hud_pass_create(f->context, &cases[i].desc, &hud), cases[i].name);
   }
+  const s3d_hud_pass_desc tiny = {1, 1, 1, NULL, 0};
+  s3d_hud_pass hud = NULL;
+  EXPECT(s3d_hud_pass_create(f->context, &tiny, &hud) == S3D_SUCCESS, "the built-in HUD on a 1x1 eye is made");
+  s3d_hud_pass_destroy(hud);
 }
 
 static void stereoParametersAndProjection(const capi_fixture* f) {
