@@ -9,8 +9,11 @@
 #include <span>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
+#include "capi_validate.h"
 #include "s3d/comfort/frame_comfort_state.h"
+#include "s3d/number_text.h"
 #include "s3d/hud/hud_pass.h"
 #include "s3d/stereo/host_stereo_pass.h"
 #include "s3d/vk/check.h"
@@ -18,6 +21,7 @@
 
 struct s3d_context_t {
   s3d::vk::Context context;
+  std::uint32_t maxImageDimension2D;  // of the physical device the context was created with
 };
 struct s3d_host_pass_t {
   s3d::stereo::HostStereoPass pass;
@@ -36,6 +40,26 @@ namespace {
 
 thread_local std::string lastError;
 
+using s3d::capi::ImageUse;
+using s3d::capi::Name;
+using s3d::capi::requireNotNull;
+
+// For the functions without a result code: whether `pointer` is there, noting why not for s3d_last_error.
+bool present(const void* pointer, const char* name) {
+  if (pointer) {
+    lastError.clear();
+    return true;
+  }
+  lastError = std::string(name) + " is NULL";
+  return false;
+}
+
+// The Vulkan function and its result, without the C++ expression of its arguments.
+std::string vulkanMessage(const s3d::vk::VulkanError& error) {
+  const std::string text = error.what();
+  return text.substr(0, text.find('(')) + " failed: " + s3d::vk::resultName(error.result());
+}
+
 template <typename F>
 s3d_result guarded(F&& body) {
   try {
@@ -46,7 +70,7 @@ s3d_result guarded(F&& body) {
     lastError = error.what();
     return S3D_ERROR_INVALID_ARGUMENT;
   } catch (const s3d::vk::VulkanError& error) {
-    lastError = error.what();
+    lastError = vulkanMessage(error);
     return S3D_ERROR_VULKAN;
   } catch (const std::runtime_error& error) {  // adoption and patch failures name the missing requirement
     lastError = error.what();
@@ -60,22 +84,17 @@ s3d_result guarded(F&& body) {
   }
 }
 
-void requireNotNull(const void* pointer, const char* what) {
-  if (!pointer) throw std::invalid_argument(std::string(what) + " is NULL");
-}
-
+// `p` passed s3d::capi::validate.
 s3d::stereo::StereoParameters toCpp(const s3d_stereo_parameters& p) {
   s3d::stereo::StereoParameters result;
   result.maxSeparation = p.max_separation;
   result.zeroParallaxDistance = p.zero_parallax_distance;
   result.edgeCrop = p.edge_crop;
-  if (p.method != S3D_METHOD_SEED && p.method != S3D_METHOD_SEARCH)
-    throw std::invalid_argument("s3d_stereo_parameters.method must be S3D_METHOD_SEED or S3D_METHOD_SEARCH");
   result.method = p.method == S3D_METHOD_SEED ? s3d::stereo::StereoMethod::Seed : s3d::stereo::StereoMethod::Search;
   result.searchTaps = p.search_taps;
   result.weaponDepthOffset = p.weapon_depth_offset;
   result.weaponDepthScale = p.weapon_depth_scale;
-  s3d::stereo::validate(result);
+  s3d::stereo::validate(result);  // a backstop: the C checks above cover every rule it has
   return result;
 }
 
@@ -100,38 +119,71 @@ struct HudFrameStorage {
   std::span<const s3d::hud::HudElementFrame> frameSpan;
   std::span<const s3d::stereo::HostImage> hostLayerSpan;
 
-  HudFrameStorage(const s3d_hud_element_frame* frames_, uint32_t frameCount, const s3d_host_image* hostLayers_,
-                  uint32_t hostLayerCount) {
-    if (frameCount > S3D_HUD_MAX_ELEMENTS || hostLayerCount > S3D_HUD_MAX_ELEMENTS)
-      throw std::invalid_argument("more HUD element frames or host layers than the 16 a HUD pass has at most");
-    if (frameCount > 0) requireNotNull(frames_, "the HUD element frames");
-    if (hostLayerCount > 0) requireNotNull(hostLayers_, "the HUD host layers");
+  HudFrameStorage(const s3d::hud::HudPass& pass, const s3d_hud_element_frame* frames_, uint32_t frameCount,
+                  const s3d_host_image* hostLayers_, uint32_t hostLayerCount) {
+    s3d::capi::validate(frames_, frameCount, uint32_t(pass.desc().elements.size()));
+    if (hostLayerCount != pass.hostLayerCount())
+      s3d::capi::fail("host_layer_count " + std::to_string(hostLayerCount) + " differs from the HUD pass's " +
+                      std::to_string(pass.hostLayerCount()) + " host layers (elements made without pixels)");
+    if (hostLayerCount > 0) requireNotNull(hostLayers_, {"host_layers"});
+    for (uint32_t i = 0; i < hostLayerCount; ++i) {
+      const Name name{"host_layers", nullptr, i};
+      s3d::capi::validateImage(&hostLayers_[i], name, ImageUse::Sampled);
+      s3d::capi::requireFormat(hostLayers_[i], name, VK_FORMAT_R8G8B8A8_UNORM, VK_FORMAT_B8G8R8A8_UNORM);
+      hostLayers[i] = toCpp(hostLayers_[i]);
+    }
     for (uint32_t i = 0; i < frameCount; ++i)
       frames[i] = {frames_[i].parallax_px, frames_[i].fades_behind_weapon != 0, frames_[i].hidden != 0};
-    for (uint32_t i = 0; i < hostLayerCount; ++i) hostLayers[i] = toCpp(hostLayers_[i]);
     frameSpan = std::span(frames).first(frameCount);
     hostLayerSpan = std::span(hostLayers).first(hostLayerCount);
   }
 };
 
+void validateOutput(const s3d_host_image* image, const char* name, VkFormat eyeFormat) {
+  s3d::capi::validateImage(image, {name}, ImageUse::StorageWrite);
+  s3d::capi::requireFormat(*image, {name}, eyeFormat);
+}
+
+// The images record() reads and writes, checked against what the pass was made for.
+void validateImages(const s3d::stereo::HostStereoPass& pass, const s3d_host_image* color, const s3d_host_image* depth,
+                    const s3d_host_image* left, const s3d_host_image* right, const s3d_host_image* target) {
+  const s3d::stereo::HostStereoPassDesc& desc = pass.desc();
+  const ImageUse input = desc.inputsAreStorage ? ImageUse::StorageRead : ImageUse::Sampled;
+  s3d::capi::validateImage(color, {"color"}, input);
+  s3d::capi::requireFormat(*color, {"color"}, desc.colorFormat);
+  s3d::capi::validateImage(depth, {"depth"}, input);
+  s3d::capi::requireFormat(*depth, {"depth"}, desc.depthFormat);
+  if (desc.output == s3d::stereo::HostOutput::TwoEyes) {
+    validateOutput(left, "left", pass.eyeFormat());
+    validateOutput(right, "right", pass.eyeFormat());
+    if (target) s3d::capi::fail("target must be NULL for S3D_OUTPUT_TWO_EYES (left and right get the eyes)");
+  } else {
+    validateOutput(target, "target", pass.eyeFormat());
+    if (left || right) s3d::capi::fail("left and right must be NULL for packed outputs (target gets the eyes)");
+  }
+}
+
 void recordHostPass(s3d_host_pass pass, VkCommandBuffer cmd, const s3d_host_image* color, const s3d_host_image* depth,
                     const s3d_stereo_parameters* parameters, const s3d_projection* projection,
                     const s3d_host_image* left, const s3d_host_image* right, const s3d_host_image* target,
                     const s3d::stereo::EyeOverlay* overlay) {
-  requireNotNull(pass, "the pass");
-  requireNotNull(color, "the colour image");
-  requireNotNull(depth, "the depth image");
-  requireNotNull(parameters, "the stereo parameters");
-  const s3d::stereo::StereoParameters cpp = toCpp(*parameters);
+  requireNotNull(pass, {"pass"});
+  s3d::capi::requireHandle(cmd, {"cmd"});
+  requireNotNull(parameters, {"parameters"});
+  s3d::capi::validate(*parameters, {"parameters"});
   const s3d::stereo::HostStereoPassDesc& desc = pass->pass.desc();
+  if (projection)
+    s3d::capi::validate(*projection);
+  else if (desc.depthFormat != VK_FORMAT_R32_SFLOAT)
+    s3d::capi::fail("projection is NULL: the pass's hardware depth_format needs the s3d_projection");
+  validateImages(pass->pass, color, depth, left, right, target);
+  const s3d::stereo::StereoParameters cpp = toCpp(*parameters);
   s3d::stereo::HostFrame frame;
   frame.stereo = s3d::stereo::makeStereoConstants(cpp, desc.width, desc.height);
   if (projection)
     frame.projection = {projection->near_plane, projection->far_plane, projection->reversed_z != 0,
                         projection->infinite_far_plane != 0, projection->first_person_depth_range,
                         projection->first_person_near, projection->first_person_far};
-  else if (desc.depthFormat != VK_FORMAT_R32_SFLOAT)
-    throw std::invalid_argument("a hardware depth buffer needs its s3d_projection");
   frame.weaponDepthOffset = cpp.weaponDepthOffset;
   frame.weaponDepthScale = cpp.weaponDepthScale;
   const s3d::stereo::HostImage leftImage = left ? toCpp(*left) : s3d::stereo::HostImage{};
@@ -139,6 +191,19 @@ void recordHostPass(s3d_host_pass pass, VkCommandBuffer cmd, const s3d_host_imag
   const s3d::stereo::HostImage targetImage = target ? toCpp(*target) : s3d::stereo::HostImage{};
   pass->pass.record(cmd, toCpp(*color), toCpp(*depth), frame, left ? &leftImage : nullptr,
                     right ? &rightImage : nullptr, target ? &targetImage : nullptr, overlay);
+}
+
+// The same wording as Context's own check, in the C API's terms: the host's device lacks a requirement.
+void requireDeviceSupport(const s3d_host_device& host) {
+  std::vector<std::string> missing = s3d::vk::missingDeviceSupport(host.physical_device);
+  const bool supported = missing.empty();
+  if (supported && host.create_info) missing = s3d::vk::missingEnabledRequirements(*host.create_info);
+  if (missing.empty()) return;
+  std::string names;
+  for (const std::string& name : missing) names += (names.empty() ? "" : ", ") + name;
+  throw std::runtime_error(supported ? "s3d_host_device.device was created without " + names +
+                                           " (patch its VkDeviceCreateInfo with s3d_device_patch_apply)"
+                                     : "s3d_host_device.physical_device does not support " + names);
 }
 
 const s3d::vk::DeviceRequirements& requirements() {
@@ -155,17 +220,22 @@ const char* s3d_last_error(void) { return lastError.c_str(); }
 uint32_t s3d_required_api_version(void) { return requirements().apiVersion; }
 uint32_t s3d_required_extension_count(void) { return uint32_t(requirements().extensions.size()); }
 const char* s3d_required_extension(uint32_t index) {
-  return index < requirements().extensions.size() ? requirements().extensions[index].c_str() : nullptr;
+  const auto& names = requirements().extensions;
+  return present(index < names.size() ? &names : nullptr, "index past s3d_required_extension_count(): the name")
+             ? names[index].c_str()
+             : nullptr;
 }
 uint32_t s3d_required_feature_count(void) { return uint32_t(requirements().features.size()); }
 const char* s3d_required_feature(uint32_t index) {
-  return index < requirements().features.size() ? requirements().features[index].c_str() : nullptr;
+  const auto& names = requirements().features;
+  return present(index < names.size() ? &names : nullptr, "index past s3d_required_feature_count(): the name")
+             ? names[index].c_str()
+             : nullptr;
 }
 
 s3d_result s3d_device_patch_apply(VkPhysicalDevice physical_device, VkDeviceCreateInfo* info, s3d_device_patch* out) {
   return guarded([&] {
-    requireNotNull(info, "the VkDeviceCreateInfo");
-    requireNotNull(out, "the patch output");
+    s3d::capi::validateDevicePatch(physical_device, info, out);
     auto patch = std::make_unique<s3d_device_patch_t>();
     patch->patch = std::make_unique<s3d::vk::DeviceRequirementsPatch>(physical_device, *info);
     *out = patch.release();
@@ -175,8 +245,10 @@ void s3d_device_patch_destroy(s3d_device_patch patch) { delete patch; }
 
 s3d_result s3d_context_create(const s3d_host_device* host, s3d_context* out) {
   return guarded([&] {
-    requireNotNull(host, "the host device");
-    requireNotNull(out, "the context output");
+    requireNotNull(host, {"host"});
+    requireNotNull(out, {"out"});
+    s3d::capi::validateHostDevice(*host);
+    requireDeviceSupport(*host);
     s3d::vk::HostDevice device;
     device.instance = host->instance;
     device.physicalDevice = host->physical_device;
@@ -186,32 +258,36 @@ s3d_result s3d_context_create(const s3d_host_device* host, s3d_context* out) {
     device.allocator = host->allocator;
     device.pipelineCache = host->pipeline_cache;
     device.createInfo = host->create_info;
-    *out = new s3d_context_t{s3d::vk::Context(device)};
+    VkPhysicalDeviceProperties properties{};
+    vkGetPhysicalDeviceProperties(host->physical_device, &properties);
+    *out = new s3d_context_t{s3d::vk::Context(device), properties.limits.maxImageDimension2D};
   });
 }
 void s3d_context_destroy(s3d_context context) { delete context; }
 
 void s3d_default_stereo_parameters(s3d_stereo_parameters* out) {
-  if (out) *out = toC(s3d::stereo::StereoParameters{});
+  if (present(out, "out")) *out = toC(s3d::stereo::StereoParameters{});
 }
 
 s3d_result s3d_host_pass_create(s3d_context context, const s3d_host_pass_desc* desc, s3d_host_pass* out) {
   return guarded([&] {
-    requireNotNull(context, "the context");
-    requireNotNull(desc, "the pass description");
-    requireNotNull(out, "the pass output");
-    if (desc->output < S3D_OUTPUT_TWO_EYES || desc->output > S3D_OUTPUT_ANAGLYPH)
-      throw std::invalid_argument("s3d_host_pass_desc.output is not an s3d_output");
+    requireNotNull(context, {"context"});
+    requireNotNull(desc, {"desc"});
+    requireNotNull(out, {"out"});
+    s3d::capi::validate(*desc, context->maxImageDimension2D);
     const s3d::stereo::HostStereoPassDesc cpp{desc->width, desc->height, desc->color_format, desc->depth_format,
                                               s3d::stereo::HostOutput(desc->output), desc->inputs_are_storage != 0};
     *out = new s3d_host_pass_t{s3d::stereo::HostStereoPass(context->context, cpp)};
   });
 }
 void s3d_host_pass_destroy(s3d_host_pass pass) { delete pass; }
-VkFormat s3d_host_pass_eye_format(s3d_host_pass pass) { return pass ? pass->pass.eyeFormat() : VK_FORMAT_UNDEFINED; }
+VkFormat s3d_host_pass_eye_format(s3d_host_pass pass) {
+  return present(pass, "pass") ? pass->pass.eyeFormat() : VK_FORMAT_UNDEFINED;
+}
 void s3d_host_pass_packed_size(s3d_host_pass pass, uint32_t* width, uint32_t* height) {
-  if (width) *width = pass ? pass->pass.packedWidth() : 0;
-  if (height) *height = pass ? pass->pass.packedHeight() : 0;
+  const bool valid = present(pass, "pass");
+  if (width) *width = valid ? pass->pass.packedWidth() : 0;
+  if (height) *height = valid ? pass->pass.packedHeight() : 0;
 }
 
 s3d_result s3d_host_pass_record(s3d_host_pass pass, VkCommandBuffer cmd, const s3d_host_image* color,
@@ -223,10 +299,10 @@ s3d_result s3d_host_pass_record(s3d_host_pass pass, VkCommandBuffer cmd, const s
 
 s3d_result s3d_hud_pass_create(s3d_context context, const s3d_hud_pass_desc* desc, s3d_hud_pass* out) {
   return guarded([&] {
-    requireNotNull(context, "the context");
-    requireNotNull(desc, "the HUD pass description");
-    requireNotNull(out, "the HUD pass output");
-    if (desc->element_count > 0) requireNotNull(desc->elements, "the HUD elements");
+    requireNotNull(context, {"context"});
+    requireNotNull(desc, {"desc"});
+    requireNotNull(out, {"out"});
+    s3d::capi::validate(*desc, context->maxImageDimension2D);
     s3d::hud::HudPassDesc cpp{desc->width, desc->height, {}};
     if (desc->built_in)
       for (const s3d::hud::HudLayer& layer : s3d::hud::builtInHudLayers(desc->width, desc->height))
@@ -249,17 +325,18 @@ s3d_result s3d_hud_pass_create(s3d_context context, const s3d_hud_pass_desc* des
 }
 void s3d_hud_pass_destroy(s3d_hud_pass pass) { delete pass; }
 uint32_t s3d_hud_pass_element_count(s3d_hud_pass pass) {
-  return pass ? uint32_t(pass->pass.desc().elements.size()) : 0;
+  return present(pass, "pass") ? uint32_t(pass->pass.desc().elements.size()) : 0;
 }
 
 s3d_result s3d_hud_pass_record(s3d_hud_pass pass, VkCommandBuffer cmd, const s3d_hud_element_frame* frames,
                                uint32_t frame_count, const s3d_host_image* host_layers, uint32_t host_layer_count,
                                const s3d_host_image* left, const s3d_host_image* right) {
   return guarded([&] {
-    requireNotNull(pass, "the HUD pass");
-    requireNotNull(left, "the left eye");
-    requireNotNull(right, "the right eye");
-    const HudFrameStorage hud(frames, frame_count, host_layers, host_layer_count);
+    requireNotNull(pass, {"pass"});
+    s3d::capi::requireHandle(cmd, {"cmd"});
+    const HudFrameStorage hud(pass->pass, frames, frame_count, host_layers, host_layer_count);
+    validateOutput(left, "left", s3d::hud::HudPass::eyeFormat());
+    validateOutput(right, "right", s3d::hud::HudPass::eyeFormat());
     pass->pass.record(cmd, hud.frameSpan, hud.hostLayerSpan, toCpp(*left), toCpp(*right));
   });
 }
@@ -271,8 +348,16 @@ s3d_result s3d_host_pass_record_with_hud(s3d_host_pass pass, VkCommandBuffer cmd
                                          const s3d_hud_element_frame* frames, uint32_t frame_count,
                                          const s3d_host_image* host_layers, uint32_t host_layer_count) {
   return guarded([&] {
-    requireNotNull(hud, "the HUD pass");
-    const HudFrameStorage storage(frames, frame_count, host_layers, host_layer_count);
+    requireNotNull(pass, {"pass"});
+    requireNotNull(hud, {"hud"});
+    const s3d::stereo::HostStereoPassDesc& desc = pass->pass.desc();
+    if (hud->pass.desc().width != desc.width || hud->pass.desc().height != desc.height)
+      s3d::capi::fail("hud was made for " + std::to_string(hud->pass.desc().width) + "x" +
+                      std::to_string(hud->pass.desc().height) + " eyes, pass for " + std::to_string(desc.width) + "x" +
+                      std::to_string(desc.height));
+    if (pass->pass.eyeFormat() != s3d::hud::HudPass::eyeFormat())
+      s3d::capi::fail("hud needs 8-bit eyes: pass was made with an HDR s3d_host_pass_desc.color_format");
+    const HudFrameStorage storage(hud->pass, frames, frame_count, host_layers, host_layer_count);
     const s3d::hud::HudOverlay overlay = hud->pass.overlay(storage.frameSpan, storage.hostLayerSpan);
     recordHostPass(pass, cmd, color, depth, parameters, projection, left, right, target, &overlay);
   });
@@ -286,8 +371,9 @@ s3d_result s3d_frame_comfort_state_compute(const s3d_frame_comfort_input* input,
 s3d_result s3d_budget_controller_create(const s3d_display* display, int32_t allow_negative_parallax,
                                         s3d_budget_controller* out) {
   return guarded([&] {
-    requireNotNull(display, "the display");
-    requireNotNull(out, "the controller output");
+    requireNotNull(display, {"display"});
+    requireNotNull(out, {"out"});
+    s3d::capi::validate(*display);
     s3d::comfort::DisplayProfile profile;
     profile.name = "host";
     if (display->field_of_view_degrees != 0.0f) {
@@ -308,11 +394,14 @@ s3d_result s3d_frame_comfort_state_compute_budgeted(const s3d_frame_comfort_inpu
                                                     const s3d_frame_budget* budget, s3d_frame_comfort_state* out,
                                                     s3d_hud_element_state* hud_states, s3d_budget_choice* choice) {
   return guarded([&] {
-    requireNotNull(input, "the comfort input");
-    requireNotNull(out, "the comfort output");
-    if (input->hud_count > 0) {
-      requireNotNull(input->hud_depths, "hud_depths");
-      requireNotNull(hud_states, "hud_states");
+    requireNotNull(input, {"input"});
+    requireNotNull(out, {"out"});
+    s3d::capi::validate(*input);
+    if (input->hud_count > 0) requireNotNull(hud_states, {"hud_states"});
+    if (budget) {
+      requireNotNull(budget->controller, {"s3d_frame_budget", "controller"});
+      s3d::capi::validate(*budget, input->allow_negative_parallax != 0,
+                          budget->controller->controller.allowsNegativeParallax());
     }
     s3d::comfort::FrameComfortInput cpp;
     cpp.camera = {glm::vec3(input->camera_position[0], input->camera_position[1], input->camera_position[2]),
@@ -324,6 +413,9 @@ s3d_result s3d_frame_comfort_state_compute_budgeted(const s3d_frame_comfort_inpu
         const float o[3] = {origin.x, origin.y, origin.z}, d[3] = {direction.x, direction.y, direction.z};
         float distance = 0.0f;
         if (!cast(user, o, d, maxDistance, &distance)) return std::nullopt;
+        if (!(distance >= 0.0f) || !std::isfinite(distance))
+          s3d::capi::fail("s3d_frame_comfort_input.ray_cast returned distance " + s3d::numberText(distance) +
+                          "; a hit's distance must be >= 0 and finite");
         return distance;
       };
     }
@@ -337,14 +429,8 @@ s3d_result s3d_frame_comfort_state_compute_budgeted(const s3d_frame_comfort_inpu
     cpp.allowNegativeParallax = input->allow_negative_parallax != 0;
     s3d::stereo::DepthRange range;
     if (budget) {
-      requireNotNull(budget->controller, "s3d_frame_budget.controller");
       const s3d_depth_range& depth = budget->depth;
-      if (depth.histogram_bins > 0) requireNotNull(depth.histogram, "s3d_depth_range.histogram");
-      if (std::isnan(depth.nearest) || std::isnan(depth.farthest))
-        throw std::invalid_argument("s3d_depth_range: nearest and farthest must not be NaN");
       const bool finite = depth.nearest <= depth.farthest;
-      if (finite && !(depth.nearest > 0.0f && std::isfinite(depth.farthest)))
-        throw std::invalid_argument("s3d_depth_range: nearest must be positive and farthest finite");
       range.nearest = finite ? depth.nearest : std::numeric_limits<float>::infinity();
       range.farthest = finite ? depth.farthest : 0.0f;
       range.skyPixels = depth.sky_pixels;

@@ -22,7 +22,10 @@ typedef enum s3d_result {
   S3D_ERROR_UNKNOWN = -4
 } s3d_result;
 
-/* The message of this thread's last failed call ("" after a success). Valid until the thread's next s3d call. */
+/* The message of this thread's last failed call ("" after a success). Valid until the thread's next s3d call.
+ * Every function refuses a NULL handle or pointer it needs, an enum value outside its enum, a non-finite or
+ * out-of-range float and a size past the device's limits with S3D_ERROR_INVALID_ARGUMENT; the message names the
+ * parameter or field. Functions without a result code return 0 / NULL / VK_FORMAT_UNDEFINED and set it too. */
 const char* s3d_last_error(void);
 
 /* ---- Device ---- */
@@ -63,8 +66,8 @@ typedef enum s3d_output {
 } s3d_output;
 
 typedef struct s3d_host_pass_desc {
-  uint32_t width;
-  uint32_t height;
+  uint32_t width;  /* 1 .. the device's maxImageDimension2D; 2 * width within it for S3D_OUTPUT_SIDE_BY_SIDE_FULL */
+  uint32_t height; /* likewise; 2 * height for S3D_OUTPUT_TOP_BOTTOM_FULL; half packings need 2 or more */
   VkFormat color_format; /* RGBA8/BGRA8 UNORM or SRGB, RGBA16F, B10G11R11 */
   VkFormat depth_format; /* D32, D24S8, D16, or R32F linear depth */
   s3d_output output;
@@ -74,23 +77,23 @@ typedef struct s3d_host_pass_desc {
 typedef enum s3d_method { S3D_METHOD_SEED = 0, S3D_METHOD_SEARCH = 1 } s3d_method;
 
 typedef struct s3d_stereo_parameters {
-  float max_separation;         /* per-eye displacement at infinity, fraction of the width */
-  float zero_parallax_distance; /* world units */
-  float edge_crop;              /* fraction of the width per side; < 0: = max_separation */
+  float max_separation;         /* per-eye displacement at infinity, fraction of the width: 0 .. 0.25 */
+  float zero_parallax_distance; /* world units, > 0 */
+  float edge_crop;              /* fraction of the width per side, <= 0.25; < 0: = max_separation */
   s3d_method method;
   int32_t search_taps;          /* S3D_METHOD_SEARCH: 1..16 */
-  float weapon_depth_offset;    /* first-person push: depth' = offset + scale * depth */
-  float weapon_depth_scale;
+  float weapon_depth_offset;    /* first-person push: depth' = offset + scale * depth; offset >= 0, scale > 0 */
+  float weapon_depth_scale;     /* (every float here finite) */
 } s3d_stereo_parameters;
 void s3d_default_stereo_parameters(s3d_stereo_parameters* out);
 
 typedef struct s3d_projection {
-  float near_plane;
-  float far_plane;
+  float near_plane; /* > 0 */
+  float far_plane;  /* > near_plane unless infinite_far_plane */
   int32_t reversed_z;
   int32_t infinite_far_plane;
-  float first_person_depth_range; /* 0: no first-person layer */
-  float first_person_near;
+  float first_person_depth_range; /* 0 .. < 1; 0: no first-person layer */
+  float first_person_near;        /* with a layer: 0 < first_person_near < first_person_far */
   float first_person_far;
 } s3d_projection;
 
@@ -99,7 +102,9 @@ typedef struct s3d_host_image {
   VkImageView view;
   VkFormat format;
   VkImageLayout layout;        /* current; the image is left in it */
-  VkPipelineStageFlags2 stage; /* the host's last access (s3d adds barriers), or 0: the host synchronizes */
+  /* the host's last access (s3d adds barriers), or 0: the host synchronizes, and `layout` must be GENERAL
+   * (outputs, storage inputs) or a read-only layout (sampled inputs) */
+  VkPipelineStageFlags2 stage;
   VkAccessFlags2 access;
 } s3d_host_image;
 
@@ -116,7 +121,7 @@ s3d_result s3d_host_pass_record(s3d_host_pass pass, VkCommandBuffer cmd, const s
 
 /* ---- HUD pass: element layers over both eyes at their parallax, faded by the weapon mask ---- */
 typedef struct s3d_hud_placement {
-  float anchor_x; /* center-view pixel (indices) the pivot lands on, before the eye's offset */
+  float anchor_x; /* center-view pixel (indices) the pivot lands on, before the eye's offset; finite */
   float anchor_y;
   int32_t pivot_x; /* pixel of the layer placed there */
   int32_t pivot_y;
@@ -126,15 +131,15 @@ typedef struct s3d_hud_element_desc {
   const char* name;            /* named in errors */
   s3d_hud_placement placement;
   const uint8_t* pixels;       /* width * height straight-alpha RGBA8, copied and uploaded once; NULL: a host layer */
-  uint32_t width;
+  uint32_t width; /* 1 .. the device's maxImageDimension2D */
   uint32_t height;
 } s3d_hud_element_desc;
 
 typedef struct s3d_hud_pass_desc {
-  uint32_t width; /* the eyes */
+  uint32_t width; /* the eyes: 1 .. the device's maxImageDimension2D */
   uint32_t height;
   int32_t built_in; /* 1: s3d's health and ammo panels and crosshair come first (elements 0, 1, 2) */
-  const s3d_hud_element_desc* elements; /* then these, drawn in order (later on top); 16 elements at most */
+  const s3d_hud_element_desc* elements; /* then these, drawn in order (later on top); 16 in all (13 with built_in) */
   uint32_t element_count;
 } s3d_hud_pass_desc;
 
@@ -163,26 +168,26 @@ s3d_result s3d_host_pass_record_with_hud(s3d_host_pass pass, VkCommandBuffer cmd
                                          const s3d_host_image* host_layers, uint32_t host_layer_count);
 
 /* ---- Per-frame comfort ---- */
-/* Distance to the first world surface along the ray within max_distance; return 0 for no hit. */
+/* Distance (finite, >= 0) to the first world surface along the ray within max_distance; return 0 for no hit. */
 typedef int32_t (*s3d_ray_cast)(void* user, const float origin[3], const float direction[3], float max_distance,
                                 float* distance);
 
 typedef struct s3d_frame_comfort_input {
   float camera_position[3];
-  float camera_aim[3];  /* normalized view axis */
-  float camera_near;
+  float camera_aim[3];  /* normalized view axis (length 1 within 1e-3) */
+  float camera_near;    /* > 0; every float of this struct finite */
   s3d_ray_cast ray_cast; /* may be NULL */
   void* ray_cast_user;
   s3d_stereo_parameters parameters;
-  uint32_t width;
-  float crosshair_distance;
-  float crosshair_margin;
+  uint32_t width;           /* of the eyes, >= 1 */
+  float crosshair_distance; /* > 0 */
+  float crosshair_margin;   /* >= 0 */
   uint64_t weapon_pixels; /* 0: no weapon in view */
-  float weapon_nearest_depth;
+  float weapon_nearest_depth; /* with a weapon: 0 < nearest <= farthest */
   float weapon_farthest_depth;
   int32_t has_nearest_world_depth;
-  float nearest_world_depth;
-  const float* hud_depths; /* hud_count element depths */
+  float nearest_world_depth; /* > 0 */
+  const float* hud_depths; /* hud_count element depths, each > 0 */
   uint32_t hud_count;
   int32_t allow_negative_parallax;
 } s3d_frame_comfort_input;
@@ -207,10 +212,11 @@ s3d_result s3d_frame_comfort_state_compute(const s3d_frame_comfort_input* input,
 
 /* ---- Disparity budget (per display; one controller per view stream, it smooths over frames) ---- */
 typedef struct s3d_display {
-  float screen_width_meters;     /* a flat screen: the image's width on it (ignored for a head-mounted display) */
-  float viewing_distance_meters; /* eyes to screen; a head-mounted display: its focal distance */
+  float screen_width_meters;     /* a flat screen: the image's width on it, (0, 100] (ignored for a head-mounted display) */
+  float viewing_distance_meters; /* eyes to screen, (0, 100]; a head-mounted display: its focal distance */
   float interocular_meters;      /* 0.04 .. 0.08 */
-  float field_of_view_degrees;   /* a head-mounted display: horizontal field of view; 0: a flat screen */
+  float field_of_view_degrees;   /* a head-mounted display: horizontal field of view, (0, 170), its virtual screen
+                                    at most 100 m wide; 0: a flat screen */
 } s3d_display;
 
 typedef struct s3d_budget_controller_t* s3d_budget_controller;
@@ -224,7 +230,7 @@ void s3d_budget_controller_destroy(s3d_budget_controller controller);
  * any fixed binning (the same every frame) for the cut detector. A range without the weapon gets the pushed
  * weapon added from s3d_frame_comfort_input's weapon fields. */
 typedef struct s3d_depth_range {
-  float nearest;  /* > farthest when no pixel is finite */
+  float nearest;  /* > 0, <= farthest (finite); > farthest when no pixel is finite; never NaN */
   float farthest;
   uint64_t sky_pixels;
   const uint32_t* histogram; /* may be NULL */
@@ -238,7 +244,7 @@ typedef struct s3d_frame_budget {
   int32_t camera_cut;              /* 1: jump to the target without a ramp */
   int32_t receding;                /* 1: the camera moves away from what it sees: more depth is followed at once */
   int32_t has_anticipated_nearest; /* 1: a nearer surface is expected soon (e.g. ray casts ahead) */
-  float anticipated_nearest;
+  float anticipated_nearest;       /* > 0 */
 } s3d_frame_budget;
 
 typedef struct s3d_budget_choice {

@@ -1,0 +1,216 @@
+#include "capi_validate.h"
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "s3d/hud/hud_pass_shared.h"
+#include "s3d/number_text.h"
+#include "s3d/stereo/detail/host_barriers.h"
+#include "s3d/stereo/host_pass_shared.h"
+#include "s3d/stereo/stereo.h"
+
+namespace s3d::capi {
+namespace {
+
+constexpr std::uint32_t kBuiltInHudElements = 3;  // health, ammo, crosshair
+
+bool isColorFormat(VkFormat f) {
+  return f == VK_FORMAT_R8G8B8A8_UNORM || f == VK_FORMAT_R8G8B8A8_SRGB || f == VK_FORMAT_B8G8R8A8_UNORM ||
+         f == VK_FORMAT_B8G8R8A8_SRGB || f == VK_FORMAT_R16G16B16A16_SFLOAT || f == VK_FORMAT_B10G11R11_UFLOAT_PACK32;
+}
+
+void requireIn(float value, float low, float high, Name name, bool highOpen = false) {  // (low, high] or (low, high)
+  if (!(value > low && (highOpen ? value < high : value <= high)))
+    fail(name.text() + " " + numberText(value) + " is outside (" + numberText(low) + ", " + numberText(high) +
+         (highOpen ? ")" : "]"));
+}
+
+}  // namespace
+
+void validateDevicePatch(VkPhysicalDevice physicalDevice, const VkDeviceCreateInfo* info, const void* out) {
+  requireHandle(physicalDevice, {"physical_device"});
+  requireNotNull(info, {"info"});
+  requireNotNull(out, {"out"});
+  if (info->sType != VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO)
+    fail("info->sType is not VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO");
+  if (info->enabledExtensionCount > 0) requireNotNull(info->ppEnabledExtensionNames, {"info->ppEnabledExtensionNames"});
+}
+
+void validateHostDevice(const s3d_host_device& host) {
+  requireHandle(host.instance, {"s3d_host_device", "instance"});
+  requireHandle(host.physical_device, {"s3d_host_device", "physical_device"});
+  requireHandle(host.device, {"s3d_host_device", "device"});
+  requireHandle(host.queue, {"s3d_host_device", "queue"});
+  if (host.create_info && host.create_info->sType != VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO)
+    fail("s3d_host_device.create_info->sType is not VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO");
+  std::uint32_t count = 0;
+  vkGetPhysicalDeviceQueueFamilyProperties(host.physical_device, &count, nullptr);
+  std::vector<VkQueueFamilyProperties> families(count);
+  vkGetPhysicalDeviceQueueFamilyProperties(host.physical_device, &count, families.data());
+  if (host.queue_family >= count)
+    fail("s3d_host_device.queue_family " + std::to_string(host.queue_family) + " is not below the device's " +
+         std::to_string(count) + " queue families");
+  if (!(families[host.queue_family].queueFlags & VK_QUEUE_COMPUTE_BIT))
+    fail("s3d_host_device.queue_family " + std::to_string(host.queue_family) + " has no compute (s3d records compute work)");
+}
+
+void validate(const s3d_host_pass_desc& desc, std::uint32_t maxImageDimension2D) {
+  const Name name{"s3d_host_pass_desc"};
+  requireEnum(desc.output, S3D_OUTPUT_TWO_EYES, S3D_OUTPUT_ANAGLYPH, name / "output");
+  const bool sideBySide = desc.output == S3D_OUTPUT_SIDE_BY_SIDE_FULL, topBottom = desc.output == S3D_OUTPUT_TOP_BOTTOM_FULL;
+  requireImageSize(desc.width, maxImageDimension2D, name / "width", sideBySide ? 2 : 1, "S3D_OUTPUT_SIDE_BY_SIDE_FULL");
+  requireImageSize(desc.height, maxImageDimension2D, name / "height", topBottom ? 2 : 1, "S3D_OUTPUT_TOP_BOTTOM_FULL");
+  if (desc.output == S3D_OUTPUT_SIDE_BY_SIDE_HALF && desc.width < 2)
+    fail("s3d_host_pass_desc.width must be at least 2 for S3D_OUTPUT_SIDE_BY_SIDE_HALF");
+  if (desc.output == S3D_OUTPUT_TOP_BOTTOM_HALF && desc.height < 2)
+    fail("s3d_host_pass_desc.height must be at least 2 for S3D_OUTPUT_TOP_BOTTOM_HALF");
+  if (!isColorFormat(desc.color_format))
+    fail("s3d_host_pass_desc.color_format " + std::to_string(int(desc.color_format)) +
+         " is not one of R8G8B8A8/B8G8R8A8 UNORM or SRGB, R16G16B16A16_SFLOAT, B10G11R11_UFLOAT_PACK32");
+  if (!stereo::detail::isHostDepthFormat(desc.depth_format) && desc.depth_format != VK_FORMAT_R32_SFLOAT)
+    fail("s3d_host_pass_desc.depth_format " + std::to_string(int(desc.depth_format)) +
+         " is not one of D32_SFLOAT, D24_UNORM_S8_UINT, D16_UNORM or R32_SFLOAT linear depth");
+  if (desc.inputs_are_storage &&
+      (desc.color_format != VK_FORMAT_R8G8B8A8_UNORM || desc.depth_format != VK_FORMAT_R32_SFLOAT))
+    fail("s3d_host_pass_desc.inputs_are_storage needs color_format R8G8B8A8_UNORM and depth_format R32_SFLOAT");
+}
+
+void validate(const s3d_hud_pass_desc& desc, std::uint32_t maxImageDimension2D) {
+  requireImageSize(desc.width, maxImageDimension2D, {"s3d_hud_pass_desc", "width"});
+  requireImageSize(desc.height, maxImageDimension2D, {"s3d_hud_pass_desc", "height"});
+  const std::uint32_t room = S3D_HUD_MAX_ELEMENTS - (desc.built_in ? kBuiltInHudElements : 0);
+  if (desc.element_count > room)
+    fail("s3d_hud_pass_desc.element_count " + std::to_string(desc.element_count) + " is above " +
+         std::to_string(room) + " (a HUD pass has " + std::to_string(S3D_HUD_MAX_ELEMENTS) +
+         " elements at most, the built-in ones included)");
+  if (desc.element_count > 0) requireNotNull(desc.elements, {"s3d_hud_pass_desc", "elements"});
+  for (std::uint32_t i = 0; i < desc.element_count; ++i) {
+    const s3d_hud_element_desc& e = desc.elements[i];
+    const Name element{"s3d_hud_pass_desc.elements", nullptr, i};
+    requireFinite(e.placement.anchor_x, element / "placement.anchor_x");
+    requireFinite(e.placement.anchor_y, element / "placement.anchor_y");
+    requireImageSize(e.width, maxImageDimension2D, element / "width");
+    requireImageSize(e.height, maxImageDimension2D, element / "height");
+  }
+}
+
+void validate(const s3d_stereo_parameters& p, Name name) {
+  requireRange(p.max_separation, 0.0f, stereo::kMaxSeparationLimit, name / "max_separation");
+  requirePositive(p.zero_parallax_distance, name / "zero_parallax_distance");
+  requireFinite(p.edge_crop, name / "edge_crop");
+  if (p.edge_crop > stereo::kMaxSeparationLimit)
+    fail((name / "edge_crop").text() + " " + numberText(p.edge_crop) + " is above " +
+         numberText(stereo::kMaxSeparationLimit));
+  requireEnum(p.method, S3D_METHOD_SEED, S3D_METHOD_SEARCH, name / "method");
+  if (p.method == S3D_METHOD_SEARCH && (p.search_taps < 1 || p.search_taps > S3D_STEREO_MAX_TAPS))
+    fail((name / "search_taps").text() + " " + std::to_string(p.search_taps) + " is outside [1, " +
+         std::to_string(S3D_STEREO_MAX_TAPS) + "] for S3D_METHOD_SEARCH");
+  requireNonNegative(p.weapon_depth_offset, name / "weapon_depth_offset");
+  requirePositive(p.weapon_depth_scale, name / "weapon_depth_scale");
+}
+
+void validate(const s3d_projection& p) {
+  const Name name{"projection"};
+  requirePositive(p.near_plane, name / "near_plane");
+  if (!p.infinite_far_plane && !(p.far_plane > p.near_plane && std::isfinite(p.far_plane)))
+    fail("projection.far_plane " + numberText(p.far_plane) + " must be finite and above near_plane " +
+         numberText(p.near_plane) + " (or set infinite_far_plane)");
+  requireRange(p.first_person_depth_range, 0.0f, 1.0f, name / "first_person_depth_range");
+  if (p.first_person_depth_range == 1.0f) fail("projection.first_person_depth_range must be below 1");
+  if (p.first_person_depth_range == 0.0f) return;
+  requirePositive(p.first_person_near, name / "first_person_near");
+  if (!(p.first_person_far > p.first_person_near && std::isfinite(p.first_person_far)))
+    fail("projection.first_person_far " + numberText(p.first_person_far) +
+         " must be finite and above first_person_near " + numberText(p.first_person_near));
+}
+
+void validateImage(const s3d_host_image* image, Name name, ImageUse use) {
+  requireNotNull(image, name);
+  requireHandle(image->image, name / "image");
+  requireHandle(image->view, name / "view");
+  if (image->stage != VK_PIPELINE_STAGE_2_NONE) return;  // s3d adds the barriers from any layout
+  const bool usable = use == ImageUse::Sampled ? stereo::detail::sampledReadable(image->layout)
+                                               : image->layout == VK_IMAGE_LAYOUT_GENERAL;
+  if (!usable)
+    fail((name / "layout").text() + " " + std::to_string(int(image->layout)) + " must be " +
+         (use == ImageUse::Sampled ? "GENERAL or a read-only layout" : "VK_IMAGE_LAYOUT_GENERAL") +
+         " when its stage is 0 (the host synchronizes it itself)");
+}
+
+void requireFormat(const s3d_host_image& image, Name name, VkFormat format, VkFormat alternative) {
+  if (image.format == format || (alternative != VK_FORMAT_UNDEFINED && image.format == alternative)) return;
+  fail((name / "format").text() + " " + std::to_string(int(image.format)) + " must be " + std::to_string(int(format)) +
+       (alternative != VK_FORMAT_UNDEFINED ? " or " + std::to_string(int(alternative)) : std::string()));
+}
+
+void validate(const s3d_hud_element_frame* frames, std::uint32_t frameCount, std::uint32_t elementCount) {
+  if (frameCount != elementCount)
+    fail("frame_count " + std::to_string(frameCount) + " differs from the HUD pass's " + std::to_string(elementCount) +
+         " elements (one s3d_hud_element_frame each)");
+  if (frameCount > 0) requireNotNull(frames, {"frames"});
+  for (std::uint32_t i = 0; i < frameCount; ++i) requireFinite(frames[i].parallax_px, {"frames", "parallax_px", i});
+}
+
+void validate(const s3d_frame_comfort_input& input) {
+  const Name name{"s3d_frame_comfort_input"};
+  for (int i = 0; i < 3; ++i) {
+    requireFinite(input.camera_position[i], {"s3d_frame_comfort_input.camera_position", nullptr, i});
+    requireFinite(input.camera_aim[i], {"s3d_frame_comfort_input.camera_aim", nullptr, i});
+  }
+  const float aimLength = std::hypot(input.camera_aim[0], input.camera_aim[1], input.camera_aim[2]);
+  if (!(std::abs(aimLength - 1.0f) <= 1e-3f))
+    fail("s3d_frame_comfort_input.camera_aim must be a unit vector (its length is " + numberText(aimLength) + ")");
+  requirePositive(input.camera_near, name / "camera_near");
+  validate(input.parameters, {"s3d_frame_comfort_input.parameters"});
+  if (input.width == 0) fail("s3d_frame_comfort_input.width is 0");
+  requirePositive(input.crosshair_distance, name / "crosshair_distance");
+  requireNonNegative(input.crosshair_margin, name / "crosshair_margin");
+  if (input.weapon_pixels > 0) {
+    requirePositive(input.weapon_nearest_depth, name / "weapon_nearest_depth");
+    requirePositive(input.weapon_farthest_depth, name / "weapon_farthest_depth");
+    if (input.weapon_farthest_depth < input.weapon_nearest_depth)
+      fail("s3d_frame_comfort_input.weapon_farthest_depth is below weapon_nearest_depth");
+  }
+  if (input.has_nearest_world_depth) requirePositive(input.nearest_world_depth, name / "nearest_world_depth");
+  if (input.hud_count > 0) requireNotNull(input.hud_depths, name / "hud_depths");
+  for (std::uint32_t i = 0; i < input.hud_count; ++i)
+    requirePositive(input.hud_depths[i], {"s3d_frame_comfort_input.hud_depths", nullptr, i});
+}
+
+void validate(const s3d_frame_budget& budget, bool inputAllowsNegativeParallax, bool controllerAllowsNegativeParallax) {
+  const Name name{"s3d_frame_budget"};
+  if (inputAllowsNegativeParallax != controllerAllowsNegativeParallax)
+    fail("s3d_frame_budget.controller was created with allow_negative_parallax " +
+         std::to_string(int(controllerAllowsNegativeParallax)) + ", s3d_frame_comfort_input.allow_negative_parallax is " +
+         std::to_string(int(inputAllowsNegativeParallax)));
+  const s3d_depth_range& depth = budget.depth;
+  if (std::isnan(depth.nearest) || std::isnan(depth.farthest))
+    fail("s3d_frame_budget.depth.nearest and .farthest must not be NaN");
+  if (depth.nearest <= depth.farthest) {  // a range with finite pixels
+    requirePositive(depth.nearest, name / "depth.nearest");
+    requirePositive(depth.farthest, name / "depth.farthest");
+  }
+  if (depth.histogram_bins > 0) requireNotNull(depth.histogram, name / "depth.histogram");
+  requirePositive(budget.frame_seconds, name / "frame_seconds");
+  if (budget.has_anticipated_nearest) requirePositive(budget.anticipated_nearest, name / "anticipated_nearest");
+}
+
+void validate(const s3d_display& display) {
+  const Name name{"s3d_display"};
+  requireIn(display.viewing_distance_meters, 0.0f, 100.0f, name / "viewing_distance_meters");
+  requireRange(display.interocular_meters, 0.04f, 0.08f, name / "interocular_meters");
+  if (display.field_of_view_degrees == 0.0f) {
+    requireIn(display.screen_width_meters, 0.0f, 100.0f, name / "screen_width_meters");
+    return;
+  }
+  requireIn(display.field_of_view_degrees, 0.0f, 170.0f, name / "field_of_view_degrees", true);
+  // A head-mounted display's virtual screen spans the field of view at the focal distance.
+  const double width = 2.0 * display.viewing_distance_meters * std::tan(display.field_of_view_degrees * 3.14159265358979 / 360.0);
+  if (width > 100.0)
+    fail("s3d_display.viewing_distance_meters and field_of_view_degrees make a virtual screen " + numberText(width) +
+         " m wide, above 100 m");
+}
+
+}  // namespace s3d::capi

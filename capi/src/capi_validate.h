@@ -1,0 +1,29 @@
+#pragma once
+// The C API's structs checked field by field before any C++ type sees them (capi_checks.h's wording).
+#include <cstdint>
+
+#include "capi_checks.h"
+#include "s3d/s3d.h"
+
+namespace s3d::capi {
+
+void validateDevicePatch(VkPhysicalDevice physicalDevice, const VkDeviceCreateInfo* info, const void* out);
+void validateHostDevice(const s3d_host_device& host);
+
+void validate(const s3d_host_pass_desc& desc, std::uint32_t maxImageDimension2D);
+void validate(const s3d_hud_pass_desc& desc, std::uint32_t maxImageDimension2D);
+void validate(const s3d_stereo_parameters& parameters, Name name);
+void validate(const s3d_projection& projection);
+
+// A host image s3d reads (sampled, or storage when `storage`) or writes (storage): handles, format and, when the
+// host synchronizes it itself (stage 0), a layout s3d can use as it is.
+enum class ImageUse { Sampled, StorageRead, StorageWrite };
+void validateImage(const s3d_host_image* image, Name name, ImageUse use);
+void requireFormat(const s3d_host_image& image, Name name, VkFormat format, VkFormat alternative = VK_FORMAT_UNDEFINED);
+
+void validate(const s3d_hud_element_frame* frames, std::uint32_t frameCount, std::uint32_t elementCount);
+void validate(const s3d_frame_comfort_input& input);
+void validate(const s3d_frame_budget& budget, bool inputAllowsNegativeParallax, bool controllerAllowsNegativeParallax);
+void validate(const s3d_display& display);
+
+}  // namespace s3d::capi
