@@ -4,7 +4,8 @@
  * Checks: at the zero-parallax distance both eyes show the input; nearer, the eyes are shifted apart by the
  * parallax. Exit status 0 when every check holds.
  *   cmake --install build --prefix /tmp/s3d
- *   cc host.c $(PKG_CONFIG_PATH=/tmp/s3d/lib/pkgconfig pkg-config --cflags --libs s3d) -o host_c && ./host_c */
+ *   cc host.c $(PKG_CONFIG_PATH=/tmp/s3d/lib/pkgconfig pkg-config --cflags --libs s3d) -o host_c && ./host_c
+ * or with CMake: CMakeLists.txt here. */
 #include <stdio.h>
 #include <stdlib.h>
 
