@@ -27,5 +27,22 @@ configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/s3dConfig.cmake.in ${P
 write_basic_package_version_file(${PROJECT_BINARY_DIR}/s3dConfigVersion.cmake COMPATIBILITY SameMinorVersion)
 install(FILES ${PROJECT_BINARY_DIR}/s3dConfig.cmake ${PROJECT_BINARY_DIR}/s3dConfigVersion.cmake DESTINATION ${S3D_CMAKE_DIR})
 
+# s3d.pc finds the prefix from its own folder (${pcfiledir}), so `cmake --install --prefix DIR` into any folder, and
+# moving that folder later, leaves it correct; an absolute CMAKE_INSTALL_LIBDIR pins it to the configured prefix.
+set(S3D_PC_DIR ${CMAKE_INSTALL_LIBDIR}/pkgconfig)
+if(IS_ABSOLUTE "${CMAKE_INSTALL_LIBDIR}")
+  set(S3D_PC_PREFIX "${CMAKE_INSTALL_PREFIX}")
+else()
+  file(RELATIVE_PATH S3D_PC_UP "/prefix/${S3D_PC_DIR}" "/prefix")
+  string(REGEX REPLACE "/$" "" S3D_PC_UP "${S3D_PC_UP}")  # lib/pkgconfig: ../..
+  set(S3D_PC_PREFIX "\${pcfiledir}/${S3D_PC_UP}")
+endif()
+foreach(dir LIBDIR INCLUDEDIR)
+  if(IS_ABSOLUTE "${CMAKE_INSTALL_${dir}}")
+    set(S3D_PC_${dir} "${CMAKE_INSTALL_${dir}}")
+  else()
+    set(S3D_PC_${dir} "\${prefix}/${CMAKE_INSTALL_${dir}}")
+  endif()
+endforeach()
 configure_file(${PROJECT_SOURCE_DIR}/cmake/s3d.pc.in ${PROJECT_BINARY_DIR}/s3d.pc @ONLY)
-install(FILES ${PROJECT_BINARY_DIR}/s3d.pc DESTINATION ${CMAKE_INSTALL_LIBDIR}/pkgconfig)
+install(FILES ${PROJECT_BINARY_DIR}/s3d.pc DESTINATION ${S3D_PC_DIR})
