@@ -112,9 +112,10 @@ void HudPass::record(VkCommandBuffer cmd, std::span<const HudElementFrame> frame
   stereo::detail::HostBarriers<2 + S3D_HUD_MAX_ELEMENTS> before, after;
   for (const stereo::HostImage* eye : {&left, &right})
     if (eye->stage != VK_PIPELINE_STAGE_2_NONE) {
-      before.image(eye->image, eye->format, eye->layout, eye->stage, eye->access, VK_IMAGE_LAYOUT_GENERAL, kCompute, kEyeAccess);
+      before.image(eye->image, eye->format, eye->layout, eye->stage, eye->access, VK_IMAGE_LAYOUT_GENERAL, kCompute, kEyeAccess,
+                   eye->layer);
       after.image(eye->image, eye->format, VK_IMAGE_LAYOUT_GENERAL, kCompute, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
-                  eye->layout, eye->stage, eye->access);
+                  eye->layout, eye->stage, eye->access, eye->layer);
     }
   for (std::size_t i = 0; i < hostLayers.size(); ++i) {
     const stereo::HostImage& image = hostLayers[i];

@@ -180,7 +180,7 @@ std::uint32_t HostStereoPass::packedHeight() const {
 
 void HostStereoPass::record(VkCommandBuffer cmd, const HostImage& color, const HostImage& depth, const HostFrame& frame,
                             const HostImage* left, const HostImage* right, const HostImage* target,
-                            const EyeOverlay* overlay) const {
+                            const EyeOverlay* overlay, const EyeKernel* kernel) const {
   const gpu::StereoConstants& constants = frame.stereo;
   if (constants.tapCount < 0 || constants.tapCount > S3D_STEREO_MAX_TAPS)
     throw std::invalid_argument("HostStereoPass: tap count out of range (use makeStereoConstants)");
@@ -209,6 +209,8 @@ void HostStereoPass::record(VkCommandBuffer cmd, const HostImage& color, const H
     if (output->stage == VK_PIPELINE_STAGE_2_NONE && output->layout != VK_IMAGE_LAYOUT_GENERAL)
       throw std::invalid_argument("HostStereoPass: an output the host synchronizes itself must be in GENERAL");
   }
+  if (outputs.size() == 2 && left->image == right->image && left->layer == right->layer)
+    throw std::invalid_argument("HostStereoPass: the eyes name the same image and layer");
 
   const bool storageInputs = desc_.inputsAreStorage;
   const VkImageLayout colorLayout = inputLayout(color, storageInputs, "colour");
@@ -224,7 +226,7 @@ void HostStereoPass::record(VkCommandBuffer cmd, const HostImage& color, const H
   for (const HostImage* output : outputs)
     if (output->stage != VK_PIPELINE_STAGE_2_NONE)
       before.image(output->image, output->format, output->layout, output->stage, output->access, VK_IMAGE_LAYOUT_GENERAL, compute,
-                   VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+                   VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, output->layer);
   before.record(cmd);
 
   auto dispatch = [&](const detail::EyePairPipeline& pass, std::span<const VkWriteDescriptorSet> writes,
@@ -262,7 +264,15 @@ void HostStereoPass::record(VkCommandBuffer cmd, const HostImage& color, const H
 
   const VkImageView leftView = pack_ ? leftEye_.view.get() : left->view;
   const VkImageView rightView = pack_ ? rightEye_.view.get() : right->view;
-  {
+  if (kernel) {  // the passes it runs take Images: the host's are borrowed (their layer kept for barriers)
+    const auto borrowed = [&](const vk::Image& own, const HostImage* host, VkFormat format) {
+      return own.image ? vk::borrowImage(own.image, own.view, format, desc_.width, desc_.height)
+                       : vk::borrowImage(host->image, host->view, format, desc_.width, desc_.height, host->layer);
+    };
+    kernel->recordKernel(cmd, borrowed(centerColor_, &color, eyeFormat()),
+                         borrowed(linearDepth_, &depth, VK_FORMAT_R32_SFLOAT), borrowed(leftEye_, left, eyeFormat()),
+                         borrowed(rightEye_, right, eyeFormat()));
+  } else {
     const VkDescriptorImageInfo infos[4] = {{VK_NULL_HANDLE, centerView, VK_IMAGE_LAYOUT_GENERAL},
                                             {VK_NULL_HANDLE, depthView, VK_IMAGE_LAYOUT_GENERAL},
                                             {VK_NULL_HANDLE, leftView, VK_IMAGE_LAYOUT_GENERAL},
@@ -275,10 +285,12 @@ void HostStereoPass::record(VkCommandBuffer cmd, const HostImage& color, const H
 
   if (overlay) {  // on the finished eyes, before packing (the HUD)
     between.record(cmd);
-    const HostImage leftEye = pack_ ? HostImage{leftEye_.image, leftEye_.view, eyeFormat(), VK_IMAGE_LAYOUT_GENERAL}
-                                    : HostImage{left->image, left->view, left->format, VK_IMAGE_LAYOUT_GENERAL};
-    const HostImage rightEye = pack_ ? HostImage{rightEye_.image, rightEye_.view, eyeFormat(), VK_IMAGE_LAYOUT_GENERAL}
-                                     : HostImage{right->image, right->view, right->format, VK_IMAGE_LAYOUT_GENERAL};
+    auto eye = [&](const vk::Image& own, const HostImage* host) {
+      return pack_ ? HostImage{own.image, own.view, eyeFormat(), VK_IMAGE_LAYOUT_GENERAL}
+                   : HostImage{host->image, host->view, host->format, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_NONE,
+                               VK_ACCESS_2_NONE, host->layer};
+    };
+    const HostImage leftEye = eye(leftEye_, left), rightEye = eye(rightEye_, right);
     overlay->recordOnEyes(cmd, leftEye, rightEye);
   }
 
@@ -310,7 +322,7 @@ void HostStereoPass::record(VkCommandBuffer cmd, const HostImage& color, const H
   for (const HostImage* output : outputs)
     if (output->stage != VK_PIPELINE_STAGE_2_NONE)
       after.image(output->image, output->format, VK_IMAGE_LAYOUT_GENERAL, compute, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, output->layout,
-                  output->stage, output->access);
+                  output->stage, output->access, output->layer);
   after.record(cmd);
 }
 

@@ -68,6 +68,19 @@ static VkImageAspectFlags aspectOf(VkFormat format) {
   return depth ? VK_IMAGE_ASPECT_DEPTH_BIT : VK_IMAGE_ASPECT_COLOR_BIT;  // views and copies: the depth aspect
 }
 
+Image borrowImage(VkImage handle, VkImageView view, VkFormat format, std::uint32_t width, std::uint32_t height,
+                  std::uint32_t layer) {
+  Image image;
+  image.layer = layer;
+  image.image = Unique<VkImage>(VK_NULL_HANDLE, handle, [](VkDevice, VkImage, const VkAllocationCallbacks*) {});
+  image.view = Unique<VkImageView>(VK_NULL_HANDLE, view, [](VkDevice, VkImageView, const VkAllocationCallbacks*) {});
+  image.format = format;
+  image.aspect = aspectOf(format);
+  image.width = width;
+  image.height = height;
+  return image;
+}
+
 Image createImage(const Context& context, VkFormat format, std::uint32_t width, std::uint32_t height,
                   VkImageUsageFlags usage) {
   if (width == 0 || height == 0) throw std::invalid_argument("createImage: zero-sized image");
@@ -126,7 +139,7 @@ void transition(VkCommandBuffer cmd, const Image& image, const ImageState& from,
   // A combined depth/stencil image changes layout in both aspects at once (no separateDepthStencilLayouts).
   const VkImageAspectFlags aspect =
       image.format == VK_FORMAT_D24_UNORM_S8_UINT ? VK_IMAGE_ASPECT_DEPTH_BIT | VK_IMAGE_ASPECT_STENCIL_BIT : image.aspect;
-  barrier.subresourceRange = {aspect, 0, 1, 0, 1};
+  barrier.subresourceRange = {aspect, 0, 1, image.layer, 1};
   VkDependencyInfo dependency{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
   dependency.imageMemoryBarrierCount = 1;
   dependency.pImageMemoryBarriers = &barrier;
@@ -135,7 +148,7 @@ void transition(VkCommandBuffer cmd, const Image& image, const ImageState& from,
 
 static VkBufferImageCopy wholeImageCopy(const Image& image) {
   VkBufferImageCopy region{};
-  region.imageSubresource = {image.aspect, 0, 0, 1};
+  region.imageSubresource = {image.aspect, 0, image.layer, 1};
   region.imageExtent = {image.width, image.height, 1};
   return region;
 }

@@ -18,7 +18,7 @@ namespace s3d::stereo {
 // One of the host's images as it is when record() runs.
 struct HostImage {
   VkImage image = VK_NULL_HANDLE;
-  VkImageView view = VK_NULL_HANDLE;  // 2D, mip 0, layer 0; for depth/stencil formats the depth aspect only
+  VkImageView view = VK_NULL_HANDLE;  // 2D, mip 0, layer `layer`; for depth/stencil formats the depth aspect only
   VkFormat format = VK_FORMAT_UNDEFINED;
   VkImageLayout layout = VK_IMAGE_LAYOUT_UNDEFINED;  // current layout; record() leaves the image in it
   // The host's last access. With a stage, record() adds the barriers (into the layout s3d needs and back);
@@ -26,6 +26,7 @@ struct HostImage {
   // use as it is (inputs: GENERAL or a read-only layout; outputs: GENERAL).
   VkPipelineStageFlags2 stage = VK_PIPELINE_STAGE_2_NONE;
   VkAccessFlags2 access = VK_ACCESS_2_NONE;
+  std::uint32_t layer = 0;  // the array layer `view` shows: 0 and 1 for two eyes in one 2-layer array image
 };
 
 // The host's depth buffer convention, for linear depth (Listings 4.2 and 4.3).
@@ -83,6 +84,19 @@ class EyeOverlay {
   ~EyeOverlay() = default;
 };
 
+// The displacement recorded inside HostStereoPass::record in place of its own seed/search kernel (the other
+// methods: stereo_frame.h). The center comes as RGBA8 display colour and R32F linear depth, the eyes as
+// eyeFormat() images, all GENERAL and ordered after the conversion's writes; record() orders the overlay or the
+// packing after the kernel's compute writes.
+class EyeKernel {
+ public:
+  virtual void recordKernel(VkCommandBuffer cmd, const vk::Image& centerColor, const vk::Image& linearDepth,
+                            const vk::Image& leftEye, const vk::Image& rightEye) const = 0;
+
+ protected:
+  ~EyeKernel() = default;
+};
+
 class HostStereoPass {
  public:
   // Throws std::invalid_argument naming an unsupported format or size.
@@ -92,9 +106,10 @@ class HostStereoPass {
   // packing into `cmd`. Eyes: `left`/`right` (storage images in the pass's eye format, see eyeFormat()); packed
   // outputs: `target` (storage image in eyeFormat(), packedWidth() x packedHeight()). No submit, no wait, no
   // allocation.
+  // `kernel` replaces the seed/search kernel (frame.stereo then only has to be valid).
   void record(VkCommandBuffer cmd, const HostImage& color, const HostImage& depth, const HostFrame& frame,
               const HostImage* left, const HostImage* right, const HostImage* target,
-              const EyeOverlay* overlay = nullptr) const;
+              const EyeOverlay* overlay = nullptr, const EyeKernel* kernel = nullptr) const;
 
   // RGBA8 UNORM (display colour) for 8-bit inputs, RGBA16F for RGBA16F and B10G11R11 (HDR) inputs.
   VkFormat eyeFormat() const { return hdr_ ? VK_FORMAT_R16G16B16A16_SFLOAT : VK_FORMAT_R8G8B8A8_UNORM; }

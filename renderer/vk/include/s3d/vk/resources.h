@@ -31,10 +31,15 @@ struct Image {
   VkImageAspectFlags aspect = VK_IMAGE_ASPECT_COLOR_BIT;
   std::uint32_t width = 0;
   std::uint32_t height = 0;
+  std::uint32_t layer = 0;  // the array layer `view` shows (a borrowed layer of a host's array image)
 };
 
 Image createImage(const Context& context, VkFormat format, std::uint32_t width, std::uint32_t height,
                   VkImageUsageFlags usage);
+
+// A host's image and view (of `layer`) seen as an Image, for passes that take one: s3d never destroys them.
+Image borrowImage(VkImage image, VkImageView view, VkFormat format, std::uint32_t width, std::uint32_t height,
+                  std::uint32_t layer = 0);
 
 // Bytes per texel of the uncompressed formats s3d uses; throws for others.
 std::uint32_t texelSize(VkFormat format);

@@ -31,7 +31,8 @@ struct HostBarriers {
   bool memory = false;  // a compute -> compute dependency for the pass's own images (this and earlier frames)
 
   void image(VkImage image, VkFormat format, VkImageLayout fromLayout, VkPipelineStageFlags2 fromStage,
-             VkAccessFlags2 fromAccess, VkImageLayout toLayout, VkPipelineStageFlags2 toStage, VkAccessFlags2 toAccess) {
+             VkAccessFlags2 fromAccess, VkImageLayout toLayout, VkPipelineStageFlags2 toStage, VkAccessFlags2 toAccess,
+             std::uint32_t layer = 0) {
     if (count == Capacity) throw std::logic_error("HostBarriers: capacity exceeded");
     VkImageMemoryBarrier2& b = images[count++];
     b = {VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
@@ -43,7 +44,7 @@ struct HostBarriers {
     b.newLayout = toLayout;
     b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
     b.image = image;
-    b.subresourceRange = {hostBarrierAspect(format), 0, 1, 0, 1};
+    b.subresourceRange = {hostBarrierAspect(format), 0, 1, layer, 1};
   }
   void record(VkCommandBuffer cmd) const {
     VkMemoryBarrier2 global{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
