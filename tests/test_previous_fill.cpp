@@ -12,6 +12,7 @@
 #include "s3d/stereo/previous_fill.h"
 #include "s3d/stereo/previous_fill_pass.h"
 #include "s3d/stereo/reprojection.h"
+#include "s3d/stereo/stereo_frame.h"
 #include "stereo_test_views.h"
 #include "vulkan_test.h"
 
@@ -244,6 +245,57 @@ TEST_F(PreviousFillPassTest, GpuMatchesTheCppReferenceOverTwoFrames) {
       EXPECT_GT(cpu->counts[0].filledFromPrevious, 0u);
     }
   }
+}
+
+TEST_F(PreviousFillPassTest, AHostsStereoFrameSequenceMatchesTheCppReference) {
+  // The host hands its center camera each frame; the frame derives the eye cameras and their motion itself.
+  const float positions[3] = {0.0f, 0.3f, 0.45f};
+  StereoFrameDesc desc;
+  desc.width = kWidth;
+  desc.height = kHeight;
+  desc.colorFormat = VK_FORMAT_R8G8B8A8_UNORM;
+  desc.depthFormat = VK_FORMAT_R32_SFLOAT;
+  desc.method = StereoMethod::Forward;
+  desc.previousFrameFill = true;
+  StereoFrame stereoFrame(context(), desc);
+  auto image = [&](VkFormat format, VkImageUsageFlags usage) {
+    return vk::createImage(context(), format, kWidth, kHeight, usage | VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
+  };
+  const vk::Image color = image(VK_FORMAT_R8G8B8A8_UNORM, VK_IMAGE_USAGE_SAMPLED_BIT);
+  const vk::Image depth = image(VK_FORMAT_R32_SFLOAT, VK_IMAGE_USAGE_SAMPLED_BIT);
+  const vk::Image left = image(VK_FORMAT_R8G8B8A8_UNORM, VK_IMAGE_USAGE_STORAGE_BIT);
+  const vk::Image right = image(VK_FORMAT_R8G8B8A8_UNORM, VK_IMAGE_USAGE_STORAGE_BIT);
+  context().submitAndWait([&](VkCommandBuffer cmd) {
+    for (const vk::Image* eye : {&left, &right}) vk::transition(cmd, *eye, vk::kUndefined, vk::kComputeWrite);
+  });
+  auto host = [](const vk::Image& i) { return HostImage{i.image, i.view, i.format, VK_IMAGE_LAYOUT_GENERAL}; };
+  std::optional<ForwardWithHistory> cpu;
+  for (int f = 0; f < 3; ++f) {
+    const Frame frame = render(viewAt(positions[f]), centerProjection());
+    vk::uploadImage(context(), color, std::as_bytes(std::span(frame.color.pixels)), vk::kComputeRead);
+    vk::uploadImage(context(), depth, std::as_bytes(std::span(frame.depth.pixels)), vk::kComputeRead);
+    StereoFrameDispatch dispatch;
+    dispatch.color = host(color);
+    dispatch.depth = host(depth);
+    dispatch.left = host(left);
+    dispatch.right = host(right);
+    dispatch.maxSeparation = kSeparation;
+    dispatch.zeroParallaxDistance = kZeroParallax;
+    dispatch.edgeCrop = 0.0f;
+    dispatch.centerView = viewAt(positions[f]);
+    dispatch.centerProjection = centerProjection();
+    context().submitAndWait([&](VkCommandBuffer cmd) { stereoFrame.record(cmd, dispatch); });
+    cpu = synthesizeForwardWithPreviousFrameReference(frame.color, frame.depth, kConstants,
+                                                     motionBetween(positions[f], positions[f > 0 ? f - 1 : 0]),
+                                                     cpu ? &cpu->history : nullptr);
+    for (auto [eye, expected] : {std::pair{&left, &cpu->eyes.left}, std::pair{&right, &cpu->eyes.right}}) {
+      ImageRGBA8 got(kWidth, kHeight);
+      const std::vector<std::byte> bytes = vk::readbackImage(context(), *eye, vk::kComputeWrite);
+      std::memcpy(got.pixels.data(), bytes.data(), bytes.size());
+      EXPECT_LE(largestChannelDifference(got, *expected), 1) << "frame " << f;  // as the pass's own test above
+    }
+  }
+  EXPECT_GT(cpu->counts[0].filledFromPrevious, 0u);  // the last frame's holes took the history
 }
 
 }  // namespace

@@ -1,0 +1,192 @@
+#include "s3d/stereo/stereo_frame.h"
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "s3d/number_text.h"
+#include "s3d/stereo/forward.h"
+#include "s3d/stereo/iterative.h"
+#include "s3d/stereo/reprojection.h"
+#include "s3d/stereo/stereo_shared.h"
+
+namespace s3d::stereo {
+namespace {
+
+[[noreturn]] void refuse(const std::string& field, const std::string& why) {
+  throw std::invalid_argument(field + " " + why);
+}
+
+bool isHdr(VkFormat format) {
+  return format == VK_FORMAT_R16G16B16A16_SFLOAT || format == VK_FORMAT_B10G11R11_UFLOAT_PACK32;
+}
+
+// The description's own rules; formats and sizes are the host pass's (its constructor names them).
+const StereoFrameDesc& checked(const StereoFrameDesc& desc) {
+  const std::string method = methodName(desc.method);
+  if (desc.method == StereoMethod::Hybrid)
+    refuse("StereoFrameDesc.method", "hybrid renders pixels from the eye cameras, which needs the host's raster: use "
+                                     "seed, search, iterative or forward");
+  if (isHdr(desc.colorFormat) && desc.method != StereoMethod::Seed && desc.method != StereoMethod::Search)
+    refuse("StereoFrameDesc.method", method + " displaces 8-bit display colour; with HDR colour (RGBA16F, "
+                                     "B10G11R11) use seed or search");
+  if (desc.method == StereoMethod::Search && (desc.searchTaps < 1 || desc.searchTaps > S3D_STEREO_MAX_TAPS))
+    refuse("StereoFrameDesc.searchTaps", std::to_string(desc.searchTaps) + " is outside [1, " +
+                                             std::to_string(S3D_STEREO_MAX_TAPS) + "]");
+  if (desc.method == StereoMethod::Iterative && (desc.iterations < 1 || desc.iterations > 16))
+    refuse("StereoFrameDesc.iterations", std::to_string(desc.iterations) + " is outside [1, 16]");
+  if (desc.previousFrameFill && desc.method != StereoMethod::Forward)
+    refuse("StereoFrameDesc.previousFrameFill", "needs the forward method (the method is " + method + ")");
+  return desc;
+}
+
+HostStereoPassDesc hostDesc(const StereoFrameDesc& desc) {
+  HostStereoPassDesc host;
+  host.width = desc.width;
+  host.height = desc.height;
+  host.colorFormat = desc.colorFormat;
+  host.depthFormat = desc.depthFormat;
+  host.output = desc.output;
+  return host;
+}
+
+bool finite(const glm::mat4& m) {
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 4; ++r)
+      if (!std::isfinite(m[c][r])) return false;
+  return true;
+}
+
+// Any of the passes below as HostStereoPass's kernel.
+template <typename Record>
+struct KernelOf final : EyeKernel {
+  explicit KernelOf(Record record) : record_(record) {}
+  void recordKernel(VkCommandBuffer cmd, const vk::Image& centerColor, const vk::Image& linearDepth,
+                    const vk::Image& leftEye, const vk::Image& rightEye) const override {
+    record_(cmd, centerColor, linearDepth, leftEye, rightEye);
+  }
+  Record record_;
+};
+
+}  // namespace
+
+StereoFrame::StereoFrame(vk::Context& context, const StereoFrameDesc& desc)
+    : context_(&context), desc_(checked(desc)), host_(context, hostDesc(desc)) {
+  if (desc.method == StereoMethod::Iterative) iterative_.emplace(context, desc.kernel);
+  if (desc.method == StereoMethod::Forward)
+    forward_.emplace(context, desc.kernel, desc.previousFrameFill ? ForwardKeys::Kept : ForwardKeys::Discarded);
+  if (desc.previousFrameFill) fill_.emplace(context);
+  if (!iterative_ && !forward_) return;
+  // The passes make their pipelines, z-buffers and history at their first record: one here, so record()
+  // allocates nothing.
+  const auto image = [&](VkFormat format) {
+    return vk::createImage(context, format, desc.width, desc.height, VK_IMAGE_USAGE_STORAGE_BIT);
+  };
+  const vk::Image color = image(VK_FORMAT_R8G8B8A8_UNORM), depth = image(VK_FORMAT_R32_SFLOAT);
+  const vk::Image left = image(VK_FORMAT_R8G8B8A8_UNORM), right = image(VK_FORMAT_R8G8B8A8_UNORM);
+  StereoFrameDispatch first;
+  context.submitAndWait([&](VkCommandBuffer cmd) {
+    for (const vk::Image* i : {&color, &depth}) vk::transition(cmd, *i, vk::kUndefined, vk::kComputeRead);
+    for (const vk::Image* i : {&left, &right}) vk::transition(cmd, *i, vk::kUndefined, vk::kComputeWrite);
+    recordKernel(cmd, first, color, depth, left, right);
+  });
+  if (fill_) fill_->reset();
+  hasPrevious_ = false;
+}
+
+VkFormat StereoFrame::eyeFormat() const { return host_.eyeFormat(); }
+std::uint32_t StereoFrame::packedWidth() const { return host_.packedWidth(); }
+std::uint32_t StereoFrame::packedHeight() const { return host_.packedHeight(); }
+
+StereoParameters StereoFrame::parameters(const StereoFrameDispatch& dispatch) const {
+  StereoParameters p;
+  p.method = desc_.method;
+  p.searchTaps = desc_.searchTaps;
+  p.iterations = desc_.iterations;
+  p.kernel = desc_.kernel;
+  p.previousFrameFill = desc_.previousFrameFill;
+  p.maxSeparation = dispatch.maxSeparation;
+  p.zeroParallaxDistance = dispatch.zeroParallaxDistance;
+  p.edgeCrop = dispatch.edgeCrop;
+  p.weaponDepthOffset = dispatch.weaponDepthOffset;
+  p.weaponDepthScale = dispatch.weaponDepthScale;
+  return p;
+}
+
+void StereoFrame::recordKernel(VkCommandBuffer cmd, const StereoFrameDispatch& dispatch, const vk::Image& color,
+                               const vk::Image& depth, const vk::Image& left, const vk::Image& right) {
+  const StereoParameters p = parameters(dispatch);
+  if (iterative_) {
+    iterative_->record(cmd, color, depth, left, right, makeIterativeConstants(p, p.iterations, desc_.width, desc_.height));
+    return;
+  }
+  const gpu::ForwardConstants constants = makeForwardConstants(p, desc_.width, desc_.height);
+  forward_->record(cmd, color, depth, left, right, constants);
+  if (!fill_) return;
+  // Each eye's camera now and a frame ago (the exact off-axis cameras of the two-pass reference).
+  std::array<gpu::EyeMotion, 2> motion{};
+  const bool continues = hasPrevious_ && !dispatch.cameraCut;
+  if (!continues) fill_->reset();
+  for (std::size_t e = 0; e < 2; ++e) {
+    const EyeCamera eye = offAxisEyeCamera(dispatch.centerView, dispatch.centerProjection, e == 0 ? Eye::Left : Eye::Right,
+                                           p.maxSeparation, p.zeroParallaxDistance);
+    motion[e] = continues ? eyeMotion(eye.view, eye.projection, previousEyeView_[e], previousEyeProjection_[e])
+                          : staticEyeMotion(eye.projection);
+    previousEyeView_[e] = eye.view;
+    previousEyeProjection_[e] = eye.projection;
+  }
+  fill_->record(cmd, *forward_, left, right, constants, motion);
+}
+
+void StereoFrame::requireImages(const StereoFrameDispatch& dispatch) const {
+  const auto require = [](const HostImage& image, const char* field, VkFormat format, const char* formatName) {
+    if (!image.image || !image.view) refuse(std::string("StereoFrameDispatch.") + field, "has no image or view");
+    if (image.format != format)
+      refuse(std::string("StereoFrameDispatch.") + field + ".format",
+             std::to_string(int(image.format)) + " is not " + formatName + " (" + std::to_string(int(format)) + ")");
+  };
+  require(dispatch.color, "color", desc_.colorFormat, "the description's colorFormat");
+  require(dispatch.depth, "depth", desc_.depthFormat, "the description's depthFormat");
+  if (desc_.output == HostOutput::TwoEyes) {
+    require(dispatch.left, "left", eyeFormat(), "eyeFormat()");
+    require(dispatch.right, "right", eyeFormat(), "eyeFormat()");
+    if (dispatch.left.image == dispatch.right.image && dispatch.left.layer == dispatch.right.layer)
+      refuse("StereoFrameDispatch.right", "names the left eye's image and layer");
+  } else {
+    require(dispatch.target, "target", eyeFormat(), "eyeFormat()");
+  }
+}
+
+void StereoFrame::record(VkCommandBuffer cmd, const StereoFrameDispatch& dispatch) {
+  const StereoParameters p = parameters(dispatch);
+  validate(p);  // names maxSeparation, zeroParallaxDistance, edgeCrop or the weapon push when out of range
+  requireImages(dispatch);
+  if (fill_ && (!finite(dispatch.centerView) || !finite(dispatch.centerProjection) ||
+                !(dispatch.centerProjection[0][0] > 0.0f) || dispatch.centerProjection[2][3] == 0.0f))
+    refuse("StereoFrameDispatch.centerView/centerProjection",
+           "must be finite, with a perspective projection, for the previous-frame fill (P00 " +
+               numberText(dispatch.centerProjection[0][0]) + ")");
+  HostFrame frame;
+  frame.stereo = desc_.method == StereoMethod::Seed || desc_.method == StereoMethod::Search
+                     ? makeStereoConstants(p, desc_.width, desc_.height)
+                     : makeSeedConstants(p, desc_.width, desc_.height);  // unused by the other kernels; valid
+  frame.projection = dispatch.projection;
+  frame.weaponDepthOffset = dispatch.weaponDepthOffset;
+  frame.weaponDepthScale = dispatch.weaponDepthScale;
+  const bool eyes = desc_.output == HostOutput::TwoEyes;
+  const HostImage* left = eyes ? &dispatch.left : nullptr;
+  const HostImage* right = eyes ? &dispatch.right : nullptr;
+  const HostImage* target = eyes ? nullptr : &dispatch.target;
+  if (!iterative_ && !forward_) {
+    host_.record(cmd, dispatch.color, dispatch.depth, frame, left, right, target);
+    return;
+  }
+  const auto run = [&](VkCommandBuffer c, const vk::Image& color, const vk::Image& depth, const vk::Image& l,
+                       const vk::Image& r) { recordKernel(c, dispatch, color, depth, l, r); };
+  const KernelOf<decltype(run)> kernel(run);
+  host_.record(cmd, dispatch.color, dispatch.depth, frame, left, right, target, nullptr, &kernel);
+  if (fill_) fill_->advance();
+  hasPrevious_ = true;
+}
+
+}  // namespace s3d::stereo

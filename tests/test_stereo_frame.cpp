@@ -1,0 +1,190 @@
+// The host's stereo frame (stereo_frame.h): every displacement method from the host's colour and depth buffer, each
+// held to its C++ reference; the eyes as two images or as the two layers of one array image; bad descriptions and
+// dispatches refused naming the field. Synchronization validation on (TestHost).
+#include <gtest/gtest.h>
+
+#include "host_pass_fixture.h"
+#include "s3d/stereo/forward.h"
+#include "s3d/stereo/iterative.h"
+#include "s3d/stereo/stereo_frame.h"
+#include "s3d/vk/check.h"
+
+namespace s3d::test {
+namespace {
+
+using stereo::StereoMethod;
+
+// One image with two array layers and a 2D view of each: what an OpenXR swapchain or a multiview host hands over.
+struct ArrayImage {
+  vk::Unique<VkImage> image;
+  vk::Unique<VkDeviceMemory> memory;
+  std::array<vk::Unique<VkImageView>, 2> views;
+};
+
+ArrayImage createArrayImage(vk::Context& context, VkFormat format) {
+  VkImageCreateInfo info{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
+  info.imageType = VK_IMAGE_TYPE_2D;
+  info.format = format;
+  info.extent = {kWidth, kHeight, 1};
+  info.mipLevels = 1;
+  info.arrayLayers = 2;
+  info.samples = VK_SAMPLE_COUNT_1_BIT;
+  info.usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+  VkImage image = VK_NULL_HANDLE;
+  S3D_VK_CHECK(vkCreateImage(context.device(), &info, nullptr, &image));
+  ArrayImage result;
+  result.image = vk::Unique<VkImage>(context.device(), image, vkDestroyImage);
+  VkMemoryRequirements requirements{};
+  vkGetImageMemoryRequirements(context.device(), image, &requirements);
+  VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+  alloc.allocationSize = requirements.size;
+  alloc.memoryTypeIndex = context.findMemoryType(requirements.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+  VkDeviceMemory memory = VK_NULL_HANDLE;
+  S3D_VK_CHECK(vkAllocateMemory(context.device(), &alloc, nullptr, &memory));
+  result.memory = vk::Unique<VkDeviceMemory>(context.device(), memory, vkFreeMemory);
+  S3D_VK_CHECK(vkBindImageMemory(context.device(), image, memory, 0));
+  for (std::uint32_t layer = 0; layer < 2; ++layer) {
+    VkImageViewCreateInfo viewInfo{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
+    viewInfo.image = image;
+    viewInfo.viewType = VK_IMAGE_VIEW_TYPE_2D;
+    viewInfo.format = format;
+    viewInfo.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, layer, 1};
+    VkImageView view = VK_NULL_HANDLE;
+    S3D_VK_CHECK(vkCreateImageView(context.device(), &viewInfo, nullptr, &view));
+    result.views[layer] = vk::Unique<VkImageView>(context.device(), view, vkDestroyImageView);
+  }
+  return result;
+}
+
+class StereoFrameTest : public HostStereoPassTest {
+ public:
+  stereo::StereoFrameDesc desc(StereoMethod method) const {
+    stereo::StereoFrameDesc d;
+    d.width = kWidth;
+    d.height = kHeight;
+    d.colorFormat = VK_FORMAT_R8G8B8A8_SRGB;  // sampled through the hardware's sRGB decode
+    d.depthFormat = VK_FORMAT_D32_SFLOAT;
+    d.method = method;
+    return d;
+  }
+  stereo::StereoFrameDispatch dispatch() const {
+    stereo::StereoFrameDispatch d;
+    d.projection = frame_.projection;
+    d.maxSeparation = parameters_.maxSeparation;
+    d.zeroParallaxDistance = parameters_.zeroParallaxDistance;
+    return d;
+  }
+  stereo::StereoParameters parametersFor(StereoMethod method) const {
+    stereo::StereoParameters p = parameters_;
+    p.method = method;
+    return p;
+  }
+
+  // Both eyes of one frame, in two images or in the two layers of one array image.
+  stereo::StereoPair frameEyes(StereoMethod method, bool arrayEyes, DepthImage* expectedLinear) {
+    const DepthUpload depth = hardwareDepth(view_.depth, VK_FORMAT_D32_SFLOAT, frame_);
+    *expectedLinear = depth.expectedLinear;
+    vk::Image color = uploaded(VK_FORMAT_R8G8B8A8_SRGB, colorBytes(view_.color, VK_FORMAT_R8G8B8A8_SRGB), kShaderRead);
+    vk::Image depthImage =
+        uploaded(VK_FORMAT_D32_SFLOAT, depth.bytes, kDepthWritten, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT);
+    stereo::StereoFrame frame(*context_, desc(method));
+    stereo::StereoFrameDispatch d = dispatch();
+    d.color = hostImage(color, kShaderRead);
+    d.depth = hostImage(depthImage, kDepthWritten);
+    std::optional<ArrayImage> array;
+    vk::Image left, right;
+    if (arrayEyes) {
+      array = createArrayImage(*context_, frame.eyeFormat());
+      for (std::uint32_t layer = 0; layer < 2; ++layer) {
+        stereo::HostImage& eye = layer == 0 ? d.left : d.right;
+        eye = {array->image, array->views[layer], frame.eyeFormat(), kCopiedOut.layout, kCopiedOut.stage,
+               kCopiedOut.access, layer};
+        const vk::Image borrowed = vk::borrowImage(eye.image, eye.view, eye.format, kWidth, kHeight, layer);
+        context_->submitAndWait([&](VkCommandBuffer cmd) { vk::transition(cmd, borrowed, vk::kUndefined, kCopiedOut); });
+      }
+    } else {
+      left = output(frame.eyeFormat(), kWidth, kHeight);
+      right = output(frame.eyeFormat(), kWidth, kHeight);
+      d.left = hostImage(left, kCopiedOut);
+      d.right = hostImage(right, kCopiedOut);
+    }
+    runOnHostQueue([&](VkCommandBuffer cmd) { frame.record(cmd, d); });
+    auto read = [&](const stereo::HostImage& eye) {
+      const vk::Image view = vk::borrowImage(eye.image, eye.view, eye.format, kWidth, kHeight, eye.layer);
+      return toImage(vk::readbackImage(*context_, view, kCopiedOut), kWidth, kHeight);
+    };
+    return {read(d.left), read(d.right)};
+  }
+
+  stereo::StereoPair reference(StereoMethod method, const DepthImage& linear) const {
+    const stereo::StereoParameters p = parametersFor(method);
+    if (method == StereoMethod::Iterative)
+      return stereo::synthesizeIterativeReference(view_.color, linear, stereo::makeIterativeConstants(p, p.iterations, kWidth, kHeight));
+    if (method == StereoMethod::Forward)
+      return stereo::synthesizeForwardReference(view_.color, linear, stereo::makeForwardConstants(p, kWidth, kHeight));
+    return stereo::synthesizeStereoReference(view_.color, linear, stereo::makeStereoConstants(p, kWidth, kHeight));
+  }
+
+  std::string errorOf(const std::function<void()>& call) const {
+    try {
+      call();
+    } catch (const std::invalid_argument& error) {
+      return error.what();
+    }
+    return "accepted";
+  }
+};
+
+TEST_F(StereoFrameTest, EveryMethodGivesItsReferenceEyesFromSrgbColourAndD32Depth) {
+  for (StereoMethod method : {StereoMethod::Seed, StereoMethod::Search, StereoMethod::Iterative, StereoMethod::Forward}) {
+    DepthImage linear;
+    const stereo::StereoPair gpu = frameEyes(method, false, &linear);
+    const stereo::StereoPair cpu = reference(method, linear);
+    // 1 level: the GPU's unorm conversion of a filtered value may round the other way (as each method's own test).
+    EXPECT_LE(largestChannelDifference(gpu.left, cpu.left), 1) << stereo::methodName(method);
+    EXPECT_LE(largestChannelDifference(gpu.right, cpu.right), 1) << stereo::methodName(method);
+  }
+}
+
+TEST_F(StereoFrameTest, TheEyesCanBeTheTwoLayersOfOneArrayImage) {
+  for (StereoMethod method : {StereoMethod::Search, StereoMethod::Forward}) {
+    DepthImage linear;
+    const stereo::StereoPair layers = frameEyes(method, true, &linear);
+    const stereo::StereoPair images = frameEyes(method, false, &linear);
+    EXPECT_EQ(layers.left.pixels, images.left.pixels) << stereo::methodName(method);
+    EXPECT_EQ(layers.right.pixels, images.right.pixels) << stereo::methodName(method);
+  }
+}
+
+TEST_F(StereoFrameTest, BadDescriptionsAreRefusedNamingTheField) {
+  stereo::StereoFrameDesc d = desc(StereoMethod::Hybrid);
+  EXPECT_NE(errorOf([&] { stereo::StereoFrame(*context_, d); }).find("StereoFrameDesc.method"), std::string::npos);
+  d = desc(StereoMethod::Forward);
+  d.colorFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
+  EXPECT_NE(errorOf([&] { stereo::StereoFrame(*context_, d); }).find("HDR colour"), std::string::npos);
+  d = desc(StereoMethod::Search);
+  d.searchTaps = 0;
+  EXPECT_NE(errorOf([&] { stereo::StereoFrame(*context_, d); }).find("StereoFrameDesc.searchTaps 0"), std::string::npos);
+  d = desc(StereoMethod::Search);
+  d.previousFrameFill = true;
+  EXPECT_NE(errorOf([&] { stereo::StereoFrame(*context_, d); }).find("StereoFrameDesc.previousFrameFill"),
+            std::string::npos);
+  d = desc(StereoMethod::Search);
+  d.colorFormat = VK_FORMAT_R8_UNORM;
+  EXPECT_NE(errorOf([&] { stereo::StereoFrame(*context_, d); }).find("colour format"), std::string::npos);
+}
+
+TEST_F(StereoFrameTest, ADispatchThatDoesNotMatchTheDescriptionIsRefused) {
+  stereo::StereoFrame frame(*context_, desc(StereoMethod::Forward));
+  vk::Image color = output(VK_FORMAT_R8G8B8A8_UNORM, kWidth, kHeight);  // not the description's sRGB format
+  stereo::StereoFrameDispatch d = dispatch();
+  d.color = d.depth = d.left = d.right = hostImage(color, kCopiedOut);
+  EXPECT_NE(errorOf([&] { runOnHostQueue([&](VkCommandBuffer cmd) { frame.record(cmd, d); }); }).find("format"),
+            std::string::npos);
+  d.maxSeparation = -1.0f;
+  EXPECT_NE(errorOf([&] { runOnHostQueue([&](VkCommandBuffer cmd) { frame.record(cmd, d); }); }).find("maxSeparation"),
+            std::string::npos);
+}
+
+}  // namespace
+}  // namespace s3d::test
