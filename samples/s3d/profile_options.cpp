@@ -79,6 +79,16 @@ std::string ProfileOptions::mappingSource(const CLI::App& command) const {
   return "the profile's disparityMapping nonlinear (" + load.string() + ")";
 }
 
+void ProfileOptions::addFiles(const CLI::App& command, RunFiles& files) const {
+  if (!save.empty()) files.write(save, "--save-profile");
+  if (!load.empty()) files.read(load, "--profile");
+  if (command.count("--display") > 0) files.readDisplay(display);
+}
+
+void ProfileOptions::saveAfterSuccess() const {
+  if (!save.empty()) comfort::saveComfortProfile(save, resolved);
+}
+
 comfort::DisplayProfile ProfileOptions::resolveDisplay(const CLI::App& command) const {
   if (command.count("--display") > 0) return comfort::resolveDisplayProfile(display);
   return load.empty() ? comfort::ComfortProfile{}.display : comfort::loadComfortProfile(load).display;

@@ -32,6 +32,11 @@ struct ProfileOptions {
   comfort::DisplayProfile resolveDisplay(const CLI::App& command) const;
   // Where a nonlinear mapping came from, for errors: "--disparity-mapping nonlinear" or the --profile file's key.
   std::string mappingSource(const CLI::App& command) const;
+  // --save-profile as an output, --profile and a --display FILE.json as inputs.
+  void addFiles(const CLI::App& command, RunFiles& files) const;
+  comfort::ComfortProfile resolved;  // what the run uses, set by the command: what --save-profile writes
+  // Writes `resolved` to --save-profile (when given); called only once the run succeeded, its outputs committed.
+  void saveAfterSuccess() const;
   // --disparity-budget, where the command offers it (addDisparityBudgetOption).
   comfort::DisparityBudgetRule budgetRule() const { return comfort::parseDisparityBudgetRule(disparityBudget); }
 };
