@@ -377,5 +377,46 @@ TEST_F(Cli, AFailedRunWritesNoProfile) {
   EXPECT_TRUE(fs::is_regular_file(profile));
 }
 
+// --results-md rewrites a file in place: only a Markdown file that is empty or marked as an s3d results file.
+TEST_F(Cli, ResultsMarkdownThatIsNotAMarkdownFileIsRefusedAndKept) {
+  const fs::path image = folder_ / "picture.png";
+  std::ofstream(image) << "not really a PNG";
+  const ToolRun result = run("bench --results-md '" + image.string() + "' --output '" + (folder_ / "out").string() + "'");
+  EXPECT_EQ(result.status, 1);
+  EXPECT_NE(result.err.find("--results-md '" + image.string() + "' is not a Markdown file (.md)"), std::string::npos)
+      << result.err;
+  EXPECT_EQ(readText(image), "not really a PNG");
+}
+
+TEST_F(Cli, ResultsMarkdownWithoutTheResultsMarkerIsRefusedAndKept) {
+  const fs::path notes = folder_ / "notes.md";
+  std::ofstream(notes) << "# My notes\n";
+  const ToolRun result = run("bench --results-md '" + notes.string() + "' --output '" + (folder_ / "out").string() + "'");
+  EXPECT_EQ(result.status, 1);
+  EXPECT_NE(result.err.find("is not an s3d results file"), std::string::npos) << result.err;
+  EXPECT_EQ(readText(notes), "# My notes\n");
+}
+
+TEST_F(Cli, ResultsMarkdownThatIsAlsoABenchOutputIsRefused) {
+  const fs::path output = folder_ / "out";
+  fs::create_directories(output);
+  std::ofstream(output / "bench.md");  // empty: a results file the bench may start
+  const ToolRun result = run("bench --results-md '" + (output / "bench.md").string() + "' --output '" + output.string() + "'");
+  EXPECT_EQ(result.status, 1);
+  EXPECT_NE(result.err.find("would overwrite output"), std::string::npos) << result.err;
+  EXPECT_NE(result.err.find("choose another --results-md"), std::string::npos) << result.err;
+}
+
+TEST_F(Cli, AnEmptyResultsMarkdownFileIsMarkedAndGetsTheTables) {
+  const fs::path results = folder_ / "RESULTS.md";
+  std::ofstream{results};
+  const ToolRun result = run("bench --resolution 32x18 --scenes courtyard --methods seed --separations 2 --repeat 1 "
+                             "--results-md '" + results.string() + "' --output '" + (folder_ / "out").string() + "'");
+  ASSERT_EQ(result.status, 0) << result.err;
+  const std::string text = readText(results);
+  EXPECT_EQ(text.rfind(std::string(app::kResultsFileMarker) + "\n", 0), 0u) << text;
+  EXPECT_NE(text.find("<!-- s3d bench: "), std::string::npos) << text;
+}
+
 }  // namespace
 }  // namespace s3d
