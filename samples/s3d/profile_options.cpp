@@ -11,7 +11,7 @@ void ProfileOptions::add(CLI::App& command) {
                      "line override its values");
   command.add_option("--save-profile", save,
                      "Write the effective comfort profile (the --profile file, or the defaults, with the command "
-                     "line's options applied) to this JSON file");
+                     "line's options applied) to this JSON file once the run succeeded; never a file the run reads");
   command.add_flag("--allow-negative-parallax", allowNegativeParallax,
                    "Allow negative parallax (in front of the screen); by default the weapon push and the "
                    "zero-parallax distance keep everything at or behind the screen plane");
