@@ -334,5 +334,89 @@ TEST_F(Cli, TheHudIsLeftOutOnRequestAndByDefaultOnAGltfScene) {
   EXPECT_EQ(hudElements("--scene '" + gltf + "' --hud game"), 3u);
 }
 
+// Every file a run writes is checked against every file it reads, --save-profile included, before anything is
+// written: naming the scene must refuse the run and keep the scene byte for byte.
+TEST_F(Cli, SaveProfileNamingTheSceneIsRefusedAndTheSceneKept) {
+  const fs::path data = S3D_TEST_DATA_DIR;
+  for (const char* name : {"textured_quad.gltf", "textured_quad.bin", "textured_quad_base_color.png",
+                           "textured_quad_normal.png"})
+    fs::copy_file(data / name, folder_ / name);
+  const fs::path scene = folder_ / "textured_quad.gltf";
+  const std::string before = readText(scene);
+  const ToolRun result = run("render --resolution 32x18 --scene '" + scene.string() + "' --save-profile '" +
+                             scene.string() + "' --output '" + (folder_ / "out").string() + "'");
+  EXPECT_EQ(result.status, 1);
+  EXPECT_NE(result.err.find("textured_quad.gltf' (--scene); choose another --save-profile"), std::string::npos)
+      << result.err;
+  EXPECT_EQ(readText(scene), before);
+  EXPECT_FALSE(fs::exists(folder_ / "out"));
+}
+
+TEST_F(Cli, SaveProfileNamingTheDisplayFileIsRefusedAndTheDisplayKept) {
+  const fs::path display = folder_ / "studio.json";
+  const std::string text = R"({"name": "studio", "screenWidthMeters": 2.5, "viewingDistanceMeters": 3.0})";
+  std::ofstream(display) << text;
+  const ToolRun result = run("render --resolution 32x18 --display '" + display.string() + "' --save-profile '" +
+                             display.string() + "' --output '" + (folder_ / "out").string() + "'");
+  EXPECT_EQ(result.status, 1);
+  EXPECT_NE(result.err.find("studio.json' (--display); choose another --save-profile"), std::string::npos) << result.err;
+  EXPECT_EQ(readText(display), text);
+}
+
+// A run that fails writes no profile: --save-profile is written only after the outputs are committed.
+TEST_F(Cli, AFailedRunWritesNoProfile) {
+  const fs::path output = folder_ / "out", profile = folder_ / "profile.json";
+  fs::create_directories(output / "right.png");  // a folder where an output goes: the run fails
+  const ToolRun failed = run("render --resolution 32x18 --save-profile '" + profile.string() + "' --output '" +
+                             output.string() + "'");
+  EXPECT_EQ(failed.status, 1);
+  EXPECT_FALSE(fs::exists(profile));
+  const ToolRun succeeded = run("render --resolution 32x18 --outputs left.png --save-profile '" + profile.string() +
+                                "' --output '" + output.string() + "'");
+  ASSERT_EQ(succeeded.status, 0) << succeeded.err;
+  EXPECT_TRUE(fs::is_regular_file(profile));
+}
+
+// --results-md rewrites a file in place: only a Markdown file that is empty or marked as an s3d results file.
+TEST_F(Cli, ResultsMarkdownThatIsNotAMarkdownFileIsRefusedAndKept) {
+  const fs::path image = folder_ / "picture.png";
+  std::ofstream(image) << "not really a PNG";
+  const ToolRun result = run("bench --results-md '" + image.string() + "' --output '" + (folder_ / "out").string() + "'");
+  EXPECT_EQ(result.status, 1);
+  EXPECT_NE(result.err.find("--results-md '" + image.string() + "' is not a Markdown file (.md)"), std::string::npos)
+      << result.err;
+  EXPECT_EQ(readText(image), "not really a PNG");
+}
+
+TEST_F(Cli, ResultsMarkdownWithoutTheResultsMarkerIsRefusedAndKept) {
+  const fs::path notes = folder_ / "notes.md";
+  std::ofstream(notes) << "# My notes\n";
+  const ToolRun result = run("bench --results-md '" + notes.string() + "' --output '" + (folder_ / "out").string() + "'");
+  EXPECT_EQ(result.status, 1);
+  EXPECT_NE(result.err.find("is not an s3d results file"), std::string::npos) << result.err;
+  EXPECT_EQ(readText(notes), "# My notes\n");
+}
+
+TEST_F(Cli, ResultsMarkdownThatIsAlsoABenchOutputIsRefused) {
+  const fs::path output = folder_ / "out";
+  fs::create_directories(output);
+  std::ofstream(output / "bench.md");  // empty: a results file the bench may start
+  const ToolRun result = run("bench --results-md '" + (output / "bench.md").string() + "' --output '" + output.string() + "'");
+  EXPECT_EQ(result.status, 1);
+  EXPECT_NE(result.err.find("would overwrite output"), std::string::npos) << result.err;
+  EXPECT_NE(result.err.find("choose another --results-md"), std::string::npos) << result.err;
+}
+
+TEST_F(Cli, AnEmptyResultsMarkdownFileIsMarkedAndGetsTheTables) {
+  const fs::path results = folder_ / "RESULTS.md";
+  std::ofstream{results};
+  const ToolRun result = run("bench --resolution 32x18 --scenes courtyard --methods seed --separations 2 --repeat 1 "
+                             "--results-md '" + results.string() + "' --output '" + (folder_ / "out").string() + "'");
+  ASSERT_EQ(result.status, 0) << result.err;
+  const std::string text = readText(results);
+  EXPECT_EQ(text.rfind(std::string(app::kResultsFileMarker) + "\n", 0), 0u) << text;
+  EXPECT_NE(text.find("<!-- s3d bench: "), std::string::npos) << text;
+}
+
 }  // namespace
 }  // namespace s3d

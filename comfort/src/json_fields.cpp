@@ -43,17 +43,21 @@ void writeTextAtomically(const std::filesystem::path& file, const std::string& t
   if (descriptor < 0)
     throw std::runtime_error(name + ": cannot create a temporary file beside it: " + std::strerror(errno));
   std::size_t written = 0;
+  int writeErrno = 0;
   while (written < text.size()) {
     const ::ssize_t count = ::write(descriptor, text.data() + written, text.size() - written);
     if (count < 0 && errno == EINTR) continue;
-    if (count <= 0) break;
+    if (count <= 0) {
+      writeErrno = count == 0 ? EIO : errno;
+      break;
+    }
     written += std::size_t(count);
   }
-  const bool closed = ::close(descriptor) == 0;
+  if (::close(descriptor) != 0 && writeErrno == 0) writeErrno = errno;  // e.g. "No space left on device", late
   std::error_code error;
-  if (written != text.size() || !closed) {
+  if (writeErrno != 0) {
     std::filesystem::remove(temporary, error);
-    throw std::runtime_error(name + ": writing failed");
+    throw std::runtime_error("cannot write " + name + ": " + std::strerror(writeErrno));  // e.g. "File too large"
   }
   std::filesystem::rename(temporary, file, error);  // a link at the target itself is replaced, not followed
   if (error) {

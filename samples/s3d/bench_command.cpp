@@ -94,9 +94,11 @@ class BenchCommand final : public Command {
                          app::defaultMethodSetting().name() + ")");
     bench.add_option("--output", options_.outputFolder, "Output folder (created if missing)")->capture_default_str();
     bench.add_option("--results-md", resultsMarkdown_,
-                     "Markdown file whose section between '<!-- s3d bench: KIND begin -->' and '... end -->' (KIND: cpu "
-                     "or gpu; 's3d bench renderer: KIND' with --renderer) is replaced by the tables (appended when the "
-                     "file has no such section)");
+                     "Markdown file (.md) whose section between '<!-- s3d bench: KIND begin -->' and '... end -->' "
+                     "(KIND: cpu or gpu; 's3d bench renderer: KIND' with --renderer) is replaced by the tables "
+                     "(appended when the file has no such section). It must be empty (it then gets the line '" +
+                         std::string(app::kResultsFileMarker) +
+                         "') or an s3d results file: that line or a bench section in it");
     addMemoryLimitOption(bench, options_.memoryLimitBytes);
     addDeviceOptions(bench, contextOptions_);
   }
@@ -112,6 +114,12 @@ class BenchCommand final : public Command {
     if (!resultsMarkdown_.empty()) options_.resultsMarkdown = resultsMarkdown_;
     // Options first: a typo must not cost a Vulkan start-up or a half-hour sweep, and must leave no files behind.
     app::validateBenchOptions(options_);
+    RunFiles files;  // app::runBench's files
+    files.writeInFolder(options_.outputFolder, {"bench.md", "bench.json"});
+    if (!options_.rendererOnly)
+      files.writeInFolder(options_.outputFolder, {"bench_speed_vs_error.svg", "bench_time_over_eye.svg"});
+    files.write(resultsMarkdown_, "--results-md");
+    files.check();
     app::requireHostMemory(app::benchMemoryEstimate(options_), options_.memoryLimitBytes, contextOptions_.device == "cpu");
     vk::Context context(contextOptions_);
     std::cerr << "s3d bench: " << context.deviceName() << " (" << (context.isCpuDevice() ? "cpu" : "gpu") << "), "
@@ -165,6 +173,9 @@ class BenchCommand final : public Command {
     sequence.sequence.memoryLimitBytes = options_.memoryLimitBytes;
     // Options first: a typo must not cost a Vulkan start-up, and must leave no files behind.
     app::validateSequenceBenchOptions(sequence);
+    RunFiles files;  // app::runSequenceBench's files
+    files.writeInFolder(options_.outputFolder, {"sequence_bench.json", "sequence_bench.md"});
+    files.check();
     app::requireHostMemory(app::sequenceBenchMemoryEstimate(sequence), options_.memoryLimitBytes,
                            contextOptions_.device == "cpu");
     vk::Context context(contextOptions_);

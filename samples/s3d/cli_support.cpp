@@ -11,6 +11,8 @@
 
 #include "s3d/number_text.h"
 #include "s3d/app/memory_budget.h"
+#include "s3d/comfort/display_profile.h"
+#include "s3d/renderer/scene_file.h"
 
 namespace s3d::cli {
 
@@ -39,6 +41,20 @@ std::string joined(const std::vector<std::string>& names, const char* separator)
     text += name;
   }
   return text;
+}
+
+void RunFiles::writeInFolder(const std::filesystem::path& folder, const std::vector<std::string>& names) {
+  for (const std::string& name : names) write(folder / name, "--output");
+}
+
+void RunFiles::readScene(const std::string& scene, const std::string& option) {
+  if (!renderer::isSceneFile(scene)) return;
+  for (const std::filesystem::path& file : renderer::sceneFileInputs(scene)) read(file, option);
+}
+
+void RunFiles::readDisplay(const std::string& display) {
+  const std::vector<std::string> names = comfort::builtInDisplayProfileNames();
+  if (std::find(names.begin(), names.end(), display) == names.end()) read(display, "--display");
 }
 
 std::optional<double> parseNumber(const std::string& text) {

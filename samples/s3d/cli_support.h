@@ -40,6 +40,21 @@ int fail(const std::string& message);
 void warn(const std::string& message);  // "s3d: warning: <message>"
 std::string joined(const std::vector<std::string>& names, const char* separator);
 
+// Every file a command writes and reads, gathered before it writes anything and checked together in one place
+// (io::requireOutputsAreNotInputs): no output may replace an input or another output.
+struct RunFiles {
+  std::vector<io::RunFile> outputs, inputs;
+  void write(const std::filesystem::path& file, const std::string& option) { outputs.push_back({file, option}); }
+  // Files of the output folder (option "--output"); a name may hold one '*' for any text.
+  void writeInFolder(const std::filesystem::path& folder, const std::vector<std::string>& names);
+  void read(const std::filesystem::path& file, const std::string& option) { inputs.push_back({file, option}); }
+  // A scene file and every file it references (renderer::sceneFileInputs); nothing for a built-in scene.
+  void readScene(const std::string& scene, const std::string& option);
+  // --display NAME_OR_FILE: the file, unless it is a built-in display's name.
+  void readDisplay(const std::string& display);
+  void check() const { io::requireOutputsAreNotInputs(outputs, inputs); }
+};
+
 // What runStaged gives back: the job's report (empty when it threw: `error` says why) and how many messages the
 // validation layer reported (each already printed; a non-zero count fails the run: failValidation).
 template <typename Report>

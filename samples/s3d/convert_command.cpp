@@ -147,6 +147,18 @@ class ConvertCommand final : public Command {
     const std::vector<app::ConvertFrame> frames =
         folderMode ? app::pairFrames(inputFolder_, colorPattern_, disparityPattern_.empty() ? depthPattern_ : disparityPattern_)
                    : std::vector<app::ConvertFrame>();
+    RunFiles files;
+    files.writeInFolder(options_.outputFolder, app::convertOutputNames(options_, frames));
+    files.read(options_.color, "--color");
+    files.read(options_.depth, disparityFile_.empty() ? "--depth" : "--disparity");
+    files.read(referenceLeft_, "--reference-left");
+    files.read(referenceRight_, "--reference-right");
+    for (const app::ConvertFrame& frame : frames) {
+      files.read(frame.color, "--input-folder");
+      files.read(frame.depth, "--input-folder");
+    }
+    if (subcommand->count("--display") > 0) files.readDisplay(display_);
+    files.check();
     vk::Context context(contextOptions_);
     // All files or none; resuming a folder commits frame by frame instead (runConvertFolder).
     std::optional<io::OutputTransaction> outputs;

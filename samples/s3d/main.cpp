@@ -4,6 +4,7 @@
 // Exit status: 0 on success (and for --help / --version / --list-devices); 1 on any error, which ends with one line
 // "s3d: error: <message>" on stderr. `s3d` without a command prints the help and fails: there is nothing
 // sensible to do by default, and a script calling a bare `s3d` is almost certainly a mistake.
+#include <csignal>
 #include <exception>
 #include <iostream>
 #include <memory>
@@ -13,6 +14,9 @@
 
 int main(int argc, char** argv) {
   using namespace s3d::cli;
+  // Past a file-size limit (ulimit -f) a write then fails with EFBIG, reported and rolled back like any other
+  // write error, instead of the signal killing the run and leaving its staging folder.
+  std::signal(SIGXFSZ, SIG_IGN);
   CLI::App app{"s3d: stereoscopic 3D from one rendered view and its depth (view synthesis), "
                "checked against a two-pass reference",
                "s3d"};

@@ -13,7 +13,7 @@ void ProfileOptions::add(CLI::App& command) {
                      "line override its values");
   command.add_option("--save-profile", save,
                      "Write the effective comfort profile (the --profile file, or the defaults, with the command "
-                     "line's options applied) to this JSON file");
+                     "line's options applied) to this JSON file once the run succeeded; never a file the run reads");
   command.add_flag("--allow-negative-parallax", allowNegativeParallax,
                    "Allow negative parallax (in front of the screen); by default the weapon push and the "
                    "zero-parallax distance keep everything at or behind the screen plane");
@@ -93,6 +93,16 @@ void ProfileOptions::requireProfileSeparationUnderBudget(const comfort::ComfortP
 std::string ProfileOptions::mappingSource(const CLI::App& command) const {
   if (command.count("--disparity-mapping") > 0) return "--disparity-mapping " + disparityMapping;
   return "the profile's disparityMapping nonlinear (" + load.string() + ")";
+}
+
+void ProfileOptions::addFiles(const CLI::App& command, RunFiles& files) const {
+  if (!save.empty()) files.write(save, "--save-profile");
+  if (!load.empty()) files.read(load, "--profile");
+  if (command.count("--display") > 0) files.readDisplay(display);
+}
+
+void ProfileOptions::saveAfterSuccess() const {
+  if (!save.empty()) comfort::saveComfortProfile(save, resolved);
 }
 
 comfort::DisplayProfile ProfileOptions::resolveDisplay(const CLI::App& command) const {

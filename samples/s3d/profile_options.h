@@ -35,6 +35,11 @@ struct ProfileOptions {
   // With the budget on, a --profile whose stereo.maxSeparation or zeroParallaxDistance differs from the default is
   // refused as the same command-line options are (the budget would silently replace it).
   void requireProfileSeparationUnderBudget(const comfort::ComfortProfile& profile) const;
+  // --save-profile as an output, --profile and a --display FILE.json as inputs.
+  void addFiles(const CLI::App& command, RunFiles& files) const;
+  comfort::ComfortProfile resolved;  // what the run uses, set by the command: what --save-profile writes
+  // Writes `resolved` to --save-profile (when given); called only once the run succeeded, its outputs committed.
+  void saveAfterSuccess() const;
   // --disparity-budget, where the command offers it (addDisparityBudgetOption).
   comfort::DisparityBudgetRule budgetRule() const { return comfort::parseDisparityBudgetRule(disparityBudget); }
 };

@@ -32,6 +32,11 @@ class RegressCommand final : public Command {
     // The whole suite is validated before a Vulkan start-up.
     const app::RegressSuite suite = app::loadRegressSuite(suite_);
     app::requireRegressMemory(suite, options_);
+    RunFiles files;
+    files.outputs = app::regressOutputs(suite, options_);
+    files.inputs = app::regressInputs(suite, options_);
+    files.read(suite_, "suite");
+    files.check();
     vk::Context context(contextOptions_);
     const bool terminal = ::isatty(STDERR_FILENO) != 0;
     const app::RegressResult result = app::runRegressSuite(

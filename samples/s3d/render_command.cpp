@@ -141,12 +141,13 @@ class RenderCommand final : public Command {
     options_.sideBySide = stereo::parsePackingMode(sideBySide_);
     options_.topBottom = stereo::parsePackingMode(topBottom_);
     options_.hud = app::parseHudMode(hud_);
+    requireOutputsAreNotInputs(!viewsFile_.empty() || displayViews);
     if (!viewsFile_.empty() || displayViews) return runViews();
     stereo_.finish();
     StereoOptions::rejectSeparationUnderBudget(*subcommand, profile_.disparityBudget);
     const comfort::ComfortProfile profile = profile_.resolve(*subcommand, stereo_);
     StereoOptions::requireMethodOptionsApply(*subcommand, profile.stereo);
-    if (!profile_.save.empty()) comfort::saveComfortProfile(profile_.save, profile);
+    profile_.resolved = profile;  // --save-profile writes it once the run succeeded
     options_.stereo = profile.stereo;
     options_.display = profile.display;
     options_.crosshair = profile.crosshair;
@@ -169,6 +170,22 @@ class RenderCommand final : public Command {
   }
 
  private:
+  // Every file the run writes against every file it reads, before anything is written.
+  void requireOutputsAreNotInputs(bool views) const {
+    RunFiles files;
+    if (views)  // app::runViewsJob's files
+      files.writeInFolder(options_.outputFolder, {"center.png", "left.png", "right.png", "left_reference.png",
+                                                  "right_reference.png", "report.json"});
+    else if (sequence_)  // app::runSequenceJob's files
+      files.writeInFolder(options_.outputFolder, {"anaglyph_*.png", "report.json"});
+    else
+      files.writeInFolder(options_.outputFolder, {options_.outputs.begin(), options_.outputs.end()});
+    profile_.addFiles(*subcommand, files);
+    files.read(viewsFile_, "--views");
+    files.readScene(options_.scene, "--scene");
+    files.check();
+  }
+
   bool displayGiven() const { return subcommand->count("--display") > 0 || !profile_.load.empty(); }
 
   // Before the Vulkan start-up: the host's share of the estimate (all of it on the CPU device).
@@ -226,6 +243,7 @@ class RenderCommand final : public Command {
     io::OutputTransaction outputs(options_.outputFolder);  // all files or none
     const app::SequenceReport report = app::runSequenceJob(context, sequenceOptions);
     outputs.commit();
+    profile_.saveAfterSuccess();
     std::uint64_t conflicts = 0;
     for (const app::SequenceFrame& frame : report.frames) conflicts += frame.weaponConflictPixels;
     std::cout << "s3d render --sequence: scene " << report.scene << ", " << report.frames.size() << " frames on "
@@ -244,6 +262,7 @@ class RenderCommand final : public Command {
     for (const std::string& warning : run.report->warnings) warn(warning);
     printSummary(*run.report);
     if (run.validationMessages > 0) return failValidation(run.validationMessages);
+    profile_.saveAfterSuccess();
     return 0;
   }
 

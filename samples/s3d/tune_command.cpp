@@ -1,6 +1,8 @@
 // `s3d tune`: the comfort-parameter tuning tool: a window with the live stereo view and a panel of every stereo
 // and comfort parameter (s3d/tune/tune_window.h); scriptable for tests and screenshots (s3d/tune/tune_script.h).
+#include <filesystem>
 #include <iostream>
+#include <optional>
 
 #include "cli_support.h"
 #include "profile_options.h"
@@ -87,7 +89,12 @@ class TuneCommand final : public Command {
       if (equals == std::string::npos) return fail("--set expects NAME=VALUE (got '" + assignment + "')");
       tune::setParameter(settings, assignment.substr(0, equals), assignment.substr(equals + 1));
     }
-    if (!profile_.save.empty()) tune::saveProfile(profile_.save, settings);
+    profile_.resolved = settings.profile;  // --save-profile writes it once the window closed without errors
+    RunFiles files;
+    profile_.addFiles(*subcommand, files);
+    files.write(screenshot_, "--screenshot");
+    files.read(script_, "--script");
+    files.check();
     if (!profile_.save.empty()) options_.profileFile = profile_.save;
     else if (!profile_.load.empty()) options_.profileFile = profile_.load;
     options_.state.view = tune::parseViewMode(view_);
@@ -97,6 +104,7 @@ class TuneCommand final : public Command {
     if (!script_.empty()) options_.script = script_;
     if (frames_ > 0) options_.frames = frames_;
     if (!screenshot_.empty()) options_.screenshot = screenshot_;
+    const FileState before = fileState(profile_.save);
     try {
       const tune::TuneWindowResult result = tune::runTuneWindow(options_);
       for (const std::string& message : result.validationMessages) std::cerr << "s3d: validation: " << oneLine(message) << '\n';
@@ -104,6 +112,7 @@ class TuneCommand final : public Command {
                 << result.deviceName << '\n';
       if (!result.validationMessages.empty())
         return failValidation(result.validationMessages.size());
+      if (!sessionWrote(profile_.save, before)) profile_.saveAfterSuccess();
       return 0;
     } catch (const tune::NoDisplayError& error) {
       fail(error.what());
@@ -112,6 +121,19 @@ class TuneCommand final : public Command {
   }
 
  private:
+  // The session's own Save (panel or script) to the --save-profile file is newer than the command line's profile:
+  // a file changed during the run is kept.
+  using FileState = std::optional<std::filesystem::file_time_type>;
+  static FileState fileState(const std::filesystem::path& file) {
+    std::error_code error;
+    if (file.empty()) return std::nullopt;
+    const auto time = std::filesystem::last_write_time(file, error);
+    return error ? FileState() : FileState(time);
+  }
+  static bool sessionWrote(const std::filesystem::path& file, const FileState& before) {
+    return fileState(file) != before;
+  }
+
   tune::TuneWindowOptions options_;
   StereoOptions stereo_;
   std::string resolution_;  // the defaults of options_ (TuneWindowOptions), set first in the constructor

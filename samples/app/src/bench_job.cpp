@@ -1,6 +1,7 @@
 #include "s3d/app/bench_job.h"
 
 #include <algorithm>
+#include <cctype>
 #include <charconv>
 #include <chrono>
 #include <cmath>
@@ -170,6 +171,25 @@ void requireWellFormedMarkers(const std::string& document, const fs::path& file)
     }
 }
 
+std::string readTextFile(const fs::path& file);
+
+// --results-md rewrites a file in place: only a Markdown file that is empty or already an s3d results file (its
+// marker line, or a section a bench wrote), so a mistyped name never turns an image or a source file into tables.
+void requireResultsFile(const fs::path& file) {
+  const std::string named = "--results-md '" + file.string() + "'";
+  std::string extension = file.extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  if (extension != ".md") throw std::invalid_argument(named + " is not a Markdown file (.md)");
+  std::error_code error;
+  if (!fs::is_regular_file(file, error)) throw std::invalid_argument(named + " does not exist or is not a file");
+  const std::string document = readTextFile(file);
+  if (!document.empty() && document.find(kResultsFileMarker) == std::string::npos &&
+      document.find("<!-- s3d bench") == std::string::npos)
+    throw std::invalid_argument(named + " is not an s3d results file: it has no '" + std::string(kResultsFileMarker) +
+                                "' line (give an empty .md file to start one)");
+  requireWellFormedMarkers(document, file);
+}
+
 std::string readTextFile(const fs::path& file) {
   std::ifstream stream(file, std::ios::binary);
   if (!stream) throw std::invalid_argument("cannot read results file '" + file.string() + "'");
@@ -232,12 +252,7 @@ ValidatedBench validateBench(const BenchOptions& options) {
   const fs::file_status status = fs::status(options.outputFolder, error);
   if (fs::exists(status) && !fs::is_directory(status))
     throw std::invalid_argument("output folder '" + options.outputFolder.string() + "' exists and is not a folder");
-  if (options.resultsMarkdown) {
-    const fs::path& file = *options.resultsMarkdown;
-    if (!fs::is_regular_file(file, error))
-      throw std::invalid_argument("results file '" + file.string() + "' does not exist or is not a file");
-    requireWellFormedMarkers(readTextFile(file), file);
-  }
+  if (options.resultsMarkdown) requireResultsFile(*options.resultsMarkdown);
   return bench;
 }
 
@@ -943,7 +958,8 @@ BenchReport runBench(vk::Context& context, const BenchOptions& options) {
   if (options.resultsMarkdown) report.filesWritten.push_back(options.resultsMarkdown->string());
   io::writeTextFile(folder / "bench.json", toJson(report).dump(2) + "\n");
   if (options.resultsMarkdown) {
-    const std::string document = readTextFile(*options.resultsMarkdown);
+    std::string document = readTextFile(*options.resultsMarkdown);
+    if (document.empty()) document = std::string(kResultsFileMarker) + "\n";  // marks the file as ours
     io::writeTextFile(*options.resultsMarkdown,
                       replaceMarkedSection(document, resultsBeginMarker(report.deviceKind, report.rendererOnly),
                                            resultsEndMarker(report.deviceKind, report.rendererOnly), markdown));

@@ -472,19 +472,25 @@ bool frameIsCurrent(const nlohmann::json& entry, const ConvertFrame& frame, cons
 
 }  // namespace
 
+std::vector<std::string> convertOutputNames(const ConvertJobOptions& options, const std::vector<ConvertFrame>& frames) {
+  if (frames.empty()) return outputNames(options.fileSuffix, options.writeReport);
+  std::vector<std::string> names{"report.json"};
+  for (const ConvertFrame& frame : frames)
+    for (std::string& name : outputNames("_" + frame.key, false)) names.push_back(std::move(name));
+  return names;
+}
+
 ConvertFolderResult runConvertFolder(vk::Context& context, const ConvertJobOptions& options,
                                      const std::vector<ConvertFrame>& frames,
                                      const std::function<void(std::size_t, std::size_t, const std::string&)>& progress,
                                      FolderResume resume) {
   // A frame's outputs may be another frame's inputs: every name is checked against every input first.
-  std::vector<std::string> outputs{"report.json"};
   std::vector<fs::path> inputs{options.referenceLeft.value_or(fs::path()), options.referenceRight.value_or(fs::path())};
   for (const ConvertFrame& frame : frames) {
-    for (std::string& name : outputNames("_" + frame.key, false)) outputs.push_back(std::move(name));
     inputs.push_back(frame.color);
     inputs.push_back(frame.depth);
   }
-  io::requireOutputsAreNotInputs(options.outputFolder, outputs, inputs);
+  io::requireOutputsAreNotInputs(options.outputFolder, convertOutputNames(options, frames), inputs);
   const nlohmann::json settings = settingsJson(options);
   const std::map<std::string, nlohmann::json> earlier =
       resume == FolderResume::Yes ? readManifest(options.outputFolder, settings) : std::map<std::string, nlohmann::json>{};

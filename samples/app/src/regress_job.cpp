@@ -1,6 +1,7 @@
 #include "s3d/app/regress_job.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -14,6 +15,7 @@
 #include "s3d/io/image_io.h"
 #include "s3d/json_document.h"
 #include "s3d/renderer/scene.h"
+#include "s3d/renderer/scene_file.h"
 #include "s3d/stereo/metrics.h"
 #include "s3d/stereo/output_formats.h"
 
@@ -21,6 +23,11 @@ namespace s3d::app {
 namespace {
 
 namespace fs = std::filesystem;
+
+// What each run renders into its folder.
+constexpr std::array<const char*, 7> kRunOutputs{"left.png",       "right.png",       "left_reference.png",
+                                                 "right_reference.png", "error_left.png", "error_right.png",
+                                                 "report.json"};
 using nlohmann::json;
 
 // --- Suite validation: every error names the source, the place in the document and the problem ---
@@ -460,6 +467,35 @@ void requireRegressMemory(const RegressSuite& suite, const RegressOptions& optio
     }
 }
 
+std::vector<io::RunFile> regressOutputs(const RegressSuite& suite, const RegressOptions& options) {
+  std::vector<io::RunFile> files{{options.outputFolder / "regress.json", "--output"},
+                                 {options.outputFolder / "report.html", "--output"}};
+  for (const RegressCase& entry : suite.cases)
+    for (std::size_t frame : entry.frames) {
+      const std::string run = entry.name + "_f" + std::to_string(frame);
+      for (const char* name : kRunOutputs) files.push_back({options.outputFolder / run / name, "--output"});
+      for (const char* name : {"baseline_error_left.png", "baseline_error_right.png"})
+        files.push_back({options.outputFolder / run / name, "--output"});
+      if (options.updateBaselines)
+        for (const char* extension : {".json", ".png"})
+          files.push_back({suite.baselineFolder / (run + extension), "--update-baselines"});
+    }
+  return files;
+}
+
+std::vector<io::RunFile> regressInputs(const RegressSuite& suite, const RegressOptions& options) {
+  std::vector<io::RunFile> files;
+  for (const RegressCase& entry : suite.cases) {
+    if (renderer::isSceneFile(entry.scene))
+      for (const fs::path& file : renderer::sceneFileInputs(entry.scene)) files.push_back({file, "the suite's scene"});
+    if (!options.updateBaselines)
+      for (std::size_t frame : entry.frames)
+        for (const char* extension : {".json", ".png"})
+          files.push_back({suite.baselineFolder / (entry.name + "_f" + std::to_string(frame) + extension), "baseline"});
+  }
+  return files;
+}
+
 RegressResult runRegressSuite(vk::Context& context, const RegressSuite& suite, const RegressOptions& options,
                               const std::function<void(std::size_t, std::size_t, const std::string&)>& progress) {
   std::size_t total = 0;
@@ -475,8 +511,7 @@ RegressResult runRegressSuite(vk::Context& context, const RegressSuite& suite, c
       RenderJobOptions render = renderOptionsFor(entry, frame);
       render.memoryLimitBytes = options.memoryLimitBytes;
       render.outputFolder = runFolder;
-      render.outputs = {"left.png", "right.png", "left_reference.png", "right_reference.png", "error_left.png",
-                        "error_right.png", "report.json"};
+      render.outputs = {kRunOutputs.begin(), kRunOutputs.end()};
       run.report = runRenderJob(context, render);
       const ImageRGBA8 left = io::readPng(runFolder / "left.png");
       const ImageRGBA8 right = io::readPng(runFolder / "right.png");

@@ -121,13 +121,13 @@ void writeFileAtomically(const char* kind, const fs::path& file, std::string_vie
       if (count < 0 && errno == EINTR) continue;
       if (count <= 0) {
         const int writeErrno = errno;
-        failWrite(kind, file, "writing temporary file " + quoted(temporary) + " failed: " + std::strerror(writeErrno));
+        failWrite(kind, file, std::strerror(count == 0 ? EIO : writeErrno));  // e.g. "File too large"
       }
       written += static_cast<std::size_t>(count);
     }
     if (::close(std::exchange(descriptor, -1)) != 0) {
       const int closeErrno = errno;
-      failWrite(kind, file, "writing temporary file " + quoted(temporary) + " failed: " + std::strerror(closeErrno));
+      failWrite(kind, file, std::strerror(closeErrno));  // e.g. "No space left on device", reported late
     }
     fs::rename(temporary, target, error);
     if (error) failWrite(kind, file, "cannot move temporary file into place: " + error.message());

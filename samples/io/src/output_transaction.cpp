@@ -3,12 +3,14 @@
 #include <fcntl.h>     // open
 #include <stdlib.h>    // mkdtemp
 #include <sys/file.h>  // flock
+#include <sys/stat.h>  // fstat, stat
 #include <unistd.h>    // close
 
 #include <algorithm>
 #include <atomic>
 #include <cerrno>
 #include <cstring>
+#include <map>
 #include <stdexcept>
 #include <system_error>
 
@@ -34,9 +36,36 @@ std::string quoted(const fs::path& path) {
 constexpr const char* kStagingPrefix = ".s3d-staging-";
 constexpr const char* kStagingLock = ".lock";
 
+// Serializes the runs on one output folder while they sweep stale staging folders, create their own, or commit:
+// an exclusive flock on the output folder itself, released when this ends. Best effort when the folder cannot
+// be opened for reading (no lock, as before); `vanished()` says the folder was removed under us.
+class FolderLock {
+ public:
+  explicit FolderLock(const fs::path& folder) : fd_(::open(folder.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC)) {
+    openErrno_ = fd_ < 0 ? errno : 0;
+    while (fd_ >= 0 && ::flock(fd_, LOCK_EX) != 0 && errno == EINTR) {
+    }
+    // Removed (and perhaps made anew by another run) before the lock was ours: the lock guards nothing.
+    struct stat locked {}, now {};
+    if (fd_ >= 0 && (::fstat(fd_, &locked) != 0 || ::stat(folder.c_str(), &now) != 0 || locked.st_ino != now.st_ino ||
+                     locked.st_dev != now.st_dev))
+      openErrno_ = ENOENT;
+  }
+  ~FolderLock() {
+    if (fd_ >= 0) ::close(fd_);
+  }
+  FolderLock(const FolderLock&) = delete;
+  FolderLock& operator=(const FolderLock&) = delete;
+  bool vanished() const { return openErrno_ == ENOENT; }
+
+ private:
+  int fd_;
+  int openErrno_;
+};
+
 // A run killed before it could clean up (SIGKILL, power loss) leaves its staging folder behind. A live run
-// holds an exclusive flock on its folder's lock file for its whole life, so a staging folder whose lock can be
-// taken (or that has none: killed between creating it and the lock) belongs to no running process.
+// holds an exclusive flock on its folder's lock file for its whole life and creates the folder and the lock
+// under the FolderLock this runs under, so a staging folder whose lock can be taken, or that has none, is stale.
 void removeStaleStaging(const fs::path& folder) {
   std::error_code error;
   for (fs::directory_iterator entry(folder, error), end; !error && entry != end; entry.increment(error)) {
@@ -49,41 +78,54 @@ void removeStaleStaging(const fs::path& folder) {
     if (stale) fs::remove_all(entry->path(), ignored);
   }
 }
+
+// Another run that created the same new output folder removes it again when it fails (while empty): a run
+// that finds its folder gone between creating it and staging in it starts over, a bounded number of times.
+constexpr int kFolderAttempts = 16;
 }  // namespace
 
 OutputTransaction::OutputTransaction(const fs::path& folder) : folder_(fs::absolute(folder).lexically_normal()) {
   if (folder_.filename().empty()) folder_ = folder_.parent_path();
-  std::error_code error;
-  for (fs::path missing = folder_; !missing.empty() && !fs::exists(fs::symlink_status(missing, error));
-       missing = missing.parent_path()) {
-    createdFolders_.push_back(missing);
-    if (missing == missing.parent_path()) break;
-  }
-  fs::create_directories(folder_, error);
-  if (error) {
-    rollback();
-    failFolder(folder, error.message());
-  }
-  if (!fs::is_directory(folder_)) {
-    rollback();
-    failFolder(folder, "not a folder");
-  }
-  removeStaleStaging(folder_);
-  std::string pattern = (folder_ / (std::string(kStagingPrefix) + "XXXXXX")).string();
-  if (::mkdtemp(pattern.data()) == nullptr) {
-    const int mkdtempErrno = errno;
-    rollback();
-    failFolder(folder, std::strerror(mkdtempErrno));
-  }
-  staging_ = pattern;
-  lockFd_ = ::open((staging_ / kStagingLock).c_str(), O_RDWR | O_CREAT | O_EXCL | O_CLOEXEC | O_NOFOLLOW, 0600);
-  if (lockFd_ < 0 || ::flock(lockFd_, LOCK_EX | LOCK_NB) != 0) {
-    const int lockErrno = errno;
+  for (int attempt = 1;; ++attempt) {
+    const int error = tryToStage();
+    if (error == 0) break;
+    if (error == ENOENT && attempt < kFolderAttempts) continue;
     releaseLock();
     rollback();
-    failFolder(folder, std::strerror(lockErrno));
+    failFolder(folder, error == ENOTDIR ? "not a folder" : std::strerror(error));
   }
   previous_ = active.exchange(this);
+}
+
+int OutputTransaction::tryToStage() {
+  std::error_code error;
+  if (!staging_.empty()) {  // an earlier attempt's
+    releaseLock();
+    fs::remove_all(staging_, error);
+    staging_.clear();
+  }
+  for (fs::path missing = folder_; !missing.empty() && !fs::exists(fs::symlink_status(missing, error));
+       missing = missing.parent_path()) {
+    if (std::find(createdFolders_.begin(), createdFolders_.end(), missing) == createdFolders_.end())
+      createdFolders_.push_back(missing);
+    if (missing == missing.parent_path()) break;
+  }
+  // Innermost first, however the attempts found them.
+  std::sort(createdFolders_.begin(), createdFolders_.end(), [](const fs::path& a, const fs::path& b) {
+    return std::distance(a.begin(), a.end()) > std::distance(b.begin(), b.end());
+  });
+  fs::create_directories(folder_, error);
+  if (error) return error.value();
+  if (!fs::is_directory(folder_, error)) return error ? error.value() : ENOTDIR;
+  const FolderLock lock(folder_);
+  if (lock.vanished()) return ENOENT;
+  removeStaleStaging(folder_);
+  std::string pattern = (folder_ / (std::string(kStagingPrefix) + "XXXXXX")).string();
+  if (::mkdtemp(pattern.data()) == nullptr) return errno;
+  staging_ = pattern;
+  lockFd_ = ::open((staging_ / kStagingLock).c_str(), O_RDWR | O_CREAT | O_EXCL | O_CLOEXEC | O_NOFOLLOW, 0600);
+  if (lockFd_ < 0 || ::flock(lockFd_, LOCK_EX | LOCK_NB) != 0) return errno;
+  return 0;
 }
 
 OutputTransaction::~OutputTransaction() {
@@ -109,6 +151,7 @@ fs::path OutputTransaction::stagedTarget(const fs::path& file) {
 
 void OutputTransaction::commit() {
   std::lock_guard lock(mutex_);
+  const FolderLock folderLock(folder_);  // one run's commit at a time: its moves aside and back are its own
   std::error_code error;
   auto abandon = [&](const std::string& message) {
     finished_ = true;
@@ -179,23 +222,91 @@ void OutputTransaction::requireReplaceable(const fs::path& folder, const std::ve
                                   " is a folder: it cannot be replaced by a file; move it or choose another --output");
 }
 
+namespace {
+// What `file` is after links (as far as it exists): two paths name one file when these are equal.
+fs::path resolved(const fs::path& file) {
+  std::error_code error;
+  const fs::path path = fs::weakly_canonical(file, error);
+  return error ? fs::absolute(file).lexically_normal() : path;
+}
+
+// `name` matches `pattern`, whose one '*' (if any) stands for any text.
+bool nameMatches(const std::string& pattern, const std::string& name) {
+  const std::size_t star = pattern.find('*');
+  if (star == std::string::npos) return pattern == name;
+  const std::size_t tail = pattern.size() - star - 1;
+  return name.size() >= pattern.size() - 1 && name.compare(0, star, pattern, 0, star) == 0 &&
+         name.compare(name.size() - tail, tail, pattern, star + 1, tail) == 0;
+}
+
+[[noreturn]] void failOverlap(const RunFile& output, const std::string& what, const RunFile& other) {
+  throw std::invalid_argument("output " + quoted(output.path) + " would overwrite " + what + " " + quoted(other.path) +
+                              " (" + other.option + "); choose another " + output.option);
+}
+
+// The outputs by the file they replace: a name in its folder after links (an output replaces a link at its name,
+// never writing through it). Each folder is resolved once, so a run of thousands of frames checks quickly.
+class OutputIndex {
+ public:
+  void add(const RunFile& output) {
+    const fs::path target = folder(output.path) / output.path.filename();
+    if (output.path.filename().string().find('*') != std::string::npos) {
+      patterns_.push_back({target, &output});
+      return;
+    }
+    if (const RunFile* other = find(target)) failOverlap(output, "output", *other);
+    files_.emplace(target, &output);
+  }
+  // The output that would replace `file`, or of a link at its name; nullptr when none.
+  const RunFile* owner(const fs::path& file) {
+    if (const RunFile* output = find(resolved(file))) return output;
+    return find(folder(file) / file.filename());
+  }
+
+ private:
+  fs::path folder(const fs::path& file) {
+    const fs::path parent = file.parent_path().empty() ? fs::path(".") : file.parent_path();
+    auto [entry, added] = folders_.emplace(parent, fs::path());
+    if (added) entry->second = resolved(parent);
+    return entry->second;
+  }
+  const RunFile* find(const fs::path& target) const {
+    if (const auto file = files_.find(target); file != files_.end()) return file->second;
+    for (const auto& [pattern, output] : patterns_)
+      if (pattern.parent_path() == target.parent_path() &&
+          nameMatches(pattern.filename().string(), target.filename().string()))
+        return output;
+    return nullptr;
+  }
+
+  std::map<fs::path, fs::path> folders_;
+  std::map<fs::path, const RunFile*> files_;
+  std::vector<std::pair<fs::path, const RunFile*>> patterns_;
+};
+}  // namespace
+
+void requireOutputsAreNotInputs(const std::vector<RunFile>& outputs, const std::vector<RunFile>& inputs) {
+  OutputIndex index;
+  std::error_code error;
+  for (const RunFile& output : outputs) {
+    if (output.path.empty()) continue;
+    if (output.path.filename().string().find('*') == std::string::npos &&
+        fs::is_directory(fs::symlink_status(output.path, error)))
+      throw std::invalid_argument("output " + quoted(output.path) + " is a folder: it cannot be replaced by a file; " +
+                                  "move it or choose another " + output.option);
+    index.add(output);
+  }
+  for (const RunFile& input : inputs)
+    if (!input.path.empty())
+      if (const RunFile* output = index.owner(input.path)) failOverlap(*output, "input", input);
+}
+
 void requireOutputsAreNotInputs(const fs::path& folder, const std::vector<std::string>& outputs,
                                 const std::vector<fs::path>& inputs) {
-  OutputTransaction::requireReplaceable(folder, outputs);
-  std::error_code error;
-  for (const fs::path& input : inputs) {
-    if (input.empty()) continue;
-    const fs::path resolvedInput = fs::weakly_canonical(input, error);
-    for (const std::string& name : outputs) {
-      const fs::path output = folder / name;
-      const bool same = (!error && fs::weakly_canonical(output, error) == resolvedInput && !error) ||
-                        (fs::exists(output) && fs::equivalent(output, input, error) && !error);
-      if (same)
-        throw std::invalid_argument("output " + quoted(output) + " would overwrite input " + quoted(input) +
-                                    "; choose another --output folder");
-      error.clear();
-    }
-  }
+  std::vector<RunFile> outputFiles, inputFiles;
+  for (const std::string& name : outputs) outputFiles.push_back({folder / name, "--output"});
+  for (const fs::path& input : inputs) inputFiles.push_back({input, "input"});
+  requireOutputsAreNotInputs(outputFiles, inputFiles);
 }
 
 void OutputTransaction::rollback() noexcept {

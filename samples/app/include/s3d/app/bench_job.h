@@ -177,6 +177,10 @@ std::string benchSpeedErrorSvg(const BenchReport& report);
 // PSNR (mean of both eyes); every row a circle, the hybrid budgets of a scene and separation joined into a curve.
 std::string benchTimeOverEyeSvg(const BenchReport& report);
 
+// The line that marks a file as an s3d results file: --results-md writes it into an empty file and refuses a
+// non-empty one without it (or a bench section), and any file that does not end in .md.
+inline constexpr const char* kResultsFileMarker = "<!-- s3d results: tables between s3d bench markers are generated -->";
+
 // The markers of the section --results-md replaces: "<!-- s3d bench: KIND begin -->" / "... end -->"; the
 // renderer mode uses "s3d bench renderer: KIND".
 std::string resultsBeginMarker(const std::string& deviceKind, bool rendererOnly);

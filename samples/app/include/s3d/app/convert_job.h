@@ -125,6 +125,9 @@ struct ConvertFolderResult {
 // progress(done, total, key) is called after each frame. A bad frame stops the run with an error naming it
 // (with FolderResume::Yes also how many frames report.json lists). Throws std::invalid_argument when resuming
 // from a report.json made with other settings, or one that is not such a manifest.
+// The names a conversion writes into its output folder: one frame's (no `frames`) or a folder run's.
+std::vector<std::string> convertOutputNames(const ConvertJobOptions& options, const std::vector<ConvertFrame>& frames);
+
 ConvertFolderResult runConvertFolder(vk::Context& context, const ConvertJobOptions& options,
                                      const std::vector<ConvertFrame>& frames,
                                      const std::function<void(std::size_t, std::size_t, const std::string&)>& progress = {},

@@ -15,6 +15,7 @@
 
 #include "s3d/app/render_job.h"
 #include "s3d/comfort/comfort_profile.h"
+#include "s3d/io/output_transaction.h"
 #include "s3d/vk/context.h"
 
 namespace s3d::app {
@@ -83,6 +84,11 @@ struct RegressOptions {
 // Before a Vulkan start-up: every run's memory estimate against the available memory and memoryLimitBytes.
 // Throws std::invalid_argument naming the case, the estimate and the limit.
 void requireRegressMemory(const RegressSuite& suite, const RegressOptions& options);
+
+// The files a suite run writes (the report folder's, and the baselines with updateBaselines) and reads (each
+// case's scene file, and the baselines it compares with), for io::requireOutputsAreNotInputs.
+std::vector<io::RunFile> regressOutputs(const RegressSuite& suite, const RegressOptions& options);
+std::vector<io::RunFile> regressInputs(const RegressSuite& suite, const RegressOptions& options);
 
 struct RegressResult {
   std::vector<RegressRun> runs;

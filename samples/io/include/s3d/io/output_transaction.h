@@ -4,6 +4,8 @@
 // files into place, and a transaction destroyed without commit removes everything it staged and any folder
 // it created, so a run that fails late leaves the output folder exactly as it was. A run killed outright leaves
 // its staging folder; the next transaction on that folder removes it (a live run's is locked, never touched).
+// Runs on one folder at once all succeed: each creates its staging folder and commits under an flock on the
+// output folder, and one that finds a new folder removed by another's failure creates it again.
 #include <filesystem>
 #include <mutex>
 #include <string>
@@ -34,6 +36,7 @@ class OutputTransaction {
   static std::filesystem::path stagedTarget(const std::filesystem::path& file);
 
  private:
+  int tryToStage();  // 0, or the errno that stopped it
   void rollback() noexcept;
   void releaseLock() noexcept;
 
@@ -47,9 +50,20 @@ class OutputTransaction {
   bool finished_ = false;
 };
 
-// Before a run: throws std::invalid_argument when one of `outputs` (files inside `folder`) resolves, after
-// links, to one of `inputs` (a run would destroy its own input, and each rerun again), naming both, or when one
-// of them is a folder (OutputTransaction::requireReplaceable). Empty inputs are skipped.
+// A file a run writes or reads, with the option the user named it by ("--output" for a file in the output
+// folder). An output's file name may hold one '*', standing for any text (e.g. "anaglyph_*.png").
+struct RunFile {
+  std::filesystem::path path;
+  std::string option;
+};
+
+// Before a run writes anything: throws std::invalid_argument naming both files and their options when one of
+// `outputs` resolves, after links, to one of `inputs` (a run would destroy its own input, and each rerun
+// again) or to another output, or when an output in an existing folder is itself a folder. The one check every
+// command makes with all its files. Empty paths are skipped.
+void requireOutputsAreNotInputs(const std::vector<RunFile>& outputs, const std::vector<RunFile>& inputs);
+
+// The same for `outputs` named inside `folder` (option "--output") and unnamed `inputs` (option "input").
 void requireOutputsAreNotInputs(const std::filesystem::path& folder, const std::vector<std::string>& outputs,
                                 const std::vector<std::filesystem::path>& inputs);
 
