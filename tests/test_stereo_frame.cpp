@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "host_pass_fixture.h"
+#include "s3d/s3d.h"
 #include "s3d/stereo/forward.h"
 #include "s3d/stereo/iterative.h"
 #include "s3d/stereo/stereo_frame.h"
@@ -184,6 +185,106 @@ TEST_F(StereoFrameTest, ADispatchThatDoesNotMatchTheDescriptionIsRefused) {
   d.maxSeparation = -1.0f;
   EXPECT_NE(errorOf([&] { runOnHostQueue([&](VkCommandBuffer cmd) { frame.record(cmd, d); }); }).find("maxSeparation"),
             std::string::npos);
+}
+
+// The C API's stereo frame: the same eyes through the C structs, a host that binds C would get.
+class CStereoFrameTest : public StereoFrameTest {
+ public:
+  void SetUp() override {
+    StereoFrameTest::SetUp();
+    s3d_host_device device{};
+    device.instance = host().instance;
+    device.physical_device = host().physicalDevice;
+    device.device = host().device;
+    device.queue_family = host().queueFamily;
+    device.queue = host().queue;
+    ASSERT_EQ(s3d_context_create(&device, &cContext_), S3D_SUCCESS) << s3d_last_error();
+  }
+  void TearDown() override {
+    s3d_context_destroy(cContext_);
+    StereoFrameTest::TearDown();
+  }
+  static s3d_host_image cImage(const vk::Image& image, const vk::ImageState& state) {
+    return {image.image, image.view, image.format, state.layout, state.stage, state.access, 0};
+  }
+  s3d_stereo_frame_desc cDesc(s3d_method method) const {
+    s3d_stereo_frame_desc d;
+    s3d_default_stereo_frame_desc(&d);
+    d.width = kWidth;
+    d.height = kHeight;
+    d.method = method;
+    return d;
+  }
+
+  stereo::StereoPair cEyes(s3d_method method, DepthImage* expectedLinear) {
+    const DepthUpload depth = hardwareDepth(view_.depth, VK_FORMAT_D32_SFLOAT, frame_);
+    *expectedLinear = depth.expectedLinear;
+    vk::Image color = uploaded(VK_FORMAT_R8G8B8A8_SRGB, colorBytes(view_.color, VK_FORMAT_R8G8B8A8_SRGB), kShaderRead);
+    vk::Image depthImage =
+        uploaded(VK_FORMAT_D32_SFLOAT, depth.bytes, kDepthWritten, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT);
+    const s3d_stereo_frame_desc desc = cDesc(method);
+    s3d_stereo_frame frame = nullptr;
+    EXPECT_EQ(s3d_stereo_frame_create(cContext_, &desc, &frame), S3D_SUCCESS) << s3d_last_error();
+    vk::Image left = output(s3d_stereo_frame_eye_format(frame), kWidth, kHeight);
+    vk::Image right = output(s3d_stereo_frame_eye_format(frame), kWidth, kHeight);
+    s3d_stereo_frame_dispatch d;
+    s3d_default_stereo_frame_dispatch(&d);
+    d.color = cImage(color, kShaderRead);
+    d.depth = cImage(depthImage, kDepthWritten);
+    d.left = cImage(left, kCopiedOut);
+    d.right = cImage(right, kCopiedOut);
+    d.projection.near_plane = frame_.projection.nearPlane;
+    d.projection.far_plane = frame_.projection.farPlane;
+    d.max_separation = parameters_.maxSeparation;
+    d.zero_parallax_distance = parameters_.zeroParallaxDistance;
+    runOnHostQueue([&](VkCommandBuffer cmd) {
+      EXPECT_EQ(s3d_stereo_frame_record(frame, cmd, &d), S3D_SUCCESS) << s3d_last_error();
+    });
+    s3d_stereo_frame_destroy(frame);
+    return {toImage(vk::readbackImage(*context_, left, kCopiedOut), kWidth, kHeight),
+            toImage(vk::readbackImage(*context_, right, kCopiedOut), kWidth, kHeight)};
+  }
+
+  s3d_context cContext_ = nullptr;
+};
+
+TEST_F(CStereoFrameTest, EveryMethodThroughTheCApiGivesItsReferenceEyes) {
+  const std::pair<s3d_method, StereoMethod> methods[] = {{S3D_METHOD_SEED, StereoMethod::Seed},
+                                                         {S3D_METHOD_SEARCH, StereoMethod::Search},
+                                                         {S3D_METHOD_ITERATIVE, StereoMethod::Iterative},
+                                                         {S3D_METHOD_FORWARD, StereoMethod::Forward}};
+  for (const auto& [cMethod, method] : methods) {
+    DepthImage linear;
+    const stereo::StereoPair gpu = cEyes(cMethod, &linear);
+    const stereo::StereoPair cpu = reference(method, linear);
+    EXPECT_LE(largestChannelDifference(gpu.left, cpu.left), 1) << stereo::methodName(method);  // as above
+    EXPECT_LE(largestChannelDifference(gpu.right, cpu.right), 1) << stereo::methodName(method);
+  }
+}
+
+TEST_F(CStereoFrameTest, BadDescriptionsAndDispatchesAreRefusedInTheCApisWords) {
+  s3d_stereo_frame frame = nullptr;
+  s3d_stereo_frame_desc desc = cDesc(s3d_method(7));
+  EXPECT_EQ(s3d_stereo_frame_create(cContext_, &desc, &frame), S3D_ERROR_INVALID_ARGUMENT);
+  EXPECT_NE(std::string(s3d_last_error()).find("s3d_stereo_frame_desc.method"), std::string::npos) << s3d_last_error();
+  desc = cDesc(S3D_METHOD_SEARCH);
+  desc.previous_frame_fill = 1;
+  EXPECT_EQ(s3d_stereo_frame_create(cContext_, &desc, &frame), S3D_ERROR_INVALID_ARGUMENT);
+  EXPECT_NE(std::string(s3d_last_error()).find("previous_frame_fill needs S3D_METHOD_FORWARD"), std::string::npos);
+  desc = cDesc(S3D_METHOD_FORWARD);
+  desc.previous_frame_fill = 1;
+  ASSERT_EQ(s3d_stereo_frame_create(cContext_, &desc, &frame), S3D_SUCCESS) << s3d_last_error();
+  vk::Image eye = output(s3d_stereo_frame_eye_format(frame), kWidth, kHeight);
+  s3d_stereo_frame_dispatch d;
+  s3d_default_stereo_frame_dispatch(&d);
+  d.color = d.depth = d.left = d.right = cImage(eye, kCopiedOut);
+  runOnHostQueue([&](VkCommandBuffer cmd) {
+    EXPECT_EQ(s3d_stereo_frame_record(frame, cmd, &d), S3D_ERROR_INVALID_ARGUMENT);
+    EXPECT_NE(std::string(s3d_last_error()).find("dispatch.color.format"), std::string::npos) << s3d_last_error();
+    EXPECT_EQ(s3d_stereo_frame_record(frame, cmd, nullptr), S3D_ERROR_INVALID_ARGUMENT);
+    EXPECT_NE(std::string(s3d_last_error()).find("dispatch is NULL"), std::string::npos) << s3d_last_error();
+  });
+  s3d_stereo_frame_destroy(frame);
 }
 
 }  // namespace

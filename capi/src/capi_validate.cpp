@@ -1,6 +1,8 @@
 #include "capi_validate.h"
 
 #include <cmath>
+#include <span>
+#include <utility>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -56,25 +58,83 @@ void validateHostDevice(const s3d_host_device& host) {
     fail("s3d_host_device.queue_family " + std::to_string(host.queue_family) + " has no compute (s3d records compute work)");
 }
 
-void validate(const s3d_host_pass_desc& desc, std::uint32_t maxImageDimension2D) {
-  const Name name{"s3d_host_pass_desc"};
-  requireEnum(desc.output, S3D_OUTPUT_TWO_EYES, S3D_OUTPUT_ANAGLYPH, name / "output");
-  const bool sideBySide = desc.output == S3D_OUTPUT_SIDE_BY_SIDE_FULL, topBottom = desc.output == S3D_OUTPUT_TOP_BOTTOM_FULL;
-  requireImageSize(desc.width, maxImageDimension2D, name / "width", sideBySide ? 2 : 1, "S3D_OUTPUT_SIDE_BY_SIDE_FULL");
-  requireImageSize(desc.height, maxImageDimension2D, name / "height", topBottom ? 2 : 1, "S3D_OUTPUT_TOP_BOTTOM_FULL");
-  if (desc.output == S3D_OUTPUT_SIDE_BY_SIDE_HALF && desc.width < 2)
-    fail("s3d_host_pass_desc.width must be at least 2 for S3D_OUTPUT_SIDE_BY_SIDE_HALF");
-  if (desc.output == S3D_OUTPUT_TOP_BOTTOM_HALF && desc.height < 2)
-    fail("s3d_host_pass_desc.height must be at least 2 for S3D_OUTPUT_TOP_BOTTOM_HALF");
-  if (!isColorFormat(desc.color_format))
-    fail("s3d_host_pass_desc.color_format " + std::to_string(int(desc.color_format)) +
+namespace {
+// What the host pass and the stereo frame descriptions share: sizes for the output, the input formats.
+void validateShape(const Name& name, std::uint32_t width, std::uint32_t height, s3d_output output, VkFormat colorFormat,
+                   VkFormat depthFormat, std::uint32_t maxImageDimension2D) {
+  requireEnum(output, S3D_OUTPUT_TWO_EYES, S3D_OUTPUT_ANAGLYPH, name / "output");
+  const bool sideBySide = output == S3D_OUTPUT_SIDE_BY_SIDE_FULL, topBottom = output == S3D_OUTPUT_TOP_BOTTOM_FULL;
+  requireImageSize(width, maxImageDimension2D, name / "width", sideBySide ? 2 : 1, "S3D_OUTPUT_SIDE_BY_SIDE_FULL");
+  requireImageSize(height, maxImageDimension2D, name / "height", topBottom ? 2 : 1, "S3D_OUTPUT_TOP_BOTTOM_FULL");
+  if (output == S3D_OUTPUT_SIDE_BY_SIDE_HALF && width < 2)
+    fail((name / "width").text() + " must be at least 2 for S3D_OUTPUT_SIDE_BY_SIDE_HALF");
+  if (output == S3D_OUTPUT_TOP_BOTTOM_HALF && height < 2)
+    fail((name / "height").text() + " must be at least 2 for S3D_OUTPUT_TOP_BOTTOM_HALF");
+  if (!isColorFormat(colorFormat))
+    fail((name / "color_format").text() + " " + std::to_string(int(colorFormat)) +
          " is not one of R8G8B8A8/B8G8R8A8 UNORM or SRGB, R16G16B16A16_SFLOAT, B10G11R11_UFLOAT_PACK32");
-  if (!stereo::detail::isHostDepthFormat(desc.depth_format) && desc.depth_format != VK_FORMAT_R32_SFLOAT)
-    fail("s3d_host_pass_desc.depth_format " + std::to_string(int(desc.depth_format)) +
+  if (!stereo::detail::isHostDepthFormat(depthFormat) && depthFormat != VK_FORMAT_R32_SFLOAT)
+    fail((name / "depth_format").text() + " " + std::to_string(int(depthFormat)) +
          " is not one of D32_SFLOAT, D24_UNORM_S8_UINT, D16_UNORM or R32_SFLOAT linear depth");
+}
+
+bool isHdr(VkFormat f) { return f == VK_FORMAT_R16G16B16A16_SFLOAT || f == VK_FORMAT_B10G11R11_UFLOAT_PACK32; }
+
+void requireFiniteMatrix(const float (&m)[16], Name name) {
+  for (int i = 0; i < 16; ++i) requireFinite(m[i], {name.base, nullptr, i});
+}
+}  // namespace
+
+void validate(const s3d_host_pass_desc& desc, std::uint32_t maxImageDimension2D) {
+  validateShape({"s3d_host_pass_desc"}, desc.width, desc.height, desc.output, desc.color_format, desc.depth_format,
+                maxImageDimension2D);
   if (desc.inputs_are_storage &&
       (desc.color_format != VK_FORMAT_R8G8B8A8_UNORM || desc.depth_format != VK_FORMAT_R32_SFLOAT))
     fail("s3d_host_pass_desc.inputs_are_storage needs color_format R8G8B8A8_UNORM and depth_format R32_SFLOAT");
+}
+
+void validate(const s3d_stereo_frame_desc& desc, std::uint32_t maxImageDimension2D) {
+  const Name name{"s3d_stereo_frame_desc"};
+  validateShape(name, desc.width, desc.height, desc.output, desc.color_format, desc.depth_format, maxImageDimension2D);
+  requireEnum(desc.method, S3D_METHOD_SEED, S3D_METHOD_FORWARD, name / "method");
+  if (isHdr(desc.color_format) && desc.method != S3D_METHOD_SEED && desc.method != S3D_METHOD_SEARCH)
+    fail("s3d_stereo_frame_desc.method S3D_METHOD_ITERATIVE and S3D_METHOD_FORWARD displace 8-bit colour: with an "
+         "HDR color_format use S3D_METHOD_SEED or S3D_METHOD_SEARCH");
+  if (desc.method == S3D_METHOD_SEARCH && (desc.search_taps < 1 || desc.search_taps > S3D_STEREO_MAX_TAPS))
+    fail("s3d_stereo_frame_desc.search_taps " + std::to_string(desc.search_taps) + " is outside [1, " +
+         std::to_string(S3D_STEREO_MAX_TAPS) + "] for S3D_METHOD_SEARCH");
+  if (desc.method == S3D_METHOD_ITERATIVE && (desc.iterations < 1 || desc.iterations > 16))
+    fail("s3d_stereo_frame_desc.iterations " + std::to_string(desc.iterations) + " is outside [1, 16] for "
+         "S3D_METHOD_ITERATIVE");
+  if (desc.previous_frame_fill && desc.method != S3D_METHOD_FORWARD)
+    fail("s3d_stereo_frame_desc.previous_frame_fill needs S3D_METHOD_FORWARD");
+}
+
+void validate(const s3d_stereo_frame_dispatch& d, VkFormat colorFormat, VkFormat depthFormat, VkFormat eyeFormat,
+              bool twoEyes, bool previousFrameFill) {
+  validateImage(&d.color, {"dispatch.color"}, ImageUse::Sampled);
+  requireFormat(d.color, {"dispatch.color"}, colorFormat);
+  validateImage(&d.depth, {"dispatch.depth"}, ImageUse::Sampled);
+  requireFormat(d.depth, {"dispatch.depth"}, depthFormat);
+  const std::pair<const s3d_host_image*, const char*> eyes[] = {{&d.left, "dispatch.left"}, {&d.right, "dispatch.right"}};
+  const std::pair<const s3d_host_image*, const char*> packed[] = {{&d.target, "dispatch.target"}};
+  using Outputs = std::span<const std::pair<const s3d_host_image*, const char*>>;
+  for (const auto& [image, field] : twoEyes ? Outputs(eyes) : Outputs(packed)) {
+    validateImage(image, {field}, ImageUse::StorageWrite);
+    requireFormat(*image, {field}, eyeFormat);
+  }
+  if (twoEyes && d.left.image == d.right.image && d.left.layer == d.right.layer)
+    fail("dispatch.right names the same image and layer as dispatch.left (one array image: layer 0 and layer 1)");
+  if (depthFormat != VK_FORMAT_R32_SFLOAT) validate(d.projection, {"dispatch.projection"});
+  const s3d_stereo_parameters parameters{d.max_separation, d.zero_parallax_distance, d.edge_crop, S3D_METHOD_SEED, 1,
+                                         d.weapon_depth_offset, d.weapon_depth_scale};
+  validate(parameters, {"dispatch"});
+  if (!previousFrameFill) return;
+  requireFiniteMatrix(d.center_view, {"dispatch.center_view"});
+  requireFiniteMatrix(d.center_projection, {"dispatch.center_projection"});
+  if (!(d.center_projection[0] > 0.0f) || d.center_projection[11] == 0.0f)
+    fail("dispatch.center_projection must be a perspective projection (element [0][0] > 0, [2][3] != 0) for the "
+         "previous-frame fill");
 }
 
 void validate(const s3d_hud_pass_desc& desc, std::uint32_t maxImageDimension2D) {
@@ -103,6 +163,9 @@ void validate(const s3d_stereo_parameters& p, Name name) {
   if (p.edge_crop > stereo::kMaxSeparationLimit)
     fail((name / "edge_crop").text() + " " + numberText(p.edge_crop) + " is above " +
          numberText(stereo::kMaxSeparationLimit));
+  if (p.method == S3D_METHOD_ITERATIVE || p.method == S3D_METHOD_FORWARD)
+    fail((name / "method").text() + " " + std::to_string(int(p.method)) + " is for s3d_stereo_frame_record: "
+         "s3d_stereo_parameters take S3D_METHOD_SEED or S3D_METHOD_SEARCH");
   requireEnum(p.method, S3D_METHOD_SEED, S3D_METHOD_SEARCH, name / "method");
   if (p.method == S3D_METHOD_SEARCH && (p.search_taps < 1 || p.search_taps > S3D_STEREO_MAX_TAPS))
     fail((name / "search_taps").text() + " " + std::to_string(p.search_taps) + " is outside [1, " +
@@ -111,18 +174,17 @@ void validate(const s3d_stereo_parameters& p, Name name) {
   requirePositive(p.weapon_depth_scale, name / "weapon_depth_scale");
 }
 
-void validate(const s3d_projection& p) {
-  const Name name{"projection"};
+void validate(const s3d_projection& p, Name name) {
   requirePositive(p.near_plane, name / "near_plane");
   if (!p.infinite_far_plane && !(p.far_plane > p.near_plane && std::isfinite(p.far_plane)))
-    fail("projection.far_plane " + numberText(p.far_plane) + " must be finite and above near_plane " +
+    fail((name / "far_plane").text() + " " + numberText(p.far_plane) + " must be finite and above near_plane " +
          numberText(p.near_plane) + " (or set infinite_far_plane)");
   requireRange(p.first_person_depth_range, 0.0f, 1.0f, name / "first_person_depth_range");
-  if (p.first_person_depth_range == 1.0f) fail("projection.first_person_depth_range must be below 1");
+  if (p.first_person_depth_range == 1.0f) fail((name / "first_person_depth_range").text() + " must be below 1");
   if (p.first_person_depth_range == 0.0f) return;
   requirePositive(p.first_person_near, name / "first_person_near");
   if (!(p.first_person_far > p.first_person_near && std::isfinite(p.first_person_far)))
-    fail("projection.first_person_far " + numberText(p.first_person_far) +
+    fail((name / "first_person_far").text() + " " + numberText(p.first_person_far) +
          " must be finite and above first_person_near " + numberText(p.first_person_near));
 }
 

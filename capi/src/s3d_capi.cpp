@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "capi_common.h"
 #include "capi_validate.h"
 #include "s3d/comfort/frame_comfort_state.h"
 #include "s3d/number_text.h"
@@ -19,10 +20,6 @@
 #include "s3d/vk/check.h"
 #include "s3d/vk/context.h"
 
-struct s3d_context_t {
-  s3d::vk::Context context;
-  std::uint32_t maxImageDimension2D;  // of the physical device the context was created with
-};
 struct s3d_host_pass_t {
   s3d::stereo::HostStereoPass pass;
 };
@@ -38,51 +35,13 @@ struct s3d_device_patch_t {
 
 namespace {
 
-thread_local std::string lastError;
-
+using s3d::capi::guarded;
 using s3d::capi::ImageUse;
+using s3d::capi::lastError;
 using s3d::capi::Name;
+using s3d::capi::present;
 using s3d::capi::requireNotNull;
-
-// For the functions without a result code: whether `pointer` is there, noting why not for s3d_last_error.
-bool present(const void* pointer, const char* name) {
-  if (pointer) {
-    lastError.clear();
-    return true;
-  }
-  lastError = std::string(name) + " is NULL";
-  return false;
-}
-
-// The Vulkan function and its result, without the C++ expression of its arguments.
-std::string vulkanMessage(const s3d::vk::VulkanError& error) {
-  const std::string text = error.what();
-  return text.substr(0, text.find('(')) + " failed: " + s3d::vk::resultName(error.result());
-}
-
-template <typename F>
-s3d_result guarded(F&& body) {
-  try {
-    body();
-    lastError.clear();
-    return S3D_SUCCESS;
-  } catch (const std::invalid_argument& error) {
-    lastError = error.what();
-    return S3D_ERROR_INVALID_ARGUMENT;
-  } catch (const s3d::vk::VulkanError& error) {
-    lastError = vulkanMessage(error);
-    return S3D_ERROR_VULKAN;
-  } catch (const std::runtime_error& error) {  // adoption and patch failures name the missing requirement
-    lastError = error.what();
-    return S3D_ERROR_DEVICE_UNSUPPORTED;
-  } catch (const std::exception& error) {
-    lastError = error.what();
-    return S3D_ERROR_UNKNOWN;
-  } catch (...) {
-    lastError = "unknown error";
-    return S3D_ERROR_UNKNOWN;
-  }
-}
+using s3d::capi::toCpp;
 
 // `p` passed s3d::capi::validate.
 s3d::stereo::StereoParameters toCpp(const s3d_stereo_parameters& p) {
@@ -102,10 +61,6 @@ s3d_stereo_parameters toC(const s3d::stereo::StereoParameters& p) {
   return {p.maxSeparation, p.zeroParallaxDistance, p.edgeCrop,
           p.method == s3d::stereo::StereoMethod::Seed ? S3D_METHOD_SEED : S3D_METHOD_SEARCH,
           p.searchTaps, p.weaponDepthOffset, p.weaponDepthScale};
-}
-
-s3d::stereo::HostImage toCpp(const s3d_host_image& i) {
-  return {i.image, i.view, i.format, i.layout, i.stage, i.access};
 }
 
 s3d_hud_element_state toC(const s3d::comfort::HudElementState& s) {
@@ -181,9 +136,7 @@ void recordHostPass(s3d_host_pass pass, VkCommandBuffer cmd, const s3d_host_imag
   s3d::stereo::HostFrame frame;
   frame.stereo = s3d::stereo::makeStereoConstants(cpp, desc.width, desc.height);
   if (projection)
-    frame.projection = {projection->near_plane, projection->far_plane, projection->reversed_z != 0,
-                        projection->infinite_far_plane != 0, projection->first_person_depth_range,
-                        projection->first_person_near, projection->first_person_far};
+    frame.projection = toCpp(*projection);
   frame.weaponDepthOffset = cpp.weaponDepthOffset;
   frame.weaponDepthScale = cpp.weaponDepthScale;
   const s3d::stereo::HostImage leftImage = left ? toCpp(*left) : s3d::stereo::HostImage{};
@@ -215,7 +168,7 @@ const s3d::vk::DeviceRequirements& requirements() {
 
 extern "C" {
 
-const char* s3d_last_error(void) { return lastError.c_str(); }
+const char* s3d_last_error(void) { return lastError().c_str(); }
 
 uint32_t s3d_required_api_version(void) { return requirements().apiVersion; }
 uint32_t s3d_required_extension_count(void) { return uint32_t(requirements().extensions.size()); }

@@ -1,5 +1,5 @@
 /* s3d's C API for hosts that bind C (Godot GDExtension, Unity native plugins, C engines): opaque handles, POD
- * parameter structs, error codes plus a per-thread last-error string. Stable within a minor version (0.2).
+ * parameter structs, error codes plus a per-thread last-error string. Stable within a minor version (0.3).
  * See docs/INTEGRATION.md for the frame sequence and the synchronization contract. */
 #ifndef S3D_S3D_H
 #define S3D_S3D_H
@@ -12,7 +12,7 @@ extern "C" {
 #endif
 
 #define S3D_API_VERSION_MAJOR 0
-#define S3D_API_VERSION_MINOR 2
+#define S3D_API_VERSION_MINOR 3
 
 typedef enum s3d_result {
   S3D_SUCCESS = 0,
@@ -74,7 +74,13 @@ typedef struct s3d_host_pass_desc {
   int32_t inputs_are_storage; /* 1: RGBA8 UNORM + R32F storage images, read without conversion */
 } s3d_host_pass_desc;
 
-typedef enum s3d_method { S3D_METHOD_SEED = 0, S3D_METHOD_SEARCH = 1 } s3d_method;
+/* The displacement methods (docs/DESIGN.md): the host pass below takes seed and search; the stereo frame takes all. */
+typedef enum s3d_method {
+  S3D_METHOD_SEED = 0,      /* Listing 4.5: taps at 0.5/0.66/1.0 of the separation */
+  S3D_METHOD_SEARCH = 1,    /* search_taps taps spread over the separation */
+  S3D_METHOD_ITERATIVE = 2, /* fixed-point source search (8-bit colour) */
+  S3D_METHOD_FORWARD = 3    /* z-buffered scatter of every pixel, holes from the background (8-bit colour) */
+} s3d_method;
 
 typedef struct s3d_stereo_parameters {
   float max_separation;         /* per-eye displacement at infinity, fraction of the width: 0 .. 0.25 */
@@ -106,6 +112,7 @@ typedef struct s3d_host_image {
    * (outputs, storage inputs) or a read-only layout (sampled inputs) */
   VkPipelineStageFlags2 stage;
   VkAccessFlags2 access;
+  uint32_t layer; /* the array layer `view` shows: 0, or 0 and 1 for two eyes in one 2-layer array image */
 } s3d_host_image;
 
 typedef struct s3d_host_pass_t* s3d_host_pass;
@@ -118,6 +125,51 @@ s3d_result s3d_host_pass_record(s3d_host_pass pass, VkCommandBuffer cmd, const s
                                 const s3d_host_image* depth, const s3d_stereo_parameters* parameters,
                                 const s3d_projection* projection, const s3d_host_image* left,
                                 const s3d_host_image* right, const s3d_host_image* target);
+
+/* ---- Stereo frame: every method, one description at creation, one dispatch description per frame ----
+ * Synchronization and images as the host pass's; recording allocates nothing. With previous_frame_fill, submit the
+ * frames in the order they were recorded. */
+typedef struct s3d_stereo_frame_desc {
+  uint32_t width;  /* the host's colour and depth images; the eyes have this size */
+  uint32_t height;
+  VkFormat color_format; /* RGBA8/BGRA8 UNORM or SRGB, RGBA16F, B10G11R11 (HDR colour: seed or search) */
+  VkFormat depth_format; /* D32, D24S8, D16, or R32F linear depth */
+  s3d_output output;
+  s3d_method method;
+  int32_t search_taps;         /* S3D_METHOD_SEARCH: 1..16 */
+  int32_t iterations;          /* S3D_METHOD_ITERATIVE: 1..16 */
+  int32_t previous_frame_fill; /* S3D_METHOD_FORWARD: 1 fills holes from the previous frame's eyes */
+} s3d_stereo_frame_desc;
+/* Search with 4 taps, two eyes, R8G8B8A8_SRGB colour and D32 depth; width and height 0 (the host sets them). */
+void s3d_default_stereo_frame_desc(s3d_stereo_frame_desc* out);
+
+typedef struct s3d_stereo_frame_dispatch {
+  s3d_host_image color;
+  s3d_host_image depth;
+  s3d_host_image left;   /* S3D_OUTPUT_TWO_EYES: two images, or one 2-layer array image (layer 0 and 1) */
+  s3d_host_image right;
+  s3d_host_image target; /* packed outputs */
+  s3d_projection projection; /* the depth buffer's convention (ignored for R32F linear depth) */
+  float max_separation;         /* 0 .. 0.25 of the width */
+  float zero_parallax_distance; /* world units, > 0 */
+  float edge_crop;              /* fraction of the width per side, <= 0.25; < 0: = max_separation */
+  float weapon_depth_offset;    /* first-person push: depth' = offset + scale * depth */
+  float weapon_depth_scale;
+  /* previous_frame_fill: the center camera (world to view) and its projection, column-major, Vulkan clip space */
+  float center_view[16];
+  float center_projection[16];
+  int32_t camera_cut; /* 1: this frame does not continue the previous one */
+} s3d_stereo_frame_dispatch;
+/* Zero images, s3d's default parameters, identity matrices, projection near 0.1 / far 1000. */
+void s3d_default_stereo_frame_dispatch(s3d_stereo_frame_dispatch* out);
+
+typedef struct s3d_stereo_frame_t* s3d_stereo_frame;
+s3d_result s3d_stereo_frame_create(s3d_context context, const s3d_stereo_frame_desc* desc, s3d_stereo_frame* out);
+void s3d_stereo_frame_destroy(s3d_stereo_frame frame);
+VkFormat s3d_stereo_frame_eye_format(s3d_stereo_frame frame);
+void s3d_stereo_frame_packed_size(s3d_stereo_frame frame, uint32_t* width, uint32_t* height);
+s3d_result s3d_stereo_frame_record(s3d_stereo_frame frame, VkCommandBuffer cmd,
+                                   const s3d_stereo_frame_dispatch* dispatch);
 
 /* ---- HUD pass: element layers over both eyes at their parallax, faded by the weapon mask ---- */
 typedef struct s3d_hud_placement {
