@@ -1,6 +1,7 @@
 /* A plain-C host on the installed package only: its own Vulkan instance and device (s3d's requirements added by
  * s3d_device_patch_apply), its own colour (a horizontal ramp) and linear depth (top half near, bottom half at the
- * zero-parallax distance), s3d's stereo pass recorded into its own command buffer, the eyes read back.
+ * zero-parallax distance), s3d's stereo frame (the forward method) recorded into its own command buffer with one
+ * dispatch description, the eyes read back.
  * Checks: at the zero-parallax distance both eyes show the input; nearer, the eyes are shifted apart by the
  * parallax. Exit status 0 when every check holds.
  *   cmake --install build --prefix /tmp/s3d
@@ -124,9 +125,13 @@ int main(void) {
   S3D(s3d_context_create(&host, &context));
   s3d_device_patch_destroy(patch);
 
-  const s3d_host_pass_desc desc = {W, H, VK_FORMAT_R8G8B8A8_UNORM, VK_FORMAT_R32_SFLOAT, S3D_OUTPUT_TWO_EYES, 0};
-  s3d_host_pass pass;
-  S3D(s3d_host_pass_create(context, &desc, &pass));
+  s3d_stereo_frame_desc desc;
+  s3d_default_stereo_frame_desc(&desc);
+  desc.width = W, desc.height = H;
+  desc.color_format = VK_FORMAT_R8G8B8A8_UNORM, desc.depth_format = VK_FORMAT_R32_SFLOAT;
+  desc.method = S3D_METHOD_FORWARD;
+  s3d_stereo_frame frame;
+  S3D(s3d_stereo_frame_create(context, &desc, &frame));
 
   /* Inputs written by a copy, eyes read by a copy: s3d is told each image's layout and last access. */
   const VkImageUsageFlags in = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
@@ -135,7 +140,7 @@ int main(void) {
   const VkPipelineStageFlags2 copy = VK_PIPELINE_STAGE_2_COPY_BIT;
   const s3d_host_image color = makeImage(desc.color_format, in, dst, copy, VK_ACCESS_2_TRANSFER_WRITE_BIT);
   const s3d_host_image depth = makeImage(desc.depth_format, in, dst, copy, VK_ACCESS_2_TRANSFER_WRITE_BIT);
-  const VkFormat eyeFormat = s3d_host_pass_eye_format(pass);
+  const VkFormat eyeFormat = s3d_stereo_frame_eye_format(frame);
   if (eyeFormat != VK_FORMAT_R8G8B8A8_UNORM) { /* the checks below read the eyes as bytes */
     fprintf(stderr, "host.c: expected RGBA8 eyes for RGBA8 colour, s3d chose format %d\n", (int)eyeFormat);
     return 1;
@@ -186,11 +191,12 @@ int main(void) {
   for (int i = 0; i < 2; ++i, region.bufferOffset += PIXELS * 4)
     vkCmdCopyBufferToImage(cmd, buffer, images[i], dst, 1, &region);
 
-  s3d_stereo_parameters parameters;
-  s3d_default_stereo_parameters(&parameters);
-  parameters.max_separation = MAX_SEPARATION;
-  parameters.zero_parallax_distance = ZERO_PARALLAX;
-  S3D(s3d_host_pass_record(pass, cmd, &color, &depth, &parameters, NULL, &left, &right, NULL));
+  s3d_stereo_frame_dispatch dispatch;
+  s3d_default_stereo_frame_dispatch(&dispatch);
+  dispatch.color = color, dispatch.depth = depth, dispatch.left = left, dispatch.right = right;
+  dispatch.max_separation = MAX_SEPARATION;
+  dispatch.zero_parallax_distance = ZERO_PARALLAX;
+  S3D(s3d_stereo_frame_record(frame, cmd, &dispatch));
   for (int i = 2; i < 4; ++i, region.bufferOffset += PIXELS * 4)
     vkCmdCopyImageToBuffer(cmd, images[i], src, buffer, 1, &region);
   VK(vkEndCommandBuffer(cmd));
@@ -216,7 +222,7 @@ int main(void) {
       }
     }
 
-  s3d_host_pass_destroy(pass);
+  s3d_stereo_frame_destroy(frame);
   s3d_context_destroy(context); /* s3d destroys none of the host's handles: the host's own go below */
   vkDestroyCommandPool(device, pool, NULL);
   vkDestroyBuffer(device, buffer, NULL);
