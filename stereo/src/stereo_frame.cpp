@@ -178,13 +178,13 @@ void StereoFrame::record(VkCommandBuffer cmd, const StereoFrameDispatch& dispatc
   const HostImage* right = eyes ? &dispatch.right : nullptr;
   const HostImage* target = eyes ? nullptr : &dispatch.target;
   if (!iterative_ && !forward_) {
-    host_.record(cmd, dispatch.color, dispatch.depth, frame, left, right, target);
+    host_.record(cmd, dispatch.color, dispatch.depth, frame, left, right, target, dispatch.overlay);
     return;
   }
   const auto run = [&](VkCommandBuffer c, const vk::Image& color, const vk::Image& depth, const vk::Image& l,
                        const vk::Image& r) { recordKernel(c, dispatch, color, depth, l, r); };
   const KernelOf<decltype(run)> kernel(run);
-  host_.record(cmd, dispatch.color, dispatch.depth, frame, left, right, target, nullptr, &kernel);
+  host_.record(cmd, dispatch.color, dispatch.depth, frame, left, right, target, dispatch.overlay, &kernel);
   if (fill_) fill_->advance();
   hasPrevious_ = true;
 }

@@ -55,6 +55,8 @@ struct StereoFrameDispatch {
   glm::mat4 centerView{1.0f};
   glm::mat4 centerProjection{1.0f};
   bool cameraCut = false;  // the previous frame does not continue into this one (also implied by the first frame)
+  // Drawn on the finished eyes before they are packed (the HUD: hud::HudPass::overlay); null: nothing.
+  const EyeOverlay* overlay = nullptr;
 };
 
 class StereoFrame {
