@@ -1,9 +1,12 @@
-// GPU time (Vulkan timestamps) of the host pass (stereo::HostStereoPass) against the bare stereo pass on the same
-// synthetic 1920x1080 view, in one run: what the input conversion and the output packing cost a host; and the HUD
-// pass (hud::HudPass) on its own and inside the host pass.
+// GPU time (Vulkan timestamps) of the host pass (stereo::HostStereoPass) and the host's stereo frame
+// (stereo::StereoFrame, every method) against the bare kernel of the same method on the same synthetic 1920x1080
+// view, in one run and one harness: what the input conversion and the output packing cost a host; and the HUD pass
+// (hud::HudPass) on its own and inside the host pass. Each timed submission records the work kRecordsPerTiming
+// times, so the GPU stays busy (a GPU that idles between short submissions lowers its clocks).
 // Device: S3D_BENCH_DEVICE (default auto).
 #include <benchmark/benchmark.h>
 
+#include <chrono>
 #include <cstdlib>
 #include <cstring>
 #include <memory>
@@ -12,7 +15,9 @@
 
 #include "s3d/hud/hud_pass.h"
 #include "s3d/stereo/host_stereo_pass.h"
+#include "s3d/stereo/stereo_frame.h"
 #include "s3d/stereo/stereo_pass.h"
+#include "s3d/stereo/synthesis.h"
 #include "s3d/vk/timestamps.h"
 
 namespace {
@@ -64,22 +69,51 @@ stereo::HostFrame frame() {
   return f;
 }
 
+constexpr int kRecordsPerTiming = 32;
+// A GPU's clocks fall while it idles (the H200 to 345 MHz) and take about a second of load to come back.
+constexpr std::chrono::milliseconds kWarmUp{1000};
+
+// Between two recordings of the same pass: its writes before the next one's reads and writes.
+void computeBarrier(VkCommandBuffer cmd) {
+  VkMemoryBarrier2 barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
+  barrier.srcStageMask = barrier.dstStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
+  barrier.srcAccessMask = barrier.dstAccessMask = VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
+  VkDependencyInfo dependency{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+  dependency.memoryBarrierCount = 1;
+  dependency.pMemoryBarriers = &barrier;
+  vkCmdPipelineBarrier2(cmd, &dependency);
+}
+
 template <typename Record>
 void timeRecording(benchmark::State& state, const Record& record) {
   vk::Context& context = benchContext();
-  context.submitAndWait(record);  // warm-up
+  const auto warmUpEnd = std::chrono::steady_clock::now() + kWarmUp;
+  do {
+    context.submitAndWait([&](VkCommandBuffer cmd) {
+      for (int i = 0; i < kRecordsPerTiming; ++i) {
+        if (i > 0) computeBarrier(cmd);
+        record(cmd);
+      }
+    });
+  } while (std::chrono::steady_clock::now() < warmUpEnd);
   vk::TimestampQueries timestamps(context, 2);
   for (auto _ : state) {
     context.submitAndWait([&](VkCommandBuffer cmd) {
       timestamps.reset(cmd);
       timestamps.write(cmd, 0, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT);
-      record(cmd);
+      for (int i = 0; i < kRecordsPerTiming; ++i) {
+        if (i > 0) computeBarrier(cmd);
+        record(cmd);
+      }
       timestamps.write(cmd, 1, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT);
     });
-    state.SetIterationTime(timestamps.elapsedMs(0, 1).value_or(0.0) * 1e-3);
+    state.SetIterationTime(timestamps.elapsedMs(0, 1).value_or(0.0) * 1e-3 / kRecordsPerTiming);
   }
   state.SetLabel(context.deviceName());
 }
+
+const stereo::StereoMethod kMethods[] = {stereo::StereoMethod::Seed, stereo::StereoMethod::Search,
+                                         stereo::StereoMethod::Iterative, stereo::StereoMethod::Forward};
 
 // The stereo kernel alone on RGBA8 + R32F storage images (the default 4-tap search).
 void BareStereoPass(benchmark::State& state) {
@@ -98,6 +132,73 @@ void BareStereoPass(benchmark::State& state) {
   const stereo::StereoPass pass(context);
   const stereo::HostFrame f = frame();
   timeRecording(state, [&](VkCommandBuffer cmd) { pass.record(cmd, color, depth, left, right, f.stereo); });
+}
+
+// The bare kernel of each method (argument: 0 seed, 1 search-4, 2 iterative-6, 3 forward) on RGBA8 + R32F storage
+// images, as the renderer hands them over.
+void BareKernel(benchmark::State& state) {
+  vk::Context& context = benchContext();
+  const VkImageUsageFlags usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+  vk::Image color = vk::createImage(context, VK_FORMAT_R8G8B8A8_UNORM, kWidth, kHeight, usage);
+  vk::Image depth = vk::createImage(context, VK_FORMAT_R32_SFLOAT, kWidth, kHeight, usage);
+  vk::Image left = vk::createImage(context, VK_FORMAT_R8G8B8A8_UNORM, kWidth, kHeight, usage);
+  vk::Image right = vk::createImage(context, VK_FORMAT_R8G8B8A8_UNORM, kWidth, kHeight, usage);
+  vk::uploadImage(context, color, std::as_bytes(std::span(view().color)), vk::kComputeRead);
+  vk::uploadImage(context, depth, std::as_bytes(std::span(view().linear)), vk::kComputeRead);
+  context.submitAndWait([&](VkCommandBuffer cmd) {
+    vk::transition(cmd, left, vk::kUndefined, vk::kComputeWrite);
+    vk::transition(cmd, right, vk::kUndefined, vk::kComputeWrite);
+  });
+  stereo::StereoParameters parameters;
+  parameters.method = kMethods[state.range(0)];
+  const stereo::DisplacementPass pass(context, parameters, kWidth, kHeight);
+  timeRecording(state, [&](VkCommandBuffer cmd) { pass.record(cmd, color, depth, left, right); });
+  state.SetLabel(context.deviceName() + ", " + stereo::methodName(parameters.method));
+}
+
+// The host's stereo frame from sRGB colour and D32 depth the host synchronizes itself. Arguments: the method as
+// BareKernel's (4: forward with the previous-frame fill), and the output (0 two eyes, 1 anaglyph).
+void HostStereoFrame(benchmark::State& state) {
+  vk::Context& context = benchContext();
+  const bool fill = state.range(0) == 4;
+  stereo::StereoFrameDesc desc;
+  desc.width = kWidth;
+  desc.height = kHeight;
+  desc.colorFormat = VK_FORMAT_R8G8B8A8_SRGB;
+  desc.depthFormat = VK_FORMAT_D32_SFLOAT;
+  desc.method = kMethods[fill ? 3 : state.range(0)];
+  desc.previousFrameFill = fill;
+  desc.output = state.range(1) == 0 ? stereo::HostOutput::TwoEyes : stereo::HostOutput::Anaglyph;
+  stereo::StereoFrame stereoFrame(context, desc);
+  const VkImageUsageFlags inputUsage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+  vk::Image color = vk::createImage(context, desc.colorFormat, kWidth, kHeight, inputUsage);
+  vk::Image depth = vk::createImage(context, desc.depthFormat, kWidth, kHeight, inputUsage);
+  vk::uploadImage(context, color, std::as_bytes(std::span(view().color)), vk::kFragmentRead);
+  vk::uploadImage(context, depth, std::as_bytes(std::span(view().device)), vk::kFragmentRead);
+  vk::Image left = vk::createImage(context, stereoFrame.eyeFormat(), kWidth, kHeight, VK_IMAGE_USAGE_STORAGE_BIT);
+  vk::Image right = vk::createImage(context, stereoFrame.eyeFormat(), kWidth, kHeight, VK_IMAGE_USAGE_STORAGE_BIT);
+  vk::Image target =
+      vk::createImage(context, stereoFrame.eyeFormat(), stereoFrame.packedWidth(), stereoFrame.packedHeight(), VK_IMAGE_USAGE_STORAGE_BIT);
+  context.submitAndWait([&](VkCommandBuffer cmd) {
+    for (const vk::Image* image : {&left, &right, &target}) vk::transition(cmd, *image, vk::kUndefined, vk::kComputeWrite);
+  });
+  auto host = [](const vk::Image& image, VkImageLayout layout) {
+    return stereo::HostImage{image.image, image.view, image.format, layout, VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE};
+  };
+  stereo::StereoFrameDispatch dispatch;
+  dispatch.color = host(color, vk::kFragmentRead.layout);
+  dispatch.depth = host(depth, vk::kFragmentRead.layout);
+  dispatch.left = host(left, VK_IMAGE_LAYOUT_GENERAL);
+  dispatch.right = host(right, VK_IMAGE_LAYOUT_GENERAL);
+  dispatch.target = host(target, VK_IMAGE_LAYOUT_GENERAL);
+  dispatch.projection = frame().projection;
+  dispatch.centerProjection[0][0] = 1.0f;  // a perspective camera that does not move: the fill's full work
+  dispatch.centerProjection[1][1] = 1.7f;
+  dispatch.centerProjection[2][3] = -1.0f;
+  dispatch.centerProjection[3][2] = 0.1f;
+  dispatch.centerProjection[3][3] = 0.0f;
+  timeRecording(state, [&](VkCommandBuffer cmd) { stereoFrame.record(cmd, dispatch); });
+  state.SetLabel(context.deviceName() + ", " + stereo::methodName(desc.method) + (fill ? " + fill" : ""));
 }
 
 // s3d's built-in HUD (health and ammo panels, crosshair) at 1920x1080, with parallax and the fade on.
@@ -196,9 +297,16 @@ void HudPass(benchmark::State& state) {
   timeRecording(state, [&](VkCommandBuffer cmd) { pass.record(cmd, frames, hostLayers, l, r); });
 }
 
-BENCHMARK(BareStereoPass)->UseManualTime()->Unit(benchmark::kMillisecond)->MinTime(0.5);
-BENCHMARK(HostPass)->DenseRange(0, 5)->ArgName("variant")->UseManualTime()->Unit(benchmark::kMillisecond)->MinTime(0.5);
-BENCHMARK(HudPass)->Arg(0)->Arg(256)->Arg(512)->ArgName("hostLayer")->UseManualTime()->Unit(benchmark::kMillisecond)->MinTime(0.5);
+BENCHMARK(BareStereoPass)->UseManualTime()->Unit(benchmark::kMillisecond)->MinTime(0.05);
+BENCHMARK(BareKernel)->DenseRange(0, 3)->ArgName("method")->UseManualTime()->Unit(benchmark::kMillisecond)->MinTime(0.05);
+BENCHMARK(HostStereoFrame)
+    ->ArgsProduct({{0, 1, 2, 3, 4}, {0, 1}})
+    ->ArgNames({"method", "output"})
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond)
+    ->MinTime(0.05);
+BENCHMARK(HostPass)->DenseRange(0, 5)->ArgName("variant")->UseManualTime()->Unit(benchmark::kMillisecond)->MinTime(0.05);
+BENCHMARK(HudPass)->Arg(0)->Arg(256)->Arg(512)->ArgName("hostLayer")->UseManualTime()->Unit(benchmark::kMillisecond)->MinTime(0.05);
 
 }  // namespace
 
