@@ -198,25 +198,27 @@ void expectHdrEyes(HostStereoPassTest& t, VkFormat format) {
   std::memcpy(depthBytes.data(), t.view_.depth.pixels.data(), depthBytes.size());
   vk::Image color = t.uploaded(format, bytes, kShaderRead);
   vk::Image depth = t.uploaded(VK_FORMAT_R32_SFLOAT, depthBytes, kShaderRead);
-  stereo::HostStereoPass pass(*t.context_, {kWidth, kHeight, format, VK_FORMAT_R32_SFLOAT, HostOutput::TwoEyes, false});
-  ASSERT_EQ(pass.eyeFormat(), VK_FORMAT_R16G16B16A16_SFLOAT);
-  vk::Image left = t.output(pass.eyeFormat(), kWidth, kHeight), right = t.output(pass.eyeFormat(), kWidth, kHeight);
-  const HostImage leftHost = hostImage(left, kCopiedOut), rightHost = hostImage(right, kCopiedOut);
-  t.runOnHostQueue([&](VkCommandBuffer cmd) {
-    pass.record(cmd, hostImage(color, kShaderRead), hostImage(depth, kShaderRead), t.frame_, &leftHost, &rightHost, nullptr);
-  });
-  const stereo::HdrStereoPair expected = stereo::synthesizeHdrReference(center, t.view_.depth, t.parameters_);
-  for (auto [image, reference] : {std::pair{&left, &expected.left}, std::pair{&right, &expected.right}}) {
-    const std::vector<std::byte> texels = vk::readbackImage(*t.context_, *image, kCopiedOut);
-    float largest = 0.0f;
-    for (std::size_t i = 0; i < reference->pixels.size(); ++i) {
-      std::uint16_t half;
-      std::memcpy(&half, texels.data() + i * 2, 2);
-      const float got = glm::unpackHalf1x16(half), want = reference->pixels[i];
-      largest = std::max(largest, std::abs(got - want) / std::max(1.0f, std::abs(want)));
+  for (stereo::HostInputRead read : {stereo::HostInputRead::Direct, stereo::HostInputRead::Convert}) {
+    stereo::HostStereoPass pass(*t.context_, {kWidth, kHeight, format, VK_FORMAT_R32_SFLOAT, HostOutput::TwoEyes, false, read});
+    ASSERT_EQ(pass.eyeFormat(), VK_FORMAT_R16G16B16A16_SFLOAT);
+    vk::Image left = t.output(pass.eyeFormat(), kWidth, kHeight), right = t.output(pass.eyeFormat(), kWidth, kHeight);
+    const HostImage leftHost = hostImage(left, kCopiedOut), rightHost = hostImage(right, kCopiedOut);
+    t.runOnHostQueue([&](VkCommandBuffer cmd) {
+      pass.record(cmd, hostImage(color, kShaderRead), hostImage(depth, kShaderRead), t.frame_, &leftHost, &rightHost, nullptr);
+    });
+    const stereo::HdrStereoPair expected = stereo::synthesizeHdrReference(center, t.view_.depth, t.parameters_);
+    for (auto [image, reference] : {std::pair{&left, &expected.left}, std::pair{&right, &expected.right}}) {
+      const std::vector<std::byte> texels = vk::readbackImage(*t.context_, *image, kCopiedOut);
+      float largest = 0.0f;
+      for (std::size_t i = 0; i < reference->pixels.size(); ++i) {
+        std::uint16_t half;
+        std::memcpy(&half, texels.data() + i * 2, 2);
+        const float got = glm::unpackHalf1x16(half), want = reference->pixels[i];
+        largest = std::max(largest, std::abs(got - want) / std::max(1.0f, std::abs(want)));
+      }
+      // Half-float storage of the filtered result: 2^-11 relative, plus the filter's float rounding.
+      EXPECT_LE(largest, 1.5e-3f) << (read == stereo::HostInputRead::Direct ? "direct" : "converted");
     }
-    // Half-float storage of the filtered result: 2^-11 relative, plus the filter's float rounding.
-    EXPECT_LE(largest, 1.5e-3f);
   }
 }
 

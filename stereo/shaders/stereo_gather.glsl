@@ -1,6 +1,11 @@
 // Listing 4.5 as a compute pass (and its N-tap search): one invocation writes the pixel of both eyes.
-// Included by stereo_seed.comp and stereo_search.comp, which set S3D_STEREO_TAP_CAPACITY first.
+// Included by stereo_seed.comp and stereo_search.comp, which set S3D_STEREO_TAP_CAPACITY first. With
+// S3D_STEREO_HOST_INPUTS (stereo_gather_host*.comp) it reads a host's colour and depth buffer as they are, sampled,
+// converting each texel as the host pass's input conversion would (host_input.glsl), so no conversion pass runs.
 #include "s3d/stereo/stereo_shared.h"
+#ifdef S3D_STEREO_HOST_INPUTS
+#include "s3d/stereo/host_pass_shared.h"
+#endif
 
 // The colour images' format: display RGBA8, or rgba16f for a host's HDR colour (stereo_*_hdr.comp).
 #ifndef S3D_STEREO_COLOR_FORMAT
@@ -9,15 +14,44 @@
 
 layout(local_size_x = S3D_STEREO_GROUP_SIZE, local_size_y = S3D_STEREO_GROUP_SIZE) in;
 
+#ifdef S3D_STEREO_HOST_INPUTS
+layout(binding = 0) uniform sampler2D hostColor;
+layout(binding = 1) uniform sampler2D hostDepth;
+#else
 layout(binding = 0, S3D_STEREO_COLOR_FORMAT) uniform readonly image2D centerColor;
 layout(binding = 1, r32f) uniform readonly image2D linearDepth;
+#endif
 layout(binding = 2, S3D_STEREO_COLOR_FORMAT) uniform writeonly image2D leftEye;
 layout(binding = 3, S3D_STEREO_COLOR_FORMAT) uniform writeonly image2D rightEye;
 
-layout(push_constant) uniform Push { StereoConstants c; };
+layout(push_constant) uniform Push {
+  StereoConstants c;
+#ifdef S3D_STEREO_HOST_INPUTS
+  HostInputConstants h;  // right after the short tap array (HostGatherConstants in C++)
+#endif
+};
 
 float depthAt(int x, int y) {
-  return sanitizedDepth(imageLoad(linearDepth, ivec2(clamp(x, 0, c.width - 1), y)).r, c.zeroParallaxDistance);
+  ivec2 texel = ivec2(clamp(x, 0, c.width - 1), y);
+#ifdef S3D_STEREO_HOST_INPUTS
+  float depth = texelFetch(hostDepth, texel, 0).r;
+  if (h.depthKind == S3D_HOST_DEPTH_DEVICE) depth = stereoDepthFromDevice(h.depth, depth);
+#else
+  float depth = imageLoad(linearDepth, texel).r;
+#endif
+  return sanitizedDepth(depth, c.zeroParallaxDistance);
+}
+
+vec4 centerAt(int x, int y) {
+  ivec2 texel = ivec2(clamp(x, 0, c.width - 1), y);
+#ifdef S3D_STEREO_HOST_INPUTS
+  vec4 color = texelFetch(hostColor, texel, 0);
+  if (h.colorTransfer == S3D_HOST_COLOR_ENCODE_SRGB)
+    color.rgb = vec3(hostLinearToSrgb(color.r), hostLinearToSrgb(color.g), hostLinearToSrgb(color.b));
+  return color;
+#else
+  return imageLoad(centerColor, texel);
+#endif
 }
 
 // Listing 4.5: minimum depth over the separation range on one side of the pixel.
@@ -33,8 +67,8 @@ float minDepthOverTaps(int x, int y, int direction) {
 vec4 sampleRow(int y, float u) {
   float base = floor(u);
   float fraction = u - base;
-  vec4 a = imageLoad(centerColor, ivec2(clamp(int(base), 0, c.width - 1), y));
-  vec4 b = imageLoad(centerColor, ivec2(clamp(int(base) + 1, 0, c.width - 1), y));
+  vec4 a = centerAt(int(base), y);
+  vec4 b = centerAt(int(base) + 1, y);
   return a * (1.0 - fraction) + b * fraction;
 }
 

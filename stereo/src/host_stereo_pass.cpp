@@ -1,6 +1,8 @@
 #include "s3d/stereo/host_stereo_pass.h"
 
 #include <array>
+#include <cstddef>
+#include <cstring>
 #include <span>
 #include <stdexcept>
 #include <string>
@@ -14,6 +16,8 @@
 #include <s3d_spirv/host_input_rgba16f_comp.h>
 #include <s3d_spirv/host_pack_rgba8_comp.h>
 #include <s3d_spirv/host_pack_rgba16f_comp.h>
+#include <s3d_spirv/stereo_gather_host_comp.h>
+#include <s3d_spirv/stereo_gather_host_hdr_comp.h>
 #include <s3d_spirv/stereo_search_comp.h>
 #include <s3d_spirv/stereo_search_hdr_comp.h>
 #include <s3d_spirv/stereo_seed_comp.h>
@@ -26,6 +30,10 @@ namespace {
 constexpr std::uint32_t pushBytesFor(int tapCapacity) {
   return std::uint32_t(offsetof(gpu::StereoConstants, tapOffsetPx) + sizeof(int) * std::size_t(tapCapacity));
 }
+// The gather from the host's images: the stereo constants with the short tap array, then the input conversion's.
+constexpr std::uint32_t kShortTapBytes = pushBytesFor(S3D_STEREO_SMALL_TAP_CAPACITY);
+constexpr std::uint32_t kHostGatherBytes = kShortTapBytes + sizeof(gpu::HostInputConstants);
+static_assert(kHostGatherBytes <= 128, "within the push constants every Vulkan device has");
 
 bool isColorFormat(VkFormat f) {
   switch (f) {
@@ -140,6 +148,13 @@ HostStereoPass::HostStereoPass(vk::Context& context, const HostStereoPassDesc& d
     input_ = makePipeline(context, bindings, hdr_ ? std::span<const std::uint32_t>(spirv_host_input_rgba16f_comp)
                                                   : std::span<const std::uint32_t>(spirv_host_input_rgba8_comp),
                           sizeof(gpu::HostInputConstants), S3D_HOST_GROUP_SIZE);
+    const bool direct = desc.inputRead == HostInputRead::Direct ||
+                        (desc.inputRead == HostInputRead::Auto && !context.isCpuDevice());
+    if (direct)
+      hostGather_ = makePipeline(context, bindings,
+                                 hdr_ ? std::span<const std::uint32_t>(spirv_stereo_gather_host_hdr_comp)
+                                      : std::span<const std::uint32_t>(spirv_stereo_gather_host_comp),
+                                 kHostGatherBytes, S3D_STEREO_GROUP_SIZE);
   }
   shortTaps_ = makePipeline(context, storage4, hdr_ ? std::span<const std::uint32_t>(spirv_stereo_seed_hdr_comp)
                                                     : std::span<const std::uint32_t>(spirv_stereo_seed_comp),
@@ -240,31 +255,48 @@ void HostStereoPass::record(VkCommandBuffer cmd, const HostImage& color, const H
   BarrierList between;
   between.memory = true;
 
-  VkImageView centerView = color.view, depthView = depth.view;
-  if (input_) {
-    gpu::HostInputConstants push{};
-    push.depth = linearDepthParams(frame.projection, frame.weaponDepthOffset, frame.weaponDepthScale);
-    push.width = int(desc_.width);
-    push.height = int(desc_.height);
-    push.colorTransfer = colorTransfer_;
-    push.depthKind = isHostDepthFormat(desc_.depthFormat) ? S3D_HOST_DEPTH_DEVICE : S3D_HOST_DEPTH_LINEAR;
-    const VkDescriptorImageInfo infos[4] = {{sampler_, color.view, colorLayout},
-                                            {sampler_, depth.view, depthLayout},
-                                            {VK_NULL_HANDLE, centerColor_.view, VK_IMAGE_LAYOUT_GENERAL},
-                                            {VK_NULL_HANDLE, linearDepth_.view, VK_IMAGE_LAYOUT_GENERAL}};
-    VkWriteDescriptorSet writes[4];
+  gpu::HostInputConstants input{};
+  input.depth = linearDepthParams(frame.projection, frame.weaponDepthOffset, frame.weaponDepthScale);
+  input.width = int(desc_.width);
+  input.height = int(desc_.height);
+  input.colorTransfer = colorTransfer_;
+  input.depthKind = isHostDepthFormat(desc_.depthFormat) ? S3D_HOST_DEPTH_DEVICE : S3D_HOST_DEPTH_LINEAR;
+  // The host's two inputs as the conversion and the gather from host images sample them, then two storage images.
+  auto samplingWrites = [&](VkDescriptorImageInfo (&infos)[4], VkWriteDescriptorSet (&writes)[4], VkImageView out0,
+                            VkImageView out1) {
+    infos[0] = {sampler_, color.view, colorLayout};
+    infos[1] = {sampler_, depth.view, depthLayout};
+    infos[2] = {VK_NULL_HANDLE, out0, VK_IMAGE_LAYOUT_GENERAL};
+    infos[3] = {VK_NULL_HANDLE, out1, VK_IMAGE_LAYOUT_GENERAL};
     for (std::uint32_t i = 0; i < 4; ++i)
       writes[i] = i < 2 ? vk::sampledImageWrite(i, &infos[i]) : vk::storageImageWrite(i, &infos[i]);
     for (std::uint32_t i = 0; i < 2; ++i) writes[i].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-    dispatch(*input_, writes, &push, desc_.width, desc_.height);
+  };
+  const VkImageView leftView = pack_ ? leftEye_.view.get() : left->view;
+  const VkImageView rightView = pack_ ? rightEye_.view.get() : right->view;
+  // Seed and short searches read the host's images themselves: one dispatch instead of a conversion and a kernel.
+  const bool gatherFromHost = hostGather_ && !kernel && constants.tapCount <= S3D_STEREO_SMALL_TAP_CAPACITY;
+
+  VkImageView centerView = color.view, depthView = depth.view;
+  if (input_ && !gatherFromHost) {
+    VkDescriptorImageInfo infos[4];
+    VkWriteDescriptorSet writes[4];
+    samplingWrites(infos, writes, centerColor_.view, linearDepth_.view);
+    dispatch(*input_, writes, &input, desc_.width, desc_.height);
     between.record(cmd);
     centerView = centerColor_.view;
     depthView = linearDepth_.view;
   }
 
-  const VkImageView leftView = pack_ ? leftEye_.view.get() : left->view;
-  const VkImageView rightView = pack_ ? rightEye_.view.get() : right->view;
-  if (kernel) {  // the passes it runs take Images: the host's are borrowed (their layer kept for barriers)
+  if (gatherFromHost) {
+    std::array<std::byte, kHostGatherBytes> push{};
+    std::memcpy(push.data(), &constants, kShortTapBytes);
+    std::memcpy(push.data() + kShortTapBytes, &input, sizeof input);
+    VkDescriptorImageInfo infos[4];
+    VkWriteDescriptorSet writes[4];
+    samplingWrites(infos, writes, leftView, rightView);
+    dispatch(*hostGather_, writes, push.data(), desc_.width, desc_.height);
+  } else if (kernel) {  // the passes it runs take Images: the host's are borrowed (their layer kept for barriers)
     const auto borrowed = [&](const vk::Image& own, const HostImage* host, VkFormat format) {
       return own.image ? vk::borrowImage(own.image, own.view, format, desc_.width, desc_.height)
                        : vk::borrowImage(host->image, host->view, format, desc_.width, desc_.height, host->layer);

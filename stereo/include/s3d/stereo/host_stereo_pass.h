@@ -46,6 +46,12 @@ enum class HostColorFormat { Rgba8, Rgba8Srgb, Bgra8, Bgra8Srgb, Rgba16F, B10G11
 enum class HostDepthKind { Linear, Hardware };
 enum class HostOutput { TwoEyes, SideBySideHalf, SideBySideFull, TopBottomHalf, TopBottomFull, Anaglyph };
 
+// How the seed and short searches (up to four taps) read the host's colour and depth: Direct samples them inside
+// the gather (one dispatch; per texel the sRGB encode and the depth linearization), Convert runs the input
+// conversion into RGBA8 + R32F first. Auto: Direct on GPUs, Convert on CPU devices (lavapipe), each the faster
+// there (docs/RESULTS.md).
+enum class HostInputRead { Auto, Direct, Convert };
+
 // What the pass is set up for; everything it creates (pipelines, sampler, intermediate images) is made from this
 // at construction, so record() allocates nothing.
 struct HostStereoPassDesc {
@@ -57,6 +63,7 @@ struct HostStereoPassDesc {
   // Skip the input conversion when the host's colour is RGBA8 UNORM and its depth R32F linear depth, both made
   // with VK_IMAGE_USAGE_STORAGE_BIT: the stereo kernel reads them as they are.
   bool inputsAreStorage = false;
+  HostInputRead inputRead = HostInputRead::Auto;
 };
 
 // Per frame: the stereo parameters as push constants (makeStereoConstants; Seed or Search methods) and, for
@@ -124,7 +131,8 @@ class HostStereoPass {
   bool hdr_ = false;
   int colorTransfer_ = S3D_HOST_COLOR_AS_STORED;
   vk::Unique<VkSampler> sampler_;
-  std::optional<detail::EyePairPipeline> input_, shortTaps_, allTaps_, pack_;
+  // hostGather_: seed and searches of up to four taps straight from the host's sampled images (no conversion).
+  std::optional<detail::EyePairPipeline> input_, hostGather_, shortTaps_, allTaps_, pack_;
   vk::Image centerColor_, linearDepth_, leftEye_, rightEye_;  // intermediates (unused ones stay empty)
 };
 
