@@ -110,19 +110,22 @@ TEST_F(HostStereoPassTest, EveryPackedTargetIsOutputFormatsAppliedToThePassesOwn
       {HostOutput::TopBottomHalf, stereo::makeTopAndBottom(own.left, own.right, PackingMode::Half)},
       {HostOutput::TopBottomFull, stereo::makeTopAndBottom(own.left, own.right, PackingMode::Full)},
       {HostOutput::Anaglyph, stereo::makeAnaglyphDubois(own.left, own.right)}};
-  for (const auto& [mode, expected] : cases) {
-    stereo::HostStereoPass pass(*context_, {kWidth, kHeight, VK_FORMAT_R8G8B8A8_UNORM, VK_FORMAT_R32_SFLOAT, mode, false});
-    ASSERT_EQ(pass.packedWidth(), expected.width);
-    ASSERT_EQ(pass.packedHeight(), expected.height);
-    vk::Image target = output(pass.eyeFormat(), pass.packedWidth(), pass.packedHeight());
-    const HostImage targetHost = hostImage(target, kCopiedOut);
-    runOnHostQueue([&](VkCommandBuffer cmd) {
-      pass.record(cmd, hostImage(color, kShaderRead), hostImage(depth, kShaderRead), frame_, nullptr, nullptr, &targetHost);
-    });
-    const ImageRGBA8 packed = toImage(vk::readbackImage(*context_, target, kCopiedOut), expected.width, expected.height);
-    // 1 level: float sRGB decode/encode on the GPU against the reference's tables and rounding.
-    EXPECT_LE(largestChannelDifference(packed, expected), 1) << "output " << int(mode);
-  }
+  // Packed by the gather from the host's images (full packings, anaglyph) or by the packing pass after it.
+  for (const auto& [mode, expected] : cases)
+    for (stereo::HostInputRead read : {stereo::HostInputRead::Direct, stereo::HostInputRead::Convert}) {
+      stereo::HostStereoPass pass(*context_, {kWidth, kHeight, VK_FORMAT_R8G8B8A8_UNORM, VK_FORMAT_R32_SFLOAT, mode, false,
+                                              read});
+      ASSERT_EQ(pass.packedWidth(), expected.width);
+      ASSERT_EQ(pass.packedHeight(), expected.height);
+      vk::Image target = output(pass.eyeFormat(), pass.packedWidth(), pass.packedHeight());
+      const HostImage targetHost = hostImage(target, kCopiedOut);
+      runOnHostQueue([&](VkCommandBuffer cmd) {
+        pass.record(cmd, hostImage(color, kShaderRead), hostImage(depth, kShaderRead), frame_, nullptr, nullptr, &targetHost);
+      });
+      const ImageRGBA8 packed = toImage(vk::readbackImage(*context_, target, kCopiedOut), expected.width, expected.height);
+      // 1 level: float sRGB decode/encode on the GPU against the reference's tables and rounding.
+      EXPECT_LE(largestChannelDifference(packed, expected), 1) << "output " << int(mode) << " read " << int(read);
+    }
 }
 
 // HDR colour before tone mapping: gathered in half floats at the reference's source columns.

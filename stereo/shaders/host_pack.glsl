@@ -40,10 +40,7 @@ void main() {
   if (c.mode == S3D_HOST_PACK_ANAGLYPH) {
     if (pixel.x >= w || pixel.y >= h) return;
     vec3 l = toLinear(imageLoad(leftEye, pixel).rgb), r = toLinear(imageLoad(rightEye, pixel).rgb);
-    // Dubois' red-cyan matrices (ICASSP 2001), as in output_formats.cpp; rows are output channels.
-    vec3 mixed = vec3(dot(vec3(0.456, 0.500, 0.176), l) + dot(vec3(-0.043, -0.088, -0.002), r),
-                      dot(vec3(-0.040, -0.038, -0.016), l) + dot(vec3(0.378, 0.734, -0.018), r),
-                      dot(vec3(-0.015, -0.021, -0.005), l) + dot(vec3(-0.072, -0.113, 1.226), r));
+    vec3 mixed = hostDuboisAnaglyph(l, r);
     if (c.eyesEncoded != 0) mixed = clamp(mixed, 0.0, 1.0);
     result = vec4(fromLinear(mixed), 1.0);
   } else if (c.mode == S3D_HOST_PACK_SIDE_BY_SIDE_FULL) {

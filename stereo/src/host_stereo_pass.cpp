@@ -88,6 +88,19 @@ VkImageLayout inputLayout(const HostImage& image, bool storage, const char* what
   return VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
 }
 
+// What the gather from host images writes for an output, or -1 where the packing pass must run: the half packings
+// filter pixel pairs of one eye, HDR anaglyphs mix without the 8-bit eyes' encoding, and an overlay (the HUD) draws
+// on the eyes before they are packed.
+int gatherOutputFor(HostOutput output, bool hdr, bool overlay) {
+  switch (output) {
+    case HostOutput::TwoEyes: return S3D_HOST_GATHER_TWO_EYES;
+    case HostOutput::Anaglyph: return hdr || overlay ? -1 : S3D_HOST_GATHER_ANAGLYPH;
+    case HostOutput::SideBySideFull: return overlay ? -1 : S3D_HOST_GATHER_SIDE_BY_SIDE_FULL;
+    case HostOutput::TopBottomFull: return overlay ? -1 : S3D_HOST_GATHER_TOP_BOTTOM_FULL;
+    default: return -1;
+  }
+}
+
 void requireImage(const HostImage* image, const char* what) {
   if (!image || !image->image || !image->view)
     throw std::invalid_argument(std::string("HostStereoPass: the ") + what + " image is missing");
@@ -272,10 +285,14 @@ void HostStereoPass::record(VkCommandBuffer cmd, const HostImage& color, const H
       writes[i] = i < 2 ? vk::sampledImageWrite(i, &infos[i]) : vk::storageImageWrite(i, &infos[i]);
     for (std::uint32_t i = 0; i < 2; ++i) writes[i].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
   };
-  const VkImageView leftView = pack_ ? leftEye_.view.get() : left->view;
-  const VkImageView rightView = pack_ ? rightEye_.view.get() : right->view;
-  // Seed and short searches read the host's images themselves: one dispatch instead of a conversion and a kernel.
-  const bool gatherFromHost = hostGather_ && !kernel && constants.tapCount <= S3D_STEREO_SMALL_TAP_CAPACITY;
+  // Seed and short searches read the host's images themselves, and pack straight into the target where a packing
+  // needs only each eye's own pixel: one dispatch instead of a conversion, a kernel and a packing pass.
+  input.gatherOutput = gatherOutputFor(desc_.output, hdr_, overlay != nullptr);
+  const bool gatherFromHost =
+      hostGather_ && !kernel && constants.tapCount <= S3D_STEREO_SMALL_TAP_CAPACITY && input.gatherOutput >= 0;
+  const bool packedByGather = gatherFromHost && pack_;
+  const VkImageView leftView = packedByGather ? target->view : pack_ ? leftEye_.view.get() : left->view;
+  const VkImageView rightView = packedByGather ? target->view : pack_ ? rightEye_.view.get() : right->view;
 
   VkImageView centerView = color.view, depthView = depth.view;
   if (input_ && !gatherFromHost) {
@@ -326,7 +343,7 @@ void HostStereoPass::record(VkCommandBuffer cmd, const HostImage& color, const H
     overlay->recordOnEyes(cmd, leftEye, rightEye);
   }
 
-  if (pack_) {
+  if (pack_ && !packedByGather) {
     between.record(cmd);
     gpu::HostPackConstants push{};
     const HostOutput o = desc_.output;

@@ -15,12 +15,21 @@ S3D_GPU_BEGIN
 #define S3D_HOST_DEPTH_LINEAR 0  // R32F linear depth in world units (+inf or <= 0 as in the stereo pass)
 #define S3D_HOST_DEPTH_DEVICE 1  // a hardware depth buffer, linearized with LinearDepthParams
 
+// Where the gather from a host's images (stereo_gather_host*.comp) writes: the two eyes, or packed straight into
+// one target (the half packings, which filter pixel pairs of one eye, keep the packing pass).
+#define S3D_HOST_GATHER_TWO_EYES 0
+#define S3D_HOST_GATHER_ANAGLYPH 1
+#define S3D_HOST_GATHER_SIDE_BY_SIDE_FULL 2
+#define S3D_HOST_GATHER_TOP_BOTTOM_FULL 3
+
 struct HostInputConstants {
   LinearDepthParams depth;
   int width;
   int height;
   int colorTransfer;
   int depthKind;
+  int gatherOutput;  // the gather from host images only
+  int padding0;
 };
 
 #define S3D_HOST_PACK_SIDE_BY_SIDE_HALF 0
@@ -42,6 +51,14 @@ S3D_INLINE float hostSrgbToLinear(float encoded) {
 }
 S3D_INLINE float hostLinearToSrgb(float linear) {
   return linear <= 0.0031308f ? linear * 12.92f : 1.055f * pow(linear, 1.0f / 2.4f) - 0.055f;
+}
+
+// Dubois' least-squares red-cyan anaglyph (ICASSP 2001) of two eyes in linear light, as output_formats.cpp; rows
+// are output channels.
+S3D_INLINE vec3 hostDuboisAnaglyph(vec3 l, vec3 r) {
+  return vec3(dot(vec3(0.456f, 0.500f, 0.176f), l) + dot(vec3(-0.043f, -0.088f, -0.002f), r),
+              dot(vec3(-0.040f, -0.038f, -0.016f), l) + dot(vec3(0.378f, 0.734f, -0.018f), r),
+              dot(vec3(-0.015f, -0.021f, -0.005f), l) + dot(vec3(-0.072f, -0.113f, 1.226f), r));
 }
 
 S3D_GPU_END

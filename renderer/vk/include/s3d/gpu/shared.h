@@ -16,6 +16,7 @@
 namespace s3d::gpu {
 using uint = std::uint32_t;
 using glm::abs;
+using glm::dot;
 using glm::exp2;
 using glm::floor;
 using glm::mat4;
