@@ -129,23 +129,7 @@ class HostStereoPassTest : public HostTest {
     return image;
   }
   // Runs the pass once in a command buffer of the host's pool, submitted on the host's queue.
-  void runOnHostQueue(const std::function<void(VkCommandBuffer)>& record) {
-    VkCommandBufferAllocateInfo info{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
-    info.commandPool = host().commandPool;
-    info.commandBufferCount = 1;
-    VkCommandBuffer cmd = VK_NULL_HANDLE;
-    S3D_VK_CHECK(vkAllocateCommandBuffers(host().device, &info, &cmd));
-    VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
-    S3D_VK_CHECK(vkBeginCommandBuffer(cmd, &begin));
-    record(cmd);
-    S3D_VK_CHECK(vkEndCommandBuffer(cmd));
-    VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
-    submit.commandBufferCount = 1;
-    submit.pCommandBuffers = &cmd;
-    S3D_VK_CHECK(vkQueueSubmit(host().queue, 1, &submit, VK_NULL_HANDLE));
-    S3D_VK_CHECK(vkQueueWaitIdle(host().queue));
-    vkFreeCommandBuffers(host().device, host().commandPool, 1, &cmd);
-  }
+  void runOnHostQueue(const std::function<void(VkCommandBuffer)>& record) { test::runOnHostQueue(host(), record); }
 
   // Both eyes of the pass for the given colour and depth formats (8-bit eyes).
   stereo::StereoPair eyes(VkFormat colorFormat, VkFormat depthFormat, DepthImage* expectedLinear,

@@ -115,25 +115,6 @@ void timeRecording(benchmark::State& state, const Record& record) {
 const stereo::StereoMethod kMethods[] = {stereo::StereoMethod::Seed, stereo::StereoMethod::Search,
                                          stereo::StereoMethod::Iterative, stereo::StereoMethod::Forward};
 
-// The stereo kernel alone on RGBA8 + R32F storage images (the default 4-tap search).
-void BareStereoPass(benchmark::State& state) {
-  vk::Context& context = benchContext();
-  const VkImageUsageFlags usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
-  vk::Image color = vk::createImage(context, VK_FORMAT_R8G8B8A8_UNORM, kWidth, kHeight, usage);
-  vk::Image depth = vk::createImage(context, VK_FORMAT_R32_SFLOAT, kWidth, kHeight, usage);
-  vk::Image left = vk::createImage(context, VK_FORMAT_R8G8B8A8_UNORM, kWidth, kHeight, usage);
-  vk::Image right = vk::createImage(context, VK_FORMAT_R8G8B8A8_UNORM, kWidth, kHeight, usage);
-  vk::uploadImage(context, color, std::as_bytes(std::span(view().color)), vk::kComputeRead);
-  vk::uploadImage(context, depth, std::as_bytes(std::span(view().linear)), vk::kComputeRead);
-  context.submitAndWait([&](VkCommandBuffer cmd) {
-    vk::transition(cmd, left, vk::kUndefined, vk::kComputeWrite);
-    vk::transition(cmd, right, vk::kUndefined, vk::kComputeWrite);
-  });
-  const stereo::StereoPass pass(context);
-  const stereo::HostFrame f = frame();
-  timeRecording(state, [&](VkCommandBuffer cmd) { pass.record(cmd, color, depth, left, right, f.stereo); });
-}
-
 // The bare kernel of each method (argument: 0 seed, 1 search-4, 2 iterative-6, 3 forward) on RGBA8 + R32F storage
 // images, as the renderer hands them over.
 void BareKernel(benchmark::State& state) {
@@ -297,7 +278,6 @@ void HudPass(benchmark::State& state) {
   timeRecording(state, [&](VkCommandBuffer cmd) { pass.record(cmd, frames, hostLayers, l, r); });
 }
 
-BENCHMARK(BareStereoPass)->UseManualTime()->Unit(benchmark::kMillisecond)->MinTime(0.05);
 BENCHMARK(BareKernel)->DenseRange(0, 3)->ArgName("method")->UseManualTime()->Unit(benchmark::kMillisecond)->MinTime(0.05);
 BENCHMARK(HostStereoFrame)
     ->ArgsProduct({{0, 1, 2, 3, 4}, {0, 1}})
