@@ -226,6 +226,21 @@ TEST_F(HostileInputs, AScaleThatPushesVerticesPastFloatsIsRefused) {
   EXPECT_NE(message.find("overflows"), std::string::npos) << message;
 }
 
+TEST_F(HostileInputs, NumbersPastFloatsRangeAreRefusedBeforeTheyAreConverted) {
+  nlohmann::json doc = triangleGltf();
+  doc["materials"] = {{{"pbrMetallicRoughness", {{"baseColorFactor", {1e300, 1, 1, 1}}}}}};
+  doc["meshes"][0]["primitives"][0]["material"] = 0;
+  const fs::path material = write("material.gltf", doc.dump());
+  EXPECT_NE(errorOf([&] { renderer::loadGltfScene(material); }).find("baseColorFactor 1e+300 is not a number within"),
+            std::string::npos);
+  doc = triangleGltf();
+  doc["cameras"] = {{{"type", "perspective"}, {"perspective", {{"yfov", 0.8}, {"znear", 1e300}, {"zfar", 1e301}}}}};
+  doc["nodes"].push_back({{"camera", 0}});
+  doc["scenes"][0]["nodes"].push_back(1);
+  const fs::path camera = write("camera.gltf", doc.dump());
+  EXPECT_NE(errorOf([&] { renderer::loadGltfScene(camera); }).find("within single precision"), std::string::npos);
+}
+
 TEST(JsonDocument, NestingUpToTheLimitParses) {
   EXPECT_NO_THROW(parseJsonDocument(nested(kMaxJsonDepth), "test"));
   EXPECT_THROW(parseJsonDocument(nested(kMaxJsonDepth + 1), "test"), InputFileError);

@@ -9,6 +9,7 @@
 #include <cstring>
 #include <fstream>
 #include <iterator>
+#include <limits>
 #include <functional>
 #include <map>
 #include <stdexcept>
@@ -27,6 +28,7 @@
 #include "s3d/image_limits.h"
 #include "s3d/input_file.h"
 #include "s3d/json_document.h"
+#include "s3d/number_text.h"
 
 
 namespace s3d::renderer {
@@ -122,6 +124,13 @@ class GltfReader {
 
   const fs::path& file() const { return file_; }
 
+  // A number of the file as a float: refused past float's range (converting it would be undefined behaviour).
+  float toFloat(double value, const std::string& what) const {
+    if (!(std::abs(value) <= double(std::numeric_limits<float>::max())))
+      corrupt(what + " " + numberText(value) + " is not a number within single precision");
+    return float(value);
+  }
+
   // Counts `count` elements of T against the scene's memory before they are allocated; returns `count`.
   template <typename T>
   std::size_t allocationFor(std::size_t count, const std::string& what) const {
@@ -184,30 +193,29 @@ class GltfReader {
   SceneMemory& memory_;
 };
 
-glm::mat4 nodeTransform(const tinygltf::Node& node) {
+// In double precision: the file's values as they are, composed down the hierarchy before one conversion to float.
+glm::dmat4 nodeTransform(const tinygltf::Node& node) {
   if (node.matrix.size() == 16) {
     glm::dmat4 m;
     std::memcpy(glm::value_ptr(m), node.matrix.data(), sizeof(double) * 16);  // both column-major
-    return glm::mat4(m);
+    return m;
   }
   glm::dvec3 t(0.0), s(1.0);
   glm::dquat r(1.0, 0.0, 0.0, 0.0);
   if (node.translation.size() == 3) t = {node.translation[0], node.translation[1], node.translation[2]};
   if (node.scale.size() == 3) s = {node.scale[0], node.scale[1], node.scale[2]};
   if (node.rotation.size() == 4) r = glm::dquat(node.rotation[3], node.rotation[0], node.rotation[1], node.rotation[2]);
-  return glm::mat4(glm::translate(glm::dmat4(1.0), t) * glm::mat4_cast(r) * glm::scale(glm::dmat4(1.0), s));
+  return glm::translate(glm::dmat4(1.0), t) * glm::mat4_cast(r) * glm::scale(glm::dmat4(1.0), s);
 }
 
-bool isFinite(const glm::mat4& m) {
+// Whether every entry is finite in single precision (converting a larger double to float is undefined behaviour).
+bool fitsFloat(const glm::dmat4& m) {
   for (int c = 0; c < 4; ++c)
     for (int r = 0; r < 4; ++r)
-      if (!std::isfinite(m[c][r])) return false;
+      if (!(std::abs(m[c][r]) <= double(std::numeric_limits<float>::max()))) return false;
   return true;
 }
 
-glm::vec3 colorOf(const std::vector<double>& values, glm::vec3 fallback) {
-  return values.size() >= 3 ? glm::vec3(float(values[0]), float(values[1]), float(values[2])) : fallback;
-}
 
 // Smooth per-vertex normals from the triangles (area-weighted), for primitives without NORMAL.
 void generateNormals(Mesh& mesh) {
@@ -267,7 +275,7 @@ class SceneBuilder {
     const int sceneIndex = model_.defaultScene >= 0 ? model_.defaultScene : 0;
     if (std::size_t(sceneIndex) >= model_.scenes.size()) reader_.corrupt("its default scene does not exist");
     scene_.name = reader_.file().stem().string();
-    for (int root : model_.scenes[std::size_t(sceneIndex)].nodes) visit(root, glm::mat4(1.0f), 0);
+    for (int root : model_.scenes[std::size_t(sceneIndex)].nodes) visit(root, glm::dmat4(1.0), 0);
     if (scene_.objects.empty()) reader_.corrupt("its scene has no triangle meshes");
     if (!hasCamera_) frameTheScene();
     return std::move(scene_);
@@ -276,7 +284,7 @@ class SceneBuilder {
  private:
   // glTF node hierarchies are disjoint strict trees: a node reached a second time (listed by two parents, twice
   // by one, or in a cycle) is refused, so a small file of shared children cannot make the walk exponential.
-  void visit(int nodeIndex, const glm::mat4& parent, int depth) {
+  void visit(int nodeIndex, const glm::dmat4& parent, int depth) {
     const std::string name = "node " + std::to_string(nodeIndex);
     if (nodeIndex < 0 || std::size_t(nodeIndex) >= model_.nodes.size()) reader_.corrupt(name + " does not exist");
     if (visited_[std::size_t(nodeIndex)])
@@ -284,15 +292,16 @@ class SceneBuilder {
     visited_[std::size_t(nodeIndex)] = true;
     if (depth > 64) reader_.corrupt("its node hierarchy is deeper than 64 levels");
     const tinygltf::Node& node = model_.nodes[std::size_t(nodeIndex)];
-    const glm::mat4 world = parent * nodeTransform(node);
-    if (!isFinite(world))
+    const glm::dmat4 worldD = parent * nodeTransform(node);
+    if (!fitsFloat(worldD))
       reader_.corrupt(name + "'s transform overflows single precision (an entry beyond 3.4e38 after its parents')");
+    const glm::mat4 world(worldD);
     if (node.skin >= 0) reader_.unsupported("skinning (node '" + node.name + "')");
     if (node.mesh >= 0) addMesh(node.mesh, world);
     if (node.camera >= 0) addCamera(node.camera, world);
     if (auto light = node.extensions.find("KHR_lights_punctual"); light != node.extensions.end() && light->second.Has("light"))
       addLight(light->second.Get("light").GetNumberAsInt(), world);
-    for (int child : node.children) visit(child, world, depth + 1);
+    for (int child : node.children) visit(child, worldD, depth + 1);
   }
 
   void addMesh(int meshIndex, const glm::mat4& world) {
@@ -410,12 +419,14 @@ class SceneBuilder {
     const tinygltf::Material& source = index >= 0 ? model_.materials[std::size_t(index)] : defaults;
     const tinygltf::PbrMetallicRoughness& pbr = source.pbrMetallicRoughness;
     const std::vector<double>& factor = pbr.baseColorFactor;
-    const glm::vec4 base = factor.size() == 4 ? glm::vec4(float(factor[0]), float(factor[1]), float(factor[2]), float(factor[3]))
-                                              : glm::vec4(1.0f);
-    const float metallic = glm::clamp(float(pbr.metallicFactor), 0.0f, 1.0f);
+    const std::string where = "material " + std::to_string(index) + "'s ";
+    glm::vec4 base(1.0f);
+    if (factor.size() == 4)
+      for (int c = 0; c < 4; ++c) base[c] = reader_.toFloat(factor[std::size_t(c)], where + "baseColorFactor");
+    const float metallic = glm::clamp(reader_.toFloat(pbr.metallicFactor, where + "metallicFactor"), 0.0f, 1.0f);
     m.albedo = glm::vec3(base) * (1.0f - metallic);
     m.specularColor = glm::mix(glm::vec3(0.04f), glm::vec3(base), metallic);
-    m.glossiness = glossinessFromRoughness(float(pbr.roughnessFactor));
+    m.glossiness = glossinessFromRoughness(reader_.toFloat(pbr.roughnessFactor, where + "roughnessFactor"));
     if (source.alphaMode == "MASK") reader_.unsupported("alphaMode MASK (alpha cut-outs) in material '" + source.name + "'");
     if (source.alphaMode == "BLEND") {
       m.alphaBlend = true;
@@ -428,7 +439,7 @@ class SceneBuilder {
     if (source.normalTexture.index >= 0) {
       if (source.normalTexture.texCoord != 0) reader_.unsupported("a normal texture on TEXCOORD_" + std::to_string(source.normalTexture.texCoord));
       m.normalTexture = texture(source.normalTexture.index, Texture::Encoding::Linear);
-      m.normalScale = float(source.normalTexture.scale);
+      m.normalScale = reader_.toFloat(source.normalTexture.scale, where + "normalTexture.scale");
     }
     return m;
   }
@@ -470,12 +481,12 @@ class SceneBuilder {
     if (!(p.yfov > 0.0 && p.yfov < 3.14) || !(p.znear > 0.0) || (p.zfar != 0.0 && !(p.zfar > p.znear)))
       reader_.corrupt("camera " + std::to_string(cameraIndex) + " has an invalid field of view or depth range");
     const double far = p.zfar > 0.0 ? p.zfar : std::max(1000.0, 1e4 * p.znear);  // infinite: far
+    if (const std::string problem = depthRangeProblem(p.znear, far); !problem.empty())
+      reader_.refuse("camera " + std::to_string(cameraIndex) + ": " + problem);
     scene_.camera.position = glm::vec3(world[3]);
     scene_.camera.verticalFovRadians = float(p.yfov);
     scene_.camera.nearPlane = float(p.znear);
     scene_.camera.farPlane = float(far);
-    if (const std::string problem = depthRangeProblem(p.znear, far); !problem.empty())
-      reader_.refuse("camera " + std::to_string(cameraIndex) + ": " + problem);
     // The renderer's camera has yaw and pitch, no roll: the node's -Z axis gives both.
     const glm::vec3 forward = glm::normalize(-glm::vec3(world[2]));
     scene_.camera.yawRadians = std::atan2(-forward.x, -forward.z);
@@ -487,7 +498,11 @@ class SceneBuilder {
     if (lightIndex < 0 || std::size_t(lightIndex) >= model_.lights.size()) reader_.corrupt("light " + std::to_string(lightIndex) + " does not exist");
     const tinygltf::Light& light = model_.lights[std::size_t(lightIndex)];
     // Intensities become the renderer's linear radiance scale as they are (lux / candela taken at exposure 1).
-    const glm::vec3 color = colorOf(light.color, glm::vec3(1.0f)) * float(light.intensity);
+    const std::string where = "light " + std::to_string(lightIndex) + "'s ";
+    glm::vec3 color(1.0f);
+    if (light.color.size() >= 3)
+      for (int c = 0; c < 3; ++c) color[c] = reader_.toFloat(light.color[std::size_t(c)], where + "color");
+    color *= reader_.toFloat(light.intensity, where + "intensity");
     if (light.type == "directional") {
       if (hasSun_) reader_.unsupported("more than one directional light");
       scene_.sun.directionToSun = glm::normalize(glm::vec3(world[2]));  // the light shines down its node's -Z
@@ -499,7 +514,7 @@ class SceneBuilder {
       point.color = color;
       // Without a range: where its falloff leaves under 1/200 of unit radiance.
       const float peak = std::max({color.r, color.g, color.b, 1e-6f});
-      point.radius = light.range > 0.0 ? float(light.range) : std::sqrt(peak * 200.0f);
+      point.radius = light.range > 0.0 ? reader_.toFloat(light.range, where + "range") : std::sqrt(peak * 200.0f);
       scene_.pointLights.push_back(point);
     } else {
       reader_.unsupported("the " + light.type + " light '" + light.name + "' (only directional and point lights)");

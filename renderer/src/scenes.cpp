@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -532,9 +533,9 @@ Scene makeBuiltInScene(const std::string& name) {
 }
 
 std::string depthRangeProblem(double nearPlane, double farPlane) {
-  if (!(nearPlane > 0.0) || !std::isfinite(farPlane) || !(farPlane > nearPlane))
+  if (!(nearPlane > 0.0) || !(farPlane > nearPlane) || !(farPlane <= double(std::numeric_limits<float>::max())))
     return "its depth range " + numberText(nearPlane) + " to " + numberText(farPlane) +
-           " is not 0 < near < far, both finite";
+           " is not 0 < near < far within single precision";
   if (farPlane / nearPlane > kMaxDepthRangeRatio)
     return "its depth range " + numberText(nearPlane) + " to " + numberText(farPlane) + " spans a far/near ratio of " +
            numberText(farPlane / nearPlane) + ", past the " + numberText(kMaxDepthRangeRatio) +

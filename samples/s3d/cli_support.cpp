@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 
@@ -78,7 +79,9 @@ CLI::Validator floatRange(double low, double high, bool lowOpen, const std::stri
   return CLI::Validator(
       [low, high, lowOpen, highOpen, what, range = interval.str()](std::string& input) -> std::string {
         const std::optional<double> parsed = parseNumber(input);
-        const double value = parsed ? double(float(*parsed)) : 0.0;
+        // As the float it is stored in; past float's range it is out of any range here (and may not be converted).
+        const bool representable = parsed && std::abs(*parsed) <= double(std::numeric_limits<float>::max());
+        const double value = representable ? double(float(*parsed)) : parsed ? *parsed : 0.0;
         const bool inside = parsed && std::isfinite(value) && (highOpen ? value < high : value <= high) &&
                             (lowOpen ? value > low : value >= low);
         if (inside) return {};
