@@ -4,11 +4,15 @@
 #include <gtest/gtest.h>
 
 #include "host_pass_fixture.h"
+#include "s3d/renderer/deferred_renderer.h"
+#include "s3d/renderer/scene.h"
 #include "s3d/s3d.h"
 #include "s3d/stereo/forward.h"
 #include "s3d/stereo/iterative.h"
 #include "s3d/stereo/stereo_frame.h"
+#include "s3d/stereo/synthesis.h"
 #include "s3d/vk/check.h"
+#include "vulkan_test.h"
 
 namespace s3d::test {
 namespace {
@@ -185,6 +189,61 @@ TEST_F(StereoFrameTest, ADispatchThatDoesNotMatchTheDescriptionIsRefused) {
   d.maxSeparation = -1.0f;
   EXPECT_NE(errorOf([&] { runOnHostQueue([&](VkCommandBuffer cmd) { frame.record(cmd, d); }); }).find("maxSeparation"),
             std::string::npos);
+}
+
+// A host's eyes are `s3d render`'s eyes: the same rendered frame through the host's stereo frame and through the
+// synthesis the render job runs (stereo::synthesizeTimed on the renderer's images), for every method.
+class StereoFrameOnARenderedFrame : public VulkanTest {};
+
+TEST_F(StereoFrameOnARenderedFrame, AHostsEyesAreTheRenderJobsEyesForEveryMethod) {
+  constexpr std::uint32_t width = 160, height = 90;
+  const renderer::Scene scene = renderer::makeBuiltInScene("courtyard");
+  renderer::DeferredRenderer deferred(context(), width, height);
+  deferred.setScene(scene);
+  const stereo::StereoParameters defaults;
+  (void)deferred.render(renderer::centerViewMatrices(scene, float(width) / float(height),
+                                                     {defaults.weaponDepthOffset, defaults.weaponDepthScale}));
+  const ImageRGBA8 center = deferred.readDisplayColor();
+  const DepthImage depth = deferred.readLinearDepth();
+  auto image = [&](VkFormat format, VkImageUsageFlags usage) {
+    return vk::createImage(context(), format, width, height, usage | VK_IMAGE_USAGE_TRANSFER_SRC_BIT |
+                                                                 VK_IMAGE_USAGE_TRANSFER_DST_BIT);
+  };
+  const vk::Image color = image(VK_FORMAT_R8G8B8A8_UNORM, VK_IMAGE_USAGE_SAMPLED_BIT);
+  const vk::Image linear = image(VK_FORMAT_R32_SFLOAT, VK_IMAGE_USAGE_SAMPLED_BIT);
+  const vk::Image left = image(VK_FORMAT_R8G8B8A8_UNORM, VK_IMAGE_USAGE_STORAGE_BIT);
+  const vk::Image right = image(VK_FORMAT_R8G8B8A8_UNORM, VK_IMAGE_USAGE_STORAGE_BIT);
+  vk::uploadImage(context(), color, std::as_bytes(std::span(center.pixels)), vk::kComputeRead);
+  vk::uploadImage(context(), linear, std::as_bytes(std::span(depth.pixels)), vk::kComputeRead);
+  context().submitAndWait([&](VkCommandBuffer cmd) {
+    for (const vk::Image* eye : {&left, &right}) vk::transition(cmd, *eye, vk::kUndefined, vk::kComputeWrite);
+  });
+  auto host = [](const vk::Image& i) { return stereo::HostImage{i.image, i.view, i.format, VK_IMAGE_LAYOUT_GENERAL}; };
+  for (StereoMethod method : {StereoMethod::Seed, StereoMethod::Search, StereoMethod::Iterative, StereoMethod::Forward}) {
+    stereo::StereoParameters parameters;
+    parameters.method = method;
+    const stereo::SynthesisResult rendered =
+        stereo::synthesizeTimed(context(), deferred.displayColor(), deferred.linearDepth(), parameters);
+    stereo::StereoFrameDesc desc;
+    desc.width = width;
+    desc.height = height;
+    desc.colorFormat = VK_FORMAT_R8G8B8A8_UNORM;
+    desc.depthFormat = VK_FORMAT_R32_SFLOAT;
+    desc.method = method;
+    stereo::StereoFrame frame(context(), desc);
+    stereo::StereoFrameDispatch dispatch;
+    dispatch.color = host(color);
+    dispatch.depth = host(linear);
+    dispatch.left = host(left);
+    dispatch.right = host(right);
+    dispatch.maxSeparation = parameters.maxSeparation;
+    dispatch.zeroParallaxDistance = parameters.zeroParallaxDistance;
+    context().submitAndWait([&](VkCommandBuffer cmd) { frame.record(cmd, dispatch); });
+    for (auto [eye, expected] : {std::pair{&left, &rendered.eyes.left}, std::pair{&right, &rendered.eyes.right}}) {
+      const ImageRGBA8 got = toImage(vk::readbackImage(context(), *eye, vk::kComputeWrite), width, height);
+      EXPECT_LE(largestChannelDifference(got, *expected), 1) << stereo::methodName(method);  // within one level
+    }
+  }
 }
 
 // The C API's stereo frame: the same eyes through the C structs, a host that binds C would get.
