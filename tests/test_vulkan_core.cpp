@@ -1,6 +1,8 @@
 // The Vulkan core's error reporting: failures name the call, the VkResult and the devices.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "s3d/vk/check.h"
 #include "s3d/vk/context.h"
 #include "vulkan_test.h"
@@ -39,6 +41,26 @@ TEST(VulkanDeviceChoice, MissingDeviceIndexListsTheDevices) {
   } catch (const std::runtime_error& error) {
     EXPECT_NE(std::string(error.what()).find("no usable Vulkan device"), std::string::npos) << error.what();
     EXPECT_NE(std::string(error.what()).find("[0]"), std::string::npos) << error.what();
+  }
+}
+
+TEST(VulkanDeviceChoice, AskingForAGpuWhereOnlyTheCpuDeviceIsUsableAdvisesAGpuDriverOrTheCpu) {
+  const std::vector<PhysicalDeviceInfo> devices = listPhysicalDevices();
+  const bool usableGpu = std::any_of(devices.begin(), devices.end(), [](const PhysicalDeviceInfo& d) {
+    return d.usable && d.type != VK_PHYSICAL_DEVICE_TYPE_CPU;
+  });
+  if (usableGpu) GTEST_SKIP() << "a usable GPU is present: --device gpu succeeds here";
+  ContextOptions options;
+  options.device = "gpu";
+  try {
+    Context context(options);
+    FAIL() << "no exception";
+  } catch (const std::runtime_error& error) {
+    // lavapipe is installed: advising the package that provides it again would not help.
+    EXPECT_EQ(std::string(error.what()).find("install mesa-vulkan-drivers"), std::string::npos) << error.what();
+    EXPECT_NE(std::string(error.what()).find("no usable GPU: install its Vulkan driver, or use --device cpu"),
+              std::string::npos)
+        << error.what();
   }
 }
 
