@@ -191,6 +191,23 @@ TEST_F(StereoFrameTest, ADispatchThatDoesNotMatchTheDescriptionIsRefused) {
             std::string::npos);
 }
 
+TEST_F(StereoFrameTest, ThePreviousFrameFillWithoutTheHostsCameraIsRefused) {
+  stereo::StereoFrameDesc d = desc(StereoMethod::Forward);
+  d.colorFormat = VK_FORMAT_R8G8B8A8_UNORM;
+  d.depthFormat = VK_FORMAT_R32_SFLOAT;
+  d.previousFrameFill = true;
+  stereo::StereoFrame frame(*context_, d);
+  vk::Image color = output(VK_FORMAT_R8G8B8A8_UNORM, kWidth, kHeight), depth = output(VK_FORMAT_R32_SFLOAT, kWidth, kHeight);
+  vk::Image left = output(frame.eyeFormat(), kWidth, kHeight), right = output(frame.eyeFormat(), kWidth, kHeight);
+  stereo::StereoFrameDispatch dispatch = this->dispatch();  // centerView and centerProjection left at identity
+  dispatch.color = hostImage(color, kCopiedOut);
+  dispatch.depth = hostImage(depth, kCopiedOut);
+  dispatch.left = hostImage(left, kCopiedOut);
+  dispatch.right = hostImage(right, kCopiedOut);
+  const std::string message = errorOf([&] { runOnHostQueue([&](VkCommandBuffer cmd) { frame.record(cmd, dispatch); }); });
+  EXPECT_NE(message.find("StereoFrameDispatch.centerView/centerProjection"), std::string::npos) << message;
+}
+
 // A host's eyes are `s3d render`'s eyes: the same rendered frame through the host's stereo frame and through the
 // synthesis the render job runs (stereo::synthesizeTimed on the renderer's images), for every method.
 class StereoFrameOnARenderedFrame : public VulkanTest {};
