@@ -241,6 +241,33 @@ TEST_F(HostileInputs, NumbersPastFloatsRangeAreRefusedBeforeTheyAreConverted) {
   EXPECT_NE(errorOf([&] { renderer::loadGltfScene(camera); }).find("within single precision"), std::string::npos);
 }
 
+TEST_F(HostileInputs, AMeshoptCompressedFileNamesTheExtensionNotItsFallbackBuffer) {
+  // As exporters write it: the compressed data in one buffer, and a fallback buffer with a length but no data.
+  nlohmann::json doc = triangleGltf();
+  doc["extensionsUsed"] = {"EXT_meshopt_compression"};
+  doc["extensionsRequired"] = {"EXT_meshopt_compression"};
+  doc["buffers"].push_back({{"byteLength", 4096}, {"extensions", {{"EXT_meshopt_compression", {{"fallback", true}}}}}});
+  const fs::path file = write("meshopt.gltf", doc.dump());
+  const std::string message = errorOf([&] { renderer::loadGltfScene(file); });
+  EXPECT_NE(message.find("meshopt.gltf': the required extension 'EXT_meshopt_compression' is not supported"),
+            std::string::npos)
+      << message;
+}
+
+TEST_F(HostileInputs, UnnamedNodesAndMaterialsAreNamedByIndex) {
+  nlohmann::json doc = triangleGltf();
+  doc["materials"] = {{{"name", "leaves"}, {"alphaMode", "MASK"}}};
+  doc["meshes"][0]["primitives"][0]["material"] = 0;
+  const fs::path material = write("material.gltf", doc.dump());
+  EXPECT_NE(errorOf([&] { renderer::loadGltfScene(material); }).find("in material 0 ('leaves')"), std::string::npos);
+  doc = triangleGltf();
+  doc["skins"] = {{{"joints", {0}}}};
+  doc["nodes"][0]["skin"] = 0;
+  const fs::path skin = write("skin.gltf", doc.dump());
+  EXPECT_NE(errorOf([&] { renderer::loadGltfScene(skin); }).find("skinning (node 0) is not supported"),
+            std::string::npos);
+}
+
 TEST(JsonDocument, NestingUpToTheLimitParses) {
   EXPECT_NO_THROW(parseJsonDocument(nested(kMaxJsonDepth), "test"));
   EXPECT_THROW(parseJsonDocument(nested(kMaxJsonDepth + 1), "test"), InputFileError);

@@ -193,6 +193,9 @@ class GltfReader {
   SceneMemory& memory_;
 };
 
+// " ('name')" after an index, or nothing for an unnamed element: files name few of their nodes and materials.
+std::string named(const std::string& name) { return name.empty() ? "" : " ('" + name + "')"; }
+
 // In double precision: the file's values as they are, composed down the hierarchy before one conversion to float.
 glm::dmat4 nodeTransform(const tinygltf::Node& node) {
   if (node.matrix.size() == 16) {
@@ -269,8 +272,6 @@ class SceneBuilder {
       : reader_(file, model, memory), model_(model), visited_(model.nodes.size(), false) {}
 
   Scene build() {
-    for (const std::string& extension : model_.extensionsRequired)
-      if (extension != "KHR_lights_punctual") reader_.unsupported("the required extension '" + extension + "'");
     if (model_.scenes.empty()) reader_.corrupt("it has no scene");
     const int sceneIndex = model_.defaultScene >= 0 ? model_.defaultScene : 0;
     if (std::size_t(sceneIndex) >= model_.scenes.size()) reader_.corrupt("its default scene does not exist");
@@ -296,7 +297,7 @@ class SceneBuilder {
     if (!fitsFloat(worldD))
       reader_.corrupt(name + "'s transform overflows single precision (an entry beyond 3.4e38 after its parents')");
     const glm::mat4 world(worldD);
-    if (node.skin >= 0) reader_.unsupported("skinning (node '" + node.name + "')");
+    if (node.skin >= 0) reader_.unsupported("skinning (" + name + named(node.name) + ")");
     if (node.mesh >= 0) addMesh(node.mesh, world);
     if (node.camera >= 0) addCamera(node.camera, world);
     if (auto light = node.extensions.find("KHR_lights_punctual"); light != node.extensions.end() && light->second.Has("light"))
@@ -427,7 +428,8 @@ class SceneBuilder {
     m.albedo = glm::vec3(base) * (1.0f - metallic);
     m.specularColor = glm::mix(glm::vec3(0.04f), glm::vec3(base), metallic);
     m.glossiness = glossinessFromRoughness(reader_.toFloat(pbr.roughnessFactor, where + "roughnessFactor"));
-    if (source.alphaMode == "MASK") reader_.unsupported("alphaMode MASK (alpha cut-outs) in material '" + source.name + "'");
+    if (source.alphaMode == "MASK")
+      reader_.unsupported("alphaMode MASK (alpha cut-outs) in material " + std::to_string(index) + named(source.name));
     if (source.alphaMode == "BLEND") {
       m.alphaBlend = true;
       m.opacity = glm::clamp(base.a, 1e-3f, 1.0f);
@@ -517,7 +519,8 @@ class SceneBuilder {
       point.radius = light.range > 0.0 ? reader_.toFloat(light.range, where + "range") : std::sqrt(peak * 200.0f);
       scene_.pointLights.push_back(point);
     } else {
-      reader_.unsupported("the " + light.type + " light '" + light.name + "' (only directional and point lights)");
+      reader_.unsupported("the " + light.type + " light " + std::to_string(lightIndex) + named(light.name) +
+                          " (only directional and point lights)");
     }
   }
 
@@ -721,9 +724,23 @@ nlohmann::json gltfJson(const fs::path& file, bool binary) {
   return parseJsonDocument(bytes, "glTF file '" + file.string() + "'");
 }
 
-void requireUrisInsideFolder(const fs::path& file, const fs::path& folder, bool binary) {
-  const nlohmann::json json = gltfJson(file, binary);
-  if (!json.is_object()) return;
+// Extensions the renderer needs but does not read, named before tinygltf parses the file: it reports their effects
+// instead (a meshopt-compressed file's fallback buffer fails as "Invalid 'byteLength'").
+constexpr const char* kReadExtensions[] = {"KHR_lights_punctual"};
+
+void requireSupportedExtensions(const fs::path& file, const nlohmann::json& json) {
+  const auto required = json.find("extensionsRequired");
+  if (required == json.end() || !required->is_array()) return;
+  for (const nlohmann::json& extension : *required) {
+    if (!extension.is_string()) continue;
+    const std::string name = extension.get<std::string>();
+    if (std::find(std::begin(kReadExtensions), std::end(kReadExtensions), name) == std::end(kReadExtensions))
+      throw std::invalid_argument("glTF file '" + file.string() + "': the required extension '" + name +
+                                  "' is not supported (s3d reads KHR_lights_punctual)");
+  }
+}
+
+void requireUrisInsideFolder(const fs::path& file, const fs::path& folder, const nlohmann::json& json) {
   for (const char* kind : {"buffers", "images"}) {
     const auto list = json.find(kind);
     if (list == json.end() || !list->is_array()) continue;
@@ -813,7 +830,11 @@ Scene loadGltfScene(const fs::path& file, std::uint64_t memoryLimit) {
     throw std::runtime_error("glTF file '" + file.string() + "' " + problem);
   const bool binary = lowercase(file.extension().string()) == ".glb";
   SceneFolderSandbox sandbox{fs::weakly_canonical(fs::absolute(file).parent_path(), error)};
-  requireUrisInsideFolder(file, sandbox.folder, binary);
+  const nlohmann::json json = gltfJson(file, binary);
+  if (json.is_object()) {
+    requireSupportedExtensions(file, json);
+    requireUrisInsideFolder(file, sandbox.folder, json);
+  }
   tinygltf::TinyGLTF loader;
   loader.SetFsCallbacks({fileExistsInside, expandNothing, readWholeFileInside, writeNothing, &sandbox});
   SceneMemory memory{memoryLimit};
