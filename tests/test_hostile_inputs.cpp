@@ -268,6 +268,12 @@ TEST_F(HostileInputs, UnnamedNodesAndMaterialsAreNamedByIndex) {
             std::string::npos);
 }
 
+TEST_F(HostileInputs, AnEmptyGlbIsRefusedClearly) {
+  // Found by fuzz_gltf_scene: tinygltf indexed the first byte of an empty file and threw std::out_of_range.
+  const fs::path file = write("empty.glb", "");
+  EXPECT_NE(errorOf([&] { renderer::loadGltfScene(file); }).find("is empty"), std::string::npos);
+}
+
 TEST(JsonDocument, NestingUpToTheLimitParses) {
   EXPECT_NO_THROW(parseJsonDocument(nested(kMaxJsonDepth), "test"));
   EXPECT_THROW(parseJsonDocument(nested(kMaxJsonDepth + 1), "test"), InputFileError);

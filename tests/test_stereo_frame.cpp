@@ -21,36 +21,17 @@ using stereo::StereoMethod;
 
 // One image with two array layers and a 2D view of each: what an OpenXR swapchain or a multiview host hands over.
 struct ArrayImage {
-  vk::Unique<VkImage> image;
-  vk::Unique<VkDeviceMemory> memory;
+  vk::Image image;  // its own view shows layer 0
   std::array<vk::Unique<VkImageView>, 2> views;
 };
 
 ArrayImage createArrayImage(vk::Context& context, VkFormat format) {
-  VkImageCreateInfo info{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
-  info.imageType = VK_IMAGE_TYPE_2D;
-  info.format = format;
-  info.extent = {kWidth, kHeight, 1};
-  info.mipLevels = 1;
-  info.arrayLayers = 2;
-  info.samples = VK_SAMPLE_COUNT_1_BIT;
-  info.usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
-  VkImage image = VK_NULL_HANDLE;
-  S3D_VK_CHECK(vkCreateImage(context.device(), &info, nullptr, &image));
-  ArrayImage result;
-  result.image = vk::Unique<VkImage>(context.device(), image, vkDestroyImage);
-  VkMemoryRequirements requirements{};
-  vkGetImageMemoryRequirements(context.device(), image, &requirements);
-  VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
-  alloc.allocationSize = requirements.size;
-  alloc.memoryTypeIndex = context.findMemoryType(requirements.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
-  VkDeviceMemory memory = VK_NULL_HANDLE;
-  S3D_VK_CHECK(vkAllocateMemory(context.device(), &alloc, nullptr, &memory));
-  result.memory = vk::Unique<VkDeviceMemory>(context.device(), memory, vkFreeMemory);
-  S3D_VK_CHECK(vkBindImageMemory(context.device(), image, memory, 0));
+  ArrayImage result{vk::createImage(context, format, kWidth, kHeight,
+                                    VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT, 2),
+                    {}};
   for (std::uint32_t layer = 0; layer < 2; ++layer) {
     VkImageViewCreateInfo viewInfo{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
-    viewInfo.image = image;
+    viewInfo.image = result.image.image;
     viewInfo.viewType = VK_IMAGE_VIEW_TYPE_2D;
     viewInfo.format = format;
     viewInfo.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, layer, 1};
@@ -102,7 +83,7 @@ class StereoFrameTest : public HostStereoPassTest {
       array = createArrayImage(*context_, frame.eyeFormat());
       for (std::uint32_t layer = 0; layer < 2; ++layer) {
         stereo::HostImage& eye = layer == 0 ? d.left : d.right;
-        eye = {array->image, array->views[layer], frame.eyeFormat(), kCopiedOut.layout, kCopiedOut.stage,
+        eye = {array->image.image, array->views[layer], frame.eyeFormat(), kCopiedOut.layout, kCopiedOut.stage,
                kCopiedOut.access, layer};
         const vk::Image borrowed = vk::borrowImage(eye.image, eye.view, eye.format, kWidth, kHeight, layer);
         context_->submitAndWait([&](VkCommandBuffer cmd) { vk::transition(cmd, borrowed, vk::kUndefined, kCopiedOut); });
@@ -340,7 +321,9 @@ TEST_F(CStereoFrameTest, EveryMethodThroughTheCApiGivesItsReferenceEyes) {
 
 TEST_F(CStereoFrameTest, BadDescriptionsAndDispatchesAreRefusedInTheCApisWords) {
   s3d_stereo_frame frame = nullptr;
-  s3d_stereo_frame_desc desc = cDesc(s3d_method(7));
+  s3d_stereo_frame_desc desc = cDesc(S3D_METHOD_SEARCH);
+  const std::int32_t notAMethod = 7;  // as a C caller may store it: C++ may not even form this enum value
+  std::memcpy(&desc.method, &notAMethod, sizeof notAMethod);
   EXPECT_EQ(s3d_stereo_frame_create(cContext_, &desc, &frame), S3D_ERROR_INVALID_ARGUMENT);
   EXPECT_NE(std::string(s3d_last_error()).find("s3d_stereo_frame_desc.method"), std::string::npos) << s3d_last_error();
   desc = cDesc(S3D_METHOD_SEARCH);

@@ -2,6 +2,8 @@
 // The C API's argument checks: each failure throws std::invalid_argument naming the parameter or field as the C
 // caller spells it (s3d.h), never a C++ name. Names are rendered only on failure, so checks allocate nothing.
 #include <cstdint>
+#include <cstring>
+#include <type_traits>
 #include <string>
 
 #include <vulkan/vulkan.h>
@@ -32,6 +34,14 @@ void requirePositive(float value, Name name);     // finite and > 0
 void requireNonNegative(float value, Name name);  // finite and >= 0
 void requireRange(float value, float low, float high, Name name);  // finite and in [low, high]
 void requireEnum(std::int64_t value, std::int64_t first, std::int64_t last, Name name);
+// A C enum field as the caller stored it: C lets any int sit in an enum, and loading one outside the enum's values
+// as the enum type is undefined behaviour in C++, so a field is read as its bytes until it has been checked.
+template <typename Enum>
+std::int64_t rawEnum(const Enum& field) {
+  std::underlying_type_t<Enum> value;
+  std::memcpy(&value, &field, sizeof value);
+  return std::int64_t(value);
+}
 // value * factor in 1 ..= limit; `why` names what multiplies the field ("S3D_OUTPUT_SIDE_BY_SIDE_FULL").
 void requireImageSize(std::uint32_t value, std::uint32_t limit, Name name, std::uint32_t factor = 1,
                       const char* why = nullptr);

@@ -60,7 +60,7 @@ void validateHostDevice(const s3d_host_device& host) {
 
 namespace {
 // What the host pass and the stereo frame descriptions share: sizes for the output, the input formats.
-void validateShape(const Name& name, std::uint32_t width, std::uint32_t height, s3d_output output, VkFormat colorFormat,
+void validateShape(const Name& name, std::uint32_t width, std::uint32_t height, std::int64_t output, VkFormat colorFormat,
                    VkFormat depthFormat, std::uint32_t maxImageDimension2D) {
   requireEnum(output, S3D_OUTPUT_TWO_EYES, S3D_OUTPUT_ANAGLYPH, name / "output");
   const bool sideBySide = output == S3D_OUTPUT_SIDE_BY_SIDE_FULL, topBottom = output == S3D_OUTPUT_TOP_BOTTOM_FULL;
@@ -86,7 +86,7 @@ void requireFiniteMatrix(const float (&m)[16], Name name) {
 }  // namespace
 
 void validate(const s3d_host_pass_desc& desc, std::uint32_t maxImageDimension2D) {
-  validateShape({"s3d_host_pass_desc"}, desc.width, desc.height, desc.output, desc.color_format, desc.depth_format,
+  validateShape({"s3d_host_pass_desc"}, desc.width, desc.height, rawEnum(desc.output), desc.color_format, desc.depth_format,
                 maxImageDimension2D);
   if (desc.inputs_are_storage &&
       (desc.color_format != VK_FORMAT_R8G8B8A8_UNORM || desc.depth_format != VK_FORMAT_R32_SFLOAT))
@@ -95,18 +95,20 @@ void validate(const s3d_host_pass_desc& desc, std::uint32_t maxImageDimension2D)
 
 void validate(const s3d_stereo_frame_desc& desc, std::uint32_t maxImageDimension2D) {
   const Name name{"s3d_stereo_frame_desc"};
-  validateShape(name, desc.width, desc.height, desc.output, desc.color_format, desc.depth_format, maxImageDimension2D);
-  requireEnum(desc.method, S3D_METHOD_SEED, S3D_METHOD_FORWARD, name / "method");
-  if (isHdr(desc.color_format) && desc.method != S3D_METHOD_SEED && desc.method != S3D_METHOD_SEARCH)
+  validateShape(name, desc.width, desc.height, rawEnum(desc.output), desc.color_format, desc.depth_format,
+                maxImageDimension2D);
+  const std::int64_t method = rawEnum(desc.method);
+  requireEnum(method, S3D_METHOD_SEED, S3D_METHOD_FORWARD, name / "method");
+  if (isHdr(desc.color_format) && method != S3D_METHOD_SEED && method != S3D_METHOD_SEARCH)
     fail("s3d_stereo_frame_desc.method S3D_METHOD_ITERATIVE and S3D_METHOD_FORWARD displace 8-bit colour: with an "
          "HDR color_format use S3D_METHOD_SEED or S3D_METHOD_SEARCH");
-  if (desc.method == S3D_METHOD_SEARCH && (desc.search_taps < 1 || desc.search_taps > S3D_STEREO_MAX_TAPS))
+  if (method == S3D_METHOD_SEARCH && (desc.search_taps < 1 || desc.search_taps > S3D_STEREO_MAX_TAPS))
     fail("s3d_stereo_frame_desc.search_taps " + std::to_string(desc.search_taps) + " is outside [1, " +
          std::to_string(S3D_STEREO_MAX_TAPS) + "] for S3D_METHOD_SEARCH");
-  if (desc.method == S3D_METHOD_ITERATIVE && (desc.iterations < 1 || desc.iterations > 16))
+  if (method == S3D_METHOD_ITERATIVE && (desc.iterations < 1 || desc.iterations > 16))
     fail("s3d_stereo_frame_desc.iterations " + std::to_string(desc.iterations) + " is outside [1, 16] for "
          "S3D_METHOD_ITERATIVE");
-  if (desc.previous_frame_fill && desc.method != S3D_METHOD_FORWARD)
+  if (desc.previous_frame_fill && method != S3D_METHOD_FORWARD)
     fail("s3d_stereo_frame_desc.previous_frame_fill needs S3D_METHOD_FORWARD");
 }
 
@@ -163,11 +165,12 @@ void validate(const s3d_stereo_parameters& p, Name name) {
   if (p.edge_crop > stereo::kMaxSeparationLimit)
     fail((name / "edge_crop").text() + " " + numberText(p.edge_crop) + " is above " +
          numberText(stereo::kMaxSeparationLimit));
-  if (p.method == S3D_METHOD_ITERATIVE || p.method == S3D_METHOD_FORWARD)
-    fail((name / "method").text() + " " + std::to_string(int(p.method)) + " is for s3d_stereo_frame_record: "
+  const std::int64_t method = rawEnum(p.method);
+  if (method == S3D_METHOD_ITERATIVE || method == S3D_METHOD_FORWARD)
+    fail((name / "method").text() + " " + std::to_string(method) + " is for s3d_stereo_frame_record: "
          "s3d_stereo_parameters take S3D_METHOD_SEED or S3D_METHOD_SEARCH");
-  requireEnum(p.method, S3D_METHOD_SEED, S3D_METHOD_SEARCH, name / "method");
-  if (p.method == S3D_METHOD_SEARCH && (p.search_taps < 1 || p.search_taps > S3D_STEREO_MAX_TAPS))
+  requireEnum(method, S3D_METHOD_SEED, S3D_METHOD_SEARCH, name / "method");
+  if (method == S3D_METHOD_SEARCH && (p.search_taps < 1 || p.search_taps > S3D_STEREO_MAX_TAPS))
     fail((name / "search_taps").text() + " " + std::to_string(p.search_taps) + " is outside [1, " +
          std::to_string(S3D_STEREO_MAX_TAPS) + "] for S3D_METHOD_SEARCH");
   requireNonNegative(p.weapon_depth_offset, name / "weapon_depth_offset");

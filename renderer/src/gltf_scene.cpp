@@ -783,6 +783,10 @@ bool readWholeFileInside(std::vector<unsigned char>* out, std::string* error, co
   }
   try {
     const std::string bytes = readInputFile(path, "file", kMaxSceneFileBytes);
+    if (bytes.empty()) {  // tinygltf indexes the first bytes without checking
+      if (error) *error += "file '" + path + "' is empty\n";
+      return false;
+    }
     out->assign(bytes.begin(), bytes.end());
     return true;
   } catch (const InputFileError& failure) {

@@ -82,7 +82,7 @@ Image borrowImage(VkImage handle, VkImageView view, VkFormat format, std::uint32
 }
 
 Image createImage(const Context& context, VkFormat format, std::uint32_t width, std::uint32_t height,
-                  VkImageUsageFlags usage) {
+                  VkImageUsageFlags usage, std::uint32_t layers) {
   if (width == 0 || height == 0) throw std::invalid_argument("createImage: zero-sized image");
   VkDevice device = context.device();
   VkImageCreateInfo info{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
@@ -90,7 +90,7 @@ Image createImage(const Context& context, VkFormat format, std::uint32_t width, 
   info.format = format;
   info.extent = {width, height, 1};
   info.mipLevels = 1;
-  info.arrayLayers = 1;
+  info.arrayLayers = layers;
   info.samples = VK_SAMPLE_COUNT_1_BIT;
   info.tiling = VK_IMAGE_TILING_OPTIMAL;
   info.usage = usage;

@@ -34,8 +34,9 @@ struct Image {
   std::uint32_t layer = 0;  // the array layer `view` shows (a borrowed layer of a host's array image)
 };
 
+// `layers` > 1: an array image; its view shows layer 0 (make other layers' views where they are needed).
 Image createImage(const Context& context, VkFormat format, std::uint32_t width, std::uint32_t height,
-                  VkImageUsageFlags usage);
+                  VkImageUsageFlags usage, std::uint32_t layers = 1);
 
 // A host's image and view (of `layer`) seen as an Image, for passes that take one: s3d never destroys them.
 Image borrowImage(VkImage image, VkImageView view, VkFormat format, std::uint32_t width, std::uint32_t height,
