@@ -8,7 +8,6 @@
 #include "s3d/stereo/forward.h"
 #include "s3d/stereo/iterative.h"
 #include "s3d/stereo/reprojection.h"
-#include "s3d/stereo/stereo_shared.h"
 
 namespace s3d::stereo {
 namespace {
@@ -21,22 +20,36 @@ bool isHdr(VkFormat format) {
   return format == VK_FORMAT_R16G16B16A16_SFLOAT || format == VK_FORMAT_B10G11R11_UFLOAT_PACK32;
 }
 
-// The description's own rules; formats and sizes are the host pass's (its constructor names them).
+// The stereo parameters of a description and a frame's dispatch.
+StereoParameters parametersOf(const StereoFrameDesc& desc, const StereoFrameDispatch& dispatch) {
+  StereoParameters p;
+  p.method = desc.method;
+  p.searchTaps = desc.searchTaps;
+  p.iterations = desc.iterations;
+  p.kernel = desc.kernel;
+  p.previousFrameFill = desc.previousFrameFill;
+  p.maxSeparation = dispatch.maxSeparation;
+  p.zeroParallaxDistance = dispatch.zeroParallaxDistance;
+  p.edgeCrop = dispatch.edgeCrop;
+  p.weaponDepthOffset = dispatch.weaponDepthOffset;
+  p.weaponDepthScale = dispatch.weaponDepthScale;
+  return p;
+}
+
+// The description's rules: the frame's own, then the method's (stereo::validate, named as description fields);
+// formats and sizes are the host pass's (its constructor names them).
 const StereoFrameDesc& checked(const StereoFrameDesc& desc) {
-  const std::string method = methodName(desc.method);
   if (desc.method == StereoMethod::Hybrid)
     refuse("StereoFrameDesc.method", "hybrid renders pixels from the eye cameras, which needs the host's raster: use "
                                      "seed, search, iterative or forward");
   if (isHdr(desc.colorFormat) && desc.method != StereoMethod::Seed && desc.method != StereoMethod::Search)
-    refuse("StereoFrameDesc.method", method + " displaces 8-bit display colour; with HDR colour (RGBA16F, "
-                                     "B10G11R11) use seed or search");
-  if (desc.method == StereoMethod::Search && (desc.searchTaps < 1 || desc.searchTaps > S3D_STEREO_MAX_TAPS))
-    refuse("StereoFrameDesc.searchTaps", std::to_string(desc.searchTaps) + " is outside [1, " +
-                                             std::to_string(S3D_STEREO_MAX_TAPS) + "]");
-  if (desc.method == StereoMethod::Iterative && (desc.iterations < 1 || desc.iterations > 16))
-    refuse("StereoFrameDesc.iterations", std::to_string(desc.iterations) + " is outside [1, 16]");
-  if (desc.previousFrameFill && desc.method != StereoMethod::Forward)
-    refuse("StereoFrameDesc.previousFrameFill", "needs the forward method (the method is " + method + ")");
+    refuse("StereoFrameDesc.method", std::string(methodName(desc.method)) + " displaces 8-bit display colour; with HDR "
+                                     "colour (RGBA16F, B10G11R11) use seed or search");
+  try {
+    validate(parametersOf(desc, StereoFrameDispatch{}));
+  } catch (const std::invalid_argument& error) {
+    throw std::invalid_argument(std::string("StereoFrameDesc.") + error.what());
+  }
   return desc;
 }
 
@@ -71,7 +84,7 @@ struct KernelOf final : EyeKernel {
 }  // namespace
 
 StereoFrame::StereoFrame(vk::Context& context, const StereoFrameDesc& desc)
-    : context_(&context), desc_(checked(desc)), host_(context, hostDesc(desc)) {
+    : desc_(checked(desc)), host_(context, hostDesc(desc)) {
   if (desc.method == StereoMethod::Iterative) iterative_.emplace(context, desc.kernel);
   if (desc.method == StereoMethod::Forward)
     forward_.emplace(context, desc.kernel, desc.previousFrameFill ? ForwardKeys::Kept : ForwardKeys::Discarded);
@@ -99,18 +112,7 @@ std::uint32_t StereoFrame::packedWidth() const { return host_.packedWidth(); }
 std::uint32_t StereoFrame::packedHeight() const { return host_.packedHeight(); }
 
 StereoParameters StereoFrame::parameters(const StereoFrameDispatch& dispatch) const {
-  StereoParameters p;
-  p.method = desc_.method;
-  p.searchTaps = desc_.searchTaps;
-  p.iterations = desc_.iterations;
-  p.kernel = desc_.kernel;
-  p.previousFrameFill = desc_.previousFrameFill;
-  p.maxSeparation = dispatch.maxSeparation;
-  p.zeroParallaxDistance = dispatch.zeroParallaxDistance;
-  p.edgeCrop = dispatch.edgeCrop;
-  p.weaponDepthOffset = dispatch.weaponDepthOffset;
-  p.weaponDepthScale = dispatch.weaponDepthScale;
-  return p;
+  return parametersOf(desc_, dispatch);
 }
 
 void StereoFrame::recordKernel(VkCommandBuffer cmd, const StereoFrameDispatch& dispatch, const vk::Image& color,

@@ -81,7 +81,6 @@ class StereoFrame {
   void recordKernel(VkCommandBuffer cmd, const StereoFrameDispatch& dispatch, const vk::Image& centerColor,
                     const vk::Image& linearDepth, const vk::Image& leftEye, const vk::Image& rightEye);
 
-  vk::Context* context_;
   StereoFrameDesc desc_;
   // Seed and search run inside the host pass, which also converts and packs for every method.
   HostStereoPass host_;
