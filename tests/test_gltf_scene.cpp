@@ -258,6 +258,33 @@ TEST(GltfScene, BlendMaterialsAreTransparent) {
   EXPECT_TRUE(loadGltfScene(file).objects.at(0).material.isTransparent());
 }
 
+// The quad with a second node placing a directional light rotated `rotation` (x, y, z, w).
+fs::path quadWithSecondSunNode(const ScratchFolder& scratch, const std::string& rotation) {
+  const fs::path file = scratch.copyOfTexturedQuad();
+  std::string text = replaced(readText(file), "    0,\n    1,\n    2\n   ]", "    0,\n    1,\n    2,\n    3\n   ]");
+  text = replaced(text, "\n ],\n \"cameras\"",
+                  ",\n  {\"name\": \"sun again\", \"rotation\": [" + rotation +
+                      "], \"extensions\": {\"KHR_lights_punctual\": {\"light\": 0}}}\n ],\n \"cameras\"");
+  writeText(file, text);
+  return file;
+}
+
+TEST(GltfScene, DirectionalLightsFromOneDirectionAddUpIntoTheSun) {
+  ScratchFolder scratch;  // exported levels place one sun light twice; glTF counts each placement
+  const Scene scene = loadGltfScene(quadWithSecondSunNode(scratch, "-0.258819, 0, 0, 0.965926"));
+  EXPECT_NEAR(scene.sun.color.r, 2.4f, 1e-6f) << "twice the light's intensity 1.2";
+}
+
+TEST(GltfScene, ADirectionalLightFromAnotherDirectionIsRefusedUnlessTheDescriptionGivesTheSun) {
+  ScratchFolder scratch;
+  const fs::path file = quadWithSecondSunNode(scratch, "0, 0.7071068, 0, 0.7071068");
+  const std::string message = errorOf<std::invalid_argument>([&] { loadGltfScene(file); });
+  EXPECT_NE(message.find("directional light 0"), std::string::npos) << message;
+  EXPECT_NE(message.find("textured_quad.scene.json"), std::string::npos) << message;
+  writeText(scratch.path() / "textured_quad.scene.json", R"({"sun": {"directionToSun": [0, 1, 0]}})");
+  EXPECT_EQ(loadGltfScene(file).sun.directionToSun, glm::vec3(0.0f, 1.0f, 0.0f));
+}
+
 TEST(GltfScene, AnUnknownSceneDescriptionKeyIsNamed) {
   ScratchFolder scratch;
   const fs::path file = scratch.copyOfTexturedQuad();

@@ -203,6 +203,18 @@ TEST_F(HostileInputs, ACameraDepthRangePastFloatPrecisionIsRefusedNotAnEmptyFram
   EXPECT_NE(message.find("far/near ratio"), std::string::npos) << message;
 }
 
+TEST_F(HostileInputs, ASceneDescriptionCameraReplacesAFileCameraPastFloatPrecision) {
+  nlohmann::json doc = triangleGltf();  // real files ship such cameras (a CAD export: near 0.05, far 1e6)
+  doc["cameras"] = {{{"type", "perspective"}, {"perspective", {{"yfov", 0.8}, {"znear", 0.05}, {"zfar", 1e6}}}}};
+  doc["nodes"].push_back({{"camera", 0}, {"translation", {0, 0, 3}}});
+  doc["scenes"][0]["nodes"].push_back(1);
+  const fs::path file = write("engine.gltf", doc.dump());
+  write("engine.scene.json", R"({"camera": {"position": [0, 0, 4], "near": 0.1, "far": 100}})");
+  const renderer::Scene scene = renderer::loadGltfScene(file);
+  EXPECT_EQ(scene.camera.nearPlane, 0.1f);
+  EXPECT_EQ(scene.camera.farPlane, 100.0f);
+}
+
 TEST_F(HostileInputs, ASceneDescriptionCameraPastFloatPrecisionIsRefused) {
   const fs::path file = write("room.gltf", triangleGltf().dump());
   write("room.scene.json", R"({"camera": {"near": 0.00001, "far": 1000000000}})");

@@ -62,6 +62,11 @@ class SceneBuilder {
   SceneBuilder(const fs::path& file, const tinygltf::Model& model, SceneMemory& memory)
       : reader_(file, model, memory), model_(model), visited_(model.nodes.size(), false) {}
 
+  // Why the file's first perspective camera cannot render ("" when it can, or when there is none).
+  const std::string& unusableCamera() const { return unusableCamera_; }
+  // Why the file's directional lights cannot be the one sun ("" when they can).
+  const std::string& secondSun() const { return secondSun_; }
+
   Scene build() {
     if (model_.scenes.empty()) reader_.corrupt("it has no scene");
     const int sceneIndex = model_.defaultScene >= 0 ? model_.defaultScene : 0;
@@ -274,8 +279,11 @@ class SceneBuilder {
     if (!(p.yfov > 0.0 && p.yfov < 3.14) || !(p.znear > 0.0) || (p.zfar != 0.0 && !(p.zfar > p.znear)))
       reader_.corrupt("camera " + std::to_string(cameraIndex) + " has an invalid field of view or depth range");
     const double far = p.zfar > 0.0 ? p.zfar : std::max(1000.0, 1e4 * p.znear);  // infinite: far
-    if (const std::string problem = depthRangeProblem(p.znear, far); !problem.empty())
-      reader_.refuse("camera " + std::to_string(cameraIndex) + ": " + problem);
+    // Unusable unless NAME.scene.json gives the scene its own camera (loadGltfScene decides); framed meanwhile.
+    if (const std::string problem = depthRangeProblem(p.znear, far); !problem.empty()) {
+      unusableCamera_ = "camera " + std::to_string(cameraIndex) + ": " + problem;
+      return;
+    }
     scene_.camera.position = glm::vec3(world[3]);
     scene_.camera.verticalFovRadians = float(p.yfov);
     scene_.camera.nearPlane = float(p.znear);
@@ -297,10 +305,7 @@ class SceneBuilder {
       for (int c = 0; c < 3; ++c) color[c] = reader_.toFloat(light.color[std::size_t(c)], where + "color");
     color *= reader_.toFloat(light.intensity, where + "intensity");
     if (light.type == "directional") {
-      if (hasSun_) reader_.unsupported("more than one directional light");
-      scene_.sun.directionToSun = glm::normalize(glm::vec3(world[2]));  // the light shines down its node's -Z
-      scene_.sun.color = color;
-      hasSun_ = true;
+      addDirectionalLight(lightIndex, glm::normalize(glm::vec3(world[2])), color);  // it shines down its node's -Z
     } else if (light.type == "point") {
       PointLight point;
       point.position = glm::vec3(world[3]);
@@ -312,6 +317,21 @@ class SceneBuilder {
     } else {
       reader_.unsupported("the " + light.type + " light " + std::to_string(lightIndex) + named(light.name) +
                           " (only directional and point lights)");
+    }
+  }
+
+  // The renderer has one sun: directional lights from one direction add up into it (exact: a light placed by two
+  // nodes counts twice); one from another direction makes the file unusable unless NAME.scene.json gives the sun.
+  void addDirectionalLight(int lightIndex, const glm::vec3& directionToSun, const glm::vec3& color) {
+    if (!hasSun_) {
+      scene_.sun.directionToSun = directionToSun;
+      scene_.sun.color = color;
+      hasSun_ = true;
+    } else if (glm::dot(scene_.sun.directionToSun, directionToSun) > 0.99999f) {
+      scene_.sun.color += color;
+    } else if (secondSun_.empty()) {
+      secondSun_ = "directional light " + std::to_string(lightIndex) + " shines from another direction than the first " +
+                   "(the renderer has one sun)";
     }
   }
 
@@ -335,7 +355,9 @@ class SceneBuilder {
   std::map<std::tuple<int, std::size_t, bool>, std::uint32_t> meshes_;  // (mesh, primitive, mirrored) -> mesh
   std::map<std::pair<int, Texture::Encoding>, std::int32_t> textures_;  // (image, encoding) -> texture
   bool hasCamera_ = false;
+  std::string unusableCamera_;  // why the file's camera cannot render, when it cannot
   bool hasSun_ = false;
+  std::string secondSun_;  // why the file's directional lights cannot be one sun, when they cannot
   glm::vec3 boundsMin_{1e30f}, boundsMax_{-1e30f};
 };
 
@@ -384,9 +406,18 @@ Scene loadGltfScene(const fs::path& file, std::uint64_t memoryLimit) {
     std::replace(reason.begin(), reason.end(), '\n', ' ');
     throw std::runtime_error("glTF file '" + file.string() + "' cannot be loaded: " + reason);
   }
-  Scene scene = SceneBuilder(file, model, memory).build();
+  SceneBuilder builder(file, model, memory);
+  Scene scene = builder.build();
   const fs::path description = sceneDescriptionPath(file);
-  if (fs::exists(description, error)) applySceneDescription(description, scene);
+  const DescribedParts described =
+      fs::exists(description, error) ? applySceneDescription(description, scene) : DescribedParts{};
+  const std::string where = "glTF file '" + file.string() + "': ";
+  if (!builder.unusableCamera().empty() && !described.camera)
+    throw std::invalid_argument(where + builder.unusableCamera() + " (or give the scene a camera in " +
+                                description.filename().string() + ")");
+  if (!builder.secondSun().empty() && !described.sun)
+    throw std::invalid_argument(where + builder.secondSun() + " (or give the scene its sun in " +
+                                description.filename().string() + ")");
   return scene;
 }
 

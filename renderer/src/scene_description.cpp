@@ -61,7 +61,7 @@ class DescriptionReader {
     return camera;
   }
 
-  void apply(Scene& scene) const {
+  DescribedParts apply(Scene& scene) const {
     nlohmann::json doc = readJsonDocument(file_, "scene description");
     onlyKeys(doc, "the document",
              {"sun", "ambient", "pointLights", "sky", "camera", "cameraPath", "exposure", "ambientOcclusion",
@@ -113,6 +113,7 @@ class DescriptionReader {
       scene.ambientOcclusionRadius = number(doc["ambientOcclusionRadius"], "ambientOcclusionRadius", 1e-4f, 1e3f);
     if (doc.contains("crosshairDistance"))
       scene.crosshairDistance = number(doc["crosshairDistance"], "crosshairDistance", 1e-3f, 1e7f);
+    return {doc.contains("camera") || doc.contains("cameraPath"), doc.contains("sun")};
   }
 
  private:
@@ -121,6 +122,6 @@ class DescriptionReader {
 
 }  // namespace
 
-void applySceneDescription(const fs::path& file, Scene& scene) { DescriptionReader(file).apply(scene); }
+DescribedParts applySceneDescription(const fs::path& file, Scene& scene) { return DescriptionReader(file).apply(scene); }
 
 }  // namespace s3d::renderer

@@ -7,7 +7,13 @@
 
 namespace s3d::renderer {
 
+// What a description replaced of the glTF file's own scene.
+struct DescribedParts {
+  bool camera = false;  // camera or cameraPath
+  bool sun = false;
+};
+
 // Applies the description in `file` to `scene`. Throws std::invalid_argument naming the file and the key.
-void applySceneDescription(const std::filesystem::path& file, Scene& scene);
+DescribedParts applySceneDescription(const std::filesystem::path& file, Scene& scene);
 
 }  // namespace s3d::renderer
