@@ -35,7 +35,7 @@ class BenchCommand final : public Command {
                     "Image size as WxH (default: 1920x1080, with --renderer 1280x720)")
         ->check(resolutionValidator(app::kMaxImageSize));
     bench.add_option("--scenes", options_.scenes,
-                     "Comma-separated built-in scenes (default: all): " + joined(renderer::builtInSceneNames(), ", "))
+                     "Comma-separated scenes (default: all built-in ones): built-in names (" + joined(renderer::builtInSceneNames(), ", ") + ") or .gltf/.glb files")
         ->delimiter(',')
         ->type_name("LIST");
     bench

@@ -22,6 +22,7 @@
 #include "s3d/app/render_job.h"
 #include "s3d/io/image_io.h"
 #include "s3d/renderer/scene.h"
+#include "s3d/renderer/scene_file.h"
 #include "s3d/stereo/depth_range_pass.h"
 #include "s3d/stereo/disparity_map_pass.h"
 #include "s3d/stereo/guard_band.h"
@@ -152,6 +153,17 @@ MethodSetting parseSingleSetting(const std::string& item, const char* what) {
 }
 
 // Everything validated, in the form the run needs.
+// A scene's name in the tables: a built-in scene's name, or a scene file's name without folder and extension.
+std::string sceneLabel(const std::string& scene) {
+  return renderer::isSceneFile(scene) ? fs::path(scene).stem().string() : scene;
+}
+
+std::uint64_t triangleCount(const renderer::Scene& scene) {
+  std::uint64_t triangles = 0;
+  for (const renderer::Object& object : scene.objects) triangles += scene.meshes[object.mesh].indices.size() / 3;
+  return triangles;
+}
+
 struct ValidatedBench {
   std::vector<std::string> scenes;
   std::vector<MethodSetting> settings;
@@ -217,7 +229,7 @@ ValidatedBench validateBench(const BenchOptions& options) {
 
   ValidatedBench bench;
   for (const std::string& name : options.scenes.empty() ? renderer::builtInSceneNames() : options.scenes) {
-    (void)renderer::makeBuiltInScene(name);  // throws naming the scene and the choices
+    (void)renderer::loadScene(name);  // throws naming the scene (or file) and the choices
     if (std::find(bench.scenes.begin(), bench.scenes.end(), name) == bench.scenes.end()) bench.scenes.push_back(name);
   }
   if (!options.rendererOnly) {
@@ -300,7 +312,7 @@ void runSweep(vk::Context& context, const BenchOptions& options, const Validated
     if (options.progress) options.progress({done, total, label});
   };
   for (const std::string& sceneName : bench.scenes) {
-    renderer::Scene scene = renderer::makeBuiltInScene(sceneName);
+    renderer::Scene scene = renderer::loadScene(sceneName);
     scene.camera = renderer::cameraForFrame(scene, 0);
     deferred.setScene(scene);
     if (eyeRenderer) eyeRenderer->setScene(scene);
@@ -396,7 +408,7 @@ void runSweep(vk::Context& context, const BenchOptions& options, const Validated
         const stereo::StereoParameters methodParameters = setting.applyTo(parameters);
         const stereo::SynthesisResult& synthesis = syntheses[i];
         BenchRow row;
-        row.scene = sceneName;
+        row.scene = sceneLabel(sceneName);
         row.setting = setting;
         row.maxSeparation = parameters.maxSeparation;
         row.cropColumns =
@@ -440,7 +452,7 @@ void runRendererTimings(vk::Context& context, const BenchOptions& options, const
   std::size_t done = 0;
   for (const std::string& sceneName : bench.scenes) {
     if (options.progress) options.progress({done, bench.scenes.size(), sceneName + " center frame"});
-    renderer::Scene scene = renderer::makeBuiltInScene(sceneName);
+    renderer::Scene scene = renderer::loadScene(sceneName);
     scene.camera = renderer::cameraForFrame(scene, 0);
     deferred.setScene(scene);
     const renderer::ViewMatrices center =
@@ -462,7 +474,7 @@ void runRendererTimings(vk::Context& context, const BenchOptions& options, const
                                                                      : std::nullopt);
     }
     report.rendererRows.push_back(
-        {sceneName, frameMs, std::move(passes), band.columns, medianOf(wideRuns), medianOf(ratios),
+        {sceneLabel(sceneName), triangleCount(scene), frameMs, std::move(passes), band.columns, medianOf(wideRuns), medianOf(ratios),
          context.isCpuDevice() ? std::optional(detail::processCpuMsPerFrame(deferred, center, options.repeat)) : std::nullopt});
     if (done == 0) {  // the masked-render cost scaling, on the first scene
       if (options.progress) options.progress({done, bench.scenes.size(), sceneName + " masked frames"});
@@ -758,13 +770,13 @@ std::string rendererMarkdown(const BenchReport& report) {
     md << "CPU time: the process's user + system time per center frame over " << report.repeat
        << " more frames (the device's work summed over its threads), which other load on the machine disturbs "
           "less than the timestamps.\n\n";
-  md << "| scene | frame |" << (cpuTimes ? " CPU time |" : "") << " guard band frame | ratio |";
+  md << "| scene | triangles | frame |" << (cpuTimes ? " CPU time |" : "") << " guard band frame | ratio |";
   for (const std::string& name : passNames) md << ' ' << name << " |";
-  md << "\n|---|---|" << (cpuTimes ? "---|" : "") << "---|---|";
+  md << "\n|---|---|---|" << (cpuTimes ? "---|" : "") << "---|---|";
   for (std::size_t i = 0; i < passNames.size(); ++i) md << "---|";
   md << '\n';
   for (const RendererRow& row : report.rendererRows) {
-    md << "| " << row.scene << " | " << msText(row.frameGpuMs) << " | ";
+    md << "| " << row.scene << " | " << row.triangles << " | " << msText(row.frameGpuMs) << " | ";
     if (cpuTimes) md << msText(row.cpuTimePerFrameMs) << " | ";
     md << msText(row.guardBandFrameGpuMs) << " | " << ratioText(row.guardBandRatio) << " |";
     for (const std::string& name : passNames) {
@@ -975,7 +987,7 @@ nlohmann::json toJson(const BenchReport& report) {
     nlohmann::json passes = nlohmann::json::array();
     for (const renderer::PassTiming& pass : row.passes)
       passes.push_back({{"name", pass.name}, {"gpuMs", finiteOrNull(pass.gpuMs)}});
-    rendererRows.push_back({{"scene", row.scene}, {"frameGpuMs", optionalMs(row.frameGpuMs)}, {"passes", passes},
+    rendererRows.push_back({{"scene", row.scene}, {"triangles", row.triangles}, {"frameGpuMs", optionalMs(row.frameGpuMs)}, {"passes", passes},
                             {"guardBandColumns", row.guardBandColumns},
                             {"guardBandFrameGpuMs", optionalMs(row.guardBandFrameGpuMs)},
                             {"guardBandRatio", optionalMs(row.guardBandRatio)},

@@ -119,6 +119,7 @@ struct BenchRow {
 
 struct RendererRow {
   std::string scene;
+  std::uint64_t triangles = 0;                // drawn per center frame: every object's mesh, both layers
   std::optional<double> frameGpuMs;           // median whole center frame
   std::vector<renderer::PassTiming> passes;   // median per pass, in the order they ran
   std::uint32_t guardBandColumns = 0;         // per side, `s3d render`'s default band at the options' separation
