@@ -1,0 +1,20 @@
+// KHR_texture_transform's definition (scene.h): uv' = T * R * S * uv.
+#include <cmath>
+
+#include "s3d/renderer/scene.h"
+
+namespace s3d::renderer {
+
+glm::mat3 TextureTransform::matrix() const {
+  // Column-major, as the extension's GLSL writes them: translation in the third column, rotation's columns
+  // (cos, sin) and (-sin, cos).
+  const glm::mat3 translation(1.0f, 0.0f, 0.0f, 0.0f, 1.0f, 0.0f, offset.x, offset.y, 1.0f);
+  const float c = std::cos(rotation), s = std::sin(rotation);
+  const glm::mat3 rotate(c, s, 0.0f, -s, c, 0.0f, 0.0f, 0.0f, 1.0f);
+  const glm::mat3 scaling(scale.x, 0.0f, 0.0f, 0.0f, scale.y, 0.0f, 0.0f, 0.0f, 1.0f);
+  return translation * rotate * scaling;
+}
+
+glm::vec2 TextureTransform::apply(glm::vec2 uv) const { return glm::vec2(matrix() * glm::vec3(uv, 1.0f)); }
+
+}  // namespace s3d::renderer
