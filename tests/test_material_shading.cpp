@@ -88,15 +88,17 @@ TEST_F(MaterialShadingTest, AnEmissiveSurfaceInTheDarkShowsItsEmission) {
 }
 
 TEST(TextureTransform, FollowsTheExtensionsTranslationRotationScale) {
-  // KHR_texture_transform: uv' = T * R * S * uv with R's columns (cos, sin) and (-sin, cos). Worked by hand for
-  // scale (2, 3), rotation pi/2, offset (0.5, 0.25): S (1, 1) = (2, 3); R turns it to (-3, 2); T adds the offset.
+  // KHR_texture_transform: uv' = T * R * S * uv, R counter-clockwise in uv space with v down (u' = cos u +
+  // sin v, v' = -sin u + cos v: the direction Khronos's TextureTransformTest model marks correct). Worked by
+  // hand for scale (2, 3), rotation pi/2, offset (0.5, 0.25): S (1, 1) = (2, 3); R turns it to (3, -2); T adds
+  // the offset.
   TextureTransform transform;
   transform.offset = glm::vec2(0.5f, 0.25f);
   transform.rotation = glm::half_pi<float>();
   transform.scale = glm::vec2(2.0f, 3.0f);
   const glm::vec2 uv = transform.apply(glm::vec2(1.0f, 1.0f));
-  EXPECT_NEAR(uv.x, -2.5f, 1e-6f);
-  EXPECT_NEAR(uv.y, 2.25f, 1e-6f);
+  EXPECT_NEAR(uv.x, 3.5f, 1e-6f);
+  EXPECT_NEAR(uv.y, -1.75f, 1e-6f);
   EXPECT_TRUE(TextureTransform{}.isIdentity());
   EXPECT_EQ(TextureTransform{}.apply(glm::vec2(0.3f, 0.7f)), glm::vec2(0.3f, 0.7f));
 }

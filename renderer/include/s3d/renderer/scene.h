@@ -39,8 +39,8 @@ struct Texture {
 constexpr std::int32_t kNoTexture = -1;
 
 // Where a material samples a texture (glTF KHR_texture_transform): uv' = T * R * S * uv with T the offset, R the
-// rotation (radians, counter-clockwise in uv space as the extension defines it), S the scale. The default is
-// the identity.
+// rotation (radians, counter-clockwise in glTF's uv space, v pointing down: u' = cos u + sin v, v' = -sin u +
+// cos v, as Khronos's TextureTransformTest model checks), S the scale. The default is the identity.
 struct TextureTransform {
   glm::vec2 offset{0.0f};
   float rotation = 0.0f;
