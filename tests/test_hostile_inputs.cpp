@@ -268,10 +268,10 @@ TEST_F(HostileInputs, AMeshoptCompressedFileNamesTheExtensionNotItsFallbackBuffe
 
 TEST_F(HostileInputs, UnnamedNodesAndMaterialsAreNamedByIndex) {
   nlohmann::json doc = triangleGltf();
-  doc["materials"] = {{{"name", "leaves"}, {"alphaMode", "MASK"}}};
+  doc["materials"] = {{{"name", "leaves"}, {"alphaMode", "MASK"}, {"alphaCutoff", -1.0}}};
   doc["meshes"][0]["primitives"][0]["material"] = 0;
   const fs::path material = write("material.gltf", doc.dump());
-  EXPECT_NE(errorOf([&] { renderer::loadGltfScene(material); }).find("in material 0 ('leaves')"), std::string::npos);
+  EXPECT_NE(errorOf([&] { renderer::loadGltfScene(material); }).find("material 0 ('leaves')'s alphaCutoff"), std::string::npos);
   doc = triangleGltf();
   doc["skins"] = {{{"joints", {0}}}};
   doc["nodes"][0]["skin"] = 0;

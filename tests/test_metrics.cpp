@@ -263,5 +263,20 @@ TEST(CompareByRegion, RestIsThePixelsInNoRegionAndAnEmptyMaskIsAnEmptyRegion) {
   EXPECT_LT(hdrErrors.rest.ssim, 1.0);
 }
 
+TEST(CompareByRegion, TheFoliageRegionIsCountedAndLeftOutOfTheRest) {
+  // 4x1: pixel 0 halo, pixel 2 foliage (an alpha cut-out's pixel), pixels 1 and 3 the rest; without a foliage
+  // mask the region is empty and pixel 2 is rest again.
+  const ImageRGBA8 reference = gradientImage(4, 1);
+  RegionMasks masks{{1, 0, 0, 0}, {}, {}, {0, 0, 1, 0}};
+  const ErrorsByRegion<ErrorStats> display = compareDisplayByRegion(reference, reference, 0, masks);
+  EXPECT_EQ(display.foliage.pixelCount, 1u);
+  EXPECT_EQ(display.rest.pixelCount, 2u);
+  EXPECT_EQ(compareHdrByRegion(ImageRGBA32F(4, 1, 0.5f), ImageRGBA32F(4, 1, 0.5f), 0, masks).foliage.pixelCount, 1u);
+  masks.foliage.clear();
+  const ErrorsByRegion<ErrorStats> none = compareDisplayByRegion(reference, reference, 0, masks);
+  EXPECT_EQ(none.foliage.pixelCount, 0u);
+  EXPECT_EQ(none.rest.pixelCount, 3u);
+}
+
 }  // namespace
 }  // namespace s3d::stereo

@@ -160,13 +160,14 @@ TEST_F(RenderJob, ReportJsonHasEveryFieldAndOnlyFiniteNumbers) {
     for (const char* key : {"psnrDb", "ssim", "meanAbsoluteError", "shareAbove8", "pixelCount"})
       expectFiniteNumber(error, key, std::string("error.") + eye);
     EXPECT_EQ(error.at("pixelCount"), std::uint64_t(kWidth) * kHeight);  // the whole frame
-    for (const char* region : {"halo", "disocclusion", "transparent", "rest"})
+    for (const char* region : {"halo", "disocclusion", "transparent", "foliage", "rest"})
       expectFiniteNumber(error.at(region), "ssim", std::string("error.") + eye + "." + region);
     EXPECT_EQ(error.at("transparent").at("pixelCount"), 0);  // the courtyard has no transparent objects
+    EXPECT_EQ(error.at("foliage").at("pixelCount"), 0);      // nor alpha cut-outs
     const nlohmann::json& hdr = error.at("hdr");
     for (const char* key : {"psnrDb", "ssim", "meanAbsoluteError", "pixelCount"})
       expectFiniteNumber(hdr, key, std::string("error.") + eye + ".hdr");
-    for (const char* region : {"halo", "disocclusion", "transparent", "rest"})
+    for (const char* region : {"halo", "disocclusion", "transparent", "foliage", "rest"})
       expectFiniteNumber(hdr.at(region), "psnrDb", std::string("error.") + eye + ".hdr." + region);
   }
   EXPECT_EQ(report.at("sanitized").at("colorValues"), 0);  // the renderer writes no NaN or inf

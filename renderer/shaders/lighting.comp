@@ -180,9 +180,11 @@ vec3 shadeSurface(ivec2 pixel, Surface s, uint lightList) {
   }
 
   uvec2 stored = texelFetch(material, pixel, 0).rg;
-  vec3 f0 = objects[unpackObjectIndex(stored)].specular.rgb;
+  uint objectIndex = unpackObjectIndex(stored);
+  vec3 f0 = objects[objectIndex].specular.rgb;
   vec3 fresnel = f0 + (1.0 - f0) * pow(1.0 - clamp(dot(normal, toEye), 0.0, 1.0), 5.0);  // Schlick
-  return unpackAlbedo(stored) * diffuse + fresnel * specular;
+  // Emission comes from the object's constants: the G-buffer carries no emissive texture, so no extra target.
+  return unpackAlbedo(stored) * diffuse + fresnel * specular + objects[objectIndex].emissive.rgb;
 }
 
 void main() {

@@ -1,5 +1,13 @@
 // Material texturing shared by the G-buffer and transparent passes (include after renderer_shared.h).
 
+// Where an object samples its base-colour texture and its normal map (KHR_texture_transform, ObjectConstants).
+vec2 baseColorTexCoord(ObjectConstants object, vec2 texCoord) {
+  return transformTexCoord(object.baseColorUv, object.uvOffsets.xy, texCoord);
+}
+vec2 normalMapTexCoord(ObjectConstants object, vec2 texCoord) {
+  return transformTexCoord(object.normalUv, object.uvOffsets.zw, texCoord);
+}
+
 // The shading normal: the interpolated normal, perturbed by a tangent-space normal map when the object has
 // one (normalScale != 0). Without one the result is exactly the untextured renderer's normalize(worldNormal).
 vec3 shadingNormal(vec3 worldNormal, vec4 worldTangent, vec2 texCoord, float normalScale, sampler2D normalMap) {

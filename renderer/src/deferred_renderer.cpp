@@ -13,6 +13,7 @@
 #include "s3d/renderer/renderer_shared.h"
 #include "ambient_occlusion.h"
 #include "gbuffer_resolve.h"
+#include "material_variants.h"
 #include "resolve_pass.h"
 #include "s3d/vk/check.h"
 #include "s3d/vk/pipeline.h"
@@ -24,8 +25,11 @@
 
 // clang-format off
 #include <cstdint>
+#include <s3d_spirv/depth_cutout_frag.h>
 #include <s3d_spirv/fullscreen_vert.h>
+#include <s3d_spirv/gbuffer_cutout_frag.h>
 #include <s3d_spirv/gbuffer_frag.h>
+#include <s3d_spirv/gbuffer_marked_cutout_frag.h>
 #include <s3d_spirv/gbuffer_marked_frag.h>
 #include <s3d_spirv/geometry_vert.h>
 #include <s3d_spirv/mask_fill_frag.h>
@@ -135,15 +139,18 @@ struct DeferredRenderer::Impl {
   // Passes: layouts and pipelines (the compute passes own theirs: detail::AmbientOcclusion, TiledLighting,
   // TileLists, ShadowMaps).
   vk::PipelineLayout geometryLayout, maskFillLayout;
-  // G-buffer: one pipeline per texture combination, index gbufferVariant(material); made per scene, for its
-  // visibility format and whether it has textured objects (then the pass also binds normal and material).
-  std::array<vk::Unique<VkPipeline>, 4> gbufferPipelines;
+  // G-buffer: one pipeline per material variant (detail::materialVariant), made at first use for the scene's
+  // visibility format and whether it has objects the raster pass shades (then the pass also binds normal and
+  // material); dropped when those change.
+  std::array<vk::Unique<VkPipeline>, detail::kMaterialVariants> gbufferPipelines;
   vk::GraphicsPipelineDesc geometryDesc;  // what every pipeline drawing the scene's objects shares
   glm::uvec2 visibilityPacking{0, 0};      // gpu::FrameConstants::options z, w
   bool visibilityShading = false;          // RendererOptions::gbufferShading, Automatic resolved for the device
   bool surfaceTargetsBound = false;        // the G-buffer pass writes normal and material for some objects
   bool gbufferPipelinesValid = false;
-  vk::Unique<VkPipeline> depthOnlyPipeline, maskFillPipeline;
+  vk::Unique<VkPipeline> maskFillPipeline;
+  vk::GraphicsPipelineDesc depthOnlyDesc;  // depth-only passes, per detail::depthVariant (made at first use)
+  std::array<vk::Unique<VkPipeline>, detail::kDepthVariants> depthOnlyPipelines;
 
   // Scene data.
   Scene scene;
@@ -268,7 +275,7 @@ struct DeferredRenderer::Impl {
     depthOnly.fragmentSpirv = spirv_shadow_depth_frag;
     depthOnly.depthWrite = true;
     depthOnly.depthCompare = nearer();
-    depthOnlyPipeline = vk::createGraphicsPipeline(context, geometryLayout.layout, depthOnly);
+    depthOnlyDesc = depthOnly;
 
     vk::GraphicsPipelineDesc maskFill;
     maskFill.vertexSpirv = spirv_fullscreen_vert;
@@ -292,30 +299,50 @@ struct DeferredRenderer::Impl {
     return {&normalGlossiness, &materialTarget, &visibility};
   }
 
-  void createGBufferPipelines() {
+  // The G-buffer pipeline of a material variant (detail::materialVariant), made at first use.
+  VkPipeline gbufferPipeline(std::size_t variant) {
+    if (!gbufferPipelines[variant]) gbufferPipelines[variant] = createGBufferPipeline(variant);
+    return gbufferPipelines[variant];
+  }
+
+  vk::Unique<VkPipeline> createGBufferPipeline(std::size_t variant) const {
     vk::GraphicsPipelineDesc gbuffer = geometryDesc;
     gbuffer.depthWrite = true;
     gbuffer.depthCompare = nearer();
     gbuffer.colorFormats.clear();
     for (const vk::Image* image : gbufferAttachments()) gbuffer.colorFormats.push_back(image->format);
-    vk::GraphicsPipelineDesc ids = gbuffer;
-    ids.fragmentSpirv = surfaceTargetsBound ? std::span<const std::uint32_t>(spirv_visibility_textured_frag)
-                                            : std::span<const std::uint32_t>(spirv_visibility_frag);
-    gbuffer.fragmentSpirv = visibilityShading ? std::span<const std::uint32_t>(spirv_gbuffer_marked_frag)
-                                              : std::span<const std::uint32_t>(spirv_gbuffer_frag);
-    const VkSpecializationMapEntry textureSwitches[] = {{0, 0, sizeof(VkBool32)}, {1, sizeof(VkBool32), sizeof(VkBool32)}};
-    for (std::uint32_t variant = 0; variant < gbufferPipelines.size(); ++variant) {
-      if (variant == 0 && visibilityShading) {
-        gbufferPipelines[variant] = vk::createGraphicsPipeline(context, geometryLayout.layout, ids);
-      } else if (!surfaceTargetsBound) {
-        gbufferPipelines[variant] = {};  // no object of the scene uses it
-      } else {
-        const VkBool32 values[] = {(variant & 1) != 0 ? VK_TRUE : VK_FALSE, (variant & 2) != 0 ? VK_TRUE : VK_FALSE};
-        const VkSpecializationInfo specialization{2, textureSwitches, sizeof(values), values};
-        gbuffer.fragmentSpecialization = &specialization;
-        gbufferPipelines[variant] = vk::createGraphicsPipeline(context, geometryLayout.layout, gbuffer);
-      }
+    if (variant == 0 && visibilityShading) {
+      gbuffer.fragmentSpirv = surfaceTargetsBound ? std::span<const std::uint32_t>(spirv_visibility_textured_frag)
+                                                  : std::span<const std::uint32_t>(spirv_visibility_frag);
+      return vk::createGraphicsPipeline(context, geometryLayout.layout, gbuffer);
     }
+    const bool cutout = (variant & detail::kCutoutVariant) != 0;
+    if ((variant & detail::kDoubleSidedVariant) != 0) gbuffer.cullMode = VK_CULL_MODE_NONE;
+    if (visibilityShading)
+      gbuffer.fragmentSpirv = cutout ? std::span<const std::uint32_t>(spirv_gbuffer_marked_cutout_frag)
+                                     : std::span<const std::uint32_t>(spirv_gbuffer_marked_frag);
+    else
+      gbuffer.fragmentSpirv = cutout ? std::span<const std::uint32_t>(spirv_gbuffer_cutout_frag)
+                                     : std::span<const std::uint32_t>(spirv_gbuffer_frag);
+    const VkSpecializationMapEntry switches[] = {{0, 0, sizeof(VkBool32)},
+                                                 {1, sizeof(VkBool32), sizeof(VkBool32)},
+                                                 {2, 2 * sizeof(VkBool32), sizeof(VkBool32)}};
+    auto on = [variant](std::size_t bit) -> VkBool32 { return (variant & bit) != 0 ? VK_TRUE : VK_FALSE; };
+    const VkBool32 values[] = {on(detail::kBaseColorVariant), on(detail::kNormalMapVariant), on(detail::kDoubleSidedVariant)};
+    const VkSpecializationInfo specialization{3, switches, sizeof(values), values};
+    gbuffer.fragmentSpecialization = &specialization;
+    return vk::createGraphicsPipeline(context, geometryLayout.layout, gbuffer);
+  }
+
+  // The depth-only pipeline of a detail::depthVariant (bit 0 cut-out, bit 1 double-sided), made at first use.
+  VkPipeline depthOnlyPipeline(std::size_t variant) {
+    if (!depthOnlyPipelines[variant]) {
+      vk::GraphicsPipelineDesc desc = depthOnlyDesc;
+      if ((variant & 1) != 0) desc.fragmentSpirv = spirv_depth_cutout_frag;
+      if ((variant & 2) != 0) desc.cullMode = VK_CULL_MODE_NONE;
+      depthOnlyPipelines[variant] = vk::createGraphicsPipeline(context, geometryLayout.layout, desc);
+    }
+    return depthOnlyPipelines[variant];
   }
 
   static glm::uvec2 visibilityPackingFor(const Scene& scene) {
@@ -376,7 +403,9 @@ struct DeferredRenderer::Impl {
     vertexBuffer = vk::createBuffer(context, vertices.size() * sizeof(Vertex), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT | pulled,
                                     vk::MemoryLocation::Device);
     vk::uploadBuffer(context, vertexBuffer, std::as_bytes(std::span(vertices)));
-    surfaceBuffer = vk::createBuffer(context, surface.size() * sizeof(gpu::SurfaceVertex), pulled, vk::MemoryLocation::Device);
+    // Also a vertex buffer: cut-out shadow casters read their texture coordinates from it.
+    surfaceBuffer = vk::createBuffer(context, surface.size() * sizeof(gpu::SurfaceVertex),
+                                     VK_BUFFER_USAGE_VERTEX_BUFFER_BIT | pulled, vk::MemoryLocation::Device);
     vk::uploadBuffer(context, surfaceBuffer, std::as_bytes(std::span(surface)));
     textures.clear();
     for (const Texture& texture : newScene.textures) textures.push_back(uploadTexture(texture));
@@ -393,6 +422,7 @@ struct DeferredRenderer::Impl {
                                     std::to_string(opacity) + " outside (0, 1]");
       if (newScene.objects[i].material.isTransparent() && newScene.objects[i].layer == Layer::FirstPerson)
         throw std::invalid_argument("scene '" + newScene.name + "': transparent first-person objects are not supported");
+      validateMaterialExtras(newScene, i);
     }
     // First-person objects first: they are nearest, so their depth rejects the world behind them early.
     for (Layer layer : {Layer::FirstPerson, Layer::World})
@@ -403,7 +433,7 @@ struct DeferredRenderer::Impl {
     for (std::uint32_t i : drawOrder) {
       const Object& object = newScene.objects[i];
       drawBounds.push_back(objectBounds(newScene.meshes[object.mesh], object.transform));
-      textured = textured || gbufferVariant(object.material) != 0;
+      textured = textured || detail::materialVariant(object.material) != 0;
     }
     const glm::uvec2 packing = visibilityShading ? visibilityPackingFor(newScene) : glm::uvec2(0);
     const VkFormat visibilityFormat = packing.y != 0 ? kWideVisibilityFormat : kNarrowVisibilityFormat;
@@ -416,7 +446,7 @@ struct DeferredRenderer::Impl {
     visibilityPacking = packing;
     surfaceTargetsBound = surfaceTargets;
     if (!gbufferPipelinesValid || newFormat || newAttachments) {
-      createGBufferPipelines();
+      for (vk::Unique<VkPipeline>& pipeline : gbufferPipelines) pipeline.reset();
       gbufferPipelinesValid = true;
     }
     std::vector<std::uint32_t> meshTriangles;
@@ -424,7 +454,9 @@ struct DeferredRenderer::Impl {
     transparentPass->setScene(newScene, meshTriangles, textures, whiteTexture, flatNormalTexture);
     std::vector<detail::ShadowMeshRange> shadowRanges;
     for (const MeshRange& range : meshRanges) shadowRanges.push_back({range.firstIndex, range.indexCount, range.vertexOffset});
-    shadows->setScene(newScene, vertexBuffer.buffer, indexBuffer.buffer, std::move(shadowRanges));
+    detail::ShadowTextures shadowTextures{surfaceBuffer.buffer, textureSampler, {}, whiteTexture.view};
+    for (const vk::Image& texture : textures) shadowTextures.views.push_back(texture.view);
+    shadows->setScene(newScene, vertexBuffer.buffer, indexBuffer.buffer, std::move(shadowRanges), std::move(shadowTextures));
     lighting->setScene(newScene);
     scene = newScene;
   }
@@ -438,6 +470,23 @@ struct DeferredRenderer::Impl {
     for (std::size_t v = 0; v < count; ++v)
       surface.push_back({mesh.texCoords.empty() ? glm::vec2(0.0f) : mesh.texCoords[v],
                          mesh.tangents.empty() ? glm::vec4(0.0f) : mesh.tangents[v]});
+  }
+
+  // Cut-out, emission and texture transforms within their ranges (scene.h).
+  static void validateMaterialExtras(const Scene& scene, std::uint32_t objectIndex) {
+    const Material& m = scene.objects[objectIndex].material;
+    const std::string where = "scene '" + scene.name + "': object " + std::to_string(objectIndex) + " has ";
+    if (!(m.alphaCutoff >= 0.0f && m.alphaCutoff <= 1.0f) || !(m.cutoutAlpha >= 0.0f && m.cutoutAlpha <= 1.0f))
+      throw std::invalid_argument(where + "an alpha cutoff or cut-out alpha outside 0..1");
+    if (m.isCutout() && m.isTransparent())
+      throw std::invalid_argument(where + "a cut-out material that is also transparent (opacity < 1 or alpha blending)");
+    for (int c = 0; c < 3; ++c)
+      if (!(m.emissive[c] >= 0.0f && std::isfinite(m.emissive[c])))
+        throw std::invalid_argument(where + "an emissive colour that is negative or not finite");
+    for (const TextureTransform* t : {&m.baseColorTransform, &m.normalTransform})
+      if (!std::isfinite(t->offset.x) || !std::isfinite(t->offset.y) || !std::isfinite(t->rotation) ||
+          !std::isfinite(t->scale.x) || !std::isfinite(t->scale.y))
+        throw std::invalid_argument(where + "a texture transform that is not finite");
   }
 
   // A texture reference must name a texture of the right encoding, on a mesh that can place it.
@@ -506,12 +555,18 @@ struct DeferredRenderer::Impl {
       constants.objectToLayer = object.transform;
       constants.objectToWorld = object.layer == Layer::FirstPerson ? view.worldFromCamera * object.transform : object.transform;
       constants.normalToWorld = glm::transpose(glm::inverse(constants.objectToWorld));
-      constants.albedo = glm::vec4(object.material.albedo, object.material.opacity);
+      const Material& material = object.material;
+      constants.albedo = glm::vec4(material.albedo, material.isCutout() ? material.cutoutAlpha : material.opacity);
       constants.specular = glm::vec4(object.material.specularColor, object.material.glossiness);
       constants.layer = object.layer == Layer::FirstPerson ? S3D_LAYER_FIRST_PERSON : S3D_LAYER_WORLD;
       constants.normalScale = object.material.normalTexture == kNoTexture ? 0.0f : object.material.normalScale;
       constants.firstIndex = meshRanges[object.mesh].firstIndex;
       constants.vertexOffset = std::uint32_t(meshRanges[object.mesh].vertexOffset);
+      const glm::mat3 base = material.baseColorTransform.matrix(), normal = material.normalTransform.matrix();
+      constants.baseColorUv = glm::vec4(base[0][0], base[1][0], base[0][1], base[1][1]);  // rows of the 2x2 part
+      constants.normalUv = glm::vec4(normal[0][0], normal[1][0], normal[0][1], normal[1][1]);
+      constants.uvOffsets = glm::vec4(base[2][0], base[2][1], normal[2][0], normal[2][1]);
+      constants.emissive = glm::vec4(material.emissive, material.alphaCutoff);
     }
   }
 
@@ -544,20 +599,20 @@ struct DeferredRenderer::Impl {
     context.cmdPushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 0, std::uint32_t(writes.size()), writes.data());
   }
 
-  // The G-buffer pipeline of a material: bit 0 a base-color texture, bit 1 a normal map.
-  static std::size_t gbufferVariant(const Material& material) {
-    return (material.baseColorTexture != kNoTexture ? 1u : 0u) | (material.normalTexture != kNoTexture ? 2u : 0u);
-  }
+  // How drawObjects picks pipelines: the one bound, or per object its G-buffer or depth-only variant.
+  enum class Pipelines { Bound, GBuffer, DepthOnly };
 
-  // Draws the objects with the bound pipeline, or with each object's G-buffer variant (`gbuffer`).
-  void drawObjects(VkCommandBuffer cmd, const std::vector<std::uint32_t>& objects, bool gbuffer = false) {
+  void drawObjects(VkCommandBuffer cmd, const std::vector<std::uint32_t>& objects, Pipelines pipelines = Pipelines::Bound) {
     std::optional<Layer> currentLayer;
     std::optional<std::size_t> currentVariant;
     for (std::uint32_t objectIndex : objects) {
       const Object& object = scene.objects[objectIndex];
-      if (gbuffer && currentVariant != gbufferVariant(object.material)) {
-        currentVariant = gbufferVariant(object.material);
-        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, gbufferPipelines[*currentVariant]);
+      if (pipelines != Pipelines::Bound) {
+        const bool gbuffer = pipelines == Pipelines::GBuffer;
+        const std::size_t variant = gbuffer ? detail::materialVariant(object.material) : detail::depthVariant(object.material);
+        if (currentVariant != variant)
+          vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, gbuffer ? gbufferPipeline(variant) : depthOnlyPipeline(variant));
+        currentVariant = variant;
       }
       if (currentLayer != object.layer) {
         setLayerViewport(cmd, object.layer);
@@ -633,7 +688,7 @@ struct DeferredRenderer::Impl {
         depthAttachment(depth, filled ? VK_ATTACHMENT_LOAD_OP_LOAD : VK_ATTACHMENT_LOAD_OP_CLEAR, clearedDepth());
     beginRendering(cmd, width, height, colors, &depthInfo);
     setScissor(cmd, {{0, 0}, {width, height}});
-    drawObjects(cmd, frontToBack, true);
+    drawObjects(cmd, frontToBack, Pipelines::GBuffer);
     vkCmdEndRendering(cmd);
     // Ambient occlusion, lighting and the resolve read depth; the G-buffer resolve reads the ids, lighting (and
     // the counting pass) the targets the raster pass wrote.
@@ -672,8 +727,7 @@ struct DeferredRenderer::Impl {
     const VkRenderingAttachmentInfo depthInfo = depthAttachment(ambientDepth, VK_ATTACHMENT_LOAD_OP_CLEAR, clearedDepth());
     beginRendering(cmd, width, height, {}, &depthInfo);
     setScissor(cmd, {{0, 0}, {width, height}});
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, depthOnlyPipeline);
-    drawObjects(cmd, frontToBack);
+    drawObjects(cmd, frontToBack, Pipelines::DepthOnly);
     vkCmdEndRendering(cmd);
     vk::transition(cmd, ambientDepth, vk::kDepthAttachment, kComputeSampled);
   }
@@ -938,6 +992,25 @@ std::vector<std::uint8_t> DeferredRenderer::readTransparentMask() {
     for (std::uint32_t x = 0; x < r.width; ++x)
       if (bytes[4 * (std::size_t(y) * r.width + x)] != std::byte{0})
         mask[std::size_t(y / r.supersample) * r.outputWidth + x / r.supersample] = 1;
+  return mask;
+}
+
+std::vector<std::uint8_t> DeferredRenderer::readCutoutMask() {
+  const Impl& r = *impl_;
+  std::vector<std::uint8_t> mask(std::size_t(r.outputWidth) * r.outputHeight, 0);
+  std::vector<bool> cutout(r.scene.objects.size());
+  for (std::size_t i = 0; i < cutout.size(); ++i) cutout[i] = r.scene.objects[i].material.isCutout();
+  if (std::find(cutout.begin(), cutout.end(), true) == cutout.end()) return mask;
+  // The G-buffer's material target names each render pixel's object (S3D_NO_OBJECT for the sky).
+  std::vector<std::byte> bytes = vk::readbackImage(impl_->context, r.materialTarget, kComputeSampled);
+  std::vector<glm::uvec2> material(bytes.size() / sizeof(glm::uvec2));
+  std::memcpy(material.data(), bytes.data(), bytes.size());
+  for (std::uint32_t y = 0; y < r.height; ++y)
+    for (std::uint32_t x = 0; x < r.width; ++x) {
+      const std::uint32_t object = gpu::unpackObjectIndex(material[std::size_t(y) * r.width + x]);
+      if (object < cutout.size() && cutout[object])
+        mask[std::size_t(y / r.supersample) * r.outputWidth + x / r.supersample] = 1;
+    }
   return mask;
 }
 

@@ -70,7 +70,7 @@ nlohmann::json gltfJson(const fs::path& file, bool binary) {
 namespace {
 
 // Extensions the renderer reads; any other required one is refused by name.
-constexpr const char* kReadExtensions[] = {"KHR_lights_punctual"};
+constexpr const char* kReadExtensions[] = {"KHR_lights_punctual", "KHR_texture_transform", "KHR_materials_emissive_strength"};
 
 }  // namespace
 
@@ -82,7 +82,8 @@ void requireSupportedExtensions(const fs::path& file, const nlohmann::json& json
     const std::string name = extension.get<std::string>();
     if (std::find(std::begin(kReadExtensions), std::end(kReadExtensions), name) == std::end(kReadExtensions))
       throw std::invalid_argument("glTF file '" + file.string() + "': the required extension '" + name +
-                                  "' is not supported (s3d reads KHR_lights_punctual)");
+                                  "' is not supported (s3d reads KHR_lights_punctual, KHR_texture_transform and "
+                                  "KHR_materials_emissive_strength)");
   }
 }
 

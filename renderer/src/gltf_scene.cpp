@@ -22,6 +22,7 @@
 #include <tiny_gltf.h>
 
 #include "gltf_files.h"
+#include "gltf_material_extras.h"
 #include "gltf_reader.h"
 #include "mesh_generation.h"
 #include "s3d/input_file.h"
@@ -224,8 +225,7 @@ class SceneBuilder {
     m.albedo = glm::vec3(base) * (1.0f - metallic);
     m.specularColor = glm::mix(glm::vec3(0.04f), glm::vec3(base), metallic);
     m.glossiness = glossinessFromRoughness(reader_.toFloat(pbr.roughnessFactor, where + "roughnessFactor"));
-    if (source.alphaMode == "MASK")
-      reader_.unsupported("alphaMode MASK (alpha cut-outs) in material " + std::to_string(index) + named(source.name));
+    readMaterialExtras(reader_, source, "material " + std::to_string(index) + named(source.name), base.a, m);
     if (source.alphaMode == "BLEND") {
       m.alphaBlend = true;
       m.opacity = glm::clamp(base.a, 1e-3f, 1.0f);
@@ -233,11 +233,15 @@ class SceneBuilder {
     if (pbr.baseColorTexture.index >= 0) {
       if (pbr.baseColorTexture.texCoord != 0) reader_.unsupported("a base color texture on TEXCOORD_" + std::to_string(pbr.baseColorTexture.texCoord));
       m.baseColorTexture = texture(pbr.baseColorTexture.index, Texture::Encoding::Srgb);
+      m.baseColorTransform = readTextureTransform(reader_, pbr.baseColorTexture.extensions,
+                                                  "material " + std::to_string(index) + named(source.name), "base color");
     }
     if (source.normalTexture.index >= 0) {
       if (source.normalTexture.texCoord != 0) reader_.unsupported("a normal texture on TEXCOORD_" + std::to_string(source.normalTexture.texCoord));
       m.normalTexture = texture(source.normalTexture.index, Texture::Encoding::Linear);
       m.normalScale = reader_.toFloat(source.normalTexture.scale, where + "normalTexture.scale");
+      m.normalTransform = readTextureTransform(reader_, source.normalTexture.extensions,
+                                               "material " + std::to_string(index) + named(source.name), "normal");
     }
     return m;
   }

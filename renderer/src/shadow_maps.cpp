@@ -3,15 +3,20 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <cstddef>
 #include <cstring>
+#include <optional>
 #include <stdexcept>
 
 #include <glm/gtc/constants.hpp>
 
+#include "material_variants.h"
 #include "s3d/vk/check.h"
 
 // clang-format off
 #include <cstdint>
+#include <s3d_spirv/shadow_cutout_frag.h>
+#include <s3d_spirv/shadow_cutout_vert.h>
 #include <s3d_spirv/shadow_depth_frag.h>
 #include <s3d_spirv/shadow_depth_vert.h>
 // clang-format on
@@ -31,6 +36,14 @@ constexpr float kSunReceiverBias = 0.02f;
 // lit surfaces compare against their own depth; local lights render back faces and need less.
 constexpr float kSunSlopeBias = 2.0f;
 constexpr float kLocalSlopeBias = 1.0f;
+
+// Push constants of a cut-out caster (shadow_cutout.vert/.frag).
+struct CutoutCaster {
+  glm::mat4 objectToClip;
+  glm::vec4 uvRows;       // the base-colour texture transform, as gpu::ObjectConstants packs it
+  glm::vec2 uvOffset;
+  glm::vec2 alphaCutoff;  // x: the material's coverage alpha, y: its cutoff
+};
 
 constexpr vk::ImageState kSampledByLighting{VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
                                             VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT};
@@ -63,6 +76,10 @@ float depthPerWorldUnit(const glm::mat4& viewProjection) {
 ShadowMaps::ShadowMaps(vk::Context& context, std::uint32_t width, std::uint32_t height)
     : context_(context), width_(width), height_(height) {
   depthLayout_ = vk::createPushDescriptorLayout(context_, {}, sizeof(glm::mat4), VK_SHADER_STAGE_VERTEX_BIT);
+  const VkDescriptorSetLayoutBinding texture{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT,
+                                             nullptr};
+  cutoutLayout_ = vk::createPushDescriptorLayout(context_, {&texture, 1}, sizeof(CutoutCaster),
+                                                 VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT);
 
   vk::GraphicsPipelineDesc depth;
   depth.vertexSpirv = spirv_shadow_depth_vert;
@@ -77,11 +94,13 @@ ShadowMaps::ShadowMaps(vk::Context& context, std::uint32_t width, std::uint32_t 
   vk::GraphicsPipelineDesc sun = depth;
   sun.cullMode = VK_CULL_MODE_BACK_BIT;
   sun.depthBiasSlope = kSunSlopeBias;
-  sunDepthPipeline_ = vk::createGraphicsPipeline(context_, depthLayout_.layout, sun);
+  sunDepth_ = sun;
+  sunDepthPipelines_[0] = vk::createGraphicsPipeline(context_, depthLayout_.layout, sun);
   vk::GraphicsPipelineDesc local = depth;
   local.cullMode = VK_CULL_MODE_FRONT_BIT;
   local.depthBiasSlope = kLocalSlopeBias;
-  localDepthPipeline_ = vk::createGraphicsPipeline(context_, depthLayout_.layout, local);
+  localDepth_ = local;
+  localDepthPipelines_[0] = vk::createGraphicsPipeline(context_, depthLayout_.layout, local);
 
   compareSampler_ = createCompareSampler(context_);
   // 1x1 placeholders until a scene needs an atlas: the lighting pass binds both every frame.
@@ -93,8 +112,27 @@ ShadowMaps::ShadowMaps(vk::Context& context, std::uint32_t width, std::uint32_t 
                                 vk::MemoryLocation::HostVisible);
 }
 
+// Variants: double-sided casters render both faces; cut-outs add the alpha test (shadow_cutout.*), which reads
+// texture coordinates from the second vertex stream.
+VkPipeline ShadowMaps::depthPipeline(bool sun, std::size_t variant) {
+  vk::Unique<VkPipeline>& pipeline = (sun ? sunDepthPipelines_ : localDepthPipelines_)[variant];
+  if (!pipeline) {
+    vk::GraphicsPipelineDesc desc = sun ? sunDepth_ : localDepth_;
+    if ((variant & 2) != 0) desc.cullMode = VK_CULL_MODE_NONE;
+    const bool cutout = (variant & 1) != 0;
+    if (cutout) {
+      desc.vertexSpirv = spirv_shadow_cutout_vert;
+      desc.fragmentSpirv = spirv_shadow_cutout_frag;
+      desc.vertexBindings.push_back({1, sizeof(gpu::SurfaceVertex), VK_VERTEX_INPUT_RATE_VERTEX});
+      desc.vertexAttributes.push_back({1, 1, VK_FORMAT_R32G32_SFLOAT, offsetof(gpu::SurfaceVertex, texCoord)});
+    }
+    pipeline = vk::createGraphicsPipeline(context_, cutout ? cutoutLayout_.layout : depthLayout_.layout, desc);
+  }
+  return pipeline;
+}
+
 void ShadowMaps::setScene(const Scene& scene, VkBuffer vertexBuffer, VkBuffer indexBuffer,
-                          std::vector<ShadowMeshRange> meshRanges) {
+                          std::vector<ShadowMeshRange> meshRanges, ShadowTextures textures) {
   const std::string prefix = "scene '" + scene.name + "': ";
   const SunLight& sun = scene.sun;
   if (sun.castsShadows) {
@@ -167,6 +205,7 @@ void ShadowMaps::setScene(const Scene& scene, VkBuffer vertexBuffer, VkBuffer in
   vertexBuffer_ = vertexBuffer;
   indexBuffer_ = indexBuffer;
   meshRanges_ = std::move(meshRanges);
+  textures_ = std::move(textures);
 }
 
 bool ShadowMaps::castsLike(const ShadowMaps& other) const {
@@ -251,7 +290,7 @@ std::vector<ShadowPass> ShadowMaps::schedule(const ViewMatrices& view) {
       if (!rendered) continue;
       const vk::ImageState before = first ? vk::kUndefined : vk::kDepthAttachment;
       passes.push_back({"shadow-sun-cascade-" + std::to_string(i), [this, draws, before](VkCommandBuffer cmd) {
-                          recordDepthViews(cmd, sunAtlas_, sunDepthPipeline_, {draws}, before);
+                          recordDepthViews(cmd, sunAtlas_, true, {draws}, before);
                         }});
       first = false;
     }
@@ -294,14 +333,14 @@ std::vector<ShadowPass> ShadowMaps::schedule(const ViewMatrices& view) {
     localAtlasWritten_ = true;
     const std::string name = std::string(local.isPoint ? "shadow-point-" : "shadow-spot-") + std::to_string(local.lightIndex);
     passes.push_back({name, [this, views, before](VkCommandBuffer cmd) {
-                        recordDepthViews(cmd, localAtlas_, localDepthPipeline_, views, before);
+                        recordDepthViews(cmd, localAtlas_, false, views, before);
                       }});
   }
   std::memcpy(constants_.mapped, &constants, sizeof(constants));
   return passes;
 }
 
-void ShadowMaps::recordDepthViews(VkCommandBuffer cmd, const vk::Image& atlas, VkPipeline pipeline,
+void ShadowMaps::recordDepthViews(VkCommandBuffer cmd, const vk::Image& atlas, bool sun,
                                   const std::vector<ViewDraws>& views, const vk::ImageState& before) {
   vk::transition(cmd, atlas, before, vk::kDepthAttachment);
   VkRenderingAttachmentInfo depthAttachment{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
@@ -314,9 +353,9 @@ void ShadowMaps::recordDepthViews(VkCommandBuffer cmd, const vk::Image& atlas, V
   info.layerCount = 1;
   info.pDepthAttachment = &depthAttachment;
   vkCmdBeginRendering(cmd, &info);
-  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline);
-  VkDeviceSize offset = 0;
-  vkCmdBindVertexBuffers(cmd, 0, 1, &vertexBuffer_, &offset);
+  const VkBuffer vertexStreams[] = {vertexBuffer_, textures_.surfaceBuffer};
+  const VkDeviceSize offsets[] = {0, 0};
+  vkCmdBindVertexBuffers(cmd, 0, 2, vertexStreams, offsets);
   vkCmdBindIndexBuffer(cmd, indexBuffer_, 0, VK_INDEX_TYPE_UINT32);
   for (const ViewDraws& draws : views) {
     VkClearAttachment clear{VK_IMAGE_ASPECT_DEPTH_BIT, 0, {}};
@@ -327,15 +366,39 @@ void ShadowMaps::recordDepthViews(VkCommandBuffer cmd, const vk::Image& atlas, V
                         float(draws.tile.extent.height), 0.0f, 1.0f};
     vkCmdSetViewport(cmd, 0, 1, &viewport);
     vkCmdSetScissor(cmd, 0, 1, &draws.tile);
+    std::optional<std::size_t> bound;
     for (std::uint32_t objectIndex : draws.casters) {
       const Object& object = scene_.objects[objectIndex];
-      const glm::mat4 objectToClip = draws.viewProjection * object.transform;
-      vkCmdPushConstants(cmd, depthLayout_.layout, VK_SHADER_STAGE_VERTEX_BIT, 0, sizeof(objectToClip), &objectToClip);
-      const ShadowMeshRange& range = meshRanges_[object.mesh];
-      vkCmdDrawIndexed(cmd, range.indexCount, 1, range.firstIndex, range.vertexOffset, 0);
+      const std::size_t variant = depthVariant(object.material);
+      if (bound != variant) vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, depthPipeline(sun, variant));
+      bound = variant;
+      drawCaster(cmd, object, draws.viewProjection);
     }
   }
   vkCmdEndRendering(cmd);
+}
+
+void ShadowMaps::drawCaster(VkCommandBuffer cmd, const Object& object, const glm::mat4& viewProjection) {
+  const Material& material = object.material;
+  if (material.isCutout()) {
+    const std::int32_t texture = material.baseColorTexture;
+    const VkDescriptorImageInfo image{textures_.sampler,
+                                      texture == kNoTexture ? textures_.white : textures_.views.at(std::size_t(texture)),
+                                      VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+    VkWriteDescriptorSet write = vk::sampledImageWrite(0, &image);
+    write.descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+    context_.cmdPushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, cutoutLayout_.layout, 0, 1, &write);
+    const glm::mat3 uv = material.baseColorTransform.matrix();
+    const CutoutCaster caster{viewProjection * object.transform, glm::vec4(uv[0][0], uv[1][0], uv[0][1], uv[1][1]),
+                              glm::vec2(uv[2]), glm::vec2(material.cutoutAlpha, material.alphaCutoff)};
+    vkCmdPushConstants(cmd, cutoutLayout_.layout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
+                       sizeof(caster), &caster);
+  } else {
+    const glm::mat4 objectToClip = viewProjection * object.transform;
+    vkCmdPushConstants(cmd, depthLayout_.layout, VK_SHADER_STAGE_VERTEX_BIT, 0, sizeof(objectToClip), &objectToClip);
+  }
+  const ShadowMeshRange& range = meshRanges_[object.mesh];
+  vkCmdDrawIndexed(cmd, range.indexCount, 1, range.firstIndex, range.vertexOffset, 0);
 }
 
 void ShadowMaps::recordReadableForLighting(VkCommandBuffer cmd) {

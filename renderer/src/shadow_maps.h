@@ -4,6 +4,7 @@
 // is computed there, per pixel, rather than in a screen pass of its own). Planned per frame: a shadow map
 // without a caster in its view does not render. Point and spot views depend on the light and the world's casters
 // only, so each renders once per scene (setScene) and later frames reuse it; the sun's cascades follow the view.
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <optional>
@@ -27,6 +28,15 @@ struct ShadowMeshRange {
   std::int32_t vertexOffset = 0;
 };
 
+// What cut-out casters need for their alpha test: texture coordinates (the renderer's gpu::SurfaceVertex
+// stream, a vertex buffer) and the scene's textures with the sampler the G-buffer reads them with.
+struct ShadowTextures {
+  VkBuffer surfaceBuffer = VK_NULL_HANDLE;
+  VkSampler sampler = VK_NULL_HANDLE;
+  std::vector<VkImageView> views;  // Scene::textures, uploaded
+  VkImageView white = VK_NULL_HANDLE;  // what an untextured cut-out samples
+};
+
 struct ShadowPass {
   std::string name;
   std::function<void(VkCommandBuffer)> record;
@@ -37,7 +47,8 @@ class ShadowMaps {
   ShadowMaps(vk::Context& context, std::uint32_t width, std::uint32_t height);
 
   // Validates the scene's shadow settings and sizes the atlases. The buffers stay owned by the renderer.
-  void setScene(const Scene& scene, VkBuffer vertexBuffer, VkBuffer indexBuffer, std::vector<ShadowMeshRange> meshRanges);
+  void setScene(const Scene& scene, VkBuffer vertexBuffer, VkBuffer indexBuffer, std::vector<ShadowMeshRange> meshRanges,
+                ShadowTextures textures);
 
   // Plans the frame for shadowFitOf(view): which shadow maps have a caster in reach, their matrices (written to the
   // shadow constants), and the passes that render them, in order.
@@ -78,13 +89,18 @@ class ShadowMaps {
     std::vector<std::uint32_t> casters;  // object indices
   };
 
-  void recordDepthViews(VkCommandBuffer cmd, const vk::Image& atlas, VkPipeline pipeline,
-                        const std::vector<ViewDraws>& views, const vk::ImageState& before);
+  void recordDepthViews(VkCommandBuffer cmd, const vk::Image& atlas, bool sun, const std::vector<ViewDraws>& views,
+                        const vk::ImageState& before);
+  // The sun's or the local lights' depth pipeline for a caster's detail::depthVariant, made at first use.
+  VkPipeline depthPipeline(bool sun, std::size_t variant);
+  void drawCaster(VkCommandBuffer cmd, const Object& object, const glm::mat4& viewProjection);
 
   vk::Context& context_;
   std::uint32_t width_, height_;
-  vk::PipelineLayout depthLayout_;
-  vk::Unique<VkPipeline> sunDepthPipeline_, localDepthPipeline_;
+  vk::PipelineLayout depthLayout_, cutoutLayout_;  // cut-out casters: their base-colour texture, uv and cutoff
+  vk::GraphicsPipelineDesc sunDepth_, localDepth_;
+  std::array<vk::Unique<VkPipeline>, 4> sunDepthPipelines_, localDepthPipelines_;  // per detail::depthVariant
+  ShadowTextures textures_;
   vk::Unique<VkSampler> compareSampler_;
   vk::Image sunAtlas_;     // cascades side by side (1x1 when the sun casts no shadows)
   vk::Image localAtlas_;   // local-light views in a grid (1x1 when no light casts)

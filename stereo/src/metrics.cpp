@@ -137,7 +137,7 @@ HdrErrorStats compareHdrSelected(const ImageRGBA32F& synthesized, const ImageRGB
 // 1 where no region mask is set (an empty mask sets nothing).
 std::vector<std::uint8_t> restMask(std::size_t pixelCount, const RegionMasks& masks) {
   std::vector<std::uint8_t> rest(pixelCount, 1);
-  for (const std::vector<std::uint8_t>* mask : {&masks.halo, &masks.disocclusion, &masks.transparent}) {
+  for (const std::vector<std::uint8_t>* mask : {&masks.halo, &masks.disocclusion, &masks.transparent, &masks.foliage}) {
     if (mask->empty()) continue;
     if (mask->size() != pixelCount)
       throw std::invalid_argument("compareByRegion: region mask size does not match the images");
@@ -230,7 +230,7 @@ ErrorsByRegion<ErrorStats> compareDisplayByRegion(const ImageRGBA8& synthesized,
     return compareSelected(synthesized, reference, cropColumns, &mask, 1, &ssim);
   };
   return {compareSelected(synthesized, reference, cropColumns, nullptr, 0, &ssim), region(masks.halo),
-          region(masks.disocclusion), region(masks.transparent), region(rest)};
+          region(masks.disocclusion), region(masks.transparent), region(rest), region(masks.foliage)};
 }
 
 ErrorsByRegion<HdrErrorStats> compareHdrByRegion(const ImageRGBA32F& synthesized, const ImageRGBA32F& reference,
@@ -242,7 +242,7 @@ ErrorsByRegion<HdrErrorStats> compareHdrByRegion(const ImageRGBA32F& synthesized
     return compareHdrSelected(synthesized, reference, cropColumns, &mask, 1, ssim);
   };
   return {compareHdrSelected(synthesized, reference, cropColumns, nullptr, 0, ssim), region(masks.halo),
-          region(masks.disocclusion), region(masks.transparent), region(rest)};
+          region(masks.disocclusion), region(masks.transparent), region(rest), region(masks.foliage)};
 }
 
 std::vector<std::uint8_t> haloMask(const DepthImage& centerDepth, std::uint32_t radiusPx) {

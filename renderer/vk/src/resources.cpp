@@ -55,6 +55,7 @@ std::uint32_t texelSize(VkFormat format) {
       return 2;
     case VK_FORMAT_R16G16B16A16_SFLOAT:
     case VK_FORMAT_R32G32_SFLOAT:
+    case VK_FORMAT_R32G32_UINT:  // the G-buffer's material target
       return 8;
     case VK_FORMAT_R32G32B32A32_SFLOAT:
       return 16;

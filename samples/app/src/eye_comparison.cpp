@@ -22,7 +22,8 @@ EyeError compareEye(const ImageRGBA8& synthesized, const ImageRGBA8& reference, 
                     const ImageRGBA32F* referenceHdr) {
   const stereo::ErrorsByRegion<stereo::ErrorStats> display =
       stereo::compareDisplayByRegion(synthesized, reference, cropColumns, masks);
-  EyeError error{display.all, display.halo, display.rest, display.disocclusion, display.transparent, std::nullopt};
+  EyeError error{display.all, display.halo, display.rest, display.disocclusion, display.transparent, std::nullopt,
+                 display.foliage};
   if (synthesizedHdr && referenceHdr)
     error.hdr = stereo::compareHdrByRegion(*synthesizedHdr, *referenceHdr, cropColumns, masks);
   return error;
@@ -69,12 +70,14 @@ nlohmann::json errorJson(const EyeError& error) {
   json["rest"] = statsJson(error.rest);
   json["disocclusion"] = statsJson(error.disocclusion);
   json["transparent"] = statsJson(error.transparent);
+  json["foliage"] = statsJson(error.foliage);
   if (error.hdr) {
     nlohmann::json hdr = statsJson(error.hdr->all);
     hdr["halo"] = statsJson(error.hdr->halo);
     hdr["rest"] = statsJson(error.hdr->rest);
     hdr["disocclusion"] = statsJson(error.hdr->disocclusion);
     hdr["transparent"] = statsJson(error.hdr->transparent);
+    hdr["foliage"] = statsJson(error.hdr->foliage);
     json["hdr"] = std::move(hdr);
   }
   return json;

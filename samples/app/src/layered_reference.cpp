@@ -99,7 +99,7 @@ ReferenceEye renderReferenceEye(renderer::DeferredRenderer& deferred, const rend
   std::vector<ImageRGBA8> displays;
   std::vector<DepthImage> depths;
   std::vector<ImageRGBA32F> hdrs;
-  std::vector<std::vector<std::uint8_t>> transparents, firstPersons;
+  std::vector<std::vector<std::uint8_t>> transparents, foliages, firstPersons;
   for (const stereo::DisparityMapSegment& segment : segments) {
     const renderer::FrameTimings timings = deferred.render(referenceEyeView(scene, center, eye, parameters, segment));
     if (displays.empty()) result.firstLayerGpuMs = timings.totalGpuMs;
@@ -107,6 +107,7 @@ ReferenceEye renderReferenceEye(renderer::DeferredRenderer& deferred, const rend
     depths.push_back(deferred.readLinearDepth());
     hdrs.push_back(deferred.readHdrColor());
     transparents.push_back(deferred.readTransparentMask());
+    foliages.push_back(deferred.readCutoutMask());
     firstPersons.push_back(deferred.readFirstPersonMask());
   }
   if (segments.size() == 1) {
@@ -114,6 +115,7 @@ ReferenceEye renderReferenceEye(renderer::DeferredRenderer& deferred, const rend
     result.depth = std::move(depths.front());
     result.hdr = std::move(hdrs.front());
     result.transparent = std::move(transparents.front());
+    result.foliage = std::move(foliages.front());
     result.firstPerson = std::move(firstPersons.front());
     result.layerOfPixel.assign(result.depth.pixelCount(), 0);
     return result;
@@ -124,6 +126,7 @@ ReferenceEye renderReferenceEye(renderer::DeferredRenderer& deferred, const rend
   result.depth = depths.front();
   result.hdr = hdrs.front();
   result.transparent = transparents.front();
+  result.foliage = foliages.front();
   result.firstPerson = firstPersons.front();
   for (std::size_t i = 0; i < chosen.size(); ++i) {
     const std::size_t k = chosen[i];
@@ -131,6 +134,7 @@ ReferenceEye renderReferenceEye(renderer::DeferredRenderer& deferred, const rend
     result.depth.pixels[i] = depths[k].pixels[i];
     std::copy_n(&hdrs[k].pixels[i * 4], 4, &result.hdr.pixels[i * 4]);
     result.transparent[i] = transparents[k][i];
+    result.foliage[i] = foliages[k][i];
     result.firstPerson[i] = firstPersons[k][i];
   }
   return result;

@@ -34,10 +34,10 @@ constexpr std::uint64_t kHybridDeviceBytesPerRow = 4 * (2 * 256 + 2);
 // And once: the second renderer's pipelines and shadow atlases (lavapipe: 19-31 MB more peak resident memory
 // than the search method at 1280x720 and 320x180).
 constexpr std::uint64_t kHybridFixedBytes = 48ull << 20;
-// A nonlinear map's per-layer reference, per rendered pixel: each layer's display 4, depth 4, HDR 16, transparent
-// and first-person masks 2 held at once for one eye, and the composite 26; the mapped depths (the stereo pass's
-// copy, its output crop and two mapped reference depths) 16.
-constexpr std::uint64_t kReferenceLayerHostBytesPerRenderedPixel = 26;
+// A nonlinear map's per-layer reference, per rendered pixel: each layer's display 4, depth 4, HDR 16, transparent,
+// cut-out and first-person masks 3 held at once for one eye, and the composite 27; the mapped depths (the stereo
+// pass's copy, its output crop and two mapped reference depths) 16.
+constexpr std::uint64_t kReferenceLayerHostBytesPerRenderedPixel = 27;
 constexpr std::uint64_t kMappedDepthHostBytesPerRenderedPixel = 16;
 
 // `s3d convert` per pixel: host: color 4 (an EXR's float color and file bytes 32 more), depth 4 (its file's

@@ -323,13 +323,15 @@ RenderReport runRenderJob(vk::Context& context, const RenderJobOptions& options)
     DepthImage depth;  // mapped as the stereo pass's depth (disocclusion regions)
     ImageRGBA32F hdr;
     std::vector<std::uint8_t> transparent;
+    std::vector<std::uint8_t> foliage;
   };
   auto referenceFor = [&](stereo::Eye side) {
-    OutputReference eye{renderReferenceEye(*deferred, job.scene, center, side, renderedParameters, map), {}, {}, {}, {}};
+    OutputReference eye{renderReferenceEye(*deferred, job.scene, center, side, renderedParameters, map), {}, {}, {}, {}, {}};
     eye.display = output(eye.rendered.display);
     eye.depth = output(stereo::mappedDepthImage(eye.rendered.depth, map));
     eye.hdr = output(eye.rendered.hdr);
     eye.transparent = outputMask(eye.rendered.transparent);
+    eye.foliage = outputMask(eye.rendered.foliage);
     return eye;
   };
   const OutputReference leftEye = referenceFor(stereo::Eye::Left);
@@ -347,7 +349,7 @@ RenderReport runRenderJob(vk::Context& context, const RenderJobOptions& options)
        {std::tuple{&report.left, &synthesized.left, &synthesizedHdr.left, &leftEye, stereo::Eye::Left},
         std::tuple{&report.right, &synthesized.right, &synthesizedHdr.right, &rightEye, stereo::Eye::Right}}) {
     const stereo::RegionMasks masks{halo, disocclusionMaskFor(reference->depth, centerStereoDepth, parameters, side),
-                                    reference->transparent};
+                                    reference->transparent, reference->foliage};
     *eyeError = compareEye(*eye, reference->display, report.cropColumns, masks, eyeHdr, &reference->hdr);
   }
 

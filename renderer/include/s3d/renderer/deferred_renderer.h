@@ -182,6 +182,10 @@ class DeferredRenderer {
   // 1 where a transparent surface covers the last frame's pixel (its blended coverage is above 0); all 0 when
   // the scene has no transparent objects (the error metrics' transparent region).
   std::vector<std::uint8_t> readTransparentMask();
+  // 1 where the last frame's visible surface is an alpha cut-out (Material::isCutout, glTF alphaMode MASK) of
+  // the opaque pass (a transparent surface in front does not change it); with supersampling, where any sample
+  // of the output pixel is. All 0 when the scene has none (the error metrics' foliage region).
+  std::vector<std::uint8_t> readCutoutMask();
 
   // Device depth values that separate the layers (Listing 4.3): first-person depth is in [0, split]
   // ([1 - split, 1] with reversed-Z).

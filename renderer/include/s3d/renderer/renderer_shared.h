@@ -73,7 +73,22 @@ struct ObjectConstants {  // storage buffer, std430, one per object
   float normalScale;   // tangent-space normal map x/y scale; 0: no normal map (the interpolated normal as is)
   uint firstIndex;     // its mesh in the scene's index buffer: first index, and the vertex its indices count from
   uint vertexOffset;
+  vec4 baseColorUv;    // base-colour texture transform (Material::baseColorTransform): rows of its 2x2 part
+  vec4 normalUv;       // the normal map's, likewise
+  vec4 uvOffsets;      // xy: base-colour transform offset, zw: the normal map's
+  vec4 emissive;       // rgb: emitted radiance (Material::emissive); a: alpha cutoff (0: not a cut-out)
 };
+// albedo.a holds the opacity of transparent objects and the coverage alpha (Material::cutoutAlpha) of cut-outs.
+
+// A texture transform packed as ObjectConstants holds it: rows (r0.x, r0.y; r1.x, r1.y) of T*R*S's 2x2 part
+// in `rows` (x y z w), its translation in `offset`.
+S3D_INLINE vec2 transformTexCoord(vec4 rows, vec2 offset, vec2 uv) {
+  return vec2(rows.x * uv.x + rows.y * uv.y, rows.z * uv.x + rows.w * uv.y) + offset;
+}
+
+// Whether a cut-out fragment is dropped: its coverage alpha (the material's alpha x the texel's) is below the
+// cutoff. A cutoff of 0 keeps every fragment.
+S3D_INLINE bool cutOut(float materialAlpha, float texelAlpha, float cutoff) { return materialAlpha * texelAlpha < cutoff; }
 
 // Per-vertex surface parameterization: the renderer's second vertex stream (zeros for meshes without it).
 struct SurfaceVertex {

@@ -38,6 +38,19 @@ struct Texture {
 
 constexpr std::int32_t kNoTexture = -1;
 
+// Where a material samples a texture (glTF KHR_texture_transform): uv' = T * R * S * uv with T the offset, R the
+// rotation (radians, counter-clockwise in glTF's uv space, v pointing down: u' = cos u + sin v, v' = -sin u +
+// cos v, as Khronos's TextureTransformTest model checks), S the scale. The default is the identity.
+struct TextureTransform {
+  glm::vec2 offset{0.0f};
+  float rotation = 0.0f;
+  glm::vec2 scale{1.0f};
+
+  glm::mat3 matrix() const;            // T * R * S (column-major, acting on (u, v, 1))
+  glm::vec2 apply(glm::vec2 uv) const;  // matrix() * (uv, 1)
+  bool isIdentity() const { return offset == glm::vec2(0.0f) && rotation == 0.0f && scale == glm::vec2(1.0f); }
+};
+
 struct Material {
   glm::vec3 albedo{0.5f};          // linear diffuse reflectance
   glm::vec3 specularColor{0.04f};  // Fresnel reflectance at normal incidence (F0)
@@ -49,8 +62,24 @@ struct Material {
   std::int32_t baseColorTexture = kNoTexture;
   std::int32_t normalTexture = kNoTexture;
   float normalScale = 1.0f;  // scales the normal map's x and y (glTF normalTexture.scale)
+  TextureTransform baseColorTransform;  // where the base-colour texture is sampled
+  TextureTransform normalTransform;     // where the normal map is sampled
+  // Alpha cut-out (glTF alphaMode MASK), for foliage and fences: 0 means none; in (0, 1] a fragment whose
+  // coverage alpha (cutoutAlpha x the base-colour texel's alpha) is below alphaCutoff is not drawn in any pass
+  // that writes depth (G-buffer, shadow maps), and where it is drawn the surface is opaque. A cut-out material
+  // needs opacity 1 and no alphaBlend.
+  float alphaCutoff = 0.0f;
+  float cutoutAlpha = 1.0f;  // 0..1: the base colour's alpha (glTF baseColorFactor[3]) a cut-out tests
+  // Drawn without back-face culling in every pass; back faces are shaded with the normal flipped toward the
+  // viewer (glTF doubleSided). Applies to opaque and cut-out objects; transparent ones are always drawn
+  // two-sided in their own pass as before.
+  bool doubleSided = false;
+  // Light the surface emits, linear HDR radiance added to its lit colour (glTF emissiveFactor x
+  // KHR_materials_emissive_strength), >= 0 per channel.
+  glm::vec3 emissive{0.0f};
 
   bool isTransparent() const { return opacity < 1.0f || alphaBlend; }
+  bool isCutout() const { return alphaCutoff > 0.0f; }
 };
 
 enum class Layer : std::uint32_t {

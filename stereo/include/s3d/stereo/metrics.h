@@ -79,16 +79,18 @@ constexpr float kSameSurfaceRelativeDepth = 0.02f;
 std::vector<std::uint8_t> disocclusionMask(const DepthImage& referenceDepth, const DepthImage& centerDepth,
                                            float maxSeparation, float zeroParallaxDistance, Eye eye);
 
-// The error regions (whole, halo, disocclusion, rest) as masks over the image (1: in the region); an empty mask is a region without
+// The error regions (whole, halo, disocclusion, transparent, foliage, rest) as masks over the image (1: in the region); an empty mask is a region without
 // pixels. Regions may overlap; `rest` is every compared pixel in none of them.
 struct RegionMasks {
   std::vector<std::uint8_t> halo;          // haloMask
   std::vector<std::uint8_t> disocclusion;  // disocclusionMask
   std::vector<std::uint8_t> transparent;   // reference pixels covered by transparent surfaces
+  // Reference pixels whose visible surface is an alpha cut-out (alphaMode MASK) material: foliage, fences.
+  std::vector<std::uint8_t> foliage;
 };
 template <typename Stats>
 struct ErrorsByRegion {
-  Stats all, halo, disocclusion, transparent, rest;
+  Stats all, halo, disocclusion, transparent, rest, foliage;
 };
 ErrorsByRegion<ErrorStats> compareDisplayByRegion(const ImageRGBA8& synthesized, const ImageRGBA8& reference,
                                                   std::uint32_t cropColumns, const RegionMasks& masks);

@@ -16,11 +16,13 @@ namespace s3d::app {
 struct EyeError {
   stereo::ErrorStats display{};  // synthesized eye vs two-pass reference, border strips of cropColumns excluded
   stereo::ErrorStats halo{};     // the same within maxSeparation of a center-view depth edge (stereo::haloMask)
-  stereo::ErrorStats rest{};     // and in none of the regions (halo, disocclusion, transparent)
+  stereo::ErrorStats rest{};     // and in none of the regions (halo, disocclusion, transparent, foliage)
   stereo::ErrorStats disocclusion{};  // reference pixels the center camera never saw (stereo::disocclusionMask)
   stereo::ErrorStats transparent{};   // reference pixels covered by transparent surfaces (0 pixels without any)
   // The same in linear HDR (stereo::HdrErrorStats); only where the HDR images were compared (s3d render).
   std::optional<stereo::ErrorsByRegion<stereo::HdrErrorStats>> hdr;
+  // Reference pixels whose visible surface is an alpha cut-out (alphaMode MASK) material (0 pixels without any).
+  stereo::ErrorStats foliage{};
 };
 
 // The halo region of a center view for these parameters: within maxSeparation * width (rounded up) of a depth edge.
@@ -31,11 +33,11 @@ std::vector<std::uint8_t> disocclusionMaskFor(const DepthImage& referenceDepth, 
                                               const stereo::StereoParameters& parameters, stereo::Eye eye);
 
 // One eye's error over the cropped area and its regions (masks from haloMaskFor / disocclusionMaskFor and the
-// renderer's readTransparentMask), in display space and, when both HDR images are given, in linear HDR.
+// renderer's readTransparentMask and readCutoutMask), in display space and, when both HDR images are given, in linear HDR.
 EyeError compareEye(const ImageRGBA8& synthesized, const ImageRGBA8& reference, std::uint32_t cropColumns,
                     const stereo::RegionMasks& masks, const ImageRGBA32F* synthesizedHdr = nullptr,
                     const ImageRGBA32F* referenceHdr = nullptr);
-// Display space only, without a transparent region.
+// Display space only, without transparent and foliage regions.
 EyeError compareEye(const ImageRGBA8& synthesized, const ImageRGBA8& reference, std::uint32_t cropColumns,
                     const std::vector<std::uint8_t>& halo, const std::vector<std::uint8_t>& disocclusion);
 
@@ -47,7 +49,7 @@ nlohmann::json optionalMs(const std::optional<double>& value);  // null when abs
 nlohmann::json statsJson(const stereo::ErrorStats& stats);
 // {"psnrDb", "ssim", "meanAbsoluteError", "pixelCount"}.
 nlohmann::json statsJson(const stereo::HdrErrorStats& stats);
-// The whole cropped area at the top level, the regions ("halo", "disocclusion", "transparent", "rest") below
+// The whole cropped area at the top level, the regions ("halo", "disocclusion", "transparent", "foliage", "rest") below
 // it, and "hdr" (the same layout in linear HDR) when measured.
 nlohmann::json errorJson(const EyeError& error);
 

@@ -32,6 +32,7 @@ struct ReferenceEye {
   DepthImage depth;  // linear depth as rendered (weapon pushed), not mapped
   ImageRGBA32F hdr;
   std::vector<std::uint8_t> transparent;
+  std::vector<std::uint8_t> foliage;      // the renderer's cut-out mask (readCutoutMask)
   std::vector<std::uint8_t> firstPerson;  // the renderer's first-person (weapon) mask
   // Per pixel the layer (index into disparityMapSegments(map)) whose rendering it shows: all 0 for one layer.
   std::vector<std::uint8_t> layerOfPixel;

@@ -150,7 +150,7 @@ RenderReport runRenderJob(vk::Context& context, const RenderJobOptions& options)
 //   "centerPasses": [{"name", "gpuMs"}],
 //   "ratios": {"stereoPassToReferenceEye"},                        (null when a time is missing)
 //   "error": {"left": {"psnrDb", "ssim", "meanAbsoluteError", "shareAbove8", "pixelCount",
-//                      "halo"|"disocclusion"|"transparent"|"rest": {same fields},
+//                      "halo"|"disocclusion"|"transparent"|"foliage"|"rest": {same fields},
 //                      "hdr": {"psnrDb", "ssim", "meanAbsoluteError", "pixelCount", and the same regions}},
 //             "right": {...}},
 //   "sanitized": {"colorValues", "depthPixels"},                  (non-finite input replaced, see RenderReport)

@@ -1,0 +1,7 @@
+#version 450
+// G-buffer pass under visibility shading, cut-out objects: gbuffer_marked.frag with the alpha test (gbuffer.glsl).
+#extension GL_GOOGLE_include_directive : require
+#include "s3d/renderer/renderer_shared.h"
+#define S3D_GBUFFER_MARKS_VISIBILITY
+#define S3D_GBUFFER_CUTOUT
+#include "gbuffer.glsl"
