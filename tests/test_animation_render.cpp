@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <stdexcept>
 #include <string>
 
 #include "s3d/app/render_job.h"
@@ -73,6 +74,31 @@ TEST_F(AnimationRender, TheArmAtHalfASecondIsDrawnAsTheArmPosedByHand) {
   EXPECT_EQ(pixelsDiffering(drawnPosed, drawnByHand, 0), 0u);
   // The forearm left its rest place and the arm rose: well over a hundred of the 4096 pixels change.
   EXPECT_GT(pixelsDiffering(drawnPosed, drawnRest, 16), 100u);
+}
+
+TEST_F(AnimationRender, UpdatingTheGeometryDrawsWhatSettingThePosedSceneDraws) {
+  Scene scene = loadGltfScene(arm_);
+  DeferredRenderer updated(context(), kSize, kSize);
+  updated.setScene(scene);
+  updated.render(centerViewMatrices(scene, 1.0f));  // a frame at rest first: its shadow and draw state must not linger
+  poseScene(scene, 0.5);
+  updated.updateGeometry(scene);
+  updated.render(centerViewMatrices(scene, 1.0f));
+  EXPECT_EQ(pixelsDiffering(updated.readDisplayColor(), render(scene), 0), 0u);  // the same inputs: the same image
+}
+
+TEST_F(AnimationRender, UpdatingTheGeometryOfAnotherSceneIsRefused) {
+  const Scene arm = loadGltfScene(arm_);
+  DeferredRenderer renderer(context(), kSize, kSize);
+  renderer.setScene(arm);
+  Scene other = arm;
+  other.meshes[0].indices.resize(3);
+  try {
+    renderer.updateGeometry(other);
+    ADD_FAILURE() << "updateGeometry took a mesh with other indices";
+  } catch (const std::invalid_argument& error) {
+    EXPECT_NE(std::string(error.what()).find("scene 'arm': updateGeometry needs the meshes"), std::string::npos) << error.what();
+  }
 }
 
 TEST_F(AnimationRender, RenderFrameNIsTheSceneAtNOverTheFrameRate) {

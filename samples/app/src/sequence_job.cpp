@@ -172,8 +172,8 @@ SequenceReport runSequenceJob(vk::Context& context, const SequenceJobOptions& op
     if (scene.animation && index > 0) {  // frame N at N / rate seconds; the loaded scene is frame 0's pose
       renderer::poseScene(scene, double(index) / double(options.framesPerSecond));
       world.emplace(scene);
-      if (deferred) deferred->setScene(scene);
-      if (eyeRenderer) eyeRenderer->setScene(scene);
+      if (deferred) deferred->updateGeometry(scene);  // the textures stay uploaded
+      if (eyeRenderer) eyeRenderer->updateGeometry(scene);
     }
     SequenceFrame frame;
     frame.index = index;
