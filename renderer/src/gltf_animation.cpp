@@ -32,6 +32,11 @@ void AnimationBuilder::addSkinnedPrimitive(int skin, int meshIndex, std::size_t 
   if (skin < 0 || std::size_t(skin) >= model_.skins.size()) reader_.corrupt("skin " + std::to_string(skin) + " does not exist");
   const std::size_t jointCount = model_.skins[std::size_t(skin)].joints.size();
   const std::size_t vertexCount = bindPose.vertices.size();
+  // The bind pose kept beside the posed mesh, and eight joints and weights per vertex.
+  reader_.allocationFor<unsigned char>(vertexCount * (sizeof(Vertex) + 64) + bindPose.indices.size() * 4 +
+                                           bindPose.texCoords.size() * sizeof(glm::vec2) +
+                                           bindPose.tangents.size() * sizeof(glm::vec4),
+                                       where + "skinning");
   SkinnedMesh skinned{sceneMesh, std::uint32_t(skin), bindPose, {}, {}};
   skinned.joints.assign(vertexCount, {});
   skinned.weights.assign(vertexCount, {});

@@ -72,7 +72,7 @@ class RenderCommand final : public Command {
         ->capture_default_str();
     profile_.add(render);
     addDisparityBudgetOption(render, profile_.disparityBudget);
-    render.add_option("--frame", options_.frame, "Frame of the scene's camera path to render (0: its first)")
+    render.add_option("--frame", options_.frame, "Frame of the scene's camera path and animation to render (0: its first)")
         ->check(frameNumberValidator())
         ->capture_default_str();
     render
