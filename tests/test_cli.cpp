@@ -117,6 +117,7 @@ TEST_F(Cli, HelpDefaultsEqualTheLibrarysParameterStructs) {
   EXPECT_EQ(number(helpDefault(renderHelp, "--supersample")), float(render.supersample));
   EXPECT_EQ(helpDefault(renderHelp, "--scene"), render.scene);
   EXPECT_EQ(helpDefault(renderHelp, "--hud"), app::hudModeName(render.hud));
+  EXPECT_EQ(number(helpDefault(renderHelp, "--frames-per-second")), render.framesPerSecond);
 
   // convert's default is auto (forward for depth from files, stereo::automaticMethod); the rest is shared.
   const std::string convertHelp = run("convert --help").out;
@@ -332,6 +333,13 @@ TEST_F(Cli, TheHudIsLeftOutOnRequestAndByDefaultOnAGltfScene) {
   const std::string gltf = std::string(S3D_TEST_DATA_DIR) + "/textured_quad.gltf";
   EXPECT_EQ(hudElements("--scene '" + gltf + "'"), 0u);
   EXPECT_EQ(hudElements("--scene '" + gltf + "' --hud game"), 3u);
+}
+
+TEST_F(Cli, AFrameRateOfZeroIsRefusedNamingTheOption) {
+  const ToolRun result = run("render --resolution 64x36 --frames-per-second 0 --output '" + (folder_ / "out").string() + "'");
+  EXPECT_NE(result.status, 0);
+  EXPECT_NE(result.err.find("--frames-per-second"), std::string::npos) << result.err;
+  EXPECT_FALSE(fs::exists(folder_ / "out"));
 }
 
 // Every file a run writes is checked against every file it reads, --save-profile included, before anything is

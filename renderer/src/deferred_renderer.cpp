@@ -461,6 +461,51 @@ struct DeferredRenderer::Impl {
     scene = newScene;
   }
 
+  // A new pose of the scene last set (scene_animation.h): vertices, tangents and object transforms replace the old
+  // ones in place; textures, indices and pipelines stay. Everything else must be as setScene left it.
+  void updateGeometry(const Scene& newScene) {
+    requireSameTopology(newScene);
+    std::vector<Vertex> vertices;
+    std::vector<gpu::SurfaceVertex> surface;
+    for (const Mesh& mesh : newScene.meshes) {
+      appendSurfaceVertices(newScene, mesh, surface);
+      vertices.insert(vertices.end(), mesh.vertices.begin(), mesh.vertices.end());
+    }
+    vk::uploadBuffer(context, vertexBuffer, std::as_bytes(std::span(vertices)));
+    vk::uploadBuffer(context, surfaceBuffer, std::as_bytes(std::span(surface)));
+    drawBounds.clear();
+    for (std::uint32_t i : drawOrder) drawBounds.push_back(objectBounds(newScene.meshes[newScene.objects[i].mesh], newScene.objects[i].transform));
+    std::vector<std::uint32_t> meshTriangles;
+    std::vector<detail::ShadowMeshRange> shadowRanges;
+    for (const MeshRange& range : meshRanges) {
+      meshTriangles.push_back(range.indexCount / 3);
+      shadowRanges.push_back({range.firstIndex, range.indexCount, range.vertexOffset});
+    }
+    transparentPass->setScene(newScene, meshTriangles, textures, whiteTexture, flatNormalTexture);
+    shadows->setScene(newScene, vertexBuffer.buffer, indexBuffer.buffer, std::move(shadowRanges));  // local maps redrawn
+    scene.meshes = newScene.meshes;  // not a whole copy: that would copy every texture's pixels again
+    scene.objects = newScene.objects;
+  }
+
+  void requireSameTopology(const Scene& newScene) const {
+    auto sameMesh = [](const Mesh& a, const Mesh& b) {
+      return a.vertices.size() == b.vertices.size() && a.indices == b.indices && a.texCoords.size() == b.texCoords.size() &&
+             a.tangents.size() == b.tangents.size();
+    };
+    auto sameObject = [](const Object& a, const Object& b) {
+      return a.mesh == b.mesh && a.layer == b.layer && a.castsShadow == b.castsShadow &&
+             a.material.baseColorTexture == b.material.baseColorTexture &&
+             a.material.normalTexture == b.material.normalTexture && a.material.isTransparent() == b.material.isTransparent();
+    };
+    bool same = !meshRanges.empty() && newScene.meshes.size() == scene.meshes.size() &&
+                newScene.objects.size() == scene.objects.size() && newScene.textures.size() == scene.textures.size();
+    for (std::size_t i = 0; same && i < newScene.meshes.size(); ++i) same = sameMesh(newScene.meshes[i], scene.meshes[i]);
+    for (std::size_t i = 0; same && i < newScene.objects.size(); ++i) same = sameObject(newScene.objects[i], scene.objects[i]);
+    if (!same)
+      throw std::invalid_argument("scene '" + newScene.name + "': updateGeometry needs the meshes, objects and textures of "
+                                  "the scene last set (only vertices and transforms may change); call setScene");
+  }
+
   // The mesh's texture coordinates and tangents as the second vertex stream (zeros where it has none).
   static void appendSurfaceVertices(const Scene& scene, const Mesh& mesh, std::vector<gpu::SurfaceVertex>& surface) {
     const std::size_t count = mesh.vertices.size();
@@ -918,6 +963,7 @@ DeferredRenderer::DeferredRenderer(vk::Context& context, std::uint32_t width, st
 DeferredRenderer::~DeferredRenderer() = default;
 
 void DeferredRenderer::setScene(const Scene& scene) { impl_->setScene(scene); }
+void DeferredRenderer::updateGeometry(const Scene& scene) { impl_->updateGeometry(scene); }
 FrameTimings DeferredRenderer::render(const ViewMatrices& view, const ShadeMask& mask) {
   return impl_->render(view, mask, nullptr);
 }

@@ -104,6 +104,28 @@ class GltfReader {
     return indices;
   }
 
+  // An accessor of unsigned integers (not normalized: JOINTS_n), `type` elements of unsigned byte or short.
+  std::vector<std::uint32_t> readUnsigned(int accessorIndex, int type, const std::string& what) const {
+    const tinygltf::Accessor& accessor = accessorAt(accessorIndex, what.c_str());
+    if (accessor.type != type) corrupt(what + " accessor has the wrong element type");
+    if (accessor.normalized) corrupt(what + " accessor is normalized (it holds indices)");
+    const int components = tinygltf::GetNumComponentsInType(std::uint32_t(type));
+    const Span span = spanOf(accessor, components, what.c_str());
+    std::vector<std::uint32_t> values(allocationFor<std::uint32_t>(accessor.count * std::size_t(components), what));
+    forEachComponent(span, accessor.count, components, [&](std::size_t i, const unsigned char* p) {
+      if (accessor.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE) {
+        values[i] = *p;
+      } else if (accessor.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT) {
+        std::uint16_t v;
+        std::memcpy(&v, p, 2);
+        values[i] = v;
+      } else {
+        corrupt(what + " accessor is not of unsigned bytes or shorts");
+      }
+    });
+    return values;
+  }
+
   const fs::path& file() const { return file_; }
 
   // A number of the file as a float: refused past float's range (converting it would be undefined behaviour).

@@ -3,6 +3,7 @@
 // (with stb_image for PNG/JPEG and nlohmann json): this file only includes the declarations, so no
 // TINYGLTF_IMPLEMENTATION here (README.Debian of the package).
 #include "s3d/renderer/scene_file.h"
+#include "s3d/renderer/scene_animation.h"
 
 #include <algorithm>
 #include <cmath>
@@ -21,6 +22,7 @@
 #include <nlohmann/json.hpp>
 #include <tiny_gltf.h>
 
+#include "gltf_animation.h"
 #include "gltf_files.h"
 #include "gltf_material_extras.h"
 #include "gltf_reader.h"
@@ -61,7 +63,7 @@ bool fitsFloat(const glm::dmat4& m) {
 class SceneBuilder {
  public:
   SceneBuilder(const fs::path& file, const tinygltf::Model& model, SceneMemory& memory)
-      : reader_(file, model, memory), model_(model), visited_(model.nodes.size(), false) {}
+      : reader_(file, model, memory), model_(model), visited_(model.nodes.size(), false), animation_(reader_, model) {}
 
   // Why the file's first perspective camera cannot render ("" when it can, or when there is none).
   const std::string& unusableCamera() const { return unusableCamera_; }
@@ -76,6 +78,8 @@ class SceneBuilder {
     for (int root : model_.scenes[std::size_t(sceneIndex)].nodes) visit(root, glm::dmat4(1.0), 0);
     if (scene_.objects.empty()) reader_.corrupt("its scene has no triangle meshes");
     if (!hasCamera_) frameTheScene();
+    scene_.animation = animation_.finish();
+    poseScene(scene_, 0.0);  // a skinned or animated scene starts at its animation's time 0
     return std::move(scene_);
   }
 
@@ -94,15 +98,17 @@ class SceneBuilder {
     if (!fitsFloat(worldD))
       reader_.corrupt(name + "'s transform overflows single precision (an entry beyond 3.4e38 after its parents')");
     const glm::mat4 world(worldD);
-    if (node.skin >= 0) reader_.unsupported("skinning (" + name + named(node.name) + ")");
-    if (node.mesh >= 0) addMesh(node.mesh, world);
+    // A skinned mesh is placed by its joints, not by its node (glTF 2.0, 3.7.3.3): its vertices are posed in world space.
+    const std::size_t firstObject = scene_.objects.size();
+    if (node.mesh >= 0) addMesh(node.mesh, node.skin >= 0 ? glm::mat4(1.0f) : world, node.skin);
+    if (node.skin < 0) animation_.addObjects(nodeIndex, std::uint32_t(firstObject), std::uint32_t(scene_.objects.size() - firstObject));
     if (node.camera >= 0) addCamera(node.camera, world);
     if (auto light = node.extensions.find("KHR_lights_punctual"); light != node.extensions.end() && light->second.Has("light"))
       addLight(light->second.Get("light").GetNumberAsInt(), world);
     for (int child : node.children) visit(child, worldD, depth + 1);
   }
 
-  void addMesh(int meshIndex, const glm::mat4& world) {
+  void addMesh(int meshIndex, const glm::mat4& world, int skin) {
     if (std::size_t(meshIndex) >= model_.meshes.size()) reader_.corrupt("mesh " + std::to_string(meshIndex) + " does not exist");
     // A mirroring transform turns counter-clockwise triangles clockwise: those instances get flipped meshes.
     const bool mirrored = glm::determinant(glm::mat3(world)) < 0.0f;
@@ -110,9 +116,10 @@ class SceneBuilder {
     for (std::size_t p = 0; p < primitives.size(); ++p) {
       const auto key = std::make_tuple(meshIndex, p, mirrored);
       auto cached = meshes_.find(key);
-      if (cached == meshes_.end()) cached = meshes_.emplace(key, addPrimitive(primitives[p], mirrored)).first;
+      if (skin < 0 && cached == meshes_.end()) cached = meshes_.emplace(key, addPrimitive(primitives[p], mirrored)).first;
       Object object;
-      object.mesh = cached->second;
+      object.mesh = skin < 0 ? cached->second : addPrimitive(primitives[p], false);  // skinned: its own, re-posed
+      if (skin >= 0) animation_.addSkinnedPrimitive(skin, meshIndex, p, primitives[p], object.mesh, scene_.meshes[object.mesh]);
       object.material = material(primitives[p].material);
       const Mesh& mesh = scene_.meshes[object.mesh];
       if ((object.material.baseColorTexture != kNoTexture || object.material.normalTexture != kNoTexture) &&
@@ -358,6 +365,7 @@ class SceneBuilder {
   Scene scene_;
   std::map<std::tuple<int, std::size_t, bool>, std::uint32_t> meshes_;  // (mesh, primitive, mirrored) -> mesh
   std::map<std::pair<int, Texture::Encoding>, std::int32_t> textures_;  // (image, encoding) -> texture
+  AnimationBuilder animation_;  // nodes, skins and the first animation
   bool hasCamera_ = false;
   std::string unusableCamera_;  // why the file's camera cannot render, when it cannot
   bool hasSun_ = false;

@@ -544,7 +544,7 @@ std::string depthRangeProblem(double nearPlane, double farPlane) {
 }
 
 Camera cameraForFrame(const Scene& scene, std::size_t frame) {
-  if (scene.cameraPath.empty() && frame == 0) return scene.camera;
+  if (scene.cameraPath.empty() && (frame == 0 || scene.animation)) return scene.camera;
   if (frame < scene.cameraPath.size()) return scene.cameraPath[frame];
   const std::size_t count = scene.cameraPath.empty() ? 1 : scene.cameraPath.size();
   throw std::out_of_range("frame " + std::to_string(frame) + " is out of range: scene '" + scene.name +

@@ -200,7 +200,14 @@ void ShadowMaps::setScene(const Scene& scene, VkBuffer vertexBuffer, VkBuffer in
     casters_.push_back(i);
     casterBounds_.push_back(objectBounds(scene.meshes.at(object.mesh), object.transform));
   }
-  scene_ = scene;
+  // What the shadow views read (lights, camera, objects), not the textures' pixels: DeferredRenderer::updateGeometry
+  // sets a new pose every frame and must not copy them again.
+  scene_ = Scene{};
+  scene_.sun = scene.sun;
+  scene_.pointLights = scene.pointLights;
+  scene_.spotLights = scene.spotLights;
+  scene_.camera = scene.camera;
+  scene_.objects = scene.objects;
   plannedFit_.reset();
   vertexBuffer_ = vertexBuffer;
   indexBuffer_ = indexBuffer;

@@ -72,8 +72,15 @@ class RenderCommand final : public Command {
         ->capture_default_str();
     profile_.add(render);
     addDisparityBudgetOption(render, profile_.disparityBudget);
-    render.add_option("--frame", options_.frame, "Frame of the scene's camera path to render (0: its first)")
+    render.add_option("--frame", options_.frame, "Frame of the scene's camera path and animation to render (0: its first)")
         ->check(frameNumberValidator())
+        ->capture_default_str();
+    render
+        .add_option("--frames-per-second", options_.framesPerSecond,
+                    "Frame rate: frame N (--frame, and every frame of --sequence) is at N / rate seconds of an animated "
+                    "glTF scene's first animation (looped over its duration), and --sequence's comfort controls step "
+                    "by 1 / rate seconds")
+        ->check(floatRange(0.0, 1000.0, true, "frames per second"))
         ->capture_default_str();
     render
         .add_option("--hud", hud_,
@@ -207,6 +214,7 @@ class RenderCommand final : public Command {
     }
     viewsOptions.scene = options_.scene;
     viewsOptions.frame = options_.frame;
+    viewsOptions.framesPerSecond = options_.framesPerSecond;
     viewsOptions.outputFolder = options_.outputFolder;
     vk::Context context(contextOptions_);
     io::OutputTransaction outputs(options_.outputFolder);  // all files or none
@@ -229,6 +237,7 @@ class RenderCommand final : public Command {
     sequenceOptions.height = options_.height;
     sequenceOptions.scene = options_.scene;
     sequenceOptions.supersample = options_.supersample;
+    sequenceOptions.framesPerSecond = options_.framesPerSecond;
     sequenceOptions.outputFolder = options_.outputFolder;
     sequenceOptions.stereo = options_.stereo;
     sequenceOptions.zeroParallax = zeroParallax_;

@@ -21,6 +21,7 @@
 #include "s3d/io/output_transaction.h"
 #include "s3d/number_text.h"
 #include "s3d/renderer/scene.h"
+#include "s3d/renderer/scene_animation.h"
 #include "s3d/renderer/scene_file.h"
 #include "s3d/stereo/guard_band.h"
 #include "s3d/stereo/hdr_gather.h"
@@ -118,6 +119,10 @@ ValidatedJob validateJob(const RenderJobOptions& options) {
   job.constants = stereo::makeStereoConstants(job.stereo, options.width, options.height);
   // The scene's camera at the requested frame of its path (throws naming the frame and the count).
   job.scene.camera = renderer::cameraForFrame(job.scene, options.frame);
+  if (!(options.framesPerSecond > 0.0f) || options.framesPerSecond > 1000.0f)
+    throw std::invalid_argument("frames per second must be in (0, 1000] (got " + numberText(options.framesPerSecond) + ")");
+  // Everything after this sees the scene as posed at the frame's time: the renderer, the world queries.
+  renderer::poseScene(job.scene, double(options.frame) / double(options.framesPerSecond));
   if (options.stereo.edgeCrop >= 0.0f && job.constants.cropEnd <= job.constants.cropBegin)
     throw std::invalid_argument("edgeCrop " + numberText(options.stereo.edgeCrop) + " blacks out all " +
                                 std::to_string(options.width) + " columns: nothing left to compare");

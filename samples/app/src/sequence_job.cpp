@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 
 #include "s3d/app/comfort_json.h"
@@ -16,6 +17,7 @@
 #include "s3d/comfort/world_queries.h"
 #include "s3d/io/image_io.h"
 #include "s3d/renderer/deferred_renderer.h"
+#include "s3d/renderer/scene_animation.h"
 #include "s3d/renderer/scene_file.h"
 #include "s3d/stereo/guard_band.h"
 #include "s3d/stereo/metrics.h"
@@ -40,6 +42,14 @@ nlohmann::json flickerJson(const std::array<stereo::FlickerStats, 2>& flicker) {
                           {"newlyVisiblePixels", f.newlyVisiblePixels}};
   };
   return {{"left", eye(flicker[0])}, {"right", eye(flicker[1])}};
+}
+
+// The sequence's frames: the camera path's; an animated scene without one: one loop of its animation at the rate.
+std::size_t sequenceFrameCount(const renderer::Scene& scene, float framesPerSecond) {
+  if (!scene.cameraPath.empty()) return scene.cameraPath.size();
+  if (!scene.animation) return 0;
+  const double frames = std::ceil(scene.animation->duration() * double(framesPerSecond) - 1e-6);
+  return std::size_t(std::clamp(frames, 1.0, 1.0e6));
 }
 
 }  // namespace
@@ -83,7 +93,8 @@ SequenceReport runSequenceJob(vk::Context& context, const SequenceJobOptions& op
     throw std::invalid_argument("sequence: frames per second must be in (0, 1000]");
   stereo::validate(options.stereo);
   renderer::Scene scene = renderer::loadScene(options.scene);  // built-in name or .gltf/.glb file
-  if (scene.cameraPath.empty()) throw std::invalid_argument("scene '" + options.scene + "' has no camera path");
+  const std::size_t frameCount = sequenceFrameCount(scene, options.framesPerSecond);
+  if (frameCount == 0) throw std::invalid_argument("scene '" + options.scene + "' has no camera path and no animation");
   comfort::ZeroParallaxControlSettings settings = options.zeroParallax;
   settings.restDistance = options.stereo.zeroParallaxDistance;
   settings.minimumDistance = std::min(settings.minimumDistance, settings.restDistance);
@@ -93,7 +104,9 @@ SequenceReport runSequenceJob(vk::Context& context, const SequenceJobOptions& op
   const float crosshairDistance = options.crosshair.distance.value_or(scene.crosshairDistance);
 
   requireMemory(context, sequenceMemoryEstimate(options), options.memoryLimitBytes);  // before any is allocated
-  const comfort::WorldQueries world(scene);
+  // The world queries see the geometry drawn: rebuilt for every frame of an animated scene.
+  std::optional<comfort::WorldQueries> world;
+  world.emplace(scene);
   std::unique_ptr<renderer::DeferredRenderer> eyeRenderer;  // the hybrid method's masked eye renders
   const glm::vec2 weaponDepths = renderer::firstPersonDepthRange(scene).value_or(glm::vec2(0.0f));
   const bool budgetOn = options.disparityBudget != comfort::DisparityBudgetRule::Off;
@@ -155,11 +168,17 @@ SequenceReport runSequenceJob(vk::Context& context, const SequenceJobOptions& op
   SequenceReport report;
   report.deviceName = context.deviceName();
   report.scene = options.scene;
-  for (std::size_t index = 0; index < scene.cameraPath.size(); ++index) {
+  for (std::size_t index = 0; index < frameCount; ++index) {
+    if (scene.animation && index > 0) {  // frame N at N / rate seconds; the loaded scene is frame 0's pose
+      renderer::poseScene(scene, double(index) / double(options.framesPerSecond));
+      world.emplace(scene);
+      if (deferred) deferred->updateGeometry(scene);  // the textures stay uploaded
+      if (eyeRenderer) eyeRenderer->updateGeometry(scene);
+    }
     SequenceFrame frame;
     frame.index = index;
     scene.camera = renderer::cameraForFrame(scene, options.holdFrame.value_or(index));
-    frame.nearestSurface = comfort::nearestSurfaceAhead(world, scene.camera, settings,
+    frame.nearestSurface = comfort::nearestSurfaceAhead(*world, scene.camera, settings,
                                                         settings.engageDistance + settings.releaseMargin + 1.0f);
     const float seconds = 1.0f / options.framesPerSecond;
     frame.zeroParallaxDistance = control.update(frame.nearestSurface, seconds);
@@ -192,7 +211,7 @@ SequenceReport runSequenceJob(vk::Context& context, const SequenceJobOptions& op
     frame.weaponDepthOffset = parameters.weaponDepthOffset;
     frame.weaponDepthScale = parameters.weaponDepthScale;
     const comfort::CrosshairPlacement placement =
-        comfort::placeCrosshair(world, scene.camera, crosshairDistance, options.crosshair.margin);
+        comfort::placeCrosshair(*world, scene.camera, crosshairDistance, options.crosshair.margin);
     if (placement.hitWorld) frame.aimSurface = placement.surfaceDistance;
     frame.crosshairDepth = crosshair.update(placement, seconds);
 
@@ -218,10 +237,10 @@ SequenceReport runSequenceJob(vk::Context& context, const SequenceJobOptions& op
       if (index > 0 && options.anticipateSeconds > 0.0f) {
         renderer::Camera ahead = scene.camera;
         ahead.position += (scene.camera.position - previousPosition) * (options.anticipateSeconds * options.framesPerSecond);
-        hints.anticipatedNearest = comfort::nearestSurfaceAhead(world, ahead, settings, 8.0f);
+        hints.anticipatedNearest = comfort::nearestSurfaceAhead(*world, ahead, settings, 8.0f);
         // Receding: the same rays reach farther from there than from here (a trend in the depth range, which
         // the controller follows without its hold).
-        const float here = comfort::nearestSurfaceAhead(world, scene.camera, settings, 8.0f).value_or(INFINITY);
+        const float here = comfort::nearestSurfaceAhead(*world, scene.camera, settings, 8.0f).value_or(INFINITY);
         hints.receding = hints.anticipatedNearest.value_or(INFINITY) > here;
       }
       frame.budget = applyDisparityBudget(context, *reduction, &*budgetControl, deferred->linearDepth(), hints, seconds,
@@ -257,7 +276,7 @@ SequenceReport runSequenceJob(vk::Context& context, const SequenceJobOptions& op
     const renderer::ViewMatrices outputCenter = renderer::centerViewMatrices(
         scene, float(width) / float(height), {parameters.weaponDepthOffset, parameters.weaponDepthScale});
     const comfort::WeaponConflicts conflicts = comfort::countWeaponConflicts(
-        world, scene.camera, outputCenter, pushed, outputMask(deferred->readFirstPersonMask()));
+        *world, scene.camera, outputCenter, pushed, outputMask(deferred->readFirstPersonMask()));
     frame.weaponPixels = conflicts.weaponPixels;
     frame.weaponConflictPixels = conflicts.conflictPixels;
     EyeFrames current;

@@ -8,6 +8,7 @@
 #include "s3d/app/memory_budget.h"
 #include "s3d/io/image_io.h"
 #include "s3d/renderer/deferred_renderer.h"
+#include "s3d/renderer/scene_animation.h"
 #include "s3d/renderer/scene_file.h"
 
 namespace s3d::app {
@@ -59,8 +60,11 @@ ImageRGBA8 synthesizeEyeForView(const ImageRGBA8& centerColor, const DepthImage&
 }
 
 ViewsReport runViewsJob(vk::Context& context, const ViewsJobOptions& options) {
+  if (!(options.framesPerSecond > 0.0f) || options.framesPerSecond > 1000.0f)
+    throw std::invalid_argument("views: frames per second must be in (0, 1000]");
   renderer::Scene scene = renderer::loadScene(options.scene);
   scene.camera = renderer::cameraForFrame(scene, options.frame);
+  renderer::poseScene(scene, double(options.frame) / double(options.framesPerSecond));  // before objects are dropped
   // The world layer only: the first-person layer's lighting in the eyes' own frusta does not match its center
   // render yet (a known limit, docs/DESIGN.md "View configurations").
   std::erase_if(scene.objects, [](const renderer::Object& o) { return o.layer == renderer::Layer::FirstPerson; });

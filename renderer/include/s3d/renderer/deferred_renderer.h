@@ -150,6 +150,11 @@ class DeferredRenderer {
 
   // Uploads the scene's meshes and materials; call again when the scene changes.
   void setScene(const Scene& scene);
+  // A new pose of the scene last set (poseScene, scene_animation.h): only vertex positions, normals, tangents and
+  // object transforms differ. Uploads those and keeps the textures, index buffers and pipelines (setScene re-uploads
+  // every texture: docs/RESULTS.md, "Animated scenes"). Throws std::invalid_argument naming the scene when its
+  // meshes' sizes or indices, objects' meshes, layers or textures, or the texture count differ from the last set.
+  void updateGeometry(const Scene& scene);
   // Renders one view; the results stay on the GPU until read back. With a mask (its image non-null), only the
   // mask's pixels (ShadeMask). Throws std::invalid_argument for a mask of another size or format.
   FrameTimings render(const ViewMatrices& view, const ShadeMask& mask = {});

@@ -3,6 +3,7 @@
 // Conventions: right-handed, Y up, camera looks down -Z in view space, metres.
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -154,6 +155,8 @@ struct Sky {
   glm::vec3 groundColor{0.3f, 0.28f, 0.25f};
 };
 
+struct SceneAnimation;  // scene_animation.h
+
 struct Scene {
   std::string name;
   std::vector<Mesh> meshes;
@@ -173,6 +176,9 @@ struct Scene {
   FirstPersonView firstPerson;
   float exposure = 1.0f;
   float crosshairDistance = 8.0f;  // default HUD crosshair depth in metres
+  // Skins and node animation (glTF files): what poseScene (scene_animation.h) poses the scene at a time with;
+  // null for a static scene. Shared: copies of a scene pose from the same data.
+  std::shared_ptr<const SceneAnimation> animation;
 
   bool hasLayer(Layer layer) const {
     for (const Object& o : objects)
@@ -193,7 +199,7 @@ std::vector<std::string> builtInSceneNames();
 Scene makeBuiltInScene(const std::string& name);  // throws std::invalid_argument naming the scene and the choices
 
 // The camera of frame `frame` of the scene's sequence: cameraPath[frame], or `camera` for frame 0 of a scene
-// without a path. Throws std::out_of_range naming the frame and the scene's frame count.
+// without a path (any frame of an animated scene without a path: its animation moves, the camera stays). Throws std::out_of_range naming the frame and the scene's frame count.
 Camera cameraForFrame(const Scene& scene, std::size_t frame);
 
 }  // namespace s3d::renderer

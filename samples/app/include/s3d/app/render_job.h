@@ -51,6 +51,9 @@ struct RenderJobOptions {
   std::uint32_t height = 720;
   std::string scene = "courtyard";  // one of renderer::builtInSceneNames(), or a .gltf/.glb file
   std::size_t frame = 0;            // frame of the scene's camera path
+  // Frame `frame` is at frame / framesPerSecond seconds of the scene's animation (an animated glTF; looped over
+  // its duration); the same rate as `s3d render --sequence`'s (SequenceJobOptions::framesPerSecond).
+  float framesPerSecond = 12.0f;
   std::filesystem::path outputFolder = "out";
   // Which of kAllOutputs to write. The selection is honoured exactly: report.json is written only when
   // selected (it is by default). An empty set renders and measures without writing any file.

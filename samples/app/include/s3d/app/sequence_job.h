@@ -1,5 +1,6 @@
 #pragma once
-// `s3d render --sequence`: a scene's camera path with the comfort controls running frame by frame: the
+// `s3d render --sequence`: a scene's camera path (an animated scene without one: one loop of its animation, frame
+// N posed at N / framesPerSecond) with the comfort controls running frame by frame: the
 // zero-parallax control pulls the screen plane in when the player nears a wall (seed 4.6.2), the weapon
 // push shrinks with it, the crosshair follows the aim ray; every frame is checked for depth conflicts.
 #include <array>
@@ -30,7 +31,7 @@ struct SequenceJobOptions {
   bool writeFrames = true;          // anaglyph_NNNN.png per frame
   bool writeReport = true;          // report.json
   std::uint32_t supersample = 1;  // renderer anti-aliasing, 1..4
-  float framesPerSecond = 12.0f;  // the built-in paths walk at about 2 m/s at this rate
+  float framesPerSecond = 12.0f;  // the built-in paths walk at about 2 m/s at this rate; frame N's animation time is N / it
   // zeroParallaxDistance is the control's rest value; edgeCrop < 0 (the default): a guard band, full-frame eyes
   // (as in `s3d render`); >= 0: the output-size center view and that crop.
   stereo::StereoParameters stereo;

@@ -24,6 +24,7 @@ namespace s3d::app {
 struct ViewsJobOptions {
   std::string scene = "courtyard";
   std::size_t frame = 0;
+  float framesPerSecond = 12.0f;  // the frame's time in an animated scene: frame / framesPerSecond (RenderJobOptions)
   comfort::ViewConfiguration views;
   std::string viewsFile;  // as given, for the report
   std::filesystem::path outputFolder = "out";
