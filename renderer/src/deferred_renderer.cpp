@@ -454,11 +454,16 @@ struct DeferredRenderer::Impl {
     transparentPass->setScene(newScene, meshTriangles, textures, whiteTexture, flatNormalTexture);
     std::vector<detail::ShadowMeshRange> shadowRanges;
     for (const MeshRange& range : meshRanges) shadowRanges.push_back({range.firstIndex, range.indexCount, range.vertexOffset});
-    detail::ShadowTextures shadowTextures{surfaceBuffer.buffer, textureSampler, {}, whiteTexture.view};
-    for (const vk::Image& texture : textures) shadowTextures.views.push_back(texture.view);
-    shadows->setScene(newScene, vertexBuffer.buffer, indexBuffer.buffer, std::move(shadowRanges), std::move(shadowTextures));
+    shadows->setScene(newScene, vertexBuffer.buffer, indexBuffer.buffer, std::move(shadowRanges), shadowTextures());
     lighting->setScene(newScene);
     scene = newScene;
+  }
+
+  // What cut-out shadow casters sample: the uploaded surface stream and textures.
+  detail::ShadowTextures shadowTextures() const {
+    detail::ShadowTextures shadowTextures{surfaceBuffer.buffer, textureSampler, {}, whiteTexture.view};
+    for (const vk::Image& texture : textures) shadowTextures.views.push_back(texture.view);
+    return shadowTextures;
   }
 
   // A new pose of the scene last set (scene_animation.h): vertices, tangents and object transforms replace the old
@@ -482,7 +487,8 @@ struct DeferredRenderer::Impl {
       shadowRanges.push_back({range.firstIndex, range.indexCount, range.vertexOffset});
     }
     transparentPass->setScene(newScene, meshTriangles, textures, whiteTexture, flatNormalTexture);
-    shadows->setScene(newScene, vertexBuffer.buffer, indexBuffer.buffer, std::move(shadowRanges));  // local maps redrawn
+    shadows->setScene(newScene, vertexBuffer.buffer, indexBuffer.buffer, std::move(shadowRanges),
+                      shadowTextures());  // local maps redrawn
     scene.meshes = newScene.meshes;  // not a whole copy: that would copy every texture's pixels again
     scene.objects = newScene.objects;
   }
