@@ -254,5 +254,17 @@ TEST_F(GltfDracoWebp, ACorruptWebpTextureIsRefused) {
   EXPECT_NE(message.find("image 2 is a WebP file that does not decode"), std::string::npos) << message;
 }
 
+// The fuzz target's seeds for these extensions (tests/fuzz/corpus/README.md) are the grid: each loads as it,
+// within the loosest step of the encodings above (draco's positions and texture coordinates, meshopt's
+// octahedral normals, quantized tangents).
+TEST_F(GltfDracoWebp, TheCompressedFuzzSeedsLoadAsTheGrid) {
+  const Scene plain = plainGrid(grid_, folder_ / "plain.gltf");
+  for (const char* seed : {"quantized.glb", "meshopt_triangles.glb", "meshopt_sequence.glb", "draco.glb", "webp_texture.glb"}) {
+    SCOPED_TRACE(seed);
+    test::expectSameTriangles(plain, loadGltfScene(kDataDir / ".." / "fuzz" / "corpus" / "gltf_scene" / seed),
+                              {6.2e-5f, 0.02f, 2.5e-4f, 1e-4f});
+  }
+}
+
 }  // namespace
 }  // namespace s3d::renderer
