@@ -12,9 +12,13 @@
 #include <string>
 #include <vector>
 
+#include <dlfcn.h>
+
 #include <draco/compression/decode.h>
 #include <draco/compression/encode.h>
 #include <draco/mesh/mesh.h>
+#include <stb/stb_image.h>
+#include <tiny_gltf.h>
 #include <webp/encode.h>
 
 #include "gltf_test_documents.h"
@@ -171,6 +175,19 @@ TEST_F(GltfDracoWebp, ARealDracoFileDecodesWithinTheBoundsItsAccessorsDeclare) {
     EXPECT_NEAR(loadedMin[c], declaredMin[c], tolerance) << c;
     EXPECT_NEAR(loadedMax[c], declaredMax[c], tolerance) << c;
   }
+}
+
+// Debian's libdraco.so exports its own copies of tinygltf (another version) and stb_image; the link order
+// (s3d_draco in CMakeLists.txt) gives every caller Debian's libtinygltf and libstb instead.
+TEST(GltfDracoLinking, TinygltfAndStbImageComeFromTheirOwnLibrariesNotDracos) {
+  const auto libraryOf = [](void* symbol) {
+    Dl_info info{};
+    return dladdr(symbol, &info) != 0 && info.dli_fname ? std::string(info.dli_fname) : std::string("(none)");
+  };
+  const std::string tinygltf = libraryOf(reinterpret_cast<void*>(&tinygltf::LoadImageData));
+  const std::string stb = libraryOf(reinterpret_cast<void*>(&stbi_info_from_memory));
+  EXPECT_NE(tinygltf.find("libtinygltf"), std::string::npos) << tinygltf;
+  EXPECT_NE(stb.find("libstb"), std::string::npos) << stb;
 }
 
 // ---- EXT_texture_webp ----
