@@ -11,6 +11,7 @@
 #include <stb/stb_image.h>  // the header only: stbi_info_from_memory sizes a texture before tinygltf decodes it
 
 #include "gltf_reader.h"
+#include "gltf_webp.h"
 #include "s3d/image_limits.h"
 #include "s3d/input_file.h"
 #include "s3d/json_document.h"
@@ -50,9 +51,6 @@ bool isInside(const fs::path& folder, const fs::path& path) {
   return !relative.empty() && *relative.begin() != "..";
 }
 
-// Largest glTF file, .bin buffer or image file a scene may name (a .gltf embeds its buffers as base64 text).
-constexpr std::uint64_t kMaxSceneFileBytes = std::uint64_t(2) << 30;
-
 }  // namespace
 
 nlohmann::json gltfJson(const fs::path& file, bool binary) {
@@ -70,7 +68,9 @@ nlohmann::json gltfJson(const fs::path& file, bool binary) {
 namespace {
 
 // Extensions the renderer reads; any other required one is refused by name.
-constexpr const char* kReadExtensions[] = {"KHR_lights_punctual", "KHR_texture_transform", "KHR_materials_emissive_strength"};
+constexpr const char* kReadExtensions[] = {"KHR_lights_punctual", "KHR_mesh_quantization", "EXT_meshopt_compression",
+                                          "KHR_draco_mesh_compression", "EXT_texture_webp", "KHR_texture_transform",
+                                          "KHR_materials_emissive_strength"};
 
 }  // namespace
 
@@ -80,10 +80,11 @@ void requireSupportedExtensions(const fs::path& file, const nlohmann::json& json
   for (const nlohmann::json& extension : *required) {
     if (!extension.is_string()) continue;
     const std::string name = extension.get<std::string>();
-    if (std::find(std::begin(kReadExtensions), std::end(kReadExtensions), name) == std::end(kReadExtensions))
-      throw std::invalid_argument("glTF file '" + file.string() + "': the required extension '" + name +
-                                  "' is not supported (s3d reads KHR_lights_punctual, KHR_texture_transform and "
-                                  "KHR_materials_emissive_strength)");
+    if (std::find(std::begin(kReadExtensions), std::end(kReadExtensions), name) != std::end(kReadExtensions)) continue;
+    std::string read;
+    for (const char* known : kReadExtensions) read += (read.empty() ? "" : ", ") + std::string(known);
+    throw std::invalid_argument("glTF file '" + file.string() + "': the required extension '" + name +
+                                "' is not supported (s3d reads " + read + ")");
   }
 }
 
@@ -149,11 +150,13 @@ bool writeNothing(std::string* error, const std::string&, const std::vector<unsi
 
 // Every texture is held to the readers' size limits (s3d/image_limits.h) before it is decoded: a PNG of a few
 // hundred bytes can declare 20000x20000 pixels, 1.6 GB decoded (6 GB was measured through the renderer).
-// The decoded pixels count against the scene's memory (SceneMemory) the same way, before decoding.
+// The decoded pixels count against the scene's memory (SceneMemory) the same way, before decoding. WebP
+// (EXT_texture_webp) is told apart by its bytes and decoded with libwebp, the rest by tinygltf's stb_image.
 bool loadImageWithinLimits(tinygltf::Image* image, const int index, std::string* error, std::string* warning,
                            int requestedWidth, int requestedHeight, const unsigned char* bytes, int size, void* memory) {
   int width = 0, height = 0, channels = 0;
-  if (stbi_info_from_memory(bytes, size, &width, &height, &channels) != 0 &&
+  const bool webp = webpInfo(bytes, size, width, height);
+  if ((webp || stbi_info_from_memory(bytes, size, &width, &height, &channels) != 0) &&
       (std::uint32_t(width) > kMaxImageSide || std::uint32_t(height) > kMaxImageSide ||
        std::uint64_t(width) * std::uint64_t(height) > kMaxImagePixels)) {
     if (error)
@@ -163,11 +166,16 @@ bool loadImageWithinLimits(tinygltf::Image* image, const int index, std::string*
     return false;
   }
   auto& sceneMemory = *static_cast<SceneMemory*>(memory);
-  const std::uint64_t bytesPerChannel = stbi_is_16_bit_from_memory(bytes, size) ? 2 : 1;
+  const std::uint64_t bytesPerChannel = !webp && stbi_is_16_bit_from_memory(bytes, size) ? 2 : 1;
   if (!sceneMemory.reserve(std::uint64_t(width) * std::uint64_t(height) * 4 * bytesPerChannel)) {
     if (error)
       *error += "image " + std::to_string(index) + " would take the scene past the " + sceneMemory.limitText() +
                 " a scene may take in memory\n";
+    return false;
+  }
+  if (webp) {
+    if (decodeWebp(*image, bytes, size)) return true;
+    if (error) *error += "image " + std::to_string(index) + " is a WebP file that does not decode\n";
     return false;
   }
   return tinygltf::LoadImageData(image, index, error, warning, requestedWidth, requestedHeight, bytes, size, nullptr);

@@ -12,6 +12,9 @@ namespace s3d::renderer::gltf {
 
 std::string lowercase(std::string text);
 
+// Largest glTF file, .bin buffer or image file a scene may name (a .gltf embeds its buffers as base64 text).
+constexpr std::uint64_t kMaxSceneFileBytes = std::uint64_t(2) << 30;
+
 // A URI with its %XX escapes decoded.
 std::string decodedUri(const std::string& uri);
 

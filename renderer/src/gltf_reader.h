@@ -39,7 +39,9 @@ struct SceneMemory {
 class GltfReader {
  public:
   GltfReader(const fs::path& file, const tinygltf::Model& model, SceneMemory& memory)
-      : file_(file), model_(model), memory_(memory) {}
+      : file_(file), model_(model), memory_(memory),
+        quantized_(std::find(model.extensionsUsed.begin(), model.extensionsUsed.end(), "KHR_mesh_quantization") !=
+                   model.extensionsUsed.end()) {}
 
   [[noreturn]] void corrupt(const std::string& what) const {
     throw std::runtime_error("glTF file '" + file_.string() + "' is corrupt: " + what);
@@ -50,34 +52,20 @@ class GltfReader {
   }
 
   // An accessor's elements as floats (components per element), normalized integers mapped to [0, 1] / [-1, 1].
+  // Unnormalized integers only where KHR_mesh_quantization allows them (POSITION, TEXCOORD_n) in a file that
+  // declares it; their values are taken as they are (the node transform dequantizes).
   std::vector<float> readFloats(int accessorIndex, int type, const char* what) const {
     const tinygltf::Accessor& accessor = accessorAt(accessorIndex, what);
     if (accessor.type != type) corrupt(std::string(what) + " accessor has the wrong element type");
     const int components = tinygltf::GetNumComponentsInType(std::uint32_t(type));
     const Span span = spanOf(accessor, components, what);
+    const bool asIs = accessor.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT && !accessor.normalized;
+    if (asIs && !(quantized_ && (std::strcmp(what, "POSITION") == 0 || std::strncmp(what, "TEXCOORD_", 9) == 0)))
+      unsupported(std::string(what) + " stored as unnormalized integers");
     std::vector<float> values(allocationFor<float>(accessor.count * std::size_t(components), what));
     forEachComponent(span, accessor.count, components, [&](std::size_t i, const unsigned char* p) {
-      switch (accessor.componentType) {
-        case TINYGLTF_COMPONENT_TYPE_FLOAT: std::memcpy(&values[i], p, 4); break;
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: values[i] = float(*p) / 255.0f; break;
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
-          std::uint16_t v;
-          std::memcpy(&v, p, 2);
-          values[i] = float(v) / 65535.0f;
-          break;
-        }
-        case TINYGLTF_COMPONENT_TYPE_BYTE: values[i] = std::max(float(std::int8_t(*p)) / 127.0f, -1.0f); break;
-        case TINYGLTF_COMPONENT_TYPE_SHORT: {
-          std::int16_t v;
-          std::memcpy(&v, p, 2);
-          values[i] = std::max(float(v) / 32767.0f, -1.0f);
-          break;
-        }
-        default: corrupt(std::string(what) + " accessor has an invalid component type");
-      }
+      values[i] = componentValue(p, accessor.componentType, !asIs, what);
     });
-    if (accessor.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT && !accessor.normalized)
-      unsupported(std::string(what) + " stored as unnormalized integers");
     for (float v : values)
       if (!std::isfinite(v)) corrupt(std::string(what) + " contains a non-finite value");
     return values;
@@ -183,6 +171,33 @@ class GltfReader {
     return {data.data() + begin, std::size_t(stride), std::size_t(componentSize)};
   }
 
+  // One component as a float: normalized integers mapped to [0, 1] / [-1, 1], else as they are.
+  float componentValue(const unsigned char* p, int componentType, bool normalized, const char* what) const {
+    switch (componentType) {
+      case TINYGLTF_COMPONENT_TYPE_FLOAT: {
+        float v;
+        std::memcpy(&v, p, 4);
+        return v;
+      }
+      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return normalized ? float(*p) / 255.0f : float(*p);
+      case TINYGLTF_COMPONENT_TYPE_BYTE: {
+        const float v = float(std::int8_t(*p));
+        return normalized ? std::max(v / 127.0f, -1.0f) : v;
+      }
+      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
+        std::uint16_t v;
+        std::memcpy(&v, p, 2);
+        return normalized ? float(v) / 65535.0f : float(v);
+      }
+      case TINYGLTF_COMPONENT_TYPE_SHORT: {
+        std::int16_t v;
+        std::memcpy(&v, p, 2);
+        return normalized ? std::max(float(v) / 32767.0f, -1.0f) : float(v);
+      }
+      default: corrupt(std::string(what) + " accessor has an invalid component type");
+    }
+  }
+
   // Calls visit(component index, bytes) for every component of a span checked by spanOf.
   static void forEachComponent(const Span& span, std::size_t count, int components,
                                const std::function<void(std::size_t, const unsigned char*)>& visit) {
@@ -195,6 +210,7 @@ class GltfReader {
   fs::path file_;
   const tinygltf::Model& model_;
   SceneMemory& memory_;
+  bool quantized_ = false;  // the file uses KHR_mesh_quantization
 };
 
 // " ('name')" after an index, or nothing for an unnamed element: files name few of their nodes and materials.

@@ -23,9 +23,13 @@
 #include <tiny_gltf.h>
 
 #include "gltf_animation.h"
+#include "gltf_draco.h"
 #include "gltf_files.h"
 #include "gltf_material_extras.h"
+#include "gltf_meshopt.h"
+#include "gltf_parse.h"
 #include "gltf_reader.h"
+#include "gltf_webp.h"
 #include "mesh_generation.h"
 #include "s3d/input_file.h"
 #include "scene_description.h"
@@ -256,9 +260,9 @@ class SceneBuilder {
   std::int32_t texture(int textureIndex, Texture::Encoding encoding) {
     if (textureIndex < 0 || std::size_t(textureIndex) >= model_.textures.size())
       reader_.corrupt("texture " + std::to_string(textureIndex) + " does not exist");
-    const int source = model_.textures[std::size_t(textureIndex)].source;
+    const int source = textureImage(model_.textures[std::size_t(textureIndex)]);
     if (source < 0 || std::size_t(source) >= model_.images.size())
-      reader_.unsupported("texture " + std::to_string(textureIndex) + " without a PNG/JPEG image source");
+      reader_.unsupported("texture " + std::to_string(textureIndex) + " without a PNG, JPEG or WebP image source");
     const auto key = std::make_pair(source, encoding);
     if (auto cached = textures_.find(key); cached != textures_.end()) return cached->second;
     const tinygltf::Image& image = model_.images[std::size_t(source)];
@@ -410,14 +414,15 @@ Scene loadGltfScene(const fs::path& file, std::uint64_t memoryLimit) {
   loader.SetImageLoader(loadImageWithinLimits, &memory);
   tinygltf::Model model;
   std::string errors, warnings;
-  const bool loaded = binary ? loader.LoadBinaryFromFile(&model, &errors, &warnings, file.string())
-                             : loader.LoadASCIIFromFile(&model, &errors, &warnings, file.string());
+  const bool loaded = parseGltf(loader, model, errors, warnings, file, binary, json);
   if (!loaded) {
     std::string reason = errors.empty() ? "tinygltf could not parse it" : errors;
     while (!reason.empty() && (reason.back() == '\n' || reason.back() == ' ')) reason.pop_back();
     std::replace(reason.begin(), reason.end(), '\n', ' ');
     throw std::runtime_error("glTF file '" + file.string() + "' cannot be loaded: " + reason);
   }
+  decodeMeshoptViews(file, model, memory);
+  decodeDracoPrimitives(file, model, memory);
   SceneBuilder builder(file, model, memory);
   Scene scene = builder.build();
   const fs::path description = sceneDescriptionPath(file);
