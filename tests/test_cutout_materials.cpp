@@ -115,7 +115,7 @@ TEST_P(CutoutRenderTest, TheCentreViewShowsTheWallExactlyWhereTheAlphaTestCutsTh
 INSTANTIATE_TEST_SUITE_P(Shading, CutoutRenderTest,
                          ::testing::Values(RendererOptions::GBufferShading::Raster,
                                            RendererOptions::GBufferShading::Visibility),
-                         [](const auto& info) { return std::string(gbufferShadingName(info.param)); });
+                         [](const auto& param) { return std::string(gbufferShadingName(param.param)); });
 
 class CutoutMaskedRenderTest : public s3d::test::VulkanTest {};
 

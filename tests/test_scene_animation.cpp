@@ -195,6 +195,17 @@ TEST(SceneAnimation, ANonFiniteWeightIsNamed) {
   EXPECT_NE(error.find("mesh 0 primitive 0's WEIGHTS_0 contains a non-finite value"), std::string::npos) << error;
 }
 
+TEST(SceneAnimation, AVertexNoJointWeighsFollowsItsMeshNode) {
+  // Exporters leave vertices bound to no joint (all weights 0; a Blender level's lever does): they stay where the
+  // mesh's own node puts them, here the unanimated identity, instead of collapsing to the origin.
+  ScratchFolder folder;
+  test::SkinnedArm arm;
+  for (int i = 0; i < 4; ++i) arm.weights[4 * 5 + i] = 0.0f;
+  Scene scene = loadGltfScene(arm.write(folder.path()));
+  poseScene(scene, 0.5);
+  expectNear(scene.meshes[0].vertices[5].position, {2, 0.1f, 0}, "unweighted elbow vertex (2, 0.1) at rest");
+}
+
 TEST(SceneAnimation, InverseBindMatricesOfTheWrongCountAreNamed) {
   ScratchFolder folder;
   test::SkinnedArm arm;

@@ -24,7 +24,7 @@ void AnimationBuilder::addObjects(int node, std::uint32_t first, std::uint32_t c
   for (std::uint32_t i = 0; i < count; ++i) objects_.at(std::size_t(node)).push_back(first + i);
 }
 
-void AnimationBuilder::addSkinnedPrimitive(int skin, int meshIndex, std::size_t primitiveIndex,
+void AnimationBuilder::addSkinnedPrimitive(int skin, int node, int meshIndex, std::size_t primitiveIndex,
                                            const tinygltf::Primitive& primitive, std::uint32_t sceneMesh,
                                            const Mesh& bindPose) {
   const std::string where = "mesh " + std::to_string(meshIndex) + named(model_.meshes[std::size_t(meshIndex)].name) +
@@ -37,7 +37,7 @@ void AnimationBuilder::addSkinnedPrimitive(int skin, int meshIndex, std::size_t 
                                            bindPose.texCoords.size() * sizeof(glm::vec2) +
                                            bindPose.tangents.size() * sizeof(glm::vec4),
                                        where + "skinning");
-  SkinnedMesh skinned{sceneMesh, std::uint32_t(skin), bindPose, {}, {}};
+  SkinnedMesh skinned{sceneMesh, std::uint32_t(skin), std::uint32_t(node), bindPose, {}, {}};
   skinned.joints.assign(vertexCount, {});
   skinned.weights.assign(vertexCount, {});
   for (int set = 0; set < 2; ++set) {
@@ -66,8 +66,8 @@ void AnimationBuilder::addSkinnedPrimitive(int skin, int meshIndex, std::size_t 
   for (std::size_t v = 0; v < vertexCount; ++v) {
     float sum = 0.0f;
     for (float weight : skinned.weights[v]) sum += weight;
-    if (!(sum > 0.0f) || !std::isfinite(sum))
-      reader_.corrupt(where + "weights at vertex " + std::to_string(v) + " do not sum to a positive number");
+    if (!std::isfinite(sum)) reader_.corrupt(where + "weights at vertex " + std::to_string(v) + " sum past float's range");
+    if (sum == 0.0f) continue;  // no joint moves it (exporters leave such vertices): it follows its node (skinMesh)
     for (float& weight : skinned.weights[v]) weight /= sum;
   }
   skinnedMeshes_.push_back(std::move(skinned));

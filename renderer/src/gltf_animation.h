@@ -22,7 +22,7 @@ class AnimationBuilder {
 
   // Primitive `primitive` of mesh `meshIndex`, placed by a node with skin `skin`, became Scene::meshes[sceneMesh]
   // with vertices `bindPose` (in the skin's bind space): reads its JOINTS_n and WEIGHTS_n.
-  void addSkinnedPrimitive(int skin, int meshIndex, std::size_t primitiveIndex, const tinygltf::Primitive& primitive,
+  void addSkinnedPrimitive(int skin, int node, int meshIndex, std::size_t primitiveIndex, const tinygltf::Primitive& primitive,
                            std::uint32_t sceneMesh, const Mesh& bindPose);
 
   // Null for a file without skins and animations (a static scene); else the hierarchy, skins and animation.

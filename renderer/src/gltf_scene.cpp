@@ -104,7 +104,7 @@ class SceneBuilder {
     const glm::mat4 world(worldD);
     // A skinned mesh is placed by its joints, not by its node (glTF 2.0, 3.7.3.3): its vertices are posed in world space.
     const std::size_t firstObject = scene_.objects.size();
-    if (node.mesh >= 0) addMesh(node.mesh, node.skin >= 0 ? glm::mat4(1.0f) : world, node.skin);
+    if (node.mesh >= 0) addMesh(node.mesh, node.skin >= 0 ? glm::mat4(1.0f) : world, node.skin, nodeIndex);
     if (node.skin < 0) animation_.addObjects(nodeIndex, std::uint32_t(firstObject), std::uint32_t(scene_.objects.size() - firstObject));
     if (node.camera >= 0) addCamera(node.camera, world);
     if (auto light = node.extensions.find("KHR_lights_punctual"); light != node.extensions.end() && light->second.Has("light"))
@@ -112,7 +112,7 @@ class SceneBuilder {
     for (int child : node.children) visit(child, worldD, depth + 1);
   }
 
-  void addMesh(int meshIndex, const glm::mat4& world, int skin) {
+  void addMesh(int meshIndex, const glm::mat4& world, int skin, int nodeIndex) {
     if (std::size_t(meshIndex) >= model_.meshes.size()) reader_.corrupt("mesh " + std::to_string(meshIndex) + " does not exist");
     // A mirroring transform turns counter-clockwise triangles clockwise: those instances get flipped meshes.
     const bool mirrored = glm::determinant(glm::mat3(world)) < 0.0f;
@@ -123,7 +123,7 @@ class SceneBuilder {
       if (skin < 0 && cached == meshes_.end()) cached = meshes_.emplace(key, addPrimitive(primitives[p], mirrored)).first;
       Object object;
       object.mesh = skin < 0 ? cached->second : addPrimitive(primitives[p], false);  // skinned: its own, re-posed
-      if (skin >= 0) animation_.addSkinnedPrimitive(skin, meshIndex, p, primitives[p], object.mesh, scene_.meshes[object.mesh]);
+      if (skin >= 0) animation_.addSkinnedPrimitive(skin, nodeIndex, meshIndex, p, primitives[p], object.mesh, scene_.meshes[object.mesh]);
       object.material = material(primitives[p].material);
       const Mesh& mesh = scene_.meshes[object.mesh];
       if ((object.material.baseColorTexture != kNoTexture || object.material.normalTexture != kNoTexture) &&

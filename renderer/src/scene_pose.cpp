@@ -96,8 +96,13 @@ Mesh skinMesh(const SceneAnimation& animation, const SkinnedMesh& skinned, const
   Mesh mesh = skinned.bindPose;
   for (std::size_t v = 0; v < mesh.vertices.size(); ++v) {
     glm::mat4 blended(0.0f);
+    bool weighed = false;
     for (std::size_t i = 0; i < 8; ++i)
-      if (skinned.weights[v][i] != 0.0f) blended += skinned.weights[v][i] * jointMatrices[skinned.joints[v][i]];
+      if (skinned.weights[v][i] != 0.0f) {
+        blended += skinned.weights[v][i] * jointMatrices[skinned.joints[v][i]];
+        weighed = true;
+      }
+    if (!weighed) blended = world.at(skinned.node);  // no joint weighs it
     Vertex& vertex = mesh.vertices[v];
     vertex.position = glm::vec3(blended * glm::vec4(vertex.position, 1.0f));
     const glm::mat3 linear(blended);

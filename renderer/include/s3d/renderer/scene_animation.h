@@ -51,9 +51,10 @@ struct Skin {
 struct SkinnedMesh {
   std::uint32_t mesh = 0;
   std::uint32_t skin = 0;
+  std::uint32_t node = 0;  // the node the mesh hangs on: vertices no joint weighs follow it, as if unskinned
   Mesh bindPose;
   std::vector<std::array<std::uint32_t, 8>> joints;  // indices into the skin's joints (JOINTS_0, then JOINTS_1)
-  std::vector<std::array<float, 8>> weights;         // WEIGHTS_0, WEIGHTS_1 (zeros where absent), normalized
+  std::vector<std::array<float, 8>> weights;         // WEIGHTS_0, WEIGHTS_1 (zeros where absent), normalized or all 0
 };
 
 struct SceneAnimation {
