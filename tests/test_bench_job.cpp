@@ -197,6 +197,7 @@ TEST_F(BenchJobTest, RendererModeTimesEveryPassOfEachScene) {
   EXPECT_TRUE(report.rows.empty());
   const RendererRow& row = report.rendererRows.front();
   EXPECT_EQ(row.scene, "courtyard");
+  EXPECT_GT(row.triangles, 1000u);  // the courtyard's walls, pillars, fence and weapon
   ASSERT_FALSE(row.passes.empty());
   if (context().timestampPeriodNs() > 0.0) {
     ASSERT_TRUE(row.frameGpuMs);
@@ -216,6 +217,33 @@ TEST_F(BenchJobTest, RendererModeTimesEveryPassOfEachScene) {
   EXPECT_FALSE(fs::exists(folder / "bench_speed_vs_error.svg"));  // no error to plot
   EXPECT_FALSE(fs::exists(folder / "bench_time_over_eye.svg"));
   std::error_code ignored;
+  fs::remove_all(folder, ignored);
+}
+
+TEST_F(BenchJobTest, ASceneFileIsBenchedUnderItsNameWithItsFoliageRegion) {
+  // tests/data/textured_quad.gltf with its material made a cut-out (alphaMode MASK): every drawn texel of the
+  // quad is foliage, so both eyes have pixels there, and that scene's table gets the column.
+  const fs::path folder = scratchPath("scene_file");
+  std::error_code ignored;
+  fs::remove_all(folder, ignored);
+  fs::create_directories(folder / "scene");
+  for (const char* name : {"textured_quad.bin", "textured_quad_base_color.png", "textured_quad_normal.png"})
+    fs::copy_file(fs::path(S3D_TEST_DATA_DIR) / name, folder / "scene" / name);
+  std::string gltf = readText(fs::path(S3D_TEST_DATA_DIR) / "textured_quad.gltf");
+  const std::string material = "\"name\": \"quadrants\",";
+  gltf.replace(gltf.find(material), material.size(), material + " \"alphaMode\": \"MASK\",");
+  io::writeTextFile(folder / "scene" / "textured_quad.gltf", gltf);
+  BenchOptions options = tinySweepOptions(folder / "out");
+  options.scenes = {(folder / "scene" / "textured_quad.gltf").string()};
+  options.methods = {"seed"};
+  const BenchReport report = runBench(context(), options);
+  ASSERT_EQ(report.rows.size(), 1u);
+  EXPECT_EQ(report.rows[0].scene, "textured_quad");
+  EXPECT_GT(report.rows[0].left.foliage.pixelCount, 0u);
+  EXPECT_GT(report.rows[0].right.foliage.pixelCount, 0u);
+  EXPECT_NE(readText(folder / "out" / "bench.md").find(" foliage |"), std::string::npos);
+  EXPECT_EQ(readText(tinySweep(context()).folder / "bench.md").find(" foliage |"), std::string::npos)
+      << "the courtyard has no cut-outs";
   fs::remove_all(folder, ignored);
 }
 

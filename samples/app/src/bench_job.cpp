@@ -80,6 +80,8 @@ const ErrorRegion kErrorRegions[] = {{"PSNR all", &EyeError::display},
                                      {"halo", &EyeError::halo},
                                      {"disocclusion", &EyeError::disocclusion},
                                      {"rest", &EyeError::rest}};
+// Regions a scene may not have: a column only in the tables of scenes where they hold pixels.
+const ErrorRegion kSceneRegions[] = {{"transparent", &EyeError::transparent}, {"foliage", &EyeError::foliage}};
 
 MethodSetting parseOneSetting(const std::string& item, std::vector<MethodSetting>& settings) {
   auto numberAfter = [&](const std::string& prefix, int low, int high) -> std::optional<int> {
@@ -295,6 +297,8 @@ using detail::timeFrames;
 struct EyeReferences {
   ImageRGBA8 leftColor, rightColor;
   DepthImage leftDepth, rightDepth;
+  std::vector<std::uint8_t> leftTransparent, rightTransparent;  // the error regions the reference eye defines
+  std::vector<std::uint8_t> leftFoliage, rightFoliage;
 };
 
 void runSweep(vk::Context& context, const BenchOptions& options, const ValidatedBench& bench, BenchReport& report) {
@@ -332,9 +336,13 @@ void runSweep(vk::Context& context, const BenchOptions& options, const Validated
       (void)deferred.render(referenceEyeView(scene, center, stereo::Eye::Left, parameters));
       eyes.leftColor = deferred.readDisplayColor();
       eyes.leftDepth = deferred.readLinearDepth();
+      eyes.leftTransparent = deferred.readTransparentMask();
+      eyes.leftFoliage = deferred.readCutoutMask();
       (void)deferred.render(referenceEyeView(scene, center, stereo::Eye::Right, parameters));
       eyes.rightColor = deferred.readDisplayColor();
       eyes.rightDepth = deferred.readLinearDepth();
+      eyes.rightTransparent = deferred.readTransparentMask();
+      eyes.rightFoliage = deferred.readCutoutMask();
       references.push_back(std::move(eyes));
     }
     (void)deferred.render(center);
@@ -421,8 +429,10 @@ void runSweep(vk::Context& context, const BenchOptions& options, const Validated
         row.disparityMapGpuMs = disparityMapGpuMs;
         row.frameWarmUpMs = frames[i].warmUpMs;
         row.frameWarmUpSettled = frames[i].settled;
-        row.left = compareEye(synthesis.eyes.left, eyes.leftColor, row.cropColumns, halo, unseenLeft);
-        row.right = compareEye(synthesis.eyes.right, eyes.rightColor, row.cropColumns, halo, unseenRight);
+        row.left = compareEye(synthesis.eyes.left, eyes.leftColor, row.cropColumns,
+                              stereo::RegionMasks{halo, unseenLeft, eyes.leftTransparent, eyes.leftFoliage});
+        row.right = compareEye(synthesis.eyes.right, eyes.rightColor, row.cropColumns,
+                               stereo::RegionMasks{halo, unseenRight, eyes.rightTransparent, eyes.rightFoliage});
         row.filledLeft = synthesis.filledLeft;
         row.filledRight = synthesis.filledRight;
         row.traffic = stereoPassTraffic(methodParameters, options.width, options.height, context.isCpuDevice());
@@ -612,8 +622,10 @@ std::string sweepMarkdown(const BenchReport& report) {
         "two-pass reference eye (the left), timed in back-to-back pairs with the center frame right before each\n"
         "setting. PSNR left / right in dB against the two-pass reference over the cropped\n"
         "area (maxSeparation columns each side) and its regions: halo (within maxSeparation of a center-view depth\n"
-        "edge), disocclusion (reference pixels the center view never saw), rest (neither); the last columns are\n"
-        "over the whole cropped area (SSIM: 11x11 Gaussian window on luma, Wang et al. 2004).\n";
+        "edge), disocclusion (reference pixels the center view never saw), transparent and foliage (reference pixels\n"
+        "covered by transparent surfaces, or whose surface is an alpha cut-out; only for scenes that have them), rest\n"
+        "(none of them); the last columns are over the whole cropped area (SSIM: 11x11 Gaussian window on luma,\n"
+        "Wang et al. 2004).\n";
 
   if (!report.rows.empty()) {
     auto [shortest, longest] = std::minmax_element(report.rows.begin(), report.rows.end(), [](const BenchRow& a, const BenchRow& b) {
@@ -645,11 +657,17 @@ std::string sweepMarkdown(const BenchReport& report) {
     md << "\n#### " << scene << " (center frame " << msText(first->centerFrameGpuMs) << " ms, depth reduction "
        << msText(first->depthReductionGpuMs) << " ms, nonlinear depth mapping " << msText(first->disparityMapGpuMs)
        << " ms)\n\n";
+    std::vector<ErrorRegion> regions(std::begin(kErrorRegions), std::end(kErrorRegions));
+    for (const ErrorRegion& region : kSceneRegions)
+      if (std::any_of(report.rows.begin(), report.rows.end(), [&](const BenchRow& row) {
+            return row.scene == scene && (row.left.*region.stats).pixelCount + (row.right.*region.stats).pixelCount > 0;
+          }))
+        regions.insert(regions.end() - 1, region);  // before rest
     md << "| method | setting | sep % | stereo ms | stereo / center | stereo / eye |";
-    for (const ErrorRegion& region : kErrorRegions) md << ' ' << region.heading << " |";
+    for (const ErrorRegion& region : regions) md << ' ' << region.heading << " |";
     for (const ErrorMeasure& measure : kErrorMeasures) md << ' ' << measure.heading << " |";
     md << "\n|---|---|---|---|---|---|";
-    for (std::size_t i = 0; i < std::size(kErrorRegions) + std::size(kErrorMeasures); ++i) md << "---|";
+    for (std::size_t i = 0; i < regions.size() + std::size(kErrorMeasures); ++i) md << "---|";
     md << '\n';
     for (const BenchRow& row : report.rows) {
       if (row.scene != scene) continue;
@@ -657,7 +675,7 @@ std::string sweepMarkdown(const BenchReport& report) {
          << percentText(row.maxSeparation) << " | " << msText(row.stereoGpuMs) << " | "
          << ratioText(ratio(row.stereoGpuMs, row.centerFrameGpuMs)) << " | "
          << ratioText(ratio(row.stereoGpuMs, row.referenceEyeGpuMs)) << " |";
-      for (const ErrorRegion& region : kErrorRegions)
+      for (const ErrorRegion& region : regions)
         md << ' ' << dbPair((row.left.*region.stats).psnrDb, (row.right.*region.stats).psnrDb) << " |";
       for (const ErrorMeasure& measure : kErrorMeasures)
         md << ' ' << format(measure.pattern, measure.value(row.left.display)) << " / "
