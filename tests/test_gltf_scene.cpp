@@ -289,6 +289,16 @@ TEST(GltfScene, ADirectionalLightFromAnotherDirectionIsRefusedUnlessTheDescripti
   EXPECT_EQ(loadGltfScene(file).sun.directionToSun, glm::vec3(0.0f, 1.0f, 0.0f));
 }
 
+TEST(GltfScene, TheSceneDescriptionTurnsOnTheSunsShadows) {
+  ScratchFolder scratch;  // glTF lights carry no shadow flag
+  const fs::path file = scratch.copyOfTexturedQuad();
+  EXPECT_FALSE(loadGltfScene(file).sun.castsShadows);
+  writeText(sceneDescriptionPath(file), R"({"sun": {"castsShadows": true, "shadowDistance": 250}})");
+  const Scene scene = loadGltfScene(file);
+  EXPECT_TRUE(scene.sun.castsShadows);
+  EXPECT_EQ(scene.sun.shadowDistance, 250.0f);
+}
+
 TEST(GltfScene, AnUnknownSceneDescriptionKeyIsNamed) {
   ScratchFolder scratch;
   const fs::path file = scratch.copyOfTexturedQuad();

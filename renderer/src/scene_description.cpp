@@ -67,13 +67,19 @@ class DescriptionReader {
              {"sun", "ambient", "pointLights", "sky", "camera", "cameraPath", "exposure", "ambientOcclusion",
               "ambientOcclusionRadius", "crosshairDistance"});
     if (doc.contains("sun")) {
-      onlyKeys(doc["sun"], "sun", {"directionToSun", "color"});
+      onlyKeys(doc["sun"], "sun", {"directionToSun", "color", "castsShadows", "shadowDistance"});
       if (doc["sun"].contains("directionToSun")) {
         const glm::vec3 d = vec3(doc["sun"]["directionToSun"], "sun.directionToSun");
         if (glm::length(d) < 1e-6f) fail("sun.directionToSun must not be zero");
         scene.sun.directionToSun = glm::normalize(d);
       }
       if (doc["sun"].contains("color")) scene.sun.color = vec3(doc["sun"]["color"], "sun.color", 0.0f, 1e6f);
+      if (doc["sun"].contains("castsShadows")) {  // glTF has no shadow flag: a file's sun is unshadowed
+        if (!doc["sun"]["castsShadows"].is_boolean()) fail("sun.castsShadows must be true or false");
+        scene.sun.castsShadows = doc["sun"]["castsShadows"].get<bool>();
+      }
+      if (doc["sun"].contains("shadowDistance"))
+        scene.sun.shadowDistance = number(doc["sun"]["shadowDistance"], "sun.shadowDistance", 1e-3f, 1e7f);
     }
     if (doc.contains("ambient")) scene.ambientColor = vec3(doc["ambient"], "ambient", 0.0f, 1e6f);
     if (doc.contains("pointLights")) {  // replaces the file's point lights
