@@ -440,7 +440,7 @@ struct DeferredRenderer::Impl {
     const bool newFormat = visibilityShading && (visibility.width == 0 || visibility.format != visibilityFormat);
     if (newFormat)
       visibility = vk::createImage(context, visibilityFormat, width, height,
-                                   VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT);
+                                   VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
     const bool surfaceTargets = textured || !visibilityShading;
     const bool newAttachments = surfaceTargets != surfaceTargetsBound;
     visibilityPacking = packing;
@@ -1064,6 +1064,15 @@ std::vector<std::uint8_t> DeferredRenderer::readCutoutMask() {
         mask[std::size_t(y / r.supersample) * r.outputWidth + x / r.supersample] = 1;
     }
   return mask;
+}
+
+std::vector<std::uint32_t> DeferredRenderer::readVisibilityIds() {
+  const Impl& r = *impl_;
+  if (!r.visibilityShading || r.visibility.format != kNarrowVisibilityFormat) return {};
+  std::vector<std::byte> bytes = vk::readbackImage(impl_->context, r.visibility, kComputeSampled);
+  std::vector<std::uint32_t> ids(bytes.size() / sizeof(std::uint32_t));
+  std::memcpy(ids.data(), bytes.data(), bytes.size());
+  return ids;
 }
 
 ImageRGBA32F DeferredRenderer::readHdrColor() {

@@ -191,6 +191,10 @@ class DeferredRenderer {
   // the opaque pass (a transparent surface in front does not change it); with supersampling, where any sample
   // of the output pixel is. All 0 when the scene has none (the error metrics' foliage region).
   std::vector<std::uint8_t> readCutoutMask();
+  // Under visibility G-buffer shading with narrow ids, the last frame's visibility ids at render size
+  // (gpu::packVisibility; undefined where nothing was drawn: the linear depth is +inf there); empty otherwise.
+  // What the ray-cast visibility pass (raycast_visibility.h) is held to.
+  std::vector<std::uint32_t> readVisibilityIds();
 
   // Device depth values that separate the layers (Listing 4.3): first-person depth is in [0, split]
   // ([1 - split, 1] with reversed-Z).

@@ -1,0 +1,46 @@
+#pragma once
+// The ray-cast visibility pass (shaders/raycast_visibility.comp): finds the surface of each masked pixel by
+// casting its pixel-centre ray through a SceneBvh in compute, and writes what the raster G-buffer pass writes
+// there (visibility id and device depth), so the G-buffer resolve and lighting can shade those pixels without a
+// raster pass: compute runs on all of a GPU where the raster side is a small part of it, and an eye needs no
+// depth clear. Agreement with the raster pass: docs/DESIGN.md "Ray-cast visibility".
+#include <cstdint>
+
+#include "s3d/renderer/deferred_renderer.h"
+#include "s3d/renderer/scene_bvh.h"
+#include "s3d/vk/context.h"
+#include "s3d/vk/pipeline.h"
+#include "s3d/vk/resources.h"
+
+namespace s3d::renderer {
+
+class RaycastVisibility {
+ public:
+  explicit RaycastVisibility(vk::Context& context);
+  RaycastVisibility(const RaycastVisibility&) = delete;
+  RaycastVisibility& operator=(const RaycastVisibility&) = delete;
+
+  // Uploads the tree (device-local buffers); call again when the scene changes. Throws std::invalid_argument for
+  // a scene whose visibility ids are wide (R32G32_UINT): the pass writes narrow ids only.
+  void setBvh(const SceneBvh& bvh);
+
+  // Records the pass for the pixels of `mask` (ShadeMask's image and threshold; a null image: every pixel):
+  // `visibilityIds` (R32_UINT) and `deviceDepth` (R32_SFLOAT), both the mask's size when there is one, created
+  // with VK_IMAGE_USAGE_STORAGE_BIT and in VK_IMAGE_LAYOUT_GENERAL, get the masked pixels' ids and depths
+  // (SceneBvh::castPixel); other pixels are not written. The caller orders it against earlier and later uses of
+  // the images with barriers (it records none). Uses one uniform buffer: one recording in flight at a time.
+  // Throws std::invalid_argument for images of other formats or sizes, or before setBvh.
+  void record(VkCommandBuffer cmd, const RaycastCamera& camera, const ShadeMask& mask, const vk::Image& visibilityIds,
+              const vk::Image& deviceDepth);
+
+ private:
+  vk::Context& context_;
+  vk::PipelineLayout layout_;
+  vk::Unique<VkPipeline> pipeline_;
+  vk::Buffer constants_, nodes_, triangles_;
+  std::uint32_t worldRoot_ = S3D_BVH_NO_ROOT, firstPersonRoot_ = S3D_BVH_NO_ROOT;
+  glm::uvec2 packing_{0, 0};
+  bool hasBvh_ = false;
+};
+
+}  // namespace s3d::renderer

@@ -1,0 +1,107 @@
+// The reference traversal of SceneBvh (what shaders/raycast_visibility.comp computes, in the same order with the
+// same arithmetic from raycast_shared.h) and the camera a renderer view casts with.
+#include <algorithm>
+#include <array>
+
+#include "s3d/renderer/scene_bvh.h"
+
+#include "s3d/renderer/renderer_shared.h"
+
+namespace s3d::renderer {
+
+RaycastCamera raycastCamera(const Scene& scene, const ViewMatrices& view, bool reversedZ) {
+  RaycastCamera camera;
+  const glm::mat4 world = reversedZ ? reversedDepthProjection(view.worldProjection, scene.camera.nearPlane, scene.camera.farPlane)
+                                    : view.worldProjection;
+  const glm::mat4 firstPerson =
+      reversedZ ? reversedDepthProjection(view.firstPersonProjection, scene.firstPerson.nearPlane, scene.firstPerson.farPlane)
+                : view.firstPersonProjection;
+  camera.worldViewProjection = world * view.worldView;
+  camera.firstPersonViewProjection = firstPerson * view.firstPersonView;
+  const float split = DeferredRenderer::kFirstPersonDeviceDepthMax;
+  camera.worldDepthRange = reversedZ ? glm::vec2(0.0f, 1.0f - split) : glm::vec2(split, 1.0f);
+  camera.firstPersonDepthRange = reversedZ ? glm::vec2(1.0f - split, 1.0f) : glm::vec2(0.0f, split);
+  camera.clearedDepth = reversedZ ? 0.0f : 1.0f;
+  return camera;
+}
+
+glm::mat4 clipToLayerOf(const glm::mat4& viewProjection) { return glm::mat4(glm::inverse(glm::dmat4(viewProjection))); }
+
+glm::uvec2 visibilityIdOf(const RaycastHit& hit, glm::uvec2 packing) {
+  if (!hit.hit) return glm::uvec2(0);
+  if (hit.cutout) return glm::uvec2(S3D_RASTER_SHADED, 0u);
+  return gpu::packVisibility(hit.object, hit.triangle, glm::uvec4(0, 0, packing.x, packing.y));
+}
+
+std::uint32_t SceneBvh::closestHit(std::uint32_t root, glm::vec3 origin, glm::vec3 direction, float& bestT) const {
+  bestT = S3D_INFINITY;
+  std::uint32_t best = S3D_BVH_NO_ROOT;
+  if (root == S3D_BVH_NO_ROOT) return best;
+  const glm::vec3 inverse = gpu::safeInverse(direction);
+  auto limit = [&bestT] { return std::min(bestT, 1.0f); };
+  std::array<std::uint32_t, S3D_BVH_MAX_DEPTH> stack{};
+  std::array<float, S3D_BVH_MAX_DEPTH> stackEntry{};
+  std::uint32_t top = 0;
+  std::uint32_t node = root;
+  bool visit = gpu::boxEntry(origin, inverse, nodes[root].boundsMin, nodes[root].boundsMax, 1.0f) != S3D_INFINITY;
+  while (visit) {
+    const gpu::BvhNode& n = nodes[node];
+    if (n.count > 0) {
+      for (std::uint32_t i = n.first; i < n.first + n.count; ++i) {
+        const gpu::BvhTriangle& tri = triangles[i];
+        const float t = gpu::intersectTriangle(origin, direction, tri.v0, tri.v1, tri.v2, tri.flags);
+        if (t <= limit() && (best == S3D_BVH_NO_ROOT ||
+                             gpu::closerHit(t, tri.object, tri.triangle, bestT, triangles[best].object, triangles[best].triangle))) {
+          bestT = t;
+          best = i;
+        }
+      }
+    } else {
+      const float a = gpu::boxEntry(origin, inverse, nodes[n.first].boundsMin, nodes[n.first].boundsMax, limit());
+      const float b = gpu::boxEntry(origin, inverse, nodes[n.first + 1].boundsMin, nodes[n.first + 1].boundsMax, limit());
+      if (a != S3D_INFINITY || b != S3D_INFINITY) {
+        const bool firstNearer = a <= b;
+        node = firstNearer ? n.first : n.first + 1;
+        const float farther = firstNearer ? b : a;
+        if (farther != S3D_INFINITY) {
+          stack[top] = firstNearer ? n.first + 1 : n.first;
+          stackEntry[top++] = farther;
+        }
+        continue;
+      }
+    }
+    visit = false;
+    while (top > 0 && !visit) {  // the nearest pending subtree that the best hit so far does not rule out
+      --top;
+      node = stack[top];
+      visit = stackEntry[top] <= limit();
+    }
+  }
+  return best;
+}
+
+RaycastHit SceneBvh::castPixel(const RaycastCamera& camera, glm::uvec2 pixel, glm::uvec2 size) const {
+  const glm::vec4 screen(float(size.x), float(size.y), 1.0f / float(size.x), 1.0f / float(size.y));
+  return castNdc(camera, gpu::pixelNdc(pixel, screen));
+}
+
+RaycastHit SceneBvh::castNdc(const RaycastCamera& camera, glm::vec2 ndc) const {
+  const std::uint32_t roots[2] = {firstPersonRoot, worldRoot};
+  const glm::mat4 viewProjections[2] = {camera.firstPersonViewProjection, camera.worldViewProjection};
+  const glm::vec2 ranges[2] = {camera.firstPersonDepthRange, camera.worldDepthRange};
+  for (int layer = 0; layer < 2; ++layer) {  // the first-person layer is in front of the world wherever it is hit
+    if (roots[layer] == S3D_BVH_NO_ROOT) continue;
+    const glm::mat4 clipToLayer = clipToLayerOf(viewProjections[layer]);
+    const glm::vec3 origin = gpu::unprojectNdc(clipToLayer, ndc, 0.0f);
+    const glm::vec3 direction = gpu::unprojectNdc(clipToLayer, ndc, 1.0f) - origin;
+    float t = 0.0f;
+    const std::uint32_t index = closestHit(roots[layer], origin, direction, t);
+    if (index == S3D_BVH_NO_ROOT) continue;
+    const gpu::BvhTriangle& tri = triangles[index];
+    return {true, tri.object, tri.triangle, (tri.flags & S3D_BVH_CUTOUT) != 0,
+            gpu::deviceDepthOf(viewProjections[layer], origin + t * direction, ranges[layer])};
+  }
+  return {false, 0, 0, false, camera.clearedDepth};
+}
+
+}  // namespace s3d::renderer

@@ -1,0 +1,84 @@
+#include "s3d/renderer/raycast_visibility.h"
+
+#include <cstring>
+#include <span>
+#include <stdexcept>
+
+#include "compute_binding.h"
+#include "s3d/renderer/renderer_shared.h"
+
+// clang-format off
+#include <s3d_spirv/raycast_visibility_comp.h>
+// clang-format on
+
+namespace s3d::renderer {
+
+RaycastVisibility::RaycastVisibility(vk::Context& context) : context_(context) {
+  using detail::computeBinding;
+  const VkDescriptorSetLayoutBinding bindings[] = {
+      computeBinding(0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER), computeBinding(1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER),
+      computeBinding(2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER), computeBinding(3, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE),
+      computeBinding(4, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE),  computeBinding(5, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE)};
+  layout_ = vk::createPushDescriptorLayout(context_, bindings, 0, 0);
+  pipeline_ = vk::createComputePipeline(context_, layout_.layout, spirv_raycast_visibility_comp);
+  constants_ = vk::createBuffer(context_, sizeof(gpu::RaycastConstants), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
+                                vk::MemoryLocation::HostVisible);
+}
+
+void RaycastVisibility::setBvh(const SceneBvh& bvh) {
+  if (bvh.visibilityPacking.y != 0)
+    throw std::invalid_argument("the ray-cast visibility pass writes narrow visibility ids; this scene's objects and "
+                                "largest mesh need wide ones");
+  auto upload = [this](vk::Buffer& buffer, std::span<const std::byte> bytes) {
+    // An empty tree still binds a buffer (one placeholder element's size).
+    buffer = vk::createBuffer(context_, std::max<VkDeviceSize>(bytes.size(), 48),
+                              VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, vk::MemoryLocation::Device);
+    if (!bytes.empty()) vk::uploadBuffer(context_, buffer, bytes);
+  };
+  upload(nodes_, std::as_bytes(std::span(bvh.nodes)));
+  upload(triangles_, std::as_bytes(std::span(bvh.triangles)));
+  worldRoot_ = bvh.worldRoot;
+  firstPersonRoot_ = bvh.firstPersonRoot;
+  packing_ = bvh.visibilityPacking;
+  hasBvh_ = true;
+}
+
+void RaycastVisibility::record(VkCommandBuffer cmd, const RaycastCamera& camera, const ShadeMask& mask,
+                               const vk::Image& visibilityIds, const vk::Image& deviceDepth) {
+  if (!hasBvh_) throw std::invalid_argument("the ray-cast visibility pass was recorded before it had a BVH");
+  const std::uint32_t width = visibilityIds.width, height = visibilityIds.height;
+  if (visibilityIds.format != VK_FORMAT_R32_UINT || deviceDepth.format != VK_FORMAT_R32_SFLOAT ||
+      deviceDepth.width != width || deviceDepth.height != height)
+    throw std::invalid_argument("the ray-cast visibility pass needs R32_UINT ids and R32_SFLOAT depth of one size");
+  if (mask.image && (mask.image->format != VK_FORMAT_R32_UINT || mask.image->width != width || mask.image->height != height))
+    throw std::invalid_argument("the ray-cast visibility pass's mask must be R32_UINT and the size of its targets");
+  gpu::RaycastConstants constants{};
+  constants.clipToLayer[S3D_LAYER_WORLD] = clipToLayerOf(camera.worldViewProjection);
+  constants.clipToLayer[S3D_LAYER_FIRST_PERSON] = clipToLayerOf(camera.firstPersonViewProjection);
+  constants.viewProjection[S3D_LAYER_WORLD] = camera.worldViewProjection;
+  constants.viewProjection[S3D_LAYER_FIRST_PERSON] = camera.firstPersonViewProjection;
+  constants.depthRanges = glm::vec4(camera.worldDepthRange, camera.firstPersonDepthRange);
+  constants.screen = glm::vec4(float(width), float(height), 1.0f / float(width), 1.0f / float(height));
+  constants.roots = glm::uvec4(worldRoot_, firstPersonRoot_, 0u, 0u);
+  constants.options = glm::uvec4(mask.threshold, mask.image ? 1u : 0u, packing_.x, packing_.y);
+  constants.clearedDepth = glm::vec4(camera.clearedDepth);
+  std::memcpy(constants_.mapped, &constants, sizeof(constants));
+
+  VkDescriptorBufferInfo constantInfo{constants_.buffer, 0, VK_WHOLE_SIZE};
+  VkDescriptorBufferInfo nodeInfo{nodes_.buffer, 0, VK_WHOLE_SIZE};
+  VkDescriptorBufferInfo triangleInfo{triangles_.buffer, 0, VK_WHOLE_SIZE};
+  // Without a mask the ids image stands in for it (the shader does not read it then).
+  VkDescriptorImageInfo maskInfo{VK_NULL_HANDLE, mask.image ? mask.image->view : visibilityIds.view, VK_IMAGE_LAYOUT_GENERAL};
+  VkDescriptorImageInfo idInfo{VK_NULL_HANDLE, visibilityIds.view, VK_IMAGE_LAYOUT_GENERAL};
+  VkDescriptorImageInfo depthInfo{VK_NULL_HANDLE, deviceDepth.view, VK_IMAGE_LAYOUT_GENERAL};
+  VkWriteDescriptorSet writes[] = {vk::uniformBufferWrite(0, &constantInfo), vk::uniformBufferWrite(1, &nodeInfo),
+                                   vk::uniformBufferWrite(2, &triangleInfo), vk::storageImageWrite(3, &maskInfo),
+                                   vk::storageImageWrite(4, &idInfo),        vk::storageImageWrite(5, &depthInfo)};
+  for (std::uint32_t i : {1u, 2u}) writes[i].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_.get());
+  context_.cmdPushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_.layout, 0, 6, writes);
+  const std::uint32_t group = S3D_RAYCAST_GROUP_SIZE;
+  vkCmdDispatch(cmd, (width + group - 1) / group, (height + group - 1) / group, 1);
+}
+
+}  // namespace s3d::renderer
