@@ -1,0 +1,135 @@
+// The ray-cast visibility pass (renderer::RaycastVisibility) over every pixel of a 1920x1080 center view: GPU time
+// from Vulkan timestamps and million rays per second; and the CPU time of building the scene's BVH (Embree's
+// builder into s3d's node layout, renderer::SceneBvh). Scenes: the built-in ones, and the public glTF scenes
+// (tests/data/scenes/README.md) when the cache holds them ($S3D_SCENE_CACHE, else ~/.cache/s3d/scenes).
+// Each timed submission records the pass kRecordsPerTiming times, so the GPU stays busy (an idle GPU lowers its
+// clocks). Device: S3D_BENCH_DEVICE (default auto).
+#include <benchmark/benchmark.h>
+
+#include <chrono>
+#include <cstdlib>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "s3d/renderer/raycast_visibility.h"
+#include "s3d/renderer/scene_bvh.h"
+#include "s3d/renderer/scene_file.h"
+#include "s3d/vk/timestamps.h"
+
+namespace {
+
+using namespace s3d;
+namespace fs = std::filesystem;
+
+constexpr std::uint32_t kWidth = 1920, kHeight = 1080;
+constexpr int kRecordsPerTiming = 16;
+constexpr std::chrono::milliseconds kWarmUp{1000};  // an idle H200 runs at 345 MHz until about a second of load
+
+vk::Context& benchContext() {
+  static std::unique_ptr<vk::Context> context = [] {
+    vk::ContextOptions options;
+    if (const char* device = std::getenv("S3D_BENCH_DEVICE")) options.device = device;
+    return std::make_unique<vk::Context>(options);
+  }();
+  return *context;
+}
+
+fs::path sceneCache() {
+  if (const char* cache = std::getenv("S3D_SCENE_CACHE"); cache && *cache) return cache;
+  if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg) return fs::path(xdg) / "s3d" / "scenes";
+  const char* home = std::getenv("HOME");
+  return fs::path(home ? home : "/nonexistent") / ".cache" / "s3d" / "scenes";
+}
+
+// The scenes to time: every built-in scene, then each public scene found in the cache.
+std::vector<std::string> benchScenes() {
+  std::vector<std::string> scenes = renderer::builtInSceneNames();
+  for (const char* file : {"dungeon/level-dungeon.gltf", "oak/oaktree.gltf", "humanoid/humanoid.gltf",
+                           "engine/2CylinderEngine.glb"}) {
+    std::error_code error;
+    if (fs::is_regular_file(sceneCache() / file, error)) scenes.push_back((sceneCache() / file).string());
+  }
+  return scenes;
+}
+
+renderer::Scene sceneAtFrame0(const std::string& name) {
+  renderer::Scene scene = renderer::loadScene(name);
+  scene.camera = renderer::cameraForFrame(scene, 0);
+  return scene;
+}
+
+
+void BvhBuild(benchmark::State& state, const std::string& name) {
+  const renderer::Scene scene = sceneAtFrame0(name);
+  std::size_t count = 0;
+  for (auto _ : state) {
+    const renderer::SceneBvh bvh = renderer::SceneBvh::build(scene);
+    count = bvh.triangles.size();
+    benchmark::DoNotOptimize(count);
+  }
+  state.counters["triangles"] = double(count);
+}
+
+void RaycastAllPixels(benchmark::State& state, const std::string& name) {
+  vk::Context& context = benchContext();
+  const renderer::Scene scene = sceneAtFrame0(name);
+  const renderer::SceneBvh bvh = renderer::SceneBvh::build(scene);
+  const renderer::RaycastCamera camera =
+      renderer::raycastCamera(scene, renderer::centerViewMatrices(scene, float(kWidth) / float(kHeight)));
+  renderer::RaycastVisibility pass(context);
+  pass.setBvh(bvh);
+  vk::Image ids = vk::createImage(context, VK_FORMAT_R32_UINT, kWidth, kHeight, VK_IMAGE_USAGE_STORAGE_BIT);
+  vk::Image depth = vk::createImage(context, VK_FORMAT_R32_SFLOAT, kWidth, kHeight, VK_IMAGE_USAGE_STORAGE_BIT);
+  context.submitAndWait([&](VkCommandBuffer cmd) {
+    vk::transition(cmd, ids, vk::kUndefined, vk::kComputeWrite);
+    vk::transition(cmd, depth, vk::kUndefined, vk::kComputeWrite);
+  });
+  auto recordAll = [&](VkCommandBuffer cmd) {
+    for (int i = 0; i < kRecordsPerTiming; ++i) {
+      if (i > 0) {  // each recording's writes before the next one's
+        vk::transition(cmd, ids, vk::kComputeWrite, vk::kComputeWrite);
+        vk::transition(cmd, depth, vk::kComputeWrite, vk::kComputeWrite);
+      }
+      pass.record(cmd, camera, renderer::ShadeMask{}, ids, depth);
+    }
+  };
+  const auto warmUpEnd = std::chrono::steady_clock::now() + kWarmUp;
+  do context.submitAndWait(recordAll);
+  while (std::chrono::steady_clock::now() < warmUpEnd);
+  vk::TimestampQueries timestamps(context, 2);
+  double seconds = 0.0;
+  for (auto _ : state) {
+    context.submitAndWait([&](VkCommandBuffer cmd) {
+      timestamps.reset(cmd);
+      timestamps.write(cmd, 0, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT);
+      recordAll(cmd);
+      timestamps.write(cmd, 1, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT);
+    });
+    const double iteration = timestamps.elapsedMs(0, 1).value_or(0.0) * 1e-3 / kRecordsPerTiming;
+    state.SetIterationTime(iteration);
+    seconds += iteration;
+  }
+  const double rays = double(kWidth) * kHeight * double(state.iterations());
+  state.counters["Mrays/s"] = seconds > 0.0 ? rays / seconds * 1e-6 : 0.0;
+  state.counters["triangles"] = double(bvh.triangles.size());
+  state.SetLabel(context.deviceName());
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  for (const std::string& name : benchScenes()) {
+    const std::string label = renderer::isSceneFile(name) ? fs::path(name).stem().string() : name;
+    benchmark::RegisterBenchmark(("BvhBuild/" + label).c_str(), BvhBuild, name)->Unit(benchmark::kMillisecond);
+    benchmark::RegisterBenchmark(("RaycastAllPixels/" + label).c_str(), RaycastAllPixels, name)
+        ->UseManualTime()
+        ->Unit(benchmark::kMillisecond)
+        ->MinTime(0.05);
+  }
+  benchmark::Initialize(&argc, argv);
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}
