@@ -299,6 +299,19 @@ TEST(GltfScene, TheSceneDescriptionTurnsOnTheSunsShadows) {
   EXPECT_EQ(scene.sun.shadowDistance, 250.0f);
 }
 
+TEST(GltfScene, AnExtensionTheFileUsesButDoesNotRequireIsAWarningNotAnError) {
+  // glTF lets a renderer ignore an extension the file does not require (here unlit shading); the scene loads and
+  // says what it left out, naming the file and the extension.
+  ScratchFolder scratch;
+  const fs::path file = scratch.copyOfTexturedQuad();
+  writeText(file, replaced(readText(file), "\"extensionsUsed\": [", "\"extensionsUsed\": [\"KHR_materials_unlit\", "));
+  const Scene scene = loadGltfScene(file);
+  ASSERT_EQ(scene.warnings.size(), 1u);
+  EXPECT_NE(scene.warnings[0].find(file.string()), std::string::npos) << scene.warnings[0];
+  EXPECT_NE(scene.warnings[0].find("'KHR_materials_unlit'"), std::string::npos) << scene.warnings[0];
+  EXPECT_TRUE(loadGltfScene(kTexturedQuad).warnings.empty()) << "it reads every extension the quad uses";
+}
+
 TEST(GltfScene, AnUnknownSceneDescriptionKeyIsNamed) {
   ScratchFolder scratch;
   const fs::path file = scratch.copyOfTexturedQuad();

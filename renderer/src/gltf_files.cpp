@@ -88,6 +88,18 @@ void requireSupportedExtensions(const fs::path& file, const nlohmann::json& json
   }
 }
 
+std::vector<std::string> ignoredExtensions(const nlohmann::json& json) {
+  std::vector<std::string> ignored;
+  const auto used = json.find("extensionsUsed");
+  if (used == json.end() || !used->is_array()) return ignored;
+  for (const nlohmann::json& extension : *used)
+    if (extension.is_string() &&
+        std::find(std::begin(kReadExtensions), std::end(kReadExtensions), extension.get<std::string>()) ==
+            std::end(kReadExtensions))
+      ignored.push_back(extension.get<std::string>());
+  return ignored;
+}
+
 void requireUrisInsideFolder(const fs::path& file, const fs::path& folder, const nlohmann::json& json) {
   for (const char* kind : {"buffers", "images"}) {
     const auto list = json.find(kind);

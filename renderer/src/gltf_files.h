@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 #include <tiny_gltf.h>
@@ -26,6 +27,9 @@ nlohmann::json gltfJson(const std::filesystem::path& file, bool binary);
 // Names a required extension the renderer does not read before tinygltf parses the file: it reports their
 // effects instead (a meshopt-compressed file's fallback buffer fails as "Invalid 'byteLength'").
 void requireSupportedExtensions(const std::filesystem::path& file, const nlohmann::json& json);
+
+// The extensions the file uses but does not require that the renderer does not read (safe to ignore, per glTF).
+std::vector<std::string> ignoredExtensions(const nlohmann::json& json);
 
 // Refuses buffer and image URIs that are absolute, climb out with "..", or lead out through a link.
 void requireUrisInsideFolder(const std::filesystem::path& file, const std::filesystem::path& folder,

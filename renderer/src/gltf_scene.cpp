@@ -425,6 +425,10 @@ Scene loadGltfScene(const fs::path& file, std::uint64_t memoryLimit) {
   decodeDracoPrimitives(file, model, memory);
   SceneBuilder builder(file, model, memory);
   Scene scene = builder.build();
+  if (json.is_object())  // a required one was refused above
+    for (const std::string& extension : ignoredExtensions(json))
+      scene.warnings.push_back("glTF file '" + file.string() + "' uses the extension '" + extension +
+                               "', which s3d does not read; the file does not require it, so it renders without it");
   const fs::path description = sceneDescriptionPath(file);
   const DescribedParts described =
       fs::exists(description, error) ? applySceneDescription(description, scene) : DescribedParts{};

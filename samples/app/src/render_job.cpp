@@ -116,6 +116,7 @@ ValidatedJob validateJob(const RenderJobOptions& options) {
       options.stereo.zeroParallaxDistance, job.scene.camera.nearPlane, job.scene.camera.farPlane);
   job.stereo.zeroParallaxDistance = zpp.zeroParallaxDistance;
   if (zpp.warning) job.warnings.push_back(*zpp.warning);
+  job.warnings.insert(job.warnings.end(), job.scene.warnings.begin(), job.scene.warnings.end());
   job.constants = stereo::makeStereoConstants(job.stereo, options.width, options.height);
   // The scene's camera at the requested frame of its path (throws naming the frame and the count).
   job.scene.camera = renderer::cameraForFrame(job.scene, options.frame);

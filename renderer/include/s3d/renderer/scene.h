@@ -176,6 +176,9 @@ struct Scene {
   FirstPersonView firstPerson;
   float exposure = 1.0f;
   float crosshairDistance = 8.0f;  // default HUD crosshair depth in metres
+  // What a scene file holds that the renderer leaves out although the file allows it (an extension it uses but
+  // does not require), one sentence each naming the file: a tool reports them as warnings.
+  std::vector<std::string> warnings;
   // Skins and node animation (glTF files): what poseScene (scene_animation.h) poses the scene at a time with;
   // null for a static scene. Shared: copies of a scene pose from the same data.
   std::shared_ptr<const SceneAnimation> animation;
