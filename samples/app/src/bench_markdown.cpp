@@ -59,8 +59,8 @@ std::string settingDetail(const MethodSetting& setting) {
   return "";
 }
 
-std::string sweepMarkdown(const BenchReport& report) {
-  std::ostringstream md;
+// The heading, the command and how every number was measured; the warm-up the timed frames had.
+void writeSweepIntroduction(std::ostream& md, const BenchReport& report) {
   md << "### `s3d bench` on " << report.deviceName << " (" << report.deviceKind << "), " << report.width << "x"
      << report.height << "\n\n";
   md << "Command: `" << report.commandLine << "` (wall time " << format("%.1f", report.wallSeconds) << " s).\n";
@@ -94,7 +94,10 @@ std::string sweepMarkdown(const BenchReport& report) {
          << ".";
     if (!cpuDevice) md << "\n";
   }
+}
 
+// Per scene: every setting's times and its error per region, both eyes.
+void writeSceneTables(std::ostream& md, const BenchReport& report) {
   std::vector<std::string> scenes;
   for (const BenchRow& row : report.rows)
     if (std::find(scenes.begin(), scenes.end(), row.scene) == scenes.end()) scenes.push_back(row.scene);
@@ -131,8 +134,10 @@ std::string sweepMarkdown(const BenchReport& report) {
       md << '\n';
     }
   }
+}
 
-  // Every setting against the seed over all scenes and separations: what the dominance target asks, for all.
+// Every setting against the seed over all scenes and separations: what the dominance target asks, for all.
+void writeSeedComparison(std::ostream& md, const BenchReport& report) {
   const MethodSetting seed{stereo::StereoMethod::Seed, 0};
   md << "\n#### Settings against the seed (halo PSNR gain of the worse eye, over scenes and separations)\n\n"
         "| setting | smallest gain (dB) | mean gain (dB) | largest time / seed | dominates the seed in |\n"
@@ -163,7 +168,10 @@ std::string sweepMarkdown(const BenchReport& report) {
        << " | " << (timesKnown ? format("%.2f", largestTime) + "x" : std::string("n/a")) << " | " << dominating << " of "
        << count << " |\n";
   }
+}
 
+// The targets judged on the target setting, each with its cases.
+void writeTargets(std::ostream& md, const BenchReport& report) {
   md << "\n#### Targets, judged on `" << report.targetSetting.name() << "`\n\n";
   for (const TargetResult& target : evaluateTargets(report)) {
     md << "- " << target.name << ": " << verdict(target);
@@ -171,9 +179,10 @@ std::string sweepMarkdown(const BenchReport& report) {
     md << '\n';
     for (const TargetCase& c : target.cases) md << "  - " << c.scope << ": " << passText(c.pass) << ", " << c.numbers << '\n';
   }
+}
 
-  md << hybridBenchMarkdown(report);
-
+// The stereo pass's memory traffic per setting and separation, against the bandwidth's limit when given.
+void writeTrafficTable(std::ostream& md, const BenchReport& report) {
   md << "\n#### Memory traffic of the stereo pass (counted from stereo/shaders/)\n\n"
         "Per pixel kernel, per interior pixel and eye: the depth imageLoads (4 B each; seed/search: one per tap,\n"
         "iterative: 8 start taps + 2 x iterations), two color imageLoads (4 B, the horizontal filter) and one\n"
@@ -212,6 +221,16 @@ std::string sweepMarkdown(const BenchReport& report) {
     }
     md << '\n';
   }
+}
+
+std::string sweepMarkdown(const BenchReport& report) {
+  std::ostringstream md;
+  writeSweepIntroduction(md, report);
+  writeSceneTables(md, report);
+  writeSeedComparison(md, report);
+  writeTargets(md, report);
+  md << hybridBenchMarkdown(report);
+  writeTrafficTable(md, report);
   return md.str();
 }
 

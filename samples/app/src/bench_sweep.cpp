@@ -3,7 +3,10 @@
 #include <algorithm>
 #include <memory>
 #include <optional>
+#include <string>
+#include <tuple>
 #include <utility>
+#include <vector>
 
 #include "bench_internal.h"
 #include "bench_text.h"
@@ -26,6 +29,77 @@ struct EyeReferences {
   std::vector<std::uint8_t> leftTransparent, rightTransparent;  // the error regions the reference eye defines
   std::vector<std::uint8_t> leftFoliage, rightFoliage;
 };
+
+// A separation's two reference eyes: colour and depth, and the transparent and cut-out pixels (their error regions).
+EyeReferences renderReferenceEyes(renderer::DeferredRenderer& deferred, const renderer::Scene& scene,
+                                  const renderer::ViewMatrices& center, const stereo::StereoParameters& parameters) {
+  EyeReferences eyes;
+  (void)deferred.render(referenceEyeView(scene, center, stereo::Eye::Left, parameters));
+  eyes.leftColor = deferred.readDisplayColor();
+  eyes.leftDepth = deferred.readLinearDepth();
+  eyes.leftTransparent = deferred.readTransparentMask();
+  eyes.leftFoliage = deferred.readCutoutMask();
+  (void)deferred.render(referenceEyeView(scene, center, stereo::Eye::Right, parameters));
+  eyes.rightColor = deferred.readDisplayColor();
+  eyes.rightDepth = deferred.readLinearDepth();
+  eyes.rightTransparent = deferred.readTransparentMask();
+  eyes.rightFoliage = deferred.readCutoutMask();
+  return eyes;
+}
+
+// The disparity budget's depth reduction and the nonlinear depth-to-parallax mapping of the center frame's
+// `linearDepth` (one untimed run each, then `repeat` timed): their median GPU times. The mapping rewrites
+// linearDepth in place.
+std::pair<std::optional<double>, std::optional<double>> timeDepthPasses(vk::Context& context,
+                                                                        const stereo::DepthRangePass& reduction,
+                                                                        const stereo::DisparityMapPass& mapping,
+                                                                        const gpu::DisparityMapConstants& map,
+                                                                        const vk::Image& linearDepth, int repeat) {
+  std::vector<double> reductionRuns, mappingRuns;
+  for (int run = 0; run <= repeat; ++run)
+    if (const std::optional<double> ms = stereo::reduceDepthRangeTimed(context, reduction, linearDepth).gpuMs;
+        ms && run > 0)
+      reductionRuns.push_back(*ms);
+  for (int run = 0; run <= repeat; ++run)
+    if (const std::optional<double> ms = stereo::mapDepthTimed(context, mapping, linearDepth, map); ms && run > 0)
+      mappingRuns.push_back(*ms);
+  return {stereo::medianMs(reductionRuns), stereo::medianMs(mappingRuns)};
+}
+
+// A setting's row at one separation: its times, and its eyes compared with the reference eyes over the regions
+// (`left`, `right`: the halo and each eye's disocclusion, transparent and foliage pixels). The depth passes'
+// times are the caller's.
+BenchRow settingRow(const std::string& sceneName, const MethodSetting& setting,
+                    const stereo::StereoParameters& parameters, const BenchOptions& options, bool cpuDevice,
+                    const stereo::SynthesisResult& synthesis, const InterleavedTiming& frames,
+                    const EyeReferences& eyes, const stereo::RegionMasks& left, const stereo::RegionMasks& right,
+                    const std::optional<HybridSynthesis>& hybrid) {
+  const stereo::StereoParameters methodParameters = setting.applyTo(parameters);
+  BenchRow row;
+  row.scene = sceneLabel(sceneName);
+  row.setting = setting;
+  row.maxSeparation = parameters.maxSeparation;
+  row.cropColumns =
+      std::uint32_t(stereo::makeStereoConstants(methodParameters, options.width, options.height).cropBegin);
+  row.stereoGpuMs = synthesis.gpuMs;
+  row.stereoGpuMsRuns = synthesis.gpuMsRuns;
+  row.referenceEyeGpuMs = frames.medians[0];
+  row.centerFrameGpuMs = frames.medians[1];
+  row.frameWarmUpMs = frames.warmUpMs;
+  row.frameWarmUpSettled = frames.settled;
+  row.left = compareEye(synthesis.eyes.left, eyes.leftColor, row.cropColumns, left);
+  row.right = compareEye(synthesis.eyes.right, eyes.rightColor, row.cropColumns, right);
+  row.filledLeft = synthesis.filledLeft;
+  row.filledRight = synthesis.filledRight;
+  row.traffic = stereoPassTraffic(methodParameters, options.width, options.height, cpuDevice);
+  if (hybrid) {
+    const double classified = double(std::max<std::uint64_t>(hybrid->classifiedPixels, 1));
+    row.maskedShareLeft = double(hybrid->thresholds[0].maskedPixels) / classified;
+    row.maskedShareRight = double(hybrid->thresholds[1].maskedPixels) / classified;
+    row.hybridTimings = hybrid->timings;
+  }
+  return row;
+}
 
 }  // namespace
 
@@ -60,18 +134,7 @@ void runSweep(vk::Context& context, const BenchOptions& options, const Validated
       progress(sceneName + " references sep " + percentText(separation) + "%");
       stereo::StereoParameters parameters = options.stereo;
       parameters.maxSeparation = separation;
-      EyeReferences eyes;
-      (void)deferred.render(referenceEyeView(scene, center, stereo::Eye::Left, parameters));
-      eyes.leftColor = deferred.readDisplayColor();
-      eyes.leftDepth = deferred.readLinearDepth();
-      eyes.leftTransparent = deferred.readTransparentMask();
-      eyes.leftFoliage = deferred.readCutoutMask();
-      (void)deferred.render(referenceEyeView(scene, center, stereo::Eye::Right, parameters));
-      eyes.rightColor = deferred.readDisplayColor();
-      eyes.rightDepth = deferred.readLinearDepth();
-      eyes.rightTransparent = deferred.readTransparentMask();
-      eyes.rightFoliage = deferred.readCutoutMask();
-      references.push_back(std::move(eyes));
+      references.push_back(renderReferenceEyes(deferred, scene, center, parameters));
     }
     (void)deferred.render(center);
     const DepthImage centerDepth = deferred.readLinearDepth();
@@ -106,20 +169,9 @@ void runSweep(vk::Context& context, const BenchOptions& options, const Validated
             {[&] { return deferred.render(leftEye).totalGpuMs; }, [&] { return deferred.render(center).totalGpuMs; }},
             options.repeat, frameWarmUp));  // ends on the center frame: the setting's input
         if (s == 0 && frames.size() == 1) {
-          // The disparity budget's depth reduction and the nonlinear depth-to-parallax mapping of the center
-          // frame (one untimed run each, then `repeat` timed). The mapping rewrites linearDepth in place, so the
-          // center view is rendered again after it.
-          std::vector<double> reductionRuns, mappingRuns;
-          for (int run = 0; run <= options.repeat; ++run)
-            if (const std::optional<double> ms = stereo::reduceDepthRangeTimed(context, reduction, deferred.linearDepth()).gpuMs;
-                ms && run > 0)
-              reductionRuns.push_back(*ms);
-          for (int run = 0; run <= options.repeat; ++run)
-            if (const std::optional<double> ms = stereo::mapDepthTimed(context, mapping, deferred.linearDepth(), map);
-                ms && run > 0)
-              mappingRuns.push_back(*ms);
-          depthReductionGpuMs = stereo::medianMs(reductionRuns);
-          disparityMapGpuMs = stereo::medianMs(mappingRuns);
+          // The mapping rewrites linearDepth in place, so the center view is rendered again after it.
+          std::tie(depthReductionGpuMs, disparityMapGpuMs) =
+              timeDepthPasses(context, reduction, mapping, map, deferred.linearDepth(), options.repeat);
           (void)deferred.render(center);
         }
         if (setting.method == stereo::StereoMethod::Hybrid) {
@@ -135,41 +187,16 @@ void runSweep(vk::Context& context, const BenchOptions& options, const Validated
         ++done;
       }
       const std::vector<std::uint8_t> halo = haloMaskFor(centerDepth, parameters);
-      const std::vector<std::uint8_t> unseenLeft =
-          disocclusionMaskFor(eyes.leftDepth, centerDepth, parameters, stereo::Eye::Left);
-      const std::vector<std::uint8_t> unseenRight =
-          disocclusionMaskFor(eyes.rightDepth, centerDepth, parameters, stereo::Eye::Right);
+      const stereo::RegionMasks left{halo, disocclusionMaskFor(eyes.leftDepth, centerDepth, parameters, stereo::Eye::Left),
+                                     eyes.leftTransparent, eyes.leftFoliage};
+      const stereo::RegionMasks right{halo,
+                                      disocclusionMaskFor(eyes.rightDepth, centerDepth, parameters, stereo::Eye::Right),
+                                      eyes.rightTransparent, eyes.rightFoliage};
       for (std::size_t i = 0; i < bench.settings.size(); ++i) {
-        const MethodSetting& setting = bench.settings[i];
-        const stereo::StereoParameters methodParameters = setting.applyTo(parameters);
-        const stereo::SynthesisResult& synthesis = syntheses[i];
-        BenchRow row;
-        row.scene = sceneLabel(sceneName);
-        row.setting = setting;
-        row.maxSeparation = parameters.maxSeparation;
-        row.cropColumns =
-            std::uint32_t(stereo::makeStereoConstants(methodParameters, options.width, options.height).cropBegin);
-        row.stereoGpuMs = synthesis.gpuMs;
-        row.stereoGpuMsRuns = synthesis.gpuMsRuns;
-        row.referenceEyeGpuMs = frames[i].medians[0];
-        row.centerFrameGpuMs = frames[i].medians[1];
+        BenchRow row = settingRow(sceneName, bench.settings[i], parameters, options, context.isCpuDevice(), syntheses[i],
+                                  frames[i], eyes, left, right, hybrids[i]);
         row.depthReductionGpuMs = depthReductionGpuMs;
         row.disparityMapGpuMs = disparityMapGpuMs;
-        row.frameWarmUpMs = frames[i].warmUpMs;
-        row.frameWarmUpSettled = frames[i].settled;
-        row.left = compareEye(synthesis.eyes.left, eyes.leftColor, row.cropColumns,
-                              stereo::RegionMasks{halo, unseenLeft, eyes.leftTransparent, eyes.leftFoliage});
-        row.right = compareEye(synthesis.eyes.right, eyes.rightColor, row.cropColumns,
-                               stereo::RegionMasks{halo, unseenRight, eyes.rightTransparent, eyes.rightFoliage});
-        row.filledLeft = synthesis.filledLeft;
-        row.filledRight = synthesis.filledRight;
-        row.traffic = stereoPassTraffic(methodParameters, options.width, options.height, context.isCpuDevice());
-        if (const std::optional<HybridSynthesis>& hybrid = hybrids[i]) {
-          const double classified = double(std::max<std::uint64_t>(hybrid->classifiedPixels, 1));
-          row.maskedShareLeft = double(hybrid->thresholds[0].maskedPixels) / classified;
-          row.maskedShareRight = double(hybrid->thresholds[1].maskedPixels) / classified;
-          row.hybridTimings = hybrid->timings;
-        }
         report.rows.push_back(std::move(row));
       }
     }
