@@ -137,6 +137,11 @@ struct DeferredRenderer::Impl {
 
   void setScene(const Scene& newScene);
 
+  // The visibility target's format (narrow or wide ids) and whether the G-buffer pass binds normal and material
+  // (`textured`: some opaque object is drawn with a material variant) follow the scene; the G-buffer pipelines are
+  // made again when either changes.
+  void fitGBufferToScene(const Scene& newScene, bool textured);
+
   // What cut-out shadow casters sample: the uploaded surface stream and textures.
   detail::ShadowTextures shadowTextures() const;
 

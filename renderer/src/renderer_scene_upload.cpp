@@ -81,6 +81,18 @@ void DeferredRenderer::Impl::setScene(const Scene& newScene) {
     drawBounds.push_back(objectBounds(newScene.meshes[object.mesh], object.transform));
     textured = textured || detail::materialVariant(object.material) != 0;
   }
+  fitGBufferToScene(newScene, textured);
+  std::vector<std::uint32_t> meshTriangles;
+  for (const MeshRange& range : meshRanges) meshTriangles.push_back(range.indexCount / 3);
+  transparentPass->setScene(newScene, meshTriangles, textures, whiteTexture, flatNormalTexture);
+  std::vector<detail::ShadowMeshRange> shadowRanges;
+  for (const MeshRange& range : meshRanges) shadowRanges.push_back({range.firstIndex, range.indexCount, range.vertexOffset});
+  shadows->setScene(newScene, vertexBuffer.buffer, indexBuffer.buffer, std::move(shadowRanges), shadowTextures());
+  lighting->setScene(newScene);
+  scene = newScene;
+}
+
+void DeferredRenderer::Impl::fitGBufferToScene(const Scene& newScene, bool textured) {
   const glm::uvec2 packing = visibilityShading ? visibilityPackingFor(newScene) : glm::uvec2(0);
   const VkFormat visibilityFormat = packing.y != 0 ? kWideVisibilityFormat : kNarrowVisibilityFormat;
   const bool newFormat = visibilityShading && (visibility.width == 0 || visibility.format != visibilityFormat);
@@ -95,14 +107,6 @@ void DeferredRenderer::Impl::setScene(const Scene& newScene) {
     for (vk::Unique<VkPipeline>& pipeline : gbufferPipelines) pipeline.reset();
     gbufferPipelinesValid = true;
   }
-  std::vector<std::uint32_t> meshTriangles;
-  for (const MeshRange& range : meshRanges) meshTriangles.push_back(range.indexCount / 3);
-  transparentPass->setScene(newScene, meshTriangles, textures, whiteTexture, flatNormalTexture);
-  std::vector<detail::ShadowMeshRange> shadowRanges;
-  for (const MeshRange& range : meshRanges) shadowRanges.push_back({range.firstIndex, range.indexCount, range.vertexOffset});
-  shadows->setScene(newScene, vertexBuffer.buffer, indexBuffer.buffer, std::move(shadowRanges), shadowTextures());
-  lighting->setScene(newScene);
-  scene = newScene;
 }
 
 detail::ShadowTextures DeferredRenderer::Impl::shadowTextures() const {
