@@ -1,5 +1,6 @@
 #pragma once
-// How `s3d bench` writes its numbers into Markdown (bench_job.cpp, bench_hybrid.cpp).
+// How `s3d bench` writes its numbers into Markdown and SVG (bench_markdown.cpp, bench_targets.cpp, bench_hybrid.cpp,
+// bench_plot.cpp and the other bench_*.cpp).
 #include <cstdio>
 #include <optional>
 #include <string>
