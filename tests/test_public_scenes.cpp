@@ -5,25 +5,17 @@
 
 #include <cmath>
 #include <cstdint>
-#include <cstdlib>
 #include <filesystem>
 #include <string>
 
 #include "s3d/renderer/deferred_renderer.h"
 #include "s3d/renderer/scene_file.h"
+#include "scene_cache.h"
 #include "vulkan_test.h"
 
 namespace s3d::renderer {
 namespace {
 namespace fs = std::filesystem;
-
-// Where fetch-scenes puts the scenes: $S3D_SCENE_CACHE, else ${XDG_CACHE_HOME:-~/.cache}/s3d/scenes.
-fs::path sceneCache() {
-  if (const char* cache = std::getenv("S3D_SCENE_CACHE"); cache && *cache) return cache;
-  if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg) return fs::path(xdg) / "s3d" / "scenes";
-  const char* home = std::getenv("HOME");
-  return fs::path(home ? home : "/nonexistent") / ".cache" / "s3d" / "scenes";
-}
 
 struct PublicScene {
   const char* name;
@@ -48,13 +40,13 @@ std::uint64_t trianglesDrawn(const Scene& scene) {
 
 class PublicScenes : public test::VulkanTest, public ::testing::WithParamInterface<PublicScene> {
  protected:
-  fs::path file() const { return sceneCache() / GetParam().file; }
+  fs::path file() const { return test::sceneCache() / GetParam().file; }
   bool inCache() const {
     std::error_code error;
     return fs::is_regular_file(file(), error);
   }
   std::string notInCache() const {
-    return "public scene '" + std::string(GetParam().name) + "' is not in " + sceneCache().string() +
+    return "public scene '" + std::string(GetParam().name) + "' is not in " + test::sceneCache().string() +
            ": run tests/data/scenes/fetch-scenes (or set S3D_SCENE_CACHE)";
   }
 };

@@ -18,6 +18,8 @@
 #include "s3d/renderer/scene_file.h"
 #include "s3d/vk/timestamps.h"
 
+#include "../scene_cache.h"
+
 namespace {
 
 using namespace s3d;
@@ -36,20 +38,13 @@ vk::Context& benchContext() {
   return *context;
 }
 
-fs::path sceneCache() {
-  if (const char* cache = std::getenv("S3D_SCENE_CACHE"); cache && *cache) return cache;
-  if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg) return fs::path(xdg) / "s3d" / "scenes";
-  const char* home = std::getenv("HOME");
-  return fs::path(home ? home : "/nonexistent") / ".cache" / "s3d" / "scenes";
-}
-
 // The scenes to time: every built-in scene, then each public scene found in the cache.
 std::vector<std::string> benchScenes() {
   std::vector<std::string> scenes = renderer::builtInSceneNames();
   for (const char* file : {"dungeon/level-dungeon.gltf", "oak/oaktree.gltf", "humanoid/humanoid.gltf",
                            "engine/2CylinderEngine.glb"}) {
     std::error_code error;
-    if (fs::is_regular_file(sceneCache() / file, error)) scenes.push_back((sceneCache() / file).string());
+    if (fs::is_regular_file(test::sceneCache() / file, error)) scenes.push_back((test::sceneCache() / file).string());
   }
   return scenes;
 }
