@@ -1,5 +1,6 @@
 #pragma once
-// Helpers shared by the file-reader tests: raw bytes in and out, and the message of an expected error.
+// Helpers shared by the file-reader tests: raw bytes in and out, a scratch folder per test, and the message of an
+// expected error.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -7,6 +8,7 @@
 #include <iterator>
 #include <stdexcept>
 #include <string>
+#include <system_error>
 
 namespace s3d::test {
 
@@ -30,5 +32,39 @@ std::string runtimeErrorMessage(Call call) {
   ADD_FAILURE() << "expected std::runtime_error";
   return {};
 }
+
+// The message of what `call` throws as E; "" when it throws nothing or something else (the test then says what
+// it expected).
+template <typename E, typename Call>
+std::string errorOf(Call call) {
+  try {
+    call();
+  } catch (const E& error) {
+    return error.what();
+  } catch (...) {
+  }
+  return {};
+}
+
+// An empty folder for the running test (temp folder / PREFIX + the test's name), removed afterwards.
+class ScratchFolder {
+ public:
+  explicit ScratchFolder(const std::string& prefix) {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    path_ = std::filesystem::temp_directory_path() / (prefix + info->name());
+    std::filesystem::remove_all(path_);
+    std::filesystem::create_directories(path_);
+  }
+  ~ScratchFolder() {
+    std::error_code ignored;
+    std::filesystem::remove_all(path_, ignored);
+  }
+  ScratchFolder(const ScratchFolder&) = delete;
+  ScratchFolder& operator=(const ScratchFolder&) = delete;
+  const std::filesystem::path& path() const { return path_; }
+
+ private:
+  std::filesystem::path path_;
+};
 
 }  // namespace s3d::test

@@ -22,6 +22,7 @@
 #include <webp/encode.h>
 
 #include "gltf_test_documents.h"
+#include "io_test_support.h"
 #include "s3d/renderer/scene_file.h"
 
 namespace s3d::renderer {
@@ -34,25 +35,14 @@ const fs::path kDataDir = S3D_TEST_DATA_DIR;
 
 class GltfDracoWebp : public ::testing::Test {
  protected:
-  void SetUp() override {
-    folder_ = fs::temp_directory_path() / ("s3d_draco_webp_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    fs::remove_all(folder_);
-    fs::create_directories(folder_);
-  }
-  void TearDown() override { fs::remove_all(folder_); }
 
   template <typename E>
   static std::string errorOf(const fs::path& file) {
-    try {
-      loadGltfScene(file);
-    } catch (const E& error) {
-      return error.what();
-    } catch (...) {
-    }
-    return {};
+    return test::errorOf<E>([&] { loadGltfScene(file); });
   }
 
-  fs::path folder_;
+  test::ScratchFolder scratch_{"s3d_draco_webp_"};
+  const fs::path& folder_ = scratch_.path();
   GridMesh grid_ = test::gridMesh();
 };
 

@@ -9,6 +9,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "io_test_support.h"
 #include "s3d/renderer/scene_file.h"
 
 namespace s3d::renderer {
@@ -53,16 +54,7 @@ class EditedQuad {
   std::string text_;
 };
 
-template <typename E, typename F>
-std::string errorOf(F load) {
-  try {
-    load();
-  } catch (const E& error) {
-    return error.what();
-  } catch (...) {
-  }
-  return {};
-}
+using test::errorOf;
 
 TEST(GltfMaterials, MaskMaterialsAreOpaqueCutoutsWithTheirCutoffAndFactorAlpha) {
   EditedQuad quad;

@@ -13,6 +13,7 @@
 #include <meshoptimizer.h>
 
 #include "gltf_test_documents.h"
+#include "io_test_support.h"
 #include "s3d/renderer/scene_file.h"
 
 namespace s3d::renderer {
@@ -26,12 +27,6 @@ constexpr int kByte = 5120, kUnsignedByte = 5121, kShort = 5122, kUnsignedShort 
 
 class GltfQuantizedMeshopt : public ::testing::Test {
  protected:
-  void SetUp() override {
-    folder_ = fs::temp_directory_path() / ("s3d_compressed_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    fs::remove_all(folder_);
-    fs::create_directories(folder_);
-  }
-  void TearDown() override { fs::remove_all(folder_); }
 
   Scene plainGrid() const {
     GltfBuilder builder;
@@ -42,16 +37,11 @@ class GltfQuantizedMeshopt : public ::testing::Test {
   // What loading `file` throws as E (empty when it loads or throws something else).
   template <typename E>
   static std::string errorOf(const fs::path& file, std::uint64_t memoryLimit = kMaxSceneBytes) {
-    try {
-      loadGltfScene(file, memoryLimit);
-    } catch (const E& error) {
-      return error.what();
-    } catch (...) {
-    }
-    return {};
+    return test::errorOf<E>([&] { loadGltfScene(file, memoryLimit); });
   }
 
-  fs::path folder_;
+  test::ScratchFolder scratch_{"s3d_compressed_"};
+  const fs::path& folder_ = scratch_.path();
   GridMesh grid_ = test::gridMesh();
 };
 

@@ -10,6 +10,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "io_test_support.h"
 #include "s3d/io/image_io.h"
 #include "s3d/renderer/deferred_renderer.h"
 #include "s3d/renderer/scene_file.h"
@@ -22,28 +23,20 @@ namespace fs = std::filesystem;
 const fs::path kDataDir = S3D_TEST_DATA_DIR;
 const fs::path kTexturedQuad = kDataDir / "textured_quad.gltf";
 
+using test::errorOf;
+
 // A scratch folder per test, removed afterwards.
-class ScratchFolder {
+class ScratchFolder : public test::ScratchFolder {
  public:
-  ScratchFolder() {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    path_ = fs::temp_directory_path() / ("s3d_gltf_" + std::string(info->name()));
-    fs::remove_all(path_);
-    fs::create_directories(path_);
-  }
-  ~ScratchFolder() { fs::remove_all(path_); }
-  const fs::path& path() const { return path_; }
+  ScratchFolder() : test::ScratchFolder("s3d_gltf_") {}
 
   // The test asset copied in, so a test can break one of its files.
   fs::path copyOfTexturedQuad() const {
     for (const char* name : {"textured_quad.gltf", "textured_quad.bin", "textured_quad_base_color.png",
                              "textured_quad_normal.png"})
-      fs::copy_file(kDataDir / name, path_ / name);
-    return path_ / "textured_quad.gltf";
+      fs::copy_file(kDataDir / name, path() / name);
+    return path() / "textured_quad.gltf";
   }
-
- private:
-  fs::path path_;
 };
 
 void writeText(const fs::path& file, const std::string& text) { std::ofstream(file, std::ios::binary) << text; }
@@ -57,18 +50,6 @@ std::string replaced(std::string text, const std::string& from, const std::strin
 std::string readText(const fs::path& file) {
   std::ifstream in(file, std::ios::binary);
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
-// The message of what `load` throws as E (empty when it throws nothing or something else).
-template <typename E, typename F>
-std::string errorOf(F load) {
-  try {
-    load();
-  } catch (const E& error) {
-    return error.what();
-  } catch (...) {
-  }
-  return {};
 }
 
 TEST(GltfScene, SceneFilesAreTellApartFromBuiltInNames) {

@@ -32,12 +32,6 @@ const PublicScene kPublicScenes[] = {
     {"engine", "engine/2CylinderEngine.glb", 121496},
 };
 
-std::uint64_t trianglesDrawn(const Scene& scene) {
-  std::uint64_t triangles = 0;
-  for (const Object& object : scene.objects) triangles += scene.meshes[object.mesh].indices.size() / 3;
-  return triangles;
-}
-
 class PublicScenes : public test::VulkanTest, public ::testing::WithParamInterface<PublicScene> {
  protected:
   fs::path file() const { return test::sceneCache() / GetParam().file; }

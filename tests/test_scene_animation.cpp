@@ -10,6 +10,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "io_test_support.h"
 #include "s3d/renderer/scene_animation.h"
 #include "s3d/renderer/scene_file.h"
 #include "skinned_arm.h"
@@ -21,19 +22,9 @@ namespace fs = std::filesystem;
 // Float rounding of a few multiplies and adds on values near 1: well under 1e-5.
 constexpr float kTolerance = 1e-5f;
 
-class ScratchFolder {
+class ScratchFolder : public test::ScratchFolder {
  public:
-  ScratchFolder() {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    path_ = fs::temp_directory_path() / ("s3d_anim_" + std::string(info->name()));
-    fs::remove_all(path_);
-    fs::create_directories(path_);
-  }
-  ~ScratchFolder() { fs::remove_all(path_); }
-  const fs::path& path() const { return path_; }
-
- private:
-  fs::path path_;
+  ScratchFolder() : test::ScratchFolder("s3d_anim_") {}
 };
 
 AnimationChannel channel(Interpolation interpolation, std::vector<float> times, std::vector<glm::vec4> values,
@@ -164,16 +155,11 @@ TEST(SceneAnimation, TheGltfTutorialsSimpleSkinPosesItsUpperHalf) {
   EXPECT_GT(topMoved, 0.1f);     // the top of the 2-unit strip swings visibly
 }
 
+// What loading the arm written into `folder` throws as E ("" when it loads or throws something else).
 template <typename E>
 std::string errorOfLoading(const test::SkinnedArm& arm, const fs::path& folder) {
   const fs::path file = arm.write(folder);
-  try {
-    (void)loadGltfScene(file);
-  } catch (const E& error) {
-    return error.what();
-  } catch (...) {
-  }
-  return {};
+  return test::errorOf<E>([&] { (void)loadGltfScene(file); });
 }
 
 TEST(SceneAnimation, AJointIndexPastTheSkinsJointsIsNamed) {

@@ -19,6 +19,7 @@
 #include "s3d/stereo/stereo_pass.h"
 #include "s3d/stereo/synthesis.h"
 #include "s3d/vk/timestamps.h"
+#include "bench_context.h"
 
 namespace {
 
@@ -26,14 +27,7 @@ using namespace s3d;
 
 constexpr std::uint32_t kWidth = 1920, kHeight = 1080;
 
-vk::Context& benchContext() {
-  static std::unique_ptr<vk::Context> context = [] {
-    vk::ContextOptions options;
-    if (const char* device = std::getenv("S3D_BENCH_DEVICE")) options.device = device;
-    return std::make_unique<vk::Context>(options);
-  }();
-  return *context;
-}
+using bench::benchContext;
 
 // Random colour over depth in 16x8 blocks between 1 and 50 m, a quarter sky; as colour bytes and as D32 device depth.
 struct View {

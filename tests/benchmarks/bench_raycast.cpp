@@ -18,6 +18,7 @@
 #include "s3d/renderer/scene_file.h"
 #include "s3d/vk/timestamps.h"
 
+#include "bench_context.h"
 #include "../scene_cache.h"
 
 namespace {
@@ -29,14 +30,7 @@ constexpr std::uint32_t kWidth = 1920, kHeight = 1080;
 constexpr int kRecordsPerTiming = 16;
 constexpr std::chrono::milliseconds kWarmUp{1000};  // an idle H200 runs at 345 MHz until about a second of load
 
-vk::Context& benchContext() {
-  static std::unique_ptr<vk::Context> context = [] {
-    vk::ContextOptions options;
-    if (const char* device = std::getenv("S3D_BENCH_DEVICE")) options.device = device;
-    return std::make_unique<vk::Context>(options);
-  }();
-  return *context;
-}
+using bench::benchContext;
 
 // The scenes to time: every built-in scene, then each public scene found in the cache.
 std::vector<std::string> benchScenes() {

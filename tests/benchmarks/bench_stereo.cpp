@@ -16,19 +16,13 @@
 #include "s3d/stereo/iterative_pass.h"
 #include "s3d/stereo/stereo_pass.h"
 #include "s3d/vk/timestamps.h"
+#include "bench_context.h"
 
 namespace {
 
 using namespace s3d;
 
-vk::Context& benchContext() {
-  static std::unique_ptr<vk::Context> context = [] {
-    vk::ContextOptions options;
-    if (const char* device = std::getenv("S3D_BENCH_DEVICE")) options.device = device;
-    return std::make_unique<vk::Context>(options);
-  }();
-  return *context;
-}
+using bench::benchContext;
 
 // One renderer per resolution with the default scene loaded and a warm center frame on its outputs.
 struct Setup {
