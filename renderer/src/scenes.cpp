@@ -552,4 +552,10 @@ Camera cameraForFrame(const Scene& scene, std::size_t frame) {
                           std::to_string(count - 1) + ")");
 }
 
+std::uint64_t trianglesDrawn(const Scene& scene) {
+  std::uint64_t triangles = 0;
+  for (const Object& object : scene.objects) triangles += scene.meshes[object.mesh].indices.size() / 3;
+  return triangles;
+}
+
 }  // namespace s3d::renderer

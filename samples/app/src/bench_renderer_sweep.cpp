@@ -12,15 +12,6 @@
 #include "s3d/stereo/guard_band.h"
 
 namespace s3d::app::bench_detail {
-namespace {
-
-std::uint64_t triangleCount(const renderer::Scene& scene) {
-  std::uint64_t triangles = 0;
-  for (const renderer::Object& object : scene.objects) triangles += scene.meshes[object.mesh].indices.size() / 3;
-  return triangles;
-}
-
-}  // namespace
 
 using detail::medianOf;
 using detail::timeFrames;
@@ -60,7 +51,7 @@ void runRendererTimings(vk::Context& context, const BenchOptions& options, const
                                                                      : std::nullopt);
     }
     report.rendererRows.push_back(
-        {sceneLabel(sceneName), triangleCount(scene), frameMs, std::move(passes), band.columns, medianOf(wideRuns), medianOf(ratios),
+        {sceneLabel(sceneName), renderer::trianglesDrawn(scene), frameMs, std::move(passes), band.columns, medianOf(wideRuns), medianOf(ratios),
          context.isCpuDevice() ? std::optional(detail::processCpuMsPerFrame(deferred, center, options.repeat)) : std::nullopt});
     if (done == 0) {  // the masked-render cost scaling, on the first scene
       if (options.progress) options.progress({done, bench.scenes.size(), sceneName + " masked frames"});

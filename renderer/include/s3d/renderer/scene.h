@@ -205,4 +205,7 @@ Scene makeBuiltInScene(const std::string& name);  // throws std::invalid_argumen
 // without a path (any frame of an animated scene without a path: its animation moves, the camera stays). Throws std::out_of_range naming the frame and the scene's frame count.
 Camera cameraForFrame(const Scene& scene, std::size_t frame);
 
+// Triangles a center frame draws: every object's mesh, both layers (an instanced mesh counts per instance).
+std::uint64_t trianglesDrawn(const Scene& scene);
+
 }  // namespace s3d::renderer
