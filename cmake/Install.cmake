@@ -15,7 +15,7 @@ endforeach()
 
 install(TARGETS ${S3D_PACKAGE_TARGETS} EXPORT s3dTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR})
-foreach(dir renderer/vk/include stereo/include renderer/include comfort/include hud/include capi/include)
+foreach(dir vk/include stereo/include renderer/include comfort/include hud/include capi/include)
   install(DIRECTORY ${PROJECT_SOURCE_DIR}/${dir}/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 endforeach()
 
