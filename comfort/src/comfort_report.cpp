@@ -76,14 +76,12 @@ std::optional<float> nearestDepth(const DepthImage& stereoDepth) {
   return nearest;
 }
 
-WeaponConflicts countWeaponConflicts(const WorldQueries& world, const renderer::Camera& camera,
-                                     const renderer::ViewMatrices& center, const DepthImage& pushedDepth,
-                                     const std::vector<std::uint8_t>& weaponMask) {
+WeaponConflicts countWeaponConflicts(const WorldQueries& world, const Camera& camera, const glm::mat4& projection,
+                                     const DepthImage& pushedDepth, const std::vector<std::uint8_t>& weaponMask) {
   if (weaponMask.size() != pushedDepth.pixelCount())
     throw std::invalid_argument("countWeaponConflicts: the mask and the depth image differ in size");
   WeaponConflicts result;
-  const glm::mat4 worldFromView = glm::inverse(center.worldView);
-  const glm::mat4& projection = center.worldProjection;
+  const glm::mat4 worldFromView = glm::inverse(cameraView(camera));
   for (std::uint32_t y = 0; y < pushedDepth.height; ++y)
     for (std::uint32_t x = 0; x < pushedDepth.width; ++x) {
       if (!weaponMask[std::size_t(y) * pushedDepth.width + x]) continue;

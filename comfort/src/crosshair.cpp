@@ -9,14 +9,13 @@
 #include <glm/glm.hpp>
 
 #include "s3d/comfort/frame_comfort_state.h"
-#include "s3d/renderer/deferred_renderer.h"
 
 namespace s3d::comfort {
 
-CrosshairPlacement placeCrosshair(const WorldQueries& world, const renderer::Camera& camera, float defaultDistance,
+CrosshairPlacement placeCrosshair(const WorldQueries& world, const Camera& camera, float defaultDistance,
                                   float margin) {
   // The camera's aim is -Z of its view space; in world space that is minus the third column of view^-1.
-  const glm::mat4 worldFromView = glm::inverse(renderer::cameraView(camera));
+  const glm::mat4 worldFromView = glm::inverse(cameraView(camera));
   return placeCrosshairAlongAim(embreeRayCast(world),
                                 {glm::vec3(worldFromView[3]), -glm::vec3(worldFromView[2]), camera.nearPlane},
                                 defaultDistance, margin);

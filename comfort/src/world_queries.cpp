@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstddef>
+#include <cstring>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -55,7 +56,7 @@ struct WorldQueries::Embree {
   }
 };
 
-WorldQueries::WorldQueries(const renderer::Scene& scene) : embree_(std::make_unique<Embree>()) {
+WorldQueries::WorldQueries(std::span<const WorldMesh> meshes) : embree_(std::make_unique<Embree>()) {
   embree_->device = rtcNewDevice(nullptr);
   if (!embree_->device) checkEmbree(nullptr, "rtcNewDevice");
   if (!embree_->device) throw std::runtime_error("rtcNewDevice failed: no device and no error");
@@ -63,29 +64,34 @@ WorldQueries::WorldQueries(const renderer::Scene& scene) : embree_(std::make_uni
   embree_->scene = rtcNewScene(device);
   checkEmbree(device, "rtcNewScene");
 
-  for (const renderer::Object& object : scene.objects) {
-    if (object.layer != renderer::Layer::World) continue;  // the first-person weapon is not part of the world
-    const renderer::Mesh& mesh = scene.meshes.at(object.mesh);
+  for (std::size_t m = 0; m < meshes.size(); ++m) {
+    const WorldMesh& mesh = meshes[m];
     const std::size_t triangleCount = mesh.indices.size() / 3;
-    if (triangleCount == 0 || mesh.vertices.empty()) continue;
+    if (triangleCount == 0 || mesh.vertexCount == 0) continue;
+    if (!mesh.positions)
+      throw std::invalid_argument("world mesh " + std::to_string(m) + " has " + std::to_string(mesh.vertexCount) +
+                                  " vertices but no positions");
     for (std::uint32_t index : mesh.indices)
-      if (index >= mesh.vertices.size())
-        throw std::invalid_argument("WorldQueries: mesh " + std::to_string(object.mesh) + " has triangle index " +
-                                    std::to_string(index) + " beyond its " + std::to_string(mesh.vertices.size()) +
-                                    " vertices");
+      if (index >= mesh.vertexCount)
+        throw std::invalid_argument("world mesh " + std::to_string(m) + " has triangle index " + std::to_string(index) +
+                                    " beyond its " + std::to_string(mesh.vertexCount) + " vertices");
 
     const GeometryRef geometry{rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE)};
     checkEmbree(device, "rtcNewGeometry");
     auto* positions = static_cast<glm::vec3*>(rtcSetNewGeometryBuffer(
-        geometry.handle, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, sizeof(glm::vec3), mesh.vertices.size()));
+        geometry.handle, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, sizeof(glm::vec3), mesh.vertexCount));
     checkEmbree(device, "rtcSetNewGeometryBuffer(vertex)");
     auto* triangles = static_cast<std::uint32_t*>(rtcSetNewGeometryBuffer(
         geometry.handle, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(std::uint32_t), triangleCount));
     checkEmbree(device, "rtcSetNewGeometryBuffer(index)");
 
     // Embree's buffers are padded for its 16-byte loads; glm::vec3 is three packed floats like RTC_FORMAT_FLOAT3.
-    for (std::size_t i = 0; i < mesh.vertices.size(); ++i)
-      positions[i] = glm::vec3(object.transform * glm::vec4(mesh.vertices[i].position, 1.0f));
+    const auto* bytes = static_cast<const std::byte*>(mesh.positions);
+    for (std::size_t i = 0; i < mesh.vertexCount; ++i) {
+      glm::vec3 position;
+      std::memcpy(&position, bytes + i * mesh.strideBytes, sizeof(position));  // any stride, any alignment
+      positions[i] = glm::vec3(mesh.transform * glm::vec4(position, 1.0f));
+    }
     for (std::size_t i = 0; i < 3 * triangleCount; ++i) triangles[i] = mesh.indices[i];
 
     rtcCommitGeometry(geometry.handle);

@@ -7,7 +7,6 @@
 
 #include "s3d/comfort/critically_damped.h"
 #include "s3d/number_text.h"
-#include "s3d/renderer/deferred_renderer.h"
 
 namespace s3d::comfort {
 namespace {
@@ -35,9 +34,9 @@ void validate(const ZeroParallaxControlSettings& s) {
     throw std::invalid_argument("zero-parallax control: ringAngleRadians must be in [0, 1.5)");
 }
 
-std::optional<float> nearestSurfaceAhead(const WorldQueries& world, const renderer::Camera& camera,
+std::optional<float> nearestSurfaceAhead(const WorldQueries& world, const Camera& camera,
                                          const ZeroParallaxControlSettings& settings, float maxDistance) {
-  const glm::mat4 cameraToWorld = glm::inverse(renderer::cameraView(camera));
+  const glm::mat4 cameraToWorld = glm::inverse(cameraView(camera));
   const glm::vec3 right(cameraToWorld[0]), up(cameraToWorld[1]), aim = -glm::vec3(cameraToWorld[2]);
   std::optional<float> nearest;
   auto cast = [&](glm::vec3 direction, float cosine) {

@@ -28,12 +28,6 @@ glm::mat4 reversedDepthProjection(const glm::mat4& projection, float nearPlane, 
   return reversed;
 }
 
-glm::mat4 cameraView(const Camera& camera) {
-  glm::vec3 forward(-std::sin(camera.yawRadians) * std::cos(camera.pitchRadians), std::sin(camera.pitchRadians),
-                    -std::cos(camera.yawRadians) * std::cos(camera.pitchRadians));
-  return glm::lookAt(camera.position, camera.position + forward, glm::vec3(0.0f, 1.0f, 0.0f));
-}
-
 std::optional<glm::vec2> firstPersonDepthRange(const Scene& scene) {
   std::optional<glm::vec2> range;
   for (const Object& object : scene.objects) {

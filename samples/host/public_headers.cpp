@@ -1,4 +1,5 @@
 // Every public header s3d installs for a host, compiled in this consumer's strict warnings (-Werror).
+#include <s3d/camera.h>
 #include <s3d/comfort/comfort_report.h>
 #include <s3d/comfort/crosshair.h>
 #include <s3d/comfort/display_profile.h>

@@ -14,6 +14,7 @@
 
 #include "s3d/app/comfort_json.h"
 #include "s3d/app/frame_rules.h"
+#include "s3d/app/scene_world.h"
 #include "s3d/comfort/crosshair.h"
 #include "s3d/comfort/world_queries.h"
 #include "s3d/hud/crosshair.h"
@@ -242,7 +243,7 @@ RenderReport runRenderJob(vk::Context& context, const RenderJobOptions& options)
   readCenter();
   // Held at the nearest depth of the whole rendered frame: the band's content reaches the eyes too.
   report.zeroParallaxLimited = holdZeroParallaxAtNearestDepth(parameters, renderedDepth, options.allowNegativeParallax);
-  const comfort::WorldQueries world(job.scene);  // once per job: the world does not change between views
+  const comfort::WorldQueries world(worldMeshes(job.scene));  // once per job: the world does not change between views
   const comfort::CrosshairPlacement placement =
       comfort::placeCrosshair(world, job.scene.camera, options.crosshair.distance.value_or(job.scene.crosshairDistance),
                               options.crosshair.margin);
@@ -364,7 +365,7 @@ RenderReport runRenderJob(vk::Context& context, const RenderJobOptions& options)
   report.display = options.display;
   report.comfort = comfort::frameComfort(centerStereoDepth, parameters, report.display);
   report.weaponConflictPixels =
-      comfort::countWeaponConflicts(world, job.scene.camera, outputCenter, centerDepth, firstPersonMask).conflictPixels;
+      comfort::countWeaponConflicts(world, job.scene.camera, outputCenter.worldProjection, centerDepth, firstPersonMask).conflictPixels;
 
   // 6. HUD (s3d/hud/overlay.h, drawn by frame_rules.h's drawHud): the crosshair, placed by an Embree ray cast
   // along the aim (seed 4.6.2), and the static panels, each drawn after stereo synthesis into every view at the

@@ -12,6 +12,7 @@
 #include "s3d/app/hybrid_stereo.h"
 #include "s3d/app/memory_budget.h"
 #include "s3d/app/render_job.h"
+#include "s3d/app/scene_world.h"
 #include "s3d/comfort/crosshair.h"
 #include "s3d/comfort/disparity_budget_controller.h"
 #include "s3d/comfort/world_queries.h"
@@ -106,7 +107,7 @@ SequenceReport runSequenceJob(vk::Context& context, const SequenceJobOptions& op
   requireMemory(context, sequenceMemoryEstimate(options), options.memoryLimitBytes);  // before any is allocated
   // The world queries see the geometry drawn: rebuilt for every frame of an animated scene.
   std::optional<comfort::WorldQueries> world;
-  world.emplace(scene);
+  world.emplace(worldMeshes(scene));
   std::unique_ptr<renderer::DeferredRenderer> eyeRenderer;  // the hybrid method's masked eye renders
   const glm::vec2 weaponDepths = renderer::firstPersonDepthRange(scene).value_or(glm::vec2(0.0f));
   const bool budgetOn = options.disparityBudget != comfort::DisparityBudgetRule::Off;
@@ -171,7 +172,7 @@ SequenceReport runSequenceJob(vk::Context& context, const SequenceJobOptions& op
   for (std::size_t index = 0; index < frameCount; ++index) {
     if (scene.animation && index > 0) {  // frame N at N / rate seconds; the loaded scene is frame 0's pose
       renderer::poseScene(scene, double(index) / double(options.framesPerSecond));
-      world.emplace(scene);
+      world.emplace(worldMeshes(scene));
       if (deferred) deferred->updateGeometry(scene);  // the textures stay uploaded
       if (eyeRenderer) eyeRenderer->updateGeometry(scene);
     }
@@ -276,7 +277,7 @@ SequenceReport runSequenceJob(vk::Context& context, const SequenceJobOptions& op
     const renderer::ViewMatrices outputCenter = renderer::centerViewMatrices(
         scene, float(width) / float(height), {parameters.weaponDepthOffset, parameters.weaponDepthScale});
     const comfort::WeaponConflicts conflicts = comfort::countWeaponConflicts(
-        *world, scene.camera, outputCenter, pushed, outputMask(deferred->readFirstPersonMask()));
+        *world, scene.camera, outputCenter.worldProjection, pushed, outputMask(deferred->readFirstPersonMask()));
     frame.weaponPixels = conflicts.weaponPixels;
     frame.weaponConflictPixels = conflicts.conflictPixels;
     EyeFrames current;

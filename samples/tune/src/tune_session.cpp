@@ -7,6 +7,7 @@
 
 #include "s3d/app/frame_rules.h"
 #include "s3d/app/render_job.h"
+#include "s3d/app/scene_world.h"
 #include "s3d/comfort/crosshair.h"
 #include "s3d/comfort/comfort_report.h"
 #include "s3d/stereo/sanitize.h"
@@ -52,7 +53,7 @@ void TuneSession::loadScene(TuneState& state) {
   auto loaded = std::make_unique<Loaded>();
   loaded->sceneName = state.scene;
   loaded->scene = renderer::makeBuiltInScene(state.scene);
-  loaded->world = std::make_unique<comfort::WorldQueries>(loaded->scene);
+  loaded->world = std::make_unique<comfort::WorldQueries>(app::worldMeshes(loaded->scene));
   if (loaded_ && loaded_->deferred && loaded_->supersample == state.supersample) {
     loaded->deferred = std::move(loaded_->deferred);
     loaded->supersample = loaded_->supersample;
@@ -221,8 +222,8 @@ TuneFrame TuneSession::renderFrame(TuneState& state, const FrameInput& input, fl
   numbers.comfort = comfort::frameComfort(images.stereoDepth, parameters, images.display);
   const std::vector<std::uint8_t> beyond = comfortViolationMask(images.stereoDepth, parameters, images.display);
   numbers.shareBeyondComfort = double(std::count(beyond.begin(), beyond.end(), std::uint8_t(1))) / double(beyond.size());
-  numbers.weaponConflictPixels =
-      comfort::countWeaponConflicts(*loaded.world, scene.camera, center, sceneDepth, firstPersonMask).conflictPixels;
+  numbers.weaponConflictPixels = comfort::countWeaponConflicts(*loaded.world, scene.camera, center.worldProjection,
+                                                               sceneDepth, firstPersonMask).conflictPixels;
 
   // HUD: the crosshair, placed by an Embree ray cast along the aim (seed 4.6.2), and the panels, drawn into
   // each eye at its depth's parallax with the weapon-mask fade, by the same code as `s3d render` (drawHud).

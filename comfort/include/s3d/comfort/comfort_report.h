@@ -7,9 +7,11 @@
 #include <optional>
 #include <vector>
 
+#include <glm/glm.hpp>
+
+#include "s3d/camera.h"
 #include "s3d/comfort/display_profile.h"
 #include "s3d/comfort/world_queries.h"
-#include "s3d/renderer/deferred_renderer.h"
 #include "s3d/image.h"
 #include "s3d/stereo/stereo.h"
 
@@ -55,10 +57,10 @@ struct WeaponConflicts {
 
 // For every weapon pixel (weaponMask, the renderer's first-person mask), casts the world camera's ray through
 // the pixel center into the Embree world: a world hit nearer than the pixel's pushed depth means the pushed
-// weapon would appear behind a wall it is in front of.
-WeaponConflicts countWeaponConflicts(const WorldQueries& world, const renderer::Camera& camera,
-                                     const renderer::ViewMatrices& center, const DepthImage& pushedDepth,
-                                     const std::vector<std::uint8_t>& weaponMask);
+// weapon would appear behind a wall it is in front of. `projection`: the camera's projection of the depth image
+// (Vulkan clip space, its aspect ratio).
+WeaponConflicts countWeaponConflicts(const WorldQueries& world, const Camera& camera, const glm::mat4& projection,
+                                     const DepthImage& pushedDepth, const std::vector<std::uint8_t>& weaponMask);
 
 // Comfort of one eye of a per-eye view configuration (view_configuration.h, a head-mounted display): the eye is
 // the view's own camera, so every pixel shows its surface at its true distance: vergence at the pixel's view depth

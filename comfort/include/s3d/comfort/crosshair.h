@@ -4,8 +4,8 @@
 // hit, the crosshair is smoothly moved towards the viewer".
 #include <limits>
 
+#include "s3d/camera.h"
 #include "s3d/comfort/world_queries.h"
-#include "s3d/renderer/scene.h"
 
 namespace s3d::comfort {
 
@@ -19,13 +19,13 @@ struct CrosshairPlacement {
   float surfaceDistance = std::numeric_limits<float>::infinity();  // that surface's depth (inf: no hit)
 };
 
-// Casts a ray from the camera along its aim (-Z of the camera's view, from renderer::cameraView). The aim is
+// Casts a ray from the camera along its aim (-Z of the camera's view, from cameraView). The aim is
 // the view axis, so the distance along it is the crosshair's linear view depth. Without a hit within
 // defaultDistance the crosshair stays at defaultDistance; with one it sits `margin` in front of the hit,
 // never nearer than max(camera.nearPlane, kMinCrosshairDepth).
 // A pure function of this frame; CrosshairSmoother adds the seed's smoothing over frames.
 // Throws std::invalid_argument when defaultDistance is not positive and finite or margin is negative/NaN.
-CrosshairPlacement placeCrosshair(const WorldQueries& world, const renderer::Camera& camera, float defaultDistance,
+CrosshairPlacement placeCrosshair(const WorldQueries& world, const Camera& camera, float defaultDistance,
                                   float margin = 0.25f);
 
 // The seed's "smoothly moved towards the viewer": over frames the crosshair's depth approaches each frame's

@@ -1,22 +1,34 @@
 #pragma once
 // Ray casts against the world with Embree 3 (the seed's section 4.6.2 uses "a ray-cast against the world"
-// for the crosshair, and ray casts for the zero-parallax control). Built from the same meshes the renderer
-// draws, in world space; the first-person layer (the weapon) is not part of the world.
+// for the crosshair, and ray casts for the zero-parallax control). Built from the triangles the host draws, as
+// plain geometry (the s3d tools hand over their renderer scene's world layer); the first-person layer (the weapon)
+// is not part of the world.
+#include <cstddef>
+#include <cstdint>
 #include <memory>
 #include <optional>
+#include <span>
 
 #include <glm/glm.hpp>
 
-#include "s3d/renderer/scene.h"
-
 namespace s3d::comfort {
+
+// One triangle mesh of the world as the host stores it: vertex i's position is the three floats `strideBytes * i`
+// bytes after `positions` (an interleaved vertex array needs no copy), placed in the world by `transform`.
+struct WorldMesh {
+  const void* positions = nullptr;
+  std::size_t vertexCount = 0;
+  std::size_t strideBytes = 3 * sizeof(float);
+  std::span<const std::uint32_t> indices;  // triangle list
+  glm::mat4 transform{1.0f};               // mesh -> world
+};
 
 class WorldQueries {
  public:
-  // Builds an Embree scene from scene.objects with Layer::World (vertices transformed by object.transform).
-  // Throws std::runtime_error naming the Embree call that failed, std::out_of_range for a bad mesh index
-  // and std::invalid_argument for a triangle index outside its mesh.
-  explicit WorldQueries(const renderer::Scene& scene);
+  // Builds an Embree scene from the meshes (copied: they need not outlive the constructor). Throws
+  // std::runtime_error naming the Embree call that failed and std::invalid_argument for a triangle index outside
+  // its mesh or a mesh with vertices but no positions.
+  explicit WorldQueries(std::span<const WorldMesh> meshes);
   ~WorldQueries();
   WorldQueries(const WorldQueries&) = delete;
   WorldQueries& operator=(const WorldQueries&) = delete;

@@ -4,8 +4,10 @@
 // world surface ahead; the zero-parallax distance follows a target derived from it through a critically
 // damped filter with a per-frame bound and hysteresis, and returns to its rest value when the player steps
 // back.
+#include <optional>
+
+#include "s3d/camera.h"
 #include "s3d/comfort/world_queries.h"
-#include "s3d/renderer/scene.h"
 
 namespace s3d::comfort {
 
@@ -25,7 +27,7 @@ void validate(const ZeroParallaxControlSettings& settings);
 
 // Distance along the view axis to the nearest world surface hit by the aim ray or a ring ray within
 // maxDistance (ray length times the cosine of its angle, so it compares with linear depth); nullopt: no hit.
-std::optional<float> nearestSurfaceAhead(const WorldQueries& world, const renderer::Camera& camera,
+std::optional<float> nearestSurfaceAhead(const WorldQueries& world, const Camera& camera,
                                          const ZeroParallaxControlSettings& settings, float maxDistance);
 
 class ZeroParallaxController {

@@ -54,7 +54,6 @@ ShadowFit shadowFitOf(const ViewMatrices& view);
 
 // Perspective projection with Vulkan's downward y and zero-to-one depth.
 glm::mat4 vulkanPerspective(float verticalFovRadians, float aspect, float nearPlane, float farPlane);
-glm::mat4 cameraView(const Camera& camera);  // world -> view
 // The scene camera's center view at the given aspect ratio (width / height).
 // Nearest and farthest camera-space depth of the first-person layer's vertices (nullopt: no such layer).
 std::optional<glm::vec2> firstPersonDepthRange(const Scene& scene);

@@ -1,5 +1,6 @@
 #pragma once
-// Scene description consumed by the deferred renderer (and by comfort's Embree world queries).
+// Scene description consumed by the deferred renderer (the tools hand its world layer to comfort's Embree world
+// queries).
 // Conventions: right-handed, Y up, camera looks down -Z in view space, metres.
 #include <cstddef>
 #include <cstdint>
@@ -8,6 +9,8 @@
 #include <vector>
 
 #include <glm/glm.hpp>
+
+#include "s3d/camera.h"
 
 namespace s3d::renderer {
 
@@ -126,14 +129,8 @@ struct SpotLight {
   bool castsShadows = false;         // one shadow view covering the outer cone
 };
 
-struct Camera {
-  glm::vec3 position{0.0f, 1.7f, 0.0f};
-  float yawRadians = 0.0f;    // rotation about +Y; 0 looks down -Z
-  float pitchRadians = 0.0f;  // positive looks up
-  float verticalFovRadians = 1.0f;
-  float nearPlane = 0.1f;
-  float farPlane = 1000.0f;
-};
+using s3d::Camera;  // s3d/camera.h: comfort casts its rays from the same camera
+using s3d::cameraView;
 
 // Largest far/near ratio a camera may have: past 2^24 a 32-bit float depth buffer cannot tell the far plane's
 // depth from the cleared one, and the frame comes out empty.
