@@ -8,7 +8,7 @@
 
 #include <glm/glm.hpp>
 
-#include "s3d/comfort/frame_comfort_state.h"
+#include "s3d/number_text.h"
 
 namespace s3d::comfort {
 
@@ -19,6 +19,19 @@ CrosshairPlacement placeCrosshair(const WorldQueries& world, const Camera& camer
   return placeCrosshairAlongAim(embreeRayCast(world),
                                 {glm::vec3(worldFromView[3]), -glm::vec3(worldFromView[2]), camera.nearPlane},
                                 defaultDistance, margin);
+}
+
+CrosshairPlacement placeCrosshairAlongAim(const RayCast& rayCast, const FrameCamera& camera, float defaultDistance,
+                                          float margin) {
+  if (!(defaultDistance > 0.0f) || !std::isfinite(defaultDistance))
+    throw std::invalid_argument("placeCrosshair: defaultDistance must be positive and finite (got " +
+                                numberText(defaultDistance) + ")");
+  if (!(margin >= 0.0f) || !std::isfinite(margin))
+    throw std::invalid_argument("placeCrosshair: margin must be >= 0 and finite (got " + numberText(margin) + ")");
+  const std::optional<float> hit = rayCast ? rayCast(camera.position, camera.aim, defaultDistance) : std::nullopt;
+  if (!hit || *hit >= defaultDistance) return {defaultDistance, false};
+  const float nearest = std::max(camera.nearPlane, kMinCrosshairDepth);
+  return {std::max(*hit - margin, nearest), true, *hit};
 }
 
 CrosshairSmoother::CrosshairSmoother(float responseSeconds) : responseSeconds_(responseSeconds) {

@@ -5,30 +5,9 @@
 #include <limits>
 #include <stdexcept>
 
-#include "s3d/comfort/crosshair.h"
-#include "s3d/comfort/world_queries.h"
 #include "s3d/number_text.h"
 
 namespace s3d::comfort {
-
-RayCast embreeRayCast(const WorldQueries& world) {
-  return [&world](glm::vec3 origin, glm::vec3 direction, float maxDistance) {
-    return world.castRay(origin, direction, maxDistance);
-  };
-}
-
-CrosshairPlacement placeCrosshairAlongAim(const RayCast& rayCast, const FrameCamera& camera, float defaultDistance,
-                                          float margin) {
-  if (!(defaultDistance > 0.0f) || !std::isfinite(defaultDistance))
-    throw std::invalid_argument("placeCrosshair: defaultDistance must be positive and finite (got " +
-                                numberText(defaultDistance) + ")");
-  if (!(margin >= 0.0f) || !std::isfinite(margin))
-    throw std::invalid_argument("placeCrosshair: margin must be >= 0 and finite (got " + numberText(margin) + ")");
-  const std::optional<float> hit = rayCast ? rayCast(camera.position, camera.aim, defaultDistance) : std::nullopt;
-  if (!hit || *hit >= defaultDistance) return {defaultDistance, false};
-  const float nearest = std::max(camera.nearPlane, kMinCrosshairDepth);
-  return {std::max(*hit - margin, nearest), true, *hit};
-}
 
 stereo::StereoParameters weaponPushForFrame(stereo::StereoParameters parameters, const WeaponMaskStats& weapon,
                                             bool allowNegativeParallax) {

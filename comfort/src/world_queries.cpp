@@ -131,4 +131,10 @@ std::optional<float> WorldQueries::castRay(glm::vec3 origin, glm::vec3 direction
   return query.ray.tfar;
 }
 
+RayCast embreeRayCast(const WorldQueries& world) {
+  return [&world](glm::vec3 origin, glm::vec3 direction, float maxDistance) {
+    return world.castRay(origin, direction, maxDistance);
+  };
+}
+
 }  // namespace s3d::comfort

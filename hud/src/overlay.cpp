@@ -1,6 +1,6 @@
 #include "s3d/hud/overlay.h"
 
-#include "s3d/hud/hud_layers.h"
+#include "s3d/hud/layer_blend.h"
 
 #include <stb_easy_font.h>
 

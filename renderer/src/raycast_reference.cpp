@@ -5,6 +5,7 @@
 
 #include "s3d/renderer/scene_bvh.h"
 
+#include "s3d/renderer/deferred_renderer.h"
 #include "s3d/renderer/renderer_shared.h"
 
 namespace s3d::renderer {

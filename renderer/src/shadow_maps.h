@@ -13,7 +13,7 @@
 
 #include <glm/glm.hpp>
 
-#include "s3d/renderer/deferred_renderer.h"
+#include "s3d/renderer/view_matrices.h"
 #include "s3d/renderer/renderer_shared.h"
 #include "s3d/renderer/shadows.h"
 #include "s3d/vk/context.h"

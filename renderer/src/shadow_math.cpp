@@ -6,7 +6,7 @@
 #include <glm/gtc/constants.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "s3d/renderer/deferred_renderer.h"
+#include "s3d/renderer/view_matrices.h"
 #include "s3d/renderer/shadows.h"
 
 namespace s3d::renderer {

@@ -12,7 +12,7 @@
 #include <cstdint>
 #include <memory>
 
-#include "s3d/renderer/deferred_renderer.h"
+#include "s3d/renderer/view_matrices.h"
 #include "s3d/vk/context.h"
 #include "s3d/vk/pipeline.h"
 #include "s3d/vk/resources.h"

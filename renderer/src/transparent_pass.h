@@ -23,7 +23,7 @@
 
 #include <glm/glm.hpp>
 
-#include "s3d/renderer/deferred_renderer.h"
+#include "s3d/renderer/renderer_options.h"
 #include "s3d/renderer/scene.h"
 #include "s3d/vk/context.h"
 #include "s3d/vk/pipeline.h"

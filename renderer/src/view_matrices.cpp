@@ -1,4 +1,4 @@
-// The cameras' view and projection matrices a renderer draws with (declared in deferred_renderer.h): Vulkan's
+// The cameras' view and projection matrices a renderer draws with (declared in view_matrices.h): Vulkan's
 // clip conventions, reversed depth, the first-person layer's depth span, the center view.
 #include <algorithm>
 #include <cmath>
@@ -7,7 +7,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "s3d/renderer/deferred_renderer.h"
+#include "s3d/renderer/view_matrices.h"
 
 namespace s3d::renderer {
 

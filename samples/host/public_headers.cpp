@@ -9,6 +9,7 @@
 #include <s3d/hud/hud_layers.h>
 #include <s3d/hud/hud_pass.h>
 #include <s3d/hud/hud_pass_shared.h>
+#include <s3d/hud/layer_blend.h>
 #include <s3d/hud/overlay.h>
 #include <s3d/stereo/host_stereo_pass.h>
 #include <s3d/stereo/output_formats.h>

@@ -4,6 +4,8 @@
 // hit, the crosshair is smoothly moved towards the viewer".
 #include <limits>
 
+#include <glm/glm.hpp>
+
 #include "s3d/camera.h"
 #include "s3d/comfort/world_queries.h"
 
@@ -23,10 +25,24 @@ struct CrosshairPlacement {
 // the view axis, so the distance along it is the crosshair's linear view depth. Without a hit within
 // defaultDistance the crosshair stays at defaultDistance; with one it sits `margin` in front of the hit,
 // never nearer than max(camera.nearPlane, kMinCrosshairDepth).
-// A pure function of this frame; CrosshairSmoother adds the seed's smoothing over frames.
+// A pure function of this frame; CrosshairSmoother adds the seed's smoothing over frames. placeCrosshairAlongAim
+// with the camera's aim and the world's embreeRayCast.
 // Throws std::invalid_argument when defaultDistance is not positive and finite or margin is negative/NaN.
 CrosshairPlacement placeCrosshair(const WorldQueries& world, const Camera& camera, float defaultDistance,
                                   float margin = 0.25f);
+
+// The camera as the crosshair's ray cast needs it (a host's own, no s3d::Camera needed).
+struct FrameCamera {
+  glm::vec3 position{0.0f};
+  glm::vec3 aim{0.0f, 0.0f, -1.0f};  // the view axis (normalized), so a distance along it is a linear depth
+  float nearPlane = 0.1f;
+};
+
+// The crosshair along the aim (the seed's ray cast): `margin` in front of a hit within defaultDistance, never
+// nearer than max(nearPlane, kMinCrosshairDepth); defaultDistance without a hit (or without a ray cast).
+// Throws std::invalid_argument when defaultDistance is not positive and finite or margin is negative/NaN.
+CrosshairPlacement placeCrosshairAlongAim(const RayCast& rayCast, const FrameCamera& camera, float defaultDistance,
+                                          float margin);
 
 // The seed's "smoothly moved towards the viewer": over frames the crosshair's depth approaches each frame's
 // placement exponentially (time constant responseSeconds; 0: at once), so it never overshoots, and it is never

@@ -14,6 +14,7 @@
 #include <glm/glm.hpp>
 
 #include "s3d/comfort/comfort_report.h"
+#include "s3d/comfort/crosshair.h"
 #include "s3d/comfort/disparity_budget_controller.h"
 #include "s3d/comfort/display_profile.h"
 #include "s3d/image.h"
@@ -21,20 +22,6 @@
 #include "s3d/stereo/stereo.h"
 
 namespace s3d::comfort {
-
-// The host's ray cast: distance from origin along the normalized direction to the first world surface within
-// maxDistance, or nothing. The first-person layer is not part of the world.
-using RayCast = std::function<std::optional<float>(glm::vec3 origin, glm::vec3 direction, float maxDistance)>;
-
-class WorldQueries;
-// Embree's, for hosts without a physics engine; `world` must outlive the callback.
-RayCast embreeRayCast(const WorldQueries& world);
-
-struct FrameCamera {
-  glm::vec3 position{0.0f};
-  glm::vec3 aim{0.0f, 0.0f, -1.0f};  // the view axis (normalized), so a distance along it is a linear depth
-  float nearPlane = 0.1f;
-};
 
 // The weapon mask's linear depth range before the push (the host's first-person layer in view).
 struct WeaponMaskStats {
@@ -119,10 +106,5 @@ bool holdZeroParallax(stereo::StereoParameters& parameters, std::optional<float>
 HudElementState hudElementState(const std::string& name, float depth, const stereo::StereoParameters& parameters,
                                 const WeaponMaskStats& weapon, std::uint32_t width, bool allowNegativeParallax,
                                 const gpu::DisparityMapConstants& disparityMap = {});
-// The crosshair along the aim (the seed's ray cast): `margin` in front of a hit within defaultDistance, never
-// nearer than max(nearPlane, kMinCrosshairDepth); defaultDistance without a hit.
-struct CrosshairPlacement;
-CrosshairPlacement placeCrosshairAlongAim(const RayCast& rayCast, const FrameCamera& camera, float defaultDistance,
-                                          float margin);
 
 }  // namespace s3d::comfort

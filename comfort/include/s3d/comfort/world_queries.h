@@ -5,6 +5,7 @@
 // is not part of the world.
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <span>
@@ -42,5 +43,12 @@ class WorldQueries {
   struct Embree;  // RTCDevice + RTCScene, released in reverse order
   std::unique_ptr<Embree> embree_;
 };
+
+// The host's ray cast, which the crosshair placement and the per-frame rules take: distance from origin along the
+// normalized direction to the first world surface within maxDistance, or nothing. The first-person layer is not
+// part of the world.
+using RayCast = std::function<std::optional<float>(glm::vec3 origin, glm::vec3 direction, float maxDistance)>;
+// Embree's, for hosts without a physics engine; `world` must outlive the callback.
+RayCast embreeRayCast(const WorldQueries& world);
 
 }  // namespace s3d::comfort

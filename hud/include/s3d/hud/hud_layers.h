@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "s3d/hud/crosshair.h"
+#include "s3d/hud/layer_blend.h"
 #include "s3d/hud/overlay.h"
 #include "s3d/image.h"
 #include "s3d/stereo/stereo.h"
@@ -55,9 +56,6 @@ HudLayer crosshairHudLayer(std::uint32_t width, std::uint32_t height, const Cros
 // defaultPanels(width, height) then the crosshair (crosshairStyleForHeight), in drawing order (later on top).
 std::vector<HudLayer> builtInHudLayers(std::uint32_t width, std::uint32_t height);
 
-// `layer` over `eye` with its top-left pixel at (x, y), clipped to the eye: blendLayer's math (hud_pass_shared.h)
-// on the covered pixels; the eye's alpha (the weapon mask) is left as it is.
-BlendCounts compositeLayer(ImageRGBA8& eye, const ImageRGBA8& layer, int x, int y, bool behindWeapon);
 // The layer alone in a transparent eye-sized image, top-left at (x, y) (for countDepthConflicts).
 ImageRGBA8 placedLayer(std::uint32_t width, std::uint32_t height, const ImageRGBA8& layer, int x, int y);
 

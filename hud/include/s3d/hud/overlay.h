@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "s3d/hud/layer_blend.h"
 #include "s3d/image.h"
 #include "s3d/stereo/stereo.h"
 
@@ -34,11 +35,6 @@ std::vector<Panel> defaultPanels(std::uint32_t width, std::uint32_t height, floa
 ImageRGBA8 panelLayer(std::uint32_t width, std::uint32_t height, const Panel& panel, float offsetPx);
 // Text with stb_easy_font, top-left at (x, y), each font unit `scale` pixels; clipped to the image.
 void drawText(ImageRGBA8& layer, int x, int y, const std::string& text, const Color& color, int scale);
-
-struct BlendCounts {
-  std::uint64_t drawnPixels = 0;  // layer pixels with any opacity that landed in the eye
-  std::uint64_t fadedPixels = 0;  // of those, pixels whose opacity the weapon mask reduced
-};
 
 // The weapon mask travels in the eyes' alpha channel (tonemap writes 0 on the first-person layer, 1 elsewhere;
 // the stereo pass carries it into both eyes). Blends `layer` over `eye` (RGB only); when the element lies

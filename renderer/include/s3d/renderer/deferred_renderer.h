@@ -12,57 +12,14 @@
 #include <glm/glm.hpp>
 
 #include "s3d/image.h"
+#include "s3d/renderer/renderer_options.h"
 #include "s3d/renderer/scene.h"
+#include "s3d/renderer/shade_mask.h"
+#include "s3d/renderer/view_matrices.h"
 #include "s3d/vk/context.h"
 #include "s3d/vk/resources.h"
 
 namespace s3d::renderer {
-
-// Seed 4.6.2: the first-person layer's depth is offset and scaled (pushed into the screen) in the linear
-// depth handed to the stereo pass: pushed = offset + scale * depth. Rendering and lighting are unchanged.
-// {0, 1} leaves it where it is.
-struct FirstPersonDepthPush {
-  float offset = 0.0f;  // world units
-  float scale = 1.0f;
-};
-
-// The camera a frame's shadow maps are planned for: the sun's cascades cover the slices of its frustum (seed 000
-// 4.3.3) and the point and spot lights it can see get their maps.
-struct ShadowFit {
-  glm::mat4 worldView{1.0f};
-  glm::mat4 worldProjection{1.0f};
-  bool operator==(const ShadowFit&) const = default;
-};
-
-// Matrices of one rendered view. Vulkan clip space (y down, depth 0..1).
-struct ViewMatrices {
-  glm::mat4 worldView{1.0f};        // world -> view of the world layer
-  glm::mat4 worldProjection{1.0f};  // may be off-axis (two-pass reference eyes)
-  glm::mat4 firstPersonView{1.0f};  // camera space -> first-person view (identity for the center view)
-  glm::mat4 firstPersonProjection{1.0f};
-  glm::mat4 worldFromCamera{1.0f};  // inverse of the center camera's view: places first-person objects for lighting
-  FirstPersonDepthPush firstPersonDepthPush;  // applied to linearDepth() only
-  // Where the shadow maps are planned from; empty: this view's own world camera. A stereo frame's eye views name
-  // their center view's camera, so every view of the frame has the same shadow maps (the eyes see what the center
-  // sees inside the compared columns, whose cascades cover it) and an eye render can reuse the center frame's
-  // (DeferredRenderer::render with a shadow source).
-  std::optional<ShadowFit> shadowFit;
-};
-
-// The camera `view`'s shadow maps are planned from: its shadowFit, else its own world camera.
-ShadowFit shadowFitOf(const ViewMatrices& view);
-
-// Perspective projection with Vulkan's downward y and zero-to-one depth.
-glm::mat4 vulkanPerspective(float verticalFovRadians, float aspect, float nearPlane, float farPlane);
-// The scene camera's center view at the given aspect ratio (width / height).
-// Nearest and farthest camera-space depth of the first-person layer's vertices (nullopt: no such layer).
-std::optional<glm::vec2> firstPersonDepthRange(const Scene& scene);
-
-// Throws std::invalid_argument for a negative/non-finite offset or a non-positive/non-finite scale.
-ViewMatrices centerViewMatrices(const Scene& scene, float aspect, FirstPersonDepthPush push = {});
-
-// Reversed-Z (near/far swapped in the projection): see reversedDepthProjection.
-glm::mat4 reversedDepthProjection(const glm::mat4& projection, float nearPlane, float farPlane);
 
 struct PassTiming {
   std::string name;
@@ -75,67 +32,6 @@ struct PassTiming {
 struct FrameTimings {
   std::optional<double> totalGpuMs;  // empty when the device has no timestamp queries
   std::vector<PassTiming> passes;    // every pass that ran, in order (gpuMs 0 without timestamps)
-};
-
-struct RendererOptions {
-  // Supersampling anti-aliasing: every pass before the resolve runs at supersample x the output size; the
-  // resolve averages the samples of each output pixel (seed 4.6's "edge sampling" flaw: aliased edges in the
-  // center view cannot be displaced by a fraction of a pixel). 1 (default) to 4.
-  std::uint32_t supersample = 1;
-  // Reversed-Z depth buffer: cleared to 0, depth test GREATER, near and far swapped in both layers'
-  // projections (the world in device depth [0, 0.9], first-person in [0.9, 1]). D32 float then keeps its
-  // precision at the far end, where standard Z spends it all near 1. Linear depth is the same either way.
-  bool reversedZ = false;
-  // Tests: every frame counts what its passes shaded (PassTiming::shadedPixels), with atomic adds per pixel.
-  bool countShadedPixels = false;
-  // How the G-buffer pass gets each pixel's normal and material (the images agree to half-float rounding).
-  enum class GBufferShading {
-    Automatic,   // Visibility on GPUs, Raster on CPU devices: measured the faster on each (docs/RESULTS.md)
-    Raster,      // the fragment shader evaluates and writes them (a CPU rasterizer interpolates cheaply)
-    Visibility,  // fragments write a triangle id only; a compute pass evaluates the surface per pixel (a GPU
-                 // whose raster side is a small part of the chip pays per byte a fragment writes)
-  };
-  GBufferShading gbufferShading = GBufferShading::Automatic;
-  // How transparent objects are blended over the lit image (the images agree to half-float rounding and the
-  // rare pixel centre on a triangle edge).
-  enum class TransparentCompositing {
-    Automatic,  // Compute on GPUs, Raster on CPU devices: measured the faster on each (docs/RESULTS.md)
-    Raster,     // a blended raster pass: only covered fragments are shaded (cheap on a CPU rasterizer)
-    Compute,    // a compute pass per object over the tiles its bounds cover (a GPU whose raster side is a small
-                // part of the chip pays per byte a blended fragment reads and writes)
-  };
-  TransparentCompositing transparentCompositing = TransparentCompositing::Automatic;
-};
-
-// "auto", "raster", "visibility"; and back (nullopt for any other name).
-const char* gbufferShadingName(RendererOptions::GBufferShading shading);
-std::optional<RendererOptions::GBufferShading> gbufferShadingFromName(std::string_view name);
-
-// Which pixels a render shades (the hybrid stereo method renders only the eye pixels displacement gets wrong).
-//
-// `image`: VK_FORMAT_R32_UINT, exactly the renderer's output size (width() x height()), created with
-// VK_IMAGE_USAGE_STORAGE_BIT, in VK_IMAGE_LAYOUT_GENERAL; its writes submitted before render() (render records a
-// barrier from any earlier write on its queue, then reads it as a storage image in compute and fragment
-// shaders). A pixel is shaded where its value >= threshold, so a classification's bin image can be passed with
-// its threshold bin as is (1: every nonzero pixel). With supersampling the value covers all samples of its pixel.
-//
-// What a masked render does: the G-buffer still rasterizes all geometry, but every pixel outside the mask has
-// the nearest depth before it draws, so its fragments fail the depth test before shading; ambient occlusion
-// (with a depth-only pass of its own, so its samples see real depth outside the mask) runs on the tiles of the
-// mask and their neighbours; lighting and the resolve run on the mask's tiles only (found on the GPU) and skip
-// unmasked pixels inside them; shadow maps render as for a full frame (or come from a shadow source: render's
-// third argument).
-//
-// Outputs outside the mask are undefined after a masked render: displayColor, linearDepth, hdrColor and the
-// read*() masks there may hold anything (the previous frame, zeros, the depth fill). Inside it they equal the
-// unmasked render's (tests: within one 8-bit level and 1e-5 relative depth).
-//
-// The first masked render creates the masked pipeline variants and, with ambient occlusion, a render-size depth
-// image; later renders allocate nothing. render() submits on the context's queue and waits, so the mask may be
-// rewritten as soon as it returns.
-struct ShadeMask {
-  const vk::Image* image = nullptr;
-  std::uint32_t threshold = 1;
 };
 
 class DeferredRenderer {

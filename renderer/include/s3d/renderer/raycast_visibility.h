@@ -6,8 +6,8 @@
 // depth clear. Agreement with the raster pass: docs/DESIGN.md "Ray-cast visibility".
 #include <cstdint>
 
-#include "s3d/renderer/deferred_renderer.h"
 #include "s3d/renderer/scene_bvh.h"
+#include "s3d/renderer/shade_mask.h"
 #include "s3d/vk/context.h"
 #include "s3d/vk/pipeline.h"
 #include "s3d/vk/resources.h"

@@ -19,7 +19,7 @@
 
 #include <glm/glm.hpp>
 
-#include "s3d/renderer/deferred_renderer.h"
+#include "s3d/renderer/view_matrices.h"
 #include "s3d/renderer/raycast_shared.h"
 #include "s3d/renderer/scene.h"
 
