@@ -34,12 +34,12 @@ struct EyeReferences {
 EyeReferences renderReferenceEyes(renderer::DeferredRenderer& deferred, const renderer::Scene& scene,
                                   const renderer::ViewMatrices& center, const stereo::StereoParameters& parameters) {
   EyeReferences eyes;
-  (void)deferred.render(referenceEyeView(scene, center, stereo::Eye::Left, parameters));
+  (void)deferred.render(frame::referenceEyeView(scene, center, stereo::Eye::Left, parameters));
   eyes.leftColor = deferred.readDisplayColor();
   eyes.leftDepth = deferred.readLinearDepth();
   eyes.leftTransparent = deferred.readTransparentMask();
   eyes.leftFoliage = deferred.readCutoutMask();
-  (void)deferred.render(referenceEyeView(scene, center, stereo::Eye::Right, parameters));
+  (void)deferred.render(frame::referenceEyeView(scene, center, stereo::Eye::Right, parameters));
   eyes.rightColor = deferred.readDisplayColor();
   eyes.rightDepth = deferred.readLinearDepth();
   eyes.rightTransparent = deferred.readTransparentMask();
@@ -73,7 +73,7 @@ BenchRow settingRow(const std::string& sceneName, const MethodSetting& setting,
                     const stereo::StereoParameters& parameters, const BenchOptions& options, bool cpuDevice,
                     const stereo::SynthesisResult& synthesis, const InterleavedTiming& frames,
                     const EyeReferences& eyes, const stereo::RegionMasks& left, const stereo::RegionMasks& right,
-                    const std::optional<HybridSynthesis>& hybrid) {
+                    const std::optional<frame::HybridSynthesis>& hybrid) {
   const stereo::StereoParameters methodParameters = setting.applyTo(parameters);
   BenchRow row;
   row.scene = sceneLabel(sceneName);
@@ -152,7 +152,7 @@ void runSweep(vk::Context& context, const BenchOptions& options, const Validated
       stereo::StereoParameters parameters = options.stereo;
       parameters.maxSeparation = bench.separations[s];
       const EyeReferences& eyes = references[s];
-      const renderer::ViewMatrices leftEye = referenceEyeView(scene, center, stereo::Eye::Left, parameters);
+      const renderer::ViewMatrices leftEye = frame::referenceEyeView(scene, center, stereo::Eye::Left, parameters);
       parameters.edgeCrop = -1.0f;  // the crop follows the separation, as in `s3d render`
       // Each setting is timed in one warm stretch with the frames it is compared with: the reference eye and the
       // center frame in back-to-back pairs once untimed pairs run at a steady speed, then the setting, before any
@@ -162,7 +162,7 @@ void runSweep(vk::Context& context, const BenchOptions& options, const Validated
       // scene's sweep read 1.8x its time.
       std::vector<InterleavedTiming> frames;
       std::vector<stereo::SynthesisResult> syntheses;
-      std::vector<std::optional<HybridSynthesis>> hybrids;
+      std::vector<std::optional<frame::HybridSynthesis>> hybrids;
       for (const MethodSetting& setting : bench.settings) {
         progress(sceneName + " " + setting.name() + " sep " + percentText(parameters.maxSeparation) + "%");
         frames.push_back(timeInterleaved(
@@ -175,7 +175,7 @@ void runSweep(vk::Context& context, const BenchOptions& options, const Validated
           (void)deferred.render(center);
         }
         if (setting.method == stereo::StereoMethod::Hybrid) {
-          HybridSynthesis hybrid = synthesizeHybrid(context, deferred, *eyeRenderer,
+          frame::HybridSynthesis hybrid = frame::synthesizeHybrid(context, deferred, *eyeRenderer,
                                                     scene, center, setting.applyTo(parameters), options.repeat);
           syntheses.push_back({std::move(hybrid.eyes), hybrid.timings.total, {}, hybrid.filledLeft, hybrid.filledRight});
           hybrids.push_back(std::move(hybrid));

@@ -298,7 +298,7 @@ RenderReport runRenderJob(vk::Context& context, const RenderJobOptions& options)
     renderer::DeferredRenderer eyeRenderer(context, renderedWidth, height,
                                            renderer::RendererOptions{options.supersample, options.reversedZ});
     eyeRenderer.setScene(job.scene);
-    HybridSynthesis hybrid = synthesizeHybrid(context, *deferred, eyeRenderer,
+    frame::HybridSynthesis hybrid = frame::synthesizeHybrid(context, *deferred, eyeRenderer,
                                               job.scene, center, renderedParameters);
     report.stereoPassGpuMs = hybrid.timings.total;
     report.filledPixels = {hybrid.filledLeft, hybrid.filledRight};
@@ -324,7 +324,7 @@ RenderReport runRenderJob(vk::Context& context, const RenderJobOptions& options)
   // to the output: the same rays as an output-size eye, tests/test_guard_band.cpp); a nonlinear map takes one
   // rendering per segment of its curve (layered_reference.h).
   struct OutputReference {  // one reference eye cropped to the output
-    ReferenceEye rendered;
+    frame::ReferenceEye rendered;
     ImageRGBA8 display;
     DepthImage depth;  // mapped as the stereo pass's depth (disocclusion regions)
     ImageRGBA32F hdr;
@@ -332,7 +332,7 @@ RenderReport runRenderJob(vk::Context& context, const RenderJobOptions& options)
     std::vector<std::uint8_t> foliage;
   };
   auto referenceFor = [&](stereo::Eye side) {
-    OutputReference eye{renderReferenceEye(*deferred, job.scene, center, side, renderedParameters, map), {}, {}, {}, {}, {}};
+    OutputReference eye{frame::renderReferenceEye(*deferred, job.scene, center, side, renderedParameters, map), {}, {}, {}, {}, {}};
     eye.display = output(eye.rendered.display);
     eye.depth = output(stereo::mappedDepthImage(eye.rendered.depth, map));
     eye.hdr = output(eye.rendered.hdr);

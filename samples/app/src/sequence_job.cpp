@@ -9,7 +9,7 @@
 
 #include "s3d/app/comfort_json.h"
 #include "s3d/app/eye_comparison.h"
-#include "s3d/app/hybrid_stereo.h"
+#include "s3d/frame/hybrid_stereo.h"
 #include "s3d/app/memory_budget.h"
 #include "s3d/app/render_job.h"
 #include "s3d/comfort/crosshair.h"
@@ -281,7 +281,7 @@ SequenceReport runSequenceJob(vk::Context& context, const SequenceJobOptions& op
     frame.weaponConflictPixels = conflicts.conflictPixels;
     EyeFrames current;
     for (stereo::Eye eye : {stereo::Eye::Left, stereo::Eye::Right}) {
-      const renderer::ViewMatrices rendered = referenceEyeView(scene, center, eye, renderedParameters);
+      const renderer::ViewMatrices rendered = frame::referenceEyeView(scene, center, eye, renderedParameters);
       current.renderedView[eye == stereo::Eye::Left ? 0 : 1] = rendered.worldView;
       current.renderedProjection[eye == stereo::Eye::Left ? 0 : 1] = rendered.worldProjection;
     }
@@ -293,7 +293,7 @@ SequenceReport runSequenceJob(vk::Context& context, const SequenceJobOptions& op
             context, band.renderedWidth(width), height, renderer::RendererOptions{options.supersample, options.reversedZ});
         eyeRenderer->setScene(scene);
       }
-      HybridSynthesis hybrid = synthesizeHybrid(context, *deferred, *eyeRenderer,
+      frame::HybridSynthesis hybrid = frame::synthesizeHybrid(context, *deferred, *eyeRenderer,
                                                 scene, center, renderedParameters);
       eyes.eyes = std::move(hybrid.eyes);
       eyes.gpuMs = hybrid.timings.total;
@@ -317,7 +317,7 @@ SequenceReport runSequenceJob(vk::Context& context, const SequenceJobOptions& op
     const std::vector<stereo::DisparityMapSegment> segments = stereo::disparityMapSegments(map);
     for (stereo::Eye eye : {stereo::Eye::Left, stereo::Eye::Right}) {
       const std::size_t e = eye == stereo::Eye::Left ? 0 : 1;
-      ReferenceEye reference = renderReferenceEye(*deferred, scene, center, eye, renderedParameters, map);
+      frame::ReferenceEye reference = frame::renderReferenceEye(*deferred, scene, center, eye, renderedParameters, map);
       (e == 0 ? current.reference.left : current.reference.right) = output(reference.display);
       current.referenceDepth[e] = output(reference.depth);
       mappedReferenceDepth[e] = stereo::mappedDepthImage(current.referenceDepth[e], map);
@@ -328,7 +328,7 @@ SequenceReport runSequenceJob(vk::Context& context, const SequenceJobOptions& op
       stereo::ReferenceCameras& cameras = current.cameras[e];
       cameras.segments = segments;
       for (const stereo::DisparityMapSegment& segment : segments) {
-        const renderer::ViewMatrices eyeView = referenceEyeView(scene, outputCenter, eye, parameters, segment);
+        const renderer::ViewMatrices eyeView = frame::referenceEyeView(scene, outputCenter, eye, parameters, segment);
         cameras.view.push_back(eyeView.worldView);
         cameras.projection.push_back(eyeView.worldProjection);
       }

@@ -10,7 +10,7 @@
 #include "s3d/comfort/crosshair.h"
 #include "s3d/comfort/comfort_report.h"
 #include "s3d/stereo/sanitize.h"
-#include "s3d/app/hybrid_stereo.h"
+#include "s3d/frame/hybrid_stereo.h"
 #include "s3d/stereo/synthesis.h"
 
 namespace s3d::tune {
@@ -182,7 +182,7 @@ TuneFrame TuneSession::renderFrame(TuneState& state, const FrameInput& input, fl
                                                                         renderer::RendererOptions{loaded.supersample});
       loaded.eyeRenderer->setScene(scene);
     }
-    app::HybridSynthesis hybrid = app::synthesizeHybrid(context_, deferred,
+    frame::HybridSynthesis hybrid = frame::synthesizeHybrid(context_, deferred,
                                                         *loaded.eyeRenderer, scene, center, parameters);
     numbers.stereoPassGpuMs = hybrid.timings.total;
     images.eyes = std::move(hybrid.eyes);
@@ -201,7 +201,7 @@ TuneFrame TuneSession::renderFrame(TuneState& state, const FrameInput& input, fl
     double referenceMs = 0.0;
     bool timed = true;
     for (auto [eye, image] : {std::pair{stereo::Eye::Left, &reference.left}, std::pair{stereo::Eye::Right, &reference.right}}) {
-      app::ReferenceEye rendered = app::renderReferenceEye(deferred, scene, center, eye, parameters, map);
+      frame::ReferenceEye rendered = frame::renderReferenceEye(deferred, scene, center, eye, parameters, map);
       if (rendered.firstLayerGpuMs) referenceMs += *rendered.firstLayerGpuMs;
       else timed = false;
       *image = std::move(rendered.display);

@@ -8,15 +8,13 @@
 #include <optional>
 #include <vector>
 
-#include <nlohmann/json.hpp>
-
 #include "s3d/image.h"
 #include "s3d/renderer/deferred_renderer.h"
 #include "s3d/stereo/hybrid.h"
 #include "s3d/stereo/stereo.h"
 #include "s3d/vk/context.h"
 
-namespace s3d::app {
+namespace s3d::frame {
 
 // GPU milliseconds of one hybrid frame, both eyes (empty without timestamps).
 struct HybridTimings {
@@ -30,9 +28,6 @@ struct HybridTimings {
   std::optional<double> total;           // the sum
   std::vector<renderer::PassTiming> leftEyePasses, rightEyePasses;  // the masked renders' passes
 };
-
-// {"displacement", "classification", "eyeGeometry", "maskedShading", "composite", "total"}: ms or null.
-nlohmann::json toJson(const HybridTimings& timings);
 
 struct HybridSynthesis {
   stereo::StereoPair eyes;  // at the renderer's size; alpha as the displaced eyes' (the weapon mask)
@@ -56,4 +51,4 @@ HybridSynthesis synthesizeHybrid(vk::Context& context, const renderer::DeferredR
                                  const renderer::ViewMatrices& center, const stereo::StereoParameters& parameters,
                                  int timedRuns = 1);
 
-}  // namespace s3d::app
+}  // namespace s3d::frame
