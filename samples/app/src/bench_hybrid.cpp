@@ -40,7 +40,7 @@ std::string hybridBenchMarkdown(const BenchReport& report) {
         "composite ms | total ms | / eye | PSNR all | halo | disocclusion | SSIM |\n"
         "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const BenchRow* row : rows) {
-    const HybridTimings& t = row->hybridTimings ? *row->hybridTimings : HybridTimings{};
+    const frame::HybridTimings& t = row->hybridTimings ? *row->hybridTimings : frame::HybridTimings{};
     md << "| " << row->scene << " | " << percentText(row->maxSeparation) << " | " << format("%g", row->setting.budget)
        << " | " << shareText(row->maskedShareLeft) << " / " << shareText(row->maskedShareRight) << " | "
        << (t.raycastSurfaces ? "ray cast" : "raster") << " | " << msText(t.displacement) << " | " << msText(t.classification) << " | " << msText(t.eyeGeometry) << " | "
@@ -66,7 +66,7 @@ std::string hybridBenchMarkdown(const BenchReport& report) {
   for (std::size_t i = 0; i < eyePasses.size(); ++i) md << "---|";
   md << "\n";
   for (const BenchRow* row : rows) {
-    const HybridTimings& t = row->hybridTimings ? *row->hybridTimings : HybridTimings{};
+    const frame::HybridTimings& t = row->hybridTimings ? *row->hybridTimings : frame::HybridTimings{};
     md << "| " << row->scene << " | " << percentText(row->maxSeparation) << " | " << format("%g", row->setting.budget)
        << " | " << msText(t.classify) << " | " << msText(t.threshold) << " | " << msText(t.mask) << " |";
     for (const std::string& name : eyePasses) {

@@ -1,4 +1,4 @@
-#include "s3d/app/hybrid_stereo.h"
+#include "s3d/frame/hybrid_stereo.h"
 
 #include <cstring>
 #include <functional>
@@ -7,8 +7,7 @@
 #include <string>
 #include <tuple>
 
-#include "s3d/app/eye_comparison.h"
-#include "s3d/app/render_job.h"
+#include "s3d/frame/layered_reference.h"
 #include "s3d/renderer/scene_bvh.h"
 #include "s3d/stereo/hybrid_pass.h"
 #include "s3d/stereo/stereo_pass.h"
@@ -16,7 +15,7 @@
 #include "s3d/vk/resources.h"
 #include "s3d/vk/timestamps.h"
 
-namespace s3d::app {
+namespace s3d::frame {
 namespace {
 
 std::optional<double> sum(std::optional<double> a, std::optional<double> b) {
@@ -98,15 +97,6 @@ EyeRenderTimes renderEye(renderer::DeferredRenderer& eyeRenderer, const renderer
 }
 
 }  // namespace
-
-nlohmann::json toJson(const HybridTimings& t) {
-  return {{"displacement", optionalMs(t.displacement)}, {"classification", optionalMs(t.classification)},
-          {"classify", optionalMs(t.classify)},         {"threshold", optionalMs(t.threshold)},
-          {"mask", optionalMs(t.mask)},
-          {"eyeGeometry", optionalMs(t.eyeGeometry)},   {"maskedShading", optionalMs(t.maskedShading)},
-          {"composite", optionalMs(t.composite)},       {"total", optionalMs(t.total)},
-          {"surfaces", t.raycastSurfaces ? "raycast" : "raster"}};
-}
 
 HybridSynthesis synthesizeHybrid(vk::Context& context, const renderer::DeferredRenderer& centerRenderer,
                                  renderer::DeferredRenderer& eyeRenderer, const renderer::Scene& scene,
@@ -218,4 +208,4 @@ HybridSynthesis synthesizeHybrid(vk::Context& context, const renderer::DeferredR
   return result;
 }
 
-}  // namespace s3d::app
+}  // namespace s3d::frame

@@ -8,15 +8,13 @@
 #include <optional>
 #include <vector>
 
-#include <nlohmann/json.hpp>
-
 #include "s3d/image.h"
 #include "s3d/renderer/deferred_renderer.h"
 #include "s3d/stereo/hybrid.h"
 #include "s3d/stereo/stereo.h"
 #include "s3d/vk/context.h"
 
-namespace s3d::app {
+namespace s3d::frame {
 
 // GPU milliseconds of one hybrid frame, both eyes (empty without timestamps).
 struct HybridTimings {
@@ -31,10 +29,6 @@ struct HybridTimings {
   std::vector<renderer::PassTiming> leftEyePasses, rightEyePasses;  // the masked renders' passes
   bool raycastSurfaces = false;  // eyeGeometry cast rays (HybridSynthesis::surfaces), or rasterized
 };
-
-// {"displacement", "classification", "eyeGeometry", "maskedShading", "composite", "total"}: ms or null;
-// "surfaces": "raycast" or "raster".
-nlohmann::json toJson(const HybridTimings& timings);
 
 struct HybridSynthesis {
   stereo::StereoPair eyes;  // at the renderer's size; alpha as the displaced eyes' (the weapon mask)
@@ -62,4 +56,4 @@ HybridSynthesis synthesizeHybrid(vk::Context& context, const renderer::DeferredR
                                  const renderer::ViewMatrices& center, const stereo::StereoParameters& parameters,
                                  int timedRuns = 1);
 
-}  // namespace s3d::app
+}  // namespace s3d::frame
