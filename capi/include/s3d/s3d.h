@@ -12,7 +12,7 @@ extern "C" {
 #endif
 
 #define S3D_API_VERSION_MAJOR 0
-#define S3D_API_VERSION_MINOR 4 /* 0.4: per-eye views (s3d_eye_views) */
+#define S3D_API_VERSION_MINOR 4
 
 typedef enum s3d_result {
   S3D_SUCCESS = 0,
@@ -140,7 +140,8 @@ typedef struct s3d_eye_view {
  * extent for both eyes (within a quarter pixel), the left eye's frustum shifted right of the right eye's by at most
  * a quarter of the width. A headset's parallel or outward-turned frusta are refused, naming left.angle_left. */
 typedef struct s3d_eye_views {
-  s3d_eye_view left; /* left.position_x < right.position_x; the center camera sits at their midpoint */
+  s3d_eye_view left; /* left.position_x < right.position_x; the center image is rendered from their midpoint with
+                        the mean of their frusta (s3d_stereo_for_eye_views gives its angles) */
   s3d_eye_view right;
   float world_scale; /* world units per metre, finite, > 0 */
 } s3d_eye_views;
