@@ -5,6 +5,7 @@
 #include <limits>
 #include <numbers>
 #include <stdexcept>
+#include <utility>
 
 #include "s3d/number_text.h"
 #include "s3d/stereo/stereo.h"
