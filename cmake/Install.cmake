@@ -1,7 +1,7 @@
 # `cmake --install`: the libraries a host links (s3d::vkcore, s3d::stereo, s3d::renderer, s3d::frame, s3d::comfort, s3d::hud,
 # s3d::capi for C hosts),
 # their public headers (shaders stay embedded in the libraries), an exported CMake package with a version file,
-# and a pkg-config file. A consumer: find_package(s3d 0.3 CONFIG REQUIRED) + target_link_libraries(app s3d::stereo).
+# and a pkg-config file. A consumer: find_package(s3d 0.4 CONFIG REQUIRED) + target_link_libraries(app s3d::stereo).
 include(GNUInstallDirs)
 include(CMakePackageConfigHelpers)
 
