@@ -141,6 +141,33 @@ TEST_F(RaycastRenderPassTest, AnEmptyMaskShadesNothing) {
   }
 }
 
+// With ambient occlusion a masked render casts the occlusion's region: the tiles with a masked pixel and their 8
+// neighbours (where the occlusion runs), and no other pixel. A few masked pixels in one tile of the courtyard
+// (its ground and walls fill the view's lower part) give ids in exactly that tile's 3x3 block.
+TEST_F(RaycastRenderPassTest, WithAmbientOcclusionTheOcclusionsRegionIsCast) {
+  Scene scene = makeBuiltInScene("courtyard");
+  ASSERT_TRUE(scene.ambientOcclusion);
+  DeferredRenderer renderer(context(), kWidth, kHeight, raycastOptions());
+  renderer.setScene(scene);
+  renderer.setSurfaceBvh(SceneBvh::build(scene));
+  std::vector<std::uint32_t> values(std::size_t(kWidth) * kHeight, 0);
+  const std::uint32_t tileX = 4, tileY = 3;  // pixels 64..79 x 48..63: the ground, below the horizon
+  for (std::uint32_t i = 0; i < 4; ++i) values[std::size_t(tileY * 16 + 3 + i) * kWidth + tileX * 16 + 5 + 2 * i] = 1;
+  const vk::Image mask = uploadMask(context(), values);
+  renderer.render(centerViewMatrices(scene, float(kWidth) / float(kHeight)), {&mask, 1, ShadeMask::Surfaces::RayCast});
+  const std::vector<std::uint32_t> ids = renderer.readVisibilityIds();
+  std::size_t castOutside = 0, castInside = 0, insideRegion = 0;
+  for (std::uint32_t y = 0; y < kHeight; ++y)
+    for (std::uint32_t x = 0; x < kWidth; ++x) {
+      const bool inside = std::abs(int(x / 16) - int(tileX)) <= 1 && std::abs(int(y / 16) - int(tileY)) <= 1;
+      const bool cast = ids[std::size_t(y) * kWidth + x] != 0;
+      insideRegion += inside ? 1 : 0;
+      (inside ? castInside : castOutside) += cast ? 1 : 0;
+    }
+  EXPECT_EQ(castOutside, 0u);
+  EXPECT_GT(castInside, insideRegion / 2);  // the region's surfaces were found (sky pixels get id 0 too)
+}
+
 // A ray-cast render needs a BVH and visibility shading (the refusal names it); the same renderer still rasterizes.
 TEST_F(RaycastRenderPassTest, WithoutABvhOrUnderRasterShadingItIsRefused) {
   Scene scene = makeBuiltInScene("cover");

@@ -41,9 +41,12 @@ std::optional<std::string> DeferredRenderer::Impl::raycastRefusal() const {
 void DeferredRenderer::Impl::recordRaycastSurfaces(VkCommandBuffer cmd, const ViewMatrices& view, const ShadeMask& mask) {
   vk::transition(cmd, raycastIds, vk::kUndefined, vk::kComputeWrite);
   vk::transition(cmd, raycastDepth, vk::kUndefined, vk::kComputeWrite);
-  // Ambient occlusion samples depth around the mask, as far as its radius projects: every pixel is cast then.
+  // Ambient occlusion samples depth around the pixels it shades: with it, every pixel of its region (the masked
+  // tiles and their neighbours, flagged by the mask-tiles pass) is cast, and samples beyond see no surface.
+  const bool region = scene.ambientOcclusion && mask.image != nullptr;
   const ShadeMask cast = scene.ambientOcclusion ? ShadeMask{} : mask;
-  raycast->record(cmd, raycastCamera(scene, view, options.reversedZ), cast, raycastIds, raycastDepth);
+  raycast->record(cmd, raycastCamera(scene, view, options.reversedZ), cast, raycastIds, raycastDepth,
+                  region ? RaycastRegion{tiles->buffer(), tiles->tilesX()} : RaycastRegion{});
   vk::transition(cmd, raycastIds, vk::kComputeWrite, kComputeSampled);
   vk::transition(cmd, raycastDepth, vk::kComputeWrite, kComputeSampled);
 }
