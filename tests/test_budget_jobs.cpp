@@ -8,7 +8,7 @@
 #include <unistd.h>
 
 #include "s3d/app/convert_job.h"
-#include "s3d/app/layered_reference.h"
+#include "s3d/frame/layered_reference.h"
 #include "s3d/app/render_job.h"
 #include "s3d/app/sequence_job.h"
 #include "s3d/renderer/scene_file.h"
@@ -216,7 +216,7 @@ TEST(ReferenceLayers, EachPixelTakesTheNearestSurfaceInItsOwnSegment) {
   layer0.pixels = {10.0f, 3.0f, INFINITY};
   layer1.pixels = {2.0f, 9.0f, 7.0f};
   std::uint64_t unresolved = 0;
-  const std::vector<std::uint8_t> chosen = chooseReferenceLayers({layer0, layer1}, segments, &unresolved);
+  const std::vector<std::uint8_t> chosen = frame::chooseReferenceLayers({layer0, layer1}, segments, &unresolved);
   EXPECT_EQ(chosen, (std::vector<std::uint8_t>{1, 0, 0}));
   EXPECT_EQ(unresolved, 1u);
 }
@@ -226,7 +226,7 @@ TEST(ReferenceLayers, TheLinearMappingsReferenceIsTheExactEyeCameras) {
   renderer::Scene scene = renderer::loadScene("courtyard");
   const renderer::ViewMatrices center = renderer::centerViewMatrices(scene, 16.0f / 9.0f, {1.0f, 1.0f});
   stereo::StereoParameters parameters;
-  const renderer::ViewMatrices view = referenceEyeView(scene, center, stereo::Eye::Left, parameters);
+  const renderer::ViewMatrices view = frame::referenceEyeView(scene, center, stereo::Eye::Left, parameters);
   const stereo::EyeCamera expected =
       stereo::offAxisEyeCamera(center.worldView, center.worldProjection, stereo::Eye::Left, parameters.maxSeparation,
                                parameters.zeroParallaxDistance);

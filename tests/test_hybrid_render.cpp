@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "s3d/app/eye_comparison.h"
-#include "s3d/app/hybrid_stereo.h"
+#include "s3d/frame/hybrid_stereo.h"
 #include "s3d/app/render_job.h"
 #include "s3d/renderer/scene.h"
 #include "s3d/stereo/synthesis.h"
@@ -65,7 +65,7 @@ TEST_F(HybridRender, BudgetZeroIsTheBaseDisplacementBitForBit) {
     HybridScene s = renderCenter(context(), "courtyard", 96, 54, parameters);
     const stereo::SynthesisResult displaced = stereo::synthesizeTimed(
         context(), s.centerRenderer->displayColor(), s.centerRenderer->linearDepth(), stereo::displacementParameters(parameters));
-    const HybridSynthesis hybrid = synthesizeHybrid(context(), *s.centerRenderer, *s.eyeRenderer, s.scene, s.center, parameters);
+    const frame::HybridSynthesis hybrid = frame::synthesizeHybrid(context(), *s.centerRenderer, *s.eyeRenderer, s.scene, s.center, parameters);
     EXPECT_EQ(hybrid.thresholds[0].maskedPixels, 0u);
     EXPECT_EQ(hybrid.thresholds[1].maskedPixels, 0u);
     EXPECT_EQ(hybrid.eyes.left.pixels, displaced.eyes.left.pixels) << stereo::methodName(base);
@@ -80,7 +80,7 @@ TEST_F(HybridRender, AnEyeWithNothingMaskedIsNotRendered) {
   HybridScene s = renderCenter(context(), "courtyard", 96, 54, parameters);
   const stereo::SynthesisResult displaced = stereo::synthesizeTimed(
       context(), s.centerRenderer->displayColor(), s.centerRenderer->linearDepth(), stereo::displacementParameters(parameters));
-  const HybridSynthesis hybrid = synthesizeHybrid(context(), *s.centerRenderer, *s.eyeRenderer, s.scene, s.center, parameters);
+  const frame::HybridSynthesis hybrid = frame::synthesizeHybrid(context(), *s.centerRenderer, *s.eyeRenderer, s.scene, s.center, parameters);
   EXPECT_EQ(hybrid.thresholds[0].maskedPixels, 0u);
   EXPECT_EQ(hybrid.thresholds[1].maskedPixels, 0u);
   EXPECT_TRUE(hybrid.timings.leftEyePasses.empty());
@@ -100,7 +100,7 @@ TEST_F(HybridRender, AnEyeWithNothingMaskedIsNotRendered) {
 TEST_F(HybridRender, EachEyeMasksTheBudgetsShareWhenItsThresholdBinIsTied) {
   const stereo::StereoParameters parameters = hybridParameters(0.02f);
   HybridScene s = renderCenter(context(), "depth-range", 320, 180, parameters);
-  const HybridSynthesis hybrid = synthesizeHybrid(context(), *s.centerRenderer, *s.eyeRenderer, s.scene, s.center, parameters);
+  const frame::HybridSynthesis hybrid = frame::synthesizeHybrid(context(), *s.centerRenderer, *s.eyeRenderer, s.scene, s.center, parameters);
   const std::uint32_t cap = stereo::hybridPixelCap(0.02f, hybrid.classifiedPixels);
   ASSERT_GT(cap, 0u);
   for (std::size_t eye = 0; eye < 2; ++eye) {
@@ -115,7 +115,7 @@ TEST_F(HybridRender, TheBudgetsEndsSkipTheClassification) {
   for (const float budget : {0.0f, 1.0f}) {
     const stereo::StereoParameters parameters = hybridParameters(budget);
     HybridScene s = renderCenter(context(), "courtyard", 96, 54, parameters);
-    const HybridSynthesis hybrid = synthesizeHybrid(context(), *s.centerRenderer, *s.eyeRenderer, s.scene, s.center, parameters);
+    const frame::HybridSynthesis hybrid = frame::synthesizeHybrid(context(), *s.centerRenderer, *s.eyeRenderer, s.scene, s.center, parameters);
     ASSERT_TRUE(hybrid.timings.classification.has_value()) << budget;
     EXPECT_EQ(*hybrid.timings.classification, 0.0) << budget;
     for (const auto* passes : {&hybrid.timings.leftEyePasses, &hybrid.timings.rightEyePasses}) {
@@ -123,10 +123,10 @@ TEST_F(HybridRender, TheBudgetsEndsSkipTheClassification) {
       for (const renderer::PassTiming& pass : *passes) EXPECT_NE(pass.name, "mask-tiles") << budget;
     }
   }
-  const HybridSynthesis between = [&] {
+  const frame::HybridSynthesis between = [&] {
     const stereo::StereoParameters parameters = hybridParameters(0.5f);
     HybridScene s = renderCenter(context(), "courtyard", 96, 54, parameters);
-    return synthesizeHybrid(context(), *s.centerRenderer, *s.eyeRenderer, s.scene, s.center, parameters);
+    return frame::synthesizeHybrid(context(), *s.centerRenderer, *s.eyeRenderer, s.scene, s.center, parameters);
   }();
   if (between.timings.classification) {  // a device with timestamps times what did run
     EXPECT_GT(*between.timings.classification, 0.0);
@@ -139,15 +139,47 @@ TEST_F(HybridRender, BudgetOneIsTheTwoPassReferenceOnEveryBuiltInScene) {
   for (const std::string& name : renderer::builtInSceneNames()) {
     const stereo::StereoParameters parameters = hybridParameters(1.0f);
     HybridScene s = renderCenter(context(), name, 96, 54, parameters);
-    const HybridSynthesis hybrid = synthesizeHybrid(context(), *s.centerRenderer, *s.eyeRenderer, s.scene, s.center, parameters);
+    const frame::HybridSynthesis hybrid = frame::synthesizeHybrid(context(), *s.centerRenderer, *s.eyeRenderer, s.scene, s.center, parameters);
     const gpu::StereoConstants crop = stereo::makeStereoConstants(parameters, 96, 54);
     EXPECT_EQ(hybrid.thresholds[0].maskedPixels, hybrid.classifiedPixels) << name;
     for (const stereo::Eye eye : {stereo::Eye::Left, stereo::Eye::Right}) {
-      (void)s.centerRenderer->render(referenceEyeView(s.scene, s.center, eye, parameters));
+      (void)s.centerRenderer->render(frame::referenceEyeView(s.scene, s.center, eye, parameters));
       const ImageRGBA8 reference = s.centerRenderer->readDisplayColor();
       const ImageRGBA8& synthesized = eye == stereo::Eye::Left ? hybrid.eyes.left : hybrid.eyes.right;
       EXPECT_LE(largestDifference(synthesized, reference, std::uint32_t(crop.cropBegin), std::uint32_t(crop.cropEnd)), 1)
           << name << (eye == stereo::Eye::Left ? " left" : " right");
+    }
+  }
+}
+
+// With ray-cast surfaces (the eye renderer a GPU's: visibility shading, the compute transparent pass) budget 1 is
+// still the two-pass reference: within one 8-bit level except where a ray and the rasterizer name different
+// triangles, which happens only on triangle edges (at most 1 % of the compared pixels here).
+TEST_F(HybridRender, WithRayCastSurfacesBudgetOneIsTheTwoPassReferenceOffTriangleEdges) {
+  renderer::RendererOptions eyeOptions;
+  eyeOptions.gbufferShading = renderer::RendererOptions::GBufferShading::Visibility;
+  eyeOptions.transparentCompositing = renderer::RendererOptions::TransparentCompositing::Compute;
+  for (const std::string& name : renderer::builtInSceneNames()) {
+    const stereo::StereoParameters parameters = hybridParameters(1.0f);
+    HybridScene s = renderCenter(context(), name, 96, 54, parameters);
+    s.eyeRenderer = std::make_unique<renderer::DeferredRenderer>(context(), 96, 54, eyeOptions);
+    s.eyeRenderer->setScene(s.scene);
+    const frame::HybridSynthesis hybrid = frame::synthesizeHybrid(context(), *s.centerRenderer, *s.eyeRenderer, s.scene, s.center, parameters);
+    ASSERT_EQ(hybrid.surfaces, renderer::ShadeMask::Surfaces::RayCast) << name;
+    const gpu::StereoConstants crop = stereo::makeStereoConstants(parameters, 96, 54);
+    for (const stereo::Eye eye : {stereo::Eye::Left, stereo::Eye::Right}) {
+      (void)s.centerRenderer->render(frame::referenceEyeView(s.scene, s.center, eye, parameters));
+      const ImageRGBA8 reference = s.centerRenderer->readDisplayColor();
+      const ImageRGBA8& synthesized = eye == stereo::Eye::Left ? hybrid.eyes.left : hybrid.eyes.right;
+      std::size_t compared = 0, beyondOneLevel = 0;
+      for (std::uint32_t y = 0; y < 54; ++y)
+        for (int x = crop.cropBegin; x < crop.cropEnd; ++x, ++compared) {
+          int largest = 0;
+          for (int c = 0; c < 3; ++c)
+            largest = std::max(largest, std::abs(int(synthesized.at(std::uint32_t(x), y)[c]) - int(reference.at(std::uint32_t(x), y)[c])));
+          beyondOneLevel += largest > 1 ? 1 : 0;
+        }
+      EXPECT_LE(beyondOneLevel, compared / 100) << name << (eye == stereo::Eye::Left ? " left" : " right");
     }
   }
 }
@@ -162,9 +194,9 @@ TEST_F(HybridRender, TheDefaultBudgetMasksTheDisocclusionsOfTheCourtyard) {
   HybridScene s = renderCenter(context(), "courtyard", 640, 360, parameters);
   const gpu::StereoConstants crop = stereo::makeStereoConstants(parameters, 640, 360);
   const DepthImage centerDepth = s.centerRenderer->readLinearDepth();
-  const HybridSynthesis hybrid = synthesizeHybrid(context(), *s.centerRenderer, *s.eyeRenderer, s.scene, s.center, parameters);
+  const frame::HybridSynthesis hybrid = frame::synthesizeHybrid(context(), *s.centerRenderer, *s.eyeRenderer, s.scene, s.center, parameters);
   for (const stereo::Eye eye : {stereo::Eye::Left, stereo::Eye::Right}) {
-    (void)s.centerRenderer->render(referenceEyeView(s.scene, s.center, eye, parameters));
+    (void)s.centerRenderer->render(frame::referenceEyeView(s.scene, s.center, eye, parameters));
     const std::vector<std::uint8_t> unseen =
         disocclusionMaskFor(s.centerRenderer->readLinearDepth(), centerDepth, parameters, eye);
     const std::vector<std::uint8_t>& mask = hybrid.masks[eye == stereo::Eye::Left ? 0 : 1];

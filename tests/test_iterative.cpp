@@ -242,9 +242,9 @@ TEST_F(IterativeCourtyard, IsAtLeastAsCloseToTheTwoPassReferenceAsTheSeed) {
   (void)deferred.render(center);
   const ImageRGBA8 color = deferred.readDisplayColor();
   const DepthImage depth = deferred.readLinearDepth();
-  (void)deferred.render(app::referenceEyeView(scene, center, Eye::Left, parameters));
+  (void)deferred.render(frame::referenceEyeView(scene, center, Eye::Left, parameters));
   const ImageRGBA8 leftReference = deferred.readDisplayColor();
-  (void)deferred.render(app::referenceEyeView(scene, center, Eye::Right, parameters));
+  (void)deferred.render(frame::referenceEyeView(scene, center, Eye::Right, parameters));
   const ImageRGBA8 rightReference = deferred.readDisplayColor();
 
   const gpu::StereoConstants seedConstants = makeSeedConstants(parameters, width, height);

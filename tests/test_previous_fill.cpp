@@ -1,12 +1,16 @@
 // The previous-frame fill: the forward method's holes take what the previous frame's eye showed there, found by
-// reprojecting with depth and camera motion; the GPU pass held to the C++ implementation over two frames.
+// reprojecting with depth and camera motion; the GPU pass, and a host's stereo frame in C++ and through the C API,
+// held to the C++ implementation over a moving camera's frames.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstring>
+#include <functional>
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "capi_test_context.h"
+#include "s3d/s3d.h"
 #include "s3d/stereo/forward.h"
 #include "s3d/stereo/forward_pass.h"
 #include "s3d/stereo/previous_fill.h"
@@ -106,6 +110,8 @@ std::vector<std::size_t> holes(const DepthImage& depth, float direction, const g
 }
 
 const gpu::ForwardConstants kConstants = makeForwardConstants(forwardParameters(), kWidth, kHeight);
+// The host tests' camera positions along x, a frame each.
+constexpr float kHostPositions[3] = {0.0f, 0.3f, 0.45f};
 
 TEST(PreviousFrameFill, FillsTheHolesTheMovingCameraSawBefore) {
   // The camera moves right by the eyes' half separation per frame (0.3): the previous center stood where the
@@ -247,9 +253,42 @@ TEST_F(PreviousFillPassTest, GpuMatchesTheCppReferenceOverTwoFrames) {
   }
 }
 
+// A host's three frames of the moving camera (the eyes read back after each) against the C++ reference's: `record`
+// records frame f's stereo frame from the host's colour and depth into its eyes (GENERAL, the test synchronizes).
+void expectHostSequenceMatchesTheReference(
+    vk::Context& context, const std::function<void(VkCommandBuffer, int, const vk::Image& color, const vk::Image& depth,
+                                                   const vk::Image& left, const vk::Image& right)>& record) {
+  auto image = [&](VkFormat format, VkImageUsageFlags usage) {
+    return vk::createImage(context, format, kWidth, kHeight, usage | VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
+  };
+  const vk::Image color = image(VK_FORMAT_R8G8B8A8_UNORM, VK_IMAGE_USAGE_SAMPLED_BIT);
+  const vk::Image depth = image(VK_FORMAT_R32_SFLOAT, VK_IMAGE_USAGE_SAMPLED_BIT);
+  const vk::Image left = image(VK_FORMAT_R8G8B8A8_UNORM, VK_IMAGE_USAGE_STORAGE_BIT);
+  const vk::Image right = image(VK_FORMAT_R8G8B8A8_UNORM, VK_IMAGE_USAGE_STORAGE_BIT);
+  context.submitAndWait([&](VkCommandBuffer cmd) {
+    for (const vk::Image* eye : {&left, &right}) vk::transition(cmd, *eye, vk::kUndefined, vk::kComputeWrite);
+  });
+  std::optional<ForwardWithHistory> cpu;
+  for (int f = 0; f < 3; ++f) {
+    const Frame frame = render(viewAt(kHostPositions[f]), centerProjection());
+    vk::uploadImage(context, color, std::as_bytes(std::span(frame.color.pixels)), vk::kComputeRead);
+    vk::uploadImage(context, depth, std::as_bytes(std::span(frame.depth.pixels)), vk::kComputeRead);
+    context.submitAndWait([&](VkCommandBuffer cmd) { record(cmd, f, color, depth, left, right); });
+    cpu = synthesizeForwardWithPreviousFrameReference(frame.color, frame.depth, kConstants,
+                                                     motionBetween(kHostPositions[f], kHostPositions[f > 0 ? f - 1 : 0]),
+                                                     cpu ? &cpu->history : nullptr);
+    for (auto [eye, expected] : {std::pair{&left, &cpu->eyes.left}, std::pair{&right, &cpu->eyes.right}}) {
+      ImageRGBA8 got(kWidth, kHeight);
+      const std::vector<std::byte> bytes = vk::readbackImage(context, *eye, vk::kComputeWrite);
+      std::memcpy(got.pixels.data(), bytes.data(), bytes.size());
+      EXPECT_LE(largestChannelDifference(got, *expected), 1) << "frame " << f;  // as the pass's own test above
+    }
+  }
+  EXPECT_GT(cpu->counts[0].filledFromPrevious, 0u);  // the last frame's holes took the history
+}
+
 TEST_F(PreviousFillPassTest, AHostsStereoFrameSequenceMatchesTheCppReference) {
   // The host hands its center camera each frame; the frame derives the eye cameras and their motion itself.
-  const float positions[3] = {0.0f, 0.3f, 0.45f};
   StereoFrameDesc desc;
   desc.width = kWidth;
   desc.height = kHeight;
@@ -258,22 +297,10 @@ TEST_F(PreviousFillPassTest, AHostsStereoFrameSequenceMatchesTheCppReference) {
   desc.method = StereoMethod::Forward;
   desc.previousFrameFill = true;
   StereoFrame stereoFrame(context(), desc);
-  auto image = [&](VkFormat format, VkImageUsageFlags usage) {
-    return vk::createImage(context(), format, kWidth, kHeight, usage | VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
-  };
-  const vk::Image color = image(VK_FORMAT_R8G8B8A8_UNORM, VK_IMAGE_USAGE_SAMPLED_BIT);
-  const vk::Image depth = image(VK_FORMAT_R32_SFLOAT, VK_IMAGE_USAGE_SAMPLED_BIT);
-  const vk::Image left = image(VK_FORMAT_R8G8B8A8_UNORM, VK_IMAGE_USAGE_STORAGE_BIT);
-  const vk::Image right = image(VK_FORMAT_R8G8B8A8_UNORM, VK_IMAGE_USAGE_STORAGE_BIT);
-  context().submitAndWait([&](VkCommandBuffer cmd) {
-    for (const vk::Image* eye : {&left, &right}) vk::transition(cmd, *eye, vk::kUndefined, vk::kComputeWrite);
-  });
   auto host = [](const vk::Image& i) { return HostImage{i.image, i.view, i.format, VK_IMAGE_LAYOUT_GENERAL}; };
-  std::optional<ForwardWithHistory> cpu;
-  for (int f = 0; f < 3; ++f) {
-    const Frame frame = render(viewAt(positions[f]), centerProjection());
-    vk::uploadImage(context(), color, std::as_bytes(std::span(frame.color.pixels)), vk::kComputeRead);
-    vk::uploadImage(context(), depth, std::as_bytes(std::span(frame.depth.pixels)), vk::kComputeRead);
+  expectHostSequenceMatchesTheReference(context(), [&](VkCommandBuffer cmd, int f, const vk::Image& color,
+                                                       const vk::Image& depth, const vk::Image& left,
+                                                       const vk::Image& right) {
     StereoFrameDispatch dispatch;
     dispatch.color = host(color);
     dispatch.depth = host(depth);
@@ -282,20 +309,43 @@ TEST_F(PreviousFillPassTest, AHostsStereoFrameSequenceMatchesTheCppReference) {
     dispatch.maxSeparation = kSeparation;
     dispatch.zeroParallaxDistance = kZeroParallax;
     dispatch.edgeCrop = 0.0f;
-    dispatch.centerView = viewAt(positions[f]);
+    dispatch.centerView = viewAt(kHostPositions[f]);
     dispatch.centerProjection = centerProjection();
-    context().submitAndWait([&](VkCommandBuffer cmd) { stereoFrame.record(cmd, dispatch); });
-    cpu = synthesizeForwardWithPreviousFrameReference(frame.color, frame.depth, kConstants,
-                                                     motionBetween(positions[f], positions[f > 0 ? f - 1 : 0]),
-                                                     cpu ? &cpu->history : nullptr);
-    for (auto [eye, expected] : {std::pair{&left, &cpu->eyes.left}, std::pair{&right, &cpu->eyes.right}}) {
-      ImageRGBA8 got(kWidth, kHeight);
-      const std::vector<std::byte> bytes = vk::readbackImage(context(), *eye, vk::kComputeWrite);
-      std::memcpy(got.pixels.data(), bytes.data(), bytes.size());
-      EXPECT_LE(largestChannelDifference(got, *expected), 1) << "frame " << f;  // as the pass's own test above
-    }
-  }
-  EXPECT_GT(cpu->counts[0].filledFromPrevious, 0u);  // the last frame's holes took the history
+    stereoFrame.record(cmd, dispatch);
+  });
+}
+
+TEST_F(PreviousFillPassTest, AHostsStereoFrameSequenceThroughTheCApiMatchesTheCppReference) {
+  // The same sequence as a host binding C records it: s3d_stereo_frame_dispatch's camera fields, column-major.
+  const test::CContext c(context());
+  s3d_stereo_frame_desc desc;
+  s3d_default_stereo_frame_desc(&desc);
+  desc.width = kWidth;
+  desc.height = kHeight;
+  desc.color_format = VK_FORMAT_R8G8B8A8_UNORM;
+  desc.depth_format = VK_FORMAT_R32_SFLOAT;
+  desc.method = S3D_METHOD_FORWARD;
+  desc.previous_frame_fill = 1;
+  s3d_stereo_frame frame = nullptr;
+  ASSERT_EQ(s3d_stereo_frame_create(c.get(), &desc, &frame), S3D_SUCCESS) << s3d_last_error();
+  expectHostSequenceMatchesTheReference(context(), [&](VkCommandBuffer cmd, int f, const vk::Image& color,
+                                                       const vk::Image& depth, const vk::Image& left,
+                                                       const vk::Image& right) {
+    s3d_stereo_frame_dispatch dispatch;
+    s3d_default_stereo_frame_dispatch(&dispatch);
+    dispatch.color = test::cImage(color);
+    dispatch.depth = test::cImage(depth);
+    dispatch.left = test::cImage(left);
+    dispatch.right = test::cImage(right);
+    dispatch.max_separation = kSeparation;
+    dispatch.zero_parallax_distance = kZeroParallax;
+    dispatch.edge_crop = 0.0f;
+    const glm::mat4 view = viewAt(kHostPositions[f]), projection = centerProjection();
+    std::memcpy(dispatch.center_view, &view[0][0], sizeof dispatch.center_view);
+    std::memcpy(dispatch.center_projection, &projection[0][0], sizeof dispatch.center_projection);
+    EXPECT_EQ(s3d_stereo_frame_record(frame, cmd, &dispatch), S3D_SUCCESS) << s3d_last_error();
+  });
+  s3d_stereo_frame_destroy(frame);
 }
 
 }  // namespace

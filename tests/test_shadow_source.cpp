@@ -40,7 +40,7 @@ TEST_F(ShadowSource, AnEyeLitWithTheCenterFramesShadowMapsIsTheSameAsWithItsOwn)
     center.setScene(scene);
     eye.setScene(scene);
     const ViewMatrices centerView = centerViewMatrices(scene, float(kWidth) / float(kHeight));
-    const ViewMatrices eyeView = app::referenceEyeView(scene, centerView, stereo::Eye::Left, stereo::StereoParameters{});
+    const ViewMatrices eyeView = frame::referenceEyeView(scene, centerView, stereo::Eye::Left, stereo::StereoParameters{});
     ASSERT_TRUE(eyeView.shadowFit.has_value());
     const FrameTimings own = eye.render(eyeView);
     ASSERT_TRUE(anyShadowPass(own)) << name;
@@ -58,7 +58,7 @@ TEST_F(ShadowSource, ASourceWhoseLastFramePlannedForAnotherCameraIsRefused) {
   center.setScene(scene);
   eye.setScene(scene);
   const ViewMatrices centerView = centerViewMatrices(scene, float(kWidth) / float(kHeight));
-  const ViewMatrices eyeView = app::referenceEyeView(scene, centerView, stereo::Eye::Right, stereo::StereoParameters{});
+  const ViewMatrices eyeView = frame::referenceEyeView(scene, centerView, stereo::Eye::Right, stereo::StereoParameters{});
   EXPECT_THROW((void)eye.render(eyeView, {}, center), std::invalid_argument);  // no frame yet
   ViewMatrices ownFit = eyeView;
   ownFit.shadowFit.reset();  // planned for the eye camera itself
@@ -76,7 +76,7 @@ TEST_F(ShadowSource, ASourceOfAnotherSceneOrSizeIsRefused) {
   otherScene.setScene(cover);
   otherSize.setScene(courtyard);
   const ViewMatrices centerView = centerViewMatrices(courtyard, float(kWidth) / float(kHeight));
-  const ViewMatrices eyeView = app::referenceEyeView(courtyard, centerView, stereo::Eye::Left, stereo::StereoParameters{});
+  const ViewMatrices eyeView = frame::referenceEyeView(courtyard, centerView, stereo::Eye::Left, stereo::StereoParameters{});
   (void)otherScene.render(centerView);
   (void)otherSize.render(centerView);
   EXPECT_THROW((void)eye.render(eyeView, {}, otherScene), std::invalid_argument);

@@ -189,6 +189,25 @@ TEST_F(StereoFrameTest, ThePreviousFrameFillWithoutTheHostsCameraIsRefused) {
   EXPECT_NE(message.find("StereoFrameDispatch.centerView/centerProjection"), std::string::npos) << message;
 }
 
+TEST_F(StereoFrameTest, EyeViewsTheKernelsCannotReproduceAreRefusedNamingTheField) {
+  // A headset's outward-turned frusta (samples/views/headset-pair.json's angles) at the frame's size.
+  stereo::StereoFrameDesc description = desc(StereoMethod::Search);
+  description.colorFormat = VK_FORMAT_R8G8B8A8_UNORM;
+  description.depthFormat = VK_FORMAT_R32_SFLOAT;
+  stereo::StereoFrame frame(*context_, description);
+  vk::Image color = output(VK_FORMAT_R8G8B8A8_UNORM, kWidth, kHeight), depth = output(VK_FORMAT_R32_SFLOAT, kWidth, kHeight);
+  vk::Image left = output(frame.eyeFormat(), kWidth, kHeight), right = output(frame.eyeFormat(), kWidth, kHeight);
+  stereo::StereoFrameDispatch d = dispatch();
+  d.color = hostImage(color, kCopiedOut);
+  d.depth = hostImage(depth, kCopiedOut);
+  d.left = hostImage(left, kCopiedOut);
+  d.right = hostImage(right, kCopiedOut);
+  d.eyeViews = stereo::ViewConfiguration{{stereo::EyeView{-0.0315, -0.7854, 0.6981, 0.7330, -0.8203, kWidth, kHeight},
+                                          stereo::EyeView{0.0315, -0.6981, 0.7854, 0.7330, -0.8203, kWidth, kHeight}}};
+  const std::string message = errorOf([&] { runOnHostQueue([&](VkCommandBuffer cmd) { frame.record(cmd, d); }); });
+  EXPECT_NE(message.find("StereoFrameDispatch.eyeViews.eyes[0].angleLeft"), std::string::npos) << message;
+}
+
 // A host's eyes are `s3d render`'s eyes: the same rendered frame through the host's stereo frame and through the
 // synthesis the render job runs (stereo::synthesizeTimed on the renderer's images), for every method.
 class StereoFrameOnARenderedFrame : public VulkanTest {};

@@ -6,6 +6,7 @@
 
 #include "capi_checks.h"
 #include "s3d/s3d.h"
+#include "s3d/stereo/eye_views.h"
 #include "s3d/stereo/host_stereo_pass.h"
 #include "s3d/vk/check.h"
 #include "s3d/vk/context.h"
@@ -70,6 +71,14 @@ inline stereo::HostImage toCpp(const s3d_host_image& i) {
 inline stereo::HostProjection toCpp(const s3d_projection& p) {
   return {p.near_plane, p.far_plane, p.reversed_z != 0, p.infinite_far_plane != 0, p.first_person_depth_range,
           p.first_person_near, p.first_person_far};
+}
+
+// Each eye the stereo frame's size.
+inline stereo::ViewConfiguration toCpp(const s3d_eye_views& v, std::uint32_t width, std::uint32_t height) {
+  auto eye = [&](const s3d_eye_view& e) {
+    return stereo::EyeView{e.position_x, e.angle_left, e.angle_right, e.angle_up, e.angle_down, width, height};
+  };
+  return {{eye(v.left), eye(v.right)}, v.world_scale};
 }
 
 }  // namespace s3d::capi

@@ -1,5 +1,6 @@
 // The C API's stereo frame over stereo::StereoFrame: the C structs checked field by field, then converted on the
 // stack (recording allocates nothing).
+#include <cmath>
 #include <cstring>
 
 #include <glm/gtc/type_ptr.hpp>
@@ -76,6 +77,24 @@ s3d_result s3d_stereo_frame_create(s3d_context context, const s3d_stereo_frame_d
 
 void s3d_stereo_frame_destroy(s3d_stereo_frame frame) { delete frame; }
 
+s3d_result s3d_stereo_for_eye_views(const s3d_eye_views* views, uint32_t width, uint32_t height,
+                                    s3d_eye_views_stereo* out) {
+  return guarded([&] {
+    requireNotNull(views, {"views"});
+    requireNotNull(out, {"out"});
+    if (width == 0) s3d::capi::fail("width is 0");
+    if (height == 0) s3d::capi::fail("height is 0");
+    s3d::capi::validate(*views, width, height, "views->");
+    const s3d::stereo::ViewConfiguration cpp = toCpp(*views, width, height);
+    const s3d::stereo::CenterView center = s3d::stereo::sharedCenterView(cpp);
+    const s3d::stereo::EyeViewsParallax parallax = s3d::stereo::eyeViewsParallax(cpp);
+    out->center = {float(0.5 * (cpp.eyes[0].positionX + cpp.eyes[1].positionX)), float(std::atan(center.tanLeft)),
+                   float(std::atan(center.tanRight)), float(std::atan(center.tanUp)), float(std::atan(center.tanDown))};
+    out->max_separation = parallax.maxSeparation;
+    out->zero_parallax_distance = parallax.zeroParallaxDistance;
+  });
+}
+
 VkFormat s3d_stereo_frame_eye_format(s3d_stereo_frame frame) {
   return present(frame, "frame") ? frame->frame.eyeFormat() : VK_FORMAT_UNDEFINED;
 }
@@ -94,7 +113,8 @@ s3d_result s3d_stereo_frame_record(s3d_stereo_frame frame, VkCommandBuffer cmd,
     requireNotNull(dispatch, {"dispatch"});
     const s3d::stereo::StereoFrame& f = frame->frame;
     s3d::capi::validate(*dispatch, f.desc().colorFormat, f.desc().depthFormat, f.eyeFormat(),
-                        f.desc().output == s3d::stereo::HostOutput::TwoEyes, f.desc().previousFrameFill);
+                        f.desc().output == s3d::stereo::HostOutput::TwoEyes, f.desc().previousFrameFill,
+                        f.desc().width, f.desc().height);
     s3d::stereo::StereoFrameDispatch cpp;
     cpp.color = toCpp(dispatch->color);
     cpp.depth = toCpp(dispatch->depth);
@@ -110,6 +130,7 @@ s3d_result s3d_stereo_frame_record(s3d_stereo_frame frame, VkCommandBuffer cmd,
     cpp.centerView = glm::make_mat4(dispatch->center_view);
     cpp.centerProjection = glm::make_mat4(dispatch->center_projection);
     cpp.cameraCut = dispatch->camera_cut != 0;
+    if (dispatch->eye_views) cpp.eyeViews = toCpp(*dispatch->eye_views, f.desc().width, f.desc().height);
     frame->frame.record(cmd, cpp);
   });
 }

@@ -1,12 +1,14 @@
 #include "capi_validate.h"
 
 #include <cmath>
+#include <optional>
 #include <span>
 #include <utility>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "capi_common.h"
 #include "s3d/hud/hud_pass_shared.h"
 #include "s3d/number_text.h"
 #include "s3d/stereo/detail/host_barriers.h"
@@ -112,8 +114,17 @@ void validate(const s3d_stereo_frame_desc& desc, std::uint32_t maxImageDimension
     fail("s3d_stereo_frame_desc.previous_frame_fill needs S3D_METHOD_FORWARD");
 }
 
+void validate(const s3d_eye_views& views, std::uint32_t width, std::uint32_t height, const char* name) {
+  static constexpr const char* kFields[] = {"position_x", "angle_left", "angle_right", "angle_up",
+                                            "angle_down", "width",      "height",      "world_scale"};
+  const std::optional<stereo::EyeViewsProblem> found = stereo::eyeViewsProblem(toCpp(views, width, height), width, height);
+  if (!found) return;
+  const char* eye = found->eye == 0 ? "left." : found->eye == 1 ? "right." : "";
+  fail(std::string(name) + eye + kFields[int(found->field)] + " " + found->problem);
+}
+
 void validate(const s3d_stereo_frame_dispatch& d, VkFormat colorFormat, VkFormat depthFormat, VkFormat eyeFormat,
-              bool twoEyes, bool previousFrameFill) {
+              bool twoEyes, bool previousFrameFill, std::uint32_t width, std::uint32_t height) {
   validateImage(&d.color, {"dispatch.color"}, ImageUse::Sampled);
   requireFormat(d.color, {"dispatch.color"}, colorFormat);
   validateImage(&d.depth, {"dispatch.depth"}, ImageUse::Sampled);
@@ -128,8 +139,15 @@ void validate(const s3d_stereo_frame_dispatch& d, VkFormat colorFormat, VkFormat
   if (twoEyes && d.left.image == d.right.image && d.left.layer == d.right.layer)
     fail("dispatch.right names the same image and layer as dispatch.left (one array image: layer 0 and layer 1)");
   if (depthFormat != VK_FORMAT_R32_SFLOAT) validate(d.projection, {"dispatch.projection"});
-  const s3d_stereo_parameters parameters{d.max_separation, d.zero_parallax_distance, d.edge_crop, S3D_METHOD_SEED, 1,
-                                         d.weapon_depth_offset, d.weapon_depth_scale};
+  if (d.eye_views) validate(*d.eye_views, width, height, "dispatch.eye_views->");
+  // With eye views the separation and plane are derived: the defaults stand in for the ignored fields.
+  const s3d_stereo_parameters parameters{d.eye_views ? 0.0f : d.max_separation,
+                                         d.eye_views ? 1.0f : d.zero_parallax_distance,
+                                         d.edge_crop,
+                                         S3D_METHOD_SEED,
+                                         1,
+                                         d.weapon_depth_offset,
+                                         d.weapon_depth_scale};
   validate(parameters, {"dispatch"});
   if (!previousFrameFill) return;
   requireFiniteMatrix(d.center_view, {"dispatch.center_view"});

@@ -15,9 +15,12 @@ void validate(const s3d_hud_pass_desc& desc, std::uint32_t maxImageDimension2D);
 void validate(const s3d_stereo_parameters& parameters, Name name);
 void validate(const s3d_projection& projection, Name name = {"projection"});
 void validate(const s3d_stereo_frame_desc& desc, std::uint32_t maxImageDimension2D);
-// The images against the frame's formats and output, the parameters, and the camera the fill needs.
+// The views for width x height eyes, as the stereo frame takes them; `name` is how the caller reaches them
+// ("views->", "dispatch.eye_views->").
+void validate(const s3d_eye_views& views, std::uint32_t width, std::uint32_t height, const char* name);
+// The images against the frame's formats and output, the parameters (or eye views), and the camera the fill needs.
 void validate(const s3d_stereo_frame_dispatch& dispatch, VkFormat colorFormat, VkFormat depthFormat, VkFormat eyeFormat,
-              bool twoEyes, bool previousFrameFill);
+              bool twoEyes, bool previousFrameFill, std::uint32_t width, std::uint32_t height);
 
 // A host image s3d reads (sampled, or storage when `storage`) or writes (storage): handles, format and, when the
 // host synchronizes it itself (stage 0), a layout s3d can use as it is.

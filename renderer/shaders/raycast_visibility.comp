@@ -16,6 +16,12 @@ layout(std430, binding = 2) readonly buffer Triangles { BvhTriangle triangles[];
 layout(binding = 3, r32ui) uniform readonly uimage2D mask;
 layout(binding = 4, r32ui) uniform writeonly uimage2D visibilityIds;
 layout(binding = 5, r32f) uniform writeonly image2D deviceDepth;
+// With constants.region.x: one flag per tile, nonzero for the tiles to cast (a renderer's tile lists: the ambient
+// occlusion's region, whose first tileCount words are exactly those flags).
+layout(std430, binding = 6) readonly buffer Region {
+  TileHeader regionHeader;
+  uint regionFlags[];
+};
 
 // The closest hit of one tree along origin + t direction, t in [0, 1]: its triangle index (S3D_BVH_NO_ROOT: none).
 uint closestHit(uint root, vec3 origin, vec3 direction, out float bestT) {
@@ -69,6 +75,12 @@ void main() {
   uvec2 pixel = gl_GlobalInvocationID.xy;
   if (any(greaterThanEqual(pixel, uvec2(constants.screen.xy)))) return;
   if (constants.options.y != 0u && imageLoad(mask, ivec2(pixel)).r < constants.options.x) return;
+  if (constants.region.x != 0u &&
+      regionFlags[(pixel.y / S3D_TILE_SIZE) * constants.region.y + pixel.x / S3D_TILE_SIZE] == 0u) {
+    imageStore(visibilityIds, ivec2(pixel), uvec4(0u));
+    imageStore(deviceDepth, ivec2(pixel), vec4(constants.clearedDepth.x));
+    return;
+  }
   vec2 ndc = pixelNdc(pixel, constants.screen);
   for (int layer = 1; layer >= 0; --layer) {  // S3D_LAYER_FIRST_PERSON, then S3D_LAYER_WORLD
     uint root = layer == S3D_LAYER_WORLD ? constants.roots.x : constants.roots.y;

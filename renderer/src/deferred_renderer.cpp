@@ -19,17 +19,23 @@ std::vector<DeferredRenderer::Impl::ScheduledPass> DeferredRenderer::Impl::sched
                         tiles->recordReset(cmd, mask.image);
                         tiles->recordBuild(cmd, frameBuffer.buffer, *mask.image);
                       }});
-    if (withAmbientOcclusion && !maskedGBufferWritesEveryPixel())
+    if (withAmbientOcclusion && !maskedGBufferWritesEveryPixel() && !raycastFrame)
       passes.push_back({"ssao-depth", [this](VkCommandBuffer cmd) { recordAmbientDepth(cmd); }});
   }
   // The G-buffer's count (the render pixels with a surface) comes from the G-buffer resolve, or under raster
   // shading from a counting pass of its own.
-  passes.push_back({"gbuffer",
-                    [this, mask](VkCommandBuffer cmd) {
-                      if (mask.image == nullptr) tiles->recordReset(cmd, nullptr);
-                      recordGBuffer(cmd, mask);
-                    },
-                    S3D_COUNT_GBUFFER});
+  if (raycastFrame)
+    passes.push_back({"raycast", [this, view, mask](VkCommandBuffer cmd) {
+                        if (mask.image == nullptr) tiles->recordReset(cmd, nullptr);
+                        recordRaycastSurfaces(cmd, view, mask);
+                      }});
+  else
+    passes.push_back({"gbuffer",
+                      [this, mask](VkCommandBuffer cmd) {
+                        if (mask.image == nullptr) tiles->recordReset(cmd, nullptr);
+                        recordGBuffer(cmd, mask);
+                      },
+                      S3D_COUNT_GBUFFER});
   if (visibilityShading)
     passes.push_back({"gbuffer-resolve", [this, mask](VkCommandBuffer cmd) { recordGBufferResolve(cmd, mask); }});
   else if (options.countShadedPixels)
@@ -37,7 +43,8 @@ std::vector<DeferredRenderer::Impl::ScheduledPass> DeferredRenderer::Impl::sched
                         tiles->recordCountGBuffer(cmd, frameBuffer.buffer, materialTarget, nearestSampler);
                       }});
   if (withAmbientOcclusion) {
-    const vk::Image& occlusionDepth = masked && !maskedGBufferWritesEveryPixel() ? ambientDepth : depth;
+    const vk::Image& occlusionDepth =
+        raycastFrame ? raycastDepth : masked && !maskedGBufferWritesEveryPixel() ? ambientDepth : depth;
     passes.push_back({"ssao",
                       [this, &occlusionDepth, masked](VkCommandBuffer cmd) {
                         ambientOcclusion->recordOcclusion(cmd, occlusionDepth, frameBuffer.buffer, tiles->buffer(), masked);
@@ -104,6 +111,12 @@ const detail::ShadowMaps& DeferredRenderer::Impl::lentShadowMaps(const ViewMatri
 FrameTimings DeferredRenderer::Impl::render(const ViewMatrices& view, const ShadeMask& mask, const Impl* shadowSource) {
   if (meshRanges.empty()) throw std::logic_error("DeferredRenderer::render called before setScene");
   validateMask(mask);
+  raycastFrame = mask.surfaces == ShadeMask::Surfaces::RayCast;
+  if (raycastFrame) {
+    if (const std::optional<std::string> refusal = raycastRefusal()) throw std::invalid_argument("renderer: " + *refusal);
+    if (!raycast || !raycastBvhCurrent)
+      throw std::invalid_argument("renderer: no BVH was given for scene '" + scene.name + "' (setSurfaceBvh)");
+  }
   const detail::ShadowMaps* lentShadows = shadowSource != nullptr ? &lentShadowMaps(view, *shadowSource) : nullptr;
   writeFrameConstants(view, mask);
   const std::vector<ScheduledPass> passes = schedulePasses(view, mask, lentShadows);

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "s3d/renderer/deferred_renderer.h"
+#include "s3d/renderer/raycast_visibility.h"
 #include "s3d/renderer/renderer_shared.h"
 #include "ambient_occlusion.h"
 #include "gbuffer_resolve.h"
@@ -55,6 +56,12 @@ struct DeferredRenderer::Impl {
   vk::Image visibility;           // the G-buffer pass's ids (gpu::packVisibility), sized with the scene's ids
   vk::Image ambientDepth;         // masked renders with ambient occlusion: depth of every pixel (made at first use)
   vk::Image display, linearDepth, resolvedHdr;
+  // Ray-cast surfaces (ShadeMask::Surfaces::RayCast): the pass, and the ids and device depth it writes in place of
+  // the G-buffer pass's visibility and depth (storage images the later passes sample); made at setSurfaceBvh.
+  std::unique_ptr<RaycastVisibility> raycast;
+  vk::Image raycastIds, raycastDepth;
+  bool raycastBvhCurrent = false;  // the BVH last given matches the scene (setScene, updateGeometry drop it)
+  bool raycastFrame = false;       // the last render ray-cast its surfaces
   vk::Unique<VkSampler> nearestSampler;
   vk::Unique<VkSampler> textureSampler;  // bilinear, repeating, no mipmaps
   vk::Image whiteTexture, flatNormalTexture;  // what untextured objects sample: albedo x 1, normal (0, 0, 1)
@@ -199,6 +206,13 @@ struct DeferredRenderer::Impl {
   void recordGBuffer(VkCommandBuffer cmd, const ShadeMask& mask);
 
   void recordGBufferResolve(VkCommandBuffer cmd, const ShadeMask& mask);
+
+  // What the passes after the G-buffer read as depth and ids this frame: the raster pass's, or the ray cast's.
+  const vk::Image& frameDepth() const { return raycastFrame ? raycastDepth : depth; }
+  const vk::Image& frameVisibility() const { return raycastFrame ? raycastIds : visibility; }
+  std::optional<std::string> raycastRefusal() const;
+  // The ray-cast visibility pass for the mask's pixels (every pixel with ambient occlusion), left sampled.
+  void recordRaycastSurfaces(VkCommandBuffer cmd, const ViewMatrices& view, const ShadeMask& mask);
 
   // Masked renders with ambient occlusion: every pixel's depth (no fragment work), so the occlusion's samples
   // outside the mask see what an unmasked render's do.

@@ -18,7 +18,8 @@ RaycastVisibility::RaycastVisibility(vk::Context& context) : context_(context) {
   const VkDescriptorSetLayoutBinding bindings[] = {
       computeBinding(0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER), computeBinding(1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER),
       computeBinding(2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER), computeBinding(3, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE),
-      computeBinding(4, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE),  computeBinding(5, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE)};
+      computeBinding(4, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE),  computeBinding(5, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE),
+      computeBinding(6, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER)};
   layout_ = vk::createPushDescriptorLayout(context_, bindings, 0, 0);
   pipeline_ = vk::createComputePipeline(context_, layout_.layout, spirv_raycast_visibility_comp);
   constants_ = vk::createBuffer(context_, sizeof(gpu::RaycastConstants), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
@@ -44,7 +45,8 @@ void RaycastVisibility::setBvh(const SceneBvh& bvh) {
 }
 
 void RaycastVisibility::record(VkCommandBuffer cmd, const RaycastCamera& camera, const ShadeMask& mask,
-                               const vk::Image& visibilityIds, const vk::Image& deviceDepth) {
+                               const vk::Image& visibilityIds, const vk::Image& deviceDepth,
+                               const RaycastRegion& region) {
   if (!hasBvh_) throw std::invalid_argument("the ray-cast visibility pass was recorded before it had a BVH");
   const std::uint32_t width = visibilityIds.width, height = visibilityIds.height;
   if (visibilityIds.format != VK_FORMAT_R32_UINT || deviceDepth.format != VK_FORMAT_R32_SFLOAT ||
@@ -62,6 +64,7 @@ void RaycastVisibility::record(VkCommandBuffer cmd, const RaycastCamera& camera,
   constants.roots = glm::uvec4(worldRoot_, firstPersonRoot_, 0u, 0u);
   constants.options = glm::uvec4(mask.threshold, mask.image ? 1u : 0u, packing_.x, packing_.y);
   constants.clearedDepth = glm::vec4(camera.clearedDepth);
+  constants.region = glm::uvec4(region.tiles != VK_NULL_HANDLE ? 1u : 0u, region.tilesX, 0u, 0u);
   std::memcpy(constants_.mapped, &constants, sizeof(constants));
 
   VkDescriptorBufferInfo constantInfo{constants_.buffer, 0, VK_WHOLE_SIZE};
@@ -71,12 +74,15 @@ void RaycastVisibility::record(VkCommandBuffer cmd, const RaycastCamera& camera,
   VkDescriptorImageInfo maskInfo{VK_NULL_HANDLE, mask.image ? mask.image->view : visibilityIds.view, VK_IMAGE_LAYOUT_GENERAL};
   VkDescriptorImageInfo idInfo{VK_NULL_HANDLE, visibilityIds.view, VK_IMAGE_LAYOUT_GENERAL};
   VkDescriptorImageInfo depthInfo{VK_NULL_HANDLE, deviceDepth.view, VK_IMAGE_LAYOUT_GENERAL};
+  // Without a region the node buffer stands in for it (the shader does not read it then).
+  VkDescriptorBufferInfo regionInfo{region.tiles != VK_NULL_HANDLE ? region.tiles : nodes_.buffer, 0, VK_WHOLE_SIZE};
   VkWriteDescriptorSet writes[] = {vk::uniformBufferWrite(0, &constantInfo), vk::uniformBufferWrite(1, &nodeInfo),
                                    vk::uniformBufferWrite(2, &triangleInfo), vk::storageImageWrite(3, &maskInfo),
-                                   vk::storageImageWrite(4, &idInfo),        vk::storageImageWrite(5, &depthInfo)};
-  for (std::uint32_t i : {1u, 2u}) writes[i].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+                                   vk::storageImageWrite(4, &idInfo),        vk::storageImageWrite(5, &depthInfo),
+                                   vk::uniformBufferWrite(6, &regionInfo)};
+  for (std::uint32_t i : {1u, 2u, 6u}) writes[i].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_.get());
-  context_.cmdPushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_.layout, 0, 6, writes);
+  context_.cmdPushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_.layout, 0, 7, writes);
   const std::uint32_t group = S3D_RAYCAST_GROUP_SIZE;
   vkCmdDispatch(cmd, (width + group - 1) / group, (height + group - 1) / group, 1);
 }

@@ -244,8 +244,8 @@ void DeferredRenderer::Impl::recordGBuffer(VkCommandBuffer cmd, const ShadeMask&
 }
 
 void DeferredRenderer::Impl::recordGBufferResolve(VkCommandBuffer cmd, const ShadeMask& mask) {
-  const detail::GBufferResolve::Inputs inputs{depth,
-                                              visibility,
+  const detail::GBufferResolve::Inputs inputs{frameDepth(),
+                                              frameVisibility(),
                                               frameBuffer.buffer,
                                               objectBuffer.buffer,
                                               indexBuffer.buffer,
@@ -275,7 +275,7 @@ void DeferredRenderer::Impl::recordAmbientDepth(VkCommandBuffer cmd) {
 void DeferredRenderer::Impl::recordLighting(VkCommandBuffer cmd, const ShadeMask& mask, const detail::ShadowMaps& frameShadows) {
   if (&frameShadows == shadows.get()) shadows->recordReadableForLighting(cmd);
   if (!scene.ambientOcclusion) ambientOcclusion->recordUnused(cmd);
-  const detail::TiledLighting::Inputs inputs{depth,
+  const detail::TiledLighting::Inputs inputs{frameDepth(),
                                              normalGlossiness,
                                              materialTarget,
                                              ambientOcclusion->result(),
@@ -291,7 +291,7 @@ void DeferredRenderer::Impl::recordLighting(VkCommandBuffer cmd, const ShadeMask
 
 void DeferredRenderer::Impl::recordTransparent(VkCommandBuffer cmd, const ViewMatrices& view, const ShadeMask& mask) {
   const detail::TransparentPass::Inputs inputs{
-      depth, hdr, frameBuffer.buffer, objectBuffer.buffer, indexBuffer.buffer, vertexBuffer.buffer, surfaceBuffer.buffer,
+      frameDepth(), hdr, frameBuffer.buffer, objectBuffer.buffer, indexBuffer.buffer, vertexBuffer.buffer, surfaceBuffer.buffer,
       textureSampler, view.worldView, view.worldProjection * view.worldView, layerDepthRange(Layer::World),
       options.reversedZ, tiles->maskDescriptor(mask.image).imageView, mask.image != nullptr,
       [this](VkCommandBuffer drawCmd, const std::vector<std::uint32_t>& objects) { drawObjects(drawCmd, objects); }};
@@ -301,7 +301,7 @@ void DeferredRenderer::Impl::recordTransparent(VkCommandBuffer cmd, const ViewMa
 void DeferredRenderer::Impl::recordResolve(VkCommandBuffer cmd, const ShadeMask& mask, bool afterTransparent) {
   const detail::ResolvePass::Inputs inputs{hdr,
                                            !afterTransparent,
-                                           depth,
+                                           frameDepth(),
                                            frameBuffer.buffer,
                                            tiles->buffer(),
                                            tiles->maskDescriptor(mask.image),

@@ -24,7 +24,7 @@ DepthImage DeferredRenderer::readLinearDepth() {
 }
 
 std::vector<std::uint8_t> DeferredRenderer::readFirstPersonMask() {
-  std::vector<std::byte> bytes = vk::readbackImage(impl_->context, impl_->depth, kComputeSampled);
+  std::vector<std::byte> bytes = vk::readbackImage(impl_->context, impl_->frameDepth(), kComputeSampled);
   std::vector<float> deviceDepth(bytes.size() / sizeof(float));
   std::memcpy(deviceDepth.data(), bytes.data(), bytes.size());
   const Impl& r = *impl_;
@@ -74,8 +74,8 @@ std::vector<std::uint8_t> DeferredRenderer::readCutoutMask() {
 
 std::vector<std::uint32_t> DeferredRenderer::readVisibilityIds() {
   const Impl& r = *impl_;
-  if (!r.visibilityShading || r.visibility.format != kNarrowVisibilityFormat) return {};
-  std::vector<std::byte> bytes = vk::readbackImage(impl_->context, r.visibility, kComputeSampled);
+  if (!r.visibilityShading || r.frameVisibility().format != kNarrowVisibilityFormat) return {};
+  std::vector<std::byte> bytes = vk::readbackImage(impl_->context, r.frameVisibility(), kComputeSampled);
   std::vector<std::uint32_t> ids(bytes.size() / sizeof(std::uint32_t));
   std::memcpy(ids.data(), bytes.data(), bytes.size());
   return ids;

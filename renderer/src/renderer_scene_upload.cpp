@@ -16,6 +16,7 @@ glm::uvec2 DeferredRenderer::Impl::visibilityPackingFor(const Scene& scene) {
 }
 
 void DeferredRenderer::Impl::setScene(const Scene& newScene) {
+  raycastBvhCurrent = false;
   std::vector<Vertex> vertices;
   std::vector<gpu::SurfaceVertex> surface;
   std::vector<std::uint32_t> indices;
@@ -117,6 +118,7 @@ detail::ShadowTextures DeferredRenderer::Impl::shadowTextures() const {
 
 void DeferredRenderer::Impl::updateGeometry(const Scene& newScene) {
   requireSameTopology(newScene);
+  raycastBvhCurrent = false;
   std::vector<Vertex> vertices;
   std::vector<gpu::SurfaceVertex> surface;
   for (const Mesh& mesh : newScene.meshes) {

@@ -1,12 +1,13 @@
 /* A plain-C host on the installed package only: its own Vulkan instance and device (s3d's requirements added by
  * s3d_device_patch_apply), its own colour (a horizontal ramp) and linear depth (top half near, bottom half at the
  * zero-parallax distance), s3d's stereo frame (the forward method) recorded into its own command buffer with one
- * dispatch description, the eyes read back.
+ * dispatch description that gives the eyes' views as OpenXR reports them, the eyes read back.
  * Checks: at the zero-parallax distance both eyes show the input; nearer, the eyes are shifted apart by the
  * parallax. Exit status 0 when every check holds.
  *   cmake --install build --prefix /tmp/s3d
  *   cc host.c $(PKG_CONFIG_PATH=/tmp/s3d/lib/pkgconfig pkg-config --cflags --libs s3d) -o host_c && ./host_c
  * or with CMake: CMakeLists.txt here. */
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 
@@ -16,6 +17,7 @@ enum { W = 64, H = 8, PIXELS = W * H };
 #define ZERO_PARALLAX 4.0f
 #define NEAR_DEPTH 2.0f
 #define MAX_SEPARATION 0.05f /* of the width: 3.2 px at infinity */
+#define HALF_BASELINE 0.0325f /* metres: eyes 65 mm apart */
 
 #define VK(call)                                                                                  \
   do {                                                                                           \
@@ -194,8 +196,13 @@ int main(void) {
   s3d_stereo_frame_dispatch dispatch;
   s3d_default_stereo_frame_dispatch(&dispatch);
   dispatch.color = color, dispatch.depth = depth, dispatch.left = left, dispatch.right = right;
-  dispatch.max_separation = MAX_SEPARATION;
-  dispatch.zero_parallax_distance = ZERO_PARALLAX;
+  /* The eyes' views (XrView: offset in metres, fov angles in radians) of a screen's converging pair, from which s3d
+   * derives the separation and the zero-parallax distance: each frustum shifted towards the other eye by
+   * HALF_BASELINE / ZERO_PARALLAX in tangent units, MAX_SEPARATION of its width. */
+  const float toward = HALF_BASELINE / ZERO_PARALLAX, half = toward / MAX_SEPARATION / 2.0f, up = atanf(half * H / W);
+  const s3d_eye_views views = {{-HALF_BASELINE, atanf(-half + toward), atanf(half + toward), up, -up},
+                               {HALF_BASELINE, atanf(-half - toward), atanf(half - toward), up, -up}, 1.0f};
+  dispatch.eye_views = &views; /* instead of max_separation and zero_parallax_distance */
   S3D(s3d_stereo_frame_record(frame, cmd, &dispatch));
   for (int i = 2; i < 4; ++i, region.bufferOffset += PIXELS * 4)
     vkCmdCopyImageToBuffer(cmd, images[i], src, buffer, 1, &region);

@@ -30,6 +30,11 @@ StereoParameters parametersOf(const StereoFrameDesc& desc, const StereoFrameDisp
   p.previousFrameFill = desc.previousFrameFill;
   p.maxSeparation = dispatch.maxSeparation;
   p.zeroParallaxDistance = dispatch.zeroParallaxDistance;
+  if (dispatch.eyeViews) {  // checked by record() first
+    const EyeViewsParallax parallax = eyeViewsParallax(*dispatch.eyeViews);
+    p.maxSeparation = parallax.maxSeparation;
+    p.zeroParallaxDistance = parallax.zeroParallaxDistance;
+  }
   p.edgeCrop = dispatch.edgeCrop;
   p.weaponDepthOffset = dispatch.weaponDepthOffset;
   p.weaponDepthScale = dispatch.weaponDepthScale;
@@ -160,6 +165,9 @@ void StereoFrame::requireImages(const StereoFrameDispatch& dispatch) const {
 }
 
 void StereoFrame::record(VkCommandBuffer cmd, const StereoFrameDispatch& dispatch) {
+  if (dispatch.eyeViews)
+    if (const std::optional<EyeViewsProblem> found = eyeViewsProblem(*dispatch.eyeViews, desc_.width, desc_.height))
+      refuse("StereoFrameDispatch.eyeViews." + fieldName(*found), found->problem);
   const StereoParameters p = parameters(dispatch);
   validate(p);  // names maxSeparation, zeroParallaxDistance, edgeCrop or the weapon push when out of range
   requireImages(dispatch);

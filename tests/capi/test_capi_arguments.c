@@ -425,6 +425,52 @@ static void displaysAndBudgets(void) {
   s3d_budget_controller_destroy(controller);
 }
 
+/* A screen's off-axis pair: tangents +-0.5 shifted by 0.01625 towards the other eye (converging at 2 m). */
+static s3d_eye_views tvPair(void) {
+  const float up = atanf(0.28125f);
+  const s3d_eye_views views = {{-0.0325f, atanf(-0.48375f), atanf(0.51625f), up, -up},
+                               {0.0325f, atanf(-0.51625f), atanf(0.48375f), up, -up}, 1.0f};
+  return views;
+}
+
+static void eyeViews(const capi_fixture* f) {
+  s3d_eye_views_stereo derived;
+  s3d_eye_views views = tvPair();
+  EXPECT(s3d_stereo_for_eye_views(&views, 1920, 1080, &derived) == S3D_SUCCESS, "the TV pair is taken");
+  EXPECT(fabsf(derived.zero_parallax_distance - 2.0f) < 1e-3f && fabsf(derived.max_separation - 0.01625f) < 1e-5f &&
+             fabsf(derived.center.angle_left + atanf(0.5f)) < 1e-5f && derived.center.position_x == 0.0f,
+         "the TV pair converges at 2 m, its center camera between the eyes with the screen's frustum");
+  REFUSED(s3d_stereo_for_eye_views(NULL, 1920, 1080, &derived), "views is NULL");
+  REFUSED(s3d_stereo_for_eye_views(&views, 1920, 1080, NULL), "out is NULL");
+  REFUSED(s3d_stereo_for_eye_views(&views, 0, 1080, &derived), "width is 0");
+  const s3d_eye_views headset = {{-0.0315f, -0.7854f, 0.6981f, 0.7330f, -0.8203f},
+                                 {0.0315f, -0.6981f, 0.7854f, 0.7330f, -0.8203f}, 1.0f};
+  REFUSED(s3d_stereo_for_eye_views(&headset, 1920, 1080, &derived), "views->left.angle_left");
+  views.world_scale = NAN;
+  REFUSED(s3d_stereo_for_eye_views(&views, 1920, 1080, &derived), "views->world_scale");
+  views = tvPair();
+  views.left.angle_down = 2.0f;
+  REFUSED(s3d_stereo_for_eye_views(&views, 1920, 1080, &derived), "views->left.angle_down");
+  views = tvPair();
+  views.right.position_x = -0.05f;
+  REFUSED(s3d_stereo_for_eye_views(&views, 1920, 1080, &derived), "views->right.position_x");
+  /* In a dispatch: an RGBA8 + R32F stereo frame of the fixture's size, its images; refused before recording. */
+  s3d_stereo_frame_desc desc;
+  s3d_default_stereo_frame_desc(&desc);
+  desc.width = 32, desc.height = 8;
+  desc.color_format = f->color.format, desc.depth_format = f->depth.format;
+  s3d_stereo_frame frame = NULL;
+  EXPECT(s3d_stereo_frame_create(f->context, &desc, &frame) == S3D_SUCCESS, "a stereo frame is made");
+  s3d_stereo_frame_dispatch dispatch;
+  s3d_default_stereo_frame_dispatch(&dispatch);
+  dispatch.color = f->color, dispatch.depth = f->depth, dispatch.left = f->left, dispatch.right = f->right;
+  views = tvPair();
+  views.right.angle_up = atanf(0.5f); /* another vertical field than the left eye's */
+  dispatch.eye_views = &views;
+  REFUSED(s3d_stereo_frame_record(frame, f->cmd, &dispatch), "dispatch.eye_views->right.angle_up");
+  s3d_stereo_frame_destroy(frame);
+}
+
 int capi_argument_checks(const capi_fixture* fixture) {
   nullPhysicalDeviceIsRefused(fixture);
   sizesPastTheDeviceLimitAreRefused(fixture);
@@ -437,5 +483,6 @@ int capi_argument_checks(const capi_fixture* fixture) {
   recordImages(fixture);
   comfortInputs();
   displaysAndBudgets();
+  eyeViews(fixture);
   return failures;
 }

@@ -1,5 +1,5 @@
 /* s3d's C API for hosts that bind C (Godot GDExtension, Unity native plugins, C engines): opaque handles, POD
- * parameter structs, error codes plus a per-thread last-error string. Stable within a minor version (0.3).
+ * parameter structs, error codes plus a per-thread last-error string. Stable within a minor version (0.4).
  * See docs/INTEGRATION.md for the frame sequence and the synchronization contract. */
 #ifndef S3D_S3D_H
 #define S3D_S3D_H
@@ -12,7 +12,7 @@ extern "C" {
 #endif
 
 #define S3D_API_VERSION_MAJOR 0
-#define S3D_API_VERSION_MINOR 3
+#define S3D_API_VERSION_MINOR 4
 
 typedef enum s3d_result {
   S3D_SUCCESS = 0,
@@ -126,6 +126,37 @@ s3d_result s3d_host_pass_record(s3d_host_pass pass, VkCommandBuffer cmd, const s
                                 const s3d_projection* projection, const s3d_host_image* left,
                                 const s3d_host_image* right, const s3d_host_image* target);
 
+/* ---- Per-eye views, as OpenXR's XrView reports them (docs/INTEGRATION.md "Per-eye views") ---- */
+typedef struct s3d_eye_view {
+  float position_x;  /* metres along the center camera's x axis (XrView.pose.position in the head's frame), finite */
+  float angle_left;  /* radians (XrFovf), each in (-pi/2, pi/2); angle_left < angle_right, angle_down < angle_up */
+  float angle_right;
+  float angle_up;
+  float angle_down;
+} s3d_eye_view;
+
+/* Two parallel eyes of the stereo frame's width x height. Its kernels displace both eyes along rows by one mirrored
+ * parallax, so they reproduce converging eyes (a screen's off-axis pair): one vertical field and one horizontal
+ * extent for both eyes (within a quarter pixel), the left eye's frustum shifted right of the right eye's by at most
+ * a quarter of the width. A headset's parallel or outward-turned frusta are refused, naming left.angle_left. */
+typedef struct s3d_eye_views {
+  s3d_eye_view left; /* left.position_x < right.position_x; the center image is rendered from their midpoint with
+                        the mean of their frusta (s3d_stereo_for_eye_views gives its angles) */
+  s3d_eye_view right;
+  float world_scale; /* world units per metre, finite, > 0 */
+} s3d_eye_views;
+
+/* What the stereo frame derives from eye views: the camera the host renders its center image with, and the
+ * parameters its kernels use (for s3d_frame_comfort_input.parameters). */
+typedef struct s3d_eye_views_stereo {
+  s3d_eye_view center; /* position_x: the eyes' midpoint; angles: the atan of the mean of the eyes' tangents */
+  float max_separation;
+  float zero_parallax_distance; /* world units */
+} s3d_eye_views_stereo;
+/* width, height: the stereo frame's (>= 1). Refuses views the stereo frame would refuse, naming the field. */
+s3d_result s3d_stereo_for_eye_views(const s3d_eye_views* views, uint32_t width, uint32_t height,
+                                    s3d_eye_views_stereo* out);
+
 /* ---- Stereo frame: every method, one description at creation, one dispatch description per frame ----
  * Synchronization and images as the host pass's; recording allocates nothing. With previous_frame_fill, submit the
  * frames in the order they were recorded. */
@@ -159,8 +190,11 @@ typedef struct s3d_stereo_frame_dispatch {
   float center_view[16];
   float center_projection[16];
   int32_t camera_cut; /* 1: this frame does not continue the previous one */
+  /* NULL: max_separation and zero_parallax_distance as given. Otherwise the eyes' views, from which s3d derives both
+   * (as s3d_stereo_for_eye_views; the two fields are then ignored); read during the call only. */
+  const s3d_eye_views* eye_views;
 } s3d_stereo_frame_dispatch;
-/* Zero images, s3d's default parameters, identity matrices, projection near 0.1 / far 1000. */
+/* Zero images, s3d's default parameters, identity matrices, projection near 0.1 / far 1000, no eye views. */
 void s3d_default_stereo_frame_dispatch(s3d_stereo_frame_dispatch* out);
 
 typedef struct s3d_stereo_frame_t* s3d_stereo_frame;

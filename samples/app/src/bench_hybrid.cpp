@@ -30,19 +30,20 @@ std::string hybridBenchMarkdown(const BenchReport& report) {
   if (rows.empty()) return "";
   std::ostringstream md;
   md << "\n#### Hybrid: budget against error and time (both eyes)\n\n"
-        "Masked: the share of each eye's compared pixels rendered from the eye camera (left / right). Times: the base\n"
-        "displacement, the classification (classify, threshold, masks), both eyes' rasterized depth (G-buffer and\n"
-        "occlusion depth), both eyes' other renderer passes (mask tiles, occlusion, lighting and resolve of the masked\n"
+        "Masked: the share of each eye's compared pixels rendered from the eye camera (left / right). Surfaces: how\n"
+        "the masked pixels' surfaces were found, ray cast (every pixel with ambient occlusion) or rasterized (G-buffer\n"
+        "and occlusion depth). Times: the base displacement, the classification (classify, threshold, masks), both\n"
+        "eyes' surfaces, both eyes' other renderer passes (mask tiles, occlusion, lighting and resolve of the masked\n"
         "pixels; the shadow maps are the center frame's) and both composites; / eye: the total over one reference eye.\n"
         "PSNR and SSIM left / right against the two-pass reference.\n\n"
-        "| scene | sep % | budget | masked % | displace ms | classify ms | geometry ms | shading ms | composite ms | "
-        "total ms | / eye | PSNR all | halo | disocclusion | SSIM |\n"
-        "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+        "| scene | sep % | budget | masked % | surfaces | displace ms | classify ms | surfaces ms | shading ms | "
+        "composite ms | total ms | / eye | PSNR all | halo | disocclusion | SSIM |\n"
+        "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const BenchRow* row : rows) {
-    const HybridTimings& t = row->hybridTimings ? *row->hybridTimings : HybridTimings{};
+    const frame::HybridTimings& t = row->hybridTimings ? *row->hybridTimings : frame::HybridTimings{};
     md << "| " << row->scene << " | " << percentText(row->maxSeparation) << " | " << format("%g", row->setting.budget)
        << " | " << shareText(row->maskedShareLeft) << " / " << shareText(row->maskedShareRight) << " | "
-       << msText(t.displacement) << " | " << msText(t.classification) << " | " << msText(t.eyeGeometry) << " | "
+       << (t.raycastSurfaces ? "ray cast" : "raster") << " | " << msText(t.displacement) << " | " << msText(t.classification) << " | " << msText(t.eyeGeometry) << " | "
        << msText(t.maskedShading) << " | " << msText(t.composite) << " | " << msText(row->stereoGpuMs) << " | "
        << ratioText(ratio(row->stereoGpuMs, row->referenceEyeGpuMs)) << " | "
        << dbPair(row->left.display.psnrDb, row->right.display.psnrDb) << " | "
@@ -65,7 +66,7 @@ std::string hybridBenchMarkdown(const BenchReport& report) {
   for (std::size_t i = 0; i < eyePasses.size(); ++i) md << "---|";
   md << "\n";
   for (const BenchRow* row : rows) {
-    const HybridTimings& t = row->hybridTimings ? *row->hybridTimings : HybridTimings{};
+    const frame::HybridTimings& t = row->hybridTimings ? *row->hybridTimings : frame::HybridTimings{};
     md << "| " << row->scene << " | " << percentText(row->maxSeparation) << " | " << format("%g", row->setting.budget)
        << " | " << msText(t.classify) << " | " << msText(t.threshold) << " | " << msText(t.mask) << " |";
     for (const std::string& name : eyePasses) {

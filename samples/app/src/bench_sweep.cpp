@@ -1,7 +1,6 @@
 // `s3d bench`'s stereo sweep: per scene the reference eyes of each separation, then every setting timed with the
 // frames it is compared with, and its error against the reference eyes.
 #include <algorithm>
-#include <memory>
 #include <optional>
 #include <string>
 #include <tuple>
@@ -12,6 +11,8 @@
 #include "bench_text.h"
 #include "s3d/app/interleaved_timing.h"
 #include "s3d/app/render_job.h"
+#include "s3d/frame/layered_reference.h"
+#include "s3d/frame/stereo_synthesis.h"
 #include "s3d/renderer/scene.h"
 #include "s3d/renderer/scene_file.h"
 #include "s3d/stereo/depth_range_pass.h"
@@ -34,12 +35,12 @@ struct EyeReferences {
 EyeReferences renderReferenceEyes(renderer::DeferredRenderer& deferred, const renderer::Scene& scene,
                                   const renderer::ViewMatrices& center, const stereo::StereoParameters& parameters) {
   EyeReferences eyes;
-  (void)deferred.render(referenceEyeView(scene, center, stereo::Eye::Left, parameters));
+  (void)deferred.render(frame::referenceEyeView(scene, center, stereo::Eye::Left, parameters));
   eyes.leftColor = deferred.readDisplayColor();
   eyes.leftDepth = deferred.readLinearDepth();
   eyes.leftTransparent = deferred.readTransparentMask();
   eyes.leftFoliage = deferred.readCutoutMask();
-  (void)deferred.render(referenceEyeView(scene, center, stereo::Eye::Right, parameters));
+  (void)deferred.render(frame::referenceEyeView(scene, center, stereo::Eye::Right, parameters));
   eyes.rightColor = deferred.readDisplayColor();
   eyes.rightDepth = deferred.readLinearDepth();
   eyes.rightTransparent = deferred.readTransparentMask();
@@ -71,9 +72,8 @@ std::pair<std::optional<double>, std::optional<double>> timeDepthPasses(vk::Cont
 // times are the caller's.
 BenchRow settingRow(const std::string& sceneName, const MethodSetting& setting,
                     const stereo::StereoParameters& parameters, const BenchOptions& options, bool cpuDevice,
-                    const stereo::SynthesisResult& synthesis, const InterleavedTiming& frames,
-                    const EyeReferences& eyes, const stereo::RegionMasks& left, const stereo::RegionMasks& right,
-                    const std::optional<HybridSynthesis>& hybrid) {
+                    const frame::SynthesizedEyes& synthesis, const InterleavedTiming& frames,
+                    const EyeReferences& eyes, const stereo::RegionMasks& left, const stereo::RegionMasks& right) {
   const stereo::StereoParameters methodParameters = setting.applyTo(parameters);
   BenchRow row;
   row.scene = sceneLabel(sceneName);
@@ -92,7 +92,7 @@ BenchRow settingRow(const std::string& sceneName, const MethodSetting& setting,
   row.filledLeft = synthesis.filledLeft;
   row.filledRight = synthesis.filledRight;
   row.traffic = stereoPassTraffic(methodParameters, options.width, options.height, cpuDevice);
-  if (hybrid) {
+  if (const std::optional<frame::HybridSynthesis>& hybrid = synthesis.hybrid) {
     const double classified = double(std::max<std::uint64_t>(hybrid->classifiedPixels, 1));
     row.maskedShareLeft = double(hybrid->thresholds[0].maskedPixels) / classified;
     row.maskedShareRight = double(hybrid->thresholds[1].maskedPixels) / classified;
@@ -105,13 +105,13 @@ BenchRow settingRow(const std::string& sceneName, const MethodSetting& setting,
 
 void runSweep(vk::Context& context, const BenchOptions& options, const ValidatedBench& bench, BenchReport& report) {
   renderer::DeferredRenderer deferred(context, options.width, options.height, {options.supersample});
-  // The hybrid settings' masked eye renders (a second renderer: the center view stays in `deferred`).
+  // Every setting's eyes; the hybrid settings' eye renderer (the center view stays in `deferred`) is made up front,
+  // so no renderer is created between a setting's frames and its own timing.
   const bool anyHybrid = std::any_of(bench.settings.begin(), bench.settings.end(),
                                      [](const MethodSetting& s) { return s.method == stereo::StereoMethod::Hybrid; });
-  std::unique_ptr<renderer::DeferredRenderer> eyeRenderer;
-  if (anyHybrid)
-    eyeRenderer = std::make_unique<renderer::DeferredRenderer>(context, options.width, options.height,
-                                                               renderer::RendererOptions{options.supersample});
+  frame::StereoSynthesis synthesis(context, {.width = options.width, .height = options.height,
+                                             .renderer = {options.supersample}, .hybrid = anyHybrid,
+                                             .timedRuns = options.repeat});
   const std::size_t total = bench.scenes.size() * bench.separations.size() * bench.settings.size();
   std::size_t done = 0;
   auto progress = [&](const std::string& label) {
@@ -121,7 +121,7 @@ void runSweep(vk::Context& context, const BenchOptions& options, const Validated
     renderer::Scene scene = renderer::loadScene(sceneName);
     scene.camera = renderer::cameraForFrame(scene, 0);
     deferred.setScene(scene);
-    if (eyeRenderer) eyeRenderer->setScene(scene);
+    synthesis.setScene(scene);
     const renderer::ViewMatrices center =
         renderer::centerViewMatrices(scene, float(options.width) / float(options.height),
                                      {options.stereo.weaponDepthOffset, options.stereo.weaponDepthScale});
@@ -152,7 +152,7 @@ void runSweep(vk::Context& context, const BenchOptions& options, const Validated
       stereo::StereoParameters parameters = options.stereo;
       parameters.maxSeparation = bench.separations[s];
       const EyeReferences& eyes = references[s];
-      const renderer::ViewMatrices leftEye = referenceEyeView(scene, center, stereo::Eye::Left, parameters);
+      const renderer::ViewMatrices leftEye = frame::referenceEyeView(scene, center, stereo::Eye::Left, parameters);
       parameters.edgeCrop = -1.0f;  // the crop follows the separation, as in `s3d render`
       // Each setting is timed in one warm stretch with the frames it is compared with: the reference eye and the
       // center frame in back-to-back pairs once untimed pairs run at a steady speed, then the setting, before any
@@ -161,8 +161,7 @@ void runSweep(vk::Context& context, const BenchOptions& options, const Validated
       // the first 500 ms of a scene read twice the center frame timed after it, and a hybrid setting late in a
       // scene's sweep read 1.8x its time.
       std::vector<InterleavedTiming> frames;
-      std::vector<stereo::SynthesisResult> syntheses;
-      std::vector<std::optional<HybridSynthesis>> hybrids;
+      std::vector<frame::SynthesizedEyes> syntheses;
       for (const MethodSetting& setting : bench.settings) {
         progress(sceneName + " " + setting.name() + " sep " + percentText(parameters.maxSeparation) + "%");
         frames.push_back(timeInterleaved(
@@ -174,16 +173,7 @@ void runSweep(vk::Context& context, const BenchOptions& options, const Validated
               timeDepthPasses(context, reduction, mapping, map, deferred.linearDepth(), options.repeat);
           (void)deferred.render(center);
         }
-        if (setting.method == stereo::StereoMethod::Hybrid) {
-          HybridSynthesis hybrid = synthesizeHybrid(context, deferred, *eyeRenderer,
-                                                    scene, center, setting.applyTo(parameters), options.repeat);
-          syntheses.push_back({std::move(hybrid.eyes), hybrid.timings.total, {}, hybrid.filledLeft, hybrid.filledRight});
-          hybrids.push_back(std::move(hybrid));
-        } else {
-          syntheses.push_back(stereo::synthesizeTimed(context, deferred.displayColor(), deferred.linearDepth(),
-                                                      setting.applyTo(parameters), options.repeat));
-          hybrids.push_back(std::nullopt);
-        }
+        syntheses.push_back(synthesis.synthesize({deferred, scene, center, setting.applyTo(parameters)}));
         ++done;
       }
       const std::vector<std::uint8_t> halo = haloMaskFor(centerDepth, parameters);
@@ -194,7 +184,7 @@ void runSweep(vk::Context& context, const BenchOptions& options, const Validated
                                       eyes.rightTransparent, eyes.rightFoliage};
       for (std::size_t i = 0; i < bench.settings.size(); ++i) {
         BenchRow row = settingRow(sceneName, bench.settings[i], parameters, options, context.isCpuDevice(), syntheses[i],
-                                  frames[i], eyes, left, right, hybrids[i]);
+                                  frames[i], eyes, left, right);
         row.depthReductionGpuMs = depthReductionGpuMs;
         row.disparityMapGpuMs = disparityMapGpuMs;
         report.rows.push_back(std::move(row));

@@ -49,6 +49,15 @@ nlohmann::json optionalMs(const std::optional<double>& value) {
   return value ? finiteOrNull(*value) : nlohmann::json();
 }
 
+nlohmann::json toJson(const frame::HybridTimings& t) {
+  return {{"displacement", optionalMs(t.displacement)}, {"classification", optionalMs(t.classification)},
+          {"classify", optionalMs(t.classify)},         {"threshold", optionalMs(t.threshold)},
+          {"mask", optionalMs(t.mask)},
+          {"eyeGeometry", optionalMs(t.eyeGeometry)},   {"maskedShading", optionalMs(t.maskedShading)},
+          {"composite", optionalMs(t.composite)},       {"total", optionalMs(t.total)},
+          {"surfaces", t.raycastSurfaces ? "raycast" : "raster"}};
+}
+
 nlohmann::json statsJson(const stereo::ErrorStats& stats) {
   return {{"psnrDb", finiteOrNull(stats.psnrDb)},
           {"ssim", finiteOrNull(stats.ssim)},

@@ -17,6 +17,7 @@
 #include "s3d/app/scene_world.h"
 #include "s3d/comfort/crosshair.h"
 #include "s3d/comfort/world_queries.h"
+#include "s3d/frame/stereo_synthesis.h"
 #include "s3d/hud/crosshair.h"
 #include "s3d/io/image_io.h"
 #include "s3d/io/output_transaction.h"
@@ -29,7 +30,6 @@
 #include "s3d/stereo/hybrid.h"
 #include "s3d/stereo/sanitize.h"
 #include "s3d/stereo/stereo_pass.h"
-#include "s3d/stereo/synthesis.h"
 #include "s3d/vk/resources.h"
 #include "s3d/vk/timestamps.h"
 
@@ -294,26 +294,19 @@ RenderReport runRenderJob(vk::Context& context, const RenderJobOptions& options)
   // The same gather on the linear HDR center view, by the C++ reference of the method (hdr_gather.h).
   stereo::HdrStereoPair renderedEyesHdr = stereo::synthesizeHdrReference(renderedHdr, stereoDepth, renderedParameters);
   stereo::StereoPair renderedEyes;
-  if (parameters.method == stereo::StereoMethod::Hybrid) {
-    // The pixels the displacement gets wrong rendered from the eye cameras (HDR eyes: the same pixels).
-    renderer::DeferredRenderer eyeRenderer(context, renderedWidth, height,
-                                           renderer::RendererOptions{options.supersample, options.reversedZ});
-    eyeRenderer.setScene(job.scene);
-    HybridSynthesis hybrid = synthesizeHybrid(context, *deferred, eyeRenderer,
-                                              job.scene, center, renderedParameters);
-    report.stereoPassGpuMs = hybrid.timings.total;
-    report.filledPixels = {hybrid.filledLeft, hybrid.filledRight};
-    stereo::compositeHybridReference(renderedEyesHdr.left, hybrid.renderedHdr[0], hybrid.masks[0]);
-    stereo::compositeHybridReference(renderedEyesHdr.right, hybrid.renderedHdr[1], hybrid.masks[1]);
-    report.hybrid = HybridReport{parameters.hybridBudget, parameters.hybridBase, hybrid.classifiedPixels,
-                                 hybrid.thresholds, std::move(hybrid.timings)};
-    renderedEyes = std::move(hybrid.eyes);
-  } else {
-    stereo::SynthesisResult synthesis =
-        stereo::synthesizeTimed(context, deferred->displayColor(), deferred->linearDepth(), renderedParameters);
-    report.stereoPassGpuMs = synthesis.gpuMs;
-    report.filledPixels = {synthesis.filledLeft, synthesis.filledRight};
-    renderedEyes = std::move(synthesis.eyes);
+  {  // the synthesis (the hybrid's eye renderer) is released before the reference eyes are rendered
+    frame::StereoSynthesis synthesis(context, {.width = renderedWidth, .height = height,
+                                               .renderer = {options.supersample, options.reversedZ}});
+    frame::SynthesizedEyes eyes = synthesis.synthesize({*deferred, job.scene, center, renderedParameters});
+    report.stereoPassGpuMs = eyes.gpuMs;
+    report.filledPixels = {eyes.filledLeft, eyes.filledRight};
+    if (eyes.hybrid) {  // the pixels it rendered from the eye cameras go into the HDR eyes too
+      stereo::compositeHybridReference(renderedEyesHdr.left, eyes.hybrid->renderedHdr[0], eyes.hybrid->masks[0]);
+      stereo::compositeHybridReference(renderedEyesHdr.right, eyes.hybrid->renderedHdr[1], eyes.hybrid->masks[1]);
+      report.hybrid = HybridReport{parameters.hybridBudget, parameters.hybridBase, eyes.hybrid->classifiedPixels,
+                                   eyes.hybrid->thresholds, std::move(eyes.hybrid->timings)};
+    }
+    renderedEyes = std::move(eyes.eyes);
   }
   const stereo::StereoPair synthesized{output(renderedEyes.left), output(renderedEyes.right)};
   const stereo::HdrStereoPair synthesizedHdr{output(renderedEyesHdr.left), output(renderedEyesHdr.right)};
@@ -325,7 +318,7 @@ RenderReport runRenderJob(vk::Context& context, const RenderJobOptions& options)
   // to the output: the same rays as an output-size eye, tests/test_guard_band.cpp); a nonlinear map takes one
   // rendering per segment of its curve (layered_reference.h).
   struct OutputReference {  // one reference eye cropped to the output
-    ReferenceEye rendered;
+    frame::ReferenceEye rendered;
     ImageRGBA8 display;
     DepthImage depth;  // mapped as the stereo pass's depth (disocclusion regions)
     ImageRGBA32F hdr;
@@ -333,7 +326,7 @@ RenderReport runRenderJob(vk::Context& context, const RenderJobOptions& options)
     std::vector<std::uint8_t> foliage;
   };
   auto referenceFor = [&](stereo::Eye side) {
-    OutputReference eye{renderReferenceEye(*deferred, job.scene, center, side, renderedParameters, map), {}, {}, {}, {}, {}};
+    OutputReference eye{frame::renderReferenceEye(*deferred, job.scene, center, side, renderedParameters, map), {}, {}, {}, {}, {}};
     eye.display = output(eye.rendered.display);
     eye.depth = output(stereo::mappedDepthImage(eye.rendered.depth, map));
     eye.hdr = output(eye.rendered.hdr);

@@ -9,13 +9,14 @@
 
 #include "s3d/app/comfort_json.h"
 #include "s3d/app/eye_comparison.h"
-#include "s3d/app/hybrid_stereo.h"
 #include "s3d/app/memory_budget.h"
 #include "s3d/app/render_job.h"
 #include "s3d/app/scene_world.h"
 #include "s3d/comfort/crosshair.h"
 #include "s3d/comfort/disparity_budget_controller.h"
 #include "s3d/comfort/world_queries.h"
+#include "s3d/frame/layered_reference.h"
+#include "s3d/frame/stereo_synthesis.h"
 #include "s3d/io/image_io.h"
 #include "s3d/renderer/deferred_renderer.h"
 #include "s3d/renderer/scene_animation.h"
@@ -23,8 +24,6 @@
 #include "s3d/stereo/guard_band.h"
 #include "s3d/stereo/metrics.h"
 #include "s3d/stereo/output_formats.h"
-#include "s3d/stereo/reprojection.h"
-#include "s3d/stereo/synthesis.h"
 
 namespace s3d::app {
 namespace {
@@ -108,7 +107,6 @@ SequenceReport runSequenceJob(vk::Context& context, const SequenceJobOptions& op
   // The world queries see the geometry drawn: rebuilt for every frame of an animated scene.
   std::optional<comfort::WorldQueries> world;
   world.emplace(worldMeshes(scene));
-  std::unique_ptr<renderer::DeferredRenderer> eyeRenderer;  // the hybrid method's masked eye renders
   const glm::vec2 weaponDepths = renderer::firstPersonDepthRange(scene).value_or(glm::vec2(0.0f));
   const bool budgetOn = options.disparityBudget != comfort::DisparityBudgetRule::Off;
   if (!(options.anticipateSeconds >= 0.0f) || options.anticipateSeconds > 10.0f)
@@ -139,12 +137,19 @@ SequenceReport runSequenceJob(vk::Context& context, const SequenceJobOptions& op
   };
   stereo::GuardBand band;
   std::unique_ptr<renderer::DeferredRenderer> deferred;
+  // The eyes of every frame (the method's switch, the hybrid's eye renderer and the previous-frame fill's history),
+  // made with the center view's renderer for its size.
+  std::unique_ptr<frame::StereoSynthesis> synthesis;
   auto useBand = [&](const stereo::GuardBand& wanted) {
     if (deferred && wanted.columns <= band.columns) return false;
     band = wanted;
-    deferred = std::make_unique<renderer::DeferredRenderer>(context, band.renderedWidth(width), height,
-                                                            renderer::RendererOptions{options.supersample, options.reversedZ});
+    const renderer::RendererOptions rendererOptions{options.supersample, options.reversedZ};
+    deferred = std::make_unique<renderer::DeferredRenderer>(context, band.renderedWidth(width), height, rendererOptions);
     deferred->setScene(scene);
+    synthesis = std::make_unique<frame::StereoSynthesis>(
+        context, frame::StereoSynthesisDescription{.width = band.renderedWidth(width), .height = height,
+                                                   .renderer = rendererOptions,
+                                                   .previousFrameFill = options.stereo.previousFrameFill});
     return true;
   };
   auto output = [&](const auto& image) { return stereo::cropColumns(image, band.columns, width); };
@@ -159,12 +164,8 @@ SequenceReport runSequenceJob(vk::Context& context, const SequenceJobOptions& op
     std::array<DepthImage, 2> referenceDepth;
     std::array<std::vector<std::uint8_t>, 2> firstPerson;
     std::array<stereo::ReferenceCameras, 2> cameras;  // the output-size eye cameras per layer (the metric's)
-    std::array<glm::mat4, 2> renderedView, renderedProjection;  // on the rendered frame (the previous-frame fill's)
     std::uint32_t crop = 0;
   };
-  // The forward method's previous-frame fill keeps its history of eyes on the GPU between frames.
-  std::optional<stereo::PreviousFillPass> previousFill;
-  if (options.stereo.previousFrameFill) previousFill.emplace(context);
   std::optional<EyeFrames> previous;
   SequenceReport report;
   report.deviceName = context.deviceName();
@@ -174,7 +175,7 @@ SequenceReport runSequenceJob(vk::Context& context, const SequenceJobOptions& op
       renderer::poseScene(scene, double(index) / double(options.framesPerSecond));
       world.emplace(worldMeshes(scene));
       if (deferred) deferred->updateGeometry(scene);  // the textures stay uploaded
-      if (eyeRenderer) eyeRenderer->updateGeometry(scene);
+      if (synthesis) synthesis->updateGeometry(scene);
     }
     SequenceFrame frame;
     frame.index = index;
@@ -281,33 +282,7 @@ SequenceReport runSequenceJob(vk::Context& context, const SequenceJobOptions& op
     frame.weaponPixels = conflicts.weaponPixels;
     frame.weaponConflictPixels = conflicts.conflictPixels;
     EyeFrames current;
-    for (stereo::Eye eye : {stereo::Eye::Left, stereo::Eye::Right}) {
-      const renderer::ViewMatrices rendered = referenceEyeView(scene, center, eye, renderedParameters);
-      current.renderedView[eye == stereo::Eye::Left ? 0 : 1] = rendered.worldView;
-      current.renderedProjection[eye == stereo::Eye::Left ? 0 : 1] = rendered.worldProjection;
-    }
-    stereo::SynthesisResult eyes;
-    if (parameters.method == stereo::StereoMethod::Hybrid) {
-      // The eye renderer matches the rendered frame: replaced with the center view's when the band widens.
-      if (!eyeRenderer || eyeRenderer->width() != band.renderedWidth(width)) {
-        eyeRenderer = std::make_unique<renderer::DeferredRenderer>(
-            context, band.renderedWidth(width), height, renderer::RendererOptions{options.supersample, options.reversedZ});
-        eyeRenderer->setScene(scene);
-      }
-      HybridSynthesis hybrid = synthesizeHybrid(context, *deferred, *eyeRenderer,
-                                                scene, center, renderedParameters);
-      eyes.eyes = std::move(hybrid.eyes);
-      eyes.gpuMs = hybrid.timings.total;
-    } else if (previousFill) {
-      std::array<gpu::EyeMotion, 2> motion{};
-      for (std::size_t e = 0; e < 2 && previous; ++e)
-        motion[e] = stereo::eyeMotion(current.renderedView[e], current.renderedProjection[e], previous->renderedView[e],
-                                      previous->renderedProjection[e]);
-      eyes = stereo::synthesizeTimed(context, deferred->displayColor(), deferred->linearDepth(), renderedParameters,
-                                     *previousFill, motion);
-    } else {
-      eyes = stereo::synthesizeTimed(context, deferred->displayColor(), deferred->linearDepth(), renderedParameters);
-    }
+    const frame::SynthesizedEyes eyes = synthesis->synthesize({*deferred, scene, center, renderedParameters});
     frame.stereoPassGpuMs = eyes.gpuMs;
 
     current.synthesized = {output(eyes.eyes.left), output(eyes.eyes.right)};
@@ -318,7 +293,7 @@ SequenceReport runSequenceJob(vk::Context& context, const SequenceJobOptions& op
     const std::vector<stereo::DisparityMapSegment> segments = stereo::disparityMapSegments(map);
     for (stereo::Eye eye : {stereo::Eye::Left, stereo::Eye::Right}) {
       const std::size_t e = eye == stereo::Eye::Left ? 0 : 1;
-      ReferenceEye reference = renderReferenceEye(*deferred, scene, center, eye, renderedParameters, map);
+      frame::ReferenceEye reference = frame::renderReferenceEye(*deferred, scene, center, eye, renderedParameters, map);
       (e == 0 ? current.reference.left : current.reference.right) = output(reference.display);
       current.referenceDepth[e] = output(reference.depth);
       mappedReferenceDepth[e] = stereo::mappedDepthImage(current.referenceDepth[e], map);
@@ -329,7 +304,7 @@ SequenceReport runSequenceJob(vk::Context& context, const SequenceJobOptions& op
       stereo::ReferenceCameras& cameras = current.cameras[e];
       cameras.segments = segments;
       for (const stereo::DisparityMapSegment& segment : segments) {
-        const renderer::ViewMatrices eyeView = referenceEyeView(scene, outputCenter, eye, parameters, segment);
+        const renderer::ViewMatrices eyeView = frame::referenceEyeView(scene, outputCenter, eye, parameters, segment);
         cameras.view.push_back(eyeView.worldView);
         cameras.projection.push_back(eyeView.worldProjection);
       }

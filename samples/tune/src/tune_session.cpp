@@ -10,9 +10,9 @@
 #include "s3d/app/scene_world.h"
 #include "s3d/comfort/crosshair.h"
 #include "s3d/comfort/comfort_report.h"
+#include "s3d/frame/layered_reference.h"
+#include "s3d/frame/stereo_synthesis.h"
 #include "s3d/stereo/sanitize.h"
-#include "s3d/app/hybrid_stereo.h"
-#include "s3d/stereo/synthesis.h"
 
 namespace s3d::tune {
 namespace {
@@ -31,7 +31,7 @@ struct TuneSession::Loaded {
   renderer::Scene scene;
   std::unique_ptr<comfort::WorldQueries> world;
   std::unique_ptr<renderer::DeferredRenderer> deferred;
-  std::unique_ptr<renderer::DeferredRenderer> eyeRenderer;  // the hybrid method's masked eye renders (made at first use)
+  std::unique_ptr<frame::StereoSynthesis> synthesis;  // the eyes (with the hybrid's eye renderer, made at first use)
   std::uint32_t supersample = 0;  // of `deferred`
   comfort::ZeroParallaxControlSettings controlSettings;
   std::unique_ptr<comfort::ZeroParallaxController> control;
@@ -92,7 +92,7 @@ TuneFrame TuneSession::renderFrame(TuneState& state, const FrameInput& input, fl
                                                                  renderer::RendererOptions{state.supersample});
     deferred->setScene(loaded.scene);
     loaded.deferred = std::move(deferred);
-    loaded.eyeRenderer.reset();
+    loaded.synthesis.reset();
     loaded.supersample = state.supersample;
   }
   if (state.playPath) state.camera = renderer::cameraForFrame(loaded.scene, state.pathFrame);
@@ -177,22 +177,13 @@ TuneFrame TuneSession::renderFrame(TuneState& state, const FrameInput& input, fl
   numbers.zeroParallaxDistance = parameters.zeroParallaxDistance;
   numbers.weaponDepthOffset = parameters.weaponDepthOffset;
   numbers.weaponDepthScale = parameters.weaponDepthScale;
-  if (parameters.method == stereo::StereoMethod::Hybrid) {
-    if (!loaded.eyeRenderer) {
-      loaded.eyeRenderer = std::make_unique<renderer::DeferredRenderer>(context_, width_, height_,
-                                                                        renderer::RendererOptions{loaded.supersample});
-      loaded.eyeRenderer->setScene(scene);
-    }
-    app::HybridSynthesis hybrid = app::synthesizeHybrid(context_, deferred,
-                                                        *loaded.eyeRenderer, scene, center, parameters);
-    numbers.stereoPassGpuMs = hybrid.timings.total;
-    images.eyes = std::move(hybrid.eyes);
-  } else {
-    stereo::SynthesisResult synthesis =
-        stereo::synthesizeTimed(context_, deferred.displayColor(), deferred.linearDepth(), parameters);
-    numbers.stereoPassGpuMs = synthesis.gpuMs;
-    images.eyes = std::move(synthesis.eyes);
-  }
+  if (!loaded.synthesis)
+    loaded.synthesis = std::make_unique<frame::StereoSynthesis>(
+        context_, frame::StereoSynthesisDescription{.width = width_, .height = height_,
+                                                    .renderer = {loaded.supersample}});
+  frame::SynthesizedEyes eyes = loaded.synthesis->synthesize({deferred, scene, center, parameters});
+  numbers.stereoPassGpuMs = eyes.gpuMs;
+  images.eyes = std::move(eyes.eyes);
   images.parameters = parameters;
   images.cropColumns = std::uint32_t(stereo::makeStereoConstants(parameters, width_, height_).cropBegin);
 
@@ -202,7 +193,7 @@ TuneFrame TuneSession::renderFrame(TuneState& state, const FrameInput& input, fl
     double referenceMs = 0.0;
     bool timed = true;
     for (auto [eye, image] : {std::pair{stereo::Eye::Left, &reference.left}, std::pair{stereo::Eye::Right, &reference.right}}) {
-      app::ReferenceEye rendered = app::renderReferenceEye(deferred, scene, center, eye, parameters, map);
+      frame::ReferenceEye rendered = frame::renderReferenceEye(deferred, scene, center, eye, parameters, map);
       if (rendered.firstLayerGpuMs) referenceMs += *rendered.firstLayerGpuMs;
       else timed = false;
       *image = std::move(rendered.display);

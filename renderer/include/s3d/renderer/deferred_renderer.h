@@ -34,6 +34,8 @@ struct FrameTimings {
   std::vector<PassTiming> passes;    // every pass that ran, in order (gpuMs 0 without timestamps)
 };
 
+struct SceneBvh;
+
 class DeferredRenderer {
  public:
   // width x height is the output size (display colour, linear depth, HDR colour, masks). Throws
@@ -50,8 +52,19 @@ class DeferredRenderer {
   // every texture: docs/RESULTS.md, "Animated scenes"). Throws std::invalid_argument naming the scene when its
   // meshes' sizes or indices, objects' meshes, layers or textures, or the texture count differ from the last set.
   void updateGeometry(const Scene& scene);
+  // The BVH ShadeMask::Surfaces::RayCast renders cast through: SceneBvh::build of the scene last set (or posed
+  // by updateGeometry), uploaded once. setScene and updateGeometry drop it, since it no longer matches.
+  void setSurfaceBvh(const SceneBvh& bvh);
+  // Why this renderer cannot ray-cast its surfaces for the scene last set (nullopt: it can, given a BVH): raster
+  // G-buffer shading, objects the raster pass shades itself (textured or cut-out: the compute resolve samples no
+  // textures), wide visibility ids, supersampling, or transparent objects the raster pass blends (it needs the
+  // depth buffer).
+  std::optional<std::string> raycastSurfacesRefusal() const;
+  // Whether a BVH of the current scene (or pose) was given (setSurfaceBvh).
+  bool hasSurfaceBvh() const;
   // Renders one view; the results stay on the GPU until read back. With a mask (its image non-null), only the
-  // mask's pixels (ShadeMask). Throws std::invalid_argument for a mask of another size or format.
+  // mask's pixels (ShadeMask). Throws std::invalid_argument for a mask of another size or format, or for a RayCast
+  // mask this renderer refuses (raycastSurfacesRefusal) or has no BVH for.
   FrameTimings render(const ViewMatrices& view, const ShadeMask& mask = {});
   // The same, lit with the shadow maps `shadowSource` rendered for its last frame instead of rendering its own (a
   // stereo frame's eye renders reuse the center frame's): no shadow pass runs. shadowSource must hold the same

@@ -51,6 +51,8 @@ struct RaycastConstants {
   uvec4 roots;             // x: the world BVH's root node, y: the first-person BVH's (S3D_BVH_NO_ROOT: none)
   uvec4 options;           // x: mask threshold, y: 1 with a mask, z, w: visibility packing (FrameConstants)
   vec4 clearedDepth;       // x: the device depth of a pixel that shows nothing (sky)
+  uvec4 region;            // x: 1 casts only the pixels of the tiles flagged in the region's buffer (the others get
+                           // the cleared depth and id 0), y: tiles per row (S3D_TILE_SIZE pixels square)
 };
 
 // A point of the pixel ray: the layer-space position of normalized device coordinates (ndc, z); z 0 and 1 give

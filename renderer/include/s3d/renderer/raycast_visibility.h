@@ -14,6 +14,14 @@
 
 namespace s3d::renderer {
 
+// Tiles of S3D_TILE_SIZE pixels to cast, as a buffer of a TileHeader and then one flag word per tile (row by
+// row, tilesX per row; nonzero: cast): pixels of other tiles get the cleared depth and id 0. A null buffer: every
+// pixel the mask admits. The buffer's writes must be visible to compute shader reads when the pass runs.
+struct RaycastRegion {
+  VkBuffer tiles = VK_NULL_HANDLE;
+  std::uint32_t tilesX = 0;
+};
+
 class RaycastVisibility {
  public:
   explicit RaycastVisibility(vk::Context& context);
@@ -27,11 +35,11 @@ class RaycastVisibility {
   // Records the pass for the pixels of `mask` (ShadeMask's image and threshold; a null image: every pixel):
   // `visibilityIds` (R32_UINT) and `deviceDepth` (R32_SFLOAT), both the mask's size when there is one, created
   // with VK_IMAGE_USAGE_STORAGE_BIT and in VK_IMAGE_LAYOUT_GENERAL, get the masked pixels' ids and depths
-  // (SceneBvh::castPixel); other pixels are not written. The caller orders it against earlier and later uses of
+  // (SceneBvh::castPixel); other pixels are not written, but for a region's (RaycastRegion). The caller orders it against earlier and later uses of
   // the images with barriers (it records none). Uses one uniform buffer: one recording in flight at a time.
   // Throws std::invalid_argument for images of other formats or sizes, or before setBvh.
   void record(VkCommandBuffer cmd, const RaycastCamera& camera, const ShadeMask& mask, const vk::Image& visibilityIds,
-              const vk::Image& deviceDepth);
+              const vk::Image& deviceDepth, const RaycastRegion& region = {});
 
  private:
   vk::Context& context_;

@@ -31,6 +31,15 @@ namespace s3d::renderer {
 struct ShadeMask {
   const vk::Image* image = nullptr;
   std::uint32_t threshold = 1;
+  // How the shaded pixels' surfaces are found. Raster: the G-buffer pass above. RayCast: the ray-cast visibility
+  // pass (raycast_visibility.h) casts the mask's pixels through the BVH given to setSurfaceBvh and the G-buffer
+  // resolve, lighting and resolve shade them: no depth clear and no raster pass (compute runs on all of a GPU,
+  // the raster side on a small part of it). With ambient occlusion the occlusion's region is cast (the masked
+  // tiles and their 8 neighbours), and its samples beyond that region find no surface: near the region's border
+  // an occluder further away than a tile is missed (docs/RESULTS.md, "Hybrid by ray casting"). A null image with
+  // RayCast casts and shades every pixel.
+  enum class Surfaces { Raster, RayCast };
+  Surfaces surfaces = Surfaces::Raster;
 };
 
 }  // namespace s3d::renderer

@@ -12,6 +12,7 @@
 #include <glm/glm.hpp>
 #include <vulkan/vulkan.h>
 
+#include "s3d/stereo/eye_views.h"
 #include "s3d/stereo/forward_pass.h"
 #include "s3d/stereo/host_stereo_pass.h"
 #include "s3d/stereo/iterative_pass.h"
@@ -47,6 +48,10 @@ struct StereoFrameDispatch {
   HostProjection projection;          // the depth buffer's convention (ignored for R32F linear depth)
   float maxSeparation = 0.02f;        // per-eye displacement at infinity, fraction of the width, [0, 0.25]
   float zeroParallaxDistance = 1.0f;  // world units, > 0: the depth that stays on the screen plane
+  // Instead of the two above: the eyes' views (OpenXR's XrView per eye, each eye the description's size), from
+  // which both are derived (eye_views.h: eyeViewsParallax; the rules eyeViewsProblem checks). The center image is
+  // then rendered from the eyes' midpoint with sharedCenterView's frustum.
+  std::optional<ViewConfiguration> eyeViews;
   float edgeCrop = -1.0f;             // fraction of the width blacked out per side, [0, 0.25]; < 0: = maxSeparation
   float weaponDepthOffset = 1.0f;     // the first-person layer's depth becomes offset + scale * depth (seed 4.6.2)
   float weaponDepthScale = 1.0f;

@@ -14,7 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "s3d/app/eye_comparison.h"
-#include "s3d/app/hybrid_stereo.h"
+#include "s3d/frame/hybrid_stereo.h"
 #include "s3d/app/memory_budget.h"
 #include "s3d/renderer/deferred_renderer.h"
 #include "s3d/stereo/stereo.h"
@@ -114,7 +114,7 @@ struct BenchRow {
   StereoTraffic traffic;
   // Hybrid settings: the masked share of each eye and the GPU time per part (stereoGpuMs is their total).
   std::optional<double> maskedShareLeft, maskedShareRight;
-  std::optional<HybridTimings> hybridTimings;
+  std::optional<frame::HybridTimings> hybridTimings;
 };
 
 struct RendererRow {

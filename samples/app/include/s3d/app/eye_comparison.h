@@ -7,6 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "s3d/frame/hybrid_stereo.h"
 #include "s3d/image.h"
 #include "s3d/stereo/metrics.h"
 #include "s3d/stereo/stereo.h"
@@ -45,6 +46,9 @@ EyeError compareEye(const ImageRGBA8& synthesized, const ImageRGBA8& reference, 
 double tidy(float value);
 nlohmann::json finiteOrNull(double value);
 nlohmann::json optionalMs(const std::optional<double>& value);  // null when absent or not finite
+// {"displacement", "classification", "eyeGeometry", "maskedShading", "composite", "total"}: ms or null;
+// "surfaces": "raycast" or "raster".
+nlohmann::json toJson(const frame::HybridTimings& timings);
 // {"psnrDb", "ssim", "meanAbsoluteError", "shareAbove8", "pixelCount"}: every ErrorStats field, non-finite as null.
 nlohmann::json statsJson(const stereo::ErrorStats& stats);
 // {"psnrDb", "ssim", "meanAbsoluteError", "pixelCount"}.

@@ -15,9 +15,9 @@
 #include "s3d/app/eye_comparison.h"
 #include "s3d/app/frame_rules.h"
 #include "s3d/app/budget_frame.h"
-#include "s3d/app/hybrid_stereo.h"
+#include "s3d/frame/hybrid_stereo.h"
 #include "s3d/app/memory_budget.h"
-#include "s3d/app/layered_reference.h"
+#include "s3d/frame/layered_reference.h"
 #include "s3d/comfort/comfort_profile.h"
 #include "s3d/comfort/comfort_report.h"
 #include "s3d/comfort/display_profile.h"
@@ -92,7 +92,7 @@ struct HybridReport {
   stereo::StereoMethod base = stereo::StereoMethod::Search;
   std::uint64_t classifiedPixels = 0;               // per eye: the compared area
   std::array<stereo::HybridThreshold, 2> thresholds;  // left, right: the threshold bin and the masked pixel count
-  HybridTimings timings;
+  frame::HybridTimings timings;
 };
 
 struct RenderReport {

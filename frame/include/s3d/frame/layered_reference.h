@@ -17,7 +17,7 @@
 #include "s3d/stereo/disparity_map.h"
 #include "s3d/stereo/stereo.h"
 
-namespace s3d::app {
+namespace s3d::frame {
 
 // The view of one eye with cameras exact for parallax m (1 - zpp w), w = intercept + slope / d (the identity
 // segment: the linear mapping). Both layers get their own off-axis camera: the first-person layer has its own
@@ -53,4 +53,4 @@ std::vector<std::uint8_t> chooseReferenceLayers(const std::vector<DepthImage>& l
                                                 const std::vector<stereo::DisparityMapSegment>& segments,
                                                 std::uint64_t* unresolvedPixels = nullptr);
 
-}  // namespace s3d::app
+}  // namespace s3d::frame

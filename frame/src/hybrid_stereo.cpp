@@ -1,4 +1,4 @@
-#include "s3d/app/hybrid_stereo.h"
+#include "s3d/frame/hybrid_stereo.h"
 
 #include <cstring>
 #include <functional>
@@ -7,15 +7,15 @@
 #include <string>
 #include <tuple>
 
-#include "s3d/app/eye_comparison.h"
-#include "s3d/app/render_job.h"
+#include "s3d/frame/layered_reference.h"
+#include "s3d/renderer/scene_bvh.h"
 #include "s3d/stereo/hybrid_pass.h"
 #include "s3d/stereo/stereo_pass.h"
 #include "s3d/stereo/synthesis.h"
 #include "s3d/vk/resources.h"
 #include "s3d/vk/timestamps.h"
 
-namespace s3d::app {
+namespace s3d::frame {
 namespace {
 
 std::optional<double> sum(std::optional<double> a, std::optional<double> b) {
@@ -59,17 +59,18 @@ std::vector<std::optional<double>> timeSections(vk::Context& context, int timedR
 
 // The eye renders, masked (renderer::ShadeMask: only the mask's pixels are shaded) or whole, and lit with the center
 // frame's shadow maps (the eye views plan theirs for the center camera, so they are the same maps): median total
-// and median per pass; "gbuffer" and "ssao-depth" passes are the eye's rasterized geometry (every pixel's depth),
-// all others shade the masked pixels.
+// and median per pass; "gbuffer" and "ssao-depth" (the eye's rasterized geometry, every pixel's depth) or
+// "raycast" find the surfaces, all others shade the masked pixels.
 struct EyeRenderTimes {
   std::optional<double> geometry, shading;
   std::vector<renderer::PassTiming> passes;
 };
 
 EyeRenderTimes renderEye(renderer::DeferredRenderer& eyeRenderer, const renderer::DeferredRenderer& centerRenderer,
-                         const renderer::ViewMatrices& view, const vk::Image* mask, int timedRuns) {
+                         const renderer::ViewMatrices& view, const vk::Image* mask, renderer::ShadeMask::Surfaces surfaces,
+                         int timedRuns) {
   // HybridPass masks: 1 where the eye camera renders the pixel; none: every pixel (an unmasked render).
-  const renderer::ShadeMask shadeMask{mask, 1};
+  const renderer::ShadeMask shadeMask{mask, 1, surfaces};
   (void)eyeRenderer.render(view, shadeMask, centerRenderer);
   std::vector<double> totals;
   std::map<std::string, std::vector<double>> passTimes;
@@ -87,7 +88,7 @@ EyeRenderTimes renderEye(renderer::DeferredRenderer& eyeRenderer, const renderer
   double geometry = 0.0;
   for (renderer::PassTiming& pass : order) {
     pass.gpuMs = stereo::medianMs(passTimes[pass.name]).value_or(0.0);
-    if (pass.name == "gbuffer" || pass.name == "ssao-depth") geometry += pass.gpuMs;
+    if (pass.name == "gbuffer" || pass.name == "ssao-depth" || pass.name == "raycast") geometry += pass.gpuMs;
   }
   times.geometry = geometry;
   times.shading = *total - geometry;
@@ -96,14 +97,6 @@ EyeRenderTimes renderEye(renderer::DeferredRenderer& eyeRenderer, const renderer
 }
 
 }  // namespace
-
-nlohmann::json toJson(const HybridTimings& t) {
-  return {{"displacement", optionalMs(t.displacement)}, {"classification", optionalMs(t.classification)},
-          {"classify", optionalMs(t.classify)},         {"threshold", optionalMs(t.threshold)},
-          {"mask", optionalMs(t.mask)},
-          {"eyeGeometry", optionalMs(t.eyeGeometry)},   {"maskedShading", optionalMs(t.maskedShading)},
-          {"composite", optionalMs(t.composite)},       {"total", optionalMs(t.total)}};
-}
 
 HybridSynthesis synthesizeHybrid(vk::Context& context, const renderer::DeferredRenderer& centerRenderer,
                                  renderer::DeferredRenderer& eyeRenderer, const renderer::Scene& scene,
@@ -117,7 +110,13 @@ HybridSynthesis synthesizeHybrid(vk::Context& context, const renderer::DeferredR
   const std::uint32_t width = centerColor.width, height = centerColor.height;
   if (eyeRenderer.width() != width || eyeRenderer.height() != height)
     throw std::invalid_argument("synthesizeHybrid: the eye renderer's size differs from the center view's");
+  HybridSynthesis result;
 
+  // The masked pixels' surfaces by ray casting wherever the eye renderer can shade what the rays find (a GPU's
+  // visibility shading, a scene without textures); its BVH is built once per scene or pose. Otherwise rasterized.
+  const bool raycast = !eyeRenderer.raycastSurfacesRefusal();
+  if (raycast && !eyeRenderer.hasSurfaceBvh()) eyeRenderer.setSurfaceBvh(renderer::SceneBvh::build(scene));
+  result.surfaces = raycast ? renderer::ShadeMask::Surfaces::RayCast : renderer::ShadeMask::Surfaces::Raster;
   const stereo::DisplacementPass displacement(context, parameters, width, height);
   const stereo::HybridPass hybrid(context);
   const gpu::HybridConstants constants = stereo::makeHybridConstants(parameters, width, height);
@@ -125,7 +124,6 @@ HybridSynthesis synthesizeHybrid(vk::Context& context, const renderer::DeferredR
   const VkImageUsageFlags usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
   const vk::Image left = vk::createImage(context, stereo::StereoPass::kColorFormat, width, height, usage);
   const vk::Image right = vk::createImage(context, stereo::StereoPass::kColorFormat, width, height, usage);
-  HybridSynthesis result;
   result.classifiedPixels = std::uint64_t(constants.cropEnd - constants.cropBegin) * height;
   // The budget's ends need no classification: none masks nothing (the base displacement), all masks every
   // classified pixel (the eyes rendered whole, the two-pass reference), whatever the scores.
@@ -143,6 +141,7 @@ HybridSynthesis synthesizeHybrid(vk::Context& context, const renderer::DeferredR
         stereo::StereoPass::recordInputRelease(cmd, centerColor, linearDepth);
       });
   HybridTimings& timings = result.timings;
+  timings.raycastSurfaces = raycast;
   timings.displacement = front[0];
   if (classify) {
     timings.classify = front[1];
@@ -180,7 +179,7 @@ HybridSynthesis synthesizeHybrid(vk::Context& context, const renderer::DeferredR
     }
     const EyeRenderTimes render =
         renderEye(eyeRenderer, centerRenderer, referenceEyeView(scene, center, eye, parameters),
-                  everythingMasked ? nullptr : &mask, timedRuns);
+                  everythingMasked ? nullptr : &mask, result.surfaces, timedRuns);
     timings.eyeGeometry = sum(timings.eyeGeometry, render.geometry);
     timings.maskedShading = sum(timings.maskedShading, render.shading);
     (index == 0 ? timings.leftEyePasses : timings.rightEyePasses) = render.passes;
@@ -209,4 +208,4 @@ HybridSynthesis synthesizeHybrid(vk::Context& context, const renderer::DeferredR
   return result;
 }
 
-}  // namespace s3d::app
+}  // namespace s3d::frame

@@ -1,14 +1,12 @@
 #pragma once
 // The hybrid stereo method with s3d's deferred renderer: displace both eyes (the base method), classify the
 // pixels the displacement gets wrong and mask the budget's worst ones (stereo::HybridPass), render exactly those
-// pixels from each real eye camera (the two-pass reference's cameras), and composite them into the displaced
-// eyes. A host with its own renderer does the same with HybridPass and its renderer (docs/DESIGN.md).
+// pixels from each real eye camera (the two-pass reference's cameras; their surfaces ray-cast where the renderer
+// can, docs/DESIGN.md "Hybrid"), and composite them into the displaced eyes. A host with its own renderer does the same with HybridPass and its renderer (docs/DESIGN.md).
 #include <array>
 #include <cstdint>
 #include <optional>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "s3d/image.h"
 #include "s3d/renderer/deferred_renderer.h"
@@ -16,23 +14,21 @@
 #include "s3d/stereo/stereo.h"
 #include "s3d/vk/context.h"
 
-namespace s3d::app {
+namespace s3d::frame {
 
 // GPU milliseconds of one hybrid frame, both eyes (empty without timestamps).
 struct HybridTimings {
   std::optional<double> displacement;    // the base method's pass
   std::optional<double> classification;  // classification, threshold and masks (the sum of the next three)
   std::optional<double> classify, threshold, mask;  // each of the three passes
-  std::optional<double> eyeGeometry;     // both eyes' rasterized depth (the masked renders' "gbuffer", "ssao-depth")
+  std::optional<double> eyeGeometry;     // both eyes' surfaces: rasterized ("gbuffer", "ssao-depth") or ray-cast
   std::optional<double> maskedShading;   // both eyes' other passes (mask tiles, SSAO, lighting, resolve; the
                                          // shadow maps are the center frame's)
   std::optional<double> composite;       // both eyes
   std::optional<double> total;           // the sum
   std::vector<renderer::PassTiming> leftEyePasses, rightEyePasses;  // the masked renders' passes
+  bool raycastSurfaces = false;  // eyeGeometry cast rays (HybridSynthesis::surfaces), or rasterized
 };
-
-// {"displacement", "classification", "eyeGeometry", "maskedShading", "composite", "total"}: ms or null.
-nlohmann::json toJson(const HybridTimings& timings);
 
 struct HybridSynthesis {
   stereo::StereoPair eyes;  // at the renderer's size; alpha as the displaced eyes' (the weapon mask)
@@ -42,13 +38,17 @@ struct HybridSynthesis {
   std::array<ImageRGBA32F, 2> renderedHdr;            // the masked renders' HDR colour (valid where masked; zero
                                                       // for an eye with nothing masked, which is not rendered)
   std::uint64_t filledLeft = 0, filledRight = 0;      // the iterative base's filled pixels that stayed displaced
+  // How the masked pixels' surfaces were found: ray-cast where the eye renderer can shade what rays find
+  // (DeferredRenderer::raycastSurfacesRefusal), else rasterized.
+  renderer::ShadeMask::Surfaces surfaces = renderer::ShadeMask::Surfaces::Raster;
   HybridTimings timings;
 };
 
 // centerRenderer: its last frame is the center view `center` (its displayColor and linearDepth, in
 // vk::kComputeWrite state, left so, are what the eyes are displaced from, and its shadow maps light the eye
 // renders). eyeRenderer: a renderer of the same size with `scene` set, used for the eye cameras' masked renders (it
-// holds the right eye's afterwards); an eye with no masked pixel is not rendered. parameters (method Hybrid) are
+// holds the right eye's afterwards; given the scene's BVH when it ray-casts and has none); an eye with no masked
+// pixel is not rendered. parameters (method Hybrid) are
 // for that size (the guard band's rescaled ones when it has one). Every GPU part runs once untimed (first use
 // compiles on lavapipe), then timedRuns times; the timings are medians.
 HybridSynthesis synthesizeHybrid(vk::Context& context, const renderer::DeferredRenderer& centerRenderer,
@@ -56,4 +56,4 @@ HybridSynthesis synthesizeHybrid(vk::Context& context, const renderer::DeferredR
                                  const renderer::ViewMatrices& center, const stereo::StereoParameters& parameters,
                                  int timedRuns = 1);
 
-}  // namespace s3d::app
+}  // namespace s3d::frame

@@ -1,13 +1,11 @@
-#include "s3d/app/layered_reference.h"
+#include "s3d/frame/layered_reference.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
 
-#include "s3d/renderer/scene_file.h"
-
-namespace s3d::app {
+namespace s3d::frame {
 namespace {
 
 // Distance in inverse depth from `u` to a segment's interval (0 inside).
@@ -140,4 +138,4 @@ ReferenceEye renderReferenceEye(renderer::DeferredRenderer& deferred, const rend
   return result;
 }
 
-}  // namespace s3d::app
+}  // namespace s3d::frame

@@ -1,0 +1,97 @@
+#include "s3d/frame/stereo_synthesis.h"
+
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+#include "s3d/frame/layered_reference.h"
+#include "s3d/stereo/reprojection.h"
+
+namespace s3d::frame {
+namespace {
+
+std::string sizeText(std::uint32_t width, std::uint32_t height) {
+  return std::to_string(width) + "x" + std::to_string(height);
+}
+
+}  // namespace
+
+StereoSynthesis::StereoSynthesis(vk::Context& context, const StereoSynthesisDescription& description)
+    : context_(&context), description_(description) {
+  if (description.width == 0 || description.height == 0)
+    throw std::invalid_argument("stereo synthesis: the center view's size must not be 0 (got " +
+                                sizeText(description.width, description.height) + ")");
+  if (description.timedRuns < 1)
+    throw std::invalid_argument("stereo synthesis: timedRuns must be at least 1 (got " +
+                                std::to_string(description.timedRuns) + ")");
+  if (description.hybrid)
+    eyeRenderer_ = std::make_unique<renderer::DeferredRenderer>(context, description.width, description.height,
+                                                                description.renderer);
+  if (description.previousFrameFill) fill_.emplace(context);
+}
+
+void StereoSynthesis::setScene(const renderer::Scene& scene) {
+  if (!eyeRenderer_) return;
+  eyeRenderer_->setScene(scene);
+  eyeRendererHasScene_ = true;
+}
+
+void StereoSynthesis::updateGeometry(const renderer::Scene& scene) {
+  if (eyeRenderer_ && eyeRendererHasScene_) eyeRenderer_->updateGeometry(scene);
+}
+
+SynthesizedEyes StereoSynthesis::synthesize(const StereoSynthesisFrame& frame) {
+  const renderer::DeferredRenderer& center = frame.centerRenderer;
+  if (center.width() != description_.width || center.height() != description_.height)
+    throw std::invalid_argument("stereo synthesis: the center view is " + sizeText(center.width(), center.height()) +
+                                ", the synthesis was made for " + sizeText(description_.width, description_.height));
+  if (frame.parameters.previousFrameFill != description_.previousFrameFill)
+    throw std::invalid_argument(std::string("stereo synthesis: the frame's parameters ") +
+                                (frame.parameters.previousFrameFill ? "ask for" : "leave out") +
+                                " the previous-frame fill, the synthesis was made " +
+                                (description_.previousFrameFill ? "with" : "without") + " it");
+  if (frame.parameters.method == stereo::StereoMethod::Hybrid) return synthesizeHybridFrame(frame);
+  if (fill_) return synthesizeFilledFrame(frame);
+  return {stereo::synthesizeTimed(*context_, center.displayColor(), center.linearDepth(), frame.parameters,
+                                  description_.timedRuns),
+          std::nullopt};
+}
+
+SynthesizedEyes StereoSynthesis::synthesizeHybridFrame(const StereoSynthesisFrame& frame) {
+  if (!eyeRenderer_)
+    eyeRenderer_ = std::make_unique<renderer::DeferredRenderer>(*context_, description_.width, description_.height,
+                                                                description_.renderer);
+  if (!eyeRendererHasScene_) setScene(frame.scene);
+  HybridSynthesis hybrid = synthesizeHybrid(*context_, frame.centerRenderer, *eyeRenderer_, frame.scene, frame.center,
+                                            frame.parameters, description_.timedRuns);
+  SynthesizedEyes result;
+  result.eyes = std::move(hybrid.eyes);
+  result.gpuMs = hybrid.timings.total;
+  result.filledLeft = hybrid.filledLeft;
+  result.filledRight = hybrid.filledRight;
+  result.hybrid = std::move(hybrid);
+  return result;
+}
+
+// The fill reprojects the previous frame's eyes with each eye camera's motion since then: the two-pass reference's
+// cameras on this frame (the formula's exact eyes), against the last filled frame's.
+SynthesizedEyes StereoSynthesis::synthesizeFilledFrame(const StereoSynthesisFrame& frame) {
+  std::array<EyeCamera, 2> eyes;
+  std::array<gpu::EyeMotion, 2> motion{};
+  for (const stereo::Eye eye : {stereo::Eye::Left, stereo::Eye::Right}) {
+    const std::size_t e = eye == stereo::Eye::Left ? 0 : 1;
+    const renderer::ViewMatrices view = referenceEyeView(frame.scene, frame.center, eye, frame.parameters);
+    eyes[e] = {view.worldView, view.worldProjection};
+    if (previousEyes_)
+      motion[e] = stereo::eyeMotion(eyes[e].view, eyes[e].projection, (*previousEyes_)[e].view,
+                                    (*previousEyes_)[e].projection);
+  }
+  const renderer::DeferredRenderer& center = frame.centerRenderer;
+  SynthesizedEyes result{stereo::synthesizeTimed(*context_, center.displayColor(), center.linearDepth(),
+                                                 frame.parameters, *fill_, motion, description_.timedRuns),
+                         std::nullopt};
+  previousEyes_ = eyes;
+  return result;
+}
+
+}  // namespace s3d::frame

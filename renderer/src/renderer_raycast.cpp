@@ -1,0 +1,54 @@
+// DeferredRenderer's ray-cast surfaces (ShadeMask::Surfaces::RayCast): the BVH upload, when the path is refused,
+// and the pass that stands in for the G-buffer's raster pass.
+#include <algorithm>
+#include <stdexcept>
+
+#include "deferred_renderer_impl.h"
+#include "s3d/renderer/scene_bvh.h"
+
+namespace s3d::renderer {
+
+void DeferredRenderer::setSurfaceBvh(const SceneBvh& bvh) {
+  Impl& r = *impl_;
+  if (r.meshRanges.empty()) throw std::logic_error("DeferredRenderer::setSurfaceBvh called before setScene");
+  if (!r.raycast) {
+    r.raycast = std::make_unique<RaycastVisibility>(r.context);
+    const VkImageUsageFlags usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+    r.raycastIds = vk::createImage(r.context, kNarrowVisibilityFormat, r.width, r.height, usage);
+    r.raycastDepth = vk::createImage(r.context, VK_FORMAT_R32_SFLOAT, r.width, r.height, usage);
+  }
+  r.raycastBvhCurrent = false;
+  if (bvh.visibilityPacking == r.visibilityPacking) r.raycast->setBvh(bvh);  // wide ids: refused below
+  r.raycastBvhCurrent = bvh.visibilityPacking == r.visibilityPacking;
+}
+
+std::optional<std::string> DeferredRenderer::raycastSurfacesRefusal() const { return impl_->raycastRefusal(); }
+bool DeferredRenderer::hasSurfaceBvh() const { return impl_->raycast && impl_->raycastBvhCurrent; }
+
+std::optional<std::string> DeferredRenderer::Impl::raycastRefusal() const {
+  if (!visibilityShading) return "ray-cast surfaces need visibility G-buffer shading (the resolve shades them)";
+  if (visibilityPacking.y != 0) return "ray-cast surfaces need narrow visibility ids; this scene needs wide ones";
+  const bool rasterShaded = surfaceTargetsBound || std::any_of(scene.objects.begin(), scene.objects.end(),
+                                                               [](const Object& o) { return o.material.isCutout(); });
+  if (rasterShaded)
+    return "scene '" + scene.name + "' has textured or cut-out objects, which only the raster G-buffer pass shades";
+  if (supersample != 1) return "ray-cast surfaces cast one ray per output pixel: no supersampling";
+  if (transparentPass->hasObjects() && !transparentPass->usesCompute())
+    return "scene '" + scene.name + "' has transparent objects that the raster pass blends (it needs the depth buffer)";
+  return std::nullopt;
+}
+
+void DeferredRenderer::Impl::recordRaycastSurfaces(VkCommandBuffer cmd, const ViewMatrices& view, const ShadeMask& mask) {
+  vk::transition(cmd, raycastIds, vk::kUndefined, vk::kComputeWrite);
+  vk::transition(cmd, raycastDepth, vk::kUndefined, vk::kComputeWrite);
+  // Ambient occlusion samples depth around the pixels it shades: with it, every pixel of its region (the masked
+  // tiles and their neighbours, flagged by the mask-tiles pass) is cast, and samples beyond see no surface.
+  const bool region = scene.ambientOcclusion && mask.image != nullptr;
+  const ShadeMask cast = scene.ambientOcclusion ? ShadeMask{} : mask;
+  raycast->record(cmd, raycastCamera(scene, view, options.reversedZ), cast, raycastIds, raycastDepth,
+                  region ? RaycastRegion{tiles->buffer(), tiles->tilesX()} : RaycastRegion{});
+  vk::transition(cmd, raycastIds, vk::kComputeWrite, kComputeSampled);
+  vk::transition(cmd, raycastDepth, vk::kComputeWrite, kComputeSampled);
+}
+
+}  // namespace s3d::renderer
