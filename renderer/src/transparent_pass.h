@@ -4,11 +4,10 @@
 // Two implementations of the same blending (RendererOptions::TransparentCompositing; by default picked by the
 // device, as the G-buffer's shading is):
 //  - GPUs: compute (shaders/transparent.comp), each object one dispatch over the render tiles its bounds cover.
-//    On a GPU whose raster side is a small part of the chip (H100, H200) a blended raster pass costs the bytes
-//    its fragments read and write; compute runs on the whole chip (glass scene, 1920x1080, H200: 0.473 ms as a
-//    raster pass, 0.076-0.078 ms in compute).
-//  - CPU devices: a blended raster pass (shaders/transparent.frag) that shades only covered fragments; the
-//    compute pass took 70x its time on lavapipe (glass, 1280x720: 12.0 s against 0.164 s).
+//    On a GPU whose raster side is a small part of the chip a blended raster pass costs the bytes its
+//    fragments read and write; compute runs on the whole chip (docs/RESULTS.md, "Transparent pass").
+//  - CPU devices: a blended raster pass (shaders/transparent.frag) that shades only covered fragments; there
+//    the compute pass is far slower (docs/RESULTS.md, "Transparent pass").
 //
 // Reads: the opaque device depth (sampled by compute; depth-tested, never written), the frame and object
 // constants, the index, vertex and surface buffers, each object's textures. Writes: the HDR image (storage,

@@ -33,7 +33,7 @@ enum class DepthSource {
 // --method auto, from measurements (docs/RESULTS.md): forward for external depth or disparity (on the real
 // scenes at least the plain forward warp on visible pixels, where every gather method is below it: their
 // searches look behind the screen only, and disparity input is all in front of it; on the built-in scenes'
-// depth at 1920x1080 the highest SSIM of all methods); the default otherwise (its cost on an H100 is open).
+// depth at 1920x1080 the highest SSIM of all methods); the default otherwise.
 StereoMethod automaticMethod(DepthSource source);
 StereoMethod parseStereoMethod(const std::string& name);  // throws std::invalid_argument listing the choices
 // The names parseStereoMethod accepts, in declaration order, for option checks and menus; without hybrid, the
@@ -44,9 +44,8 @@ std::vector<std::string> stereoMethodNames(bool withHybrid = true);
 // method reads them as its two kernels (forward_pass.h): RowTiles is a workgroup per whole row in shared
 // memory, PerPixel its dispatches over key images, and Auto is RowTiles where the row fits.
 enum class StereoKernel {
-  Auto,      // gather methods: PerPixel: row tiles measured slower on lavapipe (1.3-3x) and on an H100 at
-             // 1920x1080 (seed 0.045 vs 0.029 ms, iterative-2 0.095 vs 0.084 ms; docs/RESULTS.md), so they
-             // stay opt-in
+  Auto,      // gather methods: PerPixel: row tiles measured slower on lavapipe and on a GPU
+             // (docs/RESULTS.md, "Stereo methods"), so they stay opt-in
   PerPixel,  // 8x8 workgroups, every tap and filter texel an image load
   RowTiles,  // a workgroup per run of one row, read once into shared memory; PerPixel where the margin does not
              // fit the shared arrays (above S3D_STEREO_ROW_TILE_MARGIN columns, e.g. 25 % of 2100)
@@ -69,8 +68,8 @@ struct StereoParameters {
   float maxSeparation = 0.02f;        // per-eye displacement at infinity, fraction of the screen width
   float zeroParallaxDistance = 1.0f;  // world units: depth that stays on the screen plane
   float edgeCrop = -1.0f;             // fraction of the width blacked out per side; < 0 means = maxSeparation
-  // Default: a 4-tap search, the seed's cost (1.0x on an H100) with a higher halo PSNR in every measured case
-  // (docs/RESULTS.md); `seed` stays selectable as the baseline.
+  // Default: a 4-tap search, the seed's cost with a higher halo PSNR in every measured case (docs/RESULTS.md,
+  // "Stereo methods"); `seed` stays selectable as the baseline.
   StereoMethod method = StereoMethod::Search;
   int searchTaps = 4;  // StereoMethod::Search only, 1..S3D_STEREO_MAX_TAPS
   int iterations = 6;  // StereoMethod::Iterative only, 1..16
@@ -83,9 +82,8 @@ struct StereoParameters {
   // iterations above), and the largest share of each eye's pixels rendered from the eye camera: 0 is the base
   // bit for bit, 1 renders every pixel (the two-pass reference). The default 0.6 is the smallest measured budget
   // that gives every built-in scene >= 35 dB whole-image and >= 32 dB halo PSNR in both eyes at 2 % separation
-  // on an H200 at 1920x1080 and on lavapipe at 1280x720 (fence's slats, 1-2 pixels wide there, need about 60 %
-  // of the pixels; 0.5 left its right eye at 33.7 dB on lavapipe, 0.2 left fence and glass below on both);
-  // scenes with less to fix mask less (docs/RESULTS.md).
+  // on a GPU and on lavapipe (the fence's thin slats need the most); scenes with less to fix mask less
+  // (docs/RESULTS.md, "Hybrid stereo").
   StereoMethod hybridBase = StereoMethod::Search;
   float hybridBudget = 0.6f;
   // Forward only, over frames: disocclusions take the previous frame's eyes, reprojected with their depth and the
