@@ -168,6 +168,47 @@ TEST_F(RaycastRenderPassTest, WithAmbientOcclusionTheOcclusionsRegionIsCast) {
   EXPECT_GT(castInside, insideRegion / 2);  // the region's surfaces were found (sky pixels get id 0 too)
 }
 
+// The first-person layer lives in camera space, so a camera that moves along its path needs no new BVH: every
+// weapon pixel of later frames, cast through the tree built once, names the raster pass's triangle (at most 1 %
+// on triangle edges) and shades within one 8-bit level there.
+TEST_F(RaycastRenderPassTest, AMovingCameraKeepsTheFirstPersonLayerWithoutANewBvh) {
+  Scene scene = makeBuiltInScene("courtyard");
+  DeferredRenderer raster(context(), kWidth, kHeight, raycastOptions());
+  DeferredRenderer cast(context(), kWidth, kHeight, raycastOptions());
+  raster.setScene(scene);
+  cast.setScene(scene);
+  cast.setSurfaceBvh(SceneBvh::build(scene));
+  for (std::size_t frame : {std::size_t(0), std::size_t(7), std::size_t(15)}) {
+    scene.camera = cameraForFrame(scene, frame);
+    const ViewMatrices view = centerViewMatrices(scene, float(kWidth) / float(kHeight));
+    raster.render(view);
+    const std::vector<std::uint8_t> weapon = raster.readFirstPersonMask();
+    const std::vector<std::uint32_t> rasterIds = raster.readVisibilityIds();
+    const ImageRGBA8 rasterColor = raster.readDisplayColor();
+    cast.render(view, {nullptr, 1, ShadeMask::Surfaces::RayCast});
+    const std::vector<std::uint32_t> ids = cast.readVisibilityIds();
+    const ImageRGBA8 color = cast.readDisplayColor();
+    std::size_t weaponPixels = 0, otherTriangle = 0, beyondOneLevel = 0;
+    for (std::size_t i = 0; i < weapon.size(); ++i) {
+      if (!weapon[i]) continue;
+      ++weaponPixels;
+      if (ids[i] != rasterIds[i]) {
+        ++otherTriangle;
+        continue;
+      }
+      const std::uint32_t x = std::uint32_t(i % kWidth), y = std::uint32_t(i / kWidth);
+      for (int c = 0; c < 3; ++c)
+        if (std::abs(int(color.at(x, y)[c]) - int(rasterColor.at(x, y)[c])) > 1) {
+          ++beyondOneLevel;
+          break;
+        }
+    }
+    EXPECT_GT(weaponPixels, 100u) << "frame " << frame;  // the weapon is in view
+    EXPECT_LE(otherTriangle, weaponPixels / 100) << "frame " << frame;
+    EXPECT_EQ(beyondOneLevel, 0u) << "frame " << frame;
+  }
+}
+
 // A ray-cast render needs a BVH and visibility shading (the refusal names it); the same renderer still rasterizes.
 TEST_F(RaycastRenderPassTest, WithoutABvhOrUnderRasterShadingItIsRefused) {
   Scene scene = makeBuiltInScene("cover");
