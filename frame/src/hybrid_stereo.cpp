@@ -98,10 +98,33 @@ EyeRenderTimes renderEye(renderer::DeferredRenderer& eyeRenderer, const renderer
 
 }  // namespace
 
+const char* hybridSurfacesName(HybridSurfaces surfaces) {
+  switch (surfaces) {
+    case HybridSurfaces::Raster: return "raster";
+    case HybridSurfaces::RayCast: return "raycast";
+    default: return "auto";
+  }
+}
+
+std::optional<HybridSurfaces> hybridSurfacesFromName(std::string_view name) {
+  for (HybridSurfaces surfaces : {HybridSurfaces::Automatic, HybridSurfaces::Raster, HybridSurfaces::RayCast})
+    if (name == hybridSurfacesName(surfaces)) return surfaces;
+  return std::nullopt;
+}
+
+renderer::RendererOptions eyeRendererOptions(const renderer::RendererOptions& center, HybridSurfaces surfaces) {
+  renderer::RendererOptions options = center;
+  if (surfaces == HybridSurfaces::RayCast) {
+    options.gbufferShading = renderer::RendererOptions::GBufferShading::Visibility;
+    options.transparentCompositing = renderer::RendererOptions::TransparentCompositing::Compute;
+  }
+  return options;
+}
+
 HybridSynthesis synthesizeHybrid(vk::Context& context, const renderer::DeferredRenderer& centerRenderer,
                                  renderer::DeferredRenderer& eyeRenderer, const renderer::Scene& scene,
                                  const renderer::ViewMatrices& center, const stereo::StereoParameters& parameters,
-                                 int timedRuns) {
+                                 int timedRuns, HybridSurfaces surfaces) {
   if (parameters.method != stereo::StereoMethod::Hybrid)
     throw std::invalid_argument("synthesizeHybrid needs the hybrid method's parameters");
   if (timedRuns < 1) throw std::invalid_argument("synthesizeHybrid: timedRuns must be at least 1");
@@ -114,7 +137,10 @@ HybridSynthesis synthesizeHybrid(vk::Context& context, const renderer::DeferredR
 
   // The masked pixels' surfaces by ray casting wherever the eye renderer can shade what the rays find (a GPU's
   // visibility shading, a scene without textures); its BVH is built once per scene or pose. Otherwise rasterized.
-  const bool raycast = !eyeRenderer.raycastSurfacesRefusal();
+  const std::optional<std::string> refusal = eyeRenderer.raycastSurfacesRefusal();
+  if (surfaces == HybridSurfaces::RayCast && refusal)
+    throw std::invalid_argument("the hybrid cannot ray-cast its eye pixels here: " + *refusal);
+  const bool raycast = surfaces != HybridSurfaces::Raster && !refusal;
   if (raycast && !eyeRenderer.hasSurfaceBvh()) eyeRenderer.setSurfaceBvh(renderer::SceneBvh::build(scene));
   result.surfaces = raycast ? renderer::ShadeMask::Surfaces::RayCast : renderer::ShadeMask::Surfaces::Raster;
   const stereo::DisplacementPass displacement(context, parameters, width, height);

@@ -25,8 +25,9 @@ StereoSynthesis::StereoSynthesis(vk::Context& context, const StereoSynthesisDesc
     throw std::invalid_argument("stereo synthesis: timedRuns must be at least 1 (got " +
                                 std::to_string(description.timedRuns) + ")");
   if (description.hybrid)
-    eyeRenderer_ = std::make_unique<renderer::DeferredRenderer>(context, description.width, description.height,
-                                                                description.renderer);
+    eyeRenderer_ = std::make_unique<renderer::DeferredRenderer>(
+        context, description.width, description.height,
+        eyeRendererOptions(description.renderer, description.hybridSurfaces));
   if (description.previousFrameFill) fill_.emplace(context);
 }
 
@@ -59,11 +60,12 @@ SynthesizedEyes StereoSynthesis::synthesize(const StereoSynthesisFrame& frame) {
 
 SynthesizedEyes StereoSynthesis::synthesizeHybridFrame(const StereoSynthesisFrame& frame) {
   if (!eyeRenderer_)
-    eyeRenderer_ = std::make_unique<renderer::DeferredRenderer>(*context_, description_.width, description_.height,
-                                                                description_.renderer);
+    eyeRenderer_ = std::make_unique<renderer::DeferredRenderer>(
+        *context_, description_.width, description_.height,
+        eyeRendererOptions(description_.renderer, description_.hybridSurfaces));
   if (!eyeRendererHasScene_) setScene(frame.scene);
   HybridSynthesis hybrid = synthesizeHybrid(*context_, frame.centerRenderer, *eyeRenderer_, frame.scene, frame.center,
-                                            frame.parameters, description_.timedRuns);
+                                            frame.parameters, description_.timedRuns, description_.hybridSurfaces);
   SynthesizedEyes result;
   result.eyes = std::move(hybrid.eyes);
   result.gpuMs = hybrid.timings.total;

@@ -85,6 +85,19 @@ class BenchCommand final : public Command {
             "(the fragment shader writes normal and material) or visibility (triangle ids, then a compute resolve)")
         ->type_name("auto|raster|visibility");
     bench
+        .add_option_function<std::string>(
+            "--hybrid-surfaces",
+            [this](const std::string& name) {
+              const auto surfaces = frame::hybridSurfacesFromName(name);
+              if (!surfaces) throw CLI::ValidationError("--hybrid-surfaces", "must be auto, raster or raycast (got '" + name + "')");
+              options_.hybridSurfaces = *surfaces;
+            },
+            "How the hybrid settings find their eye pixels' surfaces: auto (ray casting where the eye renderer can "
+            "shade what rays find: a GPU's visibility shading, no textured or cut-out surfaces; else rasterized), "
+            "raster, or raycast (the eye renderer made to shade rays: visibility shading and the compute transparent "
+            "pass, also on a CPU device)")
+        ->type_name("auto|raster|raycast");
+    bench
         .add_option("--bandwidth-gbs", bandwidth_,
                     "Memory bandwidth of the device in GB/s for the memory-traffic target (H100 SXM: 3350, "
                     "H100 PCIe: 2000); without it that target is skipped")

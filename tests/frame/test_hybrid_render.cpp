@@ -184,6 +184,36 @@ TEST_F(HybridRender, WithRayCastSurfacesBudgetOneIsTheTwoPassReferenceOffTriangl
   }
 }
 
+// The surfaces can be chosen: Raster keeps an eye renderer that could cast rays rasterizing; RayCast refuses one
+// that cannot (raster shading), naming why, and eyeRendererOptions makes one that can.
+TEST_F(HybridRender, TheSurfacesCanBeChosen) {
+  const stereo::StereoParameters parameters = hybridParameters(0.2f);
+  HybridScene s = renderCenter(context(), "cover", 96, 54, parameters);
+  renderer::RendererOptions raster;
+  raster.gbufferShading = renderer::RendererOptions::GBufferShading::Raster;
+  s.eyeRenderer = std::make_unique<renderer::DeferredRenderer>(context(), 96, 54, raster);
+  s.eyeRenderer->setScene(s.scene);
+  try {
+    frame::synthesizeHybrid(context(), *s.centerRenderer, *s.eyeRenderer, s.scene, s.center, parameters, 1,
+                            frame::HybridSurfaces::RayCast);
+    ADD_FAILURE() << "a raster-shading eye renderer was asked to cast rays";
+  } catch (const std::invalid_argument& error) {
+    EXPECT_NE(std::string(error.what()).find("visibility"), std::string::npos) << error.what();
+  }
+  s.eyeRenderer = std::make_unique<renderer::DeferredRenderer>(
+      context(), 96, 54, frame::eyeRendererOptions(raster, frame::HybridSurfaces::RayCast));
+  s.eyeRenderer->setScene(s.scene);
+  EXPECT_EQ(frame::synthesizeHybrid(context(), *s.centerRenderer, *s.eyeRenderer, s.scene, s.center, parameters, 1,
+                                    frame::HybridSurfaces::Raster).surfaces,
+            renderer::ShadeMask::Surfaces::Raster);
+  EXPECT_EQ(frame::synthesizeHybrid(context(), *s.centerRenderer, *s.eyeRenderer, s.scene, s.center, parameters).surfaces,
+            renderer::ShadeMask::Surfaces::RayCast);
+  for (frame::HybridSurfaces surfaces :
+       {frame::HybridSurfaces::Automatic, frame::HybridSurfaces::Raster, frame::HybridSurfaces::RayCast})
+    EXPECT_EQ(frame::hybridSurfacesFromName(frame::hybridSurfacesName(surfaces)), surfaces);
+  EXPECT_FALSE(frame::hybridSurfacesFromName("rays").has_value());
+}
+
 // Tolerance: none. The metrics' disocclusion region (reference pixels whose surface the center view does not show
 // at the rounded parallax) is finer than the classification's holes (thin slats seen at another sub-pixel phase
 // count there too), but the default budget reaches the edge band and nearness tiers around them: at 640x360 every

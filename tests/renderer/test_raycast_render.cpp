@@ -12,6 +12,7 @@
 
 #include "s3d/renderer/deferred_renderer.h"
 #include "s3d/renderer/scene_bvh.h"
+#include "material_test_scenes.h"
 #include "vulkan_test.h"
 
 namespace s3d::renderer {
@@ -48,7 +49,7 @@ bool hasPass(const FrameTimings& timings, const std::string& pass) {
   return std::any_of(timings.passes.begin(), timings.passes.end(), [&](const PassTiming& t) { return t.name == pass; });
 }
 
-class RaycastRenderTest : public test::VulkanTest, public ::testing::WithParamInterface<std::string> {};
+class RaycastRenderTest : public s3d::test::VulkanTest, public ::testing::WithParamInterface<std::string> {};
 
 // Every built-in scene (SSAO, sun and local shadows, a weapon, glass). Where the ray and the raster pass name the
 // same triangle, the pixel is shaded from the same surface: within one 8-bit level of display colour (the ray's
@@ -107,7 +108,7 @@ INSTANTIATE_TEST_SUITE_P(BuiltInScenes, RaycastRenderTest, ::testing::ValuesIn(b
                            return name;
                          });
 
-class RaycastRenderPassTest : public test::VulkanTest {};
+class RaycastRenderPassTest : public s3d::test::VulkanTest {};
 
 // The surfaces come from the rays: no G-buffer raster pass and no depth-only pass for the occlusion run.
 TEST_F(RaycastRenderPassTest, NoRasterPassRuns) {
@@ -168,6 +169,47 @@ TEST_F(RaycastRenderPassTest, WithAmbientOcclusionTheOcclusionsRegionIsCast) {
   EXPECT_GT(castInside, insideRegion / 2);  // the region's surfaces were found (sky pixels get id 0 too)
 }
 
+// The first-person layer lives in camera space, so a camera that moves along its path needs no new BVH: every
+// weapon pixel of later frames, cast through the tree built once, names the raster pass's triangle (at most 1 %
+// on triangle edges) and shades within one 8-bit level there.
+TEST_F(RaycastRenderPassTest, AMovingCameraKeepsTheFirstPersonLayerWithoutANewBvh) {
+  Scene scene = makeBuiltInScene("courtyard");
+  DeferredRenderer raster(context(), kWidth, kHeight, raycastOptions());
+  DeferredRenderer cast(context(), kWidth, kHeight, raycastOptions());
+  raster.setScene(scene);
+  cast.setScene(scene);
+  cast.setSurfaceBvh(SceneBvh::build(scene));
+  for (std::size_t frame : {std::size_t(0), std::size_t(7), std::size_t(15)}) {
+    scene.camera = cameraForFrame(scene, frame);
+    const ViewMatrices view = centerViewMatrices(scene, float(kWidth) / float(kHeight));
+    raster.render(view);
+    const std::vector<std::uint8_t> weapon = raster.readFirstPersonMask();
+    const std::vector<std::uint32_t> rasterIds = raster.readVisibilityIds();
+    const ImageRGBA8 rasterColor = raster.readDisplayColor();
+    cast.render(view, {nullptr, 1, ShadeMask::Surfaces::RayCast});
+    const std::vector<std::uint32_t> ids = cast.readVisibilityIds();
+    const ImageRGBA8 color = cast.readDisplayColor();
+    std::size_t weaponPixels = 0, otherTriangle = 0, beyondOneLevel = 0;
+    for (std::size_t i = 0; i < weapon.size(); ++i) {
+      if (!weapon[i]) continue;
+      ++weaponPixels;
+      if (ids[i] != rasterIds[i]) {
+        ++otherTriangle;
+        continue;
+      }
+      const std::uint32_t x = std::uint32_t(i % kWidth), y = std::uint32_t(i / kWidth);
+      for (int c = 0; c < 3; ++c)
+        if (std::abs(int(color.at(x, y)[c]) - int(rasterColor.at(x, y)[c])) > 1) {
+          ++beyondOneLevel;
+          break;
+        }
+    }
+    EXPECT_GT(weaponPixels, 100u) << "frame " << frame;  // the weapon is in view
+    EXPECT_LE(otherTriangle, weaponPixels / 100) << "frame " << frame;
+    EXPECT_EQ(beyondOneLevel, 0u) << "frame " << frame;
+  }
+}
+
 // A ray-cast render needs a BVH and visibility shading (the refusal names it); the same renderer still rasterizes.
 TEST_F(RaycastRenderPassTest, WithoutABvhOrUnderRasterShadingItIsRefused) {
   Scene scene = makeBuiltInScene("cover");
@@ -187,6 +229,32 @@ TEST_F(RaycastRenderPassTest, WithoutABvhOrUnderRasterShadingItIsRefused) {
   raster.setSurfaceBvh(SceneBvh::build(scene));
   ASSERT_TRUE(raster.raycastSurfacesRefusal().has_value());
   EXPECT_NE(raster.raycastSurfacesRefusal()->find("visibility"), std::string::npos);
+}
+
+// The compute resolve shades untextured surfaces only: a scene with a textured or a cut-out object is refused with
+// its name, and the hybrid keeps the rasterized eye there.
+TEST_F(RaycastRenderPassTest, TexturedOrCutOutSurfacesAreRefused) {
+  for (const bool cutout : {false, true}) {
+    Scene scene = makeBuiltInScene("cover");
+    if (cutout) {
+      scene.objects[0].material.alphaCutoff = 0.5f;
+    } else {
+      Texture texture;
+      texture.width = texture.height = 1;
+      texture.rgba = {255, 255, 255, 255};
+      scene.textures.push_back(texture);
+      scene.meshes.push_back(test::makeTexturedQuad());
+      Object quad;
+      quad.mesh = std::uint32_t(scene.meshes.size() - 1);
+      quad.material.baseColorTexture = 0;
+      scene.objects.push_back(quad);
+    }
+    DeferredRenderer renderer(context(), kWidth, kHeight, raycastOptions());
+    renderer.setScene(scene);
+    const std::optional<std::string> refusal = renderer.raycastSurfacesRefusal();
+    ASSERT_TRUE(refusal.has_value()) << (cutout ? "cut-out" : "textured");
+    EXPECT_NE(refusal->find("'cover'"), std::string::npos) << *refusal;
+  }
 }
 
 // A new scene (or pose) drops the BVH: rays through the old tree would find the old triangles.

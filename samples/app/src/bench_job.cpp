@@ -237,6 +237,8 @@ std::string commandLineOf(const BenchOptions& options, const ValidatedBench& ben
     for (float separation : bench.separations) separations.push_back(percentText(separation));
     command += " --methods " + joinedNames(names, ",") + " --separations " + joinedNames(separations, ",");
     if (!options.targetSetting.empty()) command += " --target-setting " + target.name();
+    if (options.hybridSurfaces != frame::HybridSurfaces::Automatic)
+      command += std::string(" --hybrid-surfaces ") + frame::hybridSurfacesName(options.hybridSurfaces);
   }
   command += " --repeat " + std::to_string(options.repeat);
   if (options.supersample != 1) command += " --supersample " + std::to_string(options.supersample);

@@ -111,6 +111,7 @@ void runSweep(vk::Context& context, const BenchOptions& options, const Validated
                                      [](const MethodSetting& s) { return s.method == stereo::StereoMethod::Hybrid; });
   frame::StereoSynthesis synthesis(context, {.width = options.width, .height = options.height,
                                              .renderer = {options.supersample}, .hybrid = anyHybrid,
+                                             .hybridSurfaces = options.hybridSurfaces,
                                              .timedRuns = options.repeat});
   const std::size_t total = bench.scenes.size() * bench.separations.size() * bench.settings.size();
   std::size_t done = 0;

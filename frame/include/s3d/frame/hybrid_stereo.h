@@ -6,6 +6,7 @@
 #include <array>
 #include <cstdint>
 #include <optional>
+#include <string_view>
 #include <vector>
 
 #include "s3d/image.h"
@@ -44,6 +45,19 @@ struct HybridSynthesis {
   HybridTimings timings;
 };
 
+// How the hybrid finds its masked pixels' surfaces. Automatic: by ray casting wherever the eye renderer can shade
+// what rays find (DeferredRenderer::raycastSurfacesRefusal), else rasterized. Raster: always rasterized. RayCast:
+// always by rays (a renderer that cannot is an error naming why).
+enum class HybridSurfaces { Automatic, Raster, RayCast };
+
+// "auto", "raster", "raycast"; and back (nullopt for any other name).
+const char* hybridSurfacesName(HybridSurfaces surfaces);
+std::optional<HybridSurfaces> hybridSurfacesFromName(std::string_view name);
+
+// The options of an eye renderer that can ray-cast (visibility shading, the compute transparent pass) made from
+// the center view's; with Automatic or Raster, the center view's as they are.
+renderer::RendererOptions eyeRendererOptions(const renderer::RendererOptions& center, HybridSurfaces surfaces);
+
 // centerRenderer: its last frame is the center view `center` (its displayColor and linearDepth, in
 // vk::kComputeWrite state, left so, are what the eyes are displaced from, and its shadow maps light the eye
 // renders). eyeRenderer: a renderer of the same size with `scene` set, used for the eye cameras' masked renders (it
@@ -54,6 +68,6 @@ struct HybridSynthesis {
 HybridSynthesis synthesizeHybrid(vk::Context& context, const renderer::DeferredRenderer& centerRenderer,
                                  renderer::DeferredRenderer& eyeRenderer, const renderer::Scene& scene,
                                  const renderer::ViewMatrices& center, const stereo::StereoParameters& parameters,
-                                 int timedRuns = 1);
+                                 int timedRuns = 1, HybridSurfaces surfaces = HybridSurfaces::Automatic);
 
 }  // namespace s3d::frame

@@ -24,6 +24,7 @@ struct StereoSynthesisDescription {
   // Frames will use the hybrid method: its eye renderer is made now, and takes the scene at setScene (else at the
   // first hybrid frame, with that frame's scene).
   bool hybrid = false;
+  HybridSurfaces hybridSurfaces = HybridSurfaces::Automatic;  // how its eye pixels' surfaces are found
   // Forward frames fill their disocclusions from the previous frame's eyes (the frames' parameters say the same).
   bool previousFrameFill = false;
   int timedRuns = 1;  // every GPU part runs once untimed, then this many times; times are medians

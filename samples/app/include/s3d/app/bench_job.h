@@ -63,6 +63,7 @@ struct BenchOptions {
   bool rendererOnly = false;      // center frame and pass timings per scene, no stereo sweep
   // --renderer: how the timed renderers' G-buffer pass shades (Automatic: the device's default).
   renderer::RendererOptions::GBufferShading gbufferShading = renderer::RendererOptions::GBufferShading::Automatic;
+  frame::HybridSurfaces hybridSurfaces = frame::HybridSurfaces::Automatic;  // the hybrid settings' eye pixels
   std::optional<double> bandwidthGBs;  // memory bandwidth for the traffic target; no guess when absent
   std::string targetSetting;      // the setting the targets judge; empty: defaultMethodSetting()
   stereo::StereoParameters stereo;  // zeroParallaxDistance and the weapon push; method and maxSeparation are swept
