@@ -19,7 +19,7 @@
 #include "s3d/vk/timestamps.h"
 
 #include "bench_context.h"
-#include "../scene_cache.h"
+#include "../support/scene_cache.h"
 
 namespace {
 

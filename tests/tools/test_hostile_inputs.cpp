@@ -1,6 +1,6 @@
 // Hostile and careless input files, as a user or an attacker hands them to the loaders: each is refused with one
 // clear error naming the file, in bounded time and memory (the loads run in a child process with a time and an
-// address-space bound, tests/bounded_child.h), never a crash, a hang or a runaway allocation.
+// address-space bound, tests/support/bounded_child.h), never a crash, a hang or a runaway allocation.
 #include <gtest/gtest.h>
 #include <sys/stat.h>
 

@@ -4,7 +4,7 @@
 //
 // Regenerate the stored statistics after a deliberate change of the images (lighting, materials, scenes), in
 // one process so the file is rewritten scene after scene:
-//   S3D_UPDATE_SCENE_STATISTICS=1 build/tests/s3d_tests --gtest_filter='BuiltInScenes/SceneStatistics.*'
+//   S3D_UPDATE_SCENE_STATISTICS=1 build/tests/s3d_tests_frame --gtest_filter='BuiltInScenes/SceneStatistics.*'
 #include <gtest/gtest.h>
 
 #include <array>
@@ -15,7 +15,6 @@
 
 #include <nlohmann/json.hpp>
 
-#include "s3d/io/image_io.h"
 #include "s3d/renderer/deferred_renderer.h"
 #include "s3d/stereo/synthesis.h"
 #include "vulkan_test.h"
@@ -116,10 +115,10 @@ TEST_P(SceneStatistics, CenterViewAndLeftEyeMatchTheStoredStatistics) {
   if (std::getenv(kUpdateVariable) != nullptr) {
     nlohmann::json stored = readStored();
     stored["about"] = "Statistics of each built-in scene's frame 0 (center view, synthesized left eye) at 96x54, "
-                      "checked by tests/test_scene_statistics.cpp. Regenerate: S3D_UPDATE_SCENE_STATISTICS=1 "
-                      "build/tests/s3d_tests --gtest_filter='BuiltInScenes/SceneStatistics.*'";
+                      "checked by tests/frame/test_scene_statistics.cpp. Regenerate: S3D_UPDATE_SCENE_STATISTICS=1 "
+                      "build/tests/s3d_tests_frame --gtest_filter='BuiltInScenes/SceneStatistics.*'";
     stored["scenes"][name] = {{"center", toJson(center)}, {"left", toJson(left)}};
-    io::writeTextFile(kStoredStatistics, formatted(stored));
+    std::ofstream(kStoredStatistics) << formatted(stored);
     GTEST_SKIP() << "stored the statistics of '" << name << "' in " << kStoredStatistics.string();
   }
   const nlohmann::json stored = readStored();

@@ -8,7 +8,7 @@
 #include <random>
 #include <tuple>
 
-#include "s3d/app/render_job.h"
+#include "s3d/frame/layered_reference.h"
 #include "s3d/renderer/deferred_renderer.h"
 #include "s3d/renderer/scene.h"
 #include "s3d/stereo/iterative.h"

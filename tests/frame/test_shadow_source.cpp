@@ -7,9 +7,10 @@
 #include <string>
 #include <vector>
 
-#include "s3d/app/render_job.h"
+#include "s3d/frame/layered_reference.h"
 #include "s3d/renderer/deferred_renderer.h"
 #include "s3d/renderer/scene.h"
+#include "s3d/stereo/stereo.h"
 #include "vulkan_test.h"
 
 namespace s3d::renderer {

@@ -11,7 +11,7 @@
 #include <string>
 
 #include "io_test_support.h"
-#include "s3d/io/image_io.h"
+#include "png_test_support.h"
 #include "s3d/renderer/deferred_renderer.h"
 #include "s3d/renderer/scene_file.h"
 #include "vulkan_test.h"
@@ -331,7 +331,7 @@ TEST_F(GltfRenderTest, TheNormalMapTiltsTheLightingTheWayGltfMeansIt) {
       for (int c = 0; c < 3; ++c) p[c] = std::uint8_t(std::lround((tangentSpaceNormal[c] * 0.5f + 0.5f) * 255.0f));
       p[3] = 255;
     }
-    io::writePng(scratch.path() / "textured_quad_normal.png", normalMap);
+    test::writePng(scratch.path() / "textured_quad_normal.png", normalMap);
     return float(render(file).at(21, 21)[0]);
   };
   const float flat = redWithNormal({0.0f, 0.0f, 1.0f});

@@ -1,13 +1,9 @@
-// The HUD crosshair: drawn where asked, clipped at the borders, displaced per eye by its parallax; and its
-// entry in the render job's report.json.
+// The HUD crosshair: drawn where asked, clipped at the borders, displaced per eye by its parallax.
 #include <gtest/gtest.h>
 
 #include <cstdint>
 #include <cstdlib>
 
-#include <nlohmann/json.hpp>
-
-#include "s3d/app/render_job.h"
 #include "s3d/hud/crosshair.h"
 
 namespace s3d::hud {
@@ -111,15 +107,6 @@ TEST(CrosshairEyeOffset, EqualsTheHandValue) {
   const stereo::StereoParameters parameters{0.02f, 1.0f};
   EXPECT_NEAR(crosshairEyeOffsetPx(parameters, 8.0f, 1280, stereo::Eye::Left), -22.4f, 1e-4f);
   EXPECT_NEAR(crosshairEyeOffsetPx(parameters, 8.0f, 1280, stereo::Eye::Right), 22.4f, 1e-4f);
-}
-
-TEST(CrosshairReportJson, HasDepthHitWorldAndParallax) {
-  app::RenderReport report;
-  report.crosshair = {1.75f, true, 22.4f};
-  const nlohmann::json json = app::toJson(report).at("crosshair");
-  EXPECT_EQ(json.at("depth").get<double>(), 1.75);  // exact: tidy() writes the float's shortest decimal
-  EXPECT_EQ(json.at("hitWorld").get<bool>(), true);
-  EXPECT_EQ(json.at("parallaxPx").get<double>(), 22.4);
 }
 
 }  // namespace

@@ -1,7 +1,7 @@
 // The glTF files of Debian's assimp-testmodels (/usr/share/assimp/models/glTF2: Khronos sample models,
 // glTF-Asset-Generator cases and assimp's failure cases): each loads, or is refused with one clear error naming
 // the file (std::runtime_error or std::invalid_argument, starting "glTF file '<path>'"), never a crash or a hang
-// (each load runs in a bounded child process, tests/bounded_child.h). The expected outcome of every file is
+// (each load runs in a bounded child process, tests/support/bounded_child.h). The expected outcome of every file is
 // listed, so a change of behaviour fails its case. Skipped when the package is absent.
 #include <gtest/gtest.h>
 

@@ -9,14 +9,14 @@
 #include <string>
 #include <vector>
 
-#include "s3d/app/eye_comparison.h"
 #include "s3d/frame/hybrid_stereo.h"
-#include "s3d/app/render_job.h"
+#include "s3d/frame/layered_reference.h"
 #include "s3d/renderer/scene.h"
+#include "s3d/stereo/metrics.h"
 #include "s3d/stereo/synthesis.h"
 #include "vulkan_test.h"
 
-namespace s3d::app {
+namespace s3d::frame {
 namespace {
 
 class HybridRender : public test::VulkanTest {};
@@ -228,7 +228,8 @@ TEST_F(HybridRender, TheDefaultBudgetMasksTheDisocclusionsOfTheCourtyard) {
   for (const stereo::Eye eye : {stereo::Eye::Left, stereo::Eye::Right}) {
     (void)s.centerRenderer->render(frame::referenceEyeView(s.scene, s.center, eye, parameters));
     const std::vector<std::uint8_t> unseen =
-        disocclusionMaskFor(s.centerRenderer->readLinearDepth(), centerDepth, parameters, eye);
+        stereo::disocclusionMask(s.centerRenderer->readLinearDepth(), centerDepth, parameters.maxSeparation,
+                                 parameters.zeroParallaxDistance, eye);
     const std::vector<std::uint8_t>& mask = hybrid.masks[eye == stereo::Eye::Left ? 0 : 1];
     std::uint64_t disoccluded = 0, covered = 0;
     for (std::size_t i = 0; i < unseen.size(); ++i)
@@ -242,4 +243,4 @@ TEST_F(HybridRender, TheDefaultBudgetMasksTheDisocclusionsOfTheCourtyard) {
 }
 
 }  // namespace
-}  // namespace s3d::app
+}  // namespace s3d::frame

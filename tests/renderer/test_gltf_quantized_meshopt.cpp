@@ -1,5 +1,5 @@
 // KHR_mesh_quantization (integer attributes) and EXT_meshopt_compression (views decoded with meshoptimizer):
-// files written here from tests/gltf_test_documents.h's grid load as the same triangles as its plain float
+// files written here from tests/support/gltf_test_documents.h's grid load as the same triangles as its plain float
 // variant, within the step each encoding keeps; broken streams and forbidden layouts are clear errors.
 #include <gtest/gtest.h>
 
