@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "s3d/app/eye_comparison.h"
+#include "s3d/stereo/eye_comparison.h"
 #include "s3d/frame/hybrid_stereo.h"
 #include "s3d/app/render_job.h"
 #include "s3d/renderer/scene.h"

@@ -196,8 +196,8 @@ class RenderCommand final : public Command {
   bool displayGiven() const { return subcommand->count("--display") > 0 || !profile_.load.empty(); }
 
   // Before the Vulkan start-up: the host's share of the estimate (all of it on the CPU device).
-  void requireHostMemory(const app::MemoryEstimate& estimate) const {
-    app::requireHostMemory(estimate, options_.memoryLimitBytes, contextOptions_.device == "cpu");
+  void requireHostMemory(const frame::MemoryEstimate& estimate) const {
+    frame::requireHostMemory(estimate, options_.memoryLimitBytes, contextOptions_.device == "cpu");
   }
 
   int runViews() {
