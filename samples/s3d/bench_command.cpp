@@ -12,10 +12,10 @@
 #include <string>
 
 #include "cli_support.h"
-#include "s3d/io/output_transaction.h"
 #include "s3d/app/bench_job.h"
 #include "s3d/app/render_job.h"
 #include "s3d/app/sequence_bench.h"
+#include "s3d/io/output_transaction.h"
 #include "s3d/renderer/scene.h"
 
 namespace s3d::cli {

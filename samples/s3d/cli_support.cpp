@@ -10,9 +10,9 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "s3d/number_text.h"
-#include "s3d/frame/memory_budget.h"
 #include "s3d/comfort/display_profile.h"
+#include "s3d/frame/memory_budget.h"
+#include "s3d/number_text.h"
 #include "s3d/renderer/scene_file.h"
 
 namespace s3d::cli {

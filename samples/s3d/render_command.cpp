@@ -8,10 +8,10 @@
 
 #include "cli_support.h"
 #include "profile_options.h"
-#include "s3d/io/output_transaction.h"
 #include "s3d/app/render_job.h"
 #include "s3d/app/sequence_job.h"
 #include "s3d/app/views_job.h"
+#include "s3d/io/output_transaction.h"
 #include "s3d/renderer/scene.h"
 #include "s3d/stereo/output_formats.h"
 

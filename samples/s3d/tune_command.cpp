@@ -6,8 +6,8 @@
 
 #include "cli_support.h"
 #include "profile_options.h"
-#include "s3d/frame/memory_budget.h"
 #include "s3d/app/render_job.h"
+#include "s3d/frame/memory_budget.h"
 #include "s3d/renderer/scene.h"
 #include "s3d/tune/tune_window.h"
 

@@ -13,11 +13,11 @@
 
 #include "s3d/app/comfort_json.h"
 #include "s3d/app/frame_rules.h"
-#include "s3d/json_document.h"
 #include "s3d/gpu/linear_depth.h"
 #include "s3d/io/depth_io.h"
 #include "s3d/io/image_io.h"
 #include "s3d/io/output_transaction.h"
+#include "s3d/json_document.h"
 #include "s3d/number_text.h"
 #include "s3d/stereo/sanitize.h"
 #include "s3d/stereo/srgb.h"

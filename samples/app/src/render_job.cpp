@@ -184,7 +184,7 @@ RenderReport runRenderJob(vk::Context& context, const RenderJobOptions& options)
   // Without negative parallax allowed, the weapon push reaches at least the screen plane
   // (comfort::pushWeaponBehindScreen) and, once the frame's depth is known, the zero-parallax distance is
   // held at its nearest surface: every pixel gets zero or positive parallax.
-  // (frame_rules.h, shared with `s3d tune`)
+  // (s3d/comfort/budget_frame.h, shared with `s3d tune`)
   const std::optional<glm::vec2> weaponDepths = renderer::firstPersonDepthRange(job.scene);
   stereo::StereoParameters parameters =  // the zero-parallax distance clamped
       comfort::pushWeaponUnlessNegativeParallaxAllowed(job.stereo, weaponDepths, options.allowNegativeParallax);
@@ -343,7 +343,7 @@ RenderReport runRenderJob(vk::Context& context, const RenderJobOptions& options)
   report.disparityMap.unresolvedPixels = {leftEye.rendered.unresolvedPixels, rightEye.rendered.unresolvedPixels};
 
   // 5. Synthesized vs reference over the full frame with a guard band, else without the cropped strips.
-  // (region masks and comparison: eye_comparison.h, shared with s3d bench)
+  // (region masks and comparison: s3d/stereo/eye_comparison.h, shared with s3d bench)
   const std::vector<std::uint8_t> halo = stereo::haloMaskFor(centerStereoDepth, parameters);
   for (auto [eyeError, eye, eyeHdr, reference, side] :
        {std::tuple{&report.left, &synthesized.left, &synthesizedHdr.left, &leftEye, stereo::Eye::Left},

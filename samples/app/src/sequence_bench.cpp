@@ -5,8 +5,8 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "s3d/app/report_json.h"
 #include "s3d/app/render_job.h"
+#include "s3d/app/report_json.h"
 #include "s3d/io/image_io.h"
 #include "s3d/renderer/scene_file.h"
 #include "s3d/stereo/synthesis.h"

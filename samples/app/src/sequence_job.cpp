@@ -8,14 +8,14 @@
 #include <stdexcept>
 
 #include "s3d/app/comfort_json.h"
-#include "s3d/app/report_json.h"
-#include "s3d/frame/memory_budget.h"
 #include "s3d/app/render_job.h"
+#include "s3d/app/report_json.h"
 #include "s3d/app/scene_world.h"
 #include "s3d/comfort/crosshair.h"
 #include "s3d/comfort/disparity_budget_controller.h"
 #include "s3d/comfort/world_queries.h"
 #include "s3d/frame/layered_reference.h"
+#include "s3d/frame/memory_budget.h"
 #include "s3d/frame/stereo_synthesis.h"
 #include "s3d/io/image_io.h"
 #include "s3d/renderer/deferred_renderer.h"

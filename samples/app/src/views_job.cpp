@@ -5,12 +5,12 @@
 
 #include "s3d/app/comfort_json.h"
 #include "s3d/app/report_json.h"
-#include "s3d/stereo/eye_views_reference.h"
 #include "s3d/frame/memory_budget.h"
 #include "s3d/io/image_io.h"
 #include "s3d/renderer/deferred_renderer.h"
 #include "s3d/renderer/scene_animation.h"
 #include "s3d/renderer/scene_file.h"
+#include "s3d/stereo/eye_views_reference.h"
 
 namespace s3d::app {
 ViewsReport runViewsJob(vk::Context& context, const ViewsJobOptions& options) {

@@ -8,9 +8,9 @@
 #include "s3d/app/frame_rules.h"
 #include "s3d/app/render_job.h"
 #include "s3d/app/scene_world.h"
-#include "s3d/comfort/crosshair.h"
 #include "s3d/comfort/comfort_report.h"
 #include "s3d/comfort/comfort_views.h"
+#include "s3d/comfort/crosshair.h"
 #include "s3d/frame/layered_reference.h"
 #include "s3d/frame/stereo_synthesis.h"
 #include "s3d/stereo/sanitize.h"
@@ -131,8 +131,8 @@ TuneFrame TuneSession::renderFrame(TuneState& state, const FrameInput& input, fl
       parameters.zeroParallaxDistance, scene.camera.nearPlane, scene.camera.farPlane);
   parameters.zeroParallaxDistance = clamped.zeroParallaxDistance;
   numbers.warning = clamped.warning;
-  // The no-negative-parallax rules as runRenderJob applies them (frame_rules.h): the weapon pushed to the
-  // screen plane before the center view, the plane held at the frame's nearest depth after it.
+  // The no-negative-parallax rules as runRenderJob applies them (s3d/comfort/budget_frame.h): the weapon pushed
+  // to the screen plane before the center view, the plane held at the frame's nearest depth after it.
   const bool allowNegativeParallax = profile.allowNegativeParallax;
   const std::optional<glm::vec2> weaponDepths = renderer::firstPersonDepthRange(scene);
   parameters = comfort::pushWeaponUnlessNegativeParallaxAllowed(parameters, weaponDepths, allowNegativeParallax);

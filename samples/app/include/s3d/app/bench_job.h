@@ -73,7 +73,7 @@ struct BenchOptions {
   std::optional<std::uint64_t> memoryLimitBytes;  // --memory-limit; the machine's available memory in any case
 };
 
-// A scene's frame at the largest separation swept (its guard band), as `s3d render` counts it (memory_budget.h).
+// A scene's frame at the largest separation swept (its guard band), as `s3d render` counts it (s3d/frame/memory_budget.h).
 frame::MemoryEstimate benchMemoryEstimate(const BenchOptions& options);
 
 struct BenchRow {
@@ -88,7 +88,7 @@ struct BenchRow {
   std::optional<double> disparityMapGpuMs;    // the nonlinear mapping of that frame's depth in place (median)
   std::optional<double> referenceEyeGpuMs;  // the left reference eye at this separation (median, likewise)
   // The untimed eye and center frames run right before those two and this setting were timed
-  // (interleaved_timing.h): host milliseconds, and whether they had reached a steady speed (false: the warm-up's
+  // (s3d/stereo/interleaved_timing.h): host milliseconds, and whether they had reached a steady speed (false: the warm-up's
   // maximum ended it; always on a CPU device, whose warm-up is its minimum).
   double frameWarmUpMs = 0.0;
   bool frameWarmUpSettled = false;

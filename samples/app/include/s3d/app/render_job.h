@@ -12,15 +12,15 @@
 
 #include <nlohmann/json.hpp>
 
-#include "s3d/app/report_json.h"
 #include "s3d/app/frame_rules.h"
+#include "s3d/app/report_json.h"
 #include "s3d/comfort/budget_frame.h"
-#include "s3d/frame/hybrid_stereo.h"
-#include "s3d/frame/memory_budget.h"
-#include "s3d/frame/layered_reference.h"
 #include "s3d/comfort/comfort_profile.h"
 #include "s3d/comfort/comfort_report.h"
 #include "s3d/comfort/display_profile.h"
+#include "s3d/frame/hybrid_stereo.h"
+#include "s3d/frame/layered_reference.h"
+#include "s3d/frame/memory_budget.h"
 #include "s3d/renderer/deferred_renderer.h"
 #include "s3d/stereo/metrics.h"
 #include "s3d/stereo/output_formats.h"
@@ -68,7 +68,8 @@ struct RenderJobOptions {
   std::uint32_t supersample = 1;  // renderer anti-aliasing, 1..4 (center view and reference eyes alike)
   bool reversedZ = false;         // renderer::RendererOptions::reversedZ for every view
   // OneDegree: maxSeparation and the zero-parallax distance are chosen from the frame's depth range so every
-  // pixel fits the display's 1-degree budget (s3d/comfort/budget_frame.h); the library default is off (`s3d` turns it on).
+  // pixel fits the display's 1-degree budget (s3d/comfort/budget_frame.h); the library default is off (`s3d`
+  // turns it on).
   comfort::DisparityBudgetRule disparityBudget = comfort::DisparityBudgetRule::Off;
   // The game HUD (panels and crosshair) of the built-in scenes; Auto: drawn on them, left out of glTF files.
   HudMode hud = HudMode::Auto;
@@ -136,7 +137,7 @@ struct RenderReport {
 // folder path that exists but is not a folder. Needs no Vulkan: call it before creating a context.
 void validateRenderJobOptions(const RenderJobOptions& options);
 
-// The run's memory (memory_budget.h), with the widest guard band the options allow: the separation's, the
+// The run's memory (s3d/frame/memory_budget.h), with the widest guard band the options allow: the separation's, the
 // disparity budget's largest on the display, or half the width a side with negative parallax allowed.
 frame::MemoryEstimate renderJobMemoryEstimate(const RenderJobOptions& options);
 

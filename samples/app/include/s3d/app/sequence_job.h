@@ -12,10 +12,10 @@
 #include <nlohmann/json.hpp>
 
 #include "s3d/comfort/budget_frame.h"
-#include "s3d/frame/memory_budget.h"
 #include "s3d/comfort/comfort_profile.h"
 #include "s3d/comfort/comfort_report.h"
 #include "s3d/comfort/zero_parallax_control.h"
+#include "s3d/frame/memory_budget.h"
 #include "s3d/stereo/guard_band.h"
 #include "s3d/stereo/stereo.h"
 #include "s3d/stereo/temporal.h"
