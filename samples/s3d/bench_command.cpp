@@ -12,10 +12,10 @@
 #include <string>
 
 #include "cli_support.h"
-#include "s3d/io/output_transaction.h"
 #include "s3d/app/bench_job.h"
 #include "s3d/app/render_job.h"
 #include "s3d/app/sequence_bench.h"
+#include "s3d/io/output_transaction.h"
 #include "s3d/renderer/scene.h"
 
 namespace s3d::cli {
@@ -133,7 +133,7 @@ class BenchCommand final : public Command {
       files.writeInFolder(options_.outputFolder, {"bench_speed_vs_error.svg", "bench_time_over_eye.svg"});
     files.write(resultsMarkdown_, "--results-md");
     files.check();
-    app::requireHostMemory(app::benchMemoryEstimate(options_), options_.memoryLimitBytes, contextOptions_.device == "cpu");
+    frame::requireHostMemory(app::benchMemoryEstimate(options_), options_.memoryLimitBytes, contextOptions_.device == "cpu");
     vk::Context context(contextOptions_);
     std::cerr << "s3d bench: " << context.deviceName() << " (" << (context.isCpuDevice() ? "cpu" : "gpu") << "), "
               << options_.width << "x" << options_.height << '\n';
@@ -189,7 +189,7 @@ class BenchCommand final : public Command {
     RunFiles files;  // app::runSequenceBench's files
     files.writeInFolder(options_.outputFolder, {"sequence_bench.json", "sequence_bench.md"});
     files.check();
-    app::requireHostMemory(app::sequenceBenchMemoryEstimate(sequence), options_.memoryLimitBytes,
+    frame::requireHostMemory(app::sequenceBenchMemoryEstimate(sequence), options_.memoryLimitBytes,
                            contextOptions_.device == "cpu");
     vk::Context context(contextOptions_);
     std::cerr << "s3d bench --sequence: " << context.deviceName() << ", " << sequence.width << "x" << sequence.height << '\n';

@@ -10,9 +10,9 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "s3d/number_text.h"
-#include "s3d/app/memory_budget.h"
 #include "s3d/comfort/display_profile.h"
+#include "s3d/frame/memory_budget.h"
+#include "s3d/number_text.h"
 #include "s3d/renderer/scene_file.h"
 
 namespace s3d::cli {
@@ -132,12 +132,12 @@ void rejectGiven(const CLI::App& command, const std::vector<std::string>& option
 void addMemoryLimitOption(CLI::App& command, std::optional<std::uint64_t>& limit) {
   command
       .add_option_function<std::string>(
-          "--memory-limit", [&limit](const std::string& text) { limit = app::parseByteSize(text); },
+          "--memory-limit", [&limit](const std::string& text) { limit = frame::parseByteSize(text); },
           "Most memory the run may plan for (e.g. 4GiB, 512MiB): its estimate (images x bytes per pixel) is checked "
           "against this and the machine's available memory before anything is allocated")
       ->check(
           [](const std::string& text) -> std::string {
-            return app::parseByteSize(text) ? std::string()
+            return frame::parseByteSize(text) ? std::string()
                                             : "expected a size such as 4GiB, 1.5G or 512MiB (got '" + text + "')";
           },
           "SIZE");

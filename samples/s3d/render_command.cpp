@@ -8,10 +8,10 @@
 
 #include "cli_support.h"
 #include "profile_options.h"
-#include "s3d/io/output_transaction.h"
 #include "s3d/app/render_job.h"
 #include "s3d/app/sequence_job.h"
 #include "s3d/app/views_job.h"
+#include "s3d/io/output_transaction.h"
 #include "s3d/renderer/scene.h"
 #include "s3d/stereo/output_formats.h"
 
@@ -196,8 +196,8 @@ class RenderCommand final : public Command {
   bool displayGiven() const { return subcommand->count("--display") > 0 || !profile_.load.empty(); }
 
   // Before the Vulkan start-up: the host's share of the estimate (all of it on the CPU device).
-  void requireHostMemory(const app::MemoryEstimate& estimate) const {
-    app::requireHostMemory(estimate, options_.memoryLimitBytes, contextOptions_.device == "cpu");
+  void requireHostMemory(const frame::MemoryEstimate& estimate) const {
+    frame::requireHostMemory(estimate, options_.memoryLimitBytes, contextOptions_.device == "cpu");
   }
 
   int runViews() {

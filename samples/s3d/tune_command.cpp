@@ -6,8 +6,8 @@
 
 #include "cli_support.h"
 #include "profile_options.h"
-#include "s3d/app/memory_budget.h"
 #include "s3d/app/render_job.h"
+#include "s3d/frame/memory_budget.h"
 #include "s3d/renderer/scene.h"
 #include "s3d/tune/tune_window.h"
 
@@ -78,7 +78,7 @@ class TuneCommand final : public Command {
     StereoOptions::rejectSeparationUnderBudget(*subcommand, profile_.disparityBudget);
     // The view's frame (the edges cropped, no guard band) before the window and the Vulkan start-up; the panel
     // can switch to the hybrid method at any time, so its eye renderer is counted.
-    app::requireHostMemory(app::renderMemoryEstimate(options_.width, options_.height, options_.width,
+    frame::requireHostMemory(frame::renderMemoryEstimate(options_.width, options_.height, options_.width,
                                                      options_.state.supersample, true),
                            memoryLimit_, options_.context.device == "cpu");
     options_.state.hud = app::parseHudMode(hud_);

@@ -98,7 +98,7 @@ TEST_F(BenchJobTest, TinySweepHasOneRowPerSettingWithFiniteErrorAndPositiveTimes
   for (const BenchRow& row : report.rows) {
     EXPECT_EQ(row.scene, "courtyard");
     EXPECT_FLOAT_EQ(row.maxSeparation, 0.02f);
-    for (const EyeError* eye : {&row.left, &row.right})
+    for (const stereo::EyeError* eye : {&row.left, &row.right})
       for (const stereo::ErrorStats* stats : {&eye->display, &eye->halo, &eye->rest, &eye->disocclusion})
         EXPECT_TRUE(std::isfinite(stats->psnrDb)) << row.setting.name();
     EXPECT_GT(row.left.display.pixelCount, 0u);
@@ -331,7 +331,7 @@ TEST(BenchTraffic, SeedReadsItsTapsAndTwoColorTexelsPerInteriorPixelAndEye) {
   stereo::StereoParameters parameters;  // maxSeparation 0.02: 2 columns cropped on each side of 100
   parameters.method = stereo::StereoMethod::Seed;
   parameters.kernel = stereo::StereoKernel::PerPixel;
-  const StereoTraffic traffic = stereoPassTraffic(parameters, 100, 10);
+  const stereo::StereoTraffic traffic = stereoPassTraffic(parameters, 100, 10);
   EXPECT_FALSE(traffic.rowTiles);
   const std::uint64_t interior = 96 * 10;
   EXPECT_EQ(traffic.bytesRead, 2 * interior * (3 + 2) * 4);
@@ -345,7 +345,7 @@ TEST(BenchTraffic, RowTilesReadEachTilesRunAndMarginOnce) {
   stereo::StereoParameters parameters;  // seed, maxSeparation 0.02 of 600: 12 px, margin 14, 12 columns cropped
   EXPECT_FALSE(stereoPassTraffic(parameters, 600, 10).rowTiles);  // Auto: per pixel
   parameters.kernel = stereo::StereoKernel::RowTiles;
-  const StereoTraffic traffic = stereoPassTraffic(parameters, 600, 10);
+  const stereo::StereoTraffic traffic = stereoPassTraffic(parameters, 600, 10);
   EXPECT_TRUE(traffic.rowTiles);  // the margin fits
   // Tiles [0, 256), [256, 512), [512, 600) with interiors [12, 256), [256, 512), [512, 588).
   const std::uint64_t columns = (270 - 0) + (526 - 242) + (600 - 498);

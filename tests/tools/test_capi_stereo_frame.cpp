@@ -8,7 +8,7 @@
 #include <span>
 
 #include "capi_test_context.h"
-#include "s3d/app/views_job.h"
+#include "s3d/stereo/eye_views_reference.h"
 #include "s3d/renderer/deferred_renderer.h"
 #include "s3d/renderer/scene.h"
 #include "s3d/s3d.h"
@@ -129,7 +129,7 @@ TEST_P(CApiStereoFrame, AHostsEyesAreTheRenderJobsEyes) {
 
 TEST_P(CApiStereoFrame, WithEyeViewsTheEyesAreTheViewsJobsSynthesisOfTheSameCenter) {
   // The TV pair's center (random texels over blocks of constant depth from 1 m to 50 m and sky), each eye through
-  // s3d_stereo_frame_record with the views and through the views job's synthesis (app::synthesizeEyeForView) on
+  // s3d_stereo_frame_record with the views and through the CPU synthesis (stereo::synthesizeEyeForView) on
   // the shared center view the stereo frame needs.
   const SyntheticView view = makeBlockView(kWidth, kHeight, 5, 1.0f, 24, 9, false);
   const ImageRGBA8& color = view.color;
@@ -153,7 +153,7 @@ TEST_P(CApiStereoFrame, WithEyeViewsTheEyesAreTheViewsJobsSynthesisOfTheSameCent
     return true;
   };
   for (int eye = 0; eye < 2; ++eye) {
-    const ImageRGBA8 expected = app::synthesizeEyeForView(color, depth, views, center, eye);
+    const ImageRGBA8 expected = stereo::synthesizeEyeForView(color, depth, views, center, eye);
     const ImageRGBA8& got = eye == 0 ? host.left : host.right;
     int largestDifference = 0;
     std::size_t compared = 0;

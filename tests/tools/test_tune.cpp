@@ -10,6 +10,7 @@
 #include <unistd.h>
 
 #include "s3d/app/render_job.h"
+#include "s3d/comfort/comfort_views.h"
 #include "s3d/io/image_io.h"
 #include "s3d/stereo/output_formats.h"
 #include "s3d/stereo/sanitize.h"
@@ -205,7 +206,7 @@ DepthImage depthRow(std::initializer_list<float> depths) {
 
 TEST(TuneViews, ParallaxHeatMapIsWhiteOnTheScreenPlaneBlueAtInfinityRedInFront) {
   stereo::StereoParameters parameters;  // zpp 1 m, maxSeparation 0.02
-  const ImageRGBA8 map = makeParallaxHeatMap(depthRow({1.0f, INFINITY, 0.5f, 0.25f}), parameters);
+  const ImageRGBA8 map = comfort::makeParallaxHeatMap(depthRow({1.0f, INFINITY, 0.5f, 0.25f}), parameters);
   auto rgb = [&](std::uint32_t x) { return std::array<int, 3>{map.at(x, 0)[0], map.at(x, 0)[1], map.at(x, 0)[2]}; };
   EXPECT_EQ(rgb(0), (std::array<int, 3>{255, 255, 255}));
   EXPECT_EQ(rgb(1), (std::array<int, 3>{0, 0, 255}));
@@ -276,9 +277,9 @@ TEST(TuneViews, ComfortOverlayMarksWindowViolationsAndTheOneDegreeRuleInTheirOwn
     return expected;
   };
   auto rgb = [&](std::uint32_t x) { return std::vector<int>(overlay.at(x, 0), overlay.at(x, 0) + 3); };
-  EXPECT_EQ(rgb(0), marked(0, kWindowViolationColor));
-  EXPECT_EQ(rgb(3), marked(3, kBeyondLimitColor));
-  EXPECT_EQ(rgb(5), marked(5, kBeyondLimitColor));
+  EXPECT_EQ(rgb(0), marked(0, comfort::kWindowViolationColor));
+  EXPECT_EQ(rgb(3), marked(3, comfort::kBeyondLimitColor));
+  EXPECT_EQ(rgb(5), marked(5, comfort::kBeyondLimitColor));
   for (std::uint32_t x : {1u, 2u, 4u, 6u, 7u}) EXPECT_EQ(rgb(x), std::vector<int>(anaglyph.at(x, 0), anaglyph.at(x, 0) + 3)) << x;
 }
 

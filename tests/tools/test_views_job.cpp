@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "s3d/app/views_job.h"
+#include "s3d/stereo/eye_views_reference.h"
 #include "vulkan_test.h"
 
 namespace s3d::app {

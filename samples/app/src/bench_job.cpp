@@ -289,7 +289,7 @@ MethodSetting defaultMethodSetting() {
 
 void validateBenchOptions(const BenchOptions& options) { (void)validateBench(options); }
 
-MemoryEstimate benchMemoryEstimate(const BenchOptions& options) {
+frame::MemoryEstimate benchMemoryEstimate(const BenchOptions& options) {
   double separation = 0.0;
   if (!options.rendererOnly)
     for (double percent : options.separationsPercent) separation = std::max(separation, percent / 100.0);
@@ -298,13 +298,13 @@ MemoryEstimate benchMemoryEstimate(const BenchOptions& options) {
   if (!options.rendererOnly)
     for (const MethodSetting& setting : parseMethodSettings(options.methods))
       hybrid = hybrid || setting.method == stereo::StereoMethod::Hybrid;
-  return renderMemoryEstimate(options.width, options.height, options.width + 2 * band, options.supersample, hybrid);
+  return frame::renderMemoryEstimate(options.width, options.height, options.width + 2 * band, options.supersample, hybrid);
 }
 
 BenchReport runBench(vk::Context& context, const BenchOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   const ValidatedBench bench = validateBench(options);
-  requireMemory(context, benchMemoryEstimate(options), options.memoryLimitBytes);
+  frame::requireMemory(context, benchMemoryEstimate(options), options.memoryLimitBytes);
   BenchReport report;
   report.deviceName = context.deviceName();
   report.deviceKind = context.isCpuDevice() ? "cpu" : "gpu";

@@ -13,8 +13,8 @@
 
 namespace s3d::app::bench_detail {
 
-using detail::medianOf;
-using detail::timeFrames;
+using frame::medianOf;
+using frame::timeFrames;
 
 void runRendererTimings(vk::Context& context, const BenchOptions& options, const ValidatedBench& bench,
                         BenchReport& report) {
@@ -52,7 +52,7 @@ void runRendererTimings(vk::Context& context, const BenchOptions& options, const
     }
     report.rendererRows.push_back(
         {sceneLabel(sceneName), renderer::trianglesDrawn(scene), frameMs, std::move(passes), band.columns, medianOf(wideRuns), medianOf(ratios),
-         context.isCpuDevice() ? std::optional(detail::processCpuMsPerFrame(deferred, center, options.repeat)) : std::nullopt});
+         context.isCpuDevice() ? std::optional(frame::processCpuMsPerFrame(deferred, center, options.repeat)) : std::nullopt});
     if (done == 0) {  // the masked-render cost scaling, on the first scene
       if (options.progress) options.progress({done, bench.scenes.size(), sceneName + " masked frames"});
       (void)deferred.render(center);  // its depth picks the masks

@@ -9,7 +9,6 @@
 
 #include "bench_internal.h"
 #include "bench_text.h"
-#include "s3d/app/interleaved_timing.h"
 #include "s3d/app/render_job.h"
 #include "s3d/frame/layered_reference.h"
 #include "s3d/frame/stereo_synthesis.h"
@@ -17,6 +16,7 @@
 #include "s3d/renderer/scene_file.h"
 #include "s3d/stereo/depth_range_pass.h"
 #include "s3d/stereo/disparity_map_pass.h"
+#include "s3d/stereo/interleaved_timing.h"
 #include "s3d/stereo/synthesis.h"
 
 namespace s3d::app::bench_detail {
@@ -72,7 +72,7 @@ std::pair<std::optional<double>, std::optional<double>> timeDepthPasses(vk::Cont
 // times are the caller's.
 BenchRow settingRow(const std::string& sceneName, const MethodSetting& setting,
                     const stereo::StereoParameters& parameters, const BenchOptions& options, bool cpuDevice,
-                    const frame::SynthesizedEyes& synthesis, const InterleavedTiming& frames,
+                    const frame::SynthesizedEyes& synthesis, const stereo::InterleavedTiming& frames,
                     const EyeReferences& eyes, const stereo::RegionMasks& left, const stereo::RegionMasks& right) {
   const stereo::StereoParameters methodParameters = setting.applyTo(parameters);
   BenchRow row;
@@ -87,8 +87,8 @@ BenchRow settingRow(const std::string& sceneName, const MethodSetting& setting,
   row.centerFrameGpuMs = frames.medians[1];
   row.frameWarmUpMs = frames.warmUpMs;
   row.frameWarmUpSettled = frames.settled;
-  row.left = compareEye(synthesis.eyes.left, eyes.leftColor, row.cropColumns, left);
-  row.right = compareEye(synthesis.eyes.right, eyes.rightColor, row.cropColumns, right);
+  row.left = stereo::compareEye(synthesis.eyes.left, eyes.leftColor, row.cropColumns, left);
+  row.right = stereo::compareEye(synthesis.eyes.right, eyes.rightColor, row.cropColumns, right);
   row.filledLeft = synthesis.filledLeft;
   row.filledRight = synthesis.filledRight;
   row.traffic = stereoPassTraffic(methodParameters, options.width, options.height, cpuDevice);
@@ -146,7 +146,7 @@ void runSweep(vk::Context& context, const BenchOptions& options, const Validated
     std::optional<double> depthReductionGpuMs, disparityMapGpuMs;
     // A CPU device has no clocks to bring back, and other load on the machine would keep its frame times from
     // settling: its warm-up is the minimum.
-    WarmUp frameWarmUp;
+    stereo::WarmUp frameWarmUp;
     if (context.isCpuDevice()) frameWarmUp.maximum = frameWarmUp.minimum;
 
     for (std::size_t s = 0; s < bench.separations.size(); ++s) {
@@ -161,11 +161,11 @@ void runSweep(vk::Context& context, const BenchOptions& options, const Validated
       // and at a low duty cycle, and takes most of a second of frames to raise them: on an H200 an eye timed in
       // the first 500 ms of a scene read twice the center frame timed after it, and a hybrid setting late in a
       // scene's sweep read 1.8x its time.
-      std::vector<InterleavedTiming> frames;
+      std::vector<stereo::InterleavedTiming> frames;
       std::vector<frame::SynthesizedEyes> syntheses;
       for (const MethodSetting& setting : bench.settings) {
         progress(sceneName + " " + setting.name() + " sep " + percentText(parameters.maxSeparation) + "%");
-        frames.push_back(timeInterleaved(
+        frames.push_back(stereo::timeInterleaved(
             {[&] { return deferred.render(leftEye).totalGpuMs; }, [&] { return deferred.render(center).totalGpuMs; }},
             options.repeat, frameWarmUp));  // ends on the center frame: the setting's input
         if (s == 0 && frames.size() == 1) {
@@ -177,11 +177,11 @@ void runSweep(vk::Context& context, const BenchOptions& options, const Validated
         syntheses.push_back(synthesis.synthesize({deferred, scene, center, setting.applyTo(parameters)}));
         ++done;
       }
-      const std::vector<std::uint8_t> halo = haloMaskFor(centerDepth, parameters);
-      const stereo::RegionMasks left{halo, disocclusionMaskFor(eyes.leftDepth, centerDepth, parameters, stereo::Eye::Left),
+      const std::vector<std::uint8_t> halo = stereo::haloMaskFor(centerDepth, parameters);
+      const stereo::RegionMasks left{halo, stereo::disocclusionMaskFor(eyes.leftDepth, centerDepth, parameters, stereo::Eye::Left),
                                      eyes.leftTransparent, eyes.leftFoliage};
       const stereo::RegionMasks right{halo,
-                                      disocclusionMaskFor(eyes.rightDepth, centerDepth, parameters, stereo::Eye::Right),
+                                      stereo::disocclusionMaskFor(eyes.rightDepth, centerDepth, parameters, stereo::Eye::Right),
                                       eyes.rightTransparent, eyes.rightFoliage};
       for (std::size_t i = 0; i < bench.settings.size(); ++i) {
         BenchRow row = settingRow(sceneName, bench.settings[i], parameters, options, context.isCpuDevice(), syntheses[i],

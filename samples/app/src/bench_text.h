@@ -5,7 +5,7 @@
 #include <optional>
 #include <string>
 
-#include "s3d/app/eye_comparison.h"
+#include "s3d/app/report_json.h"
 
 namespace s3d::app::bench_text {
 

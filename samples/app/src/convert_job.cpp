@@ -13,11 +13,11 @@
 
 #include "s3d/app/comfort_json.h"
 #include "s3d/app/frame_rules.h"
-#include "s3d/json_document.h"
 #include "s3d/gpu/linear_depth.h"
 #include "s3d/io/depth_io.h"
 #include "s3d/io/image_io.h"
 #include "s3d/io/output_transaction.h"
+#include "s3d/json_document.h"
 #include "s3d/number_text.h"
 #include "s3d/stereo/sanitize.h"
 #include "s3d/stereo/srgb.h"
@@ -273,8 +273,8 @@ ConvertReport runConvertJob(vk::Context& context, const ConvertJobOptions& optio
   requireFile(options.color, "color");
   const io::ImageSize size = io::readImageSize(options.color);
   requirePackableEyes(size.width, size.height, true, options.sideBySide, true, options.topBottom, false);
-  report.memory = convertMemoryEstimate(size.width, size.height);
-  requireMemory(context, report.memory, options.memoryLimitBytes);
+  report.memory = frame::convertMemoryEstimate(size.width, size.height);
+  frame::requireMemory(context, report.memory, options.memoryLimitBytes);
   const ImageRGBA8 color = readColor(options.color, &report.sanitizedColorValues);
   stereo::StereoParameters parameters = options.stereo;
   if (options.automaticMethod) parameters.method = stereo::automaticMethod(stereo::DepthSource::External);
@@ -300,7 +300,7 @@ ConvertReport runConvertJob(vk::Context& context, const ConvertJobOptions& optio
     vk::Image depthImage = vk::createImage(context, stereo::StereoPass::kDepthFormat, depth.width, depth.height,
                                            VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
     vk::uploadImage(context, depthImage, std::as_bytes(std::span(depth.pixels)), vk::kComputeWrite);
-    report.budget = applyDisparityBudget(context, reduction, fresh ? &*fresh : options.budgetController, depthImage, {},
+    report.budget = comfort::applyDisparityBudget(context, reduction, fresh ? &*fresh : options.budgetController, depthImage, {},
                                          1.0f / 30.0f, parameters);
     report.comfort = comfort::frameComfort(depth, parameters, options.display);
   }

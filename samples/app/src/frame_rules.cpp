@@ -5,7 +5,7 @@
 #include <stdexcept>
 #include <utility>
 
-#include "s3d/comfort/comfort_report.h"
+#include "s3d/comfort/budget_frame.h"
 #include "s3d/comfort/frame_comfort_state.h"
 #include "s3d/hud/crosshair.h"
 #include "s3d/hud/hud_layers.h"
@@ -13,16 +13,6 @@
 #include "s3d/renderer/scene_file.h"
 
 namespace s3d::app {
-namespace {
-
-// The renderer's weapon depth range as the library's weapon mask statistics (no range: no weapon in view).
-comfort::WeaponMaskStats weaponStats(const std::optional<glm::vec2>& weaponDepths) {
-  if (!weaponDepths) return {};
-  return {1, weaponDepths->x, weaponDepths->y};
-}
-
-}  // namespace
-
 HudMode parseHudMode(const std::string& name) {
   if (name == "auto") return HudMode::Auto;
   if (name == "game") return HudMode::Game;
@@ -44,13 +34,6 @@ HudMode resolveHudMode(HudMode mode, const std::string& scene) {
   return renderer::isSceneFile(scene) ? HudMode::None : HudMode::Game;
 }
 
-stereo::StereoParameters pushWeaponUnlessNegativeParallaxAllowed(stereo::StereoParameters parameters,
-                                                                 const std::optional<glm::vec2>& weaponDepths,
-                                                                 bool allowNegativeParallax) {
-  const comfort::WeaponMaskStats weapon = weaponStats(weaponDepths);
-  return comfort::weaponPushForFrame(parameters, weapon, allowNegativeParallax);
-}
-
 void requirePackableEyes(std::uint32_t width, std::uint32_t height, bool writesSideBySide, stereo::PackingMode sideBySide,
                          bool writesTopBottom, stereo::PackingMode topBottom, bool outputsSelectable) {
   auto require = [&](bool squeezed, std::uint32_t size, const char* option, const char* across, const char* units,
@@ -65,11 +48,6 @@ void requirePackableEyes(std::uint32_t width, std::uint32_t height, bool writesS
   require(writesTopBottom && topBottom == stereo::PackingMode::Half, height, "--tab", "height", "rows", "tab.png");
 }
 
-bool holdZeroParallaxAtNearestDepth(stereo::StereoParameters& parameters, const DepthImage& stereoDepth,
-                                    bool allowNegativeParallax) {
-  return comfort::holdZeroParallax(parameters, comfort::nearestDepth(stereoDepth), allowNegativeParallax);
-}
-
 HudFrame drawHud(const HudFrameInput& input, stereo::StereoPair& eyes, ImageRGBA8* center,
                  stereo::StereoPair* reference) {
   if (!input.stereoDepth || !input.firstPersonMask)
@@ -78,7 +56,7 @@ HudFrame drawHud(const HudFrameInput& input, stereo::StereoPair& eyes, ImageRGBA
   const std::uint32_t height = eyes.left.height;
   const stereo::StereoParameters& parameters = input.parameters;
   // Depth (not in front of the screen plane unless allowed) and fade behind the weapon: the library's rule.
-  const comfort::WeaponMaskStats weapon = weaponStats(input.weaponDepths);
+  const comfort::WeaponMaskStats weapon = comfort::weaponMaskStats(input.weaponDepths);
   auto state = [&](const std::string& name, float depth) {
     return comfort::hudElementState(name, depth, parameters, weapon, width, input.allowNegativeParallax,
                                     input.disparityMap);

@@ -218,7 +218,7 @@ RegressCase parseCase(const json& object, const Where& where, const RegressToler
 
 std::string readBytes(const fs::path& file) { return readInputFile(file, "image", kMaxImagePixels * 8); }
 
-const stereo::ErrorStats& region(const EyeError& error, const std::string& name) {
+const stereo::ErrorStats& region(const stereo::EyeError& error, const std::string& name) {
   if (name == "halo") return error.halo;
   if (name == "rest") return error.rest;
   if (name == "disocclusion") return error.disocclusion;
@@ -291,7 +291,7 @@ void compareWithBaseline(RegressRun& run, const RegressCase& entry, const fs::pa
   }
   const RegressTolerances& tolerance = entry.tolerances;
   for (const char* eyeName : {"left", "right"}) {
-    const EyeError& current = std::string(eyeName) == "left" ? run.report.left : run.report.right;
+    const stereo::EyeError& current = std::string(eyeName) == "left" ? run.report.left : run.report.right;
     const json* eye = baseline.contains("error") && baseline["error"].contains(eyeName) ? &baseline["error"][eyeName] : nullptr;
     if (!eye) {
       run.problem = "baseline '" + statsFile.string() + "' has no error." + eyeName;
@@ -382,7 +382,7 @@ std::string htmlReport(const std::vector<RegressRun>& runs, const fs::path& outp
     html << "<tr class=\"" << (run.passed() ? "pass" : "fail") << "\"><td class=\"l\"><a href=\"#" << escaped(run.name)
          << "\">" << escaped(run.name) << "</a></td><td class=\"l\">" << escaped(run.report.scene) << "</td><td class=\"l\">"
          << stereo::methodName(run.report.stereo.method) << "</td>";
-    for (const EyeError* eye : {&run.report.left, &run.report.right})
+    for (const stereo::EyeError* eye : {&run.report.left, &run.report.right})
       html << "<td>" << formatted(eye->display.psnrDb) << "</td><td>" << formatted(eye->halo.psnrDb) << "</td><td>"
            << formatted(eye->rest.psnrDb) << "</td>";
     html << "<td>" << (run.checks.size() - failedChecks) << "/" << run.checks.size() << "</td><td class=\"l\">"

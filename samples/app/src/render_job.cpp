@@ -60,18 +60,18 @@ void requireImageSize(std::uint32_t value, const char* name) {
                                 std::to_string(value) + ")");
 }
 
-MemoryEstimate estimateAtRenderedWidth(const RenderJobOptions& options, const stereo::StereoParameters& parameters,
+frame::MemoryEstimate estimateAtRenderedWidth(const RenderJobOptions& options, const stereo::StereoParameters& parameters,
                                        std::uint32_t renderedWidth) {
-  return renderMemoryEstimate(options.width, options.height, renderedWidth, options.supersample,
+  return frame::renderMemoryEstimate(options.width, options.height, renderedWidth, options.supersample,
                               parameters.method == stereo::StereoMethod::Hybrid,
-                              maxReferenceLayers(parameters.disparityMapping));
+                              frame::maxReferenceLayers(parameters.disparityMapping));
 }
 
 // The memory estimate before the first frame, with the guard band of the separation (or the disparity budget's
 // uncrossed side on the display, what the controller fills), from the zero-parallax plane, or from the near
 // plane with negative parallax allowed. The controller may choose a wider band for a shallow frame (up to its
 // maximumSeparation): that width is checked again once chosen, before anything is rendered at it.
-MemoryEstimate memoryEstimateFor(const RenderJobOptions& options, const renderer::Scene& scene,
+frame::MemoryEstimate memoryEstimateFor(const RenderJobOptions& options, const renderer::Scene& scene,
                                  const stereo::StereoParameters& parameters) {
   std::uint32_t renderedWidth = options.width;
   if (parameters.edgeCrop < 0.0f) {
@@ -132,7 +132,7 @@ ValidatedJob validateJob(const RenderJobOptions& options) {
   requirePackableEyes(options.width, options.height, options.outputs.count("sbs.png") != 0, options.sideBySide,
                       options.outputs.count("tab.png") != 0, options.topBottom, true);
   // Memory last: the estimate needs the scene (near plane) and the valid parameters.
-  requireHostMemory(memoryEstimateFor(options, job.scene, job.stereo), options.memoryLimitBytes, false);
+  frame::requireHostMemory(memoryEstimateFor(options, job.scene, job.stereo), options.memoryLimitBytes, false);
   return job;
 }
 
@@ -159,7 +159,7 @@ nlohmann::json hybridJson(const HybridReport& hybrid) {
 
 void validateRenderJobOptions(const RenderJobOptions& options) { (void)validateJob(options); }
 
-MemoryEstimate renderJobMemoryEstimate(const RenderJobOptions& options) {
+frame::MemoryEstimate renderJobMemoryEstimate(const RenderJobOptions& options) {
   const ValidatedJob job = validateJob(options);
   return memoryEstimateFor(options, job.scene, job.stereo);
 }
@@ -168,8 +168,8 @@ RenderReport runRenderJob(vk::Context& context, const RenderJobOptions& options)
   // 1. Options: all checks happen before any GPU resource or file exists.
   const ValidatedJob job = validateJob(options);
   // With the device known: lavapipe's images live in main memory too, a GPU's must fit its memory.
-  const MemoryEstimate memory = memoryEstimateFor(options, job.scene, job.stereo);
-  requireMemory(context, memory, options.memoryLimitBytes);
+  const frame::MemoryEstimate memory = memoryEstimateFor(options, job.scene, job.stereo);
+  frame::requireMemory(context, memory, options.memoryLimitBytes);
   const std::uint32_t width = options.width;
   const std::uint32_t height = options.height;
   auto selected = [&](const std::string& name) { return options.outputs.count(name) != 0; };
@@ -184,10 +184,10 @@ RenderReport runRenderJob(vk::Context& context, const RenderJobOptions& options)
   // Without negative parallax allowed, the weapon push reaches at least the screen plane
   // (comfort::pushWeaponBehindScreen) and, once the frame's depth is known, the zero-parallax distance is
   // held at its nearest surface: every pixel gets zero or positive parallax.
-  // (frame_rules.h, shared with `s3d tune`)
+  // (s3d/comfort/budget_frame.h, shared with `s3d tune`)
   const std::optional<glm::vec2> weaponDepths = renderer::firstPersonDepthRange(job.scene);
   stereo::StereoParameters parameters =  // the zero-parallax distance clamped
-      pushWeaponUnlessNegativeParallaxAllowed(job.stereo, weaponDepths, options.allowNegativeParallax);
+      comfort::pushWeaponUnlessNegativeParallaxAllowed(job.stereo, weaponDepths, options.allowNegativeParallax);
 
   // Guard band (no --edge-crop): the center view is rendered wider by the largest displacement an eye can
   // need, so every eye pixel's source lies inside it. The nearest depth allowed is the zero-parallax plane
@@ -242,7 +242,7 @@ RenderReport runRenderJob(vk::Context& context, const RenderJobOptions& options)
   };
   readCenter();
   // Held at the nearest depth of the whole rendered frame: the band's content reaches the eyes too.
-  report.zeroParallaxLimited = holdZeroParallaxAtNearestDepth(parameters, renderedDepth, options.allowNegativeParallax);
+  report.zeroParallaxLimited = comfort::holdZeroParallaxAtNearestDepth(parameters, renderedDepth, options.allowNegativeParallax);
   const comfort::WorldQueries world(worldMeshes(job.scene));  // once per job: the world does not change between views
   const comfort::CrosshairPlacement placement =
       comfort::placeCrosshair(world, job.scene.camera, options.crosshair.distance.value_or(job.scene.crosshairDistance),
@@ -251,8 +251,8 @@ RenderReport runRenderJob(vk::Context& context, const RenderJobOptions& options)
     // The frame's depth range, reduced on the GPU, picks maxSeparation and the zero-parallax distance.
     const stereo::DepthRangePass reduction(context);
     comfort::DisparityBudgetController controller(comfort::disparityBudget(options.display), options.allowNegativeParallax);
-    report.budget = applyDisparityBudget(context, reduction, &controller, deferred->linearDepth(),
-                                         {placement.depth, weaponNearestPushed(parameters, weaponDepths)}, 1.0f / 30.0f,
+    report.budget = comfort::applyDisparityBudget(context, reduction, &controller, deferred->linearDepth(),
+                                         {placement.depth, comfort::weaponNearestPushed(parameters, weaponDepths)}, 1.0f / 30.0f,
                                          parameters);
     report.budget.imageWidth = width;  // budgetPx and bulkShare in the output eyes' pixels, as the comfort report
     // A larger chosen separation needs a wider band: render the center view again at that width.
@@ -260,14 +260,14 @@ RenderReport runRenderJob(vk::Context& context, const RenderJobOptions& options)
       report.memory = estimateAtRenderedWidth(options, parameters, chosen.renderedWidth(width));
       report.memory.what += " at the separation --disparity-budget chose (" + numberText(parameters.maxSeparation) + ")";
       report.memory.lower += " or give --disparity-budget off";
-      requireMemory(context, report.memory, options.memoryLimitBytes);
+      frame::requireMemory(context, report.memory, options.memoryLimitBytes);
       renderCenter(chosen);
       readCenter();
     }
   }
   // Nonlinear depth-to-parallax mapping: the final center view's curve, applied to the stereo pass's depth on the
   // GPU and, by the same shared function, to the C++ copy the references and the comfort report read.
-  report.disparityMap = FrameDisparityMapper(context).apply(context, deferred->linearDepth(), parameters);
+  report.disparityMap = comfort::FrameDisparityMapper(context).apply(context, deferred->linearDepth(), parameters);
   const gpu::DisparityMapConstants& map = report.disparityMap.map;
   const DepthImage stereoDepth = stereo::mappedDepthImage(renderedDepth, map);
   if (band.capped)
@@ -343,14 +343,14 @@ RenderReport runRenderJob(vk::Context& context, const RenderJobOptions& options)
   report.disparityMap.unresolvedPixels = {leftEye.rendered.unresolvedPixels, rightEye.rendered.unresolvedPixels};
 
   // 5. Synthesized vs reference over the full frame with a guard band, else without the cropped strips.
-  // (region masks and comparison: eye_comparison.h, shared with s3d bench)
-  const std::vector<std::uint8_t> halo = haloMaskFor(centerStereoDepth, parameters);
+  // (region masks and comparison: s3d/stereo/eye_comparison.h, shared with s3d bench)
+  const std::vector<std::uint8_t> halo = stereo::haloMaskFor(centerStereoDepth, parameters);
   for (auto [eyeError, eye, eyeHdr, reference, side] :
        {std::tuple{&report.left, &synthesized.left, &synthesizedHdr.left, &leftEye, stereo::Eye::Left},
         std::tuple{&report.right, &synthesized.right, &synthesizedHdr.right, &rightEye, stereo::Eye::Right}}) {
-    const stereo::RegionMasks masks{halo, disocclusionMaskFor(reference->depth, centerStereoDepth, parameters, side),
+    const stereo::RegionMasks masks{halo, stereo::disocclusionMaskFor(reference->depth, centerStereoDepth, parameters, side),
                                     reference->transparent, reference->foliage};
-    *eyeError = compareEye(*eye, reference->display, report.cropColumns, masks, eyeHdr, &reference->hdr);
+    *eyeError = stereo::compareEye(*eye, reference->display, report.cropColumns, masks, eyeHdr, &reference->hdr);
   }
 
   // Comfort report: the parallax the stereo pass gave every pixel, as angles on the chosen display, and
@@ -486,7 +486,7 @@ nlohmann::json toJson(const RenderReport& report) {
            {{"estimatedBytes", report.memory.totalBytes()},
             {"hostBytes", report.memory.hostBytes},
             {"deviceBytes", report.memory.deviceBytes},
-            {"peakResidentBytes", peakResidentBytes()}}},
+            {"peakResidentBytes", frame::peakResidentBytes()}}},
           {"files", report.filesWritten}};
 }
 

@@ -5,8 +5,8 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "s3d/app/eye_comparison.h"
 #include "s3d/app/render_job.h"
+#include "s3d/app/report_json.h"
 #include "s3d/io/image_io.h"
 #include "s3d/renderer/scene_file.h"
 #include "s3d/stereo/synthesis.h"
@@ -79,10 +79,10 @@ SequenceJobOptions jobFor(const SequenceBenchOptions& options, const std::string
 
 }  // namespace
 
-MemoryEstimate sequenceBenchMemoryEstimate(const SequenceBenchOptions& options) {
-  MemoryEstimate largest;
+frame::MemoryEstimate sequenceBenchMemoryEstimate(const SequenceBenchOptions& options) {
+  frame::MemoryEstimate largest;
   for (const SequenceSetting& setting : parseSequenceSettings(options.methods)) {
-    MemoryEstimate estimate = sequenceMemoryEstimate(jobFor(options, options.scenes.front(), setting));
+    frame::MemoryEstimate estimate = sequenceMemoryEstimate(jobFor(options, options.scenes.front(), setting));
     if (estimate.totalBytes() > largest.totalBytes()) largest = std::move(estimate);
   }
   return largest;

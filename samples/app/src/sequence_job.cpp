@@ -8,14 +8,14 @@
 #include <stdexcept>
 
 #include "s3d/app/comfort_json.h"
-#include "s3d/app/eye_comparison.h"
-#include "s3d/app/memory_budget.h"
 #include "s3d/app/render_job.h"
+#include "s3d/app/report_json.h"
 #include "s3d/app/scene_world.h"
 #include "s3d/comfort/crosshair.h"
 #include "s3d/comfort/disparity_budget_controller.h"
 #include "s3d/comfort/world_queries.h"
 #include "s3d/frame/layered_reference.h"
+#include "s3d/frame/memory_budget.h"
 #include "s3d/frame/stereo_synthesis.h"
 #include "s3d/io/image_io.h"
 #include "s3d/renderer/deferred_renderer.h"
@@ -68,11 +68,11 @@ stereo::GuardBand widestSequenceGuardBand(const SequenceJobOptions& options) {
   return stereo::guardBandFor(separation, plane, nearest, options.width, kMaxImageSize / std::max(options.supersample, 1u));
 }
 
-MemoryEstimate sequenceMemoryEstimate(const SequenceJobOptions& options) {
+frame::MemoryEstimate sequenceMemoryEstimate(const SequenceJobOptions& options) {
   const std::uint32_t renderedWidth = widestSequenceGuardBand(options).renderedWidth(options.width);
-  MemoryEstimate estimate = renderMemoryEstimate(options.width, options.height, renderedWidth, options.supersample,
+  frame::MemoryEstimate estimate = frame::renderMemoryEstimate(options.width, options.height, renderedWidth, options.supersample,
                                                  options.stereo.method == stereo::StereoMethod::Hybrid,
-                                                 maxReferenceLayers(options.stereo.disparityMapping));
+                                                 frame::maxReferenceLayers(options.stereo.disparityMapping));
   // The previous frame, kept for the flicker metric: eyes and references 16, reference depths 8, first-person
   // masks 2 and (a nonlinear map) reference layers 2 bytes per output pixel; the previous-frame fill's history:
   // two frames of both eyes' colour and depth (RGBA8 and R32F) on the device per rendered pixel.
@@ -103,7 +103,7 @@ SequenceReport runSequenceJob(vk::Context& context, const SequenceJobOptions& op
   comfort::validate(options.display);
   const float crosshairDistance = options.crosshair.distance.value_or(scene.crosshairDistance);
 
-  requireMemory(context, sequenceMemoryEstimate(options), options.memoryLimitBytes);  // before any is allocated
+  frame::requireMemory(context, sequenceMemoryEstimate(options), options.memoryLimitBytes);  // before any is allocated
   // The world queries see the geometry drawn: rebuilt for every frame of an animated scene.
   std::optional<comfort::WorldQueries> world;
   world.emplace(worldMeshes(scene));
@@ -117,7 +117,7 @@ SequenceReport runSequenceJob(vk::Context& context, const SequenceJobOptions& op
     budgetControl.emplace(comfort::disparityBudget(options.display), options.allowNegativeParallax);
     reduction.emplace(context);
   }
-  const FrameDisparityMapper mapper(context);
+  const comfort::FrameDisparityMapper mapper(context);
   glm::vec3 previousPosition(0.0f);
 
   // Guard band (no edge crop given): the center view is rendered wider by the largest displacement the eyes can
@@ -235,7 +235,7 @@ SequenceReport runSequenceJob(vk::Context& context, const SequenceJobOptions& op
     parameters.zeroParallaxDistance = frame.zeroParallaxDistance;
     if (budgetOn) {
       // Ray casts from where the camera will be (current velocity) warn of a surface before it is in view.
-      BudgetFrameHints hints{frame.crosshairDepth, weaponNearestPushed(parameters, weaponDepths), std::nullopt, false};
+      comfort::BudgetFrameHints hints{frame.crosshairDepth, comfort::weaponNearestPushed(parameters, weaponDepths), std::nullopt, false};
       if (index > 0 && options.anticipateSeconds > 0.0f) {
         renderer::Camera ahead = scene.camera;
         ahead.position += (scene.camera.position - previousPosition) * (options.anticipateSeconds * options.framesPerSecond);
@@ -245,7 +245,7 @@ SequenceReport runSequenceJob(vk::Context& context, const SequenceJobOptions& op
         const float here = comfort::nearestSurfaceAhead(*world, scene.camera, settings, 8.0f).value_or(INFINITY);
         hints.receding = hints.anticipatedNearest.value_or(INFINITY) > here;
       }
-      frame.budget = applyDisparityBudget(context, *reduction, &*budgetControl, deferred->linearDepth(), hints, seconds,
+      frame.budget = comfort::applyDisparityBudget(context, *reduction, &*budgetControl, deferred->linearDepth(), hints, seconds,
                                           parameters);
       frame.budget.imageWidth = width;  // budgetPx and bulkShare in the output eyes' pixels, as the comfort report
       frame.zeroParallaxDistance = parameters.zeroParallaxDistance;
@@ -313,7 +313,7 @@ SequenceReport runSequenceJob(vk::Context& context, const SequenceJobOptions& op
     frame.psnrLeftDb = stereo::compareDisplayImages(current.synthesized.left, current.reference.left, crop).psnrDb;
     frame.psnrRightDb = stereo::compareDisplayImages(current.synthesized.right, current.reference.right, crop).psnrDb;
     if (previous) {
-      const std::vector<std::uint8_t> halo = haloMaskFor(stereoDepth, parameters);
+      const std::vector<std::uint8_t> halo = stereo::haloMaskFor(stereoDepth, parameters);
       std::array<stereo::FlickerStats, 2> flicker;
       for (stereo::Eye eye : {stereo::Eye::Left, stereo::Eye::Right}) {
         const std::size_t e = eye == stereo::Eye::Left ? 0 : 1;
@@ -324,7 +324,7 @@ SequenceReport runSequenceJob(vk::Context& context, const SequenceJobOptions& op
         };
         flicker[e] = stereo::temporalFlicker(eyeFrame(current), eyeFrame(*previous), current.cameras[e],
                                              previous->cameras[e], halo,
-                                             disocclusionMaskFor(mappedReferenceDepth[e], stereoDepth, parameters, eye));
+                                             stereo::disocclusionMaskFor(mappedReferenceDepth[e], stereoDepth, parameters, eye));
       }
       frame.flicker = flicker;
     }

@@ -4,61 +4,15 @@
 #include <cmath>
 
 #include "s3d/app/comfort_json.h"
-#include "s3d/app/eye_comparison.h"
-#include "s3d/app/memory_budget.h"
+#include "s3d/app/report_json.h"
+#include "s3d/frame/memory_budget.h"
 #include "s3d/io/image_io.h"
 #include "s3d/renderer/deferred_renderer.h"
 #include "s3d/renderer/scene_animation.h"
 #include "s3d/renderer/scene_file.h"
+#include "s3d/stereo/eye_views_reference.h"
 
 namespace s3d::app {
-namespace {
-
-float depthAt(const DepthImage& depth, glm::dvec2 pixel) {
-  const int x = std::clamp(int(std::floor(pixel.x)), 0, int(depth.width) - 1);
-  const int y = std::clamp(int(std::floor(pixel.y)), 0, int(depth.height) - 1);
-  const float d = depth.at(std::uint32_t(x), std::uint32_t(y))[0];
-  return d > 0.0f ? d : INFINITY;  // invalid depth: no displacement
-}
-
-void bilinear(const ImageRGBA8& image, glm::dvec2 pixel, std::uint8_t* out) {
-  const double fx = std::clamp(pixel.x - 0.5, 0.0, double(image.width - 1));
-  const double fy = std::clamp(pixel.y - 0.5, 0.0, double(image.height - 1));
-  const std::uint32_t x0 = std::uint32_t(fx), y0 = std::uint32_t(fy);
-  const std::uint32_t x1 = std::min(x0 + 1, image.width - 1), y1 = std::min(y0 + 1, image.height - 1);
-  const double ax = fx - x0, ay = fy - y0;
-  for (int c = 0; c < 4; ++c) {
-    const double top = image.at(x0, y0)[c] * (1 - ax) + image.at(x1, y0)[c] * ax;
-    const double bottom = image.at(x0, y1)[c] * (1 - ax) + image.at(x1, y1)[c] * ax;
-    out[c] = std::uint8_t(std::lround(top * (1 - ay) + bottom * ay));
-  }
-}
-
-}  // namespace
-
-ImageRGBA8 synthesizeEyeForView(const ImageRGBA8& centerColor, const DepthImage& centerDepth,
-                                const comfort::ViewConfiguration& views, const comfort::CenterView& center, int eye,
-                                DepthImage* eyeDepth) {
-  requireSameSize(centerColor, centerDepth, "view synthesis (color vs depth)");
-  const comfort::EyeView& view = views.eyes[std::size_t(eye)];
-  ImageRGBA8 out(view.width, view.height);
-  if (eyeDepth) *eyeDepth = DepthImage(view.width, view.height);
-  for (std::uint32_t y = 0; y < view.height; ++y)
-    for (std::uint32_t x = 0; x < view.width; ++x) {
-      const glm::dvec2 eyePixel(x + 0.5, y + 0.5);
-      double depth = INFINITY;
-      glm::dvec2 source = comfort::centerPixelForEyePixel(views, center, eye, eyePixel, depth);
-      for (int i = 0; i < kViewSearchIterations; ++i) {
-        depth = depthAt(centerDepth, source);
-        source = comfort::centerPixelForEyePixel(views, center, eye, eyePixel, depth);
-      }
-      bilinear(centerColor, source, out.at(x, y));
-      out.at(x, y)[3] = 255;
-      if (eyeDepth) *eyeDepth->at(x, y) = float(depth);
-    }
-  return out;
-}
-
 ViewsReport runViewsJob(vk::Context& context, const ViewsJobOptions& options) {
   if (!(options.framesPerSecond > 0.0f) || options.framesPerSecond > 1000.0f)
     throw std::invalid_argument("views: frames per second must be in (0, 1000]");
@@ -84,7 +38,7 @@ ViewsReport runViewsJob(vk::Context& context, const ViewsJobOptions& options) {
   centerView.firstPersonProjection = frustum(center.tanLeft, center.tanRight, center.tanUp, center.tanDown,
                                              scene.firstPerson.nearPlane, scene.firstPerson.farPlane);
   // The center view dominates (the eyes' references are rendered one at a time after it).
-  requireMemory(context, renderMemoryEstimate(center.width, center.height, center.width, 1), options.memoryLimitBytes);
+  frame::requireMemory(context, frame::renderMemoryEstimate(center.width, center.height, center.width, 1), options.memoryLimitBytes);
   ImageRGBA8 centerColor;
   DepthImage centerDepth;  // NaN, 0, negative: read as infinity
   {
@@ -101,7 +55,7 @@ ViewsReport runViewsJob(vk::Context& context, const ViewsJobOptions& options) {
   for (int i = 0; i < 2; ++i) {
     const comfort::EyeView& eye = options.views.eyes[std::size_t(i)];
     DepthImage eyeDepth;
-    eyes[std::size_t(i)] = synthesizeEyeForView(centerColor, centerDepth, options.views, center, i, &eyeDepth);
+    eyes[std::size_t(i)] = stereo::synthesizeEyeForView(centerColor, centerDepth, options.views, center, i, &eyeDepth);
     report.comfort[std::size_t(i)] =
         comfort::eyeViewComfort(eyeDepth, options.views.worldScale, report.interocularMeters, options.display);
     double nearest = INFINITY, farthest = 0.0;

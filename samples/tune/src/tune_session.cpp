@@ -8,8 +8,9 @@
 #include "s3d/app/frame_rules.h"
 #include "s3d/app/render_job.h"
 #include "s3d/app/scene_world.h"
-#include "s3d/comfort/crosshair.h"
 #include "s3d/comfort/comfort_report.h"
+#include "s3d/comfort/comfort_views.h"
+#include "s3d/comfort/crosshair.h"
 #include "s3d/frame/layered_reference.h"
 #include "s3d/frame/stereo_synthesis.h"
 #include "s3d/stereo/sanitize.h"
@@ -38,7 +39,7 @@ struct TuneSession::Loaded {
   std::unique_ptr<stereo::DepthRangePass> reduction;
   std::unique_ptr<comfort::DisparityBudgetController> budget;
   nlohmann::json budgetKey;  // the display and rule the controller was made for
-  std::unique_ptr<app::FrameDisparityMapper> mapper;
+  std::unique_ptr<comfort::FrameDisparityMapper> mapper;
 };
 
 TuneSession::TuneSession(vk::Context& context, std::uint32_t width, std::uint32_t height)
@@ -130,11 +131,11 @@ TuneFrame TuneSession::renderFrame(TuneState& state, const FrameInput& input, fl
       parameters.zeroParallaxDistance, scene.camera.nearPlane, scene.camera.farPlane);
   parameters.zeroParallaxDistance = clamped.zeroParallaxDistance;
   numbers.warning = clamped.warning;
-  // The no-negative-parallax rules as runRenderJob applies them (frame_rules.h): the weapon pushed to the
-  // screen plane before the center view, the plane held at the frame's nearest depth after it.
+  // The no-negative-parallax rules as runRenderJob applies them (s3d/comfort/budget_frame.h): the weapon pushed
+  // to the screen plane before the center view, the plane held at the frame's nearest depth after it.
   const bool allowNegativeParallax = profile.allowNegativeParallax;
   const std::optional<glm::vec2> weaponDepths = renderer::firstPersonDepthRange(scene);
-  parameters = app::pushWeaponUnlessNegativeParallaxAllowed(parameters, weaponDepths, allowNegativeParallax);
+  parameters = comfort::pushWeaponUnlessNegativeParallaxAllowed(parameters, weaponDepths, allowNegativeParallax);
 
   // The center view and both synthesized eyes (as runRenderJob).
   renderer::DeferredRenderer& deferred = *loaded.deferred;
@@ -148,7 +149,7 @@ TuneFrame TuneSession::renderFrame(TuneState& state, const FrameInput& input, fl
   // Invalid depth reads as the zero-parallax plane, as in the stereo pass, for the views and comfort numbers.
   numbers.sanitizedDepthPixels = stereo::sanitizeDepth(images.stereoDepth, parameters.zeroParallaxDistance);
   const std::vector<std::uint8_t> firstPersonMask = deferred.readFirstPersonMask();  // weapon and HUD conflicts
-  numbers.zeroParallaxLimited = app::holdZeroParallaxAtNearestDepth(parameters, images.stereoDepth, allowNegativeParallax);
+  numbers.zeroParallaxLimited = comfort::holdZeroParallaxAtNearestDepth(parameters, images.stereoDepth, allowNegativeParallax);
   if (numbers.zeroParallaxLimited && loaded.control)  // the control goes on smoothly from the limit
     parameters.zeroParallaxDistance = loaded.control->limit(parameters.zeroParallaxDistance);
   if (state.disparityBudget != comfort::DisparityBudgetRule::Off) {
@@ -160,15 +161,15 @@ TuneFrame TuneSession::renderFrame(TuneState& state, const FrameInput& input, fl
       loaded.budgetKey = key;
     }
     if (!loaded.reduction) loaded.reduction = std::make_unique<stereo::DepthRangePass>(context_);
-    numbers.budget = app::applyDisparityBudget(context_, *loaded.reduction, loaded.budget.get(), deferred.linearDepth(),
-                                               {std::nullopt, app::weaponNearestPushed(parameters, weaponDepths)},
+    numbers.budget = comfort::applyDisparityBudget(context_, *loaded.reduction, loaded.budget.get(), deferred.linearDepth(),
+                                               {std::nullopt, comfort::weaponNearestPushed(parameters, weaponDepths)},
                                                seconds, parameters);
   } else {
     loaded.budget.reset();
   }
   // The depth-to-parallax mapping, as `s3d render` applies it: the views and comfort numbers read the mapped depth,
   // the weapon and HUD conflicts the scene's.
-  if (!loaded.mapper) loaded.mapper = std::make_unique<app::FrameDisparityMapper>(context_);
+  if (!loaded.mapper) loaded.mapper = std::make_unique<comfort::FrameDisparityMapper>(context_);
   numbers.disparityMap = loaded.mapper->apply(context_, deferred.linearDepth(), parameters);
   const gpu::DisparityMapConstants& map = numbers.disparityMap.map;
   const DepthImage sceneDepth = images.stereoDepth;
@@ -211,7 +212,7 @@ TuneFrame TuneSession::renderFrame(TuneState& state, const FrameInput& input, fl
   // Comfort numbers on the chosen display (the comfort report of `s3d render`, comfort_report.h).
   images.display = profile.display;
   numbers.comfort = comfort::frameComfort(images.stereoDepth, parameters, images.display);
-  const std::vector<std::uint8_t> beyond = comfortViolationMask(images.stereoDepth, parameters, images.display);
+  const std::vector<std::uint8_t> beyond = comfort::comfortViolationMask(images.stereoDepth, parameters, images.display);
   numbers.shareBeyondComfort = double(std::count(beyond.begin(), beyond.end(), std::uint8_t(1))) / double(beyond.size());
   numbers.weaponConflictPixels = comfort::countWeaponConflicts(*loaded.world, scene.camera, center.worldProjection,
                                                                sceneDepth, firstPersonMask).conflictPixels;

@@ -617,7 +617,7 @@ void drawPanel(TuneSession& session, TuneState& state, const FrameNumbers& numbe
     else
       ImGui::Text("zero parallax %.2f m%s", numbers.zeroParallaxDistance, limited);
     if (numbers.budget.rule != comfort::DisparityBudgetRule::Off) {
-      const app::BudgetFrame& b = numbers.budget;
+      const comfort::BudgetFrame& b = numbers.budget;
       ImGui::Text("budget 1 deg: %.1f px behind, %.1f px in front; used %.0f %%%s%s", b.budget.uncrossedPx(b.imageWidth),
                   b.budget.crossedPx(b.imageWidth), 100.0 * b.choice.usedShare, b.choice.cut ? ", cut" : "",
                   b.choice.forced ? ", forced" : "");

@@ -13,10 +13,11 @@
 
 #include <nlohmann/json.hpp>
 
-#include "s3d/app/eye_comparison.h"
+#include "s3d/app/report_json.h"
 #include "s3d/frame/hybrid_stereo.h"
-#include "s3d/app/memory_budget.h"
+#include "s3d/frame/memory_budget.h"
 #include "s3d/renderer/deferred_renderer.h"
+#include "s3d/stereo/pass_traffic.h"
 #include "s3d/stereo/stereo.h"
 #include "s3d/vk/context.h"
 
@@ -73,24 +74,8 @@ struct BenchOptions {
   std::optional<std::uint64_t> memoryLimitBytes;  // --memory-limit; the machine's available memory in any case
 };
 
-// A scene's frame at the largest separation swept (its guard band), as `s3d render` counts it (memory_budget.h).
-MemoryEstimate benchMemoryEstimate(const BenchOptions& options);
-
-// What the stereo pass moves per frame, counted from the shaders (stereo/shaders/). Per-pixel kernel: per
-// interior pixel and eye the depth imageLoads (4 B each: seed/search tapCount, iterative startTapCount + 2 x
-// iterations), two color imageLoads (4 B, the horizontal filter) and one imageStore (4 B); a cropped pixel only
-// stores both eyes. Row tiles: each tile's run plus its margin each side, a depth and a color texel per column,
-// once (shared memory serves every tap); fetches of near surfaces beyond the margin are not counted.
-struct StereoTraffic {
-  bool rowTiles = false;  // the kernel the parameters run on
-  std::uint64_t bytesRead = 0;
-  std::uint64_t bytesWritten = 0;
-  std::uint64_t compulsoryBytes = 0;  // each input texel read once and each eye written once: 16 B per pixel
-  std::uint64_t total() const { return bytesRead + bytesWritten; }
-};
-// cpuDevice: the kernel Auto picks on a CPU device (stereo::usesRowTiles).
-StereoTraffic stereoPassTraffic(const stereo::StereoParameters& parameters, std::uint32_t width, std::uint32_t height,
-                                bool cpuDevice = false);
+// A scene's frame at the largest separation swept (its guard band), as `s3d render` counts it (s3d/frame/memory_budget.h).
+frame::MemoryEstimate benchMemoryEstimate(const BenchOptions& options);
 
 struct BenchRow {
   std::string scene;
@@ -104,15 +89,15 @@ struct BenchRow {
   std::optional<double> disparityMapGpuMs;    // the nonlinear mapping of that frame's depth in place (median)
   std::optional<double> referenceEyeGpuMs;  // the left reference eye at this separation (median, likewise)
   // The untimed eye and center frames run right before those two and this setting were timed
-  // (interleaved_timing.h): host milliseconds, and whether they had reached a steady speed (false: the warm-up's
+  // (s3d/stereo/interleaved_timing.h): host milliseconds, and whether they had reached a steady speed (false: the warm-up's
   // maximum ended it; always on a CPU device, whose warm-up is its minimum).
   double frameWarmUpMs = 0.0;
   bool frameWarmUpSettled = false;
-  EyeError left{};
-  EyeError right{};
+  stereo::EyeError left{};
+  stereo::EyeError right{};
   std::uint64_t filledLeft = 0;  // iterative: disoccluded pixels filled from the background side
   std::uint64_t filledRight = 0;
-  StereoTraffic traffic;
+  stereo::StereoTraffic traffic;
   // Hybrid settings: the masked share of each eye and the GPU time per part (stereoGpuMs is their total).
   std::optional<double> maskedShareLeft, maskedShareRight;
   std::optional<frame::HybridTimings> hybridTimings;

@@ -9,8 +9,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "s3d/app/budget_frame.h"
-#include "s3d/app/memory_budget.h"
+#include "s3d/comfort/budget_frame.h"
+#include "s3d/frame/memory_budget.h"
 #include "s3d/stereo/metrics.h"
 #include "s3d/stereo/output_formats.h"
 #include "s3d/stereo/stereo.h"
@@ -57,7 +57,7 @@ struct ConvertJobOptions {
   std::string fileSuffix;           // folder mode: "_0001" makes left_0001.png, ...
   bool writeReport = true;          // report<suffix>.json
   // OneDegree (depth input only; disparity input is reproduced as given): maxSeparation and the zero-parallax
-  // distance chosen from the frame's depth range on `display` (budget_frame.h); folder mode runs one
+  // distance chosen from the frame's depth range on `display` (s3d/comfort/budget_frame.h); folder mode runs one
   // controller over the frames in order. Off: the library default; `s3d convert` turns it on.
   comfort::DisparityBudgetRule disparityBudget = comfort::DisparityBudgetRule::Off;
   comfort::DisplayProfile display = comfort::builtInDisplayProfile("tv55");
@@ -78,10 +78,10 @@ struct ConvertReport {
   // Depth or disparity pixels without a value (NaN; zero or negative depth; +-inf or PNG 0 disparity), given the
   // depth of the background beside them on their row (stereo::fillUnknownDepthFromBackground).
   std::uint64_t unknownDepthPixels = 0;
-  BudgetFrame budget;                    // the disparity budget's reduction and choice (off: empty)
+  comfort::BudgetFrame budget;           // the disparity budget's reduction and choice (off: empty)
   comfort::FrameComfort comfort;         // on options.display, with the budget on
   std::vector<std::string> filesWritten;
-  MemoryEstimate memory;  // estimated from the color file's header before anything was decoded
+  frame::MemoryEstimate memory;  // estimated from the color file's header before anything was decoded
 };
 
 // Reads and checks every input first (missing, unreadable or truncated file, missing channel, mismatched

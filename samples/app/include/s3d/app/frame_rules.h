@@ -1,7 +1,7 @@
 #pragma once
-// The per-frame rules `s3d render` (render_job.h) and `s3d tune` (tune_session.h) share, so the tool shows
-// what the offscreen render writes: the no-negative-parallax rules (comfort_report.h) and the HUD overlay
-// (s3d/hud/overlay.h) with its per-element report.
+// The per-frame tool rules `s3d render` (render_job.h) and `s3d tune` (tune_session.h) share, so the tool shows
+// what the offscreen render writes: the HUD overlay (s3d/hud/overlay.h) with its per-element report and the
+// packing check; the comfort rules on the parameters are the library's (s3d/comfort/budget_frame.h).
 #include <array>
 #include <cstdint>
 #include <optional>
@@ -16,18 +16,6 @@
 #include "s3d/stereo/stereo.h"
 
 namespace s3d::app {
-
-// Before the center view: without negative parallax allowed, the weapon push reaches at least the screen
-// plane (comfort::pushWeaponBehindScreen). weaponDepths: renderer::firstPersonDepthRange (none: no weapon).
-stereo::StereoParameters pushWeaponUnlessNegativeParallaxAllowed(stereo::StereoParameters parameters,
-                                                                 const std::optional<glm::vec2>& weaponDepths,
-                                                                 bool allowNegativeParallax);
-
-// Once the frame's depth is known: without negative parallax allowed, the zero-parallax distance is held at
-// the nearest surface (comfort::nearestDepth), so every pixel gets zero or positive parallax. Returns
-// whether it was lowered.
-bool holdZeroParallaxAtNearestDepth(stereo::StereoParameters& parameters, const DepthImage& stereoDepth,
-                                    bool allowNegativeParallax);
 
 // Before a run: throws std::invalid_argument naming --sbs / --tab when half packing cannot squeeze eyes of this
 // size (it needs 2 columns / rows), so a size the options accept cannot fail after the whole run. `writes...`:

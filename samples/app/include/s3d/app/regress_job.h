@@ -27,7 +27,7 @@ struct RegressTolerances {
   double baselineImageMinPsnrDb = 40.0;  // each synthesized eye against the baseline's eye (drivers round differently)
 };
 
-// Regions of EyeError by their suite name: "all" (display), "halo", "rest", "disocclusion".
+// Regions of stereo::EyeError by their suite name: "all" (display), "halo", "rest", "disocclusion".
 inline const std::vector<std::string> kRegressRegions = {"all", "halo", "rest", "disocclusion"};
 
 struct RegressCase {

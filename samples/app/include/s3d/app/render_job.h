@@ -12,15 +12,15 @@
 
 #include <nlohmann/json.hpp>
 
-#include "s3d/app/eye_comparison.h"
 #include "s3d/app/frame_rules.h"
-#include "s3d/app/budget_frame.h"
-#include "s3d/frame/hybrid_stereo.h"
-#include "s3d/app/memory_budget.h"
-#include "s3d/frame/layered_reference.h"
+#include "s3d/app/report_json.h"
+#include "s3d/comfort/budget_frame.h"
 #include "s3d/comfort/comfort_profile.h"
 #include "s3d/comfort/comfort_report.h"
 #include "s3d/comfort/display_profile.h"
+#include "s3d/frame/hybrid_stereo.h"
+#include "s3d/frame/layered_reference.h"
+#include "s3d/frame/memory_budget.h"
 #include "s3d/renderer/deferred_renderer.h"
 #include "s3d/stereo/metrics.h"
 #include "s3d/stereo/output_formats.h"
@@ -68,7 +68,8 @@ struct RenderJobOptions {
   std::uint32_t supersample = 1;  // renderer anti-aliasing, 1..4 (center view and reference eyes alike)
   bool reversedZ = false;         // renderer::RendererOptions::reversedZ for every view
   // OneDegree: maxSeparation and the zero-parallax distance are chosen from the frame's depth range so every
-  // pixel fits the display's 1-degree budget (budget_frame.h); the library default is off (`s3d` turns it on).
+  // pixel fits the display's 1-degree budget (s3d/comfort/budget_frame.h); the library default is off (`s3d`
+  // turns it on).
   comfort::DisparityBudgetRule disparityBudget = comfort::DisparityBudgetRule::Off;
   // The game HUD (panels and crosshair) of the built-in scenes; Auto: drawn on them, left out of glTF files.
   HudMode hud = HudMode::Auto;
@@ -76,7 +77,7 @@ struct RenderJobOptions {
   std::optional<std::uint64_t> memoryLimitBytes;
 };
 
-// EyeError (per-region error of one eye) lives in eye_comparison.h, shared with `s3d bench`.
+// stereo::EyeError (per-region error of one eye) lives in s3d/stereo/eye_comparison.h, shared with `s3d bench`.
 
 struct CrosshairReport {
   float depth = 0.0f;       // linear depth the crosshair is placed at (world units)
@@ -107,11 +108,11 @@ struct RenderReport {
   std::optional<double> centerFrameGpuMs;   // whole deferred frame of the center view
   std::optional<double> stereoPassGpuMs;    // the stereo compute dispatch producing both eyes
   std::optional<double> referenceEyeGpuMs;  // whole deferred frame of the left reference eye
-  BudgetFrame budget;                       // the disparity budget's reduction and choice (rule off: empty)
-  DisparityMapReport disparityMap;          // the depth-to-parallax curve (identity: linear)
+  comfort::BudgetFrame budget;               // the disparity budget's reduction and choice (rule off: empty)
+  comfort::DisparityMapReport disparityMap;  // the depth-to-parallax curve (identity: linear)
   std::vector<renderer::PassTiming> centerPasses;
-  EyeError left{};
-  EyeError right{};
+  stereo::EyeError left{};
+  stereo::EyeError right{};
   CrosshairReport crosshair;
   comfort::DisplayProfile display;
   comfort::FrameComfort comfort;  // of the stereo pass's depth on that display
@@ -127,7 +128,7 @@ struct RenderReport {
   } sanitized;
   std::vector<std::string> warnings;  // e.g. a clamped zero-parallax distance; also printed on stderr by the CLI
   std::vector<std::string> filesWritten;  // file names relative to the output folder, in write order
-  MemoryEstimate memory;                  // what the run was estimated to need before it started
+  frame::MemoryEstimate memory;           // what the run was estimated to need before it started
 };
 
 // Throws std::invalid_argument naming the problem: zero or absurd size (> kMaxImageSize), unknown scene,
@@ -136,9 +137,9 @@ struct RenderReport {
 // folder path that exists but is not a folder. Needs no Vulkan: call it before creating a context.
 void validateRenderJobOptions(const RenderJobOptions& options);
 
-// The run's memory (memory_budget.h), with the widest guard band the options allow: the separation's, the
+// The run's memory (s3d/frame/memory_budget.h), with the widest guard band the options allow: the separation's, the
 // disparity budget's largest on the display, or half the width a side with negative parallax allowed.
-MemoryEstimate renderJobMemoryEstimate(const RenderJobOptions& options);
+frame::MemoryEstimate renderJobMemoryEstimate(const RenderJobOptions& options);
 
 // Validates the options (before creating any GPU resource or file), renders, compares, writes the selected
 // outputs into options.outputFolder (each write atomic) and returns the report.
@@ -149,7 +150,7 @@ RenderReport runRenderJob(vk::Context& context, const RenderJobOptions& options)
 // { "device", "scene", "width", "height",
 //   "stereo": {"maxSeparation", "zeroParallaxDistance", "edgeCrop", "cropColumns", "guardBandColumns", "renderedWidth", "method": "seed"|"search", "searchTaps" (search only)},
 //   "gpuTimeMs": {"centerFrame", "stereoPass", "referenceEye", "depthReduction" (disparity budget on)},
-//   "disparityBudget": budgetJson (budget_frame.h),   (null when the device has no timestamps)
+//   "disparityBudget": budgetJson (comfort_json.h),   (null when the device has no timestamps)
 //   "centerPasses": [{"name", "gpuMs"}],
 //   "ratios": {"stereoPassToReferenceEye"},                        (null when a time is missing)
 //   "error": {"left": {"psnrDb", "ssim", "meanAbsoluteError", "shareAbove8", "pixelCount",

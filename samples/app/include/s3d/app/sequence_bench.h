@@ -67,7 +67,7 @@ struct SequenceBenchReport {
 void validateSequenceBenchOptions(const SequenceBenchOptions& options);
 // The largest of its runs' estimates (sequence_job.h's sequenceMemoryEstimate): checked before the Vulkan start-up
 // and by each run once the device is known.
-MemoryEstimate sequenceBenchMemoryEstimate(const SequenceBenchOptions& options);
+frame::MemoryEstimate sequenceBenchMemoryEstimate(const SequenceBenchOptions& options);
 SequenceBenchReport runSequenceBench(vk::Context& context, const SequenceBenchOptions& options);
 nlohmann::json toJson(const SequenceBenchReport& report);
 std::string sequenceBenchMarkdown(const SequenceBenchReport& report);

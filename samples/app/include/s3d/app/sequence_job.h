@@ -11,11 +11,11 @@
 
 #include <nlohmann/json.hpp>
 
-#include "s3d/app/budget_frame.h"
-#include "s3d/app/memory_budget.h"
+#include "s3d/comfort/budget_frame.h"
 #include "s3d/comfort/comfort_profile.h"
 #include "s3d/comfort/comfort_report.h"
 #include "s3d/comfort/zero_parallax_control.h"
+#include "s3d/frame/memory_budget.h"
 #include "s3d/stereo/guard_band.h"
 #include "s3d/stereo/stereo.h"
 #include "s3d/stereo/temporal.h"
@@ -40,7 +40,7 @@ struct SequenceJobOptions {
   comfort::DisplayProfile display = comfort::builtInDisplayProfile("tv55");  // of the per-frame comfort report
   bool allowNegativeParallax = false;  // off: the zero-parallax distance never exceeds the frame's nearest depth
   bool reversedZ = false;  // renderer::RendererOptions::reversedZ
-  // OneDegree: the disparity budget controller (budget_frame.h) chooses maxSeparation and the zero-parallax
+  // OneDegree: the disparity budget controller (s3d/comfort/budget_frame.h) chooses maxSeparation and the zero-parallax
   // distance per frame from the GPU depth reduction; off: the zero-parallax control alone, as before.
   comfort::DisparityBudgetRule disparityBudget = comfort::DisparityBudgetRule::Off;
   // The budget's anticipation: the zero-parallax control's ray casts from where the camera will be this many
@@ -65,8 +65,8 @@ struct SequenceFrame {
   std::uint64_t weaponPixels = 0;
   std::uint64_t weaponConflictPixels = 0;  // weapon pixels whose pushed depth lies behind the world surface there
   double psnrLeftDb = 0.0, psnrRightDb = 0.0;  // synthesized vs two-pass reference
-  BudgetFrame budget;                           // the disparity budget's reduction and choice (off: empty)
-  DisparityMapReport disparityMap;              // the depth-to-parallax curve (identity: linear)
+  comfort::BudgetFrame budget;                  // the disparity budget's reduction and choice (off: empty)
+  comfort::DisparityMapReport disparityMap;     // the depth-to-parallax curve (identity: linear)
   float maxSeparation = 0.0f;                   // as the stereo pass used it
   std::uint32_t cropColumns = 0;                // per side, blacked out and not compared (0 with a guard band)
   std::uint32_t guardBandColumns = 0;           // per side, rendered beyond the output (0 with an edge crop)
@@ -93,7 +93,7 @@ stereo::GuardBand widestSequenceGuardBand(const SequenceJobOptions& options);
 // One frame's images at a time with the widest guard band the sequence can reach, the previous frame (the
 // flicker metric's) and the previous-frame fill's history: checked before the Vulkan start-up and again by
 // runSequenceJob once the device is known.
-MemoryEstimate sequenceMemoryEstimate(const SequenceJobOptions& options);
+frame::MemoryEstimate sequenceMemoryEstimate(const SequenceJobOptions& options);
 
 // Throws std::invalid_argument for bad options (checked before rendering) and anything the renderer throws.
 SequenceReport runSequenceJob(vk::Context& context, const SequenceJobOptions& options);

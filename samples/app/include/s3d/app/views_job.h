@@ -1,7 +1,7 @@
 #pragma once
 // `s3d render --views FILE.json`: per-eye views as OpenXR reports them (comfort/view_configuration.h). The
 // center view is rendered with the frustum that covers both eyes plus the guard band; each eye is
-// synthesized from it through the view mapping (C++, a fixed-point depth search) and resampled into its own
+// synthesized from it through the view mapping (stereo::synthesizeEyeForView) and resampled into its own
 // projection and size; the two-pass reference renders exactly those eye views; the error is the whole frame's.
 #include <array>
 #include <cstdint>
@@ -50,16 +50,6 @@ struct ViewsReport {
   std::array<double, 2> disparityRangePx{}, disparityRangeArcmin{};
   std::vector<std::string> filesWritten;
 };
-
-// Iterations of the fixed-point search t_c = t_eye + b / depth(t_c), starting at infinity.
-inline constexpr int kViewSearchIterations = 8;
-
-// One eye synthesized from the center view's colour and linear depth (plain C++): per eye pixel centre, the
-// depth is found by the fixed-point search, then the colour is filtered bilinearly at the mapped position. When
-// `eyeDepth` is given it receives the depth each eye pixel shows (the search's last depth).
-ImageRGBA8 synthesizeEyeForView(const ImageRGBA8& centerColor, const DepthImage& centerDepth,
-                                const comfort::ViewConfiguration& views, const comfort::CenterView& center, int eye,
-                                DepthImage* eyeDepth = nullptr);
 
 ViewsReport runViewsJob(vk::Context& context, const ViewsJobOptions& options);
 nlohmann::json toJson(const ViewsReport& report);

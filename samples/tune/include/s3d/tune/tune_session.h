@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "s3d/app/budget_frame.h"
+#include "s3d/comfort/budget_frame.h"
 #include "s3d/comfort/comfort_report.h"
 #include "s3d/comfort/display_profile.h"
 #include "s3d/comfort/world_queries.h"
@@ -33,7 +33,7 @@ struct FrameNumbers {
   // On the display profile, as `s3d render`'s comfort report: parallax range, share beyond the 1-degree rule,
   // stereo window violations (comfort_report.h).
   comfort::FrameComfort comfort;
-  double shareBeyondComfort = 0.0;           // pixels beyond kComfortLimitArcmin
+  double shareBeyondComfort = 0.0;           // pixels beyond comfort::kComfortLimitArcmin
   std::uint64_t weaponConflictPixels = 0;    // weapon pixels pushed behind the world surface there
   std::uint64_t hudConflictPixels = 0;       // HUD pixels deeper than the surface they cover
   float zeroParallaxDistance = 0.0f;         // as used (the control's output when it runs, the rules applied)
@@ -44,8 +44,8 @@ struct FrameNumbers {
   bool crosshairHitWorld = false;
   std::uint64_t sanitizedDepthPixels = 0;  // NaN / non-positive depths read as the zero-parallax plane
   std::optional<std::string> warning;      // e.g. the zero-parallax distance clamped into the camera's range
-  app::BudgetFrame budget;                 // the disparity budget's reduction and choice (rule off: empty)
-  app::DisparityMapReport disparityMap;    // the depth-to-parallax curve (identity: linear)
+  comfort::BudgetFrame budget;               // the disparity budget's reduction and choice (rule off: empty)
+  comfort::DisparityMapReport disparityMap;  // the depth-to-parallax curve (identity: linear)
   float maxSeparation = 0.0f;              // as used
 };
 

@@ -37,7 +37,8 @@ struct TuneState {
   bool playPath = false;      // advance along the scene's camera path one frame per frame
   bool reference = true;      // render the two-pass reference eyes (error numbers); forced by the views needing it
   std::uint32_t supersample = 1;  // renderer anti-aliasing, 1..4 (renderer::RendererOptions), as `s3d render`
-  // OneDegree: maxSeparation and the zero-parallax distance chosen per frame (app/budget_frame.h), as `s3d render`.
+  // OneDegree: maxSeparation and the zero-parallax distance chosen per frame (s3d/comfort/budget_frame.h), as
+  // `s3d render`.
   comfort::DisparityBudgetRule disparityBudget = comfort::DisparityBudgetRule::Off;
   app::HudMode hud = app::HudMode::Auto;  // the game HUD (panels, crosshair), as `s3d render --hud`
 };

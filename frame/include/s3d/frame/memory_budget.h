@@ -9,7 +9,7 @@
 #include "s3d/stereo/stereo.h"
 #include "s3d/vk/context.h"
 
-namespace s3d::app {
+namespace s3d::frame {
 
 struct MemoryEstimate {
   std::uint64_t hostBytes = 0;    // images in main memory: read back, compared, packed and encoded
@@ -67,4 +67,4 @@ std::string byteText(std::uint64_t bytes);
 // anything else, zero or beyond 2^60.
 std::optional<std::uint64_t> parseByteSize(const std::string& text);
 
-}  // namespace s3d::app
+}  // namespace s3d::frame

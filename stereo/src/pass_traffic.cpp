@@ -1,26 +1,27 @@
+#include "s3d/stereo/pass_traffic.h"
+
 #include <algorithm>
 #include <cstdint>
 
-#include "s3d/app/bench_job.h"
 #include "s3d/stereo/forward.h"
 #include "s3d/stereo/iterative.h"
 #include "s3d/stereo/row_tile_shared.h"
 #include "s3d/stereo/synthesis.h"
 
-namespace s3d::app {
+namespace s3d::stereo {
 
-StereoTraffic stereoPassTraffic(const stereo::StereoParameters& methodParameters, std::uint32_t width,
+StereoTraffic stereoPassTraffic(const StereoParameters& methodParameters, std::uint32_t width,
                                 std::uint32_t height, bool cpuDevice) {
-  const stereo::StereoParameters parameters = stereo::displacementParameters(methodParameters);  // a hybrid's base
+  const StereoParameters parameters = displacementParameters(methodParameters);  // a hybrid's base
   constexpr std::uint64_t kTexelBytes = 4;  // RGBA8 color, R32F depth, RGBA8 eyes
   int depthLoadsPerEye = 0;
   int margin = 0;
   gpu::StereoConstants crop{};
-  if (parameters.method == stereo::StereoMethod::Forward) {
+  if (parameters.method == StereoMethod::Forward) {
     // stereo_forward_*.comp per pixel and eye: splat 4 depth loads and about one atomic; resolve the key, 2 depth
     // and 2 color loads (holes more); atomics write the 4-byte z-buffers, the resolve empties the other pair
     // (for the next frame) and writes the eyes.
-    stereo::makeForwardConstants(parameters, width, height);  // throws for parameters the pass refuses
+    makeForwardConstants(parameters, width, height);  // throws for parameters the pass refuses
     const std::uint64_t pixels = std::uint64_t(width) * height;
     StereoTraffic traffic;
     traffic.bytesRead = 2 * pixels * (4 + 1 + 1 + 2 + 2) * kTexelBytes;
@@ -28,22 +29,22 @@ StereoTraffic stereoPassTraffic(const stereo::StereoParameters& methodParameters
     traffic.compulsoryBytes = pixels * 4 * kTexelBytes;
     return traffic;
   }
-  if (parameters.method == stereo::StereoMethod::Iterative) {
-    const gpu::IterativeConstants c = stereo::makeIterativeConstants(parameters, parameters.iterations, width, height);
+  if (parameters.method == StereoMethod::Iterative) {
+    const gpu::IterativeConstants c = makeIterativeConstants(parameters, parameters.iterations, width, height);
     depthLoadsPerEye = c.startTapCount + 2 * c.iterations;  // stereo_iterative.comp: taps, then two starts x K
-    margin = stereo::rowTileMargin(c);
+    margin = rowTileMargin(c);
     crop.cropBegin = c.cropBegin;
     crop.cropEnd = c.cropEnd;
   } else {
-    crop = stereo::makeStereoConstants(parameters, width, height);
+    crop = makeStereoConstants(parameters, width, height);
     depthLoadsPerEye = crop.tapCount;  // stereo_gather.glsl: minDepthOverTaps
-    margin = stereo::rowTileMargin(crop);
+    margin = rowTileMargin(crop);
   }
   const std::uint64_t interior = std::uint64_t(crop.cropEnd - crop.cropBegin) * height;
   const std::uint64_t pixels = std::uint64_t(width) * height;
   const std::uint64_t colorLoadsPerEye = 2;  // sampleRow's two texels
   StereoTraffic traffic;
-  traffic.rowTiles = stereo::usesRowTiles(parameters.kernel, margin, cpuDevice);
+  traffic.rowTiles = usesRowTiles(parameters.kernel, margin, cpuDevice);
   if (traffic.rowTiles) {
     // stereo_row_tile.glsl: each tile with interior columns [begin, end) loads [begin - margin, end + margin)
     // (clipped to the image, margin at most the shared arrays') once, a depth and a color texel per column.
@@ -63,4 +64,4 @@ StereoTraffic stereoPassTraffic(const stereo::StereoParameters& methodParameters
   return traffic;
 }
 
-}  // namespace s3d::app
+}  // namespace s3d::stereo

@@ -38,7 +38,7 @@ std::string speedErrorSvg(const BenchReport& report, const SpeedErrorAxes& axes)
     const std::optional<double> x = axes.timeOverReferenceEye ? ratio(row.stereoGpuMs, row.referenceEyeGpuMs)
                                                               : row.stereoGpuMs;
     if (!x || !(*x > 0.0)) continue;  // nothing to place on a log axis
-    const stereo::ErrorStats EyeError::*region = axes.wholeImage ? &EyeError::display : &EyeError::halo;
+    const stereo::ErrorStats stereo::EyeError::*region = axes.wholeImage ? &stereo::EyeError::display : &stereo::EyeError::halo;
     points.push_back({&row, *x, 0.5 * ((row.left.*region).psnrDb + (row.right.*region).psnrDb)});
     if (std::find(scenes.begin(), scenes.end(), row.scene) == scenes.end()) scenes.push_back(row.scene);
     if (std::find(separations.begin(), separations.end(), row.maxSeparation) == separations.end())

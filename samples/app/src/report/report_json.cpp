@@ -1,4 +1,4 @@
-#include "s3d/app/eye_comparison.h"
+#include "s3d/app/report_json.h"
 
 #include <charconv>
 #include <cmath>
@@ -6,33 +6,6 @@
 #include <system_error>
 
 namespace s3d::app {
-
-std::vector<std::uint8_t> haloMaskFor(const DepthImage& centerDepth, const stereo::StereoParameters& parameters) {
-  return stereo::haloMask(centerDepth, std::uint32_t(std::ceil(parameters.maxSeparation * float(centerDepth.width))));
-}
-
-std::vector<std::uint8_t> disocclusionMaskFor(const DepthImage& referenceDepth, const DepthImage& centerDepth,
-                                              const stereo::StereoParameters& parameters, stereo::Eye eye) {
-  return stereo::disocclusionMask(referenceDepth, centerDepth, parameters.maxSeparation,
-                                  parameters.zeroParallaxDistance, eye);
-}
-
-EyeError compareEye(const ImageRGBA8& synthesized, const ImageRGBA8& reference, std::uint32_t cropColumns,
-                    const stereo::RegionMasks& masks, const ImageRGBA32F* synthesizedHdr,
-                    const ImageRGBA32F* referenceHdr) {
-  const stereo::ErrorsByRegion<stereo::ErrorStats> display =
-      stereo::compareDisplayByRegion(synthesized, reference, cropColumns, masks);
-  EyeError error{display.all, display.halo, display.rest, display.disocclusion, display.transparent, std::nullopt,
-                 display.foliage};
-  if (synthesizedHdr && referenceHdr)
-    error.hdr = stereo::compareHdrByRegion(*synthesizedHdr, *referenceHdr, cropColumns, masks);
-  return error;
-}
-
-EyeError compareEye(const ImageRGBA8& synthesized, const ImageRGBA8& reference, std::uint32_t cropColumns,
-                    const std::vector<std::uint8_t>& halo, const std::vector<std::uint8_t>& disocclusion) {
-  return compareEye(synthesized, reference, cropColumns, stereo::RegionMasks{halo, disocclusion, {}});
-}
 
 double tidy(float value) {
   if (!std::isfinite(value)) return double(value);
@@ -73,7 +46,7 @@ nlohmann::json statsJson(const stereo::HdrErrorStats& stats) {
           {"pixelCount", stats.pixelCount}};
 }
 
-nlohmann::json errorJson(const EyeError& error) {
+nlohmann::json errorJson(const stereo::EyeError& error) {
   nlohmann::json json = statsJson(error.display);
   json["halo"] = statsJson(error.halo);
   json["rest"] = statsJson(error.rest);

@@ -1,11 +1,11 @@
-#include "s3d/app/interleaved_timing.h"
+#include "s3d/stereo/interleaved_timing.h"
 
 #include <cmath>
 #include <stdexcept>
 
 #include "s3d/stereo/synthesis.h"
 
-namespace s3d::app {
+namespace s3d::stereo {
 
 InterleavedTiming timeInterleaved(const std::vector<TimedFrame>& series, int repeat, const WarmUp& warmUp,
                                   const SteadyNow& now) {
@@ -45,7 +45,7 @@ InterleavedTiming timeInterleaved(const std::vector<TimedFrame>& series, int rep
     if (at - start >= warmUp.maximum && timing.warmUpRounds >= warmUp.minRounds) break;
     if (at < windowEnd) continue;
     // A window closed: compare its median round with the previous window's.
-    const std::optional<double> windowMs = stereo::medianMs(std::move(window));
+    const std::optional<double> windowMs = medianMs(std::move(window));
     window.clear();
     while (windowEnd <= at) windowEnd += warmUp.window;
     timing.settled = windowMs && previousWindowMs && std::abs(*windowMs - *previousWindowMs) <= *previousWindowMs * warmUp.tolerance;
@@ -62,4 +62,4 @@ InterleavedTiming timeInterleaved(const std::vector<TimedFrame>& series, int rep
   return timing;
 }
 
-}  // namespace s3d::app
+}  // namespace s3d::stereo

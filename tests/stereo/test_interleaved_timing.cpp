@@ -10,9 +10,9 @@
 #include <string>
 #include <vector>
 
-#include "s3d/app/interleaved_timing.h"
+#include "s3d/stereo/interleaved_timing.h"
 
-namespace s3d::app {
+namespace s3d::stereo {
 namespace {
 
 using std::chrono::milliseconds;
@@ -175,4 +175,4 @@ TEST(InterleavedTiming, RefusesAnEmptyOrInconsistentSchedule) {
 }
 
 }  // namespace
-}  // namespace s3d::app
+}  // namespace s3d::stereo

@@ -1,4 +1,4 @@
-#include "s3d/app/memory_budget.h"
+#include "s3d/frame/memory_budget.h"
 
 #include <sys/resource.h>
 
@@ -13,7 +13,7 @@
 
 #include "s3d/stereo/disparity_map_shared.h"
 
-namespace s3d::app {
+namespace s3d::frame {
 namespace {
 
 // Host bytes per output pixel of a render job, counted from the images it holds at its peak (step 7, the
@@ -202,4 +202,4 @@ std::optional<std::uint64_t> parseByteSize(const std::string& text) {
   return std::uint64_t(bytes);
 }
 
-}  // namespace s3d::app
+}  // namespace s3d::frame

@@ -9,7 +9,7 @@
 #include <optional>
 #include <vector>
 
-namespace s3d::app {
+namespace s3d::stereo {
 
 // One frame of a series: records and submits it, waits, and returns its GPU milliseconds (empty when the device
 // gives no timestamps).
@@ -43,4 +43,4 @@ using SteadyNow = std::function<std::chrono::steady_clock::time_point()>;
 InterleavedTiming timeInterleaved(const std::vector<TimedFrame>& series, int repeat, const WarmUp& warmUp = {},
                                   const SteadyNow& now = std::chrono::steady_clock::now);
 
-}  // namespace s3d::app
+}  // namespace s3d::stereo

@@ -1,27 +1,29 @@
 #pragma once
-// The disparity budget in the jobs (render, sequence, tune, convert): the GPU depth reduction of the frame,
-// the controller's choice applied to the stereo parameters, and its report.json section.
+// The per-frame rules on the stereo parameters of a frame from s3d's tools or a host: the disparity budget (the
+// GPU depth reduction, the controller's choice applied), the depth-to-parallax mapping, and the no-negative-parallax
+// rules (the weapon pushed to the screen plane, the zero-parallax distance held at the nearest surface).
 #include <array>
 #include <cstdint>
 #include <optional>
 
-#include <nlohmann/json.hpp>
+#include <glm/glm.hpp>
 
-#include "s3d/comfort/comfort_report.h"
 #include "s3d/comfort/disparity_budget_controller.h"
+#include "s3d/comfort/frame_comfort_state.h"
+#include "s3d/image.h"
 #include "s3d/stereo/depth_range_pass.h"
 #include "s3d/stereo/disparity_map.h"
 #include "s3d/stereo/disparity_map_pass.h"
 #include "s3d/stereo/stereo.h"
 
-namespace s3d::app {
+namespace s3d::comfort {
 
 // One frame's budget: what the reduction saw, the controller chose, and the GPU time of the reduction.
 struct BudgetFrame {
-  comfort::DisparityBudgetRule rule = comfort::DisparityBudgetRule::Off;
-  comfort::DisparityBudget budget;
+  DisparityBudgetRule rule = DisparityBudgetRule::Off;
+  DisparityBudget budget;
   stereo::DepthRange depth;      // the reduction's result (empty when the rule is off)
-  comfort::BudgetChoice choice;  // parameters, target, used share, cut, forced
+  BudgetChoice choice;  // parameters, target, used share, cut, forced
   std::optional<double> reductionGpuMs;
   // For the budget in pixels: the reduced image's width; a job with a guard band sets the output eyes' width
   // (the parallax statistics' pixels), since the reduction ran over the wider rendered frame.
@@ -52,36 +54,38 @@ class FrameDisparityMapper {
   stereo::DisparityMapPass pass_;
 };
 
-// report.json "disparityMapping": {"mapping", "knots": [{"depth", "mappedDepth"}] (depths as linear depth,
-// +inf as null), "gpuMs", "referenceLayers", "unresolvedPixels": {"left", "right"}}.
-nlohmann::json disparityMapJson(const DisparityMapReport& report);
-
 // What the controller needs besides the depth image.
 struct BudgetFrameHints {
   std::optional<float> crosshairDepth;
   std::optional<float> weaponNearestPushed;
   std::optional<float> anticipatedNearest;
   bool cut = false;
-  bool receding = false;  // comfort::BudgetFrameInput::receding
+  bool receding = false;  // BudgetFrameInput::receding
 };
 
 // With the rule on: reduces `linearDepth` (GPU, vk::kComputeWrite state, left so), lets `controller` choose
 // and writes maxSeparation and zeroParallaxDistance into `parameters`. Off: returns the rule only.
 BudgetFrame applyDisparityBudget(vk::Context& context, const stereo::DepthRangePass& pass,
-                                 comfort::DisparityBudgetController* controller, const vk::Image& linearDepth,
+                                 DisparityBudgetController* controller, const vk::Image& linearDepth,
                                  const BudgetFrameHints& hints, float seconds, stereo::StereoParameters& parameters);
 
 // The weapon's nearest point as the stereo pass sees it (pushed), if there is a weapon.
 std::optional<float> weaponNearestPushed(const stereo::StereoParameters& parameters,
                                          const std::optional<glm::vec2>& weaponDepths);
 
-// report.json "disparityBudget": {"rule", "limitArcmin", "budgetPx": {"crossed", "uncrossed"}, "chosen":
-// {"maxSeparation", "zeroParallaxDistance"}, "target": {...}, "usedShare", "shareOutside" (pixels beyond the
-// rule, from the comfort report), "bulkShare" (the span of the 5th to 95th percentile of the parallax of the
-// pixels with finite depth over the budget's usable span, from the comfort report: the depth impression the
-// bulk of the scene keeps),
-// "cut", "forced", "depth": {"nearest", "farthest", "p01", "p50", "p99"},
-// "reductionGpuMs"}; just {"rule": "off", "shareOutside"} when off.
-nlohmann::json budgetJson(const BudgetFrame& frame, const comfort::FrameComfort& comfort);
+// The renderer's weapon depth range (renderer::firstPersonDepthRange; none: no weapon in view) as the weapon mask
+// statistics the comfort rules take.
+WeaponMaskStats weaponMaskStats(const std::optional<glm::vec2>& weaponDepths);
 
-}  // namespace s3d::app
+// Before the center view: without negative parallax allowed, the weapon push reaches at least the screen
+// plane (weaponPushForFrame).
+stereo::StereoParameters pushWeaponUnlessNegativeParallaxAllowed(stereo::StereoParameters parameters,
+                                                                 const std::optional<glm::vec2>& weaponDepths,
+                                                                 bool allowNegativeParallax);
+
+// Once the frame's depth is known: without negative parallax allowed, the zero-parallax distance is held at
+// the nearest surface (nearestDepth), so every pixel gets zero or positive parallax. Returns whether it was lowered.
+bool holdZeroParallaxAtNearestDepth(stereo::StereoParameters& parameters, const DepthImage& stereoDepth,
+                                    bool allowNegativeParallax);
+
+}  // namespace s3d::comfort

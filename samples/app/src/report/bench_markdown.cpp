@@ -36,14 +36,14 @@ const ErrorMeasure kErrorMeasures[] = {
 // The PSNR regions of the main table, in column order.
 struct ErrorRegion {
   const char* heading;
-  stereo::ErrorStats EyeError::*stats;
+  stereo::ErrorStats stereo::EyeError::*stats;
 };
-const ErrorRegion kErrorRegions[] = {{"PSNR all", &EyeError::display},
-                                     {"halo", &EyeError::halo},
-                                     {"disocclusion", &EyeError::disocclusion},
-                                     {"rest", &EyeError::rest}};
+const ErrorRegion kErrorRegions[] = {{"PSNR all", &stereo::EyeError::display},
+                                     {"halo", &stereo::EyeError::halo},
+                                     {"disocclusion", &stereo::EyeError::disocclusion},
+                                     {"rest", &stereo::EyeError::rest}};
 // Regions a scene may not have: a column only in the tables of scenes where they hold pixels.
-const ErrorRegion kSceneRegions[] = {{"transparent", &EyeError::transparent}, {"foliage", &EyeError::foliage}};
+const ErrorRegion kSceneRegions[] = {{"transparent", &stereo::EyeError::transparent}, {"foliage", &stereo::EyeError::foliage}};
 
 std::string settingDetail(const MethodSetting& setting) {
   const std::string kernel = setting.kernel == stereo::StereoKernel::PerPixel   ? ", per pixel"
