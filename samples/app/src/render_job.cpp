@@ -315,7 +315,7 @@ RenderReport runRenderJob(vk::Context& context, const RenderJobOptions& options)
   const ImageRGBA32F centerHdr = output(renderedHdr);
 
   // 4. The two-pass reference: each eye rendered with its off-axis camera (on the rendered frame, cropped
-  // to the output: the same rays as an output-size eye, tests/test_guard_band.cpp); a nonlinear map takes one
+  // to the output: the same rays as an output-size eye, tests/stereo/test_guard_band.cpp); a nonlinear map takes one
   // rendering per segment of its curve (layered_reference.h).
   struct OutputReference {  // one reference eye cropped to the output
     frame::ReferenceEye rendered;
