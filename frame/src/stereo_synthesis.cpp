@@ -24,11 +24,14 @@ StereoSynthesis::StereoSynthesis(vk::Context& context, const StereoSynthesisDesc
   if (description.timedRuns < 1)
     throw std::invalid_argument("stereo synthesis: timedRuns must be at least 1 (got " +
                                 std::to_string(description.timedRuns) + ")");
-  if (description.hybrid)
-    eyeRenderer_ = std::make_unique<renderer::DeferredRenderer>(
-        context, description.width, description.height,
-        eyeRendererOptions(description.renderer, description.hybridSurfaces));
+  if (description.hybrid) makeEyeRenderer();
   if (description.previousFrameFill) fill_.emplace(context);
+}
+
+void StereoSynthesis::makeEyeRenderer() {
+  eyeRenderer_ = std::make_unique<renderer::DeferredRenderer>(
+      *context_, description_.width, description_.height,
+      eyeRendererOptions(description_.renderer, description_.hybridSurfaces));
 }
 
 void StereoSynthesis::setScene(const renderer::Scene& scene) {
@@ -59,10 +62,7 @@ SynthesizedEyes StereoSynthesis::synthesize(const StereoSynthesisFrame& frame) {
 }
 
 SynthesizedEyes StereoSynthesis::synthesizeHybridFrame(const StereoSynthesisFrame& frame) {
-  if (!eyeRenderer_)
-    eyeRenderer_ = std::make_unique<renderer::DeferredRenderer>(
-        *context_, description_.width, description_.height,
-        eyeRendererOptions(description_.renderer, description_.hybridSurfaces));
+  if (!eyeRenderer_) makeEyeRenderer();
   if (!eyeRendererHasScene_) setScene(frame.scene);
   HybridSynthesis hybrid = synthesizeHybrid(*context_, frame.centerRenderer, *eyeRenderer_, frame.scene, frame.center,
                                             frame.parameters, description_.timedRuns, description_.hybridSurfaces);

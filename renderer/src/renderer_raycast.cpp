@@ -17,9 +17,11 @@ void DeferredRenderer::setSurfaceBvh(const SceneBvh& bvh) {
     r.raycastIds = vk::createImage(r.context, kNarrowVisibilityFormat, r.width, r.height, usage);
     r.raycastDepth = vk::createImage(r.context, VK_FORMAT_R32_SFLOAT, r.width, r.height, usage);
   }
+  // A tree whose ids are packed otherwise than the scene's (wide ids, another scene) is not kept: renders refuse.
   r.raycastBvhCurrent = false;
-  if (bvh.visibilityPacking == r.visibilityPacking) r.raycast->setBvh(bvh);  // wide ids: refused below
-  r.raycastBvhCurrent = bvh.visibilityPacking == r.visibilityPacking;
+  if (bvh.visibilityPacking != r.visibilityPacking) return;
+  r.raycast->setBvh(bvh);
+  r.raycastBvhCurrent = true;
 }
 
 std::optional<std::string> DeferredRenderer::raycastSurfacesRefusal() const { return impl_->raycastRefusal(); }

@@ -59,6 +59,8 @@ class StereoSynthesis {
   SynthesizedEyes synthesize(const StereoSynthesisFrame& frame);
 
  private:
+  // The hybrid's eye renderer: the center view's size and options, made to shade rays where the description asks.
+  void makeEyeRenderer();
   SynthesizedEyes synthesizeHybridFrame(const StereoSynthesisFrame& frame);
   SynthesizedEyes synthesizeFilledFrame(const StereoSynthesisFrame& frame);
 
