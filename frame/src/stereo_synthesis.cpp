@@ -38,6 +38,7 @@ void StereoSynthesis::setScene(const renderer::Scene& scene) {
   if (!eyeRenderer_) return;
   eyeRenderer_->setScene(scene);
   eyeRendererHasScene_ = true;
+  measuredSurfaces_.reset();
 }
 
 void StereoSynthesis::updateGeometry(const renderer::Scene& scene) {
@@ -64,8 +65,7 @@ SynthesizedEyes StereoSynthesis::synthesize(const StereoSynthesisFrame& frame) {
 SynthesizedEyes StereoSynthesis::synthesizeHybridFrame(const StereoSynthesisFrame& frame) {
   if (!eyeRenderer_) makeEyeRenderer();
   if (!eyeRendererHasScene_) setScene(frame.scene);
-  HybridSynthesis hybrid = synthesizeHybrid(*context_, frame.centerRenderer, *eyeRenderer_, frame.scene, frame.center,
-                                            frame.parameters, description_.timedRuns, description_.hybridSurfaces);
+  HybridSynthesis hybrid = hybridWithChosenSurfaces(frame);
   SynthesizedEyes result;
   result.eyes = std::move(hybrid.eyes);
   result.gpuMs = hybrid.timings.total;
@@ -73,6 +73,25 @@ SynthesizedEyes StereoSynthesis::synthesizeHybridFrame(const StereoSynthesisFram
   result.filledRight = hybrid.filledRight;
   result.hybrid = std::move(hybrid);
   return result;
+}
+
+HybridSynthesis StereoSynthesis::hybridWithChosenSurfaces(const StereoSynthesisFrame& frame) {
+  auto run = [&](HybridSurfaces surfaces) {
+    return synthesizeHybrid(*context_, frame.centerRenderer, *eyeRenderer_, frame.scene, frame.center,
+                            frame.parameters, description_.timedRuns, surfaces);
+  };
+  if (description_.hybridSurfaces != HybridSurfaces::Automatic || eyeRenderer_->raycastSurfacesRefusal())
+    return run(description_.hybridSurfaces);
+  if (measuredSurfaces_) return run(*measuredSurfaces_);
+  HybridSynthesis rays = run(HybridSurfaces::RayCast);
+  HybridSynthesis raster = run(HybridSurfaces::Raster);
+  const HybridSynthesis::SurfaceChoice choice{rays.timings.total, raster.timings.total};
+  // Without timestamps nothing is known: rays, as synthesizeHybrid's Automatic.
+  const bool rasterFaster = choice.raycastMs && choice.rasterMs && *choice.rasterMs < *choice.raycastMs;
+  measuredSurfaces_ = rasterFaster ? HybridSurfaces::Raster : HybridSurfaces::RayCast;
+  HybridSynthesis& chosen = rasterFaster ? raster : rays;
+  chosen.surfaceChoice = choice;
+  return std::move(chosen);
 }
 
 // The fill reprojects the previous frame's eyes with each eye camera's motion since then: the two-pass reference's

@@ -103,6 +103,34 @@ TEST_F(StereoSynthesisTest, TheHybridsEyeRendererFollowsTheScene) {
   }
 }
 
+// Tolerance: none. Which path is faster is the device's to say (thin geometry makes a poor BVH); the rule is
+// that Automatic times both on a scene's first hybrid frame, keeps the faster for the scene's later frames, and
+// times them again for a new scene.
+TEST_F(StereoSynthesisTest, AutomaticSurfacesKeepThePathTimedFasterOnTheScenesFirstFrame) {
+  stereo::StereoParameters parameters;
+  parameters.method = stereo::StereoMethod::Hybrid;
+  parameters.hybridBudget = 0.3f;
+  const renderer::RendererOptions rays = eyeRendererOptions({}, HybridSurfaces::RayCast);
+  renderer::DeferredRenderer centerRenderer(context(), kWidth, kHeight, rays);
+  StereoSynthesis synthesis(context(), {.width = kWidth, .height = kHeight, .renderer = rays, .hybrid = true});
+  const CenterFrame frame = renderCenter(centerRenderer, "cover", 0, parameters, true);
+  synthesis.setScene(frame.scene);
+  const SynthesizedEyes first = synthesis.synthesize({centerRenderer, frame.scene, frame.center, parameters});
+  ASSERT_TRUE(first.hybrid && first.hybrid->surfaceChoice);
+  const HybridSynthesis::SurfaceChoice& timed = *first.hybrid->surfaceChoice;
+  ASSERT_TRUE(timed.raycastMs && timed.rasterMs) << "the device gives no timestamps";
+  const renderer::ShadeMask::Surfaces faster = *timed.rasterMs < *timed.raycastMs
+                                                   ? renderer::ShadeMask::Surfaces::Raster
+                                                   : renderer::ShadeMask::Surfaces::RayCast;
+  EXPECT_EQ(first.hybrid->surfaces, faster);
+  const SynthesizedEyes second = synthesis.synthesize({centerRenderer, frame.scene, frame.center, parameters});
+  EXPECT_FALSE(second.hybrid->surfaceChoice.has_value()) << "the scene's choice is timed once";
+  EXPECT_EQ(second.hybrid->surfaces, faster);
+  synthesis.setScene(frame.scene);
+  EXPECT_TRUE(synthesis.synthesize({centerRenderer, frame.scene, frame.center, parameters}).hybrid->surfaceChoice)
+      << "a new scene is timed again";
+}
+
 TEST_F(StereoSynthesisTest, ACenterViewOfAnotherSizeIsRefusedNamingBothSizes) {
   const stereo::StereoParameters parameters;
   renderer::DeferredRenderer centerRenderer(context(), 64, 36);

@@ -43,11 +43,19 @@ struct HybridSynthesis {
   // (DeferredRenderer::raycastSurfacesRefusal), else rasterized.
   renderer::ShadeMask::Surfaces surfaces = renderer::ShadeMask::Surfaces::Raster;
   HybridTimings timings;
+  // Set on the frame where StereoSynthesis measured both surface paths to choose one (HybridSurfaces::Automatic):
+  // each path's total GPU time for this frame.
+  struct SurfaceChoice {
+    std::optional<double> raycastMs, rasterMs;
+  };
+  std::optional<SurfaceChoice> surfaceChoice;
 };
 
-// How the hybrid finds its masked pixels' surfaces. Automatic: by ray casting wherever the eye renderer can shade
-// what rays find (DeferredRenderer::raycastSurfacesRefusal), else rasterized. Raster: always rasterized. RayCast:
-// always by rays (a renderer that cannot is an error naming why).
+// How the hybrid finds its masked pixels' surfaces. Automatic: where the eye renderer can shade what rays find
+// (DeferredRenderer::raycastSurfacesRefusal), StereoSynthesis times both paths on a scene's first hybrid frame
+// and keeps the faster (thin geometry makes a poor BVH, where rays lose), and synthesizeHybrid alone casts rays;
+// elsewhere rasterized. Raster: always rasterized. RayCast: always by rays (a renderer that cannot is an error
+// naming why).
 enum class HybridSurfaces { Automatic, Raster, RayCast };
 
 // "auto", "raster", "raycast"; and back (nullopt for any other name).

@@ -51,6 +51,7 @@ class StereoSynthesis {
   StereoSynthesis(vk::Context& context, const StereoSynthesisDescription& description);
 
   // A new scene, or a new pose of it (DeferredRenderer::setScene / updateGeometry), for the eye renderer if made.
+  // A new scene measures the hybrid's surface paths again (HybridSurfaces::Automatic); a new pose keeps the choice.
   void setScene(const renderer::Scene& scene);
   void updateGeometry(const renderer::Scene& scene);
 
@@ -62,6 +63,9 @@ class StereoSynthesis {
   // The hybrid's eye renderer: the center view's size and options, made to shade rays where the description asks.
   void makeEyeRenderer();
   SynthesizedEyes synthesizeHybridFrame(const StereoSynthesisFrame& frame);
+  // The surface path for this frame: the description's, or with Automatic on an eye renderer that can cast rays,
+  // the faster of both as timed on this scene's first hybrid frame (that frame's result is the faster path's).
+  HybridSynthesis hybridWithChosenSurfaces(const StereoSynthesisFrame& frame);
   SynthesizedEyes synthesizeFilledFrame(const StereoSynthesisFrame& frame);
 
   struct EyeCamera {
@@ -71,6 +75,7 @@ class StereoSynthesis {
   StereoSynthesisDescription description_;
   std::unique_ptr<renderer::DeferredRenderer> eyeRenderer_;
   bool eyeRendererHasScene_ = false;
+  std::optional<HybridSurfaces> measuredSurfaces_;  // Automatic's choice for the current scene, once timed
   std::optional<stereo::PreviousFillPass> fill_;
   std::optional<std::array<EyeCamera, 2>> previousEyes_;  // the last filled frame's eye cameras (the fill's motion)
 };
