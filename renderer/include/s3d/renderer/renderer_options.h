@@ -20,7 +20,7 @@ struct RendererOptions {
   bool countShadedPixels = false;
   // How the G-buffer pass gets each pixel's normal and material (the images agree to half-float rounding).
   enum class GBufferShading {
-    Automatic,   // Visibility on GPUs, Raster on CPU devices: measured the faster on each (docs/RESULTS.md)
+    Automatic,   // Visibility on GPUs, Raster on CPU devices: the faster on each (docs/RESULTS.md, "The G-buffer's raster side")
     Raster,      // the fragment shader evaluates and writes them (a CPU rasterizer interpolates cheaply)
     Visibility,  // fragments write a triangle id only; a compute pass evaluates the surface per pixel (a GPU
                  // whose raster side is a small part of the chip pays per byte a fragment writes)
@@ -29,7 +29,7 @@ struct RendererOptions {
   // How transparent objects are blended over the lit image (the images agree to half-float rounding and the
   // rare pixel centre on a triangle edge).
   enum class TransparentCompositing {
-    Automatic,  // Compute on GPUs, Raster on CPU devices: measured the faster on each (docs/RESULTS.md)
+    Automatic,  // Compute on GPUs, Raster on CPU devices: the faster on each (docs/RESULTS.md, "Transparent pass")
     Raster,     // a blended raster pass: only covered fragments are shaded (cheap on a CPU rasterizer)
     Compute,    // a compute pass per object over the tiles its bounds cover (a GPU whose raster side is a small
                 // part of the chip pays per byte a blended fragment reads and writes)

@@ -1,9 +1,8 @@
 #pragma once
 // Timing GPU frames that a bench compares with each other (a reference eye and the center frame): every series
 // is measured in the same rounds, one frame of each back to back, right after untimed warm-up rounds that last
-// until the frames run at a steady speed. A GPU idle through seconds of host-side work drops its clocks (an H200
-// fell to 345 MHz from 1980 MHz within a second) and takes most of a second of frames to raise them again; a
-// series timed during that ramp read up to twice its time.
+// until the frames run at a steady speed. A GPU idle through seconds of host-side work drops its clocks and takes
+// frames to raise them again; a series timed during that ramp reads too high (docs/RESULTS.md, its opening notes).
 #include <chrono>
 #include <functional>
 #include <optional>
@@ -21,7 +20,7 @@ using TimedFrame = std::function<std::optional<double>()>;
 // GPU already at steady clocks stops at `minimum`.
 struct WarmUp {
   std::chrono::milliseconds minimum{500};
-  std::chrono::milliseconds window{250};  // longer than the steps a GPU takes its clocks up in (about 200 ms)
+  std::chrono::milliseconds window{250};  // longer than the steps a GPU takes its clocks up in
   double tolerance = 0.02;
   std::chrono::milliseconds maximum{4000};
   int minRounds = 1;

@@ -11,7 +11,7 @@ S3D_GPU_BEGIN
 #define S3D_STEREO_GROUP_SIZE 8
 
 // The tap array's length as compiled: C++ always holds the maximum; each shader variant defines its own
-// (a long push-constant array slowed the 3-tap seed from 14 to 22 ms on lavapipe), and because the
+// (a long push-constant array slowed the 3-tap seed on lavapipe), and because the
 // array comes last, every variant reads the same prefix.
 #ifndef S3D_STEREO_TAP_CAPACITY
 #define S3D_STEREO_TAP_CAPACITY S3D_STEREO_MAX_TAPS

@@ -44,7 +44,8 @@ struct SequenceJobOptions {
   // distance per frame from the GPU depth reduction; off: the zero-parallax control alone, as before.
   comfort::DisparityBudgetRule disparityBudget = comfort::DisparityBudgetRule::Off;
   // The budget's anticipation: the zero-parallax control's ray casts from where the camera will be this many
-  // seconds ahead at its current velocity (0: none; 0.35 s: no forced frame on the cover path, docs/RESULTS.md); a surface they find eases the target down early.
+  // seconds ahead at its current velocity (0: none; 0.35 s: no forced frame on the cover path, docs/RESULTS.md,
+  // "Disparity budget: every camera path x display, off and 1deg"); a surface they find eases the target down early.
   float anticipateSeconds = 0.35f;
   std::optional<std::uint64_t> memoryLimitBytes;  // --memory-limit; the machine's available memory in any case
   // Every frame's camera is this frame of the path (a static camera: the controls and the metrics at rest).
