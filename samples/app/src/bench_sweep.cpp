@@ -101,98 +101,134 @@ BenchRow settingRow(const std::string& sceneName, const MethodSetting& setting,
   return row;
 }
 
-}  // namespace
+// One sweep: the center view's renderer and the syntheses live for the whole sweep, so no renderer is created
+// between a setting's frames and its own timing.
+class Sweep {
+ public:
+  Sweep(vk::Context& context, const BenchOptions& options, const ValidatedBench& bench, BenchReport& report)
+      : context_(context), options_(options), bench_(bench), report_(report),
+        deferred_(context, options.width, options.height, {options.supersample}),
+        synthesis_(context, {.width = options.width, .height = options.height, .renderer = {options.supersample},
+                             .hybrid = anyHybrid(bench), .hybridSurfaces = options.hybridSurfaces,
+                             .timedRuns = options.repeat}),
+        reduction_(context), mapping_(context),
+        total_(bench.scenes.size() * bench.separations.size() * bench.settings.size()) {
+    // A CPU device has no clocks to bring back, and other load on the machine would keep its frame times from
+    // settling: its warm-up is the minimum.
+    if (context.isCpuDevice()) frameWarmUp_.maximum = frameWarmUp_.minimum;
+  }
 
-void runSweep(vk::Context& context, const BenchOptions& options, const ValidatedBench& bench, BenchReport& report) {
-  renderer::DeferredRenderer deferred(context, options.width, options.height, {options.supersample});
-  // Every setting's eyes; the hybrid settings' eye renderer (the center view stays in `deferred`) is made up front,
-  // so no renderer is created between a setting's frames and its own timing.
-  const bool anyHybrid = std::any_of(bench.settings.begin(), bench.settings.end(),
-                                     [](const MethodSetting& s) { return s.method == stereo::StereoMethod::Hybrid; });
-  frame::StereoSynthesis synthesis(context, {.width = options.width, .height = options.height,
-                                             .renderer = {options.supersample}, .hybrid = anyHybrid,
-                                             .hybridSurfaces = options.hybridSurfaces,
-                                             .timedRuns = options.repeat});
-  const std::size_t total = bench.scenes.size() * bench.separations.size() * bench.settings.size();
-  std::size_t done = 0;
-  auto progress = [&](const std::string& label) {
-    if (options.progress) options.progress({done, total, label});
+  void run() {
+    for (const std::string& sceneName : bench_.scenes) runScene(sceneName);
+    progress("done");
+  }
+
+ private:
+  // What every separation of a scene shares: the center view, its depth and the depth passes' times.
+  struct SceneFrame {
+    renderer::Scene scene;
+    renderer::ViewMatrices center;
+    DepthImage centerDepth;
+    std::optional<double> depthReductionGpuMs, disparityMapGpuMs;
   };
-  for (const std::string& sceneName : bench.scenes) {
-    renderer::Scene scene = renderer::loadScene(sceneName);
-    scene.camera = renderer::cameraForFrame(scene, 0);
-    deferred.setScene(scene);
-    synthesis.setScene(scene);
-    const renderer::ViewMatrices center =
-        renderer::centerViewMatrices(scene, float(options.width) / float(options.height),
-                                     {options.stereo.weaponDepthOffset, options.stereo.weaponDepthScale});
-    (void)deferred.render(center);  // warm-up: lavapipe compiles pipelines at first use
 
+  static bool anyHybrid(const ValidatedBench& bench) {
+    return std::any_of(bench.settings.begin(), bench.settings.end(),
+                       [](const MethodSetting& s) { return s.method == stereo::StereoMethod::Hybrid; });
+  }
+
+  void progress(const std::string& label) const {
+    if (options_.progress) options_.progress({done_, total_, label});
+  }
+
+  stereo::StereoParameters parametersAt(float separation) const {
+    stereo::StereoParameters parameters = options_.stereo;
+    parameters.maxSeparation = separation;
+    return parameters;
+  }
+
+  void runScene(const std::string& sceneName) {
+    SceneFrame shot{renderer::loadScene(sceneName), {}, {}, {}, {}};
+    shot.scene.camera = renderer::cameraForFrame(shot.scene, 0);
+    deferred_.setScene(shot.scene);
+    synthesis_.setScene(shot.scene);
+    shot.center = renderer::centerViewMatrices(shot.scene, float(options_.width) / float(options_.height),
+                                                {options_.stereo.weaponDepthOffset, options_.stereo.weaponDepthScale});
+    (void)deferred_.render(shot.center);  // warm-up: lavapipe compiles pipelines at first use
     // The reference eyes depend on maxSeparation: rendered once per separation, before the center view that the
     // stereo settings run on. Untimed here: their time is measured below, interleaved with the center frame's.
     std::vector<EyeReferences> references;
-    for (float separation : bench.separations) {
+    for (float separation : bench_.separations) {
       progress(sceneName + " references sep " + percentText(separation) + "%");
-      stereo::StereoParameters parameters = options.stereo;
-      parameters.maxSeparation = separation;
-      references.push_back(renderReferenceEyes(deferred, scene, center, parameters));
+      references.push_back(renderReferenceEyes(deferred_, shot.scene, shot.center, parametersAt(separation)));
     }
-    (void)deferred.render(center);
-    const DepthImage centerDepth = deferred.readLinearDepth();
-    const stereo::DepthRangePass reduction(context);
-    const stereo::DisparityMapPass mapping(context);
-    const gpu::DisparityMapConstants map =
-        stereo::nonlinearDisparityMap(stereo::reduceDepthRangeReference(centerDepth), options.stereo.zeroParallaxDistance);
-    std::optional<double> depthReductionGpuMs, disparityMapGpuMs;
-    // A CPU device has no clocks to bring back, and other load on the machine would keep its frame times from
-    // settling: its warm-up is the minimum.
-    stereo::WarmUp frameWarmUp;
-    if (context.isCpuDevice()) frameWarmUp.maximum = frameWarmUp.minimum;
+    (void)deferred_.render(shot.center);
+    shot.centerDepth = deferred_.readLinearDepth();
+    for (std::size_t s = 0; s < bench_.separations.size(); ++s)
+      runSeparation(sceneName, shot, bench_.separations[s], references[s], s == 0);
+  }
 
-    for (std::size_t s = 0; s < bench.separations.size(); ++s) {
-      stereo::StereoParameters parameters = options.stereo;
-      parameters.maxSeparation = bench.separations[s];
-      const EyeReferences& eyes = references[s];
-      const renderer::ViewMatrices leftEye = frame::referenceEyeView(scene, center, stereo::Eye::Left, parameters);
-      parameters.edgeCrop = -1.0f;  // the crop follows the separation, as in `s3d render`
-      // Each setting is timed in one warm stretch with the frames it is compared with: the reference eye and the
-      // center frame in back-to-back pairs once untimed pairs run at a steady speed, then the setting, before any
-      // error is computed. A GPU lowers its clocks through host-side work (metrics, readbacks, a scene upload)
-      // and at a low duty cycle, and takes most of a second of frames to raise them: on an H200 an eye timed in
-      // the first 500 ms of a scene read twice the center frame timed after it, and a hybrid setting late in a
-      // scene's sweep read 1.8x its time.
-      std::vector<stereo::InterleavedTiming> frames;
-      std::vector<frame::SynthesizedEyes> syntheses;
-      for (const MethodSetting& setting : bench.settings) {
-        progress(sceneName + " " + setting.name() + " sep " + percentText(parameters.maxSeparation) + "%");
-        frames.push_back(stereo::timeInterleaved(
-            {[&] { return deferred.render(leftEye).totalGpuMs; }, [&] { return deferred.render(center).totalGpuMs; }},
-            options.repeat, frameWarmUp));  // ends on the center frame: the setting's input
-        if (s == 0 && frames.size() == 1) {
-          // The mapping rewrites linearDepth in place, so the center view is rendered again after it.
-          std::tie(depthReductionGpuMs, disparityMapGpuMs) =
-              timeDepthPasses(context, reduction, mapping, map, deferred.linearDepth(), options.repeat);
-          (void)deferred.render(center);
-        }
-        syntheses.push_back(synthesis.synthesize({deferred, scene, center, setting.applyTo(parameters)}));
-        ++done;
-      }
-      const std::vector<std::uint8_t> halo = stereo::haloMaskFor(centerDepth, parameters);
-      const stereo::RegionMasks left{halo, stereo::disocclusionMaskFor(eyes.leftDepth, centerDepth, parameters, stereo::Eye::Left),
-                                     eyes.leftTransparent, eyes.leftFoliage};
-      const stereo::RegionMasks right{halo,
-                                      stereo::disocclusionMaskFor(eyes.rightDepth, centerDepth, parameters, stereo::Eye::Right),
-                                      eyes.rightTransparent, eyes.rightFoliage};
-      for (std::size_t i = 0; i < bench.settings.size(); ++i) {
-        BenchRow row = settingRow(sceneName, bench.settings[i], parameters, options, context.isCpuDevice(), syntheses[i],
-                                  frames[i], eyes, left, right);
-        row.depthReductionGpuMs = depthReductionGpuMs;
-        row.disparityMapGpuMs = disparityMapGpuMs;
-        report.rows.push_back(std::move(row));
-      }
+  // Each setting is timed in one warm stretch with the frames it is compared with: the reference eye and the
+  // center frame in back-to-back pairs once untimed pairs run at a steady speed, then the setting, before any
+  // error is computed. A GPU lowers its clocks through host-side work (metrics, readbacks, a scene upload) and at a
+  // low duty cycle, and takes most of a second of frames to raise them (RESULTS.md, "How the numbers are taken").
+  void runSeparation(const std::string& sceneName, SceneFrame& shot, float separation, const EyeReferences& eyes,
+                     bool timeDepthPassesFirst) {
+    stereo::StereoParameters parameters = parametersAt(separation);
+    const renderer::ViewMatrices leftEye = frame::referenceEyeView(shot.scene, shot.center, stereo::Eye::Left, parameters);
+    parameters.edgeCrop = -1.0f;  // the crop follows the separation, as in `s3d render`
+    std::vector<stereo::InterleavedTiming> frames;
+    std::vector<frame::SynthesizedEyes> syntheses;
+    for (const MethodSetting& setting : bench_.settings) {
+      progress(sceneName + " " + setting.name() + " sep " + percentText(parameters.maxSeparation) + "%");
+      frames.push_back(stereo::timeInterleaved(
+          {[&] { return deferred_.render(leftEye).totalGpuMs; }, [&] { return deferred_.render(shot.center).totalGpuMs; }},
+          options_.repeat, frameWarmUp_));  // ends on the center frame: the setting's input
+      if (timeDepthPassesFirst && frames.size() == 1) timeDepthPasses(shot);
+      syntheses.push_back(synthesis_.synthesize({deferred_, shot.scene, shot.center, setting.applyTo(parameters)}));
+      ++done_;
+    }
+    const std::vector<std::uint8_t> halo = stereo::haloMaskFor(shot.centerDepth, parameters);
+    const stereo::RegionMasks left{halo, stereo::disocclusionMaskFor(eyes.leftDepth, shot.centerDepth, parameters, stereo::Eye::Left),
+                                   eyes.leftTransparent, eyes.leftFoliage};
+    const stereo::RegionMasks right{halo,
+                                    stereo::disocclusionMaskFor(eyes.rightDepth, shot.centerDepth, parameters, stereo::Eye::Right),
+                                    eyes.rightTransparent, eyes.rightFoliage};
+    for (std::size_t i = 0; i < bench_.settings.size(); ++i) {
+      BenchRow row = settingRow(sceneName, bench_.settings[i], parameters, options_, context_.isCpuDevice(), syntheses[i],
+                                frames[i], eyes, left, right);
+      row.depthReductionGpuMs = shot.depthReductionGpuMs;
+      row.disparityMapGpuMs = shot.disparityMapGpuMs;
+      report_.rows.push_back(std::move(row));
     }
   }
-  progress("done");
+
+  // The depth reduction and the nonlinear mapping on the warm center frame; the mapping rewrites linearDepth in
+  // place, so the center view is rendered again after it.
+  void timeDepthPasses(SceneFrame& shot) {
+    const gpu::DisparityMapConstants map = stereo::nonlinearDisparityMap(
+        stereo::reduceDepthRangeReference(shot.centerDepth), options_.stereo.zeroParallaxDistance);
+    std::tie(shot.depthReductionGpuMs, shot.disparityMapGpuMs) = bench_detail::timeDepthPasses(
+        context_, reduction_, mapping_, map, deferred_.linearDepth(), options_.repeat);
+    (void)deferred_.render(shot.center);
+  }
+
+  vk::Context& context_;
+  const BenchOptions& options_;
+  const ValidatedBench& bench_;
+  BenchReport& report_;
+  renderer::DeferredRenderer deferred_;
+  frame::StereoSynthesis synthesis_;  // every setting's eyes; the hybrid's eye renderer made up front
+  const stereo::DepthRangePass reduction_;  // made before any timing, as everything else
+  const stereo::DisparityMapPass mapping_;
+  stereo::WarmUp frameWarmUp_;
+  std::size_t total_ = 0, done_ = 0;
+};
+
+}  // namespace
+
+void runSweep(vk::Context& context, const BenchOptions& options, const ValidatedBench& bench, BenchReport& report) {
+  Sweep(context, options, bench, report).run();
 }
 
 }  // namespace s3d::app::bench_detail
