@@ -258,22 +258,28 @@ std::vector<ShadowPass> ShadowMaps::schedule(const ViewMatrices& view) {
   localAtlasWritten_ = false;
   pointViewsThisFrame_.assign(scene_.pointLights.size(), -1);
   spotViewsThisFrame_.assign(scene_.spotLights.size(), -1);
+  scheduleSun(fit, constants, passes);
+  scheduleLocalLights(fit, constants, passes);
+  std::memcpy(constants_.mapped, &constants, sizeof(constants));
+  return passes;
+}
 
-  // The casters a view reaches, nearest the light first: the depth test then rejects hidden fragments before
-  // they write (the map is the nearest depth whatever the order).
-  auto castersIn = [this](const glm::mat4& viewProjection) {
-    std::vector<std::pair<float, std::uint32_t>> keyed;
-    for (std::size_t i = 0; i < casters_.size(); ++i)
-      if (sphereTouchesFrustum(viewProjection, casterBounds_[i])) {
-        const glm::vec4 clip = viewProjection * glm::vec4(casterBounds_[i].center, 1.0f);
-        keyed.push_back({clip.w > 0.0f ? clip.z / clip.w : -1.0f, casters_[i]});
-      }
-    std::sort(keyed.begin(), keyed.end());
-    std::vector<std::uint32_t> inView;
-    for (const auto& entry : keyed) inView.push_back(entry.second);
-    return inView;
-  };
+// Nearest the light first: the depth test then rejects hidden fragments before they write (the map is the nearest
+// depth whatever the order).
+std::vector<std::uint32_t> ShadowMaps::castersIn(const glm::mat4& viewProjection) const {
+  std::vector<std::pair<float, std::uint32_t>> keyed;
+  for (std::size_t i = 0; i < casters_.size(); ++i)
+    if (sphereTouchesFrustum(viewProjection, casterBounds_[i])) {
+      const glm::vec4 clip = viewProjection * glm::vec4(casterBounds_[i].center, 1.0f);
+      keyed.push_back({clip.w > 0.0f ? clip.z / clip.w : -1.0f, casters_[i]});
+    }
+  std::sort(keyed.begin(), keyed.end());
+  std::vector<std::uint32_t> inView;
+  for (const auto& entry : keyed) inView.push_back(entry.second);
+  return inView;
+}
 
+void ShadowMaps::scheduleSun(const ShadowFit& fit, gpu::ShadowConstants& constants, std::vector<ShadowPass>& passes) {
   // Sun cascades: only with casters, and a cascade only with a caster in its box.
   const SunLight& sun = scene_.sun;
   const float shadowFar = std::min(sun.shadowDistance, scene_.camera.farPlane);
@@ -303,7 +309,10 @@ std::vector<ShadowPass> ShadowMaps::schedule(const ViewMatrices& view) {
     }
     sunShadowedThisFrame_ = !first;
   }
+}
 
+void ShadowMaps::scheduleLocalLights(const ShadowFit& fit, gpu::ShadowConstants& constants,
+                                     std::vector<ShadowPass>& passes) {
   // Point and spot lights on screen, each only with a caster in one of its views.
   const glm::mat4 cameraViewProjection = fit.worldProjection * fit.worldView;
   const std::uint32_t tile = localTileSize_;
@@ -343,8 +352,6 @@ std::vector<ShadowPass> ShadowMaps::schedule(const ViewMatrices& view) {
                         recordDepthViews(cmd, localAtlas_, false, views, before);
                       }});
   }
-  std::memcpy(constants_.mapped, &constants, sizeof(constants));
-  return passes;
 }
 
 void ShadowMaps::recordDepthViews(VkCommandBuffer cmd, const vk::Image& atlas, bool sun,

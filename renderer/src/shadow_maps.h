@@ -91,6 +91,11 @@ class ShadowMaps {
 
   void recordDepthViews(VkCommandBuffer cmd, const vk::Image& atlas, bool sun, const std::vector<ViewDraws>& views,
                         const vk::ImageState& before);
+  // The casters a view reaches, nearest the light first.
+  std::vector<std::uint32_t> castersIn(const glm::mat4& viewProjection) const;
+  // schedule's two halves: the sun's cascades, and the point and spot lights on screen.
+  void scheduleSun(const ShadowFit& fit, gpu::ShadowConstants& constants, std::vector<ShadowPass>& passes);
+  void scheduleLocalLights(const ShadowFit& fit, gpu::ShadowConstants& constants, std::vector<ShadowPass>& passes);
   // The sun's or the local lights' depth pipeline for a caster's detail::depthVariant, made at first use.
   VkPipeline depthPipeline(bool sun, std::size_t variant);
   void drawCaster(VkCommandBuffer cmd, const Object& object, const glm::mat4& viewProjection);
