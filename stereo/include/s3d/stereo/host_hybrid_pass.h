@@ -32,10 +32,6 @@ class HostHybridPass {
   // its depth tests after the copy (stage COPY, access TRANSFER_WRITE) itself.
   void recordMaskCopies(VkCommandBuffer cmd, const HostImage& leftMask, const HostImage& rightMask) const;
 
-  // The masks of the last recorded frame (R32_UINT, 1: the host's raster draws the pixel), in vk::kComputeRead
-  // state once that frame has run (tests compare them with HybridPass's).
-  const HybridPass::Images& images() const { return images_; }
-
  private:
   const vk::Context* context_;
   std::uint32_t width_, height_;

@@ -105,8 +105,6 @@ class StereoFrame {
   // naming the dispatch field that is missing or does not match (leftMask, rightMask, the center camera).
   HybridEyeCameras recordHybridMasks(VkCommandBuffer cmd, const StereoFrameDispatch& dispatch);
   void recordHybridComposite(VkCommandBuffer cmd, const StereoFrameDispatch& dispatch) const;
-  // The hybrid's masks of the last recorded frame (tests); null for another method.
-  const HostHybridPass* hybridPass() const { return hybrid_ ? &*hybrid_ : nullptr; }
 
   VkFormat eyeFormat() const;  // RGBA8 UNORM for 8-bit colour, RGBA16F for HDR colour
   std::uint32_t packedWidth() const;
