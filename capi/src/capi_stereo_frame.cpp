@@ -2,6 +2,7 @@
 // stack (recording allocates nothing).
 #include <cmath>
 #include <cstring>
+#include <string>
 
 #include <glm/gtc/type_ptr.hpp>
 
@@ -25,8 +26,47 @@ s3d::stereo::StereoMethod toCpp(s3d_method method) {
     case S3D_METHOD_SEED: return s3d::stereo::StereoMethod::Seed;
     case S3D_METHOD_ITERATIVE: return s3d::stereo::StereoMethod::Iterative;
     case S3D_METHOD_FORWARD: return s3d::stereo::StereoMethod::Forward;
+    case S3D_METHOD_HYBRID: return s3d::stereo::StereoMethod::Hybrid;
     default: return s3d::stereo::StereoMethod::Search;
   }
+}
+
+// The dispatch checked against the frame (fields named as the C struct's), then as StereoFrame takes it.
+s3d::stereo::StereoFrameDispatch checkedDispatch(const s3d::stereo::StereoFrame& f, const s3d_stereo_frame_dispatch& d) {
+  const bool hybrid = f.desc().method == s3d::stereo::StereoMethod::Hybrid;
+  const char* centerCameraFor = f.desc().previousFrameFill ? "the previous-frame fill"
+                                : hybrid                   ? "the hybrid's eye cameras"
+                                                           : nullptr;
+  s3d::capi::validate(d, f.desc().colorFormat, f.desc().depthFormat, f.eyeFormat(),
+                      f.desc().output == s3d::stereo::HostOutput::TwoEyes, centerCameraFor, f.desc().width,
+                      f.desc().height);
+  s3d::stereo::StereoFrameDispatch cpp;
+  cpp.color = toCpp(d.color);
+  cpp.depth = toCpp(d.depth);
+  cpp.left = toCpp(d.left);
+  cpp.right = toCpp(d.right);
+  cpp.target = toCpp(d.target);
+  cpp.projection = toCpp(d.projection);
+  cpp.maxSeparation = d.max_separation;
+  cpp.zeroParallaxDistance = d.zero_parallax_distance;
+  cpp.edgeCrop = d.edge_crop;
+  cpp.weaponDepthOffset = d.weapon_depth_offset;
+  cpp.weaponDepthScale = d.weapon_depth_scale;
+  cpp.centerView = glm::make_mat4(d.center_view);
+  cpp.centerProjection = glm::make_mat4(d.center_projection);
+  cpp.cameraCut = d.camera_cut != 0;
+  if (d.eye_views) cpp.eyeViews = toCpp(*d.eye_views, f.desc().width, f.desc().height);
+  if (hybrid) {
+    cpp.leftMask = toCpp(d.left_mask);
+    cpp.rightMask = toCpp(d.right_mask);
+  }
+  return cpp;
+}
+
+// The C API names the step it refuses for another method.
+void requireHybrid(const s3d::stereo::StereoFrame& f, const char* function) {
+  if (f.desc().method != s3d::stereo::StereoMethod::Hybrid)
+    s3d::capi::fail(std::string(function) + " needs a frame made with S3D_METHOD_HYBRID (s3d_stereo_frame_desc.method)");
 }
 
 }  // namespace
@@ -37,7 +77,7 @@ void s3d_default_stereo_frame_desc(s3d_stereo_frame_desc* out) {
   if (!present(out, "out")) return;
   const s3d::stereo::StereoFrameDesc defaults;
   *out = {0, 0, VK_FORMAT_R8G8B8A8_SRGB, VK_FORMAT_D32_SFLOAT, S3D_OUTPUT_TWO_EYES, S3D_METHOD_SEARCH,
-          defaults.searchTaps, defaults.iterations, 0};
+          defaults.searchTaps, defaults.iterations, 0, defaults.hybridBudget};
 }
 
 void s3d_default_stereo_frame_dispatch(s3d_stereo_frame_dispatch* out) {
@@ -71,6 +111,7 @@ s3d_result s3d_stereo_frame_create(s3d_context context, const s3d_stereo_frame_d
     cpp.searchTaps = desc->search_taps;
     cpp.iterations = desc->iterations;
     cpp.previousFrameFill = desc->previous_frame_fill != 0;
+    cpp.hybridBudget = desc->hybrid_budget;
     *out = new s3d_stereo_frame_t{s3d::stereo::StereoFrame(context->context, cpp)};
   });
 }
@@ -111,27 +152,38 @@ s3d_result s3d_stereo_frame_record(s3d_stereo_frame frame, VkCommandBuffer cmd,
     requireNotNull(frame, {"frame"});
     s3d::capi::requireHandle(cmd, {"cmd"});
     requireNotNull(dispatch, {"dispatch"});
-    const s3d::stereo::StereoFrame& f = frame->frame;
-    s3d::capi::validate(*dispatch, f.desc().colorFormat, f.desc().depthFormat, f.eyeFormat(),
-                        f.desc().output == s3d::stereo::HostOutput::TwoEyes, f.desc().previousFrameFill,
-                        f.desc().width, f.desc().height);
-    s3d::stereo::StereoFrameDispatch cpp;
-    cpp.color = toCpp(dispatch->color);
-    cpp.depth = toCpp(dispatch->depth);
-    cpp.left = toCpp(dispatch->left);
-    cpp.right = toCpp(dispatch->right);
-    cpp.target = toCpp(dispatch->target);
-    cpp.projection = toCpp(dispatch->projection);
-    cpp.maxSeparation = dispatch->max_separation;
-    cpp.zeroParallaxDistance = dispatch->zero_parallax_distance;
-    cpp.edgeCrop = dispatch->edge_crop;
-    cpp.weaponDepthOffset = dispatch->weapon_depth_offset;
-    cpp.weaponDepthScale = dispatch->weapon_depth_scale;
-    cpp.centerView = glm::make_mat4(dispatch->center_view);
-    cpp.centerProjection = glm::make_mat4(dispatch->center_projection);
-    cpp.cameraCut = dispatch->camera_cut != 0;
-    if (dispatch->eye_views) cpp.eyeViews = toCpp(*dispatch->eye_views, f.desc().width, f.desc().height);
-    frame->frame.record(cmd, cpp);
+    if (frame->frame.desc().method == s3d::stereo::StereoMethod::Hybrid)
+      s3d::capi::fail("s3d_stereo_frame_record: a S3D_METHOD_HYBRID frame records with "
+                      "s3d_stereo_frame_record_hybrid_masks and s3d_stereo_frame_record_hybrid_composite");
+    frame->frame.record(cmd, checkedDispatch(frame->frame, *dispatch));
+  });
+}
+
+s3d_result s3d_stereo_frame_record_hybrid_masks(s3d_stereo_frame frame, VkCommandBuffer cmd,
+                                                const s3d_stereo_frame_dispatch* dispatch, s3d_eye_cameras* cameras) {
+  return guarded([&] {
+    requireNotNull(frame, {"frame"});
+    s3d::capi::requireHandle(cmd, {"cmd"});
+    requireNotNull(dispatch, {"dispatch"});
+    requireNotNull(cameras, {"cameras"});
+    requireHybrid(frame->frame, "s3d_stereo_frame_record_hybrid_masks");
+    s3d::capi::validateHybridMasks(*dispatch);
+    const s3d::stereo::HybridEyeCameras eyes = frame->frame.recordHybridMasks(cmd, checkedDispatch(frame->frame, *dispatch));
+    std::memcpy(cameras->left_view, glm::value_ptr(eyes.left.view), sizeof cameras->left_view);
+    std::memcpy(cameras->left_projection, glm::value_ptr(eyes.left.projection), sizeof cameras->left_projection);
+    std::memcpy(cameras->right_view, glm::value_ptr(eyes.right.view), sizeof cameras->right_view);
+    std::memcpy(cameras->right_projection, glm::value_ptr(eyes.right.projection), sizeof cameras->right_projection);
+  });
+}
+
+s3d_result s3d_stereo_frame_record_hybrid_composite(s3d_stereo_frame frame, VkCommandBuffer cmd,
+                                                    const s3d_stereo_frame_dispatch* dispatch) {
+  return guarded([&] {
+    requireNotNull(frame, {"frame"});
+    s3d::capi::requireHandle(cmd, {"cmd"});
+    requireNotNull(dispatch, {"dispatch"});
+    requireHybrid(frame->frame, "s3d_stereo_frame_record_hybrid_composite");
+    frame->frame.recordHybridComposite(cmd, checkedDispatch(frame->frame, *dispatch));
   });
 }
 

@@ -100,11 +100,17 @@ void validate(const s3d_stereo_frame_desc& desc, std::uint32_t maxImageDimension
   validateShape(name, desc.width, desc.height, rawEnum(desc.output), desc.color_format, desc.depth_format,
                 maxImageDimension2D);
   const std::int64_t method = rawEnum(desc.method);
-  requireEnum(method, S3D_METHOD_SEED, S3D_METHOD_FORWARD, name / "method");
+  requireEnum(method, S3D_METHOD_SEED, S3D_METHOD_HYBRID, name / "method");
   if (isHdr(desc.color_format) && method != S3D_METHOD_SEED && method != S3D_METHOD_SEARCH)
-    fail("s3d_stereo_frame_desc.method S3D_METHOD_ITERATIVE and S3D_METHOD_FORWARD displace 8-bit colour: with an "
-         "HDR color_format use S3D_METHOD_SEED or S3D_METHOD_SEARCH");
-  if (method == S3D_METHOD_SEARCH && (desc.search_taps < 1 || desc.search_taps > S3D_STEREO_MAX_TAPS))
+    fail("s3d_stereo_frame_desc.method S3D_METHOD_ITERATIVE, S3D_METHOD_FORWARD and S3D_METHOD_HYBRID displace 8-bit "
+         "colour: with an HDR color_format use S3D_METHOD_SEED or S3D_METHOD_SEARCH");
+  if (method == S3D_METHOD_HYBRID) {
+    requireRange(desc.hybrid_budget, 0.0f, 1.0f, name / "hybrid_budget");
+    if (rawEnum(desc.output) != S3D_OUTPUT_TWO_EYES)
+      fail("s3d_stereo_frame_desc.output must be S3D_OUTPUT_TWO_EYES for S3D_METHOD_HYBRID: the host draws into the "
+           "eye images");
+  }
+  if ((method == S3D_METHOD_SEARCH || method == S3D_METHOD_HYBRID) && (desc.search_taps < 1 || desc.search_taps > S3D_STEREO_MAX_TAPS))
     fail("s3d_stereo_frame_desc.search_taps " + std::to_string(desc.search_taps) + " is outside [1, " +
          std::to_string(S3D_STEREO_MAX_TAPS) + "] for S3D_METHOD_SEARCH");
   if (method == S3D_METHOD_ITERATIVE && (desc.iterations < 1 || desc.iterations > 16))
@@ -124,7 +130,7 @@ void validate(const s3d_eye_views& views, std::uint32_t width, std::uint32_t hei
 }
 
 void validate(const s3d_stereo_frame_dispatch& d, VkFormat colorFormat, VkFormat depthFormat, VkFormat eyeFormat,
-              bool twoEyes, bool previousFrameFill, std::uint32_t width, std::uint32_t height) {
+              bool twoEyes, const char* centerCameraFor, std::uint32_t width, std::uint32_t height) {
   validateImage(&d.color, {"dispatch.color"}, ImageUse::Sampled);
   requireFormat(d.color, {"dispatch.color"}, colorFormat);
   validateImage(&d.depth, {"dispatch.depth"}, ImageUse::Sampled);
@@ -149,12 +155,27 @@ void validate(const s3d_stereo_frame_dispatch& d, VkFormat colorFormat, VkFormat
                                          d.weapon_depth_offset,
                                          d.weapon_depth_scale};
   validate(parameters, {"dispatch"});
-  if (!previousFrameFill) return;
+  if (!centerCameraFor) return;
   requireFiniteMatrix(d.center_view, {"dispatch.center_view"});
   requireFiniteMatrix(d.center_projection, {"dispatch.center_projection"});
   if (!(d.center_projection[0] > 0.0f) || d.center_projection[11] == 0.0f)
-    fail("dispatch.center_projection must be a perspective projection (element [0][0] > 0, [2][3] != 0) for the "
-         "previous-frame fill");
+    fail(std::string("dispatch.center_projection must be a perspective projection (element [0][0] > 0, [2][3] != 0) "
+                     "for ") + centerCameraFor);
+}
+
+void validateHybridMasks(const s3d_stereo_frame_dispatch& d) {
+  for (const auto& [mask, field] : {std::pair{&d.left_mask, "dispatch.left_mask"}, std::pair{&d.right_mask, "dispatch.right_mask"}}) {
+    if (!mask->image)
+      fail(std::string(field) + ".image is VK_NULL_HANDLE: S3D_METHOD_HYBRID writes each eye's mask into a "
+                                "D32_SFLOAT depth image");
+    requireFormat(*mask, {field}, VK_FORMAT_D32_SFLOAT);
+    if (mask->layout == VK_IMAGE_LAYOUT_UNDEFINED || mask->layout == VK_IMAGE_LAYOUT_PREINITIALIZED)
+      fail(std::string(field) + ".layout must be the layout the image is in, which it is left in (not UNDEFINED)");
+    if (mask->stage == 0 && mask->layout != VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL && mask->layout != VK_IMAGE_LAYOUT_GENERAL)
+      fail(std::string(field) + ".layout must be TRANSFER_DST_OPTIMAL or GENERAL when the host synchronizes it (stage 0)");
+  }
+  if (d.left_mask.image == d.right_mask.image && d.left_mask.layer == d.right_mask.layer)
+    fail("dispatch.right_mask names the same image and layer as dispatch.left_mask");
 }
 
 void validate(const s3d_hud_pass_desc& desc, std::uint32_t maxImageDimension2D) {

@@ -18,9 +18,12 @@ void validate(const s3d_stereo_frame_desc& desc, std::uint32_t maxImageDimension
 // The views for width x height eyes, as the stereo frame takes them; `name` is how the caller reaches them
 // ("views->", "dispatch.eye_views->").
 void validate(const s3d_eye_views& views, std::uint32_t width, std::uint32_t height, const char* name);
-// The images against the frame's formats and output, the parameters (or eye views), and the camera the fill needs.
+// The images against the frame's formats and output, the parameters (or eye views), and the center camera when
+// `centerCameraFor` names what needs it (the fill, the hybrid's eye cameras; null: nothing).
 void validate(const s3d_stereo_frame_dispatch& dispatch, VkFormat colorFormat, VkFormat depthFormat, VkFormat eyeFormat,
-              bool twoEyes, bool previousFrameFill, std::uint32_t width, std::uint32_t height);
+              bool twoEyes, const char* centerCameraFor, std::uint32_t width, std::uint32_t height);
+// The hybrid's mask images: present, D32_SFLOAT, a layout s3d can copy into, one per eye.
+void validateHybridMasks(const s3d_stereo_frame_dispatch& dispatch);
 
 // A host image s3d reads (sampled, or storage when `storage`) or writes (storage): handles, format and, when the
 // host synchronizes it itself (stage 0), a layout s3d can use as it is.

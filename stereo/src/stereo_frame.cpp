@@ -28,6 +28,8 @@ StereoParameters parametersOf(const StereoFrameDesc& desc, const StereoFrameDisp
   p.iterations = desc.iterations;
   p.kernel = desc.kernel;
   p.previousFrameFill = desc.previousFrameFill;
+  p.hybridBase = StereoMethod::Search;
+  p.hybridBudget = desc.hybridBudget;
   p.maxSeparation = dispatch.maxSeparation;
   p.zeroParallaxDistance = dispatch.zeroParallaxDistance;
   if (dispatch.eyeViews) {  // checked by record() first
@@ -44,9 +46,8 @@ StereoParameters parametersOf(const StereoFrameDesc& desc, const StereoFrameDisp
 // The description's rules: the frame's own, then the method's (stereo::validate, named as description fields);
 // formats and sizes are the host pass's (its constructor names them).
 const StereoFrameDesc& checked(const StereoFrameDesc& desc) {
-  if (desc.method == StereoMethod::Hybrid)
-    refuse("StereoFrameDesc.method", "hybrid renders pixels from the eye cameras, which needs the host's raster: use "
-                                     "seed, search, iterative or forward");
+  if (desc.method == StereoMethod::Hybrid && desc.output != HostOutput::TwoEyes)
+    refuse("StereoFrameDesc.output", "must be two eyes for hybrid: the host draws into the eye images");
   if (isHdr(desc.colorFormat) && desc.method != StereoMethod::Seed && desc.method != StereoMethod::Search)
     refuse("StereoFrameDesc.method", std::string(methodName(desc.method)) + " displaces 8-bit display colour; with HDR "
                                      "colour (RGBA16F, B10G11R11) use seed or search");
@@ -94,7 +95,8 @@ StereoFrame::StereoFrame(vk::Context& context, const StereoFrameDesc& desc)
   if (desc.method == StereoMethod::Forward)
     forward_.emplace(context, desc.kernel, desc.previousFrameFill ? ForwardKeys::Kept : ForwardKeys::Discarded);
   if (desc.previousFrameFill) fill_.emplace(context);
-  if (!iterative_ && !forward_) return;
+  if (desc.method == StereoMethod::Hybrid) hybrid_.emplace(context, desc.width, desc.height, desc.kernel);
+  if (!iterative_ && !forward_ && !hybrid_) return;
   // The passes make their pipelines, z-buffers and history at their first record: one here, so record()
   // allocates nothing.
   const auto image = [&](VkFormat format) {
@@ -106,7 +108,8 @@ StereoFrame::StereoFrame(vk::Context& context, const StereoFrameDesc& desc)
   context.submitAndWait([&](VkCommandBuffer cmd) {
     for (const vk::Image* i : {&color, &depth}) vk::transition(cmd, *i, vk::kUndefined, vk::kComputeRead);
     for (const vk::Image* i : {&left, &right}) vk::transition(cmd, *i, vk::kUndefined, vk::kComputeWrite);
-    recordKernel(cmd, first, color, depth, left, right);
+    if (hybrid_) hybrid_->recordKernel(cmd, color, depth, left, right, parameters(first), false);
+    else recordKernel(cmd, first, color, depth, left, right);
   });
   if (fill_) fill_->reset();
   hasPrevious_ = false;
@@ -164,18 +167,21 @@ void StereoFrame::requireImages(const StereoFrameDispatch& dispatch) const {
   }
 }
 
-void StereoFrame::record(VkCommandBuffer cmd, const StereoFrameDispatch& dispatch) {
+void StereoFrame::requireCenterCamera(const StereoFrameDispatch& dispatch, const char* forWhat) const {
+  if (!finite(dispatch.centerView) || !finite(dispatch.centerProjection) ||
+      !(dispatch.centerProjection[0][0] > 0.0f) || dispatch.centerProjection[2][3] == 0.0f)
+    refuse("StereoFrameDispatch.centerView/centerProjection",
+           std::string("must be finite, with a perspective projection, for ") + forWhat + " (P00 " +
+               numberText(dispatch.centerProjection[0][0]) + ")");
+}
+
+HostFrame StereoFrame::checkedFrame(const StereoFrameDispatch& dispatch) const {
   if (dispatch.eyeViews)
     if (const std::optional<EyeViewsProblem> found = eyeViewsProblem(*dispatch.eyeViews, desc_.width, desc_.height))
       refuse("StereoFrameDispatch.eyeViews." + fieldName(*found), found->problem);
   const StereoParameters p = parameters(dispatch);
   validate(p);  // names maxSeparation, zeroParallaxDistance, edgeCrop or the weapon push when out of range
   requireImages(dispatch);
-  if (fill_ && (!finite(dispatch.centerView) || !finite(dispatch.centerProjection) ||
-                !(dispatch.centerProjection[0][0] > 0.0f) || dispatch.centerProjection[2][3] == 0.0f))
-    refuse("StereoFrameDispatch.centerView/centerProjection",
-           "must be finite, with a perspective projection, for the previous-frame fill (P00 " +
-               numberText(dispatch.centerProjection[0][0]) + ")");
   HostFrame frame;
   frame.stereo = desc_.method == StereoMethod::Seed || desc_.method == StereoMethod::Search
                      ? makeStereoConstants(p, desc_.width, desc_.height)
@@ -183,6 +189,15 @@ void StereoFrame::record(VkCommandBuffer cmd, const StereoFrameDispatch& dispatc
   frame.projection = dispatch.projection;
   frame.weaponDepthOffset = dispatch.weaponDepthOffset;
   frame.weaponDepthScale = dispatch.weaponDepthScale;
+  return frame;
+}
+
+void StereoFrame::record(VkCommandBuffer cmd, const StereoFrameDispatch& dispatch) {
+  if (hybrid_)
+    refuse("StereoFrameDesc.method", "hybrid records in two steps around the host's draw: recordHybridMasks, then "
+                                     "recordHybridComposite");
+  const HostFrame frame = checkedFrame(dispatch);
+  if (fill_) requireCenterCamera(dispatch, "the previous-frame fill");
   const bool eyes = desc_.output == HostOutput::TwoEyes;
   const HostImage* left = eyes ? &dispatch.left : nullptr;
   const HostImage* right = eyes ? &dispatch.right : nullptr;
@@ -197,6 +212,76 @@ void StereoFrame::record(VkCommandBuffer cmd, const StereoFrameDispatch& dispatc
   host_.record(cmd, dispatch.color, dispatch.depth, frame, left, right, target, dispatch.overlay, &kernel);
   if (fill_) fill_->advance();
   hasPrevious_ = true;
+}
+
+}  // namespace s3d::stereo
+
+namespace s3d::stereo {
+
+void StereoFrame::requireHybrid(const char* step) const {
+  if (!hybrid_)
+    refuse("StereoFrameDesc.method", std::string(methodName(desc_.method)) + " records with record(); " + step +
+                                         " is the hybrid's");
+}
+
+HybridEyeCameras StereoFrame::recordHybridMasks(VkCommandBuffer cmd, const StereoFrameDispatch& dispatch) {
+  requireHybrid("recordHybridMasks");
+  const HostFrame frame = checkedFrame(dispatch);
+  requireCenterCamera(dispatch, "the hybrid's eye cameras");
+  const auto requireMask = [&](const HostImage& mask, const char* field) {
+    const std::string name = std::string("StereoFrameDispatch.") + field;
+    if (!mask.image) refuse(name, "has no image: the hybrid writes each eye's mask into a D32_SFLOAT depth image");
+    if (mask.format != VK_FORMAT_D32_SFLOAT)
+      refuse(name + ".format", std::to_string(int(mask.format)) + " is not VK_FORMAT_D32_SFLOAT");
+    if (mask.layout == VK_IMAGE_LAYOUT_UNDEFINED || mask.layout == VK_IMAGE_LAYOUT_PREINITIALIZED)
+      refuse(name + ".layout", "must be the layout the image is in, which it is left in (not UNDEFINED)");
+    if (mask.stage == VK_PIPELINE_STAGE_2_NONE && mask.layout != VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL &&
+        mask.layout != VK_IMAGE_LAYOUT_GENERAL)
+      refuse(name + ".layout", "must be TRANSFER_DST_OPTIMAL or GENERAL when the host synchronizes it (stage 0)");
+  };
+  requireMask(dispatch.leftMask, "leftMask");
+  requireMask(dispatch.rightMask, "rightMask");
+  if (dispatch.leftMask.image == dispatch.rightMask.image && dispatch.leftMask.layer == dispatch.rightMask.layer)
+    refuse("StereoFrameDispatch.rightMask", "names the left mask's image and layer");
+  const StereoParameters p = parameters(dispatch);
+  const bool reversedZ = dispatch.projection.reversedZ;
+  const auto run = [&](VkCommandBuffer c, const vk::Image& color, const vk::Image& depth, const vk::Image& l,
+                       const vk::Image& r) { hybrid_->recordKernel(c, color, depth, l, r, p, reversedZ); };
+  const KernelOf<decltype(run)> kernel(run);
+  host_.record(cmd, dispatch.color, dispatch.depth, frame, &dispatch.left, &dispatch.right, nullptr, nullptr, &kernel);
+  hybrid_->recordMaskCopies(cmd, dispatch.leftMask, dispatch.rightMask);
+  const auto camera = [&](Eye eye) {
+    return offAxisEyeCamera(dispatch.centerView, dispatch.centerProjection, eye, p.maxSeparation, p.zeroParallaxDistance);
+  };
+  return {camera(Eye::Left), camera(Eye::Right)};
+}
+
+void StereoFrame::recordHybridComposite(VkCommandBuffer cmd, const StereoFrameDispatch& dispatch) const {
+  requireHybrid("recordHybridComposite");
+  requireImages(dispatch);
+  if (!dispatch.overlay) return;
+  // The overlay draws on the eyes as the host's draw left them, in GENERAL.
+  constexpr vk::ImageState kOverlay{VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                                    VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT};
+  std::array<vk::Image, 2> eyes;
+  const HostImage* hosts[] = {&dispatch.left, &dispatch.right};
+  for (std::size_t e = 0; e < 2; ++e) {
+    eyes[e] = vk::borrowImage(hosts[e]->image, hosts[e]->view, hosts[e]->format, desc_.width, desc_.height,
+                              hosts[e]->layer);
+    if (hosts[e]->stage != VK_PIPELINE_STAGE_2_NONE)
+      vk::transition(cmd, eyes[e], {hosts[e]->layout, hosts[e]->stage, hosts[e]->access}, kOverlay);
+  }
+  const auto general = [](const HostImage& host) {
+    HostImage eye = host;
+    eye.layout = VK_IMAGE_LAYOUT_GENERAL;
+    eye.stage = VK_PIPELINE_STAGE_2_NONE;
+    eye.access = VK_ACCESS_2_NONE;
+    return eye;
+  };
+  dispatch.overlay->recordOnEyes(cmd, general(dispatch.left), general(dispatch.right));
+  for (std::size_t e = 0; e < 2; ++e)
+    if (hosts[e]->stage != VK_PIPELINE_STAGE_2_NONE)
+      vk::transition(cmd, eyes[e], kOverlay, {hosts[e]->layout, hosts[e]->stage, hosts[e]->access});
 }
 
 }  // namespace s3d::stereo

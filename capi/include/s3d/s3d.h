@@ -1,5 +1,5 @@
 /* s3d's C API for hosts that bind C (Godot GDExtension, Unity native plugins, C engines): opaque handles, POD
- * parameter structs, error codes plus a per-thread last-error string. Stable within a minor version (0.4).
+ * parameter structs, error codes plus a per-thread last-error string. Stable within a minor version (0.5).
  * See docs/INTEGRATION.md for the frame sequence and the synchronization contract. */
 #ifndef S3D_S3D_H
 #define S3D_S3D_H
@@ -12,7 +12,7 @@ extern "C" {
 #endif
 
 #define S3D_API_VERSION_MAJOR 0
-#define S3D_API_VERSION_MINOR 4
+#define S3D_API_VERSION_MINOR 5
 
 typedef enum s3d_result {
   S3D_SUCCESS = 0,
@@ -79,7 +79,10 @@ typedef enum s3d_method {
   S3D_METHOD_SEED = 0,      /* Listing 4.5: taps at 0.5/0.66/1.0 of the separation */
   S3D_METHOD_SEARCH = 1,    /* search_taps taps spread over the separation */
   S3D_METHOD_ITERATIVE = 2, /* fixed-point source search (8-bit colour) */
-  S3D_METHOD_FORWARD = 3    /* z-buffered scatter of every pixel, holes from the background (8-bit colour) */
+  S3D_METHOD_FORWARD = 3,   /* z-buffered scatter of every pixel, holes from the background (8-bit colour) */
+  /* stereo frame, two eyes, 8-bit colour: search, then the host's raster re-draws the pixels it gets wrong
+   * (s3d_stereo_frame_record_hybrid_masks, the host's draw, s3d_stereo_frame_record_hybrid_composite) */
+  S3D_METHOD_HYBRID = 4
 } s3d_method;
 
 typedef struct s3d_stereo_parameters {
@@ -170,8 +173,10 @@ typedef struct s3d_stereo_frame_desc {
   int32_t search_taps;         /* S3D_METHOD_SEARCH: 1..16 */
   int32_t iterations;          /* S3D_METHOD_ITERATIVE: 1..16 */
   int32_t previous_frame_fill; /* S3D_METHOD_FORWARD: 1 fills holes from the previous frame's eyes */
+  float hybrid_budget;         /* S3D_METHOD_HYBRID: the largest share of each eye's pixels the host re-draws, 0..1 */
 } s3d_stereo_frame_desc;
-/* Search with 4 taps, two eyes, R8G8B8A8_SRGB colour and D32 depth; width and height 0 (the host sets them). */
+/* Search with 4 taps, two eyes, R8G8B8A8_SRGB colour and D32 depth, hybrid budget 0.6; width and height 0 (the
+ * host sets them). */
 void s3d_default_stereo_frame_desc(s3d_stereo_frame_desc* out);
 
 typedef struct s3d_stereo_frame_dispatch {
@@ -193,6 +198,12 @@ typedef struct s3d_stereo_frame_dispatch {
   /* NULL: max_separation and zero_parallax_distance as given. Otherwise the eyes' views, from which s3d derives both
    * (as s3d_stereo_for_eye_views; the two fields are then ignored); read during the call only. */
   const s3d_eye_views* eye_views;
+  /* S3D_METHOD_HYBRID (center_view and center_projection too): each eye's mask as the depth image the host draws
+   * that eye with (D32_SFLOAT, TRANSFER_DST usage, the frame's size; view unused): far where the host re-draws,
+   * near elsewhere; barriered from and back to its layout, stage and access (stage 0: TRANSFER_DST_OPTIMAL or
+   * GENERAL, the host orders its use after the copy) */
+  s3d_host_image left_mask;
+  s3d_host_image right_mask;
 } s3d_stereo_frame_dispatch;
 /* Zero images, s3d's default parameters, identity matrices, projection near 0.1 / far 1000, no eye views. */
 void s3d_default_stereo_frame_dispatch(s3d_stereo_frame_dispatch* out);
@@ -204,6 +215,22 @@ VkFormat s3d_stereo_frame_eye_format(s3d_stereo_frame frame);
 void s3d_stereo_frame_packed_size(s3d_stereo_frame frame, uint32_t* width, uint32_t* height);
 s3d_result s3d_stereo_frame_record(s3d_stereo_frame frame, VkCommandBuffer cmd,
                                    const s3d_stereo_frame_dispatch* dispatch);
+
+/* S3D_METHOD_HYBRID, in place of s3d_stereo_frame_record (docs/INTEGRATION.md "The hybrid in a host's renderer"):
+ * 1. record_hybrid_masks: the search into the eyes, the masks into left_mask and right_mask, and the eye cameras
+ *    the host draws from; 2. the host draws its scene into each eye (load, no clear) with that eye's mask as depth
+ *    attachment (load, no clear), depth test LESS (reversed-Z: GREATER): only masked pixels change; 3.
+ *    record_hybrid_composite: what follows the host's draw (nothing for two eyes without an overlay). */
+typedef struct s3d_eye_cameras {
+  float left_view[16]; /* world to view, column-major */
+  float left_projection[16]; /* Vulkan clip space, column-major: the center projection shifted off-axis */
+  float right_view[16];
+  float right_projection[16];
+} s3d_eye_cameras;
+s3d_result s3d_stereo_frame_record_hybrid_masks(s3d_stereo_frame frame, VkCommandBuffer cmd,
+                                                const s3d_stereo_frame_dispatch* dispatch, s3d_eye_cameras* cameras);
+s3d_result s3d_stereo_frame_record_hybrid_composite(s3d_stereo_frame frame, VkCommandBuffer cmd,
+                                                    const s3d_stereo_frame_dispatch* dispatch);
 
 /* ---- HUD pass: element layers over both eyes at their parallax, faded by the weapon mask ---- */
 typedef struct s3d_hud_placement {

@@ -5,6 +5,21 @@
 // two eye images, the two layers of one array image (what OpenXR swapchains and multiview hosts hand over), or one
 // packed target. Synchronization: as HostStereoPass (host_stereo_pass.h): with a stage in a HostImage s3d adds the
 // barriers into the layout it needs and back; recording allocates nothing (everything is made at creation).
+//
+// The hybrid (StereoMethod::Hybrid, two eye images) records in two steps around the host's own draw:
+//   1. recordHybridMasks: the base search into the eyes, the classification, threshold and masks, and each eye's
+//      mask written into a depth image the host names (leftMask, rightMask: D32_SFLOAT, TRANSFER_DST usage): far
+//      (1, or 0 with projection.reversedZ) where the mask is set, near (0, or 1) elsewhere. Returns the eye cameras.
+//      Images: the inputs and eyes as record()'s; the masks barriered from their HostImage layout, stage and access
+//      into TRANSFER_DST_OPTIMAL and back (copy stage, transfer write), so after step 1 each image is in the layout
+//      it named, its writes ordered before the stage and access it named (the eyes: e.g. COLOR_ATTACHMENT_OPTIMAL,
+//      COLOR_ATTACHMENT_OUTPUT, COLOR_ATTACHMENT_READ|WRITE; the masks: DEPTH_ATTACHMENT_OPTIMAL, EARLY|LATE
+//      FRAGMENT_TESTS, DEPTH_STENCIL_ATTACHMENT_READ|WRITE). With stage NONE the host orders its use itself.
+//   2. The host draws its scene into each eye (load, no clear) from that eye's camera with that eye's mask as depth
+//      attachment (load, no clear), depth test LESS (GREATER with reversed-Z) and depth writes as usual: only the
+//      masked pixels change. A masked pixel the host draws nothing into keeps the displaced colour.
+//   3. recordHybridComposite: the overlay, when given (the eyes barriered from their HostImage state into GENERAL
+//      and back); without an overlay it records nothing: the eyes are finished when the host's draw is.
 #include <array>
 #include <cstdint>
 #include <optional>
@@ -14,6 +29,7 @@
 
 #include "s3d/stereo/eye_views.h"
 #include "s3d/stereo/forward_pass.h"
+#include "s3d/stereo/host_hybrid_pass.h"
 #include "s3d/stereo/host_stereo_pass.h"
 #include "s3d/stereo/iterative_pass.h"
 #include "s3d/stereo/previous_fill_pass.h"
@@ -29,13 +45,15 @@ struct StereoFrameDesc {
   VkFormat colorFormat = VK_FORMAT_R8G8B8A8_UNORM;  // RGBA8/BGRA8 UNORM or SRGB, RGBA16F, B10G11R11
   VkFormat depthFormat = VK_FORMAT_D32_SFLOAT;      // D32, D24S8, D16 (hardware depth) or R32F linear depth
   HostOutput output = HostOutput::TwoEyes;
-  // Seed, Search, Iterative or Forward (the hybrid renders pixels, which needs the host's raster). The HDR colour
-  // formats (RGBA16F, B10G11R11) take Seed and Search, whose kernels gather HDR values.
+  // Seed, Search, Iterative, Forward or Hybrid (search, then the host's raster re-draws the pixels it gets wrong;
+  // two eyes, 8-bit colour; the steps above). The HDR colour formats (RGBA16F, B10G11R11) take Seed and Search,
+  // whose kernels gather HDR values.
   StereoMethod method = StereoMethod::Search;
   int searchTaps = 4;   // Search: taps spread over the separation, 1..S3D_STEREO_MAX_TAPS
   int iterations = 6;   // Iterative: fixed-point steps, 1..16
   StereoKernel kernel = StereoKernel::Auto;
   bool previousFrameFill = false;  // Forward only: holes take the previous frame's eyes, reprojected
+  float hybridBudget = 0.6f;       // Hybrid only: the largest share of each eye's pixels the host re-draws, [0, 1]
 };
 
 // Per frame. The images must have the description's formats and sizes.
@@ -55,13 +73,22 @@ struct StereoFrameDispatch {
   float edgeCrop = -1.0f;             // fraction of the width blacked out per side, [0, 0.25]; < 0: = maxSeparation
   float weaponDepthOffset = 1.0f;     // the first-person layer's depth becomes offset + scale * depth (seed 4.6.2)
   float weaponDepthScale = 1.0f;
-  // Previous-frame fill: the center camera this frame (world to view, and the view's projection; column-major,
+  // Previous-frame fill and hybrid: the center camera this frame (world to view, and the view's projection; column-major,
   // Vulkan clip space), from which s3d derives the eye cameras and their motion since the previous frame.
   glm::mat4 centerView{1.0f};
   glm::mat4 centerProjection{1.0f};
   bool cameraCut = false;  // the previous frame does not continue into this one (also implied by the first frame)
   // Drawn on the finished eyes before they are packed (the HUD: hud::HudPass::overlay); null: nothing.
   const EyeOverlay* overlay = nullptr;
+  // Hybrid: each eye's mask as the depth image the host draws that eye with (D32_SFLOAT, TRANSFER_DST usage, the
+  // description's size; `view` unused), written by recordHybridMasks.
+  HostImage leftMask, rightMask;
+};
+
+// The cameras the host draws each eye's masked pixels from (world to view, and the projection; column-major,
+// Vulkan clip space): the off-axis eyes of the center camera whose parallax the displacement reproduces.
+struct HybridEyeCameras {
+  EyeCamera left, right;
 };
 
 class StereoFrame {
@@ -74,6 +101,11 @@ class StereoFrame {
   // must be submitted in the order they are recorded.
   void record(VkCommandBuffer cmd, const StereoFrameDispatch& dispatch);
 
+  // The hybrid's two steps (above), in place of record(). Throw std::invalid_argument for another method and
+  // naming the dispatch field that is missing or does not match (leftMask, rightMask, the center camera).
+  HybridEyeCameras recordHybridMasks(VkCommandBuffer cmd, const StereoFrameDispatch& dispatch);
+  void recordHybridComposite(VkCommandBuffer cmd, const StereoFrameDispatch& dispatch) const;
+
   VkFormat eyeFormat() const;  // RGBA8 UNORM for 8-bit colour, RGBA16F for HDR colour
   std::uint32_t packedWidth() const;
   std::uint32_t packedHeight() const;
@@ -82,6 +114,10 @@ class StereoFrame {
  private:
   StereoParameters parameters(const StereoFrameDispatch& dispatch) const;
   void requireImages(const StereoFrameDispatch& dispatch) const;
+  // The checks every record makes (eye views, parameters, images), and the host pass's frame for the dispatch.
+  HostFrame checkedFrame(const StereoFrameDispatch& dispatch) const;
+  void requireCenterCamera(const StereoFrameDispatch& dispatch, const char* forWhat) const;
+  void requireHybrid(const char* step) const;
   // Iterative or forward (with the fill) from the converted center into the eyes.
   void recordKernel(VkCommandBuffer cmd, const StereoFrameDispatch& dispatch, const vk::Image& centerColor,
                     const vk::Image& linearDepth, const vk::Image& leftEye, const vk::Image& rightEye);
@@ -92,6 +128,7 @@ class StereoFrame {
   std::optional<IterativeStereoPass> iterative_;
   std::optional<ForwardStereoPass> forward_;
   std::optional<PreviousFillPass> fill_;
+  std::optional<HostHybridPass> hybrid_;
   std::array<glm::mat4, 2> previousEyeView_{}, previousEyeProjection_{};
   bool hasPrevious_ = false;
 };
