@@ -206,9 +206,27 @@ std::uint32_t HostStereoPass::packedHeight() const {
   return desc_.output == HostOutput::TopBottomFull ? 2 * desc_.height : desc_.height;
 }
 
-void HostStereoPass::record(VkCommandBuffer cmd, const HostImage& color, const HostImage& depth, const HostFrame& frame,
-                            const HostImage* left, const HostImage* right, const HostImage* target,
-                            const EyeOverlay* overlay, const EyeKernel* kernel) const {
+struct HostStereoPass::Recording {
+  VkCommandBuffer cmd;
+  const HostImage& color;
+  const HostImage& depth;
+  const HostFrame& frame;
+  const HostImage* left;
+  const HostImage* right;
+  const HostImage* target;
+  std::array<const HostImage*, 2> outputArray{};
+  std::span<const HostImage* const> outputs;  // the eyes, or the packed target
+  VkImageLayout colorLayout, depthLayout;
+  VkAccessFlags2 inputRead;
+  gpu::HostInputConstants input{};
+  bool gatherFromHost = false, packedByGather = false;
+  VkImageView centerView, depthView;  // what the kernel reads: the host's images or the converted intermediates
+  VkImageView leftView, rightView;    // what the kernel writes: the eyes, the packing's intermediates or the target
+};
+
+HostStereoPass::Recording HostStereoPass::begin(VkCommandBuffer cmd, const HostImage& color, const HostImage& depth,
+                                                const HostFrame& frame, const HostImage* left, const HostImage* right,
+                                                const HostImage* target, bool overlay, bool kernel) const {
   const gpu::StereoConstants& constants = frame.stereo;
   if (constants.tapCount < 0 || constants.tapCount > S3D_STEREO_MAX_TAPS)
     throw std::invalid_argument("HostStereoPass: tap count out of range (use makeStereoConstants)");
@@ -218,101 +236,181 @@ void HostStereoPass::record(VkCommandBuffer cmd, const HostImage& color, const H
   requireImage(&depth, "depth");
   if (color.format != desc_.colorFormat || depth.format != desc_.depthFormat)
     throw std::invalid_argument("HostStereoPass: the colour or depth format differs from the one the pass was made for");
-  std::array<const HostImage*, 2> outputArray{};
-  std::span<const HostImage* const> outputs;
+  Recording r{cmd, color, depth, frame, left, right, target};
   if (desc_.output == HostOutput::TwoEyes) {
     requireImage(left, "left eye");
     requireImage(right, "right eye");
-    outputArray = {left, right};
-    outputs = std::span(outputArray);
+    r.outputArray = {left, right};
+    r.outputs = std::span(r.outputArray);
   } else {
     requireImage(target, "packed target");
-    outputArray = {target, nullptr};
-    outputs = std::span(outputArray).first(1);
+    r.outputArray = {target, nullptr};
+    r.outputs = std::span(r.outputArray).first(1);
   }
-  for (const HostImage* output : outputs) {
+  for (const HostImage* output : r.outputs) {
     if (output->format != eyeFormat())
       throw std::invalid_argument(std::string("HostStereoPass: output images must be ") +
                                   (hdr_ ? "RGBA16F" : "RGBA8 UNORM") + " storage images for this input");
     if (output->stage == VK_PIPELINE_STAGE_2_NONE && output->layout != VK_IMAGE_LAYOUT_GENERAL)
       throw std::invalid_argument("HostStereoPass: an output the host synchronizes itself must be in GENERAL");
   }
-  if (outputs.size() == 2 && left->image == right->image && left->layer == right->layer)
+  if (r.outputs.size() == 2 && left->image == right->image && left->layer == right->layer)
     throw std::invalid_argument("HostStereoPass: the eyes name the same image and layer");
 
   const bool storageInputs = desc_.inputsAreStorage;
-  const VkImageLayout colorLayout = inputLayout(color, storageInputs, "colour");
-  const VkImageLayout depthLayout = inputLayout(depth, storageInputs, "depth");
-  const VkAccessFlags2 inputRead = storageInputs ? VK_ACCESS_2_SHADER_STORAGE_READ_BIT : VK_ACCESS_2_SHADER_SAMPLED_READ_BIT;
-  constexpr VkPipelineStageFlags2 compute = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
+  r.colorLayout = inputLayout(color, storageInputs, "colour");
+  r.depthLayout = inputLayout(depth, storageInputs, "depth");
+  r.inputRead = storageInputs ? VK_ACCESS_2_SHADER_STORAGE_READ_BIT : VK_ACCESS_2_SHADER_SAMPLED_READ_BIT;
+  r.input.depth = linearDepthParams(frame.projection, frame.weaponDepthOffset, frame.weaponDepthScale);
+  r.input.width = int(desc_.width);
+  r.input.height = int(desc_.height);
+  r.input.colorTransfer = colorTransfer_;
+  r.input.depthKind = isHostDepthFormat(desc_.depthFormat) ? S3D_HOST_DEPTH_DEVICE : S3D_HOST_DEPTH_LINEAR;
+  // Seed and short searches read the host's images themselves, and pack straight into the target where a packing
+  // needs only each eye's own pixel: one dispatch instead of a conversion, a kernel and a packing pass.
+  r.input.gatherOutput = gatherOutputFor(desc_.output, hdr_, overlay);
+  r.gatherFromHost =
+      hostGather_ && !kernel && constants.tapCount <= S3D_STEREO_SMALL_TAP_CAPACITY && r.input.gatherOutput >= 0;
+  r.packedByGather = r.gatherFromHost && pack_;
+  r.centerView = color.view;
+  r.depthView = depth.view;
+  r.leftView = r.packedByGather ? target->view : pack_ ? leftEye_.view.get() : left->view;
+  r.rightView = r.packedByGather ? target->view : pack_ ? rightEye_.view.get() : right->view;
 
+  constexpr VkPipelineStageFlags2 compute = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
   BarrierList before;
   before.memory = true;
-  for (auto [image, layout] : {std::pair{&color, colorLayout}, std::pair{&depth, depthLayout}})
+  for (auto [image, layout] : {std::pair{&color, r.colorLayout}, std::pair{&depth, r.depthLayout}})
     if (image->stage != VK_PIPELINE_STAGE_2_NONE)
-      before.image(image->image, image->format, image->layout, image->stage, image->access, layout, compute, inputRead);
-  for (const HostImage* output : outputs)
+      before.image(image->image, image->format, image->layout, image->stage, image->access, layout, compute, r.inputRead);
+  for (const HostImage* output : r.outputs)
     if (output->stage != VK_PIPELINE_STAGE_2_NONE)
-      before.image(output->image, output->format, output->layout, output->stage, output->access, VK_IMAGE_LAYOUT_GENERAL, compute,
-                   VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, output->layer);
+      before.image(output->image, output->format, output->layout, output->stage, output->access, VK_IMAGE_LAYOUT_GENERAL,
+                   compute, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, output->layer);
   before.record(cmd);
+  return r;
+}
 
-  auto dispatch = [&](const detail::EyePairPipeline& pass, std::span<const VkWriteDescriptorSet> writes,
-                      const void* push, std::uint32_t width, std::uint32_t height) {
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pass.pipeline);
-    context_->cmdPushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pass.layout.layout, 0,
-                                   std::uint32_t(writes.size()), writes.data());
-    vkCmdPushConstants(cmd, pass.layout.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, pass.pushConstantBytes, push);
-    vkCmdDispatch(cmd, (width + pass.groupWidth - 1) / pass.groupWidth, (height + pass.groupHeight - 1) / pass.groupHeight, 1);
-  };
-  BarrierList between;
-  between.memory = true;
+// Back to the host's layouts, ordered before the stage and access it named.
+void HostStereoPass::end(const Recording& r) const {
+  constexpr VkPipelineStageFlags2 compute = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
+  BarrierList after;
+  for (auto [image, layout] : {std::pair{&r.color, r.colorLayout}, std::pair{&r.depth, r.depthLayout}})
+    if (image->stage != VK_PIPELINE_STAGE_2_NONE)
+      after.image(image->image, image->format, layout, compute, r.inputRead, image->layout, image->stage, image->access);
+  for (const HostImage* output : r.outputs)
+    if (output->stage != VK_PIPELINE_STAGE_2_NONE)
+      after.image(output->image, output->format, VK_IMAGE_LAYOUT_GENERAL, compute, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                  output->layout, output->stage, output->access, output->layer);
+  after.record(r.cmd);
+}
 
-  gpu::HostInputConstants input{};
-  input.depth = linearDepthParams(frame.projection, frame.weaponDepthOffset, frame.weaponDepthScale);
-  input.width = int(desc_.width);
-  input.height = int(desc_.height);
-  input.colorTransfer = colorTransfer_;
-  input.depthKind = isHostDepthFormat(desc_.depthFormat) ? S3D_HOST_DEPTH_DEVICE : S3D_HOST_DEPTH_LINEAR;
-  // The host's two inputs as the conversion and the gather from host images sample them, then two storage images.
-  auto samplingWrites = [&](VkDescriptorImageInfo (&infos)[4], VkWriteDescriptorSet (&writes)[4], VkImageView out0,
-                            VkImageView out1) {
-    infos[0] = {sampler_, color.view, colorLayout};
-    infos[1] = {sampler_, depth.view, depthLayout};
+void HostStereoPass::dispatch(VkCommandBuffer cmd, const detail::EyePairPipeline& pass,
+                              std::span<const VkWriteDescriptorSet> writes, const void* push, std::uint32_t width,
+                              std::uint32_t height) const {
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pass.pipeline);
+  context_->cmdPushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pass.layout.layout, 0,
+                                 std::uint32_t(writes.size()), writes.data());
+  vkCmdPushConstants(cmd, pass.layout.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, pass.pushConstantBytes, push);
+  vkCmdDispatch(cmd, (width + pass.groupWidth - 1) / pass.groupWidth, (height + pass.groupHeight - 1) / pass.groupHeight, 1);
+}
+
+namespace {
+
+// The host's two inputs as the conversion and the gather from host images sample them, then two storage images.
+struct SamplingWrites {
+  VkDescriptorImageInfo infos[4];
+  VkWriteDescriptorSet writes[4];
+
+  SamplingWrites(VkSampler sampler, VkImageView color, VkImageLayout colorLayout, VkImageView depth,
+                 VkImageLayout depthLayout, VkImageView out0, VkImageView out1) {
+    infos[0] = {sampler, color, colorLayout};
+    infos[1] = {sampler, depth, depthLayout};
     infos[2] = {VK_NULL_HANDLE, out0, VK_IMAGE_LAYOUT_GENERAL};
     infos[3] = {VK_NULL_HANDLE, out1, VK_IMAGE_LAYOUT_GENERAL};
     for (std::uint32_t i = 0; i < 4; ++i)
       writes[i] = i < 2 ? vk::sampledImageWrite(i, &infos[i]) : vk::storageImageWrite(i, &infos[i]);
     for (std::uint32_t i = 0; i < 2; ++i) writes[i].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-  };
-  // Seed and short searches read the host's images themselves, and pack straight into the target where a packing
-  // needs only each eye's own pixel: one dispatch instead of a conversion, a kernel and a packing pass.
-  input.gatherOutput = gatherOutputFor(desc_.output, hdr_, overlay != nullptr);
-  const bool gatherFromHost =
-      hostGather_ && !kernel && constants.tapCount <= S3D_STEREO_SMALL_TAP_CAPACITY && input.gatherOutput >= 0;
-  const bool packedByGather = gatherFromHost && pack_;
-  const VkImageView leftView = packedByGather ? target->view : pack_ ? leftEye_.view.get() : left->view;
-  const VkImageView rightView = packedByGather ? target->view : pack_ ? rightEye_.view.get() : right->view;
-
-  VkImageView centerView = color.view, depthView = depth.view;
-  if (input_ && !gatherFromHost) {
-    VkDescriptorImageInfo infos[4];
-    VkWriteDescriptorSet writes[4];
-    samplingWrites(infos, writes, centerColor_.view, linearDepth_.view);
-    dispatch(*input_, writes, &input, desc_.width, desc_.height);
-    between.record(cmd);
-    centerView = centerColor_.view;
-    depthView = linearDepth_.view;
   }
+  SamplingWrites(const SamplingWrites&) = delete;  // the writes point into infos
+};
 
-  if (gatherFromHost) {
-    std::array<std::byte, kHostGatherBytes> push{};
-    std::memcpy(push.data(), &constants, kShortTapBytes);
-    std::memcpy(push.data() + kShortTapBytes, &input, sizeof input);
-    VkDescriptorImageInfo infos[4];
-    VkWriteDescriptorSet writes[4];
-    samplingWrites(infos, writes, leftView, rightView);
-    dispatch(*hostGather_, writes, push.data(), desc_.width, desc_.height);
+// Compute -> compute for the pass's own images between its dispatches.
+void recordBetween(VkCommandBuffer cmd) {
+  BarrierList between;
+  between.memory = true;
+  between.record(cmd);
+}
+
+}  // namespace
+
+void HostStereoPass::recordGatherFromHost(const Recording& r) const {
+  std::array<std::byte, kHostGatherBytes> push{};
+  std::memcpy(push.data(), &r.frame.stereo, kShortTapBytes);
+  std::memcpy(push.data() + kShortTapBytes, &r.input, sizeof r.input);
+  const SamplingWrites w(sampler_, r.color.view, r.colorLayout, r.depth.view, r.depthLayout, r.leftView, r.rightView);
+  dispatch(r.cmd, *hostGather_, w.writes, push.data(), desc_.width, desc_.height);
+}
+
+void HostStereoPass::recordConversion(Recording& r) const {
+  const SamplingWrites w(sampler_, r.color.view, r.colorLayout, r.depth.view, r.depthLayout, centerColor_.view,
+                         linearDepth_.view);
+  dispatch(r.cmd, *input_, w.writes, &r.input, desc_.width, desc_.height);
+  recordBetween(r.cmd);
+  r.centerView = centerColor_.view;
+  r.depthView = linearDepth_.view;
+}
+
+void HostStereoPass::recordStorageKernel(const Recording& r) const {
+  const VkDescriptorImageInfo infos[4] = {{VK_NULL_HANDLE, r.centerView, VK_IMAGE_LAYOUT_GENERAL},
+                                          {VK_NULL_HANDLE, r.depthView, VK_IMAGE_LAYOUT_GENERAL},
+                                          {VK_NULL_HANDLE, r.leftView, VK_IMAGE_LAYOUT_GENERAL},
+                                          {VK_NULL_HANDLE, r.rightView, VK_IMAGE_LAYOUT_GENERAL}};
+  VkWriteDescriptorSet writes[4];
+  for (std::uint32_t i = 0; i < 4; ++i) writes[i] = vk::storageImageWrite(i, &infos[i]);
+  const gpu::StereoConstants& constants = r.frame.stereo;
+  dispatch(r.cmd, constants.tapCount <= S3D_STEREO_SMALL_TAP_CAPACITY ? *shortTaps_ : *allTaps_, writes, &constants,
+           desc_.width, desc_.height);
+}
+
+// On the finished eyes, before packing (the HUD).
+void HostStereoPass::recordOverlay(const Recording& r, const EyeOverlay& overlay) const {
+  recordBetween(r.cmd);
+  auto eye = [&](const vk::Image& own, const HostImage* host) {
+    return pack_ ? HostImage{own.image, own.view, eyeFormat(), VK_IMAGE_LAYOUT_GENERAL}
+                 : HostImage{host->image, host->view, host->format, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_NONE,
+                             VK_ACCESS_2_NONE, host->layer};
+  };
+  overlay.recordOnEyes(r.cmd, eye(leftEye_, r.left), eye(rightEye_, r.right));
+}
+
+void HostStereoPass::recordPacking(const Recording& r) const {
+  recordBetween(r.cmd);
+  gpu::HostPackConstants push{};
+  const HostOutput o = desc_.output;
+  push.mode = o == HostOutput::SideBySideHalf   ? S3D_HOST_PACK_SIDE_BY_SIDE_HALF
+              : o == HostOutput::SideBySideFull ? S3D_HOST_PACK_SIDE_BY_SIDE_FULL
+              : o == HostOutput::TopBottomHalf  ? S3D_HOST_PACK_TOP_BOTTOM_HALF
+              : o == HostOutput::TopBottomFull  ? S3D_HOST_PACK_TOP_BOTTOM_FULL
+                                                : S3D_HOST_PACK_ANAGLYPH;
+  push.eyeWidth = int(desc_.width);
+  push.eyeHeight = int(desc_.height);
+  push.eyesEncoded = hdr_ ? 0 : 1;
+  const VkDescriptorImageInfo infos[3] = {{VK_NULL_HANDLE, leftEye_.view, VK_IMAGE_LAYOUT_GENERAL},
+                                          {VK_NULL_HANDLE, rightEye_.view, VK_IMAGE_LAYOUT_GENERAL},
+                                          {VK_NULL_HANDLE, r.target->view, VK_IMAGE_LAYOUT_GENERAL}};
+  VkWriteDescriptorSet writes[3];
+  for (std::uint32_t i = 0; i < 3; ++i) writes[i] = vk::storageImageWrite(i, &infos[i]);
+  dispatch(r.cmd, *pack_, writes, &push, packedWidth(), packedHeight());
+}
+
+void HostStereoPass::record(VkCommandBuffer cmd, const HostImage& color, const HostImage& depth, const HostFrame& frame,
+                            const HostImage* left, const HostImage* right, const HostImage* target,
+                            const EyeOverlay* overlay, const EyeKernel* kernel) const {
+  Recording r = begin(cmd, color, depth, frame, left, right, target, overlay != nullptr, kernel != nullptr);
+  if (input_ && !r.gatherFromHost) recordConversion(r);
+  if (r.gatherFromHost) {
+    recordGatherFromHost(r);
   } else if (kernel) {  // the passes it runs take Images: the host's are borrowed (their layer kept for barriers)
     const auto borrowed = [&](const vk::Image& own, const HostImage* host, VkFormat format) {
       return own.image ? vk::borrowImage(own.image, own.view, format, desc_.width, desc_.height)
@@ -322,57 +420,11 @@ void HostStereoPass::record(VkCommandBuffer cmd, const HostImage& color, const H
                          borrowed(linearDepth_, &depth, VK_FORMAT_R32_SFLOAT), borrowed(leftEye_, left, eyeFormat()),
                          borrowed(rightEye_, right, eyeFormat()));
   } else {
-    const VkDescriptorImageInfo infos[4] = {{VK_NULL_HANDLE, centerView, VK_IMAGE_LAYOUT_GENERAL},
-                                            {VK_NULL_HANDLE, depthView, VK_IMAGE_LAYOUT_GENERAL},
-                                            {VK_NULL_HANDLE, leftView, VK_IMAGE_LAYOUT_GENERAL},
-                                            {VK_NULL_HANDLE, rightView, VK_IMAGE_LAYOUT_GENERAL}};
-    VkWriteDescriptorSet writes[4];
-    for (std::uint32_t i = 0; i < 4; ++i) writes[i] = vk::storageImageWrite(i, &infos[i]);
-    dispatch(constants.tapCount <= S3D_STEREO_SMALL_TAP_CAPACITY ? *shortTaps_ : *allTaps_, writes, &constants,
-             desc_.width, desc_.height);
+    recordStorageKernel(r);
   }
-
-  if (overlay) {  // on the finished eyes, before packing (the HUD)
-    between.record(cmd);
-    auto eye = [&](const vk::Image& own, const HostImage* host) {
-      return pack_ ? HostImage{own.image, own.view, eyeFormat(), VK_IMAGE_LAYOUT_GENERAL}
-                   : HostImage{host->image, host->view, host->format, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_NONE,
-                               VK_ACCESS_2_NONE, host->layer};
-    };
-    const HostImage leftEye = eye(leftEye_, left), rightEye = eye(rightEye_, right);
-    overlay->recordOnEyes(cmd, leftEye, rightEye);
-  }
-
-  if (pack_ && !packedByGather) {
-    between.record(cmd);
-    gpu::HostPackConstants push{};
-    const HostOutput o = desc_.output;
-    push.mode = o == HostOutput::SideBySideHalf   ? S3D_HOST_PACK_SIDE_BY_SIDE_HALF
-                : o == HostOutput::SideBySideFull ? S3D_HOST_PACK_SIDE_BY_SIDE_FULL
-                : o == HostOutput::TopBottomHalf  ? S3D_HOST_PACK_TOP_BOTTOM_HALF
-                : o == HostOutput::TopBottomFull  ? S3D_HOST_PACK_TOP_BOTTOM_FULL
-                                                  : S3D_HOST_PACK_ANAGLYPH;
-    push.eyeWidth = int(desc_.width);
-    push.eyeHeight = int(desc_.height);
-    push.eyesEncoded = hdr_ ? 0 : 1;
-    const VkDescriptorImageInfo infos[3] = {{VK_NULL_HANDLE, leftEye_.view, VK_IMAGE_LAYOUT_GENERAL},
-                                            {VK_NULL_HANDLE, rightEye_.view, VK_IMAGE_LAYOUT_GENERAL},
-                                            {VK_NULL_HANDLE, target->view, VK_IMAGE_LAYOUT_GENERAL}};
-    VkWriteDescriptorSet writes[3];
-    for (std::uint32_t i = 0; i < 3; ++i) writes[i] = vk::storageImageWrite(i, &infos[i]);
-    dispatch(*pack_, writes, &push, packedWidth(), packedHeight());
-  }
-
-  // Back to the host's layouts, ordered before the stage and access it named.
-  BarrierList after;
-  for (auto [image, layout] : {std::pair{&color, colorLayout}, std::pair{&depth, depthLayout}})
-    if (image->stage != VK_PIPELINE_STAGE_2_NONE)
-      after.image(image->image, image->format, layout, compute, inputRead, image->layout, image->stage, image->access);
-  for (const HostImage* output : outputs)
-    if (output->stage != VK_PIPELINE_STAGE_2_NONE)
-      after.image(output->image, output->format, VK_IMAGE_LAYOUT_GENERAL, compute, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, output->layout,
-                  output->stage, output->access, output->layer);
-  after.record(cmd);
+  if (overlay) recordOverlay(r, *overlay);
+  if (pack_ && !r.packedByGather) recordPacking(r);
+  end(r);
 }
 
 }  // namespace s3d::stereo

@@ -3,6 +3,7 @@
 // packed target out, recorded into the host's command buffer (docs/INTEGRATION.md).
 #include <cstdint>
 #include <optional>
+#include <span>
 
 #include <vulkan/vulkan.h>
 
@@ -126,6 +127,19 @@ class HostStereoPass {
   const HostStereoPassDesc& desc() const { return desc_; }
 
  private:
+  struct Recording;  // one record's images, the layouts s3d reads its inputs in and the views it writes
+  Recording begin(VkCommandBuffer cmd, const HostImage& color, const HostImage& depth, const HostFrame& frame,
+                  const HostImage* left, const HostImage* right, const HostImage* target, bool overlay,
+                  bool kernel) const;  // checks the images, then the barriers from the host's state
+  void end(const Recording& r) const;   // the barriers back to the host's state
+  void dispatch(VkCommandBuffer cmd, const detail::EyePairPipeline& pass, std::span<const VkWriteDescriptorSet> writes,
+                const void* push, std::uint32_t width, std::uint32_t height) const;
+  void recordGatherFromHost(const Recording& r) const;   // seed and short searches on the host's images
+  void recordConversion(Recording& r) const;             // the host's images into the storage intermediates
+  void recordStorageKernel(const Recording& r) const;    // seed or search on storage images
+  void recordOverlay(const Recording& r, const EyeOverlay& overlay) const;
+  void recordPacking(const Recording& r) const;
+
   vk::Context* context_;
   HostStereoPassDesc desc_;
   bool hdr_ = false;
