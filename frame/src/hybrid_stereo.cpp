@@ -121,55 +121,60 @@ renderer::RendererOptions eyeRendererOptions(const renderer::RendererOptions& ce
   return options;
 }
 
-HybridSynthesis synthesizeHybrid(vk::Context& context, const renderer::DeferredRenderer& centerRenderer,
-                                 renderer::DeferredRenderer& eyeRenderer, const renderer::Scene& scene,
-                                 const renderer::ViewMatrices& center, const stereo::StereoParameters& parameters,
-                                 int timedRuns, HybridSurfaces surfaces) {
-  if (parameters.method != stereo::StereoMethod::Hybrid)
-    throw std::invalid_argument("synthesizeHybrid needs the hybrid method's parameters");
-  if (timedRuns < 1) throw std::invalid_argument("synthesizeHybrid: timedRuns must be at least 1");
-  const vk::Image& centerColor = centerRenderer.displayColor();
-  const vk::Image& linearDepth = centerRenderer.linearDepth();
-  const std::uint32_t width = centerColor.width, height = centerColor.height;
-  if (eyeRenderer.width() != width || eyeRenderer.height() != height)
-    throw std::invalid_argument("synthesizeHybrid: the eye renderer's size differs from the center view's");
-  HybridSynthesis result;
+namespace {
 
-  // The masked pixels' surfaces by ray casting wherever the eye renderer can shade what the rays find (a GPU's
-  // visibility shading, a scene without textures); its BVH is built once per scene or pose. Otherwise rasterized.
+// The masked pixels' surfaces by ray casting wherever the eye renderer can shade what the rays find (a GPU's
+// visibility shading, a scene without textures); its BVH is built once per scene or pose. Otherwise rasterized.
+renderer::ShadeMask::Surfaces surfacesFor(renderer::DeferredRenderer& eyeRenderer, const renderer::Scene& scene,
+                                          HybridSurfaces surfaces) {
   const std::optional<std::string> refusal = eyeRenderer.raycastSurfacesRefusal();
   if (surfaces == HybridSurfaces::RayCast && refusal)
     throw std::invalid_argument("the hybrid cannot ray-cast its eye pixels here: " + *refusal);
-  const bool raycast = surfaces != HybridSurfaces::Raster && !refusal;
-  if (raycast && !eyeRenderer.hasSurfaceBvh()) eyeRenderer.setSurfaceBvh(renderer::SceneBvh::build(scene));
-  result.surfaces = raycast ? renderer::ShadeMask::Surfaces::RayCast : renderer::ShadeMask::Surfaces::Raster;
-  const stereo::DisplacementPass displacement(context, parameters, width, height);
-  const stereo::HybridPass hybrid(context);
-  const gpu::HybridConstants constants = stereo::makeHybridConstants(parameters, width, height);
-  stereo::HybridPass::Images images = hybrid.createImages(width, height);
-  const VkImageUsageFlags usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
-  const vk::Image left = vk::createImage(context, stereo::StereoPass::kColorFormat, width, height, usage);
-  const vk::Image right = vk::createImage(context, stereo::StereoPass::kColorFormat, width, height, usage);
-  result.classifiedPixels = std::uint64_t(constants.cropEnd - constants.cropBegin) * height;
-  // The budget's ends need no classification: none masks nothing (the base displacement), all masks every
-  // classified pixel (the eyes rendered whole, the two-pass reference), whatever the scores.
-  const bool nothingMasked = constants.maskedPixelCap == 0;
-  const bool everythingMasked = !nothingMasked && constants.maskedPixelCap >= result.classifiedPixels;
-  const bool classify = !nothingMasked && !everythingMasked;
+  if (surfaces == HybridSurfaces::Raster || refusal) return renderer::ShadeMask::Surfaces::Raster;
+  if (!eyeRenderer.hasSurfaceBvh()) eyeRenderer.setSurfaceBvh(renderer::SceneBvh::build(scene));
+  return renderer::ShadeMask::Surfaces::RayCast;
+}
 
-  // Displacement, classification, threshold and masks: one submission, nothing read back in between.
-  const std::vector<std::optional<double>> front =
-      timeSections(context, timedRuns, classify ? 4 : 1, [&](VkCommandBuffer cmd, const std::function<void()>& mark) {
-        stereo::StereoPass::recordInputBarriers(cmd, centerColor, linearDepth, left, right);
-        displacement.record(cmd, centerColor, linearDepth, left, right);
+// Every classified pixel (the crop) set, as the mask pass would leave it at budget 1.
+void uploadCropMasks(vk::Context& context, const stereo::HybridPass::Images& images,
+                     const gpu::HybridConstants& constants, std::uint32_t width, std::uint32_t height) {
+  std::vector<std::uint32_t> crop(std::size_t(width) * height, 0);
+  for (std::uint32_t y = 0; y < height; ++y)
+    for (int x = constants.cropBegin; x < constants.cropEnd; ++x) crop[std::size_t(y) * width + std::size_t(x)] = 1;
+  for (const vk::Image* mask : {&images.leftMask, &images.rightMask})
+    vk::uploadImage(context, *mask, std::as_bytes(std::span(crop)), vk::kComputeWrite);
+}
+
+// One hybrid frame's GPU objects and the state its steps share.
+struct HybridFrame {
+  vk::Context& context;
+  const renderer::DeferredRenderer& centerRenderer;
+  renderer::DeferredRenderer& eyeRenderer;
+  std::uint32_t width, height;
+  int timedRuns;
+  const stereo::HybridPass& hybrid;
+  const gpu::HybridConstants constants;
+  stereo::HybridPass::Images images;
+  vk::Image left, right;
+  bool nothingMasked, everythingMasked, classify;
+};
+
+// Displacement, classification, threshold and masks: one submission, nothing read back in between. Returns the
+// displacement's method (the hybrid's base).
+stereo::StereoMethod displaceAndClassify(HybridFrame& f, const stereo::StereoParameters& parameters, HybridTimings& timings) {
+  const vk::Image& centerColor = f.centerRenderer.displayColor();
+  const vk::Image& linearDepth = f.centerRenderer.linearDepth();
+  const stereo::DisplacementPass displacement(f.context, parameters, f.width, f.height);
+  const std::vector<std::optional<double>> front = timeSections(
+      f.context, f.timedRuns, f.classify ? 4 : 1, [&](VkCommandBuffer cmd, const std::function<void()>& mark) {
+        stereo::StereoPass::recordInputBarriers(cmd, centerColor, linearDepth, f.left, f.right);
+        displacement.record(cmd, centerColor, linearDepth, f.left, f.right);
         mark();
-        if (classify) hybrid.recordMasks(cmd, linearDepth, images, constants, mark);
+        if (f.classify) f.hybrid.recordMasks(cmd, linearDepth, f.images, f.constants, mark);
         stereo::StereoPass::recordInputRelease(cmd, centerColor, linearDepth);
       });
-  HybridTimings& timings = result.timings;
-  timings.raycastSurfaces = raycast;
   timings.displacement = front[0];
-  if (classify) {
+  if (f.classify) {
     timings.classify = front[1];
     timings.threshold = front[2];
     timings.mask = front[3];
@@ -177,60 +182,90 @@ HybridSynthesis synthesizeHybrid(vk::Context& context, const renderer::DeferredR
     timings.classify = timings.threshold = timings.mask = 0.0;
   }
   timings.classification = sum(sum(timings.classify, timings.threshold), timings.mask);
-  timings.eyeGeometry = timings.maskedShading = timings.composite = 0.0;
-  // Every classified pixel: the crop, as the mask pass would leave it at budget 1.
-  if (everythingMasked) {
-    std::vector<std::uint32_t> crop(std::size_t(width) * height, 0);
-    for (std::uint32_t y = 0; y < height; ++y)
-      for (int x = constants.cropBegin; x < constants.cropEnd; ++x) crop[std::size_t(y) * width + std::size_t(x)] = 1;
-    for (const vk::Image* mask : {&images.leftMask, &images.rightMask})
-      vk::uploadImage(context, *mask, std::as_bytes(std::span(crop)), vk::kComputeWrite);
-  }
+  return displacement.method();
+}
 
-  // Each eye: its masked pixels rendered from the eye camera, then composited into the displaced eye. The
-  // masked counts come back first (the submission above was waited for anyway): an eye with nothing masked is
-  // the displaced eye as it is, and costs no render.
-  for (const stereo::Eye eye : {stereo::Eye::Left, stereo::Eye::Right}) {
-    const std::size_t index = eye == stereo::Eye::Left ? 0 : 1;
-    const vk::Image& target = index == 0 ? left : right;
-    const vk::Image& mask = index == 0 ? images.leftMask : images.rightMask;
-    if (classify)
-      result.thresholds[index] = stereo::HybridPass::readThreshold(context, images.thresholds, int(index));
-    else if (everythingMasked)  // bin 0 and up: every classified pixel, no split (hybridThreshold's)
-      result.thresholds[index] = {0, result.classifiedPixels, S3D_HYBRID_NO_PIXEL, 0};
-    if (result.thresholds[index].maskedPixels == 0) {
-      result.masks[index].assign(std::size_t(width) * height, 0);
-      result.renderedHdr[index] = ImageRGBA32F(width, height);
-      continue;
-    }
-    const EyeRenderTimes render =
-        renderEye(eyeRenderer, centerRenderer, referenceEyeView(scene, center, eye, parameters),
-                  everythingMasked ? nullptr : &mask, result.surfaces, timedRuns);
-    timings.eyeGeometry = sum(timings.eyeGeometry, render.geometry);
-    timings.maskedShading = sum(timings.maskedShading, render.shading);
-    (index == 0 ? timings.leftEyePasses : timings.rightEyePasses) = render.passes;
-    // The composite copies the masked pixels of the same rendered eye each run: repeating it changes nothing.
-    const std::vector<std::optional<double>> composite =
-        timeSections(context, timedRuns, 1, [&](VkCommandBuffer cmd, const std::function<void()>& mark) {
-          vk::transition(cmd, eyeRenderer.displayColor(), vk::kComputeWrite, vk::kComputeRead);
-          vk::transition(cmd, target, vk::kComputeWrite, vk::kComputeWrite);
-          vk::transition(cmd, mask, vk::kComputeWrite, vk::kComputeRead);
-          hybrid.recordComposite(cmd, target, eyeRenderer.displayColor(), mask, constants);
-          mark();
-          vk::transition(cmd, eyeRenderer.displayColor(), vk::kComputeRead, vk::kComputeWrite);
-          vk::transition(cmd, mask, vk::kComputeRead, vk::kComputeWrite);
-        });
-    timings.composite = sum(timings.composite, composite[0]);
-    result.renderedHdr[index] = eyeRenderer.readHdrColor();
-    result.masks[index] = stereo::HybridPass::readMask(context, mask);
+// One eye: its masked pixels rendered from the eye camera, then composited into the displaced eye. An eye with
+// nothing masked is the displaced eye as it is, and costs no render.
+void renderAndComposite(HybridFrame& f, const renderer::Scene& scene, const renderer::ViewMatrices& center,
+                        const stereo::StereoParameters& parameters, stereo::Eye eye, HybridSynthesis& result) {
+  const std::size_t index = eye == stereo::Eye::Left ? 0 : 1;
+  const vk::Image& target = index == 0 ? f.left : f.right;
+  const vk::Image& mask = index == 0 ? f.images.leftMask : f.images.rightMask;
+  if (f.classify)
+    result.thresholds[index] = stereo::HybridPass::readThreshold(f.context, f.images.thresholds, int(index));
+  else if (f.everythingMasked)  // bin 0 and up: every classified pixel, no split (hybridThreshold's)
+    result.thresholds[index] = {0, result.classifiedPixels, S3D_HYBRID_NO_PIXEL, 0};
+  if (result.thresholds[index].maskedPixels == 0) {
+    result.masks[index].assign(std::size_t(f.width) * f.height, 0);
+    result.renderedHdr[index] = ImageRGBA32F(f.width, f.height);
+    return;
   }
+  HybridTimings& timings = result.timings;
+  const EyeRenderTimes render =
+      renderEye(f.eyeRenderer, f.centerRenderer, referenceEyeView(scene, center, eye, parameters),
+                f.everythingMasked ? nullptr : &mask, result.surfaces, f.timedRuns);
+  timings.eyeGeometry = sum(timings.eyeGeometry, render.geometry);
+  timings.maskedShading = sum(timings.maskedShading, render.shading);
+  (index == 0 ? timings.leftEyePasses : timings.rightEyePasses) = render.passes;
+  // The composite copies the masked pixels of the same rendered eye each run: repeating it changes nothing.
+  const vk::Image& rendered = f.eyeRenderer.displayColor();
+  const std::vector<std::optional<double>> composite =
+      timeSections(f.context, f.timedRuns, 1, [&](VkCommandBuffer cmd, const std::function<void()>& mark) {
+        vk::transition(cmd, rendered, vk::kComputeWrite, vk::kComputeRead);
+        vk::transition(cmd, target, vk::kComputeWrite, vk::kComputeWrite);
+        vk::transition(cmd, mask, vk::kComputeWrite, vk::kComputeRead);
+        f.hybrid.recordComposite(cmd, target, rendered, mask, f.constants);
+        mark();
+        vk::transition(cmd, rendered, vk::kComputeRead, vk::kComputeWrite);
+        vk::transition(cmd, mask, vk::kComputeRead, vk::kComputeWrite);
+      });
+  timings.composite = sum(timings.composite, composite[0]);
+  result.renderedHdr[index] = f.eyeRenderer.readHdrColor();
+  result.masks[index] = stereo::HybridPass::readMask(f.context, mask);
+}
+
+}  // namespace
+
+HybridSynthesis synthesizeHybrid(vk::Context& context, const renderer::DeferredRenderer& centerRenderer,
+                                 renderer::DeferredRenderer& eyeRenderer, const renderer::Scene& scene,
+                                 const renderer::ViewMatrices& center, const stereo::StereoParameters& parameters,
+                                 int timedRuns, HybridSurfaces surfaces) {
+  if (parameters.method != stereo::StereoMethod::Hybrid)
+    throw std::invalid_argument("synthesizeHybrid needs the hybrid method's parameters");
+  if (timedRuns < 1) throw std::invalid_argument("synthesizeHybrid: timedRuns must be at least 1");
+  const std::uint32_t width = centerRenderer.displayColor().width, height = centerRenderer.displayColor().height;
+  if (eyeRenderer.width() != width || eyeRenderer.height() != height)
+    throw std::invalid_argument("synthesizeHybrid: the eye renderer's size differs from the center view's");
+  HybridSynthesis result;
+  result.surfaces = surfacesFor(eyeRenderer, scene, surfaces);
+  const stereo::HybridPass hybrid(context);
+  const VkImageUsageFlags usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+  HybridFrame f{context, centerRenderer, eyeRenderer, width, height, timedRuns, hybrid,
+                stereo::makeHybridConstants(parameters, width, height), hybrid.createImages(width, height),
+                vk::createImage(context, stereo::StereoPass::kColorFormat, width, height, usage),
+                vk::createImage(context, stereo::StereoPass::kColorFormat, width, height, usage), false, false, false};
+  result.classifiedPixels = std::uint64_t(f.constants.cropEnd - f.constants.cropBegin) * height;
+  // The budget's ends need no classification: none masks nothing (the base displacement), all masks every
+  // classified pixel (the eyes rendered whole, the two-pass reference), whatever the scores.
+  f.nothingMasked = f.constants.maskedPixelCap == 0;
+  f.everythingMasked = !f.nothingMasked && f.constants.maskedPixelCap >= result.classifiedPixels;
+  f.classify = !f.nothingMasked && !f.everythingMasked;
+  HybridTimings& timings = result.timings;
+  timings.raycastSurfaces = result.surfaces == renderer::ShadeMask::Surfaces::RayCast;
+  const stereo::StereoMethod base = displaceAndClassify(f, parameters, timings);
+  timings.eyeGeometry = timings.maskedShading = timings.composite = 0.0;
+  if (f.everythingMasked) uploadCropMasks(context, f.images, f.constants, width, height);
+  // The masked counts come back first (the submission above was waited for anyway).
+  for (const stereo::Eye eye : {stereo::Eye::Left, stereo::Eye::Right})
+    renderAndComposite(f, scene, center, parameters, eye, result);
   timings.total =
       sum(sum(sum(sum(timings.displacement, timings.classification), timings.eyeGeometry), timings.maskedShading),
           timings.composite);
-  result.eyes = {readEye(context, left), readEye(context, right)};
-  if (displacement.method() == stereo::StereoMethod::Iterative)
+  result.eyes = {readEye(context, f.left), readEye(context, f.right)};
+  if (base == stereo::StereoMethod::Iterative)
     std::tie(result.filledLeft, result.filledRight) =
-        stereo::countIterativeFills(context, centerColor, linearDepth, parameters);
+        stereo::countIterativeFills(context, centerRenderer.displayColor(), centerRenderer.linearDepth(), parameters);
   return result;
 }
 
