@@ -66,6 +66,7 @@ HostStereoPassDesc hostDesc(const StereoFrameDesc& desc) {
   host.colorFormat = desc.colorFormat;
   host.depthFormat = desc.depthFormat;
   host.output = desc.output;
+  host.kernel = desc.kernel;
   return host;
 }
 
