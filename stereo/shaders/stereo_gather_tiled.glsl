@@ -1,44 +1,15 @@
 // stereo_gather.glsl on row tiles (stereo_row_tile.glsl): the same taps, minimum and filter, read from shared
 // memory. Included by stereo_seed_tiled.comp and stereo_search_tiled.comp, which set S3D_STEREO_TAP_CAPACITY.
-// With S3D_STEREO_HOST_INPUTS (stereo_gather_host_tiled.comp) the tile is loaded from a host's sampled 8-bit colour
-// and depth buffer, each texel converted once, and the output may be packed as stereo_gather_output.glsl packs it.
 #include "s3d/stereo/stereo_shared.h"
-#ifdef S3D_STEREO_HOST_INPUTS
-#include "s3d/stereo/host_pass_shared.h"
 
-layout(binding = 0) uniform sampler2D hostColor;
-layout(binding = 1) uniform sampler2D hostDepth;
-#else
 layout(binding = 0, rgba8) uniform readonly image2D centerColor;
 layout(binding = 1, r32f) uniform readonly image2D linearDepth;
-#endif
 layout(binding = 2, rgba8) uniform writeonly image2D leftEye;
 layout(binding = 3, rgba8) uniform writeonly image2D rightEye;
 
-layout(push_constant) uniform Push {
-  StereoConstants c;
-#ifdef S3D_STEREO_HOST_INPUTS
-  HostInputConstants h;  // right after the short tap array (HostGatherConstants in C++)
-#endif
-};
-
-#ifdef S3D_STEREO_HOST_INPUTS
-float hostLinearDepthAt(ivec2 texel) {
-  float depth = texelFetch(hostDepth, texel, 0).r;
-  return h.depthKind == S3D_HOST_DEPTH_DEVICE ? stereoDepthFromDevice(h.depth, depth) : depth;
-}
-vec4 hostDisplayColorAt(ivec2 texel) {
-  vec4 color = texelFetch(hostColor, texel, 0);
-  if (h.colorTransfer == S3D_HOST_COLOR_ENCODE_SRGB)
-    color.rgb = vec3(hostLinearToSrgb(color.r), hostLinearToSrgb(color.g), hostLinearToSrgb(color.b));
-  return color;
-}
-#define S3D_ROW_TILE_LOAD_DEPTH(texel) hostLinearDepthAt(texel)
-#define S3D_ROW_TILE_LOAD_COLOR(texel) hostDisplayColorAt(texel)
-#endif
+layout(push_constant) uniform Push { StereoConstants c; };
 
 #include "stereo_row_tile.glsl"
-#include "stereo_gather_output.glsl"
 
 // Listing 4.5: minimum depth over the separation range on one side of the pixel.
 float minDepthOverTaps(int x, int y, int direction) {
@@ -69,7 +40,8 @@ void main() {
   }
   if (pixel.x >= c.width) return;
   if (pixel.x < c.cropBegin || pixel.x >= c.cropEnd) {  // cropped edges
-    writeEyes(pixel, vec4(0, 0, 0, 1), vec4(0, 0, 0, 1));
+    imageStore(leftEye, pixel, vec4(0, 0, 0, 1));
+    imageStore(rightEye, pixel, vec4(0, 0, 0, 1));
     return;
   }
   // Flat depth over the tile and its margin: every tap reads the same depth, so the minimum is that depth.
@@ -78,6 +50,6 @@ void main() {
   float parallaxLeft = parallaxFromDepth(c.maxSeparation, c.zeroParallaxDistance, minDepthLeft);
   float parallaxRight = parallaxFromDepth(c.maxSeparation, c.zeroParallaxDistance, minDepthRight);
   // The left eye adds the parallax, the right eye subtracts it.
-  writeEyes(pixel, tileSampleRow(pixel.y, float(pixel.x) + parallaxLeft * float(c.width), c.width),
-            tileSampleRow(pixel.y, float(pixel.x) - parallaxRight * float(c.width), c.width));
+  imageStore(leftEye, pixel, tileSampleRow(pixel.y, float(pixel.x) + parallaxLeft * float(c.width), c.width));
+  imageStore(rightEye, pixel, tileSampleRow(pixel.y, float(pixel.x) - parallaxRight * float(c.width), c.width));
 }

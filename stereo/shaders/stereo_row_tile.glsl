@@ -4,13 +4,6 @@
 #include "s3d/stereo/row_tile_shared.h"
 #include "s3d/stereo/stereo_shared.h"
 
-// What a tile loads at a texel: the storage images by default; a pass on a host's sampled images defines both
-// (converting each texel once, as the host gather converts every fetch) before including this file.
-#ifndef S3D_ROW_TILE_LOAD_DEPTH
-#define S3D_ROW_TILE_LOAD_DEPTH(texel) imageLoad(linearDepth, texel).r
-#define S3D_ROW_TILE_LOAD_COLOR(texel) imageLoad(centerColor, texel)
-#endif
-
 layout(local_size_x = S3D_STEREO_ROW_TILE, local_size_y = 1) in;
 
 shared float tileDepth[S3D_STEREO_ROW_TILE_SPAN];  // sanitized linear depth
@@ -32,8 +25,8 @@ bool loadRowTile(int interiorBegin, int interiorEnd, int y, int margin, int widt
   if (local == 0) tileDepthVaries = 0u;
   for (int i = local; i < count; i += S3D_STEREO_ROW_TILE) {
     ivec2 texel = ivec2(tileBegin + i, y);
-    tileDepth[i] = sanitizedDepth(S3D_ROW_TILE_LOAD_DEPTH(texel), zeroParallaxDistance);
-    tileColor[i] = packUnorm4x8(S3D_ROW_TILE_LOAD_COLOR(texel));
+    tileDepth[i] = sanitizedDepth(imageLoad(linearDepth, texel).r, zeroParallaxDistance);
+    tileColor[i] = packUnorm4x8(imageLoad(centerColor, texel));
   }
   barrier();
   // Flat iff no neighbouring pair differs; every writer stores the same value, so no atomic is needed.
@@ -54,7 +47,7 @@ float tileDepthAt(int x) {
 vec4 tileColorAt(int x, int y) {
   int i = x - tileBegin;
   if (i >= 0 && x < tileEnd) return unpackUnorm4x8(tileColor[i]);
-  return S3D_ROW_TILE_LOAD_COLOR(ivec2(x, y));
+  return imageLoad(centerColor, ivec2(x, y));
 }
 
 // The per-pixel passes' sampleRow on the tile: horizontal linear filter at texel coordinate u, clamped to the edge.

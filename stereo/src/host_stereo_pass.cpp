@@ -18,7 +18,6 @@
 #include <s3d_spirv/host_pack_rgba16f_comp.h>
 #include <s3d_spirv/stereo_gather_host_comp.h>
 #include <s3d_spirv/stereo_gather_host_hdr_comp.h>
-#include <s3d_spirv/stereo_gather_host_tiled_comp.h>
 #include <s3d_spirv/stereo_search_comp.h>
 #include <s3d_spirv/stereo_search_hdr_comp.h>
 #include <s3d_spirv/stereo_seed_comp.h>
@@ -169,10 +168,6 @@ HostStereoPass::HostStereoPass(vk::Context& context, const HostStereoPassDesc& d
                                  hdr_ ? std::span<const std::uint32_t>(spirv_stereo_gather_host_hdr_comp)
                                       : std::span<const std::uint32_t>(spirv_stereo_gather_host_comp),
                                  kHostGatherBytes, S3D_STEREO_GROUP_SIZE);
-    if (direct && !hdr_ && desc.kernel != StereoKernel::PerPixel && detail::deviceRunsRowTiles(context)) {
-      hostGatherTiles_ = makePipeline(context, bindings, spirv_stereo_gather_host_tiled_comp, kHostGatherBytes, 1);
-      hostGatherTiles_->groupWidth = S3D_STEREO_ROW_TILE;
-    }
   }
   shortTaps_ = makePipeline(context, storage4, hdr_ ? std::span<const std::uint32_t>(spirv_stereo_seed_hdr_comp)
                                                     : std::span<const std::uint32_t>(spirv_stereo_seed_comp),
@@ -354,8 +349,7 @@ void HostStereoPass::recordGatherFromHost(const Recording& r) const {
   std::memcpy(push.data(), &r.frame.stereo, kShortTapBytes);
   std::memcpy(push.data() + kShortTapBytes, &r.input, sizeof r.input);
   const SamplingWrites w(sampler_, r.color.view, r.colorLayout, r.depth.view, r.depthLayout, r.leftView, r.rightView);
-  const bool tiles = hostGatherTiles_ && rowTileMargin(r.frame.stereo) <= S3D_STEREO_ROW_TILE_MARGIN;
-  dispatch(r.cmd, tiles ? *hostGatherTiles_ : *hostGather_, w.writes, push.data(), desc_.width, desc_.height);
+  dispatch(r.cmd, *hostGather_, w.writes, push.data(), desc_.width, desc_.height);
 }
 
 void HostStereoPass::recordConversion(Recording& r) const {

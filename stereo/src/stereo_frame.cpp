@@ -66,7 +66,6 @@ HostStereoPassDesc hostDesc(const StereoFrameDesc& desc) {
   host.colorFormat = desc.colorFormat;
   host.depthFormat = desc.depthFormat;
   host.output = desc.output;
-  host.kernel = desc.kernel;
   return host;
 }
 

@@ -132,8 +132,7 @@ void BareKernel(benchmark::State& state) {
 }
 
 // The host's stereo frame from sRGB colour and D32 depth the host synchronizes itself. Arguments: the method as
-// BareKernel's (4: forward with the previous-frame fill), the output (0 two eyes, 1 anaglyph) and the kernel (0
-// Auto, 1 PerPixel, 2 RowTiles: the gather from the host's images at every fetch or on row tiles).
+// BareKernel's (4: forward with the previous-frame fill), and the output (0 two eyes, 1 anaglyph).
 void HostStereoFrame(benchmark::State& state) {
   vk::Context& context = benchContext();
   const bool fill = state.range(0) == 4;
@@ -145,9 +144,6 @@ void HostStereoFrame(benchmark::State& state) {
   desc.method = kMethods[fill ? 3 : state.range(0)];
   desc.previousFrameFill = fill;
   desc.output = state.range(1) == 0 ? stereo::HostOutput::TwoEyes : stereo::HostOutput::Anaglyph;
-  const stereo::StereoKernel kernels[] = {stereo::StereoKernel::Auto, stereo::StereoKernel::PerPixel,
-                                          stereo::StereoKernel::RowTiles};
-  desc.kernel = kernels[state.range(2)];
   stereo::StereoFrame stereoFrame(context, desc);
   const VkImageUsageFlags inputUsage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
   vk::Image color = vk::createImage(context, desc.colorFormat, kWidth, kHeight, inputUsage);
@@ -177,8 +173,7 @@ void HostStereoFrame(benchmark::State& state) {
   dispatch.centerProjection[3][2] = 0.1f;
   dispatch.centerProjection[3][3] = 0.0f;
   timeRecording(state, [&](VkCommandBuffer cmd) { stereoFrame.record(cmd, dispatch); });
-  state.SetLabel(context.deviceName() + ", " + stereo::methodName(desc.method) + (fill ? " + fill" : "") + ", " +
-                 stereo::kernelName(desc.kernel));
+  state.SetLabel(context.deviceName() + ", " + stereo::methodName(desc.method) + (fill ? " + fill" : ""));
 }
 
 // s3d's built-in HUD (health and ammo panels, crosshair) at 1920x1080, with parallax and the fade on.
@@ -279,9 +274,8 @@ void HudPass(benchmark::State& state) {
 
 BENCHMARK(BareKernel)->DenseRange(0, 3)->ArgName("method")->UseManualTime()->Unit(benchmark::kMillisecond)->MinTime(0.05);
 BENCHMARK(HostStereoFrame)
-    ->ArgsProduct({{0, 1, 2, 3, 4}, {0, 1}, {0}})
-    ->ArgsProduct({{0, 1}, {0, 1}, {1, 2}})
-    ->ArgNames({"method", "output", "kernel"})
+    ->ArgsProduct({{0, 1, 2, 3, 4}, {0, 1}})
+    ->ArgNames({"method", "output"})
     ->UseManualTime()
     ->Unit(benchmark::kMillisecond)
     ->MinTime(0.05);

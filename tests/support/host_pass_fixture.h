@@ -133,8 +133,7 @@ class HostStereoPassTest : public HostTest {
 
   // Both eyes of the pass for the given colour and depth formats (8-bit eyes).
   stereo::StereoPair eyes(VkFormat colorFormat, VkFormat depthFormat, DepthImage* expectedLinear,
-                          stereo::HostInputRead inputRead = stereo::HostInputRead::Auto,
-                          stereo::StereoKernel kernel = stereo::StereoKernel::Auto) {
+                          stereo::HostInputRead inputRead = stereo::HostInputRead::Auto) {
     DepthUpload depth = depthFormat == VK_FORMAT_R32_SFLOAT
                             ? DepthUpload{{}, view_.depth}
                             : hardwareDepth(view_.depth, depthFormat, frame_);
@@ -148,7 +147,7 @@ class HostStereoPassTest : public HostTest {
     vk::Image depthImage = uploaded(depthFormat, depth.bytes, hardware ? kDepthWritten : kShaderRead,
                                     hardware ? VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT : 0);
     stereo::HostStereoPass pass(*context_,
-                                {kWidth, kHeight, colorFormat, depthFormat, HostOutput::TwoEyes, false, inputRead, kernel});
+                                {kWidth, kHeight, colorFormat, depthFormat, HostOutput::TwoEyes, false, inputRead});
     vk::Image left = output(pass.eyeFormat(), kWidth, kHeight), right = output(pass.eyeFormat(), kWidth, kHeight);
     const HostImage leftHost = hostImage(left, kCopiedOut), rightHost = hostImage(right, kCopiedOut);
     runOnHostQueue([&](VkCommandBuffer cmd) {
@@ -159,21 +158,15 @@ class HostStereoPassTest : public HostTest {
             toImage(vk::readbackImage(*context_, right, kCopiedOut), kWidth, kHeight)};
   }
 
-  // Every way of reading the host's images: the gather sampling them on row tiles or at every fetch, and the
-  // conversion pass first.
+  // Both ways of reading the host's images: the gather sampling them, and the conversion pass first.
   void expectReferenceEyes(VkFormat colorFormat, VkFormat depthFormat) {
-    using stereo::HostInputRead, stereo::StereoKernel;
-    const std::pair<HostInputRead, StereoKernel> ways[] = {{HostInputRead::Direct, StereoKernel::RowTiles},
-                                                           {HostInputRead::Direct, StereoKernel::PerPixel},
-                                                           {HostInputRead::Convert, StereoKernel::Auto}};
-    for (const auto& [read, kernel] : ways) {
+    for (stereo::HostInputRead read : {stereo::HostInputRead::Direct, stereo::HostInputRead::Convert}) {
       DepthImage expectedLinear;
-      const stereo::StereoPair gpu = eyes(colorFormat, depthFormat, &expectedLinear, read, kernel);
+      const stereo::StereoPair gpu = eyes(colorFormat, depthFormat, &expectedLinear, read);
       const stereo::StereoPair cpu = stereo::synthesizeStereoReference(view_.color, expectedLinear, frame_.stereo);
-      const std::string way = read == HostInputRead::Convert ? "converted" : std::string("direct, ") + stereo::kernelName(kernel);
       // 1 level: the reference's rounding (test_stereo_pass); D16/D24 quantization is in the data both sides see.
-      EXPECT_LE(largestChannelDifference(gpu.left, cpu.left), 1) << way;
-      EXPECT_LE(largestChannelDifference(gpu.right, cpu.right), 1) << way;
+      EXPECT_LE(largestChannelDifference(gpu.left, cpu.left), 1) << (read == stereo::HostInputRead::Direct ? "direct" : "converted");
+      EXPECT_LE(largestChannelDifference(gpu.right, cpu.right), 1) << (read == stereo::HostInputRead::Direct ? "direct" : "converted");
     }
   }
 

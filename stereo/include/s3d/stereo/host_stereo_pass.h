@@ -65,10 +65,6 @@ struct HostStereoPassDesc {
   // with VK_IMAGE_USAGE_STORAGE_BIT: the stereo kernel reads them as they are.
   bool inputsAreStorage = false;
   HostInputRead inputRead = HostInputRead::Auto;
-  // How the gather from the host's images (HostInputRead::Direct, 8-bit colour) walks them: RowTiles converts each
-  // texel once per row tile where the separation's margin fits it, PerPixel at every tap and filter fetch; Auto is
-  // RowTiles (docs/RESULTS.md, "The host's stereo frame against the bare kernel of each method").
-  StereoKernel kernel = StereoKernel::Auto;
 };
 
 // Per frame: the stereo parameters as push constants (makeStereoConstants; Seed or Search methods) and, for
@@ -151,7 +147,6 @@ class HostStereoPass {
   vk::Unique<VkSampler> sampler_;
   // hostGather_: seed and searches of up to four taps straight from the host's sampled images (no conversion).
   std::optional<detail::EyePairPipeline> input_, hostGather_, shortTaps_, allTaps_, pack_;
-  std::optional<detail::EyePairPipeline> hostGatherTiles_;  // hostGather_ on row tiles (8-bit colour)
   vk::Image centerColor_, linearDepth_, leftEye_, rightEye_;  // intermediates (unused ones stay empty)
 };
 
