@@ -7,7 +7,7 @@
 
 #include "s3d/app/frame_rules.h"
 #include "s3d/app/render_job.h"
-#include "s3d/app/scene_world.h"
+#include "s3d/frame/scene_world.h"
 #include "s3d/comfort/comfort_report.h"
 #include "s3d/comfort/comfort_views.h"
 #include "s3d/comfort/crosshair.h"
@@ -54,7 +54,7 @@ void TuneSession::loadScene(TuneState& state) {
   auto loaded = std::make_unique<Loaded>();
   loaded->sceneName = state.scene;
   loaded->scene = renderer::makeBuiltInScene(state.scene);
-  loaded->world = std::make_unique<comfort::WorldQueries>(app::worldMeshes(loaded->scene));
+  loaded->world = std::make_unique<comfort::WorldQueries>(frame::worldMeshes(loaded->scene));
   if (loaded_ && loaded_->deferred && loaded_->supersample == state.supersample) {
     loaded->deferred = std::move(loaded_->deferred);
     loaded->supersample = loaded_->supersample;
@@ -224,10 +224,11 @@ TuneFrame TuneSession::renderFrame(TuneState& state, const FrameInput& input, fl
                               profile.crosshair.margin);
   images.eyesWithHud = images.eyes;
   if (images.reference) images.referenceWithHud = images.reference;
-  const app::HudFrame overlay =
-      app::drawHud({parameters, placement.depth, weaponDepths, allowNegativeParallax, &sceneDepth, &firstPersonMask,
-                    app::resolveHudMode(state.hud, state.scene) == app::HudMode::Game, map},
-                   *images.eyesWithHud, nullptr, images.referenceWithHud ? &*images.referenceWithHud : nullptr);
+  const frame::HudFrameInput hudInput{parameters, placement.depth, weaponDepths, allowNegativeParallax, &sceneDepth,
+                                      &firstPersonMask, app::resolveHudMode(state.hud, state.scene) == app::HudMode::Game,
+                                      map};
+  const frame::HudFrame overlay = frame::drawHud(hudInput, *images.eyesWithHud);
+  if (images.referenceWithHud) frame::drawHudOver(hudInput, nullptr, &*images.referenceWithHud);
   numbers.crosshairDepth = overlay.crosshairDepth;
   numbers.crosshairHitWorld = placement.hitWorld;
   numbers.hudConflictPixels = overlay.conflictPixels;
