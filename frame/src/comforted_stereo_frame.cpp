@@ -2,11 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <stdexcept>
 #include <string>
 #include <utility>
 
 #include "s3d/comfort/disparity_budget.h"
+#include "s3d/comfort/display_profile.h"
 #include "s3d/frame/scene_world.h"
 #include "s3d/renderer/view_matrices.h"
 #include "s3d/stereo/disparity_map.h"
@@ -35,9 +37,14 @@ std::optional<comfort::ZeroParallaxControlSettings> controlSettings(const Comfor
 struct ComfortedStereoFrame::Controls {
   Controls(vk::Context& context, const ComfortedStereoFrameDescription& description)
       : settings(controlSettings(description)), mapper(context) {
+    makeBudget(context, description);
+  }
+  // The budget's controller from rest (none with the rule off).
+  void makeBudget(vk::Context& context, const ComfortedStereoFrameDescription& description) {
+    budget.reset();
     if (description.comfort.budget == comfort::DisparityBudgetRule::Off) return;
     budget.emplace(comfort::disparityBudget(description.comfort.display), description.comfort.allowNegativeParallax);
-    reduction.emplace(context);
+    if (!reduction) reduction.emplace(context);
   }
   // From rest: the zero-parallax control, the crosshair smoother and the camera's last position.
   void restart(const ComfortedStereoFrameDescription& description) {
@@ -74,6 +81,38 @@ ComfortedStereoFrame::ComfortedStereoFrame(vk::Context& context, const Comforted
 
 ComfortedStereoFrame::~ComfortedStereoFrame() = default;
 
+void ComfortedStereoFrame::setScene(const renderer::Scene& scene) {
+  world_ = std::make_unique<comfort::WorldQueries>(worldMeshes(scene));
+  worldScene_ = &scene;
+  if (deferred_) deferred_->setScene(scene);
+  if (synthesis_) synthesis_->setScene(scene);
+}
+
+void ComfortedStereoFrame::setRules(const stereo::StereoParameters& stereo, const FrameComfortSettings& comfort,
+                                    bool hud) {
+  const FrameComfortSettings old = description_.comfort;
+  const bool fillChanged = stereo.previousFrameFill != description_.stereo.previousFrameFill;
+  description_.stereo = stereo;
+  description_.comfort = comfort;
+  description_.hud = hud;
+  if (fillChanged) synthesis_.reset();
+  Controls& controls = *controls_;
+  const std::optional<comfort::ZeroParallaxControlSettings> settings = controlSettings(description_);
+  if (settings.has_value() != controls.settings.has_value() ||
+      (settings && std::memcmp(&*settings, &*controls.settings, sizeof(*settings)) != 0)) {  // plain numbers
+    controls.settings = settings;
+    controls.zeroParallax.reset();
+    if (settings) controls.zeroParallax.emplace(*settings);
+  }
+  if (comfort.smoothCrosshair != old.smoothCrosshair || comfort.crosshair.responseSeconds != old.crosshair.responseSeconds) {
+    controls.crosshair.reset();
+    if (comfort.smoothCrosshair) controls.crosshair.emplace(comfort.crosshair.responseSeconds);
+  }
+  if (comfort.budget != old.budget || comfort.allowNegativeParallax != old.allowNegativeParallax ||
+      comfort::toJson(comfort.display) != comfort::toJson(old.display))
+    controls.makeBudget(context_, description_);
+}
+
 void ComfortedStereoFrame::updateGeometry(const renderer::Scene& scene) {
   world_ = std::make_unique<comfort::WorldQueries>(worldMeshes(scene));
   worldScene_ = &scene;
@@ -82,12 +121,7 @@ void ComfortedStereoFrame::updateGeometry(const renderer::Scene& scene) {
 }
 
 ComfortedFrame ComfortedStereoFrame::render(const renderer::Scene& scene, float seconds, bool cut) {
-  if (!world_ || worldScene_ != &scene) {  // a new scene: the world queries and the renderers take it
-    world_ = std::make_unique<comfort::WorldQueries>(worldMeshes(scene));
-    if (deferred_ && worldScene_) deferred_->setScene(scene);
-    if (synthesis_ && worldScene_) synthesis_->setScene(scene);
-    worldScene_ = &scene;
-  }
+  if (!world_ || worldScene_ != &scene) setScene(scene);
   if (cut) controls_->restart(description_);
   ComfortedFrame frame;
   frame.width = description_.width;
@@ -135,6 +169,11 @@ stereo::StereoParameters ComfortedStereoFrame::parametersBeforeCenter(const rend
       frame.zeroParallaxLimited = true;
     }
   }
+  // A plane outside the camera's depth range is clamped, with a warning.
+  const stereo::ClampedZeroParallax clamped = stereo::clampZeroParallaxDistance(
+      parameters.zeroParallaxDistance, scene.camera.nearPlane, scene.camera.farPlane);
+  parameters.zeroParallaxDistance = clamped.zeroParallaxDistance;
+  frame.zeroParallaxWarning = clamped.warning;
   parameters = comfort::pushWeaponUnlessNegativeParallaxAllowed(parameters, frame.weaponDepths, allowNegativeParallax);
   const comfort::CrosshairSettings& crosshair = description_.comfort.crosshair;
   frame.crosshair = comfort::placeCrosshair(*world_, scene.camera, crosshair.distance.value_or(scene.crosshairDistance),

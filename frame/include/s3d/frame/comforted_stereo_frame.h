@@ -10,6 +10,7 @@
 #include <functional>
 #include <memory>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "s3d/comfort/budget_frame.h"
@@ -70,6 +71,7 @@ struct ComfortedFrame {
   stereo::GuardBand band;
   std::uint32_t width = 0, renderedWidth = 0;
   std::uint32_t cropColumns = 0;  // per side, blacked out (0 with a band)
+  std::optional<std::string> zeroParallaxWarning;  // the plane clamped into the camera's depth range, and why
   std::optional<float> nearestSurface;  // what the zero-parallax control's rays saw
   std::optional<float> nearestDepth;    // nearest finite depth of the center view (weapon pushed)
   bool zeroParallaxLimited = false;     // the no-negative-parallax rule lowered the plane this frame
@@ -112,11 +114,16 @@ class ComfortedStereoFrame {
   ComfortedStereoFrame(vk::Context& context, const ComfortedStereoFrameDescription& description);
   ~ComfortedStereoFrame();
 
+  // A new scene (render takes a scene it has not seen itself): the world queries and the renderers take it. The
+  // caller keeps it alive while this object uses it.
+  void setScene(const renderer::Scene& scene);
   // A new pose of the scene (an animation's frame): the renderers' geometry and the world queries follow.
   void updateGeometry(const renderer::Scene& scene);
+  // New parameters and rules between frames (a tuning tool's): a controller whose settings changed starts from
+  // rest, the others keep their state.
+  void setRules(const stereo::StereoParameters& stereo, const FrameComfortSettings& comfort, bool hud);
 
-  // One frame of `scene` (posed, its camera set; kept alive by the caller while this object is) after `seconds`;
-  // a cut starts the controllers again from rest.
+  // One frame of `scene` (posed, its camera set) after `seconds`; a cut starts the controllers again from rest.
   ComfortedFrame render(const renderer::Scene& scene, float seconds, bool cut = false);
 
   // The last frame's center renderer (its view is the frame's `center`), for the two-pass reference eyes (which
