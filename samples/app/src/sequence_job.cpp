@@ -15,7 +15,6 @@
 #include "s3d/frame/layered_reference.h"
 #include "s3d/frame/memory_budget.h"
 #include "s3d/io/image_io.h"
-#include "s3d/renderer/deferred_renderer.h"
 #include "s3d/renderer/scene_animation.h"
 #include "s3d/renderer/scene_file.h"
 #include "s3d/stereo/guard_band.h"

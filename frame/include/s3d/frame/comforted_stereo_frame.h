@@ -93,6 +93,9 @@ struct ComfortedFrame {
   HudFrame hud;
   comfort::FrameComfort comfort;
   comfort::WeaponConflicts weaponConflicts;
+  std::optional<glm::vec2> weaponDepths;  // the weapon's unpushed depth range (none: no weapon)
+  bool allowNegativeParallax = false;     // as the description's rules (the HUD's input)
+  bool drawHud = true;
 
   // What the HUD was drawn from (valid while this frame is): for drawHudOver on the tools' other images.
   HudFrameInput hudInput() const;
@@ -102,10 +105,6 @@ struct ComfortedFrame {
   std::vector<std::uint8_t> maskToOutput(const std::vector<std::uint8_t>& mask) const {
     return stereo::cropColumns(mask, renderedWidth, band.columns, width);
   }
-
-  std::optional<glm::vec2> weaponDepths;  // the weapon's unpushed depth range
-  bool allowNegativeParallax = false;
-  bool drawHud = true;
 };
 
 class ComfortedStereoFrame {
