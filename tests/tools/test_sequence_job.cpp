@@ -5,7 +5,7 @@
 #include <filesystem>
 #include <unistd.h>
 
-#include "s3d/app/scene_world.h"
+#include "s3d/frame/scene_world.h"
 #include "s3d/app/sequence_job.h"
 #include "s3d/comfort/world_queries.h"
 #include "s3d/renderer/deferred_renderer.h"
@@ -88,7 +88,7 @@ TEST_F(CoverSequence, TheCrosshairIsNeverBehindTheSurfaceItAimsAt) {
   // Checked with rays of its own along each frame's aim, not with what the job reports it saw.
   const SequenceReport& report = coverSequence(context());
   const renderer::Scene scene = renderer::makeBuiltInScene("cover");
-  const comfort::WorldQueries world(app::worldMeshes(scene));
+  const comfort::WorldQueries world(frame::worldMeshes(scene));
   std::size_t framesWithAWall = 0;
   for (const SequenceFrame& frame : report.frames) {
     const renderer::Camera camera = renderer::cameraForFrame(scene, frame.index);

@@ -11,7 +11,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "s3d/app/scene_world.h"
+#include "s3d/frame/scene_world.h"
 #include "s3d/comfort/crosshair.h"
 #include "s3d/comfort/world_queries.h"
 #include "s3d/renderer/scene.h"
@@ -40,7 +40,7 @@ renderer::Scene sceneWithBoxAhead(float distance, glm::vec3 halfExtents = glm::v
 renderer::Scene sceneWithWallAhead(float distance) { return sceneWithBoxAhead(distance, {2.0f, 1.5f, 0.1f}); }
 
 TEST(WorldQueries, RayHitsABoxAtTheAnalyticDistance) {
-  const WorldQueries world(app::worldMeshes(sceneWithBoxAhead(3.0f)));
+  const WorldQueries world(frame::worldMeshes(sceneWithBoxAhead(3.0f)));
   const std::optional<float> hit = world.castRay(glm::vec3(0.0f), glm::vec3(0.0f, 0.0f, -1.0f), 100.0f);
   ASSERT_TRUE(hit.has_value());
   EXPECT_NEAR(*hit, 3.0f, kDistanceTolerance);
@@ -48,25 +48,25 @@ TEST(WorldQueries, RayHitsABoxAtTheAnalyticDistance) {
 
 TEST(WorldQueries, HitDistanceIsMeasuredAlongTheNormalizedDirection) {
   // The direction is 5x too long and slanted 45 degrees in x-z: the face 3 m ahead is 3 * sqrt(2) m away.
-  const WorldQueries world(app::worldMeshes(sceneWithBoxAhead(3.0f, glm::vec3(10.0f, 10.0f, 0.5f))));
+  const WorldQueries world(frame::worldMeshes(sceneWithBoxAhead(3.0f, glm::vec3(10.0f, 10.0f, 0.5f))));
   const std::optional<float> hit = world.castRay(glm::vec3(0.0f), glm::vec3(5.0f, 0.0f, -5.0f), 100.0f);
   ASSERT_TRUE(hit.has_value());
   EXPECT_NEAR(*hit, 3.0f * std::sqrt(2.0f), kDistanceTolerance);
 }
 
 TEST(WorldQueries, RayPointingAwayMisses) {
-  const WorldQueries world(app::worldMeshes(sceneWithBoxAhead(3.0f)));
+  const WorldQueries world(frame::worldMeshes(sceneWithBoxAhead(3.0f)));
   EXPECT_FALSE(world.castRay(glm::vec3(0.0f), glm::vec3(0.0f, 0.0f, 1.0f), 100.0f).has_value());
 }
 
 TEST(WorldQueries, SurfaceBeyondMaxDistanceIsNotHit) {
-  const WorldQueries world(app::worldMeshes(sceneWithBoxAhead(3.0f)));
+  const WorldQueries world(frame::worldMeshes(sceneWithBoxAhead(3.0f)));
   EXPECT_FALSE(world.castRay(glm::vec3(0.0f), glm::vec3(0.0f, 0.0f, -1.0f), 2.5f).has_value());
 }
 
 TEST(WorldQueries, FirstPersonObjectsAreNotPartOfTheToolsWorld) {
   // The weapon lives in camera space 0.3 m ahead; the ray along the aim must pass through it.
-  const WorldQueries world(app::worldMeshes(sceneWithBoxAhead(0.3f, glm::vec3(0.5f), renderer::Layer::FirstPerson)));
+  const WorldQueries world(frame::worldMeshes(sceneWithBoxAhead(0.3f, glm::vec3(0.5f), renderer::Layer::FirstPerson)));
   EXPECT_FALSE(world.castRay(glm::vec3(0.0f), glm::vec3(0.0f, 0.0f, -1.0f), 100.0f).has_value());
 }
 
@@ -104,13 +104,13 @@ TEST(WorldQueries, ATriangleIndexBeyondTheVerticesIsRejectedNamingTheMesh) {
 }
 
 TEST(WorldQueries, ZeroDirectionIsRejected) {
-  const WorldQueries world(app::worldMeshes(sceneWithBoxAhead(3.0f)));
+  const WorldQueries world(frame::worldMeshes(sceneWithBoxAhead(3.0f)));
   EXPECT_THROW((void)world.castRay(glm::vec3(0.0f), glm::vec3(0.0f), 100.0f), std::invalid_argument);
 }
 
 TEST(CrosshairPlacement, StaysAtTheDefaultDistanceInTheOpen) {
   const renderer::Scene scene = sceneWithWallAhead(30.0f);  // a wall, but beyond the 8 m default
-  const WorldQueries world(app::worldMeshes(scene));
+  const WorldQueries world(frame::worldMeshes(scene));
   const CrosshairPlacement placement = placeCrosshair(world, scene.camera, 8.0f);
   EXPECT_EQ(placement.depth, 8.0f);  // exact: the default is returned as given
   EXPECT_FALSE(placement.hitWorld);
@@ -118,7 +118,7 @@ TEST(CrosshairPlacement, StaysAtTheDefaultDistanceInTheOpen) {
 
 TEST(CrosshairPlacement, MovesInFrontOfAWallTwoMetresAhead) {
   const renderer::Scene scene = sceneWithWallAhead(2.0f);
-  const WorldQueries world(app::worldMeshes(scene));
+  const WorldQueries world(frame::worldMeshes(scene));
   const CrosshairPlacement placement = placeCrosshair(world, scene.camera, 8.0f, 0.25f);
   EXPECT_TRUE(placement.hitWorld);
   EXPECT_NEAR(placement.depth, 2.0f - 0.25f, kDistanceTolerance);
@@ -132,7 +132,7 @@ TEST(CrosshairPlacement, FollowsTheCameraAim) {
                                scene.objects[0].transform;
   scene.camera.position = glm::vec3(0.0f, 1.7f, 0.0f);
   scene.camera.yawRadians = glm::radians(90.0f);
-  const WorldQueries world(app::worldMeshes(scene));
+  const WorldQueries world(frame::worldMeshes(scene));
   const CrosshairPlacement placement = placeCrosshair(world, scene.camera, 8.0f, 0.25f);
   EXPECT_TRUE(placement.hitWorld);
   EXPECT_NEAR(placement.depth, 1.75f, kDistanceTolerance);
@@ -141,21 +141,21 @@ TEST(CrosshairPlacement, FollowsTheCameraAim) {
 TEST(CrosshairPlacement, NeverGoesNearerThanTheNearPlane) {
   // The wall is 0.15 m ahead: 0.15 - 0.25 would put the crosshair behind the eye.
   const renderer::Scene scene = sceneWithWallAhead(0.15f);
-  const WorldQueries world(app::worldMeshes(scene));
+  const WorldQueries world(frame::worldMeshes(scene));
   EXPECT_EQ(placeCrosshair(world, scene.camera, 8.0f, 0.25f).depth, scene.camera.nearPlane);
 }
 
 TEST(CrosshairPlacement, StaysPositiveWithAZeroNearPlane) {
   renderer::Scene scene = sceneWithWallAhead(0.15f);
   scene.camera.nearPlane = 0.0f;
-  const WorldQueries world(app::worldMeshes(scene));
+  const WorldQueries world(frame::worldMeshes(scene));
   EXPECT_EQ(placeCrosshair(world, scene.camera, 8.0f, 0.25f).depth, kMinCrosshairDepth);
 }
 
 TEST(CrosshairPlacement, CourtyardCrosshairIsTheDefaultOrInFrontOfAHit) {
   // The built-in default scene, CPU only: whatever the courtyard's layout, the depth is usable for parallax.
   const renderer::Scene scene = renderer::makeCourtyardScene();
-  const WorldQueries world(app::worldMeshes(scene));
+  const WorldQueries world(frame::worldMeshes(scene));
   const CrosshairPlacement placement = placeCrosshair(world, scene.camera, scene.crosshairDistance);
   EXPECT_TRUE(std::isfinite(placement.depth));
   EXPECT_GT(placement.depth, 0.0f);

@@ -3,7 +3,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "s3d/app/scene_world.h"
+#include "s3d/frame/scene_world.h"
 #include "s3d/comfort/zero_parallax_control.h"
 #include "s3d/renderer/scene.h"
 
@@ -90,7 +90,7 @@ TEST(ZeroParallaxControl, RingRaysFindAWallBesideTheAim) {
   wall.transform = glm::translate(glm::mat4(1.0f), glm::vec3(1.05f, 0.0f, -1.5f)) * glm::scale(glm::mat4(1.0f), glm::vec3(2.0f, 4.0f, 1.0f));
   scene.objects.push_back(wall);
   scene.camera.position = glm::vec3(0.0f);
-  WorldQueries world(app::worldMeshes(scene));
+  WorldQueries world(frame::worldMeshes(scene));
   ZeroParallaxControlSettings settings;
   EXPECT_FALSE(world.castRay(glm::vec3(0.0f), glm::vec3(0.0f, 0.0f, -1.0f), 10.0f).has_value());
   std::optional<float> nearest = nearestSurfaceAhead(world, scene.camera, settings, 10.0f);

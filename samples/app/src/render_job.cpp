@@ -14,10 +14,8 @@
 
 #include "s3d/app/comfort_json.h"
 #include "s3d/app/frame_rules.h"
-#include "s3d/app/scene_world.h"
-#include "s3d/comfort/crosshair.h"
-#include "s3d/comfort/world_queries.h"
-#include "s3d/frame/stereo_synthesis.h"
+#include "s3d/frame/comforted_stereo_frame.h"
+#include "s3d/frame/layered_reference.h"
 #include "s3d/hud/crosshair.h"
 #include "s3d/io/image_io.h"
 #include "s3d/io/output_transaction.h"
@@ -155,6 +153,169 @@ nlohmann::json hybridJson(const HybridReport& hybrid) {
           {"gpuTimeMs", toJson(hybrid.timings)}};
 }
 
+// The frame's comfort rules as the options ask: a guard band unless --edge-crop, the HUD unless none; a wider band
+// chosen by the disparity budget is checked against the memory before it is rendered.
+frame::ComfortedStereoFrameDescription frameDescription(vk::Context& context, const RenderJobOptions& options,
+                                                        const ValidatedJob& job, RenderReport& report) {
+  frame::ComfortedStereoFrameDescription description;
+  description.width = options.width;
+  description.height = options.height;
+  description.renderer = {options.supersample, options.reversedZ};
+  description.stereo = job.stereo;
+  description.comfort = {.display = options.display, .budget = options.disparityBudget,
+                         .allowNegativeParallax = options.allowNegativeParallax, .crosshair = options.crosshair};
+  description.guardBand = options.stereo.edgeCrop < 0.0f;
+  description.maxRenderedWidth = kMaxImageSize / options.supersample;
+  description.hud = resolveHudMode(options.hud, options.scene) == HudMode::Game;
+  description.warmUp = true;  // the center frame, the stereo pass and the reference eye are all timed warm
+  description.keepHdr = true;
+  description.beforeWiderBand = [&context, &options, &report](const stereo::StereoParameters& parameters,
+                                                              std::uint32_t renderedWidth) {
+    report.memory = estimateAtRenderedWidth(options, parameters, renderedWidth);
+    report.memory.what += " at the separation --disparity-budget chose (" + numberText(parameters.maxSeparation) + ")";
+    report.memory.lower += " or give --disparity-budget off";
+    frame::requireMemory(context, report.memory, options.memoryLimitBytes);
+  };
+  return description;
+}
+
+// What the frame applied and measured, as the report states it.
+void reportFrame(const frame::ComfortedFrame& frame, RenderReport& report) {
+  report.budget = frame.budget;
+  report.zeroParallaxLimited = frame.zeroParallaxLimited;
+  report.centerFrameGpuMs = frame.centerTimings.totalGpuMs;
+  report.centerPasses = frame.centerTimings.passes;
+  report.sanitized.depthPixels = frame.sanitizedDepthPixels;
+  report.sanitized.colorValues = frame.sanitizedColorValues;
+  report.disparityMap = frame.disparityMap;
+  if (frame.band.capped)
+    report.warnings.push_back("guard band capped at " + std::to_string(frame.band.columns) + " columns per side (" +
+                              std::to_string(frame.band.neededColumns) +
+                              " needed): the outermost eye columns repeat the band's edge");
+  report.guardBandColumns = frame.band.columns;
+  report.renderedWidth = frame.renderedWidth;
+  report.cropColumns = frame.cropColumns;
+  report.stereo = frame.parameters;
+  if (report.stereo.edgeCrop < 0.0f) report.stereo.edgeCrop = report.stereo.maxSeparation;
+  report.stereoPassGpuMs = frame.synthesized.gpuMs;
+  report.filledPixels = {frame.synthesized.filledLeft, frame.synthesized.filledRight};
+  report.comfort = frame.comfort;
+  report.weaponConflictPixels = frame.weaponConflicts.conflictPixels;
+}
+
+// The same gather on the linear HDR center view, by the C++ reference of the method (hdr_gather.h); the hybrid's
+// pixels rendered from the eye cameras go into the HDR eyes too.
+stereo::HdrStereoPair outputHdrEyes(frame::ComfortedFrame& frame, RenderReport& report) {
+  stereo::HdrStereoPair eyes =
+      stereo::synthesizeHdrReference(frame.renderedHdr, frame.renderedStereoDepth, frame.renderedParameters);
+  if (const std::optional<frame::HybridSynthesis>& hybrid = frame.synthesized.hybrid) {
+    stereo::compositeHybridReference(eyes.left, hybrid->renderedHdr[0], hybrid->masks[0]);
+    stereo::compositeHybridReference(eyes.right, hybrid->renderedHdr[1], hybrid->masks[1]);
+    report.hybrid = HybridReport{frame.parameters.hybridBudget, frame.parameters.hybridBase, hybrid->classifiedPixels,
+                                 hybrid->thresholds, std::move(frame.synthesized.hybrid->timings)};
+  }
+  return {frame.toOutput(eyes.left), frame.toOutput(eyes.right)};
+}
+
+struct OutputReference {  // one reference eye cropped to the output
+  frame::ReferenceEye rendered;
+  ImageRGBA8 display;
+  DepthImage depth;  // mapped as the stereo pass's depth (disocclusion regions)
+  ImageRGBA32F hdr;
+  std::vector<std::uint8_t> transparent;
+  std::vector<std::uint8_t> foliage;
+};
+
+// The two-pass reference: each eye rendered with its off-axis camera on the rendered frame, cropped to the output
+// (the same rays as an output-size eye, tests/stereo/test_guard_band.cpp); a nonlinear map takes one rendering per
+// segment of its curve (layered_reference.h).
+std::array<OutputReference, 2> outputReferences(frame::ComfortedStereoFrame& stereoFrame,
+                                                const frame::ComfortedFrame& frame, const renderer::Scene& scene,
+                                                RenderReport& report) {
+  const gpu::DisparityMapConstants& map = frame.disparityMap.map;
+  auto referenceFor = [&](stereo::Eye side) {
+    OutputReference eye{frame::renderReferenceEye(stereoFrame.centerRenderer(), scene, frame.center, side,
+                                                  frame.renderedParameters, map),
+                        {}, {}, {}, {}, {}};
+    eye.display = frame.toOutput(eye.rendered.display);
+    eye.depth = frame.toOutput(stereo::mappedDepthImage(eye.rendered.depth, map));
+    eye.hdr = frame.toOutput(eye.rendered.hdr);
+    eye.transparent = frame.maskToOutput(eye.rendered.transparent);
+    eye.foliage = frame.maskToOutput(eye.rendered.foliage);
+    return eye;
+  };
+  std::array<OutputReference, 2> eyes{referenceFor(stereo::Eye::Left), referenceFor(stereo::Eye::Right)};
+  report.referenceEyeGpuMs = eyes[0].rendered.firstLayerGpuMs;
+  report.disparityMap.referenceLayers = eyes[0].rendered.layers;
+  report.disparityMap.unresolvedPixels = {eyes[0].rendered.unresolvedPixels, eyes[1].rendered.unresolvedPixels};
+  return eyes;
+}
+
+// Synthesized vs reference over the full frame with a guard band, else without the cropped strips (region masks
+// and comparison: s3d/stereo/eye_comparison.h, shared with s3d bench).
+void compareEyes(const frame::ComfortedFrame& frame, const stereo::HdrStereoPair& eyesHdr,
+                 const std::array<OutputReference, 2>& references, RenderReport& report) {
+  const std::vector<std::uint8_t> halo = stereo::haloMaskFor(frame.stereoDepth, frame.parameters);
+  for (auto [eyeError, eye, eyeHdr, reference, side] :
+       {std::tuple{&report.left, &frame.eyes.left, &eyesHdr.left, &references[0], stereo::Eye::Left},
+        std::tuple{&report.right, &frame.eyes.right, &eyesHdr.right, &references[1], stereo::Eye::Right}}) {
+    const stereo::RegionMasks masks{halo,
+                                    stereo::disocclusionMaskFor(reference->depth, frame.stereoDepth, frame.parameters, side),
+                                    reference->transparent, reference->foliage};
+    *eyeError = stereo::compareEye(*eye, reference->display, report.cropColumns, masks, eyeHdr, &reference->hdr);
+  }
+}
+
+// The images the outputs show: the HUD (drawn by the frame into its eyes) drawn over the center view and the
+// references too, after the comparison so it cannot flatter the error.
+struct OutputImages {
+  ImageRGBA8 center;
+  ImageRGBA32F centerHdr;
+  stereo::StereoPair eyes, references;
+  const stereo::StereoPair* eyesWithoutHud;  // the error heat maps' (as measured)
+  const std::array<OutputReference, 2>* referencesWithoutHud;
+  const DepthImage* centerDepth;
+};
+
+// Each selected output written atomically by s3d::io; report.json last so it lists everything before it.
+void writeOutputs(const RenderJobOptions& options, const OutputImages& images, RenderReport& report) {
+  auto selected = [&](const std::string& name) { return options.outputs.count(name) != 0; };
+  const fs::path& folder = options.outputFolder;
+  auto writeOutputPng = [&](const std::string& name, const ImageRGBA8& image) {
+    if (!selected(name)) return;
+    io::writePng(folder / name, image);
+    report.filesWritten.push_back(name);
+  };
+  writeOutputPng("center.png", images.center);
+  if (selected("center.exr")) {
+    io::writeExr(folder / "center.exr", images.centerHdr, images.centerDepth);
+    report.filesWritten.push_back("center.exr");
+  }
+  const stereo::StereoPair& eyes = images.eyes;
+  writeOutputPng("left.png", eyes.left);
+  writeOutputPng("right.png", eyes.right);
+  writeOutputPng("left_reference.png", images.references.left);
+  writeOutputPng("right_reference.png", images.references.right);
+  if (selected("anaglyph.png")) writeOutputPng("anaglyph.png", stereo::makeAnaglyphDubois(eyes.left, eyes.right));
+  if (selected("sbs.png")) writeOutputPng("sbs.png", stereo::makeSideBySide(eyes.left, eyes.right, options.sideBySide));
+  if (selected("tab.png")) writeOutputPng("tab.png", stereo::makeTopAndBottom(eyes.left, eyes.right, options.topBottom));
+  const std::array<OutputReference, 2>& references = *images.referencesWithoutHud;
+  if (selected("error_left.png"))
+    writeOutputPng("error_left.png", stereo::makeErrorHeatMap(images.eyesWithoutHud->left, references[0].display,
+                                                              report.cropColumns));
+  if (selected("error_right.png"))
+    writeOutputPng("error_right.png", stereo::makeErrorHeatMap(images.eyesWithoutHud->right, references[1].display,
+                                                               report.cropColumns));
+  if (!selected("report.json")) return;
+  report.filesWritten.push_back("report.json");  // listed in itself: the document describes the whole output
+  try {
+    io::writeTextFile(folder / "report.json", toJson(report).dump(2) + "\n");
+  } catch (...) {
+    report.filesWritten.pop_back();
+    throw;
+  }
+}
+
 }  // namespace
 
 void validateRenderJobOptions(const RenderJobOptions& options) { (void)validateJob(options); }
@@ -170,249 +331,42 @@ RenderReport runRenderJob(vk::Context& context, const RenderJobOptions& options)
   // With the device known: lavapipe's images live in main memory too, a GPU's must fit its memory.
   const frame::MemoryEstimate memory = memoryEstimateFor(options, job.scene, job.stereo);
   frame::requireMemory(context, memory, options.memoryLimitBytes);
-  const std::uint32_t width = options.width;
-  const std::uint32_t height = options.height;
-  auto selected = [&](const std::string& name) { return options.outputs.count(name) != 0; };
-
   RenderReport report;
   report.deviceName = context.deviceName();
   report.scene = options.scene;
-  report.width = width;
-  report.height = height;
+  report.width = options.width;
+  report.height = options.height;
   report.warnings = job.warnings;
   report.memory = memory;
-  // Without negative parallax allowed, the weapon push reaches at least the screen plane
-  // (comfort::pushWeaponBehindScreen) and, once the frame's depth is known, the zero-parallax distance is
-  // held at its nearest surface: every pixel gets zero or positive parallax.
-  // (s3d/comfort/budget_frame.h, shared with `s3d tune`)
-  const std::optional<glm::vec2> weaponDepths = renderer::firstPersonDepthRange(job.scene);
-  stereo::StereoParameters parameters =  // the zero-parallax distance clamped
-      comfort::pushWeaponUnlessNegativeParallaxAllowed(job.stereo, weaponDepths, options.allowNegativeParallax);
-
-  // Guard band (no --edge-crop): the center view is rendered wider by the largest displacement an eye can
-  // need, so every eye pixel's source lies inside it. The nearest depth allowed is the zero-parallax plane
-  // (held there below) unless negative parallax is allowed: then the near plane or the pushed weapon's nearest.
-  const bool guardBand = options.stereo.edgeCrop < 0.0f;
-  auto bandFor = [&](const stereo::StereoParameters& p) {
-    if (!guardBand) return stereo::GuardBand{};
-    float nearest = p.zeroParallaxDistance;
-    if (options.allowNegativeParallax) {
-      nearest = job.scene.camera.nearPlane;
-      if (weaponDepths) nearest = std::min(nearest, p.weaponDepthOffset + p.weaponDepthScale * weaponDepths->x);
-    }
-    return stereo::guardBandFor(p.maxSeparation, p.zeroParallaxDistance, nearest, width,
-                                kMaxImageSize / options.supersample);
-  };
-  stereo::GuardBand band;
-  std::uint32_t renderedWidth = width;
-  // The output's columns inside the rendered frame.
-  auto output = [&](const auto& image) { return stereo::cropColumns(image, band.columns, width); };
-  auto outputMask = [&](const std::vector<std::uint8_t>& mask) {
-    return stereo::cropColumns(mask, renderedWidth, band.columns, width);
-  };
-
-  // 2. The center view (a wider frustum with the same vertical field of view when there is a band).
-  std::unique_ptr<renderer::DeferredRenderer> deferred;
-  renderer::ViewMatrices center;
-  auto renderCenter = [&](const stereo::GuardBand& newBand) {
-    band = newBand;
-    renderedWidth = band.renderedWidth(width);
-    deferred = std::make_unique<renderer::DeferredRenderer>(context, renderedWidth, height,
-                                                            renderer::RendererOptions{options.supersample, options.reversedZ});
-    deferred->setScene(job.scene);
-    center = renderer::centerViewMatrices(job.scene, float(renderedWidth) / float(height),
-                                          {parameters.weaponDepthOffset, parameters.weaponDepthScale});
-    // The first frame on fresh pipelines includes shader compilation (lavapipe compiles at first use):
-    // render it once untimed so the center frame, the stereo pass and the reference eye are all warm.
-    (void)deferred->render(center);
-    renderer::FrameTimings centerTimings = deferred->render(center);
-    report.centerFrameGpuMs = centerTimings.totalGpuMs;
-    report.centerPasses = std::move(centerTimings.passes);
-  };
-  renderCenter(bandFor(parameters));
-  // For center.exr, the regions and the HDR error; NaN or inf is sanitized and counted (the GPU pass reads
-  // invalid depth as the zero-parallax plane too, and the tone map writes non-finite color as black).
-  DepthImage renderedDepth;
-  ImageRGBA32F renderedHdr;
-  auto readCenter = [&] {
-    renderedDepth = deferred->readLinearDepth();
-    renderedHdr = deferred->readHdrColor();
-    report.sanitized.depthPixels = stereo::sanitizeDepth(renderedDepth, parameters.zeroParallaxDistance);
-    report.sanitized.colorValues = stereo::sanitizeColor(renderedHdr);
-  };
-  readCenter();
-  // Held at the nearest depth of the whole rendered frame: the band's content reaches the eyes too.
-  report.zeroParallaxLimited = comfort::holdZeroParallaxAtNearestDepth(parameters, renderedDepth, options.allowNegativeParallax);
-  const comfort::WorldQueries world(worldMeshes(job.scene));  // once per job: the world does not change between views
-  const comfort::CrosshairPlacement placement =
-      comfort::placeCrosshair(world, job.scene.camera, options.crosshair.distance.value_or(job.scene.crosshairDistance),
-                              options.crosshair.margin);
-  if (options.disparityBudget != comfort::DisparityBudgetRule::Off) {
-    // The frame's depth range, reduced on the GPU, picks maxSeparation and the zero-parallax distance.
-    const stereo::DepthRangePass reduction(context);
-    comfort::DisparityBudgetController controller(comfort::disparityBudget(options.display), options.allowNegativeParallax);
-    report.budget = comfort::applyDisparityBudget(context, reduction, &controller, deferred->linearDepth(),
-                                         {placement.depth, comfort::weaponNearestPushed(parameters, weaponDepths)}, 1.0f / 30.0f,
-                                         parameters);
-    report.budget.imageWidth = width;  // budgetPx and bulkShare in the output eyes' pixels, as the comfort report
-    // A larger chosen separation needs a wider band: render the center view again at that width.
-    if (const stereo::GuardBand chosen = bandFor(parameters); chosen.columns > band.columns) {
-      report.memory = estimateAtRenderedWidth(options, parameters, chosen.renderedWidth(width));
-      report.memory.what += " at the separation --disparity-budget chose (" + numberText(parameters.maxSeparation) + ")";
-      report.memory.lower += " or give --disparity-budget off";
-      frame::requireMemory(context, report.memory, options.memoryLimitBytes);
-      renderCenter(chosen);
-      readCenter();
-    }
-  }
-  // Nonlinear depth-to-parallax mapping: the final center view's curve, applied to the stereo pass's depth on the
-  // GPU and, by the same shared function, to the C++ copy the references and the comfort report read.
-  report.disparityMap = comfort::FrameDisparityMapper(context).apply(context, deferred->linearDepth(), parameters);
-  const gpu::DisparityMapConstants& map = report.disparityMap.map;
-  const DepthImage stereoDepth = stereo::mappedDepthImage(renderedDepth, map);
-  if (band.capped)
-    report.warnings.push_back("guard band capped at " + std::to_string(band.columns) + " columns per side (" +
-                              std::to_string(band.neededColumns) +
-                              " needed): the outermost eye columns repeat the band's edge");
-  if (guardBand) parameters.edgeCrop = 0.0f;  // the output eyes are full frame
-  report.guardBandColumns = band.columns;
-  report.renderedWidth = renderedWidth;
-  report.cropColumns = guardBand ? 0u : std::uint32_t(stereo::makeStereoConstants(parameters, width, height).cropBegin);
-  // The output-size center view's matrices, for per-pixel rays over the output's depth.
-  const renderer::ViewMatrices outputCenter = renderer::centerViewMatrices(
-      job.scene, float(width) / float(height), {parameters.weaponDepthOffset, parameters.weaponDepthScale});
-  const ImageRGBA8 centerColor = output(deferred->readDisplayColor());
-  const bool wantsExr = selected("center.exr");
-  const std::vector<std::uint8_t> firstPersonMask = outputMask(deferred->readFirstPersonMask());  // weapon conflicts
-  report.stereo = parameters;
-  if (report.stereo.edgeCrop < 0.0f) report.stereo.edgeCrop = report.stereo.maxSeparation;
-  // The pass and the reference cameras on the rendered frame: the same parallax in pixels, the band cropped.
-  const stereo::StereoParameters renderedParameters =
-      guardBand ? stereo::guardBandParameters(parameters, width, band) : parameters;
-
-  // 3. Both eyes synthesized on the GPU from the renderer's own images.
-  // The same gather on the linear HDR center view, by the C++ reference of the method (hdr_gather.h).
-  stereo::HdrStereoPair renderedEyesHdr = stereo::synthesizeHdrReference(renderedHdr, stereoDepth, renderedParameters);
-  stereo::StereoPair renderedEyes;
-  {  // the synthesis (the hybrid's eye renderer) is released before the reference eyes are rendered
-    frame::StereoSynthesis synthesis(context, {.width = renderedWidth, .height = height,
-                                               .renderer = {options.supersample, options.reversedZ}});
-    frame::SynthesizedEyes eyes = synthesis.synthesize({*deferred, job.scene, center, renderedParameters});
-    report.stereoPassGpuMs = eyes.gpuMs;
-    report.filledPixels = {eyes.filledLeft, eyes.filledRight};
-    if (eyes.hybrid) {  // the pixels it rendered from the eye cameras go into the HDR eyes too
-      stereo::compositeHybridReference(renderedEyesHdr.left, eyes.hybrid->renderedHdr[0], eyes.hybrid->masks[0]);
-      stereo::compositeHybridReference(renderedEyesHdr.right, eyes.hybrid->renderedHdr[1], eyes.hybrid->masks[1]);
-      report.hybrid = HybridReport{parameters.hybridBudget, parameters.hybridBase, eyes.hybrid->classifiedPixels,
-                                   eyes.hybrid->thresholds, std::move(eyes.hybrid->timings)};
-    }
-    renderedEyes = std::move(eyes.eyes);
-  }
-  const stereo::StereoPair synthesized{output(renderedEyes.left), output(renderedEyes.right)};
-  const stereo::HdrStereoPair synthesizedHdr{output(renderedEyesHdr.left), output(renderedEyesHdr.right)};
-  const DepthImage centerDepth = output(renderedDepth);             // the scene's depth (rays, HUD, center.exr)
-  const DepthImage centerStereoDepth = output(stereoDepth);        // what the stereo pass read (parallax)
-  const ImageRGBA32F centerHdr = output(renderedHdr);
-
-  // 4. The two-pass reference: each eye rendered with its off-axis camera (on the rendered frame, cropped
-  // to the output: the same rays as an output-size eye, tests/stereo/test_guard_band.cpp); a nonlinear map takes one
-  // rendering per segment of its curve (layered_reference.h).
-  struct OutputReference {  // one reference eye cropped to the output
-    frame::ReferenceEye rendered;
-    ImageRGBA8 display;
-    DepthImage depth;  // mapped as the stereo pass's depth (disocclusion regions)
-    ImageRGBA32F hdr;
-    std::vector<std::uint8_t> transparent;
-    std::vector<std::uint8_t> foliage;
-  };
-  auto referenceFor = [&](stereo::Eye side) {
-    OutputReference eye{frame::renderReferenceEye(*deferred, job.scene, center, side, renderedParameters, map), {}, {}, {}, {}, {}};
-    eye.display = output(eye.rendered.display);
-    eye.depth = output(stereo::mappedDepthImage(eye.rendered.depth, map));
-    eye.hdr = output(eye.rendered.hdr);
-    eye.transparent = outputMask(eye.rendered.transparent);
-    eye.foliage = outputMask(eye.rendered.foliage);
-    return eye;
-  };
-  const OutputReference leftEye = referenceFor(stereo::Eye::Left);
-  const OutputReference rightEye = referenceFor(stereo::Eye::Right);
-  const ImageRGBA8& leftReference = leftEye.display;
-  const ImageRGBA8& rightReference = rightEye.display;
-  report.referenceEyeGpuMs = leftEye.rendered.firstLayerGpuMs;
-  report.disparityMap.referenceLayers = leftEye.rendered.layers;
-  report.disparityMap.unresolvedPixels = {leftEye.rendered.unresolvedPixels, rightEye.rendered.unresolvedPixels};
-
-  // 5. Synthesized vs reference over the full frame with a guard band, else without the cropped strips.
-  // (region masks and comparison: s3d/stereo/eye_comparison.h, shared with s3d bench)
-  const std::vector<std::uint8_t> halo = stereo::haloMaskFor(centerStereoDepth, parameters);
-  for (auto [eyeError, eye, eyeHdr, reference, side] :
-       {std::tuple{&report.left, &synthesized.left, &synthesizedHdr.left, &leftEye, stereo::Eye::Left},
-        std::tuple{&report.right, &synthesized.right, &synthesizedHdr.right, &rightEye, stereo::Eye::Right}}) {
-    const stereo::RegionMasks masks{halo, stereo::disocclusionMaskFor(reference->depth, centerStereoDepth, parameters, side),
-                                    reference->transparent, reference->foliage};
-    *eyeError = stereo::compareEye(*eye, reference->display, report.cropColumns, masks, eyeHdr, &reference->hdr);
-  }
-
-  // Comfort report: the parallax the stereo pass gave every pixel, as angles on the chosen display, and
-  // weapon pixels whose pushed depth lies behind the world surface there (Embree rays).
   report.display = options.display;
-  report.comfort = comfort::frameComfort(centerStereoDepth, parameters, report.display);
-  report.weaponConflictPixels =
-      comfort::countWeaponConflicts(world, job.scene.camera, outputCenter.worldProjection, centerDepth, firstPersonMask).conflictPixels;
 
-  // 6. HUD (s3d/hud/overlay.h, drawn by frame_rules.h's drawHud): the crosshair, placed by an Embree ray cast
-  // along the aim (seed 4.6.2), and the static panels, each drawn after stereo synthesis into every view at the
-  // parallax of its depth and faded out where the weapon mask (the eyes' alpha) covers an element that lies
-  // behind the weapon. Not part
-  // of the 3D scene: synthesized eyes and references get the same overlay, after the comparison so it
-  // cannot flatter the error.
-  ImageRGBA8 centerHud = centerColor;
-  stereo::StereoPair eyesHud = synthesized;
-  stereo::StereoPair referenceHud{leftReference, rightReference};
-  HudFrame overlay = drawHud({parameters, placement.depth, weaponDepths, options.allowNegativeParallax, &centerDepth,
-                              &firstPersonMask, resolveHudMode(options.hud, options.scene) == HudMode::Game, map},
-                             eyesHud, &centerHud, &referenceHud);
-  const float rightOffset = hud::crosshairEyeOffsetPx(parameters, gpu::mappedDepth(map, overlay.crosshairDepth), width,
-                                                      stereo::Eye::Right);
-  report.crosshair = {overlay.crosshairDepth, placement.hitWorld, rightOffset};
-  report.hud = std::move(overlay.elements);
-  report.hudConflictPixels = overlay.conflictPixels;
+  // 2. The center view, the comfort rules and both eyes synthesized on the GPU (s3d/frame/comforted_stereo_frame.h);
+  // a single frame: the budget's controller from rest, at 30 frames per second.
+  frame::ComfortedStereoFrame stereoFrame(context, frameDescription(context, options, job, report));
+  frame::ComfortedFrame frame = stereoFrame.render(job.scene, 1.0f / 30.0f);
+  reportFrame(frame, report);
+  const stereo::HdrStereoPair eyesHdr = outputHdrEyes(frame, report);
+  OutputImages images{frame.toOutput(stereoFrame.centerRenderer().readDisplayColor()), frame.toOutput(frame.renderedHdr),
+                      frame.eyesWithHud, {}, &frame.eyes, nullptr, &frame.depth};
+  stereoFrame.releaseSynthesis();  // the hybrid's eye renderer is released before the reference eyes are rendered
 
-  // 7. Outputs, each written atomically by s3d::io; report.json last so it lists everything before it.
-  const fs::path& folder = options.outputFolder;
-  auto writeOutputPng = [&](const std::string& name, const ImageRGBA8& image) {
-    if (!selected(name)) return;
-    io::writePng(folder / name, image);
-    report.filesWritten.push_back(name);
-  };
-  writeOutputPng("center.png", centerHud);
-  if (wantsExr) {
-    io::writeExr(folder / "center.exr", centerHdr, &centerDepth);
-    report.filesWritten.push_back("center.exr");
-  }
-  writeOutputPng("left.png", eyesHud.left);
-  writeOutputPng("right.png", eyesHud.right);
-  writeOutputPng("left_reference.png", referenceHud.left);
-  writeOutputPng("right_reference.png", referenceHud.right);
-  if (selected("anaglyph.png")) writeOutputPng("anaglyph.png", stereo::makeAnaglyphDubois(eyesHud.left, eyesHud.right));
-  if (selected("sbs.png"))
-    writeOutputPng("sbs.png", stereo::makeSideBySide(eyesHud.left, eyesHud.right, options.sideBySide));
-  if (selected("tab.png"))
-    writeOutputPng("tab.png", stereo::makeTopAndBottom(eyesHud.left, eyesHud.right, options.topBottom));
-  // Heat maps of the error against the reference, without the HUD (as measured).
-  if (selected("error_left.png"))
-    writeOutputPng("error_left.png", stereo::makeErrorHeatMap(synthesized.left, leftReference, report.cropColumns));
-  if (selected("error_right.png"))
-    writeOutputPng("error_right.png", stereo::makeErrorHeatMap(synthesized.right, rightReference, report.cropColumns));
-  if (selected("report.json")) {
-    report.filesWritten.push_back("report.json");  // listed in itself: the document describes the whole output
-    try {
-      io::writeTextFile(folder / "report.json", toJson(report).dump(2) + "\n");
-    } catch (...) {
-      report.filesWritten.pop_back();
-      throw;
-    }
-  }
+  // 3. The two-pass reference and the comparison.
+  const std::array<OutputReference, 2> references = outputReferences(stereoFrame, frame, job.scene, report);
+  compareEyes(frame, eyesHdr, references, report);
+
+  // 4. The HUD as drawn (s3d/frame/frame_hud.h), over the center view and the references too.
+  report.crosshair = {frame.hud.crosshairDepth, frame.crosshair.hitWorld,
+                      hud::crosshairEyeOffsetPx(frame.parameters, gpu::mappedDepth(frame.disparityMap.map,
+                                                                                   frame.hud.crosshairDepth),
+                                                options.width, stereo::Eye::Right)};
+  report.hud = frame.hud.elements;
+  report.hudConflictPixels = frame.hud.conflictPixels;
+  images.references = {references[0].display, references[1].display};
+  images.referencesWithoutHud = &references;
+  frame::drawHudOver(frame.hudInput(), &images.center, &images.references);
+
+  // 5. Outputs.
+  writeOutputs(options, images, report);
   return report;
 }
 

@@ -10,15 +10,11 @@
 #include "s3d/app/comfort_json.h"
 #include "s3d/app/render_job.h"
 #include "s3d/app/report_json.h"
-#include "s3d/app/scene_world.h"
-#include "s3d/comfort/crosshair.h"
 #include "s3d/comfort/disparity_budget_controller.h"
-#include "s3d/comfort/world_queries.h"
+#include "s3d/frame/comforted_stereo_frame.h"
 #include "s3d/frame/layered_reference.h"
 #include "s3d/frame/memory_budget.h"
-#include "s3d/frame/stereo_synthesis.h"
 #include "s3d/io/image_io.h"
-#include "s3d/renderer/deferred_renderer.h"
 #include "s3d/renderer/scene_animation.h"
 #include "s3d/renderer/scene_file.h"
 #include "s3d/stereo/guard_band.h"
@@ -27,9 +23,6 @@
 
 namespace s3d::app {
 namespace {
-
-// The pushed weapon's farthest point stays within this share of the distance to the nearest surface.
-constexpr float kWeaponClearance = 0.9f;
 
 nlohmann::json flickerJson(const std::array<stereo::FlickerStats, 2>& flicker) {
   auto region = [](const stereo::FlickerRegion& r) {
@@ -50,6 +43,138 @@ std::size_t sequenceFrameCount(const renderer::Scene& scene, float framesPerSeco
   if (!scene.animation) return 0;
   const double frames = std::ceil(scene.animation->duration() * double(framesPerSecond) - 1e-6);
   return std::size_t(std::clamp(frames, 1.0, 1.0e6));
+}
+
+// The comfort rules a sequence runs frame by frame: the zero-parallax control, the smoothed crosshair, the budget's
+// anticipation; no HUD (the anaglyphs show the eyes as synthesized).
+frame::ComfortedStereoFrameDescription frameDescription(const SequenceJobOptions& options,
+                                                        const comfort::ZeroParallaxControlSettings& control) {
+  frame::ComfortedStereoFrameDescription description;
+  description.width = options.width;
+  description.height = options.height;
+  description.renderer = {options.supersample, options.reversedZ};
+  description.stereo = options.stereo;
+  description.comfort = {.display = options.display, .budget = options.disparityBudget,
+                         .allowNegativeParallax = options.allowNegativeParallax, .zeroParallaxControl = control,
+                         .crosshair = options.crosshair, .smoothCrosshair = true,
+                         .anticipateFrames = options.anticipateSeconds * options.framesPerSecond};
+  description.guardBand = options.stereo.edgeCrop < 0.0f;
+  description.maxRenderedWidth = kMaxImageSize / options.supersample;
+  description.hud = false;
+  description.sanitizeDepth = false;
+  return description;
+}
+
+// What the frame's rules applied and measured, as the report states it.
+SequenceFrame sequenceFrame(std::size_t index, const frame::ComfortedFrame& applied) {
+  SequenceFrame frame;
+  frame.index = index;
+  frame.zeroParallaxDistance = applied.parameters.zeroParallaxDistance;
+  frame.nearestSurface = applied.nearestSurface;
+  frame.crosshairDepth = applied.crosshairDepth;
+  if (applied.crosshair.hitWorld) frame.aimSurface = applied.crosshair.surfaceDistance;
+  frame.zeroParallaxLimited = applied.zeroParallaxLimited;
+  frame.nearestDepth = applied.nearestDepth.value_or(0.0f);
+  frame.comfort = applied.comfort;
+  frame.weaponDepthOffset = applied.parameters.weaponDepthOffset;
+  frame.weaponDepthScale = applied.parameters.weaponDepthScale;
+  frame.weaponPixels = applied.weaponConflicts.weaponPixels;
+  frame.weaponConflictPixels = applied.weaponConflicts.conflictPixels;
+  frame.budget = applied.budget;
+  frame.disparityMap = applied.disparityMap;
+  frame.maxSeparation = applied.parameters.maxSeparation;
+  frame.cropColumns = applied.cropColumns;
+  frame.guardBandColumns = applied.band.columns;
+  frame.stereoPassGpuMs = applied.synthesized.gpuMs;
+  return frame;
+}
+
+// The eyes of a frame (synthesized and reference), the reference's depth and first-person mask, and the eye
+// cameras: the flicker metric's other frame.
+struct EyeFrames {
+  stereo::StereoPair synthesized, reference;
+  std::array<DepthImage, 2> referenceDepth;
+  std::array<DepthImage, 2> mappedReferenceDepth;  // as the stereo pass's (the disocclusion mask)
+  std::array<std::vector<std::uint8_t>, 2> firstPerson;
+  std::array<stereo::ReferenceCameras, 2> cameras;  // the output-size eye cameras per layer (the metric's)
+  std::uint32_t crop = 0;
+};
+
+// The two-pass reference, one rendering per segment of a nonlinear map (layered_reference.h); its depth as rendered
+// (the flicker metric's reprojection) and mapped (the disocclusion mask, as the stereo pass's).
+EyeFrames eyeFrames(frame::ComfortedStereoFrame& stereoFrame, const frame::ComfortedFrame& applied,
+                    const renderer::Scene& scene, SequenceFrame& frame) {
+  EyeFrames current;
+  current.synthesized = applied.eyes;
+  current.crop = applied.cropColumns;
+  const gpu::DisparityMapConstants& map = applied.disparityMap.map;
+  const std::vector<stereo::DisparityMapSegment> segments = stereo::disparityMapSegments(map);
+  for (stereo::Eye eye : {stereo::Eye::Left, stereo::Eye::Right}) {
+    const std::size_t e = eye == stereo::Eye::Left ? 0 : 1;
+    frame::ReferenceEye reference = frame::renderReferenceEye(stereoFrame.centerRenderer(), scene, applied.center, eye,
+                                                              applied.renderedParameters, map);
+    (e == 0 ? current.reference.left : current.reference.right) = applied.toOutput(reference.display);
+    current.referenceDepth[e] = applied.toOutput(reference.depth);
+    current.mappedReferenceDepth[e] = stereo::mappedDepthImage(current.referenceDepth[e], map);
+    current.firstPerson[e] = applied.maskToOutput(reference.firstPerson);
+    if (e == 0) frame.disparityMap.referenceLayers = reference.layers;
+    frame.disparityMap.unresolvedPixels[e] = reference.unresolvedPixels;
+    // The metric's cameras: each layer's, on the output-size frame.
+    stereo::ReferenceCameras& cameras = current.cameras[e];
+    cameras.segments = segments;
+    for (const stereo::DisparityMapSegment& segment : segments) {
+      const renderer::ViewMatrices eyeView =
+          frame::referenceEyeView(scene, applied.outputCenter, eye, applied.parameters, segment);
+      cameras.view.push_back(eyeView.worldView);
+      cameras.projection.push_back(eyeView.worldProjection);
+    }
+    if (segments.size() > 1) cameras.layerOfPixel = applied.maskToOutput(reference.layerOfPixel);
+  }
+  return current;
+}
+
+// Left, right: the change of each eye's error since the previous frame along the camera's motion.
+std::array<stereo::FlickerStats, 2> flickerSince(const EyeFrames& previous, const EyeFrames& current,
+                                                 const frame::ComfortedFrame& applied) {
+  const std::vector<std::uint8_t> halo = stereo::haloMaskFor(applied.stereoDepth, applied.parameters);
+  std::array<stereo::FlickerStats, 2> flicker;
+  for (stereo::Eye eye : {stereo::Eye::Left, stereo::Eye::Right}) {
+    const std::size_t e = eye == stereo::Eye::Left ? 0 : 1;
+    auto eyeFrame = [&](const EyeFrames& f) {
+      return stereo::EyeFrame{e == 0 ? &f.synthesized.left : &f.synthesized.right,
+                              e == 0 ? &f.reference.left : &f.reference.right, &f.referenceDepth[e], f.firstPerson[e],
+                              f.crop};
+    };
+    flicker[e] = stereo::temporalFlicker(
+        eyeFrame(current), eyeFrame(previous), current.cameras[e], previous.cameras[e], halo,
+        stereo::disocclusionMaskFor(current.mappedReferenceDepth[e], applied.stereoDepth, applied.parameters, eye));
+  }
+  return flicker;
+}
+
+// The options a sequence checks before it loads or allocates anything; returns the control's settings.
+comfort::ZeroParallaxControlSettings validateSequence(const SequenceJobOptions& options) {
+  if (options.width == 0 || options.height == 0 || options.width > kMaxImageSize || options.height > kMaxImageSize)
+    throw std::invalid_argument("sequence: resolution outside 1.." + std::to_string(kMaxImageSize));
+  if (!(options.framesPerSecond > 0.0f) || options.framesPerSecond > 1000.0f)
+    throw std::invalid_argument("sequence: frames per second must be in (0, 1000]");
+  stereo::validate(options.stereo);
+  comfort::ZeroParallaxControlSettings settings = options.zeroParallax;
+  settings.restDistance = options.stereo.zeroParallaxDistance;
+  settings.minimumDistance = std::min(settings.minimumDistance, settings.restDistance);
+  comfort::validate(settings);
+  comfort::validate(options.display);
+  if (!(options.anticipateSeconds >= 0.0f) || options.anticipateSeconds > 10.0f)
+    throw std::invalid_argument("sequence: anticipateSeconds must be in [0, 10]");
+  return settings;
+}
+
+void writeAnaglyph(const SequenceJobOptions& options, std::size_t index, const stereo::StereoPair& eyes,
+                   SequenceReport& report) {
+  char name[48];
+  std::snprintf(name, sizeof(name), "anaglyph_%04zu.png", index);
+  io::writePng(options.outputFolder / name, stereo::makeAnaglyphDubois(eyes.left, eyes.right));
+  report.filesWritten.push_back(name);
 }
 
 }  // namespace
@@ -87,85 +212,14 @@ frame::MemoryEstimate sequenceMemoryEstimate(const SequenceJobOptions& options) 
 }
 
 SequenceReport runSequenceJob(vk::Context& context, const SequenceJobOptions& options) {
-  if (options.width == 0 || options.height == 0 || options.width > kMaxImageSize || options.height > kMaxImageSize)
-    throw std::invalid_argument("sequence: resolution outside 1.." + std::to_string(kMaxImageSize));
-  if (!(options.framesPerSecond > 0.0f) || options.framesPerSecond > 1000.0f)
-    throw std::invalid_argument("sequence: frames per second must be in (0, 1000]");
-  stereo::validate(options.stereo);
+  const comfort::ZeroParallaxControlSettings control = validateSequence(options);
   renderer::Scene scene = renderer::loadScene(options.scene);  // built-in name or .gltf/.glb file
   const std::size_t frameCount = sequenceFrameCount(scene, options.framesPerSecond);
   if (frameCount == 0) throw std::invalid_argument("scene '" + options.scene + "' has no camera path and no animation");
-  comfort::ZeroParallaxControlSettings settings = options.zeroParallax;
-  settings.restDistance = options.stereo.zeroParallaxDistance;
-  settings.minimumDistance = std::min(settings.minimumDistance, settings.restDistance);
-  comfort::ZeroParallaxController control(settings);  // validates the settings
-  comfort::CrosshairSmoother crosshair(options.crosshair.responseSeconds);
-  comfort::validate(options.display);
-  const float crosshairDistance = options.crosshair.distance.value_or(scene.crosshairDistance);
-
   frame::requireMemory(context, sequenceMemoryEstimate(options), options.memoryLimitBytes);  // before any is allocated
-  // The world queries see the geometry drawn: rebuilt for every frame of an animated scene.
-  std::optional<comfort::WorldQueries> world;
-  world.emplace(worldMeshes(scene));
-  const glm::vec2 weaponDepths = renderer::firstPersonDepthRange(scene).value_or(glm::vec2(0.0f));
-  const bool budgetOn = options.disparityBudget != comfort::DisparityBudgetRule::Off;
-  if (!(options.anticipateSeconds >= 0.0f) || options.anticipateSeconds > 10.0f)
-    throw std::invalid_argument("sequence: anticipateSeconds must be in [0, 10]");
-  std::optional<comfort::DisparityBudgetController> budgetControl;
-  std::optional<stereo::DepthRangePass> reduction;
-  if (budgetOn) {
-    budgetControl.emplace(comfort::disparityBudget(options.display), options.allowNegativeParallax);
-    reduction.emplace(context);
-  }
-  const comfort::FrameDisparityMapper mapper(context);
-  glm::vec3 previousPosition(0.0f);
-
-  // Guard band (no edge crop given): the center view is rendered wider by the largest displacement the eyes can
-  // need, as in `s3d render`, so both eyes are full frame. The band follows the frame's parameters; the renderer
-  // is replaced only when a frame needs a wider one (rare: the separation is bounded by the budget).
-  const bool guardBand = options.stereo.edgeCrop < 0.0f;
-  const std::uint32_t width = options.width, height = options.height;
-  auto bandFor = [&](const stereo::StereoParameters& p) {
-    if (!guardBand) return stereo::GuardBand{};
-    float nearest = p.zeroParallaxDistance;
-    if (options.allowNegativeParallax) {
-      nearest = scene.camera.nearPlane;
-      if (weaponDepths.x > 0.0f) nearest = std::min(nearest, p.weaponDepthOffset + p.weaponDepthScale * weaponDepths.x);
-    }
-    return stereo::guardBandFor(p.maxSeparation, p.zeroParallaxDistance, nearest, width,
-                                kMaxImageSize / options.supersample);
-  };
-  stereo::GuardBand band;
-  std::unique_ptr<renderer::DeferredRenderer> deferred;
-  // The eyes of every frame (the method's switch, the hybrid's eye renderer and the previous-frame fill's history),
-  // made with the center view's renderer for its size.
-  std::unique_ptr<frame::StereoSynthesis> synthesis;
-  auto useBand = [&](const stereo::GuardBand& wanted) {
-    if (deferred && wanted.columns <= band.columns) return false;
-    band = wanted;
-    const renderer::RendererOptions rendererOptions{options.supersample, options.reversedZ};
-    deferred = std::make_unique<renderer::DeferredRenderer>(context, band.renderedWidth(width), height, rendererOptions);
-    deferred->setScene(scene);
-    synthesis = std::make_unique<frame::StereoSynthesis>(
-        context, frame::StereoSynthesisDescription{.width = band.renderedWidth(width), .height = height,
-                                                   .renderer = rendererOptions,
-                                                   .previousFrameFill = options.stereo.previousFrameFill});
-    return true;
-  };
-  auto output = [&](const auto& image) { return stereo::cropColumns(image, band.columns, width); };
-  auto outputMask = [&](const std::vector<std::uint8_t>& mask) {
-    return stereo::cropColumns(mask, band.renderedWidth(width), band.columns, width);
-  };
-
-  // The previous frame's eyes (synthesized and reference), the reference's depth and first-person mask, and the
-  // eye cameras: the flicker metric's other frame.
-  struct EyeFrames {
-    stereo::StereoPair synthesized, reference;
-    std::array<DepthImage, 2> referenceDepth;
-    std::array<std::vector<std::uint8_t>, 2> firstPerson;
-    std::array<stereo::ReferenceCameras, 2> cameras;  // the output-size eye cameras per layer (the metric's)
-    std::uint32_t crop = 0;
-  };
+  // The comfort rules and the eyes of every frame (s3d/frame/comforted_stereo_frame.h), their state kept between
+  // frames; a guard band (no edge crop given) follows the frames' parameters and widens only when one needs it.
+  frame::ComfortedStereoFrame stereoFrame(context, frameDescription(options, control));
   std::optional<EyeFrames> previous;
   SequenceReport report;
   report.deviceName = context.deviceName();
@@ -173,169 +227,17 @@ SequenceReport runSequenceJob(vk::Context& context, const SequenceJobOptions& op
   for (std::size_t index = 0; index < frameCount; ++index) {
     if (scene.animation && index > 0) {  // frame N at N / rate seconds; the loaded scene is frame 0's pose
       renderer::poseScene(scene, double(index) / double(options.framesPerSecond));
-      world.emplace(worldMeshes(scene));
-      if (deferred) deferred->updateGeometry(scene);  // the textures stay uploaded
-      if (synthesis) synthesis->updateGeometry(scene);
+      stereoFrame.updateGeometry(scene);
     }
-    SequenceFrame frame;
-    frame.index = index;
     scene.camera = renderer::cameraForFrame(scene, options.holdFrame.value_or(index));
-    frame.nearestSurface = comfort::nearestSurfaceAhead(*world, scene.camera, settings,
-                                                        settings.engageDistance + settings.releaseMargin + 1.0f);
-    const float seconds = 1.0f / options.framesPerSecond;
-    frame.zeroParallaxDistance = control.update(frame.nearestSurface, seconds);
-    // The weapon push shrinks with the zero-parallax distance (pushed = ratio * (offset + scale * depth)),
-    // and at once, not smoothed, whenever its farthest pushed point would otherwise reach the nearest
-    // surface: the pushed weapon must never appear behind a wall it is in front of.
-    float ratio = frame.zeroParallaxDistance / settings.restDistance;
-    if (frame.nearestSurface) {
-      const float farthestPushed = options.stereo.weaponDepthOffset + options.stereo.weaponDepthScale * weaponDepths.y;
-      ratio = std::min(ratio, kWeaponClearance * *frame.nearestSurface / farthestPushed);
-    }
-    stereo::StereoParameters parameters = options.stereo;
-    parameters.weaponDepthOffset = options.stereo.weaponDepthOffset * ratio;
-    parameters.weaponDepthScale = options.stereo.weaponDepthScale * ratio;
-    parameters.zeroParallaxDistance = frame.zeroParallaxDistance;
-    // No negative parallax: the weapon's nearest pushed point may not come in front of the screen plane. The
-    // push is squeezed between the plane and its (wall-capped) farthest point; only when the wall leaves no
-    // room behind the plane does the zero-parallax distance give way, at once.
-    auto limitZeroParallax = [&](float limit) {
-      if (options.allowNegativeParallax || !(limit < frame.zeroParallaxDistance)) return;
-      frame.zeroParallaxDistance = control.limit(limit);
-      parameters.zeroParallaxDistance = frame.zeroParallaxDistance;
-      frame.zeroParallaxLimited = true;
-    };
-    if (!options.allowNegativeParallax && weaponDepths.x > 0.0f) {
-      const float pushedFarthest = parameters.weaponDepthOffset + parameters.weaponDepthScale * weaponDepths.y;
-      if (pushedFarthest < frame.zeroParallaxDistance) limitZeroParallax(parameters.weaponDepthOffset + parameters.weaponDepthScale * weaponDepths.x);
-      parameters = comfort::pushWeaponBehindScreen(parameters, weaponDepths.x, weaponDepths.y);
-    }
-    frame.weaponDepthOffset = parameters.weaponDepthOffset;
-    frame.weaponDepthScale = parameters.weaponDepthScale;
-    const comfort::CrosshairPlacement placement =
-        comfort::placeCrosshair(*world, scene.camera, crosshairDistance, options.crosshair.margin);
-    if (placement.hitWorld) frame.aimSurface = placement.surfaceDistance;
-    frame.crosshairDepth = crosshair.update(placement, seconds);
-
-    (void)useBand(bandFor(parameters));
-    renderer::ViewMatrices center;
-    auto renderCenter = [&] {
-      center = renderer::centerViewMatrices(scene, float(band.renderedWidth(width)) / float(height),
-                                            {parameters.weaponDepthOffset, parameters.weaponDepthScale});
-      deferred->render(center);
-    };
-    renderCenter();
-    DepthImage renderedDepth = deferred->readLinearDepth();
-    // ... and no world surface may be nearer than the screen plane either (the control's rays see only a few
-    // directions; the depth image sees every pixel, the band's included: its content reaches the eyes).
-    if (const std::optional<float> nearest = comfort::nearestDepth(renderedDepth)) {
-      frame.nearestDepth = *nearest;
-      limitZeroParallax(*nearest);
-    }
-    parameters.zeroParallaxDistance = frame.zeroParallaxDistance;
-    if (budgetOn) {
-      // Ray casts from where the camera will be (current velocity) warn of a surface before it is in view.
-      comfort::BudgetFrameHints hints{frame.crosshairDepth, comfort::weaponNearestPushed(parameters, weaponDepths), std::nullopt, false};
-      if (index > 0 && options.anticipateSeconds > 0.0f) {
-        renderer::Camera ahead = scene.camera;
-        ahead.position += (scene.camera.position - previousPosition) * (options.anticipateSeconds * options.framesPerSecond);
-        hints.anticipatedNearest = comfort::nearestSurfaceAhead(*world, ahead, settings, 8.0f);
-        // Receding: the same rays reach farther from there than from here (a trend in the depth range, which
-        // the controller follows without its hold).
-        const float here = comfort::nearestSurfaceAhead(*world, scene.camera, settings, 8.0f).value_or(INFINITY);
-        hints.receding = hints.anticipatedNearest.value_or(INFINITY) > here;
-      }
-      frame.budget = comfort::applyDisparityBudget(context, *reduction, &*budgetControl, deferred->linearDepth(), hints, seconds,
-                                          parameters);
-      frame.budget.imageWidth = width;  // budgetPx and bulkShare in the output eyes' pixels, as the comfort report
-      frame.zeroParallaxDistance = parameters.zeroParallaxDistance;
-      // A larger chosen separation needs a wider band: this frame's center view again at that width.
-      if (useBand(bandFor(parameters))) {
-        renderCenter();
-        renderedDepth = deferred->readLinearDepth();
-      }
-    }
-    previousPosition = scene.camera.position;
-    frame.maxSeparation = parameters.maxSeparation;
-    if (guardBand) parameters.edgeCrop = 0.0f;  // the output eyes are full frame
-    const std::uint32_t crop =
-        guardBand ? 0u : std::uint32_t(stereo::makeStereoConstants(parameters, width, height).cropBegin);
-    frame.cropColumns = crop;
-    frame.guardBandColumns = band.columns;
-    // The pass and the reference cameras on the rendered frame: the same parallax in pixels, the band cropped.
-    const stereo::StereoParameters renderedParameters =
-        guardBand ? stereo::guardBandParameters(parameters, width, band) : parameters;
-    const DepthImage pushed = output(renderedDepth);
-    // The crosshair not in front of the screen plane either (the plane is never beyond the aimed-at surface).
-    if (!options.allowNegativeParallax) frame.crosshairDepth = std::max(frame.crosshairDepth, frame.zeroParallaxDistance);
-    // Nonlinear mapping: the frame's curve applied to the stereo pass's depth (GPU) and to the C++ copy alike.
-    frame.disparityMap = mapper.apply(context, deferred->linearDepth(), parameters);
-    const gpu::DisparityMapConstants& map = frame.disparityMap.map;
-    const DepthImage stereoDepth = stereo::mappedDepthImage(pushed, map);
-    frame.comfort = comfort::frameComfort(stereoDepth, parameters, options.display);
-    // The output-size center view's matrices: per-pixel rays over the output's depth, and the eye cameras the
-    // flicker metric moves along.
-    const renderer::ViewMatrices outputCenter = renderer::centerViewMatrices(
-        scene, float(width) / float(height), {parameters.weaponDepthOffset, parameters.weaponDepthScale});
-    const comfort::WeaponConflicts conflicts = comfort::countWeaponConflicts(
-        *world, scene.camera, outputCenter.worldProjection, pushed, outputMask(deferred->readFirstPersonMask()));
-    frame.weaponPixels = conflicts.weaponPixels;
-    frame.weaponConflictPixels = conflicts.conflictPixels;
-    EyeFrames current;
-    const frame::SynthesizedEyes eyes = synthesis->synthesize({*deferred, scene, center, renderedParameters});
-    frame.stereoPassGpuMs = eyes.gpuMs;
-
-    current.synthesized = {output(eyes.eyes.left), output(eyes.eyes.right)};
-    current.crop = crop;
-    // The two-pass reference, one rendering per segment of a nonlinear map (layered_reference.h); its depth as
-    // rendered (the flicker metric's reprojection) and mapped (the disocclusion mask, as the stereo pass's).
-    std::array<DepthImage, 2> mappedReferenceDepth;
-    const std::vector<stereo::DisparityMapSegment> segments = stereo::disparityMapSegments(map);
-    for (stereo::Eye eye : {stereo::Eye::Left, stereo::Eye::Right}) {
-      const std::size_t e = eye == stereo::Eye::Left ? 0 : 1;
-      frame::ReferenceEye reference = frame::renderReferenceEye(*deferred, scene, center, eye, renderedParameters, map);
-      (e == 0 ? current.reference.left : current.reference.right) = output(reference.display);
-      current.referenceDepth[e] = output(reference.depth);
-      mappedReferenceDepth[e] = stereo::mappedDepthImage(current.referenceDepth[e], map);
-      current.firstPerson[e] = outputMask(reference.firstPerson);
-      if (e == 0) frame.disparityMap.referenceLayers = reference.layers;
-      frame.disparityMap.unresolvedPixels[e] = reference.unresolvedPixels;
-      // The metric's cameras: each layer's, on the output-size frame.
-      stereo::ReferenceCameras& cameras = current.cameras[e];
-      cameras.segments = segments;
-      for (const stereo::DisparityMapSegment& segment : segments) {
-        const renderer::ViewMatrices eyeView = frame::referenceEyeView(scene, outputCenter, eye, parameters, segment);
-        cameras.view.push_back(eyeView.worldView);
-        cameras.projection.push_back(eyeView.worldProjection);
-      }
-      if (segments.size() > 1) cameras.layerOfPixel = outputMask(reference.layerOfPixel);
-    }
-    frame.psnrLeftDb = stereo::compareDisplayImages(current.synthesized.left, current.reference.left, crop).psnrDb;
-    frame.psnrRightDb = stereo::compareDisplayImages(current.synthesized.right, current.reference.right, crop).psnrDb;
-    if (previous) {
-      const std::vector<std::uint8_t> halo = stereo::haloMaskFor(stereoDepth, parameters);
-      std::array<stereo::FlickerStats, 2> flicker;
-      for (stereo::Eye eye : {stereo::Eye::Left, stereo::Eye::Right}) {
-        const std::size_t e = eye == stereo::Eye::Left ? 0 : 1;
-        auto eyeFrame = [&](const EyeFrames& f) {
-          return stereo::EyeFrame{e == 0 ? &f.synthesized.left : &f.synthesized.right,
-                                  e == 0 ? &f.reference.left : &f.reference.right, &f.referenceDepth[e],
-                                  f.firstPerson[e], f.crop};
-        };
-        flicker[e] = stereo::temporalFlicker(eyeFrame(current), eyeFrame(*previous), current.cameras[e],
-                                             previous->cameras[e], halo,
-                                             stereo::disocclusionMaskFor(mappedReferenceDepth[e], stereoDepth, parameters, eye));
-      }
-      frame.flicker = flicker;
-    }
+    const frame::ComfortedFrame applied = stereoFrame.render(scene, 1.0f / options.framesPerSecond);
+    SequenceFrame frame = sequenceFrame(index, applied);
+    EyeFrames current = eyeFrames(stereoFrame, applied, scene, frame);
+    frame.psnrLeftDb = stereo::compareDisplayImages(current.synthesized.left, current.reference.left, current.crop).psnrDb;
+    frame.psnrRightDb = stereo::compareDisplayImages(current.synthesized.right, current.reference.right, current.crop).psnrDb;
+    if (previous) frame.flicker = flickerSince(*previous, current, applied);
     previous = std::move(current);
-
-    if (options.writeFrames) {
-      char name[48];
-      std::snprintf(name, sizeof(name), "anaglyph_%04zu.png", index);
-      io::writePng(options.outputFolder / name, stereo::makeAnaglyphDubois(previous->synthesized.left, previous->synthesized.right));
-      report.filesWritten.push_back(name);
-    }
+    if (options.writeFrames) writeAnaglyph(options, index, previous->synthesized, report);
     report.frames.push_back(frame);
   }
   if (options.writeReport) {

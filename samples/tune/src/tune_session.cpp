@@ -1,28 +1,81 @@
 #include "s3d/tune/tune_session.h"
 
 #include <algorithm>
-#include <cmath>
-#include <cstring>
 #include <stdexcept>
+#include <utility>
 
 #include "s3d/app/frame_rules.h"
 #include "s3d/app/render_job.h"
-#include "s3d/app/scene_world.h"
 #include "s3d/comfort/comfort_report.h"
 #include "s3d/comfort/comfort_views.h"
-#include "s3d/comfort/crosshair.h"
+#include "s3d/frame/comforted_stereo_frame.h"
 #include "s3d/frame/layered_reference.h"
-#include "s3d/frame/stereo_synthesis.h"
-#include "s3d/stereo/sanitize.h"
 
 namespace s3d::tune {
 namespace {
 
-// As the sequence job: the pushed weapon's farthest point stays within this share of the nearest surface.
-constexpr float kWeaponClearance = 0.9f;
+// The comfort rules of the state's profile, as `s3d render` and `--sequence` run them; the crosshair is placed
+// (unsmoothed) but not a hint to the budget.
+frame::FrameComfortSettings comfortRules(const TuneState& state) {
+  const comfort::ComfortProfile& profile = state.settings.profile;
+  frame::FrameComfortSettings rules{.display = profile.display, .budget = state.disparityBudget,
+                                    .allowNegativeParallax = profile.allowNegativeParallax,
+                                    .crosshair = profile.crosshair, .crosshairHintsBudget = false};
+  if (state.settings.zeroParallaxControl) rules.zeroParallaxControl = profile.zeroParallaxSettings();
+  return rules;
+}
 
-bool sameControl(const comfort::ZeroParallaxControlSettings& a, const comfort::ZeroParallaxControlSettings& b) {
-  return std::memcmp(&a, &b, sizeof(a)) == 0;  // plain floats and ints: a change of any slider restarts the control
+bool drawsHud(const TuneState& state) { return app::resolveHudMode(state.hud, state.scene) == app::HudMode::Game; }
+
+// The numbers the panel shows, from what the frame applied and measured.
+FrameNumbers frameNumbers(const frame::ComfortedFrame& applied, const comfort::DisplayProfile& display) {
+  FrameNumbers numbers;
+  numbers.centerFrameGpuMs = applied.centerTimings.totalGpuMs;
+  numbers.centerPasses = applied.centerTimings.passes;
+  numbers.stereoPassGpuMs = applied.synthesized.gpuMs;
+  numbers.comfort = applied.comfort;
+  const std::vector<std::uint8_t> beyond = comfort::comfortViolationMask(applied.stereoDepth, applied.parameters, display);
+  numbers.shareBeyondComfort = double(std::count(beyond.begin(), beyond.end(), std::uint8_t(1))) / double(beyond.size());
+  numbers.weaponConflictPixels = applied.weaponConflicts.conflictPixels;
+  numbers.hudConflictPixels = applied.hud.conflictPixels;
+  numbers.zeroParallaxDistance = applied.parameters.zeroParallaxDistance;
+  numbers.zeroParallaxLimited = applied.zeroParallaxLimited;
+  numbers.nearestSurface = applied.nearestSurface;
+  numbers.weaponDepthOffset = applied.parameters.weaponDepthOffset;
+  numbers.weaponDepthScale = applied.parameters.weaponDepthScale;
+  numbers.crosshairDepth = applied.hud.crosshairDepth;
+  numbers.crosshairHitWorld = applied.crosshair.hitWorld;
+  numbers.sanitizedDepthPixels = applied.sanitizedDepthPixels;
+  numbers.warning = applied.zeroParallaxWarning;
+  numbers.budget = applied.budget;
+  numbers.disparityMap = applied.disparityMap;
+  numbers.maxSeparation = applied.parameters.maxSeparation;
+  return numbers;
+}
+
+// The two-pass reference eyes, their time and error, and the same with the frame's HUD drawn over them.
+void addReference(frame::ComfortedStereoFrame& stereoFrame, const frame::ComfortedFrame& applied,
+                  const renderer::Scene& scene, FrameImages& images, FrameNumbers& numbers) {
+  stereo::StereoPair reference;
+  double referenceMs = 0.0;
+  bool timed = true;
+  for (auto [eye, image] : {std::pair{stereo::Eye::Left, &reference.left}, std::pair{stereo::Eye::Right, &reference.right}}) {
+    frame::ReferenceEye rendered = frame::renderReferenceEye(stereoFrame.centerRenderer(), scene, applied.center, eye,
+                                                             applied.renderedParameters, applied.disparityMap.map);
+    if (rendered.firstLayerGpuMs) referenceMs += *rendered.firstLayerGpuMs;
+    else timed = false;
+    *image = std::move(rendered.display);
+    numbers.disparityMap.referenceLayers = rendered.layers;
+    numbers.disparityMap.unresolvedPixels[eye == stereo::Eye::Left ? 0 : 1] = rendered.unresolvedPixels;
+  }
+  if (timed) numbers.referenceEyesGpuMs = referenceMs;
+  if (images.cropColumns * 2 < applied.width) {
+    numbers.errorLeft = stereo::compareDisplayImages(images.eyes.left, reference.left, images.cropColumns);
+    numbers.errorRight = stereo::compareDisplayImages(images.eyes.right, reference.right, images.cropColumns);
+  }
+  images.referenceWithHud = reference;
+  frame::drawHudOver(applied.hudInput(), nullptr, &*images.referenceWithHud);
+  images.reference = std::move(reference);
 }
 
 }  // namespace
@@ -30,16 +83,10 @@ bool sameControl(const comfort::ZeroParallaxControlSettings& a, const comfort::Z
 struct TuneSession::Loaded {
   std::string sceneName;
   renderer::Scene scene;
-  std::unique_ptr<comfort::WorldQueries> world;
-  std::unique_ptr<renderer::DeferredRenderer> deferred;
-  std::unique_ptr<frame::StereoSynthesis> synthesis;  // the eyes (with the hybrid's eye renderer, made at first use)
-  std::uint32_t supersample = 0;  // of `deferred`
-  comfort::ZeroParallaxControlSettings controlSettings;
-  std::unique_ptr<comfort::ZeroParallaxController> control;
-  std::unique_ptr<stereo::DepthRangePass> reduction;
-  std::unique_ptr<comfort::DisparityBudgetController> budget;
-  nlohmann::json budgetKey;  // the display and rule the controller was made for
-  std::unique_ptr<comfort::FrameDisparityMapper> mapper;
+  // The frame's comfort rules and eyes (s3d/frame/comforted_stereo_frame.h), made for `supersample`.
+  std::unique_ptr<frame::ComfortedStereoFrame> stereoFrame;
+  std::uint32_t supersample = 0;
+  bool cut = true;  // the next frame starts the controls from rest (a jump on the path)
 };
 
 TuneSession::TuneSession(vk::Context& context, std::uint32_t width, std::uint32_t height)
@@ -54,16 +101,11 @@ void TuneSession::loadScene(TuneState& state) {
   auto loaded = std::make_unique<Loaded>();
   loaded->sceneName = state.scene;
   loaded->scene = renderer::makeBuiltInScene(state.scene);
-  loaded->world = std::make_unique<comfort::WorldQueries>(app::worldMeshes(loaded->scene));
-  if (loaded_ && loaded_->deferred && loaded_->supersample == state.supersample) {
-    loaded->deferred = std::move(loaded_->deferred);
+  if (loaded_ && loaded_->stereoFrame) {  // its renderer (and compiled pipelines) takes the new scene
+    loaded->stereoFrame = std::move(loaded_->stereoFrame);
     loaded->supersample = loaded_->supersample;
-  } else {
-    loaded->deferred = std::make_unique<renderer::DeferredRenderer>(context_, width_, height_,
-                                                                    renderer::RendererOptions{state.supersample});
-    loaded->supersample = state.supersample;
+    loaded->stereoFrame->setScene(loaded->scene);
   }
-  loaded->deferred->setScene(loaded->scene);
   loaded_ = std::move(loaded);
   state.pathFrame = std::min(state.pathFrame, pathLength() - 1);
   setPathFrame(state, state.pathFrame);
@@ -81,161 +123,40 @@ void TuneSession::setPathFrame(TuneState& state, std::size_t frame) {
   if (!loaded_ || loaded_->sceneName != state.scene) loadScene(state);
   state.camera = renderer::cameraForFrame(loaded_->scene, frame);
   state.pathFrame = frame;
-  loaded_->control.reset();  // the control starts again from rest at a jump
+  loaded_->cut = true;  // the control starts again from rest at a jump
 }
 
 TuneFrame TuneSession::renderFrame(TuneState& state, const FrameInput& input, float seconds) {
   validate(state.settings);
   if (!loaded_ || loaded_->sceneName != state.scene) loadScene(state);
   Loaded& loaded = *loaded_;
-  if (loaded.supersample != state.supersample) {  // a new renderer (its images are sized by the factor)
-    auto deferred = std::make_unique<renderer::DeferredRenderer>(context_, width_, height_,
-                                                                 renderer::RendererOptions{state.supersample});
-    deferred->setScene(loaded.scene);
-    loaded.deferred = std::move(deferred);
-    loaded.synthesis.reset();
+  const comfort::ComfortProfile& profile = state.settings.profile;
+  if (!loaded.stereoFrame || loaded.supersample != state.supersample) {  // its images are sized by the factor
+    loaded.stereoFrame = std::make_unique<frame::ComfortedStereoFrame>(
+        context_, frame::ComfortedStereoFrameDescription{.width = width_, .height = height_,
+                                                         .renderer = {state.supersample}, .stereo = profile.stereo,
+                                                         .comfort = comfortRules(state), .guardBand = false,
+                                                         .maxRenderedWidth = app::kMaxImageSize, .hud = drawsHud(state)});
+    loaded.stereoFrame->setScene(loaded.scene);
     loaded.supersample = state.supersample;
   }
+  loaded.stereoFrame->setRules(profile.stereo, comfortRules(state), drawsHud(state));
   if (state.playPath) state.camera = renderer::cameraForFrame(loaded.scene, state.pathFrame);
   else moveCamera(state.camera, input, seconds);
-  renderer::Scene& scene = loaded.scene;
-  scene.camera = state.camera;
+  loaded.scene.camera = state.camera;
 
+  // The center view, the comfort rules, the eyes and the HUD, as `s3d render` and `--sequence` run them.
+  const frame::ComfortedFrame applied = loaded.stereoFrame->render(loaded.scene, seconds, std::exchange(loaded.cut, false));
   TuneFrame frame;
-  FrameNumbers& numbers = frame.numbers;
-  const comfort::ComfortProfile& profile = state.settings.profile;
-  stereo::StereoParameters parameters = profile.stereo;
-
-  // Zero-parallax control and weapon push, as `s3d render --sequence` runs them (sequence_job.cpp).
-  if (state.settings.zeroParallaxControl) {
-    const comfort::ZeroParallaxControlSettings settings = profile.zeroParallaxSettings();
-    if (!loaded.control || !sameControl(settings, loaded.controlSettings)) {
-      loaded.control = std::make_unique<comfort::ZeroParallaxController>(settings);
-      loaded.controlSettings = settings;
-    }
-    numbers.nearestSurface = comfort::nearestSurfaceAhead(*loaded.world, scene.camera, settings,
-                                                          settings.engageDistance + settings.releaseMargin + 1.0f);
-    parameters.zeroParallaxDistance = loaded.control->update(numbers.nearestSurface, seconds);
-    float ratio = parameters.zeroParallaxDistance / settings.restDistance;
-    const glm::vec2 weaponDepths = renderer::firstPersonDepthRange(scene).value_or(glm::vec2(0.0f));
-    const float farthestPushed = parameters.weaponDepthOffset + parameters.weaponDepthScale * weaponDepths.y;
-    if (numbers.nearestSurface && farthestPushed > 0.0f)
-      ratio = std::min(ratio, kWeaponClearance * *numbers.nearestSurface / farthestPushed);
-    parameters.weaponDepthOffset *= ratio;
-    parameters.weaponDepthScale *= ratio;
-  } else {
-    loaded.control.reset();
-  }
-  // As `s3d render`: a zero-parallax plane outside the camera's depth range is clamped, with a warning.
-  const stereo::ClampedZeroParallax clamped = stereo::clampZeroParallaxDistance(
-      parameters.zeroParallaxDistance, scene.camera.nearPlane, scene.camera.farPlane);
-  parameters.zeroParallaxDistance = clamped.zeroParallaxDistance;
-  numbers.warning = clamped.warning;
-  // The no-negative-parallax rules as runRenderJob applies them (s3d/comfort/budget_frame.h): the weapon pushed
-  // to the screen plane before the center view, the plane held at the frame's nearest depth after it.
-  const bool allowNegativeParallax = profile.allowNegativeParallax;
-  const std::optional<glm::vec2> weaponDepths = renderer::firstPersonDepthRange(scene);
-  parameters = comfort::pushWeaponUnlessNegativeParallaxAllowed(parameters, weaponDepths, allowNegativeParallax);
-
-  // The center view and both synthesized eyes (as runRenderJob).
-  renderer::DeferredRenderer& deferred = *loaded.deferred;
-  const renderer::ViewMatrices center = renderer::centerViewMatrices(
-      scene, float(width_) / float(height_), {parameters.weaponDepthOffset, parameters.weaponDepthScale});
-  renderer::FrameTimings timings = deferred.render(center);
-  numbers.centerFrameGpuMs = timings.totalGpuMs;
-  numbers.centerPasses = std::move(timings.passes);
-  FrameImages images;
-  images.stereoDepth = deferred.readLinearDepth();
-  // Invalid depth reads as the zero-parallax plane, as in the stereo pass, for the views and comfort numbers.
-  numbers.sanitizedDepthPixels = stereo::sanitizeDepth(images.stereoDepth, parameters.zeroParallaxDistance);
-  const std::vector<std::uint8_t> firstPersonMask = deferred.readFirstPersonMask();  // weapon and HUD conflicts
-  numbers.zeroParallaxLimited = comfort::holdZeroParallaxAtNearestDepth(parameters, images.stereoDepth, allowNegativeParallax);
-  if (numbers.zeroParallaxLimited && loaded.control)  // the control goes on smoothly from the limit
-    parameters.zeroParallaxDistance = loaded.control->limit(parameters.zeroParallaxDistance);
-  if (state.disparityBudget != comfort::DisparityBudgetRule::Off) {
-    // The disparity budget, as `s3d render` runs it; a new controller when the display or the rule changes.
-    const nlohmann::json key{comfort::toJson(profile.display), allowNegativeParallax};
-    if (!loaded.budget || loaded.budgetKey != key) {
-      loaded.budget = std::make_unique<comfort::DisparityBudgetController>(comfort::disparityBudget(profile.display),
-                                                                           allowNegativeParallax);
-      loaded.budgetKey = key;
-    }
-    if (!loaded.reduction) loaded.reduction = std::make_unique<stereo::DepthRangePass>(context_);
-    numbers.budget = comfort::applyDisparityBudget(context_, *loaded.reduction, loaded.budget.get(), deferred.linearDepth(),
-                                               {std::nullopt, comfort::weaponNearestPushed(parameters, weaponDepths)},
-                                               seconds, parameters);
-  } else {
-    loaded.budget.reset();
-  }
-  // The depth-to-parallax mapping, as `s3d render` applies it: the views and comfort numbers read the mapped depth,
-  // the weapon and HUD conflicts the scene's.
-  if (!loaded.mapper) loaded.mapper = std::make_unique<comfort::FrameDisparityMapper>(context_);
-  numbers.disparityMap = loaded.mapper->apply(context_, deferred.linearDepth(), parameters);
-  const gpu::DisparityMapConstants& map = numbers.disparityMap.map;
-  const DepthImage sceneDepth = images.stereoDepth;
-  stereo::mapDepthReference(images.stereoDepth, map);
-  numbers.maxSeparation = parameters.maxSeparation;
-  numbers.zeroParallaxDistance = parameters.zeroParallaxDistance;
-  numbers.weaponDepthOffset = parameters.weaponDepthOffset;
-  numbers.weaponDepthScale = parameters.weaponDepthScale;
-  if (!loaded.synthesis)
-    loaded.synthesis = std::make_unique<frame::StereoSynthesis>(
-        context_, frame::StereoSynthesisDescription{.width = width_, .height = height_,
-                                                    .renderer = {loaded.supersample}});
-  frame::SynthesizedEyes eyes = loaded.synthesis->synthesize({deferred, scene, center, parameters});
-  numbers.stereoPassGpuMs = eyes.gpuMs;
-  images.eyes = std::move(eyes.eyes);
-  images.parameters = parameters;
-  images.cropColumns = std::uint32_t(stereo::makeStereoConstants(parameters, width_, height_).cropBegin);
-
-  // The two-pass reference, when asked for or shown.
-  if (state.reference || viewNeedsReference(state.view)) {
-    stereo::StereoPair reference;
-    double referenceMs = 0.0;
-    bool timed = true;
-    for (auto [eye, image] : {std::pair{stereo::Eye::Left, &reference.left}, std::pair{stereo::Eye::Right, &reference.right}}) {
-      frame::ReferenceEye rendered = frame::renderReferenceEye(deferred, scene, center, eye, parameters, map);
-      if (rendered.firstLayerGpuMs) referenceMs += *rendered.firstLayerGpuMs;
-      else timed = false;
-      *image = std::move(rendered.display);
-      numbers.disparityMap.referenceLayers = rendered.layers;
-      numbers.disparityMap.unresolvedPixels[eye == stereo::Eye::Left ? 0 : 1] = rendered.unresolvedPixels;
-    }
-    if (timed) numbers.referenceEyesGpuMs = referenceMs;
-    if (images.cropColumns * 2 < width_) {
-      numbers.errorLeft = stereo::compareDisplayImages(images.eyes.left, reference.left, images.cropColumns);
-      numbers.errorRight = stereo::compareDisplayImages(images.eyes.right, reference.right, images.cropColumns);
-    }
-    images.reference = std::move(reference);
-  }
-
-  // Comfort numbers on the chosen display (the comfort report of `s3d render`, comfort_report.h).
-  images.display = profile.display;
-  numbers.comfort = comfort::frameComfort(images.stereoDepth, parameters, images.display);
-  const std::vector<std::uint8_t> beyond = comfort::comfortViolationMask(images.stereoDepth, parameters, images.display);
-  numbers.shareBeyondComfort = double(std::count(beyond.begin(), beyond.end(), std::uint8_t(1))) / double(beyond.size());
-  numbers.weaponConflictPixels = comfort::countWeaponConflicts(*loaded.world, scene.camera, center.worldProjection,
-                                                               sceneDepth, firstPersonMask).conflictPixels;
-
-  // HUD: the crosshair, placed by an Embree ray cast along the aim (seed 4.6.2), and the panels, drawn into
-  // each eye at its depth's parallax with the weapon-mask fade, by the same code as `s3d render` (drawHud).
-  const comfort::CrosshairPlacement placement =
-      comfort::placeCrosshair(*loaded.world, scene.camera, profile.crosshair.distance.value_or(scene.crosshairDistance),
-                              profile.crosshair.margin);
-  images.eyesWithHud = images.eyes;
-  if (images.reference) images.referenceWithHud = images.reference;
-  const app::HudFrame overlay =
-      app::drawHud({parameters, placement.depth, weaponDepths, allowNegativeParallax, &sceneDepth, &firstPersonMask,
-                    app::resolveHudMode(state.hud, state.scene) == app::HudMode::Game, map},
-                   *images.eyesWithHud, nullptr, images.referenceWithHud ? &*images.referenceWithHud : nullptr);
-  numbers.crosshairDepth = overlay.crosshairDepth;
-  numbers.crosshairHitWorld = placement.hitWorld;
-  numbers.hudConflictPixels = overlay.conflictPixels;
-
+  frame.numbers = frameNumbers(applied, profile.display);
+  FrameImages images{applied.eyes, std::nullopt, applied.eyesWithHud, std::nullopt, applied.stereoDepth,
+                     applied.parameters, applied.cropColumns, profile.display};
+  if (state.reference || viewNeedsReference(state.view))
+    addReference(*loaded.stereoFrame, applied, loaded.scene, images, frame.numbers);
   frame.view = composeView(state.view, images);
   if (state.playPath) {
     state.pathFrame = (state.pathFrame + 1) % pathLength();
-    if (state.pathFrame == 0) loaded.control.reset();  // the path starts over
+    if (state.pathFrame == 0) loaded.cut = true;  // the path starts over
   }
   return frame;
 }

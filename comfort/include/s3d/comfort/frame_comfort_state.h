@@ -3,8 +3,8 @@
 // capped by the zero-parallax plane, the zero-parallax distance held at the nearest depth, the crosshair placed
 // by the host's ray cast, the disparity budget (the host's controller choosing maxSeparation and the
 // zero-parallax distance from the frame's depth range), and each HUD element's depth, parallax and fade behind
-// the weapon (seed 4.6.2). s3d render and s3d tune apply the same rules (budget_frame.h, and the tools'
-// drawHud, call these).
+// the weapon (seed 4.6.2). s3d render and s3d tune apply the same rules (budget_frame.h and the frame library's
+// drawHud call these).
 #include <cstdint>
 #include <functional>
 #include <optional>

@@ -85,7 +85,7 @@ struct CrosshairReport {
   float parallaxPx = 0.0f;  // per-eye displacement in pixels (left eye: -parallaxPx, right eye: +parallaxPx)
 };
 
-// HudElementReport (one HUD element as drawn) lives in frame_rules.h, shared with `s3d tune`.
+// HudElementReport (one HUD element as drawn) is the library's (s3d/frame/frame_hud.h), shared with `s3d tune`.
 
 // What the hybrid method did in one frame (method hybrid only).
 struct HybridReport {

@@ -14,7 +14,7 @@ namespace s3d::tune {
 struct FrameImages {
   stereo::StereoPair eyes;                      // synthesized by the stereo pass, before the HUD (as measured)
   std::optional<stereo::StereoPair> reference;  // the two-pass reference eyes, before the HUD (when rendered)
-  // The same with the HUD drawn (app::drawHud), as `s3d render` writes them: the views show these where given;
+  // The same with the HUD drawn (frame::drawHud), as `s3d render` writes them: the views show these where given;
   // the error heat map never does (as measured).
   std::optional<stereo::StereoPair> eyesWithHud, referenceWithHud;
   DepthImage stereoDepth;                       // the stereo pass's linear depth (weapon pushed)

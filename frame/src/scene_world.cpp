@@ -1,6 +1,6 @@
-#include "s3d/app/scene_world.h"
+#include "s3d/frame/scene_world.h"
 
-namespace s3d::app {
+namespace s3d::frame {
 
 std::vector<comfort::WorldMesh> worldMeshes(const renderer::Scene& scene) {
   std::vector<comfort::WorldMesh> world;
@@ -13,4 +13,4 @@ std::vector<comfort::WorldMesh> worldMeshes(const renderer::Scene& scene) {
   return world;
 }
 
-}  // namespace s3d::app
+}  // namespace s3d::frame
