@@ -132,14 +132,16 @@ void BareKernel(benchmark::State& state) {
 }
 
 // The host's stereo frame from sRGB colour and D32 depth the host synchronizes itself. Arguments: the method as
-// BareKernel's (4: forward with the previous-frame fill), and the output (0 two eyes, 1 anaglyph).
+// BareKernel's (4: forward with the previous-frame fill), the output (0 two eyes, 1 anaglyph) and the colour's
+// view (0 sRGB: the sampler decodes, the gather encodes again; 1 UNORM, as a host's UNORM view of an sRGB image
+// made with VK_IMAGE_CREATE_MUTABLE_FORMAT_BIT reads: the display values as stored).
 void HostStereoFrame(benchmark::State& state) {
   vk::Context& context = benchContext();
   const bool fill = state.range(0) == 4;
   stereo::StereoFrameDesc desc;
   desc.width = kWidth;
   desc.height = kHeight;
-  desc.colorFormat = VK_FORMAT_R8G8B8A8_SRGB;
+  desc.colorFormat = state.range(2) == 0 ? VK_FORMAT_R8G8B8A8_SRGB : VK_FORMAT_R8G8B8A8_UNORM;
   desc.depthFormat = VK_FORMAT_D32_SFLOAT;
   desc.method = kMethods[fill ? 3 : state.range(0)];
   desc.previousFrameFill = fill;
@@ -173,7 +175,8 @@ void HostStereoFrame(benchmark::State& state) {
   dispatch.centerProjection[3][2] = 0.1f;
   dispatch.centerProjection[3][3] = 0.0f;
   timeRecording(state, [&](VkCommandBuffer cmd) { stereoFrame.record(cmd, dispatch); });
-  state.SetLabel(context.deviceName() + ", " + stereo::methodName(desc.method) + (fill ? " + fill" : ""));
+  state.SetLabel(context.deviceName() + ", " + stereo::methodName(desc.method) + (fill ? " + fill" : "") +
+                 (state.range(2) == 0 ? ", sRGB" : ", UNORM view"));
 }
 
 // s3d's built-in HUD (health and ammo panels, crosshair) at 1920x1080, with parallax and the fade on.
@@ -274,8 +277,9 @@ void HudPass(benchmark::State& state) {
 
 BENCHMARK(BareKernel)->DenseRange(0, 3)->ArgName("method")->UseManualTime()->Unit(benchmark::kMillisecond)->MinTime(0.05);
 BENCHMARK(HostStereoFrame)
-    ->ArgsProduct({{0, 1, 2, 3, 4}, {0, 1}})
-    ->ArgNames({"method", "output"})
+    ->ArgsProduct({{0, 1, 2, 3, 4}, {0, 1}, {0}})
+    ->ArgsProduct({{0, 1}, {0, 1}, {1}})
+    ->ArgNames({"method", "output", "unormView"})
     ->UseManualTime()
     ->Unit(benchmark::kMillisecond)
     ->MinTime(0.05);
