@@ -78,6 +78,17 @@ void computeBarrier(VkCommandBuffer cmd) {
   vkCmdPipelineBarrier2(cmd, &dependency);
 }
 
+// Every earlier command's writes before every later command: for steps that mix copies and compute.
+void fullBarrier(VkCommandBuffer cmd) {
+  VkMemoryBarrier2 barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
+  barrier.srcStageMask = barrier.dstStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+  barrier.srcAccessMask = barrier.dstAccessMask = VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT;
+  VkDependencyInfo dependency{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+  dependency.memoryBarrierCount = 1;
+  dependency.pMemoryBarriers = &barrier;
+  vkCmdPipelineBarrier2(cmd, &dependency);
+}
+
 template <typename Record>
 void timeRecording(benchmark::State& state, const Record& record) {
   vk::Context& context = benchContext();
@@ -177,6 +188,59 @@ void HostStereoFrame(benchmark::State& state) {
   timeRecording(state, [&](VkCommandBuffer cmd) { stereoFrame.record(cmd, dispatch); });
   state.SetLabel(context.deviceName() + ", " + stereo::methodName(desc.method) + (fill ? " + fill" : "") +
                  (state.range(2) == 0 ? ", sRGB" : ", UNORM view"));
+}
+
+// The hybrid's first step for a host (StereoFrame::recordHybridMasks): the search into the eyes, the
+// classification, threshold and masks, and both masks copied into the host's D32 depth images; from sRGB colour
+// and D32 depth. Argument: the budget in percent. The synthetic view's 16x8 blocks of random depth put an edge
+// every few pixels, far more than a rendered frame has: an upper bound of the classification's cost.
+void HostHybridMasks(benchmark::State& state) {
+  vk::Context& context = benchContext();
+  stereo::StereoFrameDesc desc;
+  desc.width = kWidth;
+  desc.height = kHeight;
+  desc.colorFormat = VK_FORMAT_R8G8B8A8_SRGB;
+  desc.depthFormat = VK_FORMAT_D32_SFLOAT;
+  desc.method = stereo::StereoMethod::Hybrid;
+  desc.hybridBudget = float(state.range(0)) / 100.0f;
+  stereo::StereoFrame stereoFrame(context, desc);
+  const VkImageUsageFlags inputUsage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+  vk::Image color = vk::createImage(context, desc.colorFormat, kWidth, kHeight, inputUsage);
+  vk::Image depth = vk::createImage(context, desc.depthFormat, kWidth, kHeight, inputUsage);
+  vk::uploadImage(context, color, std::as_bytes(std::span(view().color)), vk::kFragmentRead);
+  vk::uploadImage(context, depth, std::as_bytes(std::span(view().device)), vk::kFragmentRead);
+  vk::Image left = vk::createImage(context, stereoFrame.eyeFormat(), kWidth, kHeight, VK_IMAGE_USAGE_STORAGE_BIT);
+  vk::Image right = vk::createImage(context, stereoFrame.eyeFormat(), kWidth, kHeight, VK_IMAGE_USAGE_STORAGE_BIT);
+  const VkImageUsageFlags maskUsage = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+  vk::Image leftMask = vk::createImage(context, VK_FORMAT_D32_SFLOAT, kWidth, kHeight, maskUsage);
+  vk::Image rightMask = vk::createImage(context, VK_FORMAT_D32_SFLOAT, kWidth, kHeight, maskUsage);
+  context.submitAndWait([&](VkCommandBuffer cmd) {
+    for (const vk::Image* image : {&left, &right}) vk::transition(cmd, *image, vk::kUndefined, vk::kComputeWrite);
+    for (const vk::Image* image : {&leftMask, &rightMask})
+      vk::transition(cmd, *image, vk::kUndefined, {VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COPY_BIT,
+                                                   VK_ACCESS_2_TRANSFER_WRITE_BIT});
+  });
+  auto host = [](const vk::Image& image, VkImageLayout layout) {
+    return stereo::HostImage{image.image, image.view, image.format, layout, VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE};
+  };
+  stereo::StereoFrameDispatch dispatch;
+  dispatch.color = host(color, vk::kFragmentRead.layout);
+  dispatch.depth = host(depth, vk::kFragmentRead.layout);
+  dispatch.left = host(left, VK_IMAGE_LAYOUT_GENERAL);
+  dispatch.right = host(right, VK_IMAGE_LAYOUT_GENERAL);
+  dispatch.leftMask = host(leftMask, VK_IMAGE_LAYOUT_GENERAL);
+  dispatch.rightMask = host(rightMask, VK_IMAGE_LAYOUT_GENERAL);
+  dispatch.projection = frame().projection;
+  dispatch.centerProjection[0][0] = 1.0f;  // a perspective camera: the eye cameras the step returns
+  dispatch.centerProjection[1][1] = 1.7f;
+  dispatch.centerProjection[2][3] = -1.0f;
+  dispatch.centerProjection[3][2] = 0.1f;
+  dispatch.centerProjection[3][3] = 0.0f;
+  timeRecording(state, [&](VkCommandBuffer cmd) {
+    fullBarrier(cmd);  // the previous recording's mask copies before this one's buffer writes
+    (void)stereoFrame.recordHybridMasks(cmd, dispatch);
+  });
+  state.SetLabel(context.deviceName() + ", hybrid budget " + std::to_string(state.range(0)) + " %");
 }
 
 // s3d's built-in HUD (health and ammo panels, crosshair) at 1920x1080, with parallax and the fade on.
@@ -283,6 +347,7 @@ BENCHMARK(HostStereoFrame)
     ->UseManualTime()
     ->Unit(benchmark::kMillisecond)
     ->MinTime(0.05);
+BENCHMARK(HostHybridMasks)->Arg(20)->Arg(60)->ArgName("budgetPercent")->UseManualTime()->Unit(benchmark::kMillisecond)->MinTime(0.05);
 BENCHMARK(HostPass)->DenseRange(0, 5)->ArgName("variant")->UseManualTime()->Unit(benchmark::kMillisecond)->MinTime(0.05);
 BENCHMARK(HudPass)->Arg(0)->Arg(256)->Arg(512)->ArgName("hostLayer")->UseManualTime()->Unit(benchmark::kMillisecond)->MinTime(0.05);
 
