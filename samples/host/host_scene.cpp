@@ -63,37 +63,10 @@ DrawConstants drawConstants(const glm::mat4& clipFromWorld, const Box& box, floa
   return c;
 }
 
-}  // namespace
-
-Scene::Scene(const Device& device, std::uint32_t width, std::uint32_t height)
-    : device_(device), width_(width), height_(height) {
-  world_ = {
-      {{0.0f, -0.05f, -10.0f}, {8.0f, 0.05f, 12.0f}, {0.55f, 0.52f, 0.48f}},  // floor
-      {{0.0f, 3.0f, -20.0f}, {8.0f, 3.0f, 0.1f}, {0.62f, 0.45f, 0.35f}},      // back wall
-      {{-8.0f, 3.0f, -10.0f}, {0.1f, 3.0f, 12.0f}, {0.40f, 0.50f, 0.60f}},    // left wall
-      {{8.0f, 3.0f, -10.0f}, {0.1f, 3.0f, 12.0f}, {0.45f, 0.58f, 0.40f}},     // right wall
-      {{0.3f, 1.0f, -5.0f}, {0.6f, 1.0f, 0.6f}, {0.85f, 0.65f, 0.20f}},       // the box the crosshair rests on
-      {{-2.2f, 0.6f, -3.5f}, {0.5f, 0.6f, 0.5f}, {0.75f, 0.25f, 0.25f}},
-      {{2.6f, 1.5f, -9.0f}, {0.8f, 1.5f, 0.8f}, {0.30f, 0.55f, 0.80f}},
-  };
-  weapon_ = {{0.28f, -0.22f, -0.45f}, {0.05f, 0.04f, 0.2f}, {0.30f, 0.30f, 0.34f}};
-
-  std::vector<Vertex> vertices;
-  std::vector<std::uint16_t> indices;
-  cube(vertices, indices);
-  vertices_.emplace(device, vertices.size() * sizeof(Vertex), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
-  indices_.emplace(device, indices.size() * sizeof(std::uint16_t), VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
-  std::memcpy(vertices_->mapped, vertices.data(), vertices.size() * sizeof(Vertex));
-  std::memcpy(indices_->mapped, indices.data(), indices.size() * sizeof(std::uint16_t));
-
-  VkPushConstantRange push{VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(DrawConstants)};
-  VkPipelineLayoutCreateInfo layoutInfo{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
-  layoutInfo.pushConstantRangeCount = 1;
-  layoutInfo.pPushConstantRanges = &push;
-  HOST_VK(vkCreatePipelineLayout(device.device, &layoutInfo, nullptr, &layout_));
-
-  const VkShaderModule vert = shaderModule(device.device, scene_vert, sizeof scene_vert);
-  const VkShaderModule frag = shaderModule(device.device, scene_frag, sizeof scene_frag);
+// The scene's pipeline (dynamic rendering): sRGB colour and D32 depth with depth test LESS, no culling.
+VkPipeline createPipeline(VkDevice device, VkPipelineLayout layout) {
+  const VkShaderModule vert = shaderModule(device, scene_vert, sizeof scene_vert);
+  const VkShaderModule frag = shaderModule(device, scene_frag, sizeof scene_frag);
   VkPipelineShaderStageCreateInfo stages[2] = {{VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO},
                                                {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO}};
   stages[0].stage = VK_SHADER_STAGE_VERTEX_BIT;
@@ -150,11 +123,45 @@ Scene::Scene(const Device& device, std::uint32_t width, std::uint32_t height)
   info.pDepthStencilState = &depth;
   info.pColorBlendState = &blend;
   info.pDynamicState = &dynamic;
-  info.layout = layout_;
-  const VkResult created = vkCreateGraphicsPipelines(device.device, VK_NULL_HANDLE, 1, &info, nullptr, &pipeline_);
-  vkDestroyShaderModule(device.device, vert, nullptr);
-  vkDestroyShaderModule(device.device, frag, nullptr);
+  info.layout = layout;
+  VkPipeline pipeline = VK_NULL_HANDLE;
+  const VkResult created = vkCreateGraphicsPipelines(device, VK_NULL_HANDLE, 1, &info, nullptr, &pipeline);
+  vkDestroyShaderModule(device, vert, nullptr);
+  vkDestroyShaderModule(device, frag, nullptr);
   HOST_VK(created);
+  return pipeline;
+}
+
+}  // namespace
+
+Scene::Scene(const Device& device, std::uint32_t width, std::uint32_t height)
+    : device_(device), width_(width), height_(height) {
+  world_ = {
+      {{0.0f, -0.05f, -10.0f}, {8.0f, 0.05f, 12.0f}, {0.55f, 0.52f, 0.48f}},  // floor
+      {{0.0f, 3.0f, -20.0f}, {8.0f, 3.0f, 0.1f}, {0.62f, 0.45f, 0.35f}},      // back wall
+      {{-8.0f, 3.0f, -10.0f}, {0.1f, 3.0f, 12.0f}, {0.40f, 0.50f, 0.60f}},    // left wall
+      {{8.0f, 3.0f, -10.0f}, {0.1f, 3.0f, 12.0f}, {0.45f, 0.58f, 0.40f}},     // right wall
+      {{0.3f, 1.0f, -5.0f}, {0.6f, 1.0f, 0.6f}, {0.85f, 0.65f, 0.20f}},       // the box the crosshair rests on
+      {{-2.2f, 0.6f, -3.5f}, {0.5f, 0.6f, 0.5f}, {0.75f, 0.25f, 0.25f}},
+      {{2.6f, 1.5f, -9.0f}, {0.8f, 1.5f, 0.8f}, {0.30f, 0.55f, 0.80f}},
+  };
+  weapon_ = {{0.28f, -0.22f, -0.45f}, {0.05f, 0.04f, 0.2f}, {0.30f, 0.30f, 0.34f}};
+
+  std::vector<Vertex> vertices;
+  std::vector<std::uint16_t> indices;
+  cube(vertices, indices);
+  vertices_.emplace(device, vertices.size() * sizeof(Vertex), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
+  indices_.emplace(device, indices.size() * sizeof(std::uint16_t), VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
+  std::memcpy(vertices_->mapped, vertices.data(), vertices.size() * sizeof(Vertex));
+  std::memcpy(indices_->mapped, indices.data(), indices.size() * sizeof(std::uint16_t));
+
+  VkPushConstantRange push{VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(DrawConstants)};
+  VkPipelineLayoutCreateInfo layoutInfo{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+  layoutInfo.pushConstantRangeCount = 1;
+  layoutInfo.pPushConstantRanges = &push;
+  HOST_VK(vkCreatePipelineLayout(device.device, &layoutInfo, nullptr, &layout_));
+
+  pipeline_ = createPipeline(device.device, layout_);
 }
 
 Scene::~Scene() {
