@@ -11,6 +11,8 @@
 //    building 5-20 m away show past the wall's right edge. The camera walks up from 4 m and back.
 //  - depth-range: a small box on a post 0.3 m from the eye (lower left), objects from 2.5 m to 1.2 km, and
 //    mountains ~10 km away; far plane 100 km. The camera turns slowly left.
+// Each make...Scene lists its scene's objects, lights and camera path in one function, as data read top to bottom:
+// splitting a listing would scatter one scene over several places, so these run past the usual length.
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
