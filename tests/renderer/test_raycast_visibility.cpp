@@ -119,6 +119,59 @@ TEST(SceneBvh, TraversalFindsWhatSearchingEveryTriangleFinds) {
   }
 }
 
+// A 16x16-pixel view whose layer space is ndc (identity view projection): framebuffer x = 8 (ndc x + 1).
+gpu::PixelRay identityRay(glm::ivec2 subpixel) {
+  return gpu::pixelRayOf(glm::mat4(1.0f), glm::mat4(1.0f), glm::vec4(16.0f, 16.0f, 1.0f / 16.0f, 1.0f / 16.0f), subpixel,
+                         glm::vec2(0.0f, 1.0f), 1.0f);
+}
+// The layer-space point at framebuffer position `pixels`, depth z.
+glm::vec3 atPixel(glm::vec2 pixels, float z = 0.5f) { return glm::vec3(pixels / 8.0f - 1.0f, z); }
+
+int coverage(glm::ivec2 subpixel, glm::vec3 v0, glm::vec3 v1, glm::vec3 v2, std::uint32_t flags = 0) {
+  float depth = 0.0f;
+  return gpu::rasterCoverage(identityRay(subpixel), v0, v1, v2, flags, depth);
+}
+
+// A quad from pixel centre (2.5, 2.5) to (12.5, 12.5) split along its diagonal, which runs through pixel centres:
+// every sample of the quad, edges included, belongs to exactly one of its two triangles (the top-left rule), and
+// samples on the quad's top and left edges are in it while those on its bottom and right edges are not.
+TEST(RasterRule, SharedEdgesAndTheTopLeftRule) {
+  const glm::vec3 topLeft = atPixel({2.5f, 2.5f}), topRight = atPixel({12.5f, 2.5f});
+  const glm::vec3 bottomLeft = atPixel({2.5f, 12.5f}), bottomRight = atPixel({12.5f, 12.5f});
+  for (int y = 0; y < 16; ++y)
+    for (int x = 0; x < 16; ++x) {
+      const glm::ivec2 sample = glm::ivec2(x, y) * S3D_SUBPIXEL_UNITS + S3D_SUBPIXEL_UNITS / 2;
+      // Counter-clockwise on screen (y down), the front faces.
+      const int upper = coverage(sample, topLeft, bottomLeft, topRight);
+      const int lower = coverage(sample, topRight, bottomLeft, bottomRight);
+      const bool inQuad = x >= 2 && x < 12 && y >= 2 && y < 12;
+      EXPECT_EQ(upper + lower, inQuad ? 1 : 0) << "pixel " << x << ", " << y;
+    }
+}
+
+// Back faces (clockwise on screen) are never covered unless double-sided; a triangle of zero snapped area never is.
+TEST(RasterRule, BackFacesAndDegenerateTriangles) {
+  const glm::ivec2 centre(8 * S3D_SUBPIXEL_UNITS + S3D_SUBPIXEL_UNITS / 2);
+  const glm::vec3 a = atPixel({4.0f, 4.0f}), b = atPixel({4.0f, 14.0f}), c = atPixel({14.0f, 4.0f});
+  EXPECT_EQ(coverage(centre, a, b, c), 1);
+  EXPECT_EQ(coverage(centre, a, c, b), 0);
+  EXPECT_EQ(coverage(centre, a, c, b, S3D_BVH_DOUBLE_SIDED), 1);
+  // Less than half a sub-pixel unit tall: its vertices snap onto one line.
+  EXPECT_EQ(coverage(centre, atPixel({4.0f, 8.5f}), atPixel({13.0f, 8.5f + 0.001f}), atPixel({13.0f, 8.5f}), S3D_BVH_DOUBLE_SIDED), 0);
+}
+
+// Depth is interpolated linearly in the framebuffer, and samples beyond the far plane are dropped (the rasterizer
+// clips the triangle there) while the rest of the triangle stays covered.
+TEST(RasterRule, DepthIsInterpolatedAndTheFarPlaneClips) {
+  const glm::vec3 a = atPixel({0.0f, 0.0f}, 0.0f), b = atPixel({0.0f, 16.0f}, 0.0f), c = atPixel({16.0f, 0.0f}, 1.5f);
+  float depth = 0.0f;
+  const glm::ivec2 near = glm::ivec2(2, 2) * S3D_SUBPIXEL_UNITS;  // framebuffer (2, 2): depth 1.5 * 2 / 16
+  ASSERT_EQ(gpu::rasterCoverage(identityRay(near), a, b, c, 0, depth), 1);
+  EXPECT_NEAR(depth, 1.5f * 2.0f / 16.0f, 1e-6f);  // float interpolation of exact weights
+  const glm::ivec2 far = glm::ivec2(12, 2) * S3D_SUBPIXEL_UNITS;  // depth 1.5 * 12 / 16 > 1
+  EXPECT_EQ(gpu::rasterCoverage(identityRay(far), a, b, c, 0, depth), 0);
+}
+
 class RaycastVisibilityTest : public test::VulkanTest {
  protected:
   struct Result {
@@ -158,7 +211,7 @@ class RaycastVisibilityTest : public test::VulkanTest {
     return result;
   }
   // The share of pixels where the ray cast names the raster pass's triangle, for one scene and size.
-  void expectAgreement(const std::string& name, std::uint32_t width, std::uint32_t height);
+  void expectAgreement(const std::string& name, std::uint32_t width, std::uint32_t height, bool reversed);
   static constexpr std::uint32_t kSentinelId = 0xdeadbeefu;
   static constexpr float kSentinelDepth = 42.0f;
 };
@@ -277,12 +330,19 @@ void classify(const renderer::Scene& scene, const SceneBvh& bvh, const RaycastCa
 // decides otherwise.
 TEST_F(RaycastVisibilityTest, AgreesWithTheRasterVisibilityPass) {
   for (const glm::uvec2 size : {glm::uvec2(160, 90), glm::uvec2(480, 270)})
-    for (const std::string& name : renderer::builtInSceneNames()) expectAgreement(name, size.x, size.y);
+    for (const std::string& name : renderer::builtInSceneNames()) expectAgreement(name, size.x, size.y, false);
 }
 
-void RaycastVisibilityTest::expectAgreement(const std::string& name, std::uint32_t width, std::uint32_t height) {
+// The same under reversed depth (GREATER, near at device depth 1), where the rays run from ndc depth 1 to 0.
+TEST_F(RaycastVisibilityTest, AgreesWithTheRasterVisibilityPassUnderReversedDepth) {
+  for (const std::string& name : renderer::builtInSceneNames()) expectAgreement(name, 160, 90, true);
+}
+
+void RaycastVisibilityTest::expectAgreement(const std::string& name, std::uint32_t width, std::uint32_t height,
+                                            bool reversed) {
   renderer::RendererOptions options;
   options.gbufferShading = renderer::RendererOptions::GBufferShading::Visibility;
+  options.reversedZ = reversed;
   renderer::DeferredRenderer raster(context(), width, height, options);
   const renderer::Scene scene = renderer::makeBuiltInScene(name);
   const renderer::ViewMatrices view = renderer::centerViewMatrices(scene, float(width) / float(height));
@@ -292,7 +352,7 @@ void RaycastVisibilityTest::expectAgreement(const std::string& name, std::uint32
   const DepthImage linear = raster.readLinearDepth();
   ASSERT_EQ(rasterIds.size(), std::size_t(width) * height) << name;
   const SceneBvh bvh = SceneBvh::build(scene);
-  const RaycastCamera camera = renderer::raycastCamera(scene, view);
+  const RaycastCamera camera = renderer::raycastCamera(scene, view, reversed);
   const Result cast = this->cast(bvh, camera, width, height);
   Disagreements differ;
   for (std::size_t i = 0; i < rasterIds.size(); ++i) {
@@ -307,11 +367,11 @@ void RaycastVisibilityTest::expectAgreement(const std::string& name, std::uint32
              cast.ids[i], differ);
   }
   const double share = 1.0 - double(differ.total()) / double(rasterIds.size());
-  std::cout << "[ ray cast ] " << name << " " << width << "x" << height << ": " << differ.total() << " of "
+  std::cout << "[ ray cast ] " << name << " " << width << "x" << height << (reversed ? " reversed" : "") << ": " << differ.total() << " of "
             << rasterIds.size() << " pixels differ (" << differ.sky << " against the sky, " << differ.rayTested
             << " ray-tested, " << differ.depthTie << " depth ties, " << differ.sharedEdge << " shared edges, "
             << differ.other << " other); " << 100.0 * share << " % agree\n";
-  EXPECT_GE(share, 0.999) << name << " at " << width << "x" << height;
+  EXPECT_GE(share, 0.999) << name << " at " << width << "x" << height << (reversed ? " (reversed depth)" : "");
 }
 
 }  // namespace
