@@ -1,11 +1,11 @@
 #version 450
 // Ray-cast visibility: per pixel of the mask, the closest opaque triangle along the pixel-centre ray through a
 // BVH of the scene (SceneBvh), each leaf's triangles decided as the rasterizer decides the pixel's sample
-// (raycast_shared.h's leafHit: snapped vertices, exact edge functions, the top-left rule), written as the raster G-buffer pass writes it: the visibility id (narrow ids,
-// R32_UINT) and the device depth (a miss: the cleared depth). The first-person layer's tree is cast first with
-// its own projection; a hit there wins, as its depth range in front of the world's does in the raster pass.
-// Pixels outside the mask are not written. The per-ray arithmetic is raycast_shared.h's, which the C++
-// reference traversal (SceneBvh::castPixel) runs in the same order.
+// (raycast_shared.h's leafHit: snapped vertices, exact edge functions, the top-left rule), written as the raster
+// G-buffer pass writes it: the visibility id (narrow ids, R32_UINT) and the device depth (a miss: the cleared
+// depth). The first-person layer's tree is cast first with its own projection; a hit there wins, as its depth
+// range in front of the world's does in the raster pass. Pixels outside the mask are not written. The per-ray
+// arithmetic is raycast_shared.h's, which the C++ reference traversal (SceneBvh::castPixel) runs in the same order.
 #extension GL_GOOGLE_include_directive : require
 #include "s3d/renderer/renderer_shared.h"
 #include "s3d/renderer/raycast_shared.h"

@@ -87,7 +87,7 @@ struct PixelRay {
 };
 
 // A point of the pixel ray: the layer-space position of normalized device coordinates (ndc, z); z 0 and 1 give
-// the ray's ends on the near and far planes (both depth conventions: the ray is clipped as the raster clips).
+// the ray's ends on the near and far planes (far and near under reversed depth: pixelRayOf starts at the near).
 // Matrix products are spelled out column by column so both compilers evaluate them in the same order.
 S3D_INLINE vec3 unprojectNdc(mat4 clipToLayer, vec2 ndc, float z) {
   S3D_PRECISE vec4 p = clipToLayer[0] * ndc.x + clipToLayer[1] * ndc.y + clipToLayer[2] * z + clipToLayer[3];
@@ -102,7 +102,8 @@ S3D_INLINE vec2 pixelNdc(uvec2 pixel, vec4 screen) {
 // The normalized device coordinates of a sample given in 1 / S3D_SUBPIXEL_UNITS pixels (a pixel's centre:
 // pixel * S3D_SUBPIXEL_UNITS + S3D_SUBPIXEL_UNITS / 2, which gives exactly pixelNdc).
 S3D_INLINE vec2 subpixelNdc(ivec2 subpixel, vec4 screen) {
-  return vec2(float(subpixel.x), float(subpixel.y)) * (1.0f / float(S3D_SUBPIXEL_UNITS)) * vec2(screen.z, screen.w) * 2.0f - 1.0f;
+  vec2 pixels = vec2(float(subpixel.x), float(subpixel.y)) * (1.0f / float(S3D_SUBPIXEL_UNITS));
+  return pixels * vec2(screen.z, screen.w) * 2.0f - 1.0f;
 }
 
 // 1 / direction with zero components replaced by a tiny value of either sign, so the slab test never computes
@@ -125,9 +126,9 @@ S3D_INLINE float boxEntry(vec3 origin, vec3 inverseDirection, vec3 lo, vec3 hi, 
   return entry <= exit ? entry : S3D_INFINITY;
 }
 
-// Möller-Trumbore: the ray parameter t of the hit, or infinity. Edges and vertices count as inside (u, v >= 0,
-// u + v <= 1), so a ray through a shared edge hits both triangles at the same t and the tie rule (closerHit)
-// picks one. A back face (the vertices clockwise as seen along the ray: det <= 0) is culled unless the triangle
+// Möller-Trumbore: the ray parameter t of the hit, or infinity; for the triangles rasterCoverage leaves undecided.
+// Edges and vertices count as inside (u, v >= 0, u + v <= 1), so a ray through a shared edge hits both triangles
+// at the same depth and the tie rule (closerHit) picks one. A back face (the vertices clockwise as seen along the ray: det <= 0) is culled unless the triangle
 // is double-sided, as the raster pass's counter-clockwise front face does; an edge-on triangle (det 0) never hits.
 S3D_INLINE float intersectTriangle(vec3 origin, vec3 direction, vec3 v0, vec3 v1, vec3 v2, uint flags) {
   S3D_PRECISE vec3 e1 = v1 - v0;
@@ -156,9 +157,10 @@ S3D_INLINE int productDifferenceSign(int a, int b, int c, int d) {
   return uint(low1) < uint(low2) ? -1 : 1;
 }
 
-// Whether the edge from p to q (sample-relative snapped positions of a triangle ordered clockwise on screen,
-// framebuffer y down, so its inside is on the positive side of every edge) admits the sample: its edge function is positive, or zero on a top or left
-// edge (the top-left rule: a sample on an edge shared by two triangles belongs to exactly one of them).
+// Whether the edge from p to q (sample-relative snapped positions of a polygon ordered clockwise on screen,
+// framebuffer y down, so its inside is on the positive side of every edge) admits the sample: its edge function
+// is positive, or zero on a top or left edge (the top-left rule: a sample on an edge shared by two triangles
+// belongs to exactly one of them).
 S3D_INLINE bool edgeAdmits(ivec2 p, ivec2 q) {
   int side = productDifferenceSign(p.x, q.y, q.x, p.y);
   if (side != 0) return side > 0;
