@@ -216,26 +216,33 @@ class RaycastVisibilityTest : public test::VulkanTest {
   static constexpr float kSentinelDepth = 42.0f;
 };
 
-// Every pixel of the courtyard (with its first-person weapon) at 96x54: the GPU's id and device depth are the
-// reference traversal's. The arithmetic is shared and marked precise (no fused multiply-add), so ids must match
-// exactly; depth within 1e-6 relative, as Vulkan lets a GPU divide with 2.5 ulp of error.
+// Every pixel of every built-in scene (the courtyard with its first-person weapon) at 96x54, in both depth
+// conventions: the GPU's id and device depth are the reference traversal's. The arithmetic is shared and marked
+// precise (no fused multiply-add but the explicit fma), so ids must match exactly; device depth within 1e-6, as
+// Vulkan lets a GPU divide with 2.5 ulp of error.
 TEST_F(RaycastVisibilityTest, GpuEqualsTheReferenceTraversal) {
-  const renderer::Scene scene = renderer::makeBuiltInScene("courtyard");
-  const SceneBvh bvh = SceneBvh::build(scene);
   constexpr std::uint32_t width = 96, height = 54;
-  const RaycastCamera camera = renderer::raycastCamera(scene, renderer::centerViewMatrices(scene, float(width) / height));
-  const Result gpu = cast(bvh, camera, width, height);
   int firstPerson = 0, sky = 0;
-  for (std::uint32_t y = 0; y < height; ++y)
-    for (std::uint32_t x = 0; x < width; ++x) {
-      const renderer::RaycastHit hit = bvh.castPixel(camera, {x, y}, {width, height});
-      const std::size_t i = std::size_t(y) * width + x;
-      ASSERT_EQ(gpu.ids[i], renderer::visibilityIdOf(hit, bvh.visibilityPacking).x) << "pixel " << x << ", " << y;
-      ASSERT_NEAR(gpu.depth[i], hit.deviceDepth, 1e-6f * hit.deviceDepth) << "pixel " << x << ", " << y;
-      firstPerson += hit.hit && scene.objects[hit.object].layer == renderer::Layer::FirstPerson ? 1 : 0;
-      sky += hit.hit ? 0 : 1;
+  for (const std::string& name : renderer::builtInSceneNames()) {
+    const renderer::Scene scene = renderer::makeBuiltInScene(name);
+    const SceneBvh bvh = SceneBvh::build(scene);
+    for (const bool reversed : {false, true}) {
+      const RaycastCamera camera =
+          renderer::raycastCamera(scene, renderer::centerViewMatrices(scene, float(width) / height), reversed);
+      const Result gpu = cast(bvh, camera, width, height);
+      for (std::uint32_t y = 0; y < height; ++y)
+        for (std::uint32_t x = 0; x < width; ++x) {
+          const renderer::RaycastHit hit = bvh.castPixel(camera, {x, y}, {width, height});
+          const std::size_t i = std::size_t(y) * width + x;
+          ASSERT_EQ(gpu.ids[i], renderer::visibilityIdOf(hit, bvh.visibilityPacking).x)
+              << name << (reversed ? " reversed" : "") << ", pixel " << x << ", " << y;
+          ASSERT_NEAR(gpu.depth[i], hit.deviceDepth, 1e-6f) << name << (reversed ? " reversed" : "") << ", pixel " << x << ", " << y;
+          firstPerson += hit.hit && scene.objects[hit.object].layer == renderer::Layer::FirstPerson ? 1 : 0;
+          sky += hit.hit ? 0 : 1;
+        }
     }
-  EXPECT_GT(firstPerson, 0);  // the weapon's tree was cast
+  }
+  EXPECT_GT(firstPerson, 0);  // a weapon's tree was cast
   EXPECT_GT(sky, 0);          // so was a miss
 }
 
