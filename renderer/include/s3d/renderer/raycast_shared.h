@@ -33,7 +33,7 @@ S3D_GPU_BEGIN
 // The rasterizer's vertex snapping: VkPhysicalDeviceLimits::subPixelPrecisionBits of the devices s3d runs on
 // (lavapipe and the desktop GPUs report 8), so positions are multiples of 1/256 pixel.
 #define S3D_SUBPIXEL_BITS 8
-#define S3D_SUBPIXEL_UNITS 256
+#define S3D_SUBPIXEL_UNITS (1 << S3D_SUBPIXEL_BITS)
 // Vertices farther than this from the viewport's origin (pixels) are left to the ray test: the rasterizer clips
 // such triangles at its guard band, and snapped coordinates relative to a sample must stay within 30 bits so
 // their products fit 64.
@@ -94,13 +94,8 @@ S3D_INLINE vec3 unprojectNdc(mat4 clipToLayer, vec2 ndc, float z) {
   return vec3(p.x, p.y, p.z) / p.w;
 }
 
-// The normalized device coordinates of a pixel's centre (screen: width, height, 1 / width, 1 / height).
-S3D_INLINE vec2 pixelNdc(uvec2 pixel, vec4 screen) {
-  return (vec2(float(pixel.x), float(pixel.y)) + 0.5f) * vec2(screen.z, screen.w) * 2.0f - 1.0f;
-}
-
 // The normalized device coordinates of a sample given in 1 / S3D_SUBPIXEL_UNITS pixels (a pixel's centre:
-// pixel * S3D_SUBPIXEL_UNITS + S3D_SUBPIXEL_UNITS / 2, which gives exactly pixelNdc).
+// pixel * S3D_SUBPIXEL_UNITS + S3D_SUBPIXEL_UNITS / 2).
 S3D_INLINE vec2 subpixelNdc(ivec2 subpixel, vec4 screen) {
   vec2 pixels = vec2(float(subpixel.x), float(subpixel.y)) * (1.0f / float(S3D_SUBPIXEL_UNITS));
   return pixels * vec2(screen.z, screen.w) * 2.0f - 1.0f;
