@@ -1,10 +1,11 @@
 #version 450
 // Ray-cast visibility: per pixel of the mask, the closest opaque triangle along the pixel-centre ray through a
-// BVH of the scene (SceneBvh), written as the raster G-buffer pass writes it: the visibility id (narrow ids,
-// R32_UINT) and the device depth (a miss: the cleared depth). The first-person layer's tree is cast first with
-// its own projection; a hit there wins, as its depth range in front of the world's does in the raster pass.
-// Pixels outside the mask are not written. The per-ray arithmetic is raycast_shared.h's, which the C++
-// reference traversal (SceneBvh::castPixel) runs in the same order.
+// BVH of the scene (SceneBvh), each leaf's triangles decided as the rasterizer decides the pixel's sample
+// (raycast_shared.h's leafHit: snapped vertices, exact edge functions, the top-left rule), written as the raster
+// G-buffer pass writes it: the visibility id (narrow ids, R32_UINT) and the device depth (a miss: the cleared
+// depth). The first-person layer's tree is cast first with its own projection; a hit there wins, as its depth
+// range in front of the world's does in the raster pass. Pixels outside the mask are not written. The per-ray
+// arithmetic is raycast_shared.h's, which the C++ reference traversal (SceneBvh::castPixel) runs in the same order.
 #extension GL_GOOGLE_include_directive : require
 #include "s3d/renderer/renderer_shared.h"
 #include "s3d/renderer/raycast_shared.h"
@@ -23,32 +24,38 @@ layout(std430, binding = 6) readonly buffer Region {
   uint regionFlags[];
 };
 
-// The closest hit of one tree along origin + t direction, t in [0, 1]: its triangle index (S3D_BVH_NO_ROOT: none).
-uint closestHit(uint root, vec3 origin, vec3 direction, out float bestT) {
+// The closest hit of one tree along the pixel ray: its triangle index (S3D_BVH_NO_ROOT: none), ray parameter and
+// device depth.
+uint closestHit(uint root, PixelRay ray, out float bestT, out float bestDepth) {
   bestT = S3D_INFINITY;
+  bestDepth = S3D_INFINITY;
+  float bestKey = S3D_INFINITY;
   uint best = S3D_BVH_NO_ROOT;
   if (root == S3D_BVH_NO_ROOT) return best;
-  vec3 inverseDirection = safeInverse(direction);
+  vec3 inverseDirection = safeInverse(ray.direction);
   uint stack[S3D_BVH_MAX_DEPTH];
   float stackEntry[S3D_BVH_MAX_DEPTH];
   uint top = 0u;
   uint node = root;
-  bool visit = boxEntry(origin, inverseDirection, nodes[root].boundsMin, nodes[root].boundsMax, 1.0) != S3D_INFINITY;
+  bool visit = boxEntry(ray.origin, inverseDirection, nodes[root].boundsMin, nodes[root].boundsMax, 1.0) != S3D_INFINITY;
   while (visit) {
     uint first = nodes[node].first, count = nodes[node].count;
     if (count > 0u) {
       for (uint i = first; i < first + count; ++i) {
-        float t = intersectTriangle(origin, direction, triangles[i].v0, triangles[i].v1, triangles[i].v2, triangles[i].flags);
-        if (t <= min(bestT, 1.0) && (best == S3D_BVH_NO_ROOT || closerHit(t, triangles[i].object, triangles[i].triangle,
-                                                                           bestT, triangles[best].object, triangles[best].triangle))) {
+        float t, depth;
+        if (leafHit(ray, triangles[i].v0, triangles[i].v1, triangles[i].v2, triangles[i].flags, t, depth) &&
+            (best == S3D_BVH_NO_ROOT || closerHit(depth * ray.nearer, triangles[i].object, triangles[i].triangle, bestKey,
+                                                  triangles[best].object, triangles[best].triangle))) {
           bestT = t;
+          bestDepth = depth;
+          bestKey = depth * ray.nearer;
           best = i;
         }
       }
     } else {
-      float limit = min(bestT, 1.0);
-      float a = boxEntry(origin, inverseDirection, nodes[first].boundsMin, nodes[first].boundsMax, limit);
-      float b = boxEntry(origin, inverseDirection, nodes[first + 1u].boundsMin, nodes[first + 1u].boundsMax, limit);
+      float limit = pruneLimit(bestT);
+      float a = boxEntry(ray.origin, inverseDirection, nodes[first].boundsMin, nodes[first].boundsMax, limit);
+      float b = boxEntry(ray.origin, inverseDirection, nodes[first + 1u].boundsMin, nodes[first + 1u].boundsMax, limit);
       if (a != S3D_INFINITY || b != S3D_INFINITY) {
         bool firstNearer = a <= b;
         node = firstNearer ? first : first + 1u;
@@ -65,7 +72,7 @@ uint closestHit(uint root, vec3 origin, vec3 direction, out float bestT) {
     while (top > 0u && !visit) {  // the nearest pending subtree that the best hit so far does not rule out
       --top;
       node = stack[top];
-      visit = stackEntry[top] <= min(bestT, 1.0);
+      visit = stackEntry[top] <= pruneLimit(bestT);
     }
   }
   return best;
@@ -81,22 +88,21 @@ void main() {
     imageStore(deviceDepth, ivec2(pixel), vec4(constants.clearedDepth.x));
     return;
   }
-  vec2 ndc = pixelNdc(pixel, constants.screen);
+  ivec2 subpixel = ivec2(pixel) * S3D_SUBPIXEL_UNITS + S3D_SUBPIXEL_UNITS / 2;  // the pixel's centre
   for (int layer = 1; layer >= 0; --layer) {  // S3D_LAYER_FIRST_PERSON, then S3D_LAYER_WORLD
     uint root = layer == S3D_LAYER_WORLD ? constants.roots.x : constants.roots.y;
     if (root == S3D_BVH_NO_ROOT) continue;
-    vec3 origin = unprojectNdc(constants.clipToLayer[layer], ndc, 0.0);
-    vec3 direction = unprojectNdc(constants.clipToLayer[layer], ndc, 1.0) - origin;
-    float t;
-    uint hit = closestHit(root, origin, direction, t);
-    if (hit == S3D_BVH_NO_ROOT) continue;
     vec2 range = layer == S3D_LAYER_WORLD ? constants.depthRanges.xy : constants.depthRanges.zw;
+    PixelRay ray = pixelRayOf(constants.clipToLayer[layer], constants.viewProjection[layer], constants.screen, subpixel,
+                              range, constants.clearedDepth.y);
+    float t, depth;
+    uint hit = closestHit(root, ray, t, depth);
+    if (hit == S3D_BVH_NO_ROOT) continue;
     uvec2 id = (triangles[hit].flags & S3D_BVH_CUTOUT) != 0u
                    ? uvec2(S3D_RASTER_SHADED, 0u)
                    : packVisibility(triangles[hit].object, triangles[hit].triangle, constants.options);
     imageStore(visibilityIds, ivec2(pixel), uvec4(id.x, 0u, 0u, 0u));
-    precise vec3 point = origin + t * direction;
-    imageStore(deviceDepth, ivec2(pixel), vec4(deviceDepthOf(constants.viewProjection[layer], point, range)));
+    imageStore(deviceDepth, ivec2(pixel), vec4(depth));
     return;
   }
   imageStore(visibilityIds, ivec2(pixel), uvec4(0u));

@@ -34,32 +34,47 @@ glm::uvec2 visibilityIdOf(const RaycastHit& hit, glm::uvec2 packing) {
   return gpu::packVisibility(hit.object, hit.triangle, glm::uvec4(0, 0, packing.x, packing.y));
 }
 
-std::uint32_t SceneBvh::closestHit(std::uint32_t root, glm::vec3 origin, glm::vec3 direction, float& bestT) const {
+gpu::PixelRay pixelRayOf(const RaycastCamera& camera, Layer layer, glm::ivec2 subpixel, glm::uvec2 size) {
+  const bool world = layer == Layer::World;
+  const glm::mat4& viewProjection = world ? camera.worldViewProjection : camera.firstPersonViewProjection;
+  const glm::vec4 screen(float(size.x), float(size.y), 1.0f / float(size.x), 1.0f / float(size.y));
+  return gpu::pixelRayOf(clipToLayerOf(viewProjection), viewProjection, screen, subpixel,
+                         world ? camera.worldDepthRange : camera.firstPersonDepthRange, nearerOf(camera));
+}
+
+float nearerOf(const RaycastCamera& camera) { return camera.clearedDepth > 0.5f ? 1.0f : -1.0f; }
+
+std::uint32_t SceneBvh::closestHit(std::uint32_t root, const gpu::PixelRay& ray, float& bestT, float& bestDepth) const {
   bestT = S3D_INFINITY;
+  bestDepth = S3D_INFINITY;
+  float bestKey = S3D_INFINITY;
   std::uint32_t best = S3D_BVH_NO_ROOT;
   if (root == S3D_BVH_NO_ROOT) return best;
-  const glm::vec3 inverse = gpu::safeInverse(direction);
-  auto limit = [&bestT] { return std::min(bestT, 1.0f); };
+  const glm::vec3 inverse = gpu::safeInverse(ray.direction);
   std::array<std::uint32_t, S3D_BVH_MAX_DEPTH> stack{};
   std::array<float, S3D_BVH_MAX_DEPTH> stackEntry{};
   std::uint32_t top = 0;
   std::uint32_t node = root;
-  bool visit = gpu::boxEntry(origin, inverse, nodes[root].boundsMin, nodes[root].boundsMax, 1.0f) != S3D_INFINITY;
+  bool visit = gpu::boxEntry(ray.origin, inverse, nodes[root].boundsMin, nodes[root].boundsMax, 1.0f) != S3D_INFINITY;
   while (visit) {
     const gpu::BvhNode& n = nodes[node];
     if (n.count > 0) {
       for (std::uint32_t i = n.first; i < n.first + n.count; ++i) {
         const gpu::BvhTriangle& tri = triangles[i];
-        const float t = gpu::intersectTriangle(origin, direction, tri.v0, tri.v1, tri.v2, tri.flags);
-        if (t <= limit() && (best == S3D_BVH_NO_ROOT ||
-                             gpu::closerHit(t, tri.object, tri.triangle, bestT, triangles[best].object, triangles[best].triangle))) {
+        float t = 0.0f, depth = 0.0f;
+        if (gpu::leafHit(ray, tri.v0, tri.v1, tri.v2, tri.flags, t, depth) &&
+            (best == S3D_BVH_NO_ROOT || gpu::closerHit(depth * ray.nearer, tri.object, tri.triangle, bestKey,
+                                                       triangles[best].object, triangles[best].triangle))) {
           bestT = t;
+          bestDepth = depth;
+          bestKey = depth * ray.nearer;
           best = i;
         }
       }
     } else {
-      const float a = gpu::boxEntry(origin, inverse, nodes[n.first].boundsMin, nodes[n.first].boundsMax, limit());
-      const float b = gpu::boxEntry(origin, inverse, nodes[n.first + 1].boundsMin, nodes[n.first + 1].boundsMax, limit());
+      const float limit = gpu::pruneLimit(bestT);
+      const float a = gpu::boxEntry(ray.origin, inverse, nodes[n.first].boundsMin, nodes[n.first].boundsMax, limit);
+      const float b = gpu::boxEntry(ray.origin, inverse, nodes[n.first + 1].boundsMin, nodes[n.first + 1].boundsMax, limit);
       if (a != S3D_INFINITY || b != S3D_INFINITY) {
         const bool firstNearer = a <= b;
         node = firstNearer ? n.first : n.first + 1;
@@ -75,32 +90,26 @@ std::uint32_t SceneBvh::closestHit(std::uint32_t root, glm::vec3 origin, glm::ve
     while (top > 0 && !visit) {  // the nearest pending subtree that the best hit so far does not rule out
       --top;
       node = stack[top];
-      visit = stackEntry[top] <= limit();
+      visit = stackEntry[top] <= gpu::pruneLimit(bestT);
     }
   }
   return best;
 }
 
 RaycastHit SceneBvh::castPixel(const RaycastCamera& camera, glm::uvec2 pixel, glm::uvec2 size) const {
-  const glm::vec4 screen(float(size.x), float(size.y), 1.0f / float(size.x), 1.0f / float(size.y));
-  return castNdc(camera, gpu::pixelNdc(pixel, screen));
+  return castSubpixel(camera, glm::ivec2(pixel) * S3D_SUBPIXEL_UNITS + S3D_SUBPIXEL_UNITS / 2, size);
 }
 
-RaycastHit SceneBvh::castNdc(const RaycastCamera& camera, glm::vec2 ndc) const {
+RaycastHit SceneBvh::castSubpixel(const RaycastCamera& camera, glm::ivec2 subpixel, glm::uvec2 size) const {
   const std::uint32_t roots[2] = {firstPersonRoot, worldRoot};
-  const glm::mat4 viewProjections[2] = {camera.firstPersonViewProjection, camera.worldViewProjection};
-  const glm::vec2 ranges[2] = {camera.firstPersonDepthRange, camera.worldDepthRange};
+  const Layer layers[2] = {Layer::FirstPerson, Layer::World};
   for (int layer = 0; layer < 2; ++layer) {  // the first-person layer is in front of the world wherever it is hit
     if (roots[layer] == S3D_BVH_NO_ROOT) continue;
-    const glm::mat4 clipToLayer = clipToLayerOf(viewProjections[layer]);
-    const glm::vec3 origin = gpu::unprojectNdc(clipToLayer, ndc, 0.0f);
-    const glm::vec3 direction = gpu::unprojectNdc(clipToLayer, ndc, 1.0f) - origin;
-    float t = 0.0f;
-    const std::uint32_t index = closestHit(roots[layer], origin, direction, t);
+    float t = 0.0f, depth = 0.0f;
+    const std::uint32_t index = closestHit(roots[layer], pixelRayOf(camera, layers[layer], subpixel, size), t, depth);
     if (index == S3D_BVH_NO_ROOT) continue;
     const gpu::BvhTriangle& tri = triangles[index];
-    return {true, tri.object, tri.triangle, (tri.flags & S3D_BVH_CUTOUT) != 0,
-            gpu::deviceDepthOf(viewProjections[layer], origin + t * direction, ranges[layer])};
+    return {true, tri.object, tri.triangle, (tri.flags & S3D_BVH_CUTOUT) != 0, depth};
   }
   return {false, 0, 0, false, camera.clearedDepth};
 }

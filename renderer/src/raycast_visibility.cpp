@@ -63,7 +63,7 @@ void RaycastVisibility::record(VkCommandBuffer cmd, const RaycastCamera& camera,
   constants.screen = glm::vec4(float(width), float(height), 1.0f / float(width), 1.0f / float(height));
   constants.roots = glm::uvec4(worldRoot_, firstPersonRoot_, 0u, 0u);
   constants.options = glm::uvec4(mask.threshold, mask.image ? 1u : 0u, packing_.x, packing_.y);
-  constants.clearedDepth = glm::vec4(camera.clearedDepth);
+  constants.clearedDepth = glm::vec4(camera.clearedDepth, nearerOf(camera), 0.0f, 0.0f);
   constants.region = glm::uvec4(region.tiles != VK_NULL_HANDLE ? 1u : 0u, region.tilesX, 0u, 0u);
   std::memcpy(constants_.mapped, &constants, sizeof(constants));
 

@@ -63,13 +63,25 @@ struct EmbreeDevice {
 glm::vec3 boundsMin(const RTCBounds& b) { return {b.lower_x, b.lower_y, b.lower_z}; }
 glm::vec3 boundsMax(const RTCBounds& b) { return {b.upper_x, b.upper_y, b.upper_z}; }
 
+// How far a node's box reaches past its triangles: a leaf decides coverage on vertices snapped to 1/256 pixel, so
+// a ray up to 1/512 pixel outside a triangle's own bounds can still hit it (a box edge along a pixel-centre row).
+// 1/256 of the box's longest side covers that for triangles down to half a pixel, plus a few ulp of its
+// coordinates for flat boxes far from the origin; a parent's margin is never smaller than its children's.
+float boundsMargin(glm::vec3 lo, glm::vec3 hi) {
+  const glm::vec3 extent = hi - lo;
+  const glm::vec3 magnitude = glm::max(glm::abs(lo), glm::abs(hi));
+  return std::max({extent.x, extent.y, extent.z}) / 256.0f +
+         std::max({magnitude.x, magnitude.y, magnitude.z}) / 1048576.0f;
+}
+
 // Lays out the subtree of `node` (bounds `bounds`) at nodes[index], moving its triangles from `source` into
 // `out` in leaf order.
 void flatten(const BuildNode* node, const RTCBounds& bounds, std::uint32_t index, SceneBvh& bvh,
              const std::vector<gpu::BvhTriangle>& source) {
   gpu::BvhNode& out = bvh.nodes[index];
-  out.boundsMin = boundsMin(bounds);
-  out.boundsMax = boundsMax(bounds);
+  const float margin = boundsMargin(boundsMin(bounds), boundsMax(bounds));
+  out.boundsMin = boundsMin(bounds) - margin;
+  out.boundsMax = boundsMax(bounds) + margin;
   if (node->leaf) {
     const auto* leaf = static_cast<const BuildLeaf*>(node);
     bvh.nodes[index].first = std::uint32_t(bvh.triangles.size());
@@ -99,7 +111,10 @@ std::vector<gpu::BvhTriangle> layerTriangles(const Scene& scene, Layer layer) {
         throw std::invalid_argument("scene '" + scene.name + "': object " + std::to_string(o) + " has vertex index " +
                                     std::to_string(index) + " past its mesh's " + std::to_string(mesh.vertices.size()) +
                                     " vertices");
-      const glm::vec4 p = object.transform * glm::vec4(mesh.vertices[index].position, 1.0f);
+      // Summed column by column as geometry.vert's product is, so the leaf test snaps the raster pass's positions.
+      const glm::mat4& m = object.transform;
+      const glm::vec3 q = mesh.vertices[index].position;
+      const glm::vec4 p = m[0] * q.x + m[1] * q.y + m[2] * q.z + m[3];
       const glm::vec3 v = glm::vec3(p) / p.w;
       if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z))
         throw std::invalid_argument("scene '" + scene.name + "': object " + std::to_string(o) +

@@ -153,8 +153,8 @@ TEST_F(HybridRender, BudgetOneIsTheTwoPassReferenceOnEveryBuiltInScene) {
 }
 
 // With ray-cast surfaces (the eye renderer a GPU's: visibility shading, the compute transparent pass) budget 1 is
-// still the two-pass reference: within one 8-bit level except where a ray and the rasterizer name different
-// triangles, which happens only on triangle edges (at most 1 % of the compared pixels here).
+// still the two-pass reference: within one 8-bit level on all but 0.5 % of the compared pixels (measured: at most
+// 16 of 4968, the courtyard's right eye), as the rays decide triangle edges by the rasterizer's rule.
 TEST_F(HybridRender, WithRayCastSurfacesBudgetOneIsTheTwoPassReferenceOffTriangleEdges) {
   renderer::RendererOptions eyeOptions;
   eyeOptions.gbufferShading = renderer::RendererOptions::GBufferShading::Visibility;
@@ -179,7 +179,7 @@ TEST_F(HybridRender, WithRayCastSurfacesBudgetOneIsTheTwoPassReferenceOffTriangl
             largest = std::max(largest, std::abs(int(synthesized.at(std::uint32_t(x), y)[c]) - int(reference.at(std::uint32_t(x), y)[c])));
           beyondOneLevel += largest > 1 ? 1 : 0;
         }
-      EXPECT_LE(beyondOneLevel, compared / 100) << name << (eye == stereo::Eye::Left ? " left" : " right");
+      EXPECT_LE(beyondOneLevel, compared / 200) << name << (eye == stereo::Eye::Left ? " left" : " right");
     }
   }
 }

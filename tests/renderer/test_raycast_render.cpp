@@ -51,12 +51,13 @@ bool hasPass(const FrameTimings& timings, const std::string& pass) {
 
 class RaycastRenderTest : public s3d::test::VulkanTest, public ::testing::WithParamInterface<std::string> {};
 
-// Every built-in scene (SSAO, sun and local shadows, a weapon, glass). Where the ray and the raster pass name the
-// same triangle, the pixel is shaded from the same surface: within one 8-bit level of display colour (the ray's
-// depth and barycentrics differ from the rasterizer's interpolation in the last bits) for 99 % of the pixels, and
-// within 4 levels everywhere: on depth-range's far surfaces a device-depth ulp spans more than the occlusion's
-// range check, so a few occlusion samples flip (measured: 16 of 2898 pixels, up to 3 levels). Pixels where they
-// name different triangles lie on triangle edges (the ray-cast visibility tests bound their share).
+// Every built-in scene (SSAO, sun and local shadows, a weapon, glass). The rays name the raster pass's triangle on
+// 99.9 % of the masked pixels (the leaves decide a pixel by the rasterizer's rule; the rest: depth ties and
+// near-ties on shared edges, see the ray-cast visibility tests). Where they name the same triangle, the pixel is
+// shaded from the same surface: within one 8-bit level of display colour (the ray's depth and barycentrics differ
+// from the rasterizer's interpolation in the last bits) for 99 % of the pixels, and within 4 levels everywhere: on
+// depth-range's far surfaces a device-depth ulp spans more than the occlusion's range check, so a few occlusion
+// samples flip (measured: 13 of 2896 pixels, up to 2 levels).
 TEST_P(RaycastRenderTest, MaskedPixelsEqualTheRasterRenderWhereTheTrianglesAgree) {
   Scene scene = makeBuiltInScene(GetParam());
   scene.camera = cameraForFrame(scene, 0);
@@ -96,7 +97,7 @@ TEST_P(RaycastRenderTest, MaskedPixelsEqualTheRasterRenderWhereTheTrianglesAgree
   std::cout << "[ ray-cast render ] " << GetParam() << ": " << compared << " masked pixels compared, worst "
             << worst << " levels (" << beyondOneLevel << " beyond one); " << otherTriangle << " on another triangle\n";
   EXPECT_GT(compared, values.size() / 8);
-  EXPECT_LE(otherTriangle, compared / 100);
+  EXPECT_LE(otherTriangle, compared / 1000);
   EXPECT_LE(beyondOneLevel, compared / 100);
   EXPECT_LE(worst, 4);
 }
@@ -170,8 +171,8 @@ TEST_F(RaycastRenderPassTest, WithAmbientOcclusionTheOcclusionsRegionIsCast) {
 }
 
 // The first-person layer lives in camera space, so a camera that moves along its path needs no new BVH: every
-// weapon pixel of later frames, cast through the tree built once, names the raster pass's triangle (at most 1 %
-// on triangle edges) and shades within one 8-bit level there.
+// weapon pixel of later frames, cast through the tree built once, names the raster pass's triangle (all but
+// 0.1 %: the leaves decide edges by the rasterizer's rule) and shades within one 8-bit level there.
 TEST_F(RaycastRenderPassTest, AMovingCameraKeepsTheFirstPersonLayerWithoutANewBvh) {
   Scene scene = makeBuiltInScene("courtyard");
   DeferredRenderer raster(context(), kWidth, kHeight, raycastOptions());
@@ -205,7 +206,7 @@ TEST_F(RaycastRenderPassTest, AMovingCameraKeepsTheFirstPersonLayerWithoutANewBv
         }
     }
     EXPECT_GT(weaponPixels, 100u) << "frame " << frame;  // the weapon is in view
-    EXPECT_LE(otherTriangle, weaponPixels / 100) << "frame " << frame;
+    EXPECT_LE(otherTriangle, weaponPixels / 1000) << "frame " << frame;
     EXPECT_EQ(beyondOneLevel, 0u) << "frame " << frame;
   }
 }

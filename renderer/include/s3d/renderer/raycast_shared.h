@@ -6,12 +6,21 @@
 #include "s3d/gpu/shared.h"
 
 #ifdef __cplusplus
+#include <cmath>
+
+#include <glm/integer.hpp>
 namespace s3d::gpu {
 using glm::cross;
+using glm::imulExtended;
+inline float fma(float a, float b, float c) { return std::fma(a, b, c); }  // fused, as GLSL's precise fma
+using glm::ivec2;
+using glm::roundEven;
 }
 #define S3D_PRECISE
+#define S3D_OUT(type) type&
 #else
 #define S3D_PRECISE precise  // no fused multiply-add: the GPU computes what the C++ reference computes
+#define S3D_OUT(type) out type
 #endif
 
 S3D_GPU_BEGIN
@@ -21,6 +30,14 @@ S3D_GPU_BEGIN
 #define S3D_BVH_DOUBLE_SIDED 1u      // BvhTriangle::flags: drawn without back-face culling
 #define S3D_BVH_CUTOUT 2u            // an alpha cut-out: only the raster pass's alpha test decides its pixels
 #define S3D_RAYCAST_GROUP_SIZE 8
+// The rasterizer's vertex snapping: VkPhysicalDeviceLimits::subPixelPrecisionBits of the devices s3d runs on
+// (lavapipe and the desktop GPUs report 8), so positions are multiples of 1/256 pixel.
+#define S3D_SUBPIXEL_BITS 8
+#define S3D_SUBPIXEL_UNITS (1 << S3D_SUBPIXEL_BITS)
+// Vertices farther than this from the viewport's origin (pixels) are left to the ray test: the rasterizer clips
+// such triangles at its guard band, and snapped coordinates relative to a sample must stay within 30 bits so
+// their products fit 64.
+#define S3D_RASTER_REACH 1048576.0f
 
 // A node of the binary BVH (32 bytes, std430): its bounds, then an inner node (count 0) has its two children at
 // nodes[first] and nodes[first + 1]; a leaf holds triangles [first, first + count).
@@ -50,22 +67,38 @@ struct RaycastConstants {
   vec4 screen;             // width, height, 1 / width, 1 / height
   uvec4 roots;             // x: the world BVH's root node, y: the first-person BVH's (S3D_BVH_NO_ROOT: none)
   uvec4 options;           // x: mask threshold, y: 1 with a mask, z, w: visibility packing (FrameConstants)
-  vec4 clearedDepth;       // x: the device depth of a pixel that shows nothing (sky)
+  vec4 clearedDepth;       // x: the device depth of a pixel that shows nothing (sky), y: PixelRay::nearer
   uvec4 region;            // x: 1 casts only the pixels of the tiles flagged in the region's buffer (the others get
                            // the cleared depth and id 0), y: tiles per row (S3D_TILE_SIZE pixels square)
 };
 
+// One pixel ray of one layer, what its leaf tests need: the ray from the near plane (t 0) to the far plane (t 1)
+// in layer space, and the raster view of the same sample.
+struct PixelRay {
+  vec3 origin;
+  vec3 direction;
+  mat4 viewProjection;  // layer space -> clip, as the raster pass projects
+  vec4 screen;          // width, height, 1 / width, 1 / height
+  ivec2 subpixel;       // the sample in framebuffer coordinates, 1 / S3D_SUBPIXEL_UNITS pixel units
+  vec2 depthRange;      // the layer's viewport depth range
+  vec4 depthToT;        // x, y: w of the ray's clip-to-layer point at ndc z 0 and its change per unit z; z, w: the
+                        // ndc z of t 0 and t 1 (see rayParameterOf)
+  float nearer;         // 1: a smaller device depth is nearer (LESS), -1: a larger one (reversed depth, GREATER)
+};
+
 // A point of the pixel ray: the layer-space position of normalized device coordinates (ndc, z); z 0 and 1 give
-// the ray's ends on the near and far planes (both depth conventions: the ray is clipped as the raster clips).
+// the ray's ends on the near and far planes (far and near under reversed depth: pixelRayOf starts at the near).
 // Matrix products are spelled out column by column so both compilers evaluate them in the same order.
 S3D_INLINE vec3 unprojectNdc(mat4 clipToLayer, vec2 ndc, float z) {
   S3D_PRECISE vec4 p = clipToLayer[0] * ndc.x + clipToLayer[1] * ndc.y + clipToLayer[2] * z + clipToLayer[3];
   return vec3(p.x, p.y, p.z) / p.w;
 }
 
-// The normalized device coordinates of a pixel's centre (screen: width, height, 1 / width, 1 / height).
-S3D_INLINE vec2 pixelNdc(uvec2 pixel, vec4 screen) {
-  return (vec2(float(pixel.x), float(pixel.y)) + 0.5f) * vec2(screen.z, screen.w) * 2.0f - 1.0f;
+// The normalized device coordinates of a sample given in 1 / S3D_SUBPIXEL_UNITS pixels (a pixel's centre:
+// pixel * S3D_SUBPIXEL_UNITS + S3D_SUBPIXEL_UNITS / 2).
+S3D_INLINE vec2 subpixelNdc(ivec2 subpixel, vec4 screen) {
+  vec2 pixels = vec2(float(subpixel.x), float(subpixel.y)) * (1.0f / float(S3D_SUBPIXEL_UNITS));
+  return pixels * vec2(screen.z, screen.w) * 2.0f - 1.0f;
 }
 
 // 1 / direction with zero components replaced by a tiny value of either sign, so the slab test never computes
@@ -88,9 +121,9 @@ S3D_INLINE float boxEntry(vec3 origin, vec3 inverseDirection, vec3 lo, vec3 hi, 
   return entry <= exit ? entry : S3D_INFINITY;
 }
 
-// Möller-Trumbore: the ray parameter t of the hit, or infinity. Edges and vertices count as inside (u, v >= 0,
-// u + v <= 1), so a ray through a shared edge hits both triangles at the same t and the tie rule (closerHit)
-// picks one. A back face (the vertices clockwise as seen along the ray: det <= 0) is culled unless the triangle
+// Möller-Trumbore: the ray parameter t of the hit, or infinity; for the triangles rasterCoverage leaves undecided.
+// Edges and vertices count as inside (u, v >= 0, u + v <= 1), so a ray through a shared edge hits both triangles
+// at the same depth and the tie rule (closerHit) picks one. A back face (the vertices clockwise as seen along the ray: det <= 0) is culled unless the triangle
 // is double-sided, as the raster pass's counter-clockwise front face does; an edge-on triangle (det 0) never hits.
 S3D_INLINE float intersectTriangle(vec3 origin, vec3 direction, vec3 v0, vec3 v1, vec3 v2, uint flags) {
   S3D_PRECISE vec3 e1 = v1 - v0;
@@ -109,19 +142,173 @@ S3D_INLINE float intersectTriangle(vec3 origin, vec3 direction, vec3 v0, vec3 v1
   return t >= 0.0f ? t : S3D_INFINITY;
 }
 
-// The tie rule of the closest hit: the smaller t; at equal t (a shared edge, coplanar overlaps) the lower object
-// index, then the lower triangle index, whatever order the traversal meets them in.
+// The sign of a * b - c * d, exact for any 32-bit integers (64-bit products).
+S3D_INLINE int productDifferenceSign(int a, int b, int c, int d) {
+  int high1 = 0, low1 = 0, high2 = 0, low2 = 0;
+  imulExtended(a, b, high1, low1);
+  imulExtended(c, d, high2, low2);
+  if (high1 != high2) return high1 < high2 ? -1 : 1;
+  if (low1 == low2) return 0;
+  return uint(low1) < uint(low2) ? -1 : 1;
+}
+
+// Whether the edge from p to q (sample-relative snapped positions of a polygon ordered clockwise on screen,
+// framebuffer y down, so its inside is on the positive side of every edge) admits the sample: its edge function
+// is positive, or zero on a top or left edge (the top-left rule: a sample on an edge shared by two triangles
+// belongs to exactly one of them).
+S3D_INLINE bool edgeAdmits(ivec2 p, ivec2 q) {
+  int side = productDifferenceSign(p.x, q.y, q.x, p.y);
+  if (side != 0) return side > 0;
+  return q.y < p.y || (q.y == p.y && q.x > p.x);
+}
+
+// A clip-space position as the rasterizer sees it: snapped framebuffer position relative to the sample and ndc
+// depth. False past S3D_RASTER_REACH (where the rasterizer clips at its guard band) or at w <= 0.
+S3D_INLINE bool snapClip(PixelRay ray, vec4 clip, S3D_OUT(ivec2) snapped, S3D_OUT(float) depth) {
+  if (!(clip.w > 0.0f)) return false;
+  S3D_PRECISE float reciprocal = 1.0f / clip.w;
+  S3D_PRECISE vec3 ndc = vec3(clip.x, clip.y, clip.z) * reciprocal;
+  S3D_PRECISE vec2 halfSize = vec2(ray.screen.x, ray.screen.y) * 0.5f;
+  S3D_PRECISE vec2 framebuffer = vec2(fma(ndc.x, halfSize.x, halfSize.x), fma(ndc.y, halfSize.y, halfSize.y));
+  if (!(abs(framebuffer.x) < S3D_RASTER_REACH && abs(framebuffer.y) < S3D_RASTER_REACH)) return false;
+  S3D_PRECISE vec2 units = framebuffer * float(S3D_SUBPIXEL_UNITS);
+  snapped = ivec2(int(roundEven(units.x)), int(roundEven(units.y))) - ray.subpixel;
+  depth = ndc.z;
+  return true;
+}
+
+// The ndc depth at the sample of the plane through three snapped vertices (weights: each vertex's opposite edge
+// function there), and whether the sample lies inside or on that triangle.
+S3D_INLINE bool interpolateDepth(ivec2 p0, ivec2 p1, ivec2 p2, float z0, float z1, float z2, S3D_OUT(float) z) {
+  S3D_PRECISE float w0 = float(p1.x) * float(p2.y) - float(p2.x) * float(p1.y);
+  S3D_PRECISE float w1 = float(p2.x) * float(p0.y) - float(p0.x) * float(p2.y);
+  S3D_PRECISE float w2 = float(p0.x) * float(p1.y) - float(p1.x) * float(p0.y);
+  z = (w0 * z0 + w1 * z1 + w2 * z2) / (w0 + w1 + w2);
+  return w0 >= 0.0f && w1 >= 0.0f && w2 >= 0.0f;
+}
+
+// The rasterizer's verdict on a triangle at the ray's sample: 1 covered (ndcDepth: its depth there, interpolated
+// linearly in the framebuffer as the rasterizer does), 0 not covered, -1 undecided here: ask the ray test.
+// The triangle is first clipped at the near plane in clip space (into a polygon of up to 4 vertices, as the
+// rasterizer clips it), whose snapped edges must all admit the sample; past the far plane its edges stay the
+// triangle's own and samples whose depth lies beyond are dropped. Front faces are counter-clockwise in the
+// framebuffer (VK_FRONT_FACE_COUNTER_CLOCKWISE); back faces (but double-sided ones) and polygons of zero snapped
+// area are never covered. Undecided: a vertex past S3D_RASTER_REACH, or a clipped polygon whose first three
+// vertices snap onto one line.
+S3D_INLINE int rasterCoverage(PixelRay ray, vec3 v0, vec3 v1, vec3 v2, uint flags, S3D_OUT(float) ndcDepth) {
+  mat4 m = ray.viewProjection;
+  vec4 corner[3];
+  S3D_PRECISE vec4 c0 = m[0] * v0.x + m[1] * v0.y + m[2] * v0.z + m[3];
+  S3D_PRECISE vec4 c1 = m[0] * v1.x + m[1] * v1.y + m[2] * v1.z + m[3];
+  S3D_PRECISE vec4 c2 = m[0] * v2.x + m[1] * v2.y + m[2] * v2.z + m[3];
+  corner[0] = c0;
+  corner[1] = c1;
+  corner[2] = c2;
+  vec4 polygon[4];
+  int n = 0;
+  for (int i = 0; i < 3; ++i) {  // Sutherland-Hodgman against the near plane (distance >= 0 inside)
+    vec4 a = corner[i], b = corner[(i + 1) % 3];
+    S3D_PRECISE float da = ray.nearer > 0.0f ? a.z : a.w - a.z;
+    S3D_PRECISE float db = ray.nearer > 0.0f ? b.z : b.w - b.z;
+    if (da >= 0.0f) polygon[n++] = a;
+    if ((da >= 0.0f) != (db >= 0.0f)) {
+      S3D_PRECISE float s = da / (da - db);
+      S3D_PRECISE vec4 crossing = a + (b - a) * s;
+      polygon[n++] = crossing;
+    }
+  }
+  if (n < 3) return 0;
+  ivec2 p[4];
+  float z[4];
+  for (int i = 0; i < n; ++i)
+    if (!snapClip(ray, polygon[i], p[i], z[i])) return -1;
+  int area = productDifferenceSign(p[1].x - p[0].x, p[2].y - p[0].y, p[1].y - p[0].y, p[2].x - p[0].x);  // > 0: clockwise
+  if (area == 0) return n == 3 ? 0 : -1;
+  if (area > 0 && (flags & S3D_BVH_DOUBLE_SIDED) == 0u) return 0;
+  if (area < 0) {  // a front face: order it clockwise so that the inside is on every edge's positive side
+    ivec2 q = p[1];
+    p[1] = p[n - 1];
+    p[n - 1] = q;
+    float y = z[1];
+    z[1] = z[n - 1];
+    z[n - 1] = y;
+  }
+  for (int i = 0; i < n; ++i)
+    if (!edgeAdmits(p[i], p[(i + 1) % n])) return 0;
+  // The depth of the fan triangle (as the rasterizer splits the polygon) that holds the sample.
+  float depth = 0.0f;
+  if (!interpolateDepth(p[0], p[1], p[2], z[0], z[1], z[2], depth) && n == 4)
+    interpolateDepth(p[0], p[2], p[3], z[0], z[2], z[3], depth);
+  if (!(depth >= 0.0f && depth <= 1.0f)) return 0;  // clipped away at the far plane
+  ndcDepth = depth;
+  return 1;
+}
+
+// The ray parameter of the point of the pixel ray at ndc depth z (the unprojection is a ratio of linear functions
+// of z, so t is too): lets a raster-decided hit prune the traversal as a ray hit does.
+S3D_INLINE float rayParameterOf(vec4 depthToT, float z) {
+  S3D_PRECISE float a = depthToT.x, b = depthToT.y, zStart = depthToT.z, zEnd = depthToT.w;
+  return (z - zStart) / (zEnd - zStart) * (a + zEnd * b) / (a + z * b);
+}
+
+// The tie rule of the closest hit, on depth keys (device depth times PixelRay::nearer): the smaller key; at equal
+// keys (coplanar overlaps; shared edges never tie, the top-left rule gives their samples to one triangle) the
+// lower object index, then the lower triangle index, whatever order the traversal meets them in.
 S3D_INLINE bool closerHit(float t, uint object, uint triangle, float bestT, uint bestObject, uint bestTriangle) {
   if (t != bestT) return t < bestT;
   return object != bestObject ? object < bestObject : triangle < bestTriangle;
 }
 
-// The device depth the raster pass writes for a layer-space point: the viewport maps ndc z into the layer's range.
+// The device depth the raster pass writes at ndc depth z: the viewport maps it into the layer's range.
+S3D_INLINE float deviceDepthAt(float z, vec2 depthRange) { return depthRange.x + z * (depthRange.y - depthRange.x); }
+
+// The device depth the raster pass writes for a layer-space point.
 S3D_INLINE float deviceDepthOf(mat4 viewProjection, vec3 point, vec2 depthRange) {
   S3D_PRECISE vec4 clip = viewProjection[0] * point.x + viewProjection[1] * point.y + viewProjection[2] * point.z +
                          viewProjection[3];
-  return depthRange.x + clip.z / clip.w * (depthRange.y - depthRange.x);
+  return deviceDepthAt(clip.z / clip.w, depthRange);
 }
+
+// The pixel ray of one layer through a sample (1 / S3D_SUBPIXEL_UNITS pixel units), from the near to the far plane.
+S3D_INLINE PixelRay pixelRayOf(mat4 clipToLayer, mat4 viewProjection, vec4 screen, ivec2 subpixel, vec2 depthRange,
+                               float nearer) {
+  PixelRay ray;
+  vec2 ndc = subpixelNdc(subpixel, screen);
+  float zStart = nearer > 0.0f ? 0.0f : 1.0f;
+  ray.origin = unprojectNdc(clipToLayer, ndc, zStart);
+  ray.direction = unprojectNdc(clipToLayer, ndc, 1.0f - zStart) - ray.origin;
+  ray.viewProjection = viewProjection;
+  ray.screen = screen;
+  ray.subpixel = subpixel;
+  ray.depthRange = depthRange;
+  S3D_PRECISE float a = clipToLayer[0].w * ndc.x + clipToLayer[1].w * ndc.y + clipToLayer[3].w;
+  ray.depthToT = vec4(a, clipToLayer[2].w, zStart, 1.0f - zStart);
+  ray.nearer = nearer;
+  return ray;
+}
+
+// A triangle's hit by a pixel ray, decided as the rasterizer decides its sample (rasterCoverage), or by the ray
+// test (intersectTriangle) where the rasterizer clips the triangle: its ray parameter t (which prunes the
+// traversal) and device depth (which picks the closest hit, as the depth test does).
+S3D_INLINE bool leafHit(PixelRay ray, vec3 v0, vec3 v1, vec3 v2, uint flags, S3D_OUT(float) t, S3D_OUT(float) depth) {
+  float z = 0.0f;
+  int coverage = rasterCoverage(ray, v0, v1, v2, flags, z);
+  if (coverage == 0) return false;
+  if (coverage > 0) {
+    t = rayParameterOf(ray.depthToT, z);
+    depth = deviceDepthAt(z, ray.depthRange);
+    return true;
+  }
+  t = intersectTriangle(ray.origin, ray.direction, v0, v1, v2, flags);
+  if (!(t <= 1.0f)) return false;
+  S3D_PRECISE vec3 point = ray.origin + t * ray.direction;
+  depth = deviceDepthOf(ray.viewProjection, point, ray.depthRange);
+  return true;
+}
+
+// How far past the best hit's t the traversal still enters a box: a raster-decided hit's t comes from its
+// interpolated depth on snapped vertices, which can lie a little before the ray's own hit of the same surface.
+S3D_INLINE float pruneLimit(float bestT) { return min(bestT * (1.0f + 1.0f / 256.0f), 1.0f); }
 
 S3D_GPU_END
 

@@ -35,6 +35,10 @@ struct RaycastCamera {
 };
 // The inverse of a layer's view projection that pixel rays are unprojected with (inverted in double).
 glm::mat4 clipToLayerOf(const glm::mat4& viewProjection);
+// The ray of one layer through a sample of a width x height image (1 / S3D_SUBPIXEL_UNITS pixel units).
+gpu::PixelRay pixelRayOf(const RaycastCamera& camera, Layer layer, glm::ivec2 subpixel, glm::uvec2 size);
+// PixelRay::nearer of a camera: 1 when a smaller device depth is nearer, -1 under reversed depth.
+float nearerOf(const RaycastCamera& camera);
 // The camera of the renderer's view (its reversed-Z option swaps near and far in both projections and mirrors the
 // depth ranges, as DeferredRenderer does).
 RaycastCamera raycastCamera(const Scene& scene, const ViewMatrices& view, bool reversedZ = false);
@@ -62,14 +66,14 @@ struct SceneBvh {
   // deeper than S3D_BVH_MAX_DEPTH.
   static SceneBvh build(const Scene& scene);
 
-  // The reference traversal: the closest hit of render pixel `pixel` of a width x height image (ray through the
-  // pixel centre), exactly the GPU pass's rule (raycast_shared.h), first-person layer first.
+  // The reference traversal: the closest hit of render pixel `pixel` of a width x height image (its centre's
+  // sample), exactly the GPU pass's rule (raycast_shared.h), first-person layer first.
   RaycastHit castPixel(const RaycastCamera& camera, glm::uvec2 pixel, glm::uvec2 size) const;
-  // The same for the ray through normalized device coordinates `ndc`.
-  RaycastHit castNdc(const RaycastCamera& camera, glm::vec2 ndc) const;
-  // The closest hit of one tree along origin + t direction, t in [0, 1]: its triangle's index in `triangles`
-  // and its t (S3D_BVH_NO_ROOT and infinity for none).
-  std::uint32_t closestHit(std::uint32_t root, glm::vec3 origin, glm::vec3 direction, float& t) const;
+  // The same for a sample anywhere in the image, in 1 / S3D_SUBPIXEL_UNITS pixel units.
+  RaycastHit castSubpixel(const RaycastCamera& camera, glm::ivec2 subpixel, glm::uvec2 size) const;
+  // The closest hit of one tree along a pixel ray: its triangle's index in `triangles`, its ray parameter and
+  // device depth (S3D_BVH_NO_ROOT and infinities for none).
+  std::uint32_t closestHit(std::uint32_t root, const gpu::PixelRay& ray, float& t, float& deviceDepth) const;
   // Depth of the deeper tree (1 for a single leaf, 0 for no tree).
   std::uint32_t depth() const;
 };
