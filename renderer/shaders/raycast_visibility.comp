@@ -44,7 +44,7 @@ uint closestHit(uint root, PixelRay ray, out float bestT, out float bestDepth) {
       for (uint i = first; i < first + count; ++i) {
         float t, depth;
         if (leafHit(ray, triangles[i].v0, triangles[i].v1, triangles[i].v2, triangles[i].flags, t, depth) &&
-            (best == S3D_BVH_NO_ROOT || closerHit(depth * ray.nearer, triangles[i].object, triangles[i].triangle, bestKey,
+            (best == S3D_BVH_NO_ROOT || closerHit(depth * ray.nearer, t, triangles[i].object, triangles[i].triangle, bestKey, bestT,
                                                   triangles[best].object, triangles[best].triangle))) {
           bestT = t;
           bestDepth = depth;

@@ -63,7 +63,7 @@ std::uint32_t SceneBvh::closestHit(std::uint32_t root, const gpu::PixelRay& ray,
         const gpu::BvhTriangle& tri = triangles[i];
         float t = 0.0f, depth = 0.0f;
         if (gpu::leafHit(ray, tri.v0, tri.v1, tri.v2, tri.flags, t, depth) &&
-            (best == S3D_BVH_NO_ROOT || gpu::closerHit(depth * ray.nearer, tri.object, tri.triangle, bestKey,
+            (best == S3D_BVH_NO_ROOT || gpu::closerHit(depth * ray.nearer, t, tri.object, tri.triangle, bestKey, bestT,
                                                        triangles[best].object, triangles[best].triangle))) {
           bestT = t;
           bestDepth = depth;

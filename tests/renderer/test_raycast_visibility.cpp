@@ -80,16 +80,17 @@ TEST(SceneBvh, EveryNodeContainsItsChildrenAndTriangles) {
 // The closest hit over all triangles of the world layer, with the same leaf test and tie rule.
 std::uint32_t bruteForce(const renderer::Scene& scene, const SceneBvh& bvh, const gpu::PixelRay& ray) {
   std::uint32_t best = S3D_BVH_NO_ROOT;
-  float bestKey = S3D_INFINITY;
+  float bestKey = S3D_INFINITY, bestT = S3D_INFINITY;
   for (std::uint32_t i = 0; i < bvh.triangles.size(); ++i) {
     const gpu::BvhTriangle& t = bvh.triangles[i];
     if (scene.objects[t.object].layer != renderer::Layer::World) continue;
     float hit = 0.0f, depth = 0.0f;
     if (gpu::leafHit(ray, t.v0, t.v1, t.v2, t.flags, hit, depth) &&
-        (best == S3D_BVH_NO_ROOT || gpu::closerHit(depth * ray.nearer, t.object, t.triangle, bestKey,
+        (best == S3D_BVH_NO_ROOT || gpu::closerHit(depth * ray.nearer, hit, t.object, t.triangle, bestKey, bestT,
                                                    bvh.triangles[best].object, bvh.triangles[best].triangle))) {
       best = i;
       bestKey = depth * ray.nearer;
+      bestT = hit;
     }
   }
   return best;

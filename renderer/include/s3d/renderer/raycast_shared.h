@@ -142,6 +142,16 @@ S3D_INLINE float intersectTriangle(vec3 origin, vec3 direction, vec3 v0, vec3 v1
   return t >= 0.0f ? t : S3D_INFINITY;
 }
 
+// The ray parameter t where the ray meets the plane of the triangle, or infinity for a ray along it: the depth of a
+// hit the rasterizer's rule covered. One rounding from the exact point (as the rasterizer's depth of the vertices'
+// own plane is), where an interpolation on the snapped vertices would lose float steps on far surfaces.
+S3D_INLINE float intersectPlane(vec3 origin, vec3 direction, vec3 v0, vec3 v1, vec3 v2) {
+  S3D_PRECISE vec3 normal = cross(v1 - v0, v2 - v0);
+  S3D_PRECISE float along = dot(direction, normal);
+  if (along == 0.0f) return S3D_INFINITY;
+  return dot(v0 - origin, normal) / along;
+}
+
 // The sign of a * b - c * d, exact for any 32-bit integers (64-bit products).
 S3D_INLINE int productDifferenceSign(int a, int b, int c, int d) {
   int high1 = 0, low1 = 0, high2 = 0, low2 = 0;
@@ -178,12 +188,15 @@ S3D_INLINE bool snapClip(PixelRay ray, vec4 clip, S3D_OUT(ivec2) snapped, S3D_OU
 }
 
 // The ndc depth at the sample of the plane through three snapped vertices (weights: each vertex's opposite edge
-// function there), and whether the sample lies inside or on that triangle.
+// function there), and whether the sample lies inside or on that triangle. Interpolated as z0 plus the weighted
+// differences: far surfaces' depths lie within a few float steps of 1 (of 0 reversed), where a weighted sum of the
+// depths themselves loses several steps, each step there tens of metres that the lighting reconstructs.
 S3D_INLINE bool interpolateDepth(ivec2 p0, ivec2 p1, ivec2 p2, float z0, float z1, float z2, S3D_OUT(float) z) {
   S3D_PRECISE float w0 = float(p1.x) * float(p2.y) - float(p2.x) * float(p1.y);
   S3D_PRECISE float w1 = float(p2.x) * float(p0.y) - float(p0.x) * float(p2.y);
   S3D_PRECISE float w2 = float(p0.x) * float(p1.y) - float(p1.x) * float(p0.y);
-  z = (w0 * z0 + w1 * z1 + w2 * z2) / (w0 + w1 + w2);
+  S3D_PRECISE float change = w1 * (z1 - z0) + w2 * (z2 - z0);
+  z = z0 + change / (w0 + w1 + w2);
   return w0 >= 0.0f && w1 >= 0.0f && w2 >= 0.0f;
 }
 
@@ -252,9 +265,13 @@ S3D_INLINE float rayParameterOf(vec4 depthToT, float z) {
 }
 
 // The tie rule of the closest hit, on depth keys (device depth times PixelRay::nearer): the smaller key; at equal
-// keys (coplanar overlaps; shared edges never tie, the top-left rule gives their samples to one triangle) the
-// lower object index, then the lower triangle index, whatever order the traversal meets them in.
-S3D_INLINE bool closerHit(float t, uint object, uint triangle, float bestT, uint bestObject, uint bestTriangle) {
+// keys the smaller ray parameter (far surfaces metres apart share one float depth, and the raster pass draws
+// front to back, so the nearer of them is drawn first and kept), then (coplanar overlaps; shared edges never tie,
+// the top-left rule gives their samples to one triangle) the lower object index, then the lower triangle index,
+// whatever order the traversal meets them in.
+S3D_INLINE bool closerHit(float key, float t, uint object, uint triangle, float bestKey, float bestT, uint bestObject,
+                          uint bestTriangle) {
+  if (key != bestKey) return key < bestKey;
   if (t != bestT) return t < bestT;
   return object != bestObject ? object < bestObject : triangle < bestTriangle;
 }
@@ -295,8 +312,14 @@ S3D_INLINE bool leafHit(PixelRay ray, vec3 v0, vec3 v1, vec3 v2, uint flags, S3D
   int coverage = rasterCoverage(ray, v0, v1, v2, flags, z);
   if (coverage == 0) return false;
   if (coverage > 0) {
-    t = rayParameterOf(ray.depthToT, z);
-    depth = deviceDepthAt(z, ray.depthRange);
+    t = intersectPlane(ray.origin, ray.direction, v0, v1, v2);
+    if (t >= 0.0f && t <= 1.0f) {
+      S3D_PRECISE vec3 point = ray.origin + t * ray.direction;
+      depth = deviceDepthOf(ray.viewProjection, point, ray.depthRange);
+    } else {  // covered on the snapped vertices only (the ray grazes the plane's edge): their interpolation
+      t = rayParameterOf(ray.depthToT, z);
+      depth = deviceDepthAt(z, ray.depthRange);
+    }
     return true;
   }
   t = intersectTriangle(ray.origin, ray.direction, v0, v1, v2, flags);
