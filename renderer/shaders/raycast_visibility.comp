@@ -23,6 +23,8 @@ layout(std430, binding = 6) readonly buffer Region {
   TileHeader regionHeader;
   uint regionFlags[];
 };
+// Every triangle set up for this view by raycast_setup.comp.
+layout(std430, binding = 7) readonly buffer Snapped { SnappedTriangle snapped[]; };
 
 // The closest hit of one tree along the pixel ray: its triangle index (S3D_BVH_NO_ROOT: none), ray parameter and
 // device depth.
@@ -43,7 +45,8 @@ uint closestHit(uint root, PixelRay ray, out float bestT, out float bestDepth) {
     if (count > 0u) {
       for (uint i = first; i < first + count; ++i) {
         float t, depth;
-        if (leafHit(ray, triangles[i].v0, triangles[i].v1, triangles[i].v2, triangles[i].flags, t, depth) &&
+        if (leafHitSetUp(ray, snapped[i], triangles[i].v0, triangles[i].v1, triangles[i].v2, triangles[i].flags, t,
+                         depth) &&
             (best == S3D_BVH_NO_ROOT || closerHit(depth * ray.nearer, t, triangles[i].object, triangles[i].triangle, bestKey, bestT,
                                                   triangles[best].object, triangles[best].triangle))) {
           bestT = t;

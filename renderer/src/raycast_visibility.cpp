@@ -8,6 +8,7 @@
 #include "s3d/renderer/renderer_shared.h"
 
 // clang-format off
+#include <s3d_spirv/raycast_setup_comp.h>
 #include <s3d_spirv/raycast_visibility_comp.h>
 // clang-format on
 
@@ -19,9 +20,15 @@ RaycastVisibility::RaycastVisibility(vk::Context& context) : context_(context) {
       computeBinding(0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER), computeBinding(1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER),
       computeBinding(2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER), computeBinding(3, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE),
       computeBinding(4, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE),  computeBinding(5, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE),
-      computeBinding(6, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER)};
+      computeBinding(6, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER), computeBinding(7, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER)};
   layout_ = vk::createPushDescriptorLayout(context_, bindings, 0, 0);
   pipeline_ = vk::createComputePipeline(context_, layout_.layout, spirv_raycast_visibility_comp);
+  const VkDescriptorSetLayoutBinding setupBindings[] = {computeBinding(0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER),
+                                                        computeBinding(1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER),
+                                                        computeBinding(2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER)};
+  setupLayout_ = vk::createPushDescriptorLayout(context_, setupBindings, 2 * sizeof(std::uint32_t),
+                                                VK_SHADER_STAGE_COMPUTE_BIT);
+  setupPipeline_ = vk::createComputePipeline(context_, setupLayout_.layout, spirv_raycast_setup_comp);
   constants_ = vk::createBuffer(context_, sizeof(gpu::RaycastConstants), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
                                 vk::MemoryLocation::HostVisible);
 }
@@ -38,10 +45,41 @@ void RaycastVisibility::setBvh(const SceneBvh& bvh) {
   };
   upload(nodes_, std::as_bytes(std::span(bvh.nodes)));
   upload(triangles_, std::as_bytes(std::span(bvh.triangles)));
+  snapped_ = vk::createBuffer(context_, std::max<VkDeviceSize>(bvh.triangles.size(), 1) * sizeof(gpu::SnappedTriangle),
+                              VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryLocation::Device);
+  triangleCount_ = std::uint32_t(bvh.triangles.size());
+  firstPersonFirst_ = bvh.firstPersonFirst;
   worldRoot_ = bvh.worldRoot;
   firstPersonRoot_ = bvh.firstPersonRoot;
   packing_ = bvh.visibilityPacking;
   hasBvh_ = true;
+}
+
+// Every triangle set up for the view (after the previous recording's casts read the buffer), then ordered before
+// this recording's casts.
+void RaycastVisibility::recordSetup(VkCommandBuffer cmd, const VkDescriptorBufferInfo& constants,
+                                    const VkDescriptorBufferInfo& triangles, const VkDescriptorBufferInfo& snapped) const {
+  auto computeToCompute = [cmd] {
+    VkMemoryBarrier2 barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
+    barrier.srcStageMask = barrier.dstStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
+    barrier.srcAccessMask = barrier.dstAccessMask = VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
+    VkDependencyInfo dependency{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+    dependency.memoryBarrierCount = 1;
+    dependency.pMemoryBarriers = &barrier;
+    vkCmdPipelineBarrier2(cmd, &dependency);
+  };
+  computeToCompute();
+  if (triangleCount_ > 0) {
+    VkWriteDescriptorSet writes[] = {vk::uniformBufferWrite(0, &constants), vk::uniformBufferWrite(1, &triangles),
+                                     vk::uniformBufferWrite(2, &snapped)};
+    writes[1].descriptorType = writes[2].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, setupPipeline_.get());
+    context_.cmdPushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, setupLayout_.layout, 0, 3, writes);
+    const std::uint32_t push[2] = {triangleCount_, firstPersonFirst_};
+    vkCmdPushConstants(cmd, setupLayout_.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push, push);
+    vkCmdDispatch(cmd, (triangleCount_ + 63) / 64, 1, 1);
+  }
+  computeToCompute();
 }
 
 void RaycastVisibility::record(VkCommandBuffer cmd, const RaycastCamera& camera, const ShadeMask& mask,
@@ -70,6 +108,8 @@ void RaycastVisibility::record(VkCommandBuffer cmd, const RaycastCamera& camera,
   VkDescriptorBufferInfo constantInfo{constants_.buffer, 0, VK_WHOLE_SIZE};
   VkDescriptorBufferInfo nodeInfo{nodes_.buffer, 0, VK_WHOLE_SIZE};
   VkDescriptorBufferInfo triangleInfo{triangles_.buffer, 0, VK_WHOLE_SIZE};
+  VkDescriptorBufferInfo snappedInfo{snapped_.buffer, 0, VK_WHOLE_SIZE};
+  recordSetup(cmd, constantInfo, triangleInfo, snappedInfo);
   // Without a mask the ids image stands in for it (the shader does not read it then).
   VkDescriptorImageInfo maskInfo{VK_NULL_HANDLE, mask.image ? mask.image->view : visibilityIds.view, VK_IMAGE_LAYOUT_GENERAL};
   VkDescriptorImageInfo idInfo{VK_NULL_HANDLE, visibilityIds.view, VK_IMAGE_LAYOUT_GENERAL};
@@ -79,10 +119,10 @@ void RaycastVisibility::record(VkCommandBuffer cmd, const RaycastCamera& camera,
   VkWriteDescriptorSet writes[] = {vk::uniformBufferWrite(0, &constantInfo), vk::uniformBufferWrite(1, &nodeInfo),
                                    vk::uniformBufferWrite(2, &triangleInfo), vk::storageImageWrite(3, &maskInfo),
                                    vk::storageImageWrite(4, &idInfo),        vk::storageImageWrite(5, &depthInfo),
-                                   vk::uniformBufferWrite(6, &regionInfo)};
-  for (std::uint32_t i : {1u, 2u, 6u}) writes[i].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+                                   vk::uniformBufferWrite(6, &regionInfo),   vk::uniformBufferWrite(7, &snappedInfo)};
+  for (std::uint32_t i : {1u, 2u, 6u, 7u}) writes[i].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_.get());
-  context_.cmdPushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_.layout, 0, 7, writes);
+  context_.cmdPushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_.layout, 0, 8, writes);
   const std::uint32_t group = S3D_RAYCAST_GROUP_SIZE;
   vkCmdDispatch(cmd, (width + group - 1) / group, (height + group - 1) / group, 1);
 }

@@ -185,6 +185,7 @@ SceneBvh SceneBvh::build(const Scene& scene) {
   const std::vector<gpu::BvhTriangle> firstPerson = layerTriangles(scene, Layer::FirstPerson);
   bvh.triangles.reserve(world.size() + firstPerson.size());
   bvh.worldRoot = buildLayer(world, bvh);
+  bvh.firstPersonFirst = std::uint32_t(bvh.triangles.size());
   bvh.firstPersonRoot = buildLayer(firstPerson, bvh);
   if (bvh.depth() > S3D_BVH_MAX_DEPTH)
     throw std::runtime_error("scene '" + scene.name + "': its ray-cast BVH is deeper than " +

@@ -14,6 +14,7 @@ using glm::cross;
 using glm::imulExtended;
 inline float fma(float a, float b, float c) { return std::fma(a, b, c); }  // fused, as GLSL's precise fma
 using glm::ivec2;
+using glm::ivec4;
 using glm::roundEven;
 }
 #define S3D_PRECISE
@@ -84,6 +85,20 @@ struct PixelRay {
   vec4 depthToT;        // x, y: w of the ray's clip-to-layer point at ndc z 0 and its change per unit z; z, w: the
                         // ndc z of t 0 and t 1 (see rayParameterOf)
   float nearer;         // 1: a smaller device depth is nearer (LESS), -1: a larger one (reversed depth, GREATER)
+};
+
+// A triangle as the rasterizer sets it up for one view (setupTriangle; 64 bytes, std430): its polygon after the
+// near-plane clip, snapped to the sub-pixel grid (framebuffer positions in 1 / S3D_SUBPIXEL_UNITS pixels), ordered
+// clockwise, with its vertices' ndc depths. The ray-cast pass sets every triangle up once per view
+// (raycast_setup.comp), so each ray's leaf test only evaluates its edge functions (coverSample).
+#define S3D_SNAPPED_NEVER 0u     // covers no sample: culled, zero snapped area, or clipped away
+#define S3D_SNAPPED_POLYGON 1u   // the rasterizer's rule decides each sample
+#define S3D_SNAPPED_RAY_TEST 2u  // undecided here: past S3D_RASTER_REACH, w <= 0, or a degenerate clipped polygon
+struct SnappedTriangle {
+  ivec4 xy01;   // vertices 0 and 1 (x, y)
+  ivec4 xy23;   // vertices 2 and 3 (the fourth only for a clipped quadrilateral)
+  vec4 z;       // the vertices' ndc depths
+  uvec4 shape;  // x: the vertex count (3 or 4), y: S3D_SNAPPED_*; z, w: 0
 };
 
 // A point of the pixel ray: the layer-space position of normalized device coordinates (ndc, z); z 0 and 1 give
@@ -172,17 +187,17 @@ S3D_INLINE bool edgeAdmits(ivec2 p, ivec2 q) {
   return q.y < p.y || (q.y == p.y && q.x > p.x);
 }
 
-// A clip-space position as the rasterizer sees it: snapped framebuffer position relative to the sample and ndc
-// depth. False past S3D_RASTER_REACH (where the rasterizer clips at its guard band) or at w <= 0.
-S3D_INLINE bool snapClip(PixelRay ray, vec4 clip, S3D_OUT(ivec2) snapped, S3D_OUT(float) depth) {
+// A clip-space position as the rasterizer sees it: snapped framebuffer position and ndc depth. False past
+// S3D_RASTER_REACH (where the rasterizer clips at its guard band) or at w <= 0.
+S3D_INLINE bool snapClip(vec4 screen, vec4 clip, S3D_OUT(ivec2) snapped, S3D_OUT(float) depth) {
   if (!(clip.w > 0.0f)) return false;
   S3D_PRECISE float reciprocal = 1.0f / clip.w;
   S3D_PRECISE vec3 ndc = vec3(clip.x, clip.y, clip.z) * reciprocal;
-  S3D_PRECISE vec2 halfSize = vec2(ray.screen.x, ray.screen.y) * 0.5f;
+  S3D_PRECISE vec2 halfSize = vec2(screen.x, screen.y) * 0.5f;
   S3D_PRECISE vec2 framebuffer = vec2(fma(ndc.x, halfSize.x, halfSize.x), fma(ndc.y, halfSize.y, halfSize.y));
   if (!(abs(framebuffer.x) < S3D_RASTER_REACH && abs(framebuffer.y) < S3D_RASTER_REACH)) return false;
   S3D_PRECISE vec2 units = framebuffer * float(S3D_SUBPIXEL_UNITS);
-  snapped = ivec2(int(roundEven(units.x)), int(roundEven(units.y))) - ray.subpixel;
+  snapped = ivec2(int(roundEven(units.x)), int(roundEven(units.y)));
   depth = ndc.z;
   return true;
 }
@@ -200,16 +215,18 @@ S3D_INLINE bool interpolateDepth(ivec2 p0, ivec2 p1, ivec2 p2, float z0, float z
   return w0 >= 0.0f && w1 >= 0.0f && w2 >= 0.0f;
 }
 
-// The rasterizer's verdict on a triangle at the ray's sample: 1 covered (ndcDepth: its depth there, interpolated
-// linearly in the framebuffer as the rasterizer does), 0 not covered, -1 undecided here: ask the ray test.
-// The triangle is first clipped at the near plane in clip space (into a polygon of up to 4 vertices, as the
-// rasterizer clips it), whose snapped edges must all admit the sample; past the far plane its edges stay the
-// triangle's own and samples whose depth lies beyond are dropped. Front faces are counter-clockwise in the
-// framebuffer (VK_FRONT_FACE_COUNTER_CLOCKWISE); back faces (but double-sided ones) and polygons of zero snapped
-// area are never covered. Undecided: a vertex past S3D_RASTER_REACH, or a clipped polygon whose first three
-// vertices snap onto one line.
-S3D_INLINE int rasterCoverage(PixelRay ray, vec3 v0, vec3 v1, vec3 v2, uint flags, S3D_OUT(float) ndcDepth) {
-  mat4 m = ray.viewProjection;
+// How the rasterizer sets a triangle up for a view (m: its layer's view-projection; nearer: PixelRay::nearer):
+// clipped at the near plane in clip space (into a polygon of up to 4 vertices, as the rasterizer clips it) and
+// snapped; past the far plane its edges stay the triangle's own (coverSample drops samples whose depth lies beyond).
+// Front faces are counter-clockwise in the framebuffer (VK_FRONT_FACE_COUNTER_CLOCKWISE); back faces (but
+// double-sided ones) and polygons of zero snapped area never cover. Left to the ray test: a vertex past
+// S3D_RASTER_REACH, or a clipped polygon whose first three vertices snap onto one line.
+S3D_INLINE SnappedTriangle setupTriangle(mat4 m, vec4 screen, float nearer, vec3 v0, vec3 v1, vec3 v2, uint flags) {
+  SnappedTriangle snapped;
+  snapped.xy01 = ivec4(0, 0, 0, 0);
+  snapped.xy23 = ivec4(0, 0, 0, 0);
+  snapped.z = vec4(0.0f, 0.0f, 0.0f, 0.0f);
+  snapped.shape = uvec4(0u, S3D_SNAPPED_NEVER, 0u, 0u);
   vec4 corner[3];
   S3D_PRECISE vec4 c0 = m[0] * v0.x + m[1] * v0.y + m[2] * v0.z + m[3];
   S3D_PRECISE vec4 c1 = m[0] * v1.x + m[1] * v1.y + m[2] * v1.z + m[3];
@@ -221,8 +238,8 @@ S3D_INLINE int rasterCoverage(PixelRay ray, vec3 v0, vec3 v1, vec3 v2, uint flag
   int n = 0;
   for (int i = 0; i < 3; ++i) {  // Sutherland-Hodgman against the near plane (distance >= 0 inside)
     vec4 a = corner[i], b = corner[(i + 1) % 3];
-    S3D_PRECISE float da = ray.nearer > 0.0f ? a.z : a.w - a.z;
-    S3D_PRECISE float db = ray.nearer > 0.0f ? b.z : b.w - b.z;
+    S3D_PRECISE float da = nearer > 0.0f ? a.z : a.w - a.z;
+    S3D_PRECISE float db = nearer > 0.0f ? b.z : b.w - b.z;
     if (da >= 0.0f) polygon[n++] = a;
     if ((da >= 0.0f) != (db >= 0.0f)) {
       S3D_PRECISE float s = da / (da - db);
@@ -230,14 +247,20 @@ S3D_INLINE int rasterCoverage(PixelRay ray, vec3 v0, vec3 v1, vec3 v2, uint flag
       polygon[n++] = crossing;
     }
   }
-  if (n < 3) return 0;
+  if (n < 3) return snapped;
   ivec2 p[4];
   float z[4];
   for (int i = 0; i < n; ++i)
-    if (!snapClip(ray, polygon[i], p[i], z[i])) return -1;
+    if (!snapClip(screen, polygon[i], p[i], z[i])) {
+      snapped.shape.y = S3D_SNAPPED_RAY_TEST;
+      return snapped;
+    }
   int area = productDifferenceSign(p[1].x - p[0].x, p[2].y - p[0].y, p[1].y - p[0].y, p[2].x - p[0].x);  // > 0: clockwise
-  if (area == 0) return n == 3 ? 0 : -1;
-  if (area > 0 && (flags & S3D_BVH_DOUBLE_SIDED) == 0u) return 0;
+  if (area == 0) {
+    if (n == 4) snapped.shape.y = S3D_SNAPPED_RAY_TEST;
+    return snapped;
+  }
+  if (area > 0 && (flags & S3D_BVH_DOUBLE_SIDED) == 0u) return snapped;
   if (area < 0) {  // a front face: order it clockwise so that the inside is on every edge's positive side
     ivec2 q = p[1];
     p[1] = p[n - 1];
@@ -246,15 +269,44 @@ S3D_INLINE int rasterCoverage(PixelRay ray, vec3 v0, vec3 v1, vec3 v2, uint flag
     z[1] = z[n - 1];
     z[n - 1] = y;
   }
+  if (n == 3) {
+    p[3] = p[2];
+    z[3] = z[2];
+  }
+  snapped.xy01 = ivec4(p[0].x, p[0].y, p[1].x, p[1].y);
+  snapped.xy23 = ivec4(p[2].x, p[2].y, p[3].x, p[3].y);
+  snapped.z = vec4(z[0], z[1], z[2], z[3]);
+  snapped.shape = uvec4(uint(n), S3D_SNAPPED_POLYGON, 0u, 0u);
+  return snapped;
+}
+
+// A set-up triangle's verdict at a sample (1 / S3D_SUBPIXEL_UNITS pixel units): 1 covered (ndcDepth: its depth
+// there, interpolated linearly in the framebuffer as the rasterizer does), 0 not covered, -1 undecided: ask the
+// ray test. Every snapped edge, relative to the sample, must admit it.
+S3D_INLINE int coverSample(SnappedTriangle snapped, ivec2 at, S3D_OUT(float) ndcDepth) {
+  if (snapped.shape.y == S3D_SNAPPED_NEVER) return 0;
+  if (snapped.shape.y == S3D_SNAPPED_RAY_TEST) return -1;
+  int n = int(snapped.shape.x);
+  ivec2 p[4];
+  p[0] = ivec2(snapped.xy01.x, snapped.xy01.y) - at;
+  p[1] = ivec2(snapped.xy01.z, snapped.xy01.w) - at;
+  p[2] = ivec2(snapped.xy23.x, snapped.xy23.y) - at;
+  p[3] = ivec2(snapped.xy23.z, snapped.xy23.w) - at;
   for (int i = 0; i < n; ++i)
     if (!edgeAdmits(p[i], p[(i + 1) % n])) return 0;
   // The depth of the fan triangle (as the rasterizer splits the polygon) that holds the sample.
   float depth = 0.0f;
-  if (!interpolateDepth(p[0], p[1], p[2], z[0], z[1], z[2], depth) && n == 4)
-    interpolateDepth(p[0], p[2], p[3], z[0], z[2], z[3], depth);
+  if (!interpolateDepth(p[0], p[1], p[2], snapped.z.x, snapped.z.y, snapped.z.z, depth) && n == 4)
+    interpolateDepth(p[0], p[2], p[3], snapped.z.x, snapped.z.z, snapped.z.w, depth);
   if (!(depth >= 0.0f && depth <= 1.0f)) return 0;  // clipped away at the far plane
   ndcDepth = depth;
   return 1;
+}
+
+// Both steps for one ray (the C++ reference's way; the GPU pass sets every triangle up once per view).
+S3D_INLINE int rasterCoverage(PixelRay ray, vec3 v0, vec3 v1, vec3 v2, uint flags, S3D_OUT(float) ndcDepth) {
+  return coverSample(setupTriangle(ray.viewProjection, ray.screen, ray.nearer, v0, v1, v2, flags), ray.subpixel,
+                     ndcDepth);
 }
 
 // The ray parameter of the point of the pixel ray at ndc depth z (the unprojection is a ratio of linear functions
@@ -307,9 +359,10 @@ S3D_INLINE PixelRay pixelRayOf(mat4 clipToLayer, mat4 viewProjection, vec4 scree
 // A triangle's hit by a pixel ray, decided as the rasterizer decides its sample (rasterCoverage), or by the ray
 // test (intersectTriangle) where the rasterizer clips the triangle: its ray parameter t (which prunes the
 // traversal) and device depth (which picks the closest hit, as the depth test does).
-S3D_INLINE bool leafHit(PixelRay ray, vec3 v0, vec3 v1, vec3 v2, uint flags, S3D_OUT(float) t, S3D_OUT(float) depth) {
+S3D_INLINE bool leafHitSetUp(PixelRay ray, SnappedTriangle snapped, vec3 v0, vec3 v1, vec3 v2, uint flags, S3D_OUT(float) t,
+                              S3D_OUT(float) depth) {
   float z = 0.0f;
-  int coverage = rasterCoverage(ray, v0, v1, v2, flags, z);
+  int coverage = coverSample(snapped, ray.subpixel, z);
   if (coverage == 0) return false;
   if (coverage > 0) {
     t = intersectPlane(ray.origin, ray.direction, v0, v1, v2);
@@ -327,6 +380,12 @@ S3D_INLINE bool leafHit(PixelRay ray, vec3 v0, vec3 v1, vec3 v2, uint flags, S3D
   S3D_PRECISE vec3 point = ray.origin + t * ray.direction;
   depth = deviceDepthOf(ray.viewProjection, point, ray.depthRange);
   return true;
+}
+
+// The same with the triangle set up for this ray's view here (the C++ reference).
+S3D_INLINE bool leafHit(PixelRay ray, vec3 v0, vec3 v1, vec3 v2, uint flags, S3D_OUT(float) t, S3D_OUT(float) depth) {
+  return leafHitSetUp(ray, setupTriangle(ray.viewProjection, ray.screen, ray.nearer, v0, v1, v2, flags), v0, v1, v2,
+                      flags, t, depth);
 }
 
 // How far past the best hit's t the traversal still enters a box: a raster-decided hit's t comes from its

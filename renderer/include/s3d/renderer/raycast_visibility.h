@@ -36,16 +36,21 @@ class RaycastVisibility {
   // `visibilityIds` (R32_UINT) and `deviceDepth` (R32_SFLOAT), both the mask's size when there is one, created
   // with VK_IMAGE_USAGE_STORAGE_BIT and in VK_IMAGE_LAYOUT_GENERAL, get the masked pixels' ids and depths
   // (SceneBvh::castPixel); other pixels are not written, but for a region's (RaycastRegion). The caller orders it against earlier and later uses of
-  // the images with barriers (it records none). Uses one uniform buffer: one recording in flight at a time.
+  // the images with barriers (it records compute barriers for its own buffers only: the per-view triangle setup). Uses one uniform buffer: one recording in flight at a time.
   // Throws std::invalid_argument for images of other formats or sizes, or before setBvh.
   void record(VkCommandBuffer cmd, const RaycastCamera& camera, const ShadeMask& mask, const vk::Image& visibilityIds,
               const vk::Image& deviceDepth, const RaycastRegion& region = {});
 
  private:
+  void recordSetup(VkCommandBuffer cmd, const VkDescriptorBufferInfo& constants, const VkDescriptorBufferInfo& triangles,
+                   const VkDescriptorBufferInfo& snapped) const;
+
   vk::Context& context_;
-  vk::PipelineLayout layout_;
-  vk::Unique<VkPipeline> pipeline_;
+  vk::PipelineLayout layout_, setupLayout_;
+  vk::Unique<VkPipeline> pipeline_, setupPipeline_;
   vk::Buffer constants_, nodes_, triangles_;
+  vk::Buffer snapped_;  // every triangle set up for the recorded view (raycast_setup.comp)
+  std::uint32_t triangleCount_ = 0, firstPersonFirst_ = 0;
   std::uint32_t worldRoot_ = S3D_BVH_NO_ROOT, firstPersonRoot_ = S3D_BVH_NO_ROOT;
   glm::uvec2 packing_{0, 0};
   bool hasBvh_ = false;

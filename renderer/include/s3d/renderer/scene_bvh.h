@@ -59,6 +59,7 @@ struct SceneBvh {
   std::vector<gpu::BvhTriangle> triangles;
   std::uint32_t worldRoot = S3D_BVH_NO_ROOT;
   std::uint32_t firstPersonRoot = S3D_BVH_NO_ROOT;
+  std::uint32_t firstPersonFirst = 0;  // triangles[firstPersonFirst..] are the first-person layer's, the rest the world's
   glm::uvec2 visibilityPacking{0, 0};  // gpu::visibilityPacking of the scene (FrameConstants::options z, w)
 
   // Builds both layers' trees. Throws std::invalid_argument naming the scene and the object for an index past
