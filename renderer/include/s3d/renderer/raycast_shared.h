@@ -164,7 +164,8 @@ S3D_INLINE float intersectPlane(vec3 origin, vec3 direction, vec3 v0, vec3 v1, v
   S3D_PRECISE vec3 normal = cross(v1 - v0, v2 - v0);
   S3D_PRECISE float along = dot(direction, normal);
   if (along == 0.0f) return S3D_INFINITY;
-  return dot(v0 - origin, normal) / along;
+  S3D_PRECISE float distance = dot(v0 - origin, normal);
+  return distance / along;
 }
 
 // The sign of a * b - c * d, exact for any 32-bit integers (64-bit products).
