@@ -1,14 +1,28 @@
 #include "s3d/stereo/depth_range_pass.h"
 
 #include <cstring>
+#include <stdexcept>
+#include <string>
 
+#include "s3d/stereo/detail/host_barriers.h"
+#include "s3d/vk/check.h"
 #include "s3d/vk/timestamps.h"
 
 // clang-format off
 #include <s3d_spirv/depth_range_comp.h>
+#include <s3d_spirv/depth_range_host_comp.h>
 // clang-format on
 
 namespace s3d::stereo {
+
+namespace {
+
+struct HostDepthPush {
+  gpu::LinearDepthParams depthParams;
+  int deviceDepth;  // 1: hardware depth to linearize
+};
+
+}  // namespace
 
 DepthRangePass::DepthRangePass(const vk::Context& context) : context_(&context) {
   const VkDescriptorSetLayoutBinding bindings[] = {
@@ -16,8 +30,19 @@ DepthRangePass::DepthRangePass(const vk::Context& context) : context_(&context) 
       {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr}};
   layout_ = vk::createPushDescriptorLayout(context, bindings, 0, VK_SHADER_STAGE_COMPUTE_BIT);
   pipeline_ = vk::createComputePipeline(context, layout_.layout, spirv_depth_range_comp);
+  const VkDescriptorSetLayoutBinding hostBindings[] = {
+      {0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
+      {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr}};
+  hostLayout_ = vk::createPushDescriptorLayout(context, hostBindings, sizeof(HostDepthPush), VK_SHADER_STAGE_COMPUTE_BIT);
+  hostPipeline_ = vk::createComputePipeline(context, hostLayout_.layout, spirv_depth_range_host_comp);
+  VkSamplerCreateInfo samplerInfo{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
+  samplerInfo.magFilter = samplerInfo.minFilter = VK_FILTER_NEAREST;
+  samplerInfo.addressModeU = samplerInfo.addressModeV = samplerInfo.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+  VkSampler sampler = VK_NULL_HANDLE;
+  S3D_VK_CHECK(vkCreateSampler(context.device(), &samplerInfo, context.allocator(), &sampler));
+  sampler_ = vk::Unique<VkSampler>(context.device(), sampler, vkDestroySampler, context.allocator());
   // The atomics land in device memory (host-visible memory may sit across the bus on a discrete GPU); one small
-  // copy brings the result back. On an H200 at 1920x1080 both layouts measured 0.025-0.027 ms (docs/RESULTS.md).
+  // copy brings the result back (both layouts measured alike: RESULTS.md "Cost of the depth reduction").
   counters_ = vk::createBuffer(context, sizeof(gpu::DepthRangeBuffer),
                                VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT |
                                    VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
@@ -26,27 +51,21 @@ DepthRangePass::DepthRangePass(const vk::Context& context) : context_(&context) 
                              vk::MemoryLocation::HostVisible);
 }
 
-void DepthRangePass::record(VkCommandBuffer cmd, const vk::Image& linearDepth) const {
-  // Nearest starts at +inf's bits, every other counter at 0.
+void DepthRangePass::recordReduction(VkCommandBuffer cmd, const std::function<void()>& bindAndPush, std::uint32_t width,
+                                     std::uint32_t height) const {
+  // Nearest starts at +inf's bits, every other counter at 0 (fills synchronize as transfer writes).
   vkCmdFillBuffer(cmd, counters_.buffer, 0, sizeof(std::uint32_t), 0x7f800000u);
   vkCmdFillBuffer(cmd, counters_.buffer, sizeof(std::uint32_t), VK_WHOLE_SIZE, 0u);
-  VkMemoryBarrier2 cleared{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2, nullptr, VK_PIPELINE_STAGE_2_CLEAR_BIT,
+  VkMemoryBarrier2 cleared{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2, nullptr, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
                            VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                            VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT};
   VkDependencyInfo dependency{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
   dependency.memoryBarrierCount = 1;
   dependency.pMemoryBarriers = &cleared;
   vkCmdPipelineBarrier2(cmd, &dependency);
-
-  VkDescriptorImageInfo image{VK_NULL_HANDLE, linearDepth.view, VK_IMAGE_LAYOUT_GENERAL};
-  VkDescriptorBufferInfo buffer{counters_.buffer, 0, VK_WHOLE_SIZE};
-  VkWriteDescriptorSet writes[2] = {vk::storageImageWrite(0, &image), vk::uniformBufferWrite(1, &buffer)};
-  writes[1].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_);
-  context_->cmdPushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_.layout, 0, 2, writes);
+  bindAndPush();
   auto groups = [](std::uint32_t size, std::uint32_t perGroup) { return (size + perGroup - 1) / perGroup; };
-  vkCmdDispatch(cmd, groups(linearDepth.width, S3D_DEPTH_GROUP_SIZE * S3D_DEPTH_RUN),
-                groups(linearDepth.height, S3D_DEPTH_GROUP_SIZE), 1);
+  vkCmdDispatch(cmd, groups(width, S3D_DEPTH_GROUP_SIZE * S3D_DEPTH_RUN), groups(height, S3D_DEPTH_GROUP_SIZE), 1);
 
   VkMemoryBarrier2 reduced{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2, nullptr, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                            VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_COPY_BIT,
@@ -59,6 +78,61 @@ void DepthRangePass::record(VkCommandBuffer cmd, const vk::Image& linearDepth) c
                         VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT};
   dependency.pMemoryBarriers = &done;
   vkCmdPipelineBarrier2(cmd, &dependency);
+}
+
+void DepthRangePass::record(VkCommandBuffer cmd, const vk::Image& linearDepth) const {
+  VkDescriptorImageInfo image{VK_NULL_HANDLE, linearDepth.view, VK_IMAGE_LAYOUT_GENERAL};
+  VkDescriptorBufferInfo buffer{counters_.buffer, 0, VK_WHOLE_SIZE};
+  recordReduction(cmd, [&] {
+    VkWriteDescriptorSet writes[2] = {vk::storageImageWrite(0, &image), vk::uniformBufferWrite(1, &buffer)};
+    writes[1].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_);
+    context_->cmdPushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_.layout, 0, 2, writes);
+  }, linearDepth.width, linearDepth.height);
+}
+
+void DepthRangePass::recordHost(VkCommandBuffer cmd, const HostImage& depth, std::uint32_t width, std::uint32_t height,
+                                const HostProjection& projection, float weaponDepthOffset, float weaponDepthScale) const {
+  const bool hardware = detail::isHostDepthFormat(depth.format);
+  if (!hardware && depth.format != VK_FORMAT_R32_SFLOAT)
+    throw std::invalid_argument("DepthRangePass: the host's depth must be D32, D24S8, D16 or R32F linear depth (format " +
+                                std::to_string(int(depth.format)) + ")");
+  if (!depth.image || !depth.view || width == 0 || height == 0)
+    throw std::invalid_argument("DepthRangePass: the host's depth image is missing or empty");
+  HostDepthPush push{};
+  push.depthParams = linearDepthParams(projection, weaponDepthOffset, weaponDepthScale);  // checks the projection
+  push.deviceDepth = hardware ? 1 : 0;
+  // Read in its own layout where a compute shader can sample it, else barriered into a read-only one and back.
+  const bool readable = detail::sampledReadable(depth.layout);
+  if (!readable && depth.stage == VK_PIPELINE_STAGE_2_NONE)
+    throw std::invalid_argument("DepthRangePass: the host's depth image is in a layout s3d cannot read and the host "
+                                "gave no access for a barrier");
+  const VkImageLayout layout = readable ? depth.layout
+                               : hardware ? VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL
+                                          : VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
+  constexpr VkPipelineStageFlags2 compute = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
+  constexpr VkAccessFlags2 sampled = VK_ACCESS_2_SHADER_SAMPLED_READ_BIT;
+  const bool barriers = depth.stage != VK_PIPELINE_STAGE_2_NONE;
+  if (barriers) {
+    detail::HostBarriers<1> before;
+    before.image(depth.image, depth.format, depth.layout, depth.stage, depth.access, layout, compute, sampled, depth.layer);
+    before.record(cmd);
+  }
+  VkDescriptorImageInfo image{sampler_.get(), depth.view, layout};
+  VkDescriptorBufferInfo buffer{counters_.buffer, 0, VK_WHOLE_SIZE};
+  recordReduction(cmd, [&] {
+    VkWriteDescriptorSet writes[2] = {vk::sampledImageWrite(0, &image), vk::uniformBufferWrite(1, &buffer)};
+    writes[0].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+    writes[1].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, hostPipeline_);
+    context_->cmdPushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, hostLayout_.layout, 0, 2, writes);
+    vkCmdPushConstants(cmd, hostLayout_.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push, &push);
+  }, width, height);
+  if (barriers) {
+    detail::HostBarriers<1> after;
+    after.image(depth.image, depth.format, layout, compute, sampled, depth.layout, depth.stage, depth.access, depth.layer);
+    after.record(cmd);
+  }
 }
 
 DepthRange DepthRangePass::result() const {
