@@ -121,7 +121,11 @@ gpu::LinearDepthParams linearDepthParams(const HostProjection& p, float weaponDe
                                                p.firstPersonNear, p.firstPersonFar, split);
   params.worldRatio = p.reversedZ ? layerRatio(p.nearPlane, p.farPlane, p.infiniteFarPlane, true, 0.0f, 1.0f - split)
                                   : layerRatio(p.nearPlane, p.farPlane, p.infiniteFarPlane, false, split, 1.0f);
-  if (split == 0.0f) params.firstPersonDeviceDepthMax = -1.0f;  // no first-person layer: no depth belongs to it
+  if (split == 0.0f) {  // no first-person layer: no depth belongs to it
+    params.firstPersonDeviceDepthMax = -1.0f;
+    // Never selected, but the shaders' mix() still reads it: unset planes (0, 0) would give NaN ratios there.
+    params.firstPersonRatio = params.worldRatio;
+  }
   params.firstPersonDepthOffset = weaponDepthOffset;
   params.firstPersonDepthScale = weaponDepthScale;
   return params;

@@ -12,7 +12,7 @@ extern "C" {
 #endif
 
 #define S3D_API_VERSION_MAJOR 0
-#define S3D_API_VERSION_MINOR 5
+#define S3D_API_VERSION_MINOR 6
 
 typedef enum s3d_result {
   S3D_SUCCESS = 0,
@@ -349,6 +349,22 @@ typedef struct s3d_depth_range {
   const uint32_t* histogram; /* may be NULL */
   uint32_t histogram_bins;
 } s3d_depth_range;
+
+/* The frame's depth range on the GPU from the host's depth buffer as it is (C++: stereo::DepthRangePass::
+ * recordHost): D32, D24S8 or D16 linearized with the projection and the weapon push as the stereo frame reads
+ * them, or R32F linear depth. Made once per view stream; recording allocates nothing. Synchronization: as the
+ * stereo frame's inputs (a stage in the s3d_host_image: s3d barriers it into a readable layout and back; stage
+ * NONE: it must already be in a layout a compute shader samples). */
+typedef struct s3d_depth_reduction_t* s3d_depth_reduction;
+s3d_result s3d_depth_reduction_create(s3d_context context, s3d_depth_reduction* out);
+void s3d_depth_reduction_destroy(s3d_depth_reduction reduction);
+/* Records the reduction of `depth` (width x height) into cmd. */
+s3d_result s3d_depth_reduction_record(s3d_depth_reduction reduction, VkCommandBuffer cmd, const s3d_host_image* depth,
+                                      uint32_t width, uint32_t height, const s3d_projection* projection,
+                                      float weapon_depth_offset, float weapon_depth_scale);
+/* The range of the last recorded reduction, once its submission has completed: out->histogram points into the
+ * reduction's own storage, valid until the next call on it. */
+s3d_result s3d_depth_reduction_result(s3d_depth_reduction reduction, s3d_depth_range* out);
 
 typedef struct s3d_frame_budget {
   s3d_budget_controller controller;
