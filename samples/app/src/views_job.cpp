@@ -47,7 +47,7 @@ renderer::ViewMatrices eyeViewFor(const renderer::Scene& scene, const renderer::
 
 // The synthesized eye's range of disparity, in its pixels and in arcminutes: from its nearest and farthest depth.
 void recordDisparityRange(ViewsReport& report, const DepthImage& eyeDepth, const comfort::EyeView& eye,
-                          float worldScale, std::size_t index) {
+                          double worldScale, std::size_t index) {
   double nearest = INFINITY, farthest = 0.0;
   for (float d : eyeDepth.pixels)
     if (d > 0.0f) nearest = std::min(nearest, double(d)), farthest = std::max(farthest, double(d));
