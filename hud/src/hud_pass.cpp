@@ -6,7 +6,6 @@
 
 #include "s3d/hud/hud_pass_shared.h"
 #include "s3d/stereo/detail/host_barriers.h"
-#include "s3d/vk/check.h"
 
 // clang-format off
 #include <s3d_spirv/hud_composite_comp.h>
@@ -54,12 +53,7 @@ HudPass::HudPass(vk::Context& context, const HudPassDesc& desc) : context_(&cont
                                            VK_SHADER_STAGE_COMPUTE_BIT);
   pipeline_ = vk::createComputePipeline(context, layout_.layout, spirv_hud_composite_comp);
 
-  VkSamplerCreateInfo samplerInfo{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
-  samplerInfo.magFilter = samplerInfo.minFilter = VK_FILTER_NEAREST;  // texelFetch ignores it; a sampler is required
-  samplerInfo.addressModeU = samplerInfo.addressModeV = samplerInfo.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
-  VkSampler sampler = VK_NULL_HANDLE;
-  S3D_VK_CHECK(vkCreateSampler(context.device(), &samplerInfo, context.allocator(), &sampler));
-  sampler_ = vk::Unique<VkSampler>(context.device(), sampler, vkDestroySampler, context.allocator());
+  sampler_ = vk::createNearestClampSampler(context);  // texelFetch ignores its filter; a sampler is required
 
   uploaded_.resize(desc.elements.size());
   for (std::size_t i = 0; i < desc.elements.size(); ++i) {

@@ -2,7 +2,6 @@
 
 #include "compute_binding.h"
 
-#include "nearest_sampler.h"
 
 #include "s3d/renderer/renderer_shared.h"
 #include "s3d/vk/check.h"
@@ -31,7 +30,7 @@ AmbientOcclusion::AmbientOcclusion(vk::Context& context, std::uint32_t renderWid
   const VkImageUsageFlags usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
   occlusion_ = vk::createImage(context_, kOcclusionFormat, w, h, usage);
   blurred_ = vk::createImage(context_, kOcclusionFormat, w, h, usage);
-  nearest_ = createNearestClampSampler(context_);
+  nearest_ = vk::createNearestClampSampler(context_);
   const VkDescriptorSetLayoutBinding bindings[] = {
       computeBinding(0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER), computeBinding(1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER),
       computeBinding(2, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE), computeBinding(3, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER)};

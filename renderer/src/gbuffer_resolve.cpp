@@ -2,7 +2,6 @@
 
 #include "compute_binding.h"
 
-#include "nearest_sampler.h"
 
 #include "s3d/renderer/renderer_shared.h"
 
@@ -33,7 +32,7 @@ GBufferResolve::GBufferResolve(vk::Context& context, bool counting) : context_(c
       computeBinding(8, ssbo),    computeBinding(9, storage)};
   layout_ = vk::createPushDescriptorLayout(context_, bindings, 0, 0);
   pipelines_ = std::make_unique<TilePipelines>(context_, layout_.layout, spirv_gbuffer_resolve_comp, counting);
-  nearest_ = createNearestClampSampler(context_);
+  nearest_ = vk::createNearestClampSampler(context_);
 }
 
 void GBufferResolve::record(VkCommandBuffer cmd, const Inputs& in, const vk::Image& normalGlossiness,

@@ -1,7 +1,6 @@
 #include "resolve_pass.h"
 
 #include "compute_binding.h"
-#include "nearest_sampler.h"
 #include "s3d/renderer/renderer_shared.h"
 
 // clang-format off
@@ -21,7 +20,7 @@ ResolvePass::ResolvePass(vk::Context& context, bool counting) : context_(context
       computeBinding(4, sampled), computeBinding(5, storage), computeBinding(6, ssbo),    computeBinding(7, storage)};
   layout_ = vk::createPushDescriptorLayout(context_, bindings, sizeof(gpu::ResolveConstants), VK_SHADER_STAGE_COMPUTE_BIT);
   pipelines_ = std::make_unique<TilePipelines>(context_, layout_.layout, spirv_resolve_comp, counting);
-  nearest_ = createNearestClampSampler(context_);
+  nearest_ = vk::createNearestClampSampler(context_);
 }
 
 void ResolvePass::record(VkCommandBuffer cmd, const Inputs& in, const Outputs& out) {

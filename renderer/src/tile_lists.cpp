@@ -18,15 +18,6 @@ constexpr std::uint32_t groups(std::uint32_t size, std::uint32_t group) { return
 
 using detail::computeBinding;
 
-void memoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess,
-                   VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess) {
-  VkMemoryBarrier2 barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2, nullptr, srcStage, srcAccess, dstStage, dstAccess};
-  VkDependencyInfo dependency{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-  dependency.memoryBarrierCount = 1;
-  dependency.pMemoryBarriers = &barrier;
-  vkCmdPipelineBarrier2(cmd, &dependency);
-}
-
 constexpr VkPipelineStageFlags2 kComputeAndIndirect =
     VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT;
 constexpr VkAccessFlags2 kStorageAndIndirect = VK_ACCESS_2_SHADER_STORAGE_READ_BIT |
@@ -95,7 +86,7 @@ TileLists::TileLists(vk::Context& context, std::uint32_t renderWidth, std::uint3
 
 void TileLists::recordReset(VkCommandBuffer cmd, const vk::Image* mask) {
   // Earlier frames' compute reads and indirect reads finish before the reset overwrites the buffer.
-  memoryBarrier(cmd, kComputeAndIndirect | VK_PIPELINE_STAGE_2_COPY_BIT, kStorageAndIndirect,
+  vk::memoryBarrier(cmd, kComputeAndIndirect | VK_PIPELINE_STAGE_2_COPY_BIT, kStorageAndIndirect,
                 VK_PIPELINE_STAGE_2_CLEAR_BIT | VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
   gpu::TileHeader header{};
   header.lightingDispatch = glm::uvec4(0, 1, 1, 0);
@@ -108,7 +99,7 @@ void TileLists::recordReset(VkCommandBuffer cmd, const vk::Image* mask) {
     vk::transition(cmd, *mask, {VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_WRITE_BIT},
                    kShadeMaskRead);
   }
-  memoryBarrier(cmd, VK_PIPELINE_STAGE_2_CLEAR_BIT | VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+  vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_CLEAR_BIT | VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
                 kComputeAndIndirect, kStorageAndIndirect);
 }
 
@@ -122,7 +113,7 @@ void TileLists::recordBuild(VkCommandBuffer cmd, VkBuffer frameBuffer, const vk:
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, build_);
   context_.cmdPushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, buildLayout_.layout, 0, 3, writes);
   vkCmdDispatch(cmd, tilesX_, tilesY_, 1);
-  memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, kComputeAndIndirect,
+  vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, kComputeAndIndirect,
                 kStorageAndIndirect);
 }
 
@@ -141,16 +132,16 @@ void TileLists::recordCountGBuffer(VkCommandBuffer cmd, VkBuffer frameBuffer, co
 }
 
 void TileLists::recordListsVisible(VkCommandBuffer cmd) {
-  memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, kComputeAndIndirect,
+  vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, kComputeAndIndirect,
                 kStorageAndIndirect);
 }
 
 void TileLists::recordCountReadback(VkCommandBuffer cmd) {
-  memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+  vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
                 VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
   VkBufferCopy region{0, 0, sizeof(gpu::TileHeader)};
   vkCmdCopyBuffer(cmd, buffer_.buffer, readback_.buffer, 1, &region);
-  memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT,
+  vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT,
                 VK_ACCESS_2_HOST_READ_BIT);
 }
 

@@ -2,7 +2,6 @@
 
 #include "compute_binding.h"
 
-#include "nearest_sampler.h"
 
 #include <algorithm>
 #include <cmath>
@@ -53,7 +52,7 @@ TiledLighting::TiledLighting(vk::Context& context, bool counting) : context_(con
   const std::uint32_t classifyThreads = context_.isCpuDevice() ? kCpuClassifyThreads : kGpuClassifyThreads;
   classifyPipelines_ = std::make_unique<TilePipelines>(context_, classifyLayout_.layout, spirv_light_tiles_comp, false,
                                                        std::vector<std::uint32_t>{classifyThreads});
-  nearest_ = createNearestClampSampler(context_);
+  nearest_ = vk::createNearestClampSampler(context_);
   setScene(Scene{});
 }
 

@@ -7,7 +7,6 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "compute_binding.h"
-#include "nearest_sampler.h"
 #include "s3d/renderer/renderer_shared.h"
 
 // clang-format off
@@ -77,7 +76,7 @@ TransparentPass::TransparentPass(vk::Context& context, std::uint32_t width, std:
       computeBinding(8, sampled), computeBinding(9, sampled), computeBinding(10, storage)};
   layout_ = vk::createPushDescriptorLayout(context_, bindings, sizeof(gpu::TransparentConstants), VK_SHADER_STAGE_COMPUTE_BIT);
   pipeline_ = vk::createComputePipeline(context_, layout_.layout, spirv_transparent_comp);
-  nearest_ = createNearestClampSampler(context_);
+  nearest_ = vk::createNearestClampSampler(context_);
   coverage_ = vk::createImage(context_, kCoverageFormat, width, height,
                               VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
 }

@@ -5,7 +5,6 @@
 #include <string>
 
 #include "s3d/stereo/detail/host_barriers.h"
-#include "s3d/vk/check.h"
 #include "s3d/vk/timestamps.h"
 
 // clang-format off
@@ -35,12 +34,7 @@ DepthRangePass::DepthRangePass(const vk::Context& context) : context_(&context) 
       {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr}};
   hostLayout_ = vk::createPushDescriptorLayout(context, hostBindings, sizeof(HostDepthPush), VK_SHADER_STAGE_COMPUTE_BIT);
   hostPipeline_ = vk::createComputePipeline(context, hostLayout_.layout, spirv_depth_range_host_comp);
-  VkSamplerCreateInfo samplerInfo{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
-  samplerInfo.magFilter = samplerInfo.minFilter = VK_FILTER_NEAREST;
-  samplerInfo.addressModeU = samplerInfo.addressModeV = samplerInfo.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
-  VkSampler sampler = VK_NULL_HANDLE;
-  S3D_VK_CHECK(vkCreateSampler(context.device(), &samplerInfo, context.allocator(), &sampler));
-  sampler_ = vk::Unique<VkSampler>(context.device(), sampler, vkDestroySampler, context.allocator());
+  sampler_ = vk::createNearestClampSampler(context);
   // The atomics land in device memory (host-visible memory may sit across the bus on a discrete GPU); one small
   // copy brings the result back (both layouts measured alike: RESULTS.md "Cost of the depth reduction").
   counters_ = vk::createBuffer(context, sizeof(gpu::DepthRangeBuffer),
@@ -56,28 +50,19 @@ void DepthRangePass::recordReduction(VkCommandBuffer cmd, const std::function<vo
   // Nearest starts at +inf's bits, every other counter at 0 (fills synchronize as transfer writes).
   vkCmdFillBuffer(cmd, counters_.buffer, 0, sizeof(std::uint32_t), 0x7f800000u);
   vkCmdFillBuffer(cmd, counters_.buffer, sizeof(std::uint32_t), VK_WHOLE_SIZE, 0u);
-  VkMemoryBarrier2 cleared{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2, nullptr, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
-                           VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                           VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT};
-  VkDependencyInfo dependency{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-  dependency.memoryBarrierCount = 1;
-  dependency.pMemoryBarriers = &cleared;
-  vkCmdPipelineBarrier2(cmd, &dependency);
+  vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                    VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                    VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
   bindAndPush();
   auto groups = [](std::uint32_t size, std::uint32_t perGroup) { return (size + perGroup - 1) / perGroup; };
   vkCmdDispatch(cmd, groups(width, S3D_DEPTH_GROUP_SIZE * S3D_DEPTH_RUN), groups(height, S3D_DEPTH_GROUP_SIZE), 1);
 
-  VkMemoryBarrier2 reduced{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2, nullptr, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                           VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_COPY_BIT,
-                           VK_ACCESS_2_TRANSFER_READ_BIT};
-  dependency.pMemoryBarriers = &reduced;
-  vkCmdPipelineBarrier2(cmd, &dependency);
+  vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                    VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
   const VkBufferCopy whole{0, 0, sizeof(gpu::DepthRangeBuffer)};
   vkCmdCopyBuffer(cmd, counters_.buffer, buffer_.buffer, 1, &whole);
-  VkMemoryBarrier2 done{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2, nullptr, VK_PIPELINE_STAGE_2_COPY_BIT,
-                        VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT};
-  dependency.pMemoryBarriers = &done;
-  vkCmdPipelineBarrier2(cmd, &dependency);
+  vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT,
+                    VK_ACCESS_2_HOST_READ_BIT);
 }
 
 void DepthRangePass::record(VkCommandBuffer cmd, const vk::Image& linearDepth) const {

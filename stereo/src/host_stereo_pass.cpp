@@ -8,7 +8,6 @@
 #include <string>
 
 #include "s3d/stereo/detail/host_barriers.h"
-#include "s3d/vk/check.h"
 #include "s3d/vk/pipeline.h"
 
 // clang-format off
@@ -148,12 +147,7 @@ HostStereoPass::HostStereoPass(vk::Context& context, const HostStereoPassDesc& d
   if (desc.colorFormat == VK_FORMAT_R8G8B8A8_SRGB || desc.colorFormat == VK_FORMAT_B8G8R8A8_SRGB)
     colorTransfer_ = S3D_HOST_COLOR_ENCODE_SRGB;
 
-  VkSamplerCreateInfo samplerInfo{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
-  samplerInfo.magFilter = samplerInfo.minFilter = VK_FILTER_NEAREST;
-  samplerInfo.addressModeU = samplerInfo.addressModeV = samplerInfo.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
-  VkSampler sampler = VK_NULL_HANDLE;
-  S3D_VK_CHECK(vkCreateSampler(context.device(), &samplerInfo, context.allocator(), &sampler));
-  sampler_ = vk::Unique<VkSampler>(context.device(), sampler, vkDestroySampler, context.allocator());
+  sampler_ = vk::createNearestClampSampler(context);
 
   const VkDescriptorSetLayoutBinding storage4[] = {
       binding(0, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE), binding(1, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE),

@@ -52,6 +52,13 @@ struct ImageState {
   VkAccessFlags2 access = VK_ACCESS_2_NONE;
 };
 void transition(VkCommandBuffer cmd, const Image& image, const ImageState& from, const ImageState& to);
+// One global memory barrier (synchronization2): the source stage's accesses before the destination stage's.
+void memoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess,
+                   VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess);
+
+// The sampler compute passes read images through with texelFetch: no filtering, clamped at the edges (a texel is
+// fetched as written; a sampled descriptor needs one).
+Unique<VkSampler> createNearestClampSampler(const Context& context);
 
 // Common states.
 inline constexpr ImageState kUndefined{};
