@@ -69,24 +69,14 @@ constexpr std::chrono::milliseconds kWarmUp{1000};
 
 // Between two recordings of the same pass: its writes before the next one's reads and writes.
 void computeBarrier(VkCommandBuffer cmd) {
-  VkMemoryBarrier2 barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
-  barrier.srcStageMask = barrier.dstStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
-  barrier.srcAccessMask = barrier.dstAccessMask = VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
-  VkDependencyInfo dependency{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-  dependency.memoryBarrierCount = 1;
-  dependency.pMemoryBarriers = &barrier;
-  vkCmdPipelineBarrier2(cmd, &dependency);
+  constexpr VkAccessFlags2 storage = VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
+  vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, storage, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, storage);
 }
 
 // Every earlier command's writes before every later command: for steps that mix copies and compute.
 void fullBarrier(VkCommandBuffer cmd) {
-  VkMemoryBarrier2 barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
-  barrier.srcStageMask = barrier.dstStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
-  barrier.srcAccessMask = barrier.dstAccessMask = VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT;
-  VkDependencyInfo dependency{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-  dependency.memoryBarrierCount = 1;
-  dependency.pMemoryBarriers = &barrier;
-  vkCmdPipelineBarrier2(cmd, &dependency);
+  constexpr VkAccessFlags2 memory = VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT;
+  vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, memory, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, memory);
 }
 
 template <typename Record>
@@ -142,6 +132,45 @@ void BareKernel(benchmark::State& state) {
   state.SetLabel(context.deviceName() + ", " + stereo::methodName(parameters.method));
 }
 
+// An image the host synchronizes itself (stage NONE): the time is s3d's own work and barriers.
+stereo::HostImage hostSynchronized(const vk::Image& image, VkImageLayout layout) {
+  return stereo::HostImage{image.image, image.view, image.format, layout, VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE};
+}
+
+// A host's images for a stereo frame of `desc`: colour and depth uploaded from the synthetic view and sampled,
+// the eyes and the packed target storage images in GENERAL, and the dispatch naming them with a perspective center
+// camera that does not move (the fill's full work; the hybrid's eye cameras).
+struct HostFrameImages {
+  vk::Image color, depth, left, right, target;
+  stereo::StereoFrameDispatch dispatch;
+
+  HostFrameImages(vk::Context& context, const stereo::StereoFrameDesc& desc, const stereo::StereoFrame& stereoFrame) {
+    const VkImageUsageFlags inputUsage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+    color = vk::createImage(context, desc.colorFormat, kWidth, kHeight, inputUsage);
+    depth = vk::createImage(context, desc.depthFormat, kWidth, kHeight, inputUsage);
+    vk::uploadImage(context, color, std::as_bytes(std::span(view().color)), vk::kFragmentRead);
+    vk::uploadImage(context, depth, std::as_bytes(std::span(view().device)), vk::kFragmentRead);
+    left = vk::createImage(context, stereoFrame.eyeFormat(), kWidth, kHeight, VK_IMAGE_USAGE_STORAGE_BIT);
+    right = vk::createImage(context, stereoFrame.eyeFormat(), kWidth, kHeight, VK_IMAGE_USAGE_STORAGE_BIT);
+    target = vk::createImage(context, stereoFrame.eyeFormat(), stereoFrame.packedWidth(), stereoFrame.packedHeight(),
+                             VK_IMAGE_USAGE_STORAGE_BIT);
+    context.submitAndWait([&](VkCommandBuffer cmd) {
+      for (const vk::Image* image : {&left, &right, &target}) vk::transition(cmd, *image, vk::kUndefined, vk::kComputeWrite);
+    });
+    dispatch.color = hostSynchronized(color, vk::kFragmentRead.layout);
+    dispatch.depth = hostSynchronized(depth, vk::kFragmentRead.layout);
+    dispatch.left = hostSynchronized(left, VK_IMAGE_LAYOUT_GENERAL);
+    dispatch.right = hostSynchronized(right, VK_IMAGE_LAYOUT_GENERAL);
+    dispatch.target = hostSynchronized(target, VK_IMAGE_LAYOUT_GENERAL);
+    dispatch.projection = frame().projection;
+    dispatch.centerProjection[0][0] = 1.0f;
+    dispatch.centerProjection[1][1] = 1.7f;
+    dispatch.centerProjection[2][3] = -1.0f;
+    dispatch.centerProjection[3][2] = 0.1f;
+    dispatch.centerProjection[3][3] = 0.0f;
+  }
+};
+
 // The host's stereo frame from sRGB colour and D32 depth the host synchronizes itself. Arguments: the method as
 // BareKernel's (4: forward with the previous-frame fill), the output (0 two eyes, 1 anaglyph) and the colour's
 // view (0 sRGB: the sampler decodes, the gather encodes again; 1 UNORM, as a host's UNORM view of an sRGB image
@@ -158,34 +187,8 @@ void HostStereoFrame(benchmark::State& state) {
   desc.previousFrameFill = fill;
   desc.output = state.range(1) == 0 ? stereo::HostOutput::TwoEyes : stereo::HostOutput::Anaglyph;
   stereo::StereoFrame stereoFrame(context, desc);
-  const VkImageUsageFlags inputUsage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
-  vk::Image color = vk::createImage(context, desc.colorFormat, kWidth, kHeight, inputUsage);
-  vk::Image depth = vk::createImage(context, desc.depthFormat, kWidth, kHeight, inputUsage);
-  vk::uploadImage(context, color, std::as_bytes(std::span(view().color)), vk::kFragmentRead);
-  vk::uploadImage(context, depth, std::as_bytes(std::span(view().device)), vk::kFragmentRead);
-  vk::Image left = vk::createImage(context, stereoFrame.eyeFormat(), kWidth, kHeight, VK_IMAGE_USAGE_STORAGE_BIT);
-  vk::Image right = vk::createImage(context, stereoFrame.eyeFormat(), kWidth, kHeight, VK_IMAGE_USAGE_STORAGE_BIT);
-  vk::Image target =
-      vk::createImage(context, stereoFrame.eyeFormat(), stereoFrame.packedWidth(), stereoFrame.packedHeight(), VK_IMAGE_USAGE_STORAGE_BIT);
-  context.submitAndWait([&](VkCommandBuffer cmd) {
-    for (const vk::Image* image : {&left, &right, &target}) vk::transition(cmd, *image, vk::kUndefined, vk::kComputeWrite);
-  });
-  auto host = [](const vk::Image& image, VkImageLayout layout) {
-    return stereo::HostImage{image.image, image.view, image.format, layout, VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE};
-  };
-  stereo::StereoFrameDispatch dispatch;
-  dispatch.color = host(color, vk::kFragmentRead.layout);
-  dispatch.depth = host(depth, vk::kFragmentRead.layout);
-  dispatch.left = host(left, VK_IMAGE_LAYOUT_GENERAL);
-  dispatch.right = host(right, VK_IMAGE_LAYOUT_GENERAL);
-  dispatch.target = host(target, VK_IMAGE_LAYOUT_GENERAL);
-  dispatch.projection = frame().projection;
-  dispatch.centerProjection[0][0] = 1.0f;  // a perspective camera that does not move: the fill's full work
-  dispatch.centerProjection[1][1] = 1.7f;
-  dispatch.centerProjection[2][3] = -1.0f;
-  dispatch.centerProjection[3][2] = 0.1f;
-  dispatch.centerProjection[3][3] = 0.0f;
-  timeRecording(state, [&](VkCommandBuffer cmd) { stereoFrame.record(cmd, dispatch); });
+  const HostFrameImages images(context, desc, stereoFrame);
+  timeRecording(state, [&](VkCommandBuffer cmd) { stereoFrame.record(cmd, images.dispatch); });
   state.SetLabel(context.deviceName() + ", " + stereo::methodName(desc.method) + (fill ? " + fill" : "") +
                  (state.range(2) == 0 ? ", sRGB" : ", UNORM view"));
 }
@@ -204,38 +207,18 @@ void HostHybridMasks(benchmark::State& state) {
   desc.method = stereo::StereoMethod::Hybrid;
   desc.hybridBudget = float(state.range(0)) / 100.0f;
   stereo::StereoFrame stereoFrame(context, desc);
-  const VkImageUsageFlags inputUsage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
-  vk::Image color = vk::createImage(context, desc.colorFormat, kWidth, kHeight, inputUsage);
-  vk::Image depth = vk::createImage(context, desc.depthFormat, kWidth, kHeight, inputUsage);
-  vk::uploadImage(context, color, std::as_bytes(std::span(view().color)), vk::kFragmentRead);
-  vk::uploadImage(context, depth, std::as_bytes(std::span(view().device)), vk::kFragmentRead);
-  vk::Image left = vk::createImage(context, stereoFrame.eyeFormat(), kWidth, kHeight, VK_IMAGE_USAGE_STORAGE_BIT);
-  vk::Image right = vk::createImage(context, stereoFrame.eyeFormat(), kWidth, kHeight, VK_IMAGE_USAGE_STORAGE_BIT);
+  HostFrameImages images(context, desc, stereoFrame);
   const VkImageUsageFlags maskUsage = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
   vk::Image leftMask = vk::createImage(context, VK_FORMAT_D32_SFLOAT, kWidth, kHeight, maskUsage);
   vk::Image rightMask = vk::createImage(context, VK_FORMAT_D32_SFLOAT, kWidth, kHeight, maskUsage);
   context.submitAndWait([&](VkCommandBuffer cmd) {
-    for (const vk::Image* image : {&left, &right}) vk::transition(cmd, *image, vk::kUndefined, vk::kComputeWrite);
     for (const vk::Image* image : {&leftMask, &rightMask})
       vk::transition(cmd, *image, vk::kUndefined, {VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COPY_BIT,
                                                    VK_ACCESS_2_TRANSFER_WRITE_BIT});
   });
-  auto host = [](const vk::Image& image, VkImageLayout layout) {
-    return stereo::HostImage{image.image, image.view, image.format, layout, VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE};
-  };
-  stereo::StereoFrameDispatch dispatch;
-  dispatch.color = host(color, vk::kFragmentRead.layout);
-  dispatch.depth = host(depth, vk::kFragmentRead.layout);
-  dispatch.left = host(left, VK_IMAGE_LAYOUT_GENERAL);
-  dispatch.right = host(right, VK_IMAGE_LAYOUT_GENERAL);
-  dispatch.leftMask = host(leftMask, VK_IMAGE_LAYOUT_GENERAL);
-  dispatch.rightMask = host(rightMask, VK_IMAGE_LAYOUT_GENERAL);
-  dispatch.projection = frame().projection;
-  dispatch.centerProjection[0][0] = 1.0f;  // a perspective camera: the eye cameras the step returns
-  dispatch.centerProjection[1][1] = 1.7f;
-  dispatch.centerProjection[2][3] = -1.0f;
-  dispatch.centerProjection[3][2] = 0.1f;
-  dispatch.centerProjection[3][3] = 0.0f;
+  stereo::StereoFrameDispatch& dispatch = images.dispatch;
+  dispatch.leftMask = hostSynchronized(leftMask, VK_IMAGE_LAYOUT_GENERAL);
+  dispatch.rightMask = hostSynchronized(rightMask, VK_IMAGE_LAYOUT_GENERAL);
   timeRecording(state, [&](VkCommandBuffer cmd) {
     fullBarrier(cmd);  // the previous recording's mask copies before this one's buffer writes
     (void)stereoFrame.recordHybridMasks(cmd, dispatch);
@@ -291,11 +274,9 @@ void HostPass(benchmark::State& state) {
     for (const vk::Image* image : {&left, &right, &target}) vk::transition(cmd, *image, vk::kUndefined, vk::kComputeWrite);
   });
   // The host synchronizes its images itself (stage NONE): the time is the pass's own work and barriers.
-  auto host = [](const vk::Image& image, VkImageLayout layout) {
-    return stereo::HostImage{image.image, image.view, image.format, layout, VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE};
-  };
-  const stereo::HostImage l = host(left, VK_IMAGE_LAYOUT_GENERAL), r = host(right, VK_IMAGE_LAYOUT_GENERAL),
-                          t = host(target, VK_IMAGE_LAYOUT_GENERAL);
+  const stereo::HostImage l = hostSynchronized(left, VK_IMAGE_LAYOUT_GENERAL),
+                          r = hostSynchronized(right, VK_IMAGE_LAYOUT_GENERAL),
+                          t = hostSynchronized(target, VK_IMAGE_LAYOUT_GENERAL);
   const stereo::HostFrame f = frame();
   const bool eyes = output == stereo::HostOutput::TwoEyes;
   std::optional<hud::HudPass> hudPass;
@@ -304,7 +285,7 @@ void HostPass(benchmark::State& state) {
   const std::optional<hud::HudOverlay> overlay =
       hudPass ? std::optional<hud::HudOverlay>(hudPass->overlay(hudFrame)) : std::nullopt;
   timeRecording(state, [&](VkCommandBuffer cmd) {
-    pass.record(cmd, host(color, readable.layout), host(depth, readable.layout), f, eyes ? &l : nullptr,
+    pass.record(cmd, hostSynchronized(color, readable.layout), hostSynchronized(depth, readable.layout), f, eyes ? &l : nullptr,
                 eyes ? &r : nullptr, eyes ? nullptr : &t, overlay ? &*overlay : nullptr);
   });
 }

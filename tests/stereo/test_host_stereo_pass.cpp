@@ -101,8 +101,7 @@ TEST_F(HostStereoPassTest, EveryPackedTargetIsOutputFormatsAppliedToThePassesOwn
   DepthImage unused;
   const stereo::StereoPair own = eyes(VK_FORMAT_R8G8B8A8_UNORM, VK_FORMAT_R32_SFLOAT, &unused);
   vk::Image color = uploaded(VK_FORMAT_R8G8B8A8_UNORM, colorBytes(view_.color, VK_FORMAT_R8G8B8A8_UNORM), kShaderRead);
-  std::vector<std::byte> depthBytes(view_.depth.pixels.size() * 4);
-  std::memcpy(depthBytes.data(), view_.depth.pixels.data(), depthBytes.size());
+  const std::vector<std::byte> depthBytes = depthUpload(VK_FORMAT_R32_SFLOAT).bytes;
   vk::Image depth = uploaded(VK_FORMAT_R32_SFLOAT, depthBytes, kShaderRead);
   using stereo::PackingMode;
   const std::pair<HostOutput, ImageRGBA8> cases[] = {
@@ -140,8 +139,7 @@ TEST_F(HostStereoPassTest, B10G11R11ColourGivesHalfFloatEyesAtTheReferenceColumn
 }
 
 TEST_F(HostStereoPassTest, StorageInputsSkipTheConversionAndGiveTheSameEyes) {
-  std::vector<std::byte> depthBytes(view_.depth.pixels.size() * 4);
-  std::memcpy(depthBytes.data(), view_.depth.pixels.data(), depthBytes.size());
+  const std::vector<std::byte> depthBytes = depthUpload(VK_FORMAT_R32_SFLOAT).bytes;
   const vk::ImageState computeWritten{VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                                       VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT};
   vk::Image color = uploaded(VK_FORMAT_R8G8B8A8_UNORM, colorBytes(view_.color, VK_FORMAT_R8G8B8A8_UNORM), computeWritten,
@@ -198,8 +196,7 @@ void expectHdrEyes(HostStereoPassTest& t, VkFormat format) {
     }
     std::memcpy(center.at(std::uint32_t(i % kWidth), std::uint32_t(i / kWidth)), &c, sizeof c);
   }
-  std::vector<std::byte> depthBytes(t.view_.depth.pixels.size() * 4);
-  std::memcpy(depthBytes.data(), t.view_.depth.pixels.data(), depthBytes.size());
+  const std::vector<std::byte> depthBytes = t.depthUpload(VK_FORMAT_R32_SFLOAT).bytes;
   vk::Image color = t.uploaded(format, bytes, kShaderRead);
   vk::Image depth = t.uploaded(VK_FORMAT_R32_SFLOAT, depthBytes, kShaderRead);
   for (stereo::HostInputRead read : {stereo::HostInputRead::Direct, stereo::HostInputRead::Convert}) {
@@ -292,11 +289,7 @@ TEST_F(HostStereoPassTest, TheDepthRangeOfAHostsDepthBufferIsThatOfTheStereoDept
   for (VkFormat format : {VK_FORMAT_D32_SFLOAT, VK_FORMAT_D24_UNORM_S8_UINT, VK_FORMAT_D16_UNORM, VK_FORMAT_R32_SFLOAT}) {
     if (!supports(format, VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT)) continue;
     const bool hardware = format != VK_FORMAT_R32_SFLOAT;
-    DepthUpload depth = hardware ? hardwareDepth(view_.depth, format, frame_) : DepthUpload{{}, view_.depth};
-    if (!hardware) {
-      depth.bytes.resize(view_.depth.pixels.size() * 4);
-      std::memcpy(depth.bytes.data(), view_.depth.pixels.data(), depth.bytes.size());
-    }
+    const DepthUpload depth = depthUpload(format);
     const vk::ImageState state = hardware ? kDepthWritten : kShaderRead;
     vk::Image image = uploaded(format, depth.bytes, state, hardware ? VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT : 0);
     const stereo::DepthRangePass pass(*context_);

@@ -131,16 +131,20 @@ class HostStereoPassTest : public HostTest {
   // Runs the pass once in a command buffer of the host's pool, submitted on the host's queue.
   void runOnHostQueue(const std::function<void(VkCommandBuffer)>& record) { test::runOnHostQueue(host(), record); }
 
+  // The view's depth as `depthFormat` stores it (hardware depth of frame_'s projection, or R32F linear), and the
+  // linear depth the pass must see for it.
+  DepthUpload depthUpload(VkFormat depthFormat) const {
+    if (depthFormat != VK_FORMAT_R32_SFLOAT) return hardwareDepth(view_.depth, depthFormat, frame_);
+    DepthUpload depth{{}, view_.depth};
+    depth.bytes.resize(view_.depth.pixels.size() * 4);
+    std::memcpy(depth.bytes.data(), view_.depth.pixels.data(), depth.bytes.size());
+    return depth;
+  }
+
   // Both eyes of the pass for the given colour and depth formats (8-bit eyes).
   stereo::StereoPair eyes(VkFormat colorFormat, VkFormat depthFormat, DepthImage* expectedLinear,
                           stereo::HostInputRead inputRead = stereo::HostInputRead::Auto) {
-    DepthUpload depth = depthFormat == VK_FORMAT_R32_SFLOAT
-                            ? DepthUpload{{}, view_.depth}
-                            : hardwareDepth(view_.depth, depthFormat, frame_);
-    if (depthFormat == VK_FORMAT_R32_SFLOAT) {
-      depth.bytes.resize(view_.depth.pixels.size() * 4);
-      std::memcpy(depth.bytes.data(), view_.depth.pixels.data(), depth.bytes.size());
-    }
+    const DepthUpload depth = depthUpload(depthFormat);
     *expectedLinear = depth.expectedLinear;
     const bool hardware = depthFormat != VK_FORMAT_R32_SFLOAT;
     vk::Image color = uploaded(colorFormat, colorBytes(view_.color, colorFormat), kShaderRead);
