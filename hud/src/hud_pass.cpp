@@ -91,14 +91,8 @@ void HudPass::record(VkCommandBuffer cmd, std::span<const HudElementFrame> frame
     requireImage(image, "layer", &element.name);
     if (!isLayerFormat(image.format))
       throw std::invalid_argument("HudPass: the layer '" + element.name + "' must be R8G8B8A8_UNORM or B8G8R8A8_UNORM");
-    if (stereo::detail::sampledReadable(image.layout)) {
-      hostLayouts[hostIndex] = image.layout;
-    } else if (image.stage != VK_PIPELINE_STAGE_2_NONE) {
-      hostLayouts[hostIndex] = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
-    } else {
-      throw std::invalid_argument("HudPass: the layer '" + element.name +
-                                  "' is in a layout s3d cannot read and the host gave no access for a barrier");
-    }
+    hostLayouts[hostIndex] =
+        stereo::detail::sampledReadLayout(image.layout, image.stage, "HudPass: the layer '" + element.name + "'");
     ++hostIndex;
   }
 

@@ -88,13 +88,7 @@ void DepthRangePass::recordHost(VkCommandBuffer cmd, const HostImage& depth, std
   push.depthParams = linearDepthParams(projection, weaponDepthOffset, weaponDepthScale);  // checks the projection
   push.deviceDepth = hardware ? 1 : 0;
   // Read in its own layout where a compute shader can sample it, else barriered into a read-only one and back.
-  const bool readable = detail::sampledReadable(depth.layout);
-  if (!readable && depth.stage == VK_PIPELINE_STAGE_2_NONE)
-    throw std::invalid_argument("DepthRangePass: the host's depth image is in a layout s3d cannot read and the host "
-                                "gave no access for a barrier");
-  const VkImageLayout layout = readable ? depth.layout
-                               : hardware ? VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL
-                                          : VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
+  const VkImageLayout layout = detail::sampledReadLayout(depth.layout, depth.stage, "DepthRangePass: the host's depth image");
   constexpr VkPipelineStageFlags2 compute = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
   constexpr VkAccessFlags2 sampled = VK_ACCESS_2_SHADER_SAMPLED_READ_BIT;
   const bool barriers = depth.stage != VK_PIPELINE_STAGE_2_NONE;

@@ -44,7 +44,6 @@ bool isColorFormat(VkFormat f) {
   }
 }
 using detail::isHostDepthFormat;
-using detail::sampledReadable;
 
 gpu::vec2 layerRatio(float nearPlane, float farPlane, bool infinite, bool reversed, float begin, float end) {
   if (!infinite) return reversed ? gpu::reversedProjectionRatio(nearPlane, farPlane, begin, end)
@@ -80,11 +79,7 @@ VkImageLayout inputLayout(const HostImage& image, bool storage, const char* what
                                   " image must be in VK_IMAGE_LAYOUT_GENERAL when the host synchronizes it itself");
     return VK_IMAGE_LAYOUT_GENERAL;
   }
-  if (sampledReadable(image.layout)) return image.layout;
-  if (image.stage == VK_PIPELINE_STAGE_2_NONE)
-    throw std::invalid_argument(std::string("HostStereoPass: the ") + what +
-                                " image is in a layout s3d cannot read and the host gave no access for a barrier");
-  return VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
+  return detail::sampledReadLayout(image.layout, image.stage, std::string("HostStereoPass: the ") + what + " image");
 }
 
 // What the gather from host images writes for an output, or -1 where the packing pass must run: the half packings

@@ -4,6 +4,7 @@
 #include <array>
 #include <cstdint>
 #include <stdexcept>
+#include <string>
 
 #include <vulkan/vulkan.h>
 
@@ -22,6 +23,15 @@ inline bool sampledReadable(VkImageLayout l) {
   return l == VK_IMAGE_LAYOUT_GENERAL || l == VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL ||
          l == VK_IMAGE_LAYOUT_READ_ONLY_OPTIMAL || l == VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL ||
          l == VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_OPTIMAL;
+}
+// The layout a pass samples a host's image in: its own where a compute shader can sample it, else
+// SHADER_READ_ONLY_OPTIMAL after a barrier from the host's stage. Throws std::invalid_argument naming `image` (e.g.
+// "HostStereoPass: the depth image") when neither is possible.
+inline VkImageLayout sampledReadLayout(VkImageLayout layout, VkPipelineStageFlags2 stage, const std::string& image) {
+  if (sampledReadable(layout)) return layout;
+  if (stage == VK_PIPELINE_STAGE_2_NONE)
+    throw std::invalid_argument(image + " is in a layout s3d cannot read and the host gave no access for a barrier");
+  return VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
 }
 
 template <std::size_t Capacity>
