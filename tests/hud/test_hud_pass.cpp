@@ -249,29 +249,10 @@ void expectFramesInFlight(HudPassTest& t, int frames, bool oneCommandBuffer) {
     for (const vk::Image& image : frame.layers) frame.hostLayers.push_back(hostImage(image, kShaderRead));
     all.push_back(std::move(frame));
   }
-  TestHost& host = sharedTestHost();
-  const int buffers = oneCommandBuffer ? 1 : frames;
-  std::vector<VkCommandBuffer> cmds(std::size_t(buffers), VK_NULL_HANDLE);
-  VkCommandBufferAllocateInfo info{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
-  info.commandPool = host.commandPool;
-  info.commandBufferCount = std::uint32_t(buffers);
-  S3D_VK_CHECK(vkAllocateCommandBuffers(host.device, &info, cmds.data()));
-  for (int f = 0; f < frames; ++f) {
-    VkCommandBuffer cmd = cmds[oneCommandBuffer ? 0 : std::size_t(f)];
-    VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
-    if (f == 0 || !oneCommandBuffer) S3D_VK_CHECK(vkBeginCommandBuffer(cmd, &begin));
+  runFramesInFlight(sharedTestHost(), frames, oneCommandBuffer, [&](VkCommandBuffer cmd, int f) {
     pass.record(cmd, all[f].scene.frames, all[f].hostLayers, hostImage(all[f].left, kCopiedOut),
                 hostImage(all[f].right, kCopiedOut));
-    if (f == frames - 1 || !oneCommandBuffer) S3D_VK_CHECK(vkEndCommandBuffer(cmd));
-  }
-  for (VkCommandBuffer cmd : cmds) {
-    VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
-    submit.commandBufferCount = 1;
-    submit.pCommandBuffers = &cmd;
-    S3D_VK_CHECK(vkQueueSubmit(host.queue, 1, &submit, VK_NULL_HANDLE));
-  }
-  S3D_VK_CHECK(vkQueueWaitIdle(host.queue));
-  vkFreeCommandBuffers(host.device, host.commandPool, std::uint32_t(buffers), cmds.data());
+  });
   for (const Frame& frame : all) {
     const stereo::StereoPair expected = frame.scene.expected(frame.before);
     EXPECT_LE(largestChannelDifference(t.read(frame.left, kCopiedOut), expected.left), kHudTolerance);

@@ -245,41 +245,16 @@ void expectFramesInFlight(HostStereoPassTest& t, int frames, bool oneCommandBuff
     frame.leftHost = hostImage(frame.left, kCopiedOut);
     frame.rightHost = hostImage(frame.right, kCopiedOut);
   }
-  TestHost& host = t.host();
-  const int buffers = oneCommandBuffer ? 1 : frames;
-  std::vector<VkCommandBuffer> cmds(std::size_t(buffers), VK_NULL_HANDLE);
-  VkCommandBufferAllocateInfo info{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
-  info.commandPool = host.commandPool;
-  info.commandBufferCount = std::uint32_t(buffers);
-  S3D_VK_CHECK(vkAllocateCommandBuffers(host.device, &info, cmds.data()));
-  for (int f = 0; f < frames; ++f) {
-    VkCommandBuffer cmd = cmds[oneCommandBuffer ? 0 : std::size_t(f)];
-    VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
-    if (f == 0 || !oneCommandBuffer) S3D_VK_CHECK(vkBeginCommandBuffer(cmd, &begin));
+  runFramesInFlight(t.host(), frames, oneCommandBuffer, [&](VkCommandBuffer cmd, int f) {
     pass.record(cmd, hostImage(all[f].color, kShaderRead), hostImage(all[f].depth, kDepthWritten), t.frame_,
                 &all[f].leftHost, &all[f].rightHost, nullptr);
-    if (f == frames - 1 || !oneCommandBuffer) S3D_VK_CHECK(vkEndCommandBuffer(cmd));
-  }
-  for (VkCommandBuffer cmd : cmds) {  // one submission per frame, none waited for before the last
-    VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
-    submit.commandBufferCount = 1;
-    submit.pCommandBuffers = &cmd;
-    S3D_VK_CHECK(vkQueueSubmit(host.queue, 1, &submit, VK_NULL_HANDLE));
-  }
-  S3D_VK_CHECK(vkQueueWaitIdle(host.queue));
-  vkFreeCommandBuffers(host.device, host.commandPool, std::uint32_t(buffers), cmds.data());
+  });
   for (Frame& frame : all) {
     const stereo::StereoPair cpu = stereo::synthesizeStereoReference(frame.view.color, frame.expectedLinear, t.frame_.stereo);
     EXPECT_LE(largestChannelDifference(toImage(vk::readbackImage(*t.context_, frame.left, kCopiedOut), kWidth, kHeight), cpu.left), 1);
     EXPECT_LE(largestChannelDifference(toImage(vk::readbackImage(*t.context_, frame.right, kCopiedOut), kWidth, kHeight), cpu.right), 1);
   }
 }
-
-}  // namespace
-}  // namespace s3d::test
-
-namespace s3d::test {
-namespace {
 
 // The depth range of a host's depth buffer as it is (stereo::DepthRangePass::recordHost), against the reference
 // reduction of the stereo depth the host pass sees for it (hardwareDepth's expectedLinear: linearized, the weapon

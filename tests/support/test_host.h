@@ -164,6 +164,33 @@ inline void runOnHostQueue(TestHost& host, const std::function<void(VkCommandBuf
   vkFreeCommandBuffers(host.device, host.commandPool, 1, &cmd);
 }
 
+// Frames in flight: `frames` recordings (record(cmd, frame)), each in a command buffer of its own or all in one,
+// every buffer submitted before any is waited for, then the queue waited for.
+inline void runFramesInFlight(TestHost& host, int frames, bool oneCommandBuffer,
+                              const std::function<void(VkCommandBuffer, int)>& record) {
+  const int buffers = oneCommandBuffer ? 1 : frames;
+  std::vector<VkCommandBuffer> cmds(std::size_t(buffers), VK_NULL_HANDLE);
+  VkCommandBufferAllocateInfo info{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+  info.commandPool = host.commandPool;
+  info.commandBufferCount = std::uint32_t(buffers);
+  S3D_VK_CHECK(vkAllocateCommandBuffers(host.device, &info, cmds.data()));
+  for (int f = 0; f < frames; ++f) {
+    VkCommandBuffer cmd = cmds[oneCommandBuffer ? 0 : std::size_t(f)];
+    VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+    if (f == 0 || !oneCommandBuffer) S3D_VK_CHECK(vkBeginCommandBuffer(cmd, &begin));
+    record(cmd, f);
+    if (f == frames - 1 || !oneCommandBuffer) S3D_VK_CHECK(vkEndCommandBuffer(cmd));
+  }
+  for (VkCommandBuffer cmd : cmds) {
+    VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+    submit.commandBufferCount = 1;
+    submit.pCommandBuffers = &cmd;
+    S3D_VK_CHECK(vkQueueSubmit(host.queue, 1, &submit, VK_NULL_HANDLE));
+  }
+  S3D_VK_CHECK(vkQueueWaitIdle(host.queue));
+  vkFreeCommandBuffers(host.device, host.commandPool, std::uint32_t(buffers), cmds.data());
+}
+
 // Any validation message (synchronization validation included) recorded on the host fails the test.
 class HostTest : public ::testing::Test {
  protected:
