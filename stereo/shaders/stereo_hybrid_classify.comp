@@ -91,6 +91,25 @@ void lowerNearestStart(int at, uint bits) {
   else atomicMin(nearestStartBits[at], bits);
 }
 
+// A pair's terms into the eye pixels [from, to] (slots from x0), each evaluated.
+void scatterTerms(HybridPair pair, int x0, int from, int to) {
+  for (int x = from; x <= to; ++x) {
+    HybridPairTerms terms = hybridPairTerms(pair, float(x));
+    if (terms.coverParallaxPx < S3D_INFINITY) lowerCover(x - x0, orderedBits(terms.coverParallaxPx));
+    if (terms.holeJumpPx > 0.0f) raiseHole(x - x0, orderedBits(terms.holeJumpPx));
+    if (terms.edgeScore > 0.0f) raiseEdge(x - x0, orderedBits(terms.edgeScore));
+  }
+}
+
+// A step's interior pixels [from, to]: the same terms for each, without evaluating them.
+void scatterInterior(HybridPair pair, int x0, int from, int to) {
+  uint holeBits = orderedBits(pair.jumpPx), edgeBits = orderedBits(pair.edgeBase);
+  for (int x = from; x <= to; ++x) {
+    if (pair.jumpPx > 0.0f) raiseHole(x - x0, holeBits);
+    if (pair.edgeBase > 0.0f) raiseEdge(x - x0, edgeBits);
+  }
+}
+
 // Pair (i, i + 1), its sanitized depths and parallaxes given, into the eye pixels [x0, x1) (slots from 0) of the
 // eye looking along `direction`.
 void scatterPair(float direction, int x0, int x1, int i, float dA, float pA, float dB, float pB) {
@@ -100,11 +119,16 @@ void scatterPair(float direction, int x0, int x1, int i, float dA, float pA, flo
   vec2 reach = hybridPairReach(pair);
   int from = int(clamp(reach.x, float(x0), float(x1)));
   int to = int(clamp(reach.y, float(x0 - 1), float(x1 - 1)));
-  for (int x = from; x <= to; ++x) {
-    HybridPairTerms terms = hybridPairTerms(pair, float(x));
-    if (terms.coverParallaxPx < S3D_INFINITY) lowerCover(x - x0, orderedBits(terms.coverParallaxPx));
-    if (terms.holeJumpPx > 0.0f) raiseHole(x - x0, orderedBits(terms.holeJumpPx));
-    if (terms.edgeScore > 0.0f) raiseEdge(x - x0, orderedBits(terms.edgeScore));
+  // A step's interior takes its constant terms (hybridPairInterior); its ends, and a span, are evaluated per pixel.
+  vec2 interior = hybridPairInterior(pair);
+  int insideFrom = int(clamp(interior.x, float(x0), float(x1)));
+  int insideTo = int(clamp(interior.y, float(x0 - 1), float(x1 - 1)));
+  if (insideFrom <= insideTo) {
+    scatterTerms(pair, x0, from, insideFrom - 1);
+    scatterInterior(pair, x0, insideFrom, insideTo);
+    scatterTerms(pair, x0, insideTo + 1, to);
+  } else {
+    scatterTerms(pair, x0, from, to);
   }
   if (pair.edgeBase > 0.0f) {  // a pair between two surfaces: its landings for the nearest boundary
     float start = ceil(pair.lo);  // the first pixel at or after lo (hybridChangeDistancePx's two extremes)

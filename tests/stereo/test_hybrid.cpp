@@ -165,6 +165,36 @@ TEST(HybridClassification, TheRowScatterEqualsTestingEveryColumnPairAtEveryPixel
   }
 }
 
+// Tolerance: none. The scatter writes a depth step's interior pixels (hybridPairInterior) without evaluating their
+// terms, so every pixel there must get exactly the terms hybridPairTerms gives it: no cover, the step, the edge
+// band's base. Checked for landings on, just off and between integers, both orders, far from zero and for a
+// step within one surface (no edge band).
+TEST(HybridClassification, AStepsInteriorPixelsHaveTheStepsTermsExactly) {
+  const float fractions[] = {0.0f, 1e-6f, 0.25f, 0.5f, 0.5f - 1e-6f, 0.5f + 1e-6f, 0.999999f};
+  int checkedPixels = 0;
+  for (float origin : {-3.0f, 0.0f, 1917.0f, 70000.0f})
+    for (float fractionA : fractions)
+      for (float fractionB : fractions)
+        for (float width : {0.0f, 1.0f, 2.0f, 3.0f, 4.0f, 37.0f})
+          for (bool aFirst : {true, false})
+            for (float depthB : {2.0f, 2.001f}) {  // another surface, or the same one (steps by the parallax alone)
+              const float lo = origin + fractionA, hi = origin + width + fractionB;
+              const float landA = aFirst ? lo : hi, landB = aFirst ? hi : lo;
+              const gpu::HybridPair pair = gpu::hybridPair(landA, 3.0f, 2.0f, landB, 3.0f + width + 1.5f, depthB);
+              const glm::vec2 interior = gpu::hybridPairInterior(pair);
+              if (pair.span) {
+                EXPECT_GT(interior.x, interior.y);
+              }
+              for (float x = interior.x; x <= interior.y; x += 1.0f, ++checkedPixels) {
+                const gpu::HybridPairTerms terms = gpu::hybridPairTerms(pair, x);
+                ASSERT_EQ(terms.coverParallaxPx, INFINITY) << "lo " << pair.lo << " hi " << pair.hi << " x " << x;
+                ASSERT_EQ(terms.holeJumpPx, pair.jumpPx) << "x " << x;
+                ASSERT_EQ(terms.edgeScore, pair.edgeBase) << "x " << x;
+              }
+            }
+  EXPECT_GT(checkedPixels, 1000);
+}
+
 // A surface nearer than the zero-parallax plane lands on the far side of its columns, farther than the separation
 // window (which bounds only the parallax behind the screen): the pixels it lands on still see it.
 TEST(HybridClassification, ASurfaceInFrontOfTheScreenCoversWhereItLandsBeyondTheWindow) {

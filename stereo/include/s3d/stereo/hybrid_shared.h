@@ -156,6 +156,17 @@ S3D_INLINE vec2 hybridPairReach(HybridPair pair) {
   return vec2(-floor(-(pair.lo - 0.5f)), floor(pair.hi + 0.5f));
 }
 
+// The eye pixels deep inside a depth step's landing interval: a pair that is not one surface (not a span) gives
+// every pixel at least a pixel from both landings the same terms, hybridPairTerms' (no cover, the step, the edge
+// band's base), so a row's scatter writes them without evaluating the terms per pixel; a hole is as wide as the
+// parallax step, many times the few pixels at its ends. As floats (the caller clamps): [floor(lo) + 2,
+// ceil(hi) - 2], empty (first > last) for a span or a narrow step. Within it eyeX - lo and hi - eyeX are at
+// least 1 exactly (integers are representable), so the cover test's half pixel cannot round true.
+S3D_INLINE vec2 hybridPairInterior(HybridPair pair) {
+  if (pair.span) return vec2(1.0f, 0.0f);
+  return vec2(floor(pair.lo) + 2.0f, -floor(-pair.hi) - 2.0f);
+}
+
 // The distance from eye pixel eyeX to the nearest landing interval [lo, hi] of a pair between two surfaces,
 // from two running extremes along the row: `farthestEnd`, the largest hi among such pairs with lo <= eyeX (-inf:
 // none), and `nearestStart`, the smallest lo among those with lo > eyeX (+inf: none). An interval starting at or
