@@ -47,6 +47,13 @@ const int kRunSlots = kIndependentRuns ? kChunk / kGroup : 1;
 uint runCoverBits[kRunSlots], runHoleBits[kRunSlots], runEdgeBits[kRunSlots];
 uint runFarthestEndBits[kRunSlots], runNearestStartBits[kRunSlots];
 shared uint runEnd[kGroup], runStart[kGroup];  // each invocation's run: its largest end, its smallest start
+// Step interiors the group writes together (S3D_HYBRID_INTERIOR_CAP): x the first slot | the last << 15 | whether
+// the step is between two surfaces << 30, y the step's ordered bits. The count may pass the cap: those are written
+// by the invocation that found them.
+const int kInteriorSlots = kIndependentRuns ? 1 : S3D_HYBRID_INTERIOR_CAP;
+shared uvec2 interiors[kInteriorSlots];
+shared uint interiorCount;
+const int kTeam = kGroup < 32 ? kGroup : 32;  // invocations to a step interior: one SIMD group of a GPU's
 shared uint rowParallaxMin, rowParallaxMax;    // the row's parallax range, as ordered bits
 
 // Floats as unsigned integers in the same order (negative ones too), for atomicMin / atomicMax.
@@ -110,6 +117,33 @@ void scatterInterior(HybridPair pair, int x0, int from, int to) {
   }
 }
 
+// With shared slots, a long step interior (slots first..last) onto the group's list; false: the caller writes it.
+bool queueInterior(HybridPair pair, int first, int last) {
+  if (kIndependentRuns || last - first + 1 < S3D_HYBRID_SHARED_INTERIOR_PX) return false;
+  uint entry = atomicAdd(interiorCount, 1u);
+  if (entry >= uint(S3D_HYBRID_INTERIOR_CAP)) return false;
+  interiors[entry] = uvec2(uint(first) | (uint(last) << 15) | (pair.edgeBase > 0.0f ? 1u << 30 : 0u),
+                           orderedBits(pair.jumpPx));
+  return true;
+}
+
+// The queued step interiors into the slots, each by a team of kTeam invocations (after the scatter's barrier).
+void writeQueuedInteriors() {
+  int local = int(gl_LocalInvocationIndex), team = local / kTeam, teams = kGroup / kTeam;
+  if (team >= teams) return;
+  uint queued = min(interiorCount, uint(S3D_HYBRID_INTERIOR_CAP));
+  for (uint entry = uint(team); entry < queued; entry += uint(teams)) {
+    uvec2 interior = interiors[entry];
+    int first = int(interior.x & 0x7fffu), last = int((interior.x >> 15) & 0x7fffu);
+    bool betweenSurfaces = (interior.x & (1u << 30)) != 0u;
+    uint edge = orderedBits(hybridEdgeBase(orderedFloat(interior.y)));
+    for (int at = first + local % kTeam; at <= last; at += kTeam) {
+      atomicMax(holeBits[at], interior.y);
+      if (betweenSurfaces) atomicMax(edgeBits[at], edge);
+    }
+  }
+}
+
 // Pair (i, i + 1), its sanitized depths and parallaxes given, into the eye pixels [x0, x1) (slots from 0) of the
 // eye looking along `direction`.
 void scatterPair(float direction, int x0, int x1, int i, float dA, float pA, float dB, float pB) {
@@ -125,7 +159,7 @@ void scatterPair(float direction, int x0, int x1, int i, float dA, float pA, flo
   int insideTo = int(clamp(interior.y, float(x0 - 1), float(x1 - 1)));
   if (insideFrom <= insideTo) {
     scatterTerms(pair, x0, from, insideFrom - 1);
-    scatterInterior(pair, x0, insideFrom, insideTo);
+    if (!queueInterior(pair, insideFrom - x0, insideTo - x0)) scatterInterior(pair, x0, insideFrom, insideTo);
     scatterTerms(pair, x0, insideTo + 1, to);
   } else {
     scatterTerms(pair, x0, from, to);
@@ -252,6 +286,7 @@ void classifyChunk(int eye, int x0, int x1, int y, float parallaxMin, float para
     scatterPair(direction, x0, x1, i, dA, parallaxFromSanitized(dA), dB, parallaxFromSanitized(dB));
   }
   barrier();
+  writeQueuedInteriors();  // (the hole and edge slots are next read after the runs' barriers below)
   // The nearest boundary: each invocation runs along its own run of pixels, then takes the runs before and after.
   int n = x1 - x0, runLength = (n + kGroup - 1) / kGroup;
   int runBegin = min(local * runLength, n), runStop = min(runBegin + runLength, n);
@@ -289,6 +324,7 @@ void classifyChunk(int eye, int x0, int x1, int y, float parallaxMin, float para
     storeBin(eye, x0 + at, y, hybridScoreBin(pixelScore(x0 + at, y, at, direction, farthestEnd, nearestStart)));
     clearSlot(at);
   }
+  if (local == 0) interiorCount = 0u;  // read before the runs' barriers
   barrier();  // the slots are clear again, runEnd and runStart read
 }
 
@@ -301,6 +337,7 @@ void main() {
   if (local == 0) {
     rowParallaxMin = orderedBits(S3D_INFINITY);
     rowParallaxMax = orderedBits(-S3D_INFINITY);
+    interiorCount = 0u;
   }
   unscoredPixels[0] = unscoredPixels[1] = 0u;
   barrier();

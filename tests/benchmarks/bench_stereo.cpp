@@ -181,7 +181,9 @@ BENCHMARK(CenterFrame)->Apply(resolutions)->MinTime(0.2);
 BENCHMARK(ReferenceEye)->Apply(resolutions)->MinTime(0.2);
 BENCHMARK(StereoPass)->Apply(methods)->MinTime(0.2);
 BENCHMARK(HybridClassify)
-    ->ArgsProduct({{1280}, {720}, {0, 1}})
+    ->Args({1280, 720, 0})
+    ->Args({1280, 720, 1})
+    ->Args({1920, 1080, 0})
     ->ArgNames({"width", "height", "fallbackShape"})
     ->UseManualTime()
     ->Unit(benchmark::kMillisecond);

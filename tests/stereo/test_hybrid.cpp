@@ -354,6 +354,36 @@ TEST_F(HybridPassTest, ClassificationMatchesTheCppReferenceAcrossChunksCropAndFa
   expectClassificationMatchesTheReference(context(), view.depth, c);
 }
 
+// The left eye's depth steps in row y whose interior the shader writes as a group (hybridPairInterior, at least
+// S3D_HYBRID_SHARED_INTERIOR_PX pixels inside the image).
+int queuedInteriors(const DepthImage& depth, int y, const gpu::HybridConstants& c) {
+  int count = 0;
+  for (int i = 0; i + 1 < c.width; ++i) {
+    const float dA = gpu::sanitizedDepth(*depth.at(std::uint32_t(i), std::uint32_t(y)), c.zeroParallaxDistance);
+    const float dB = gpu::sanitizedDepth(*depth.at(std::uint32_t(i + 1), std::uint32_t(y)), c.zeroParallaxDistance);
+    const float pA = gpu::hybridParallaxPx(dA, c.maxSeparation, c.zeroParallaxDistance, c.width);
+    const float pB = gpu::hybridParallaxPx(dB, c.maxSeparation, c.zeroParallaxDistance, c.width);
+    const glm::vec2 interior =
+        gpu::hybridPairInterior(gpu::hybridPair(float(i) - pA, pA, dA, float(i + 1) - pB, pB, dB));
+    const float first = std::max(interior.x, 0.0f), last = std::min(interior.y, float(c.width - 1));
+    count += last - first + 1.0f >= float(S3D_HYBRID_SHARED_INTERIOR_PX);
+  }
+  return count;
+}
+
+// Tolerance: as above. Posts 3 pixels wide at depth 1.5 against the sky (steps of a third of the sky's 82 px
+// parallax), their widths varying by row, put more step interiors in one row than the row group queues to write
+// together (S3D_HYBRID_INTERIOR_CAP): the rest are written by the invocation that found them, with the same bins.
+TEST_F(HybridPassTest, ClassificationMatchesTheCppReferenceWhereARowHasMoreStepsThanTheGroupQueues) {
+  DepthImage depth(1024, 3, INFINITY);
+  for (std::uint32_t y = 0; y < depth.height; ++y)
+    for (std::uint32_t x = 0; x < depth.width; ++x)
+      if (x % (6 + y) < 3) *depth.at(x, y) = 1.5f;
+  const gpu::HybridConstants c = makeHybridConstants(parametersFor(0.08f), 1024, 3);
+  ASSERT_GT(queuedInteriors(depth, 0, c), S3D_HYBRID_INTERIOR_CAP);
+  expectClassificationMatchesTheReference(context(), depth, c);
+}
+
 // The threshold and the masks follow from the GPU's own histogram exactly (integer math), at every budget.
 TEST_F(HybridPassTest, ThresholdAndMasksMatchTheCppReferenceAtEveryBudget) {
   const test::SyntheticView view = test::makeBlockView(160, 24, 7, 1.0f, 9, 4, true);

@@ -36,10 +36,16 @@ S3D_GPU_BEGIN
 #define S3D_HYBRID_NO_PIXEL 256       // threshold bin that masks nothing
 #define S3D_HYBRID_THRESHOLD_GROUP 256 // the threshold pass: one invocation per bin, one workgroup per eye
 #define S3D_HYBRID_THRESHOLD_FIELDS 4  // per eye: threshold bin, masked pixels, split bin, split pixels
+// Shared slots: the depth steps whose interior (hybridPairInterior) the row group writes together, 32 invocations
+// to a step, instead of the one invocation that found it looping alone while its neighbours wait (two words each);
+// steps beyond these, and interiors shorter than S3D_HYBRID_SHARED_INTERIOR_PX, the finding invocation writes.
+#define S3D_HYBRID_INTERIOR_CAP 192
+#define S3D_HYBRID_SHARED_INTERIOR_PX 4
 // The classification's shared memory for a row group and its shared slots (the chunk; 1 with independent runs):
-// five per-pixel arrays, both histograms, each invocation's run extremes and the row's parallax range (HybridPass
-// checks the device's limit).
-#define S3D_HYBRID_CLASSIFY_SHARED_BYTES(group, slots) (4 * (5 * (slots) + 2 * S3D_HYBRID_BINS + 2 * (group) + 2))
+// five per-pixel arrays, both histograms, each invocation's run extremes, the row's parallax range and, with shared
+// slots, the list of step interiors and its count (HybridPass checks the device's limit).
+#define S3D_HYBRID_CLASSIFY_SHARED_BYTES(group, slots) \
+  (4 * (5 * (slots) + 2 * S3D_HYBRID_BINS + 2 * (group) + 2 + ((slots) > 1 ? 2 * S3D_HYBRID_INTERIOR_CAP + 1 : 3)))
 
 // Push constants of the hybrid passes; scalars only, so the std430 and C++ layouts agree.
 struct HybridConstants {
@@ -105,6 +111,9 @@ struct HybridPair {
                    // step, up to 2 px); 0 for a pair on one surface
 };
 
+// The edge band's score at the landings of a step of jumpPx between two surfaces: 0.25 to 0.5 px by the step.
+S3D_INLINE float hybridEdgeBase(float jumpPx) { return 0.25f + 0.125f * min(jumpPx, 2.0f); }
+
 S3D_INLINE HybridPair hybridPair(float landA, float pA, float depthA, float landB, float pB, float depthB) {
   HybridPair pair;
   pair.landA = landA;
@@ -115,7 +124,7 @@ S3D_INLINE HybridPair hybridPair(float landA, float pA, float depthA, float land
   pair.hi = max(landA, landB);
   pair.span = landB > landA && landB - landA <= S3D_HYBRID_SPAN_PX;
   pair.jumpPx = abs(pA - pB);
-  pair.edgeBase = hybridSurfaceChange(depthA, depthB) ? 0.25f + 0.125f * min(pair.jumpPx, 2.0f) : 0.0f;
+  pair.edgeBase = hybridSurfaceChange(depthA, depthB) ? hybridEdgeBase(pair.jumpPx) : 0.0f;
   return pair;
 }
 
