@@ -15,7 +15,8 @@
 // compute shader samples and back (detail::sampledReadLayout), so the stereo frame finds it in the stated layout, its
 // barrier chained after the reduction's on the stated stage; with stage NONE both read it as it is (it must then be
 // in a sampled-readable layout). The eyes and colour as StereoFrame::record's. record() creates no Vulkan object and
-// no GPU memory (all made at creation); update() allocates only the state's HUD element list and the range's bins.
+// allocates nothing (everything is made at creation); update() is CPU work whose only allocations are the comfort
+// state's own (its HUD element list) and the read range's histogram.
 #include <cstdint>
 #include <optional>
 #include <vector>
