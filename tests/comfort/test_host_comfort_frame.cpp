@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include <glm/gtc/matrix_transform.hpp>
+
 #include "host_pass_fixture.h"
 #include "s3d/comfort/display_profile.h"
 #include "s3d/comfort/host_comfort_frame.h"
@@ -179,11 +181,61 @@ TEST_F(HostComfortFrameTest, WithTwoFramesInFlightFrameKReadsTheReductionOfFrame
   }
 }
 
+// Tolerance: bit for bit, eyes and masks. The hybrid's two steps pass through with the state's parameters.
+TEST_F(HostComfortFrameTest, TheHybridsTwoStepsAreAPlainStereoFramesWithTheStatesParameters) {
+  HostComfortFrameDesc hybrid = desc(true);
+  hybrid.stereo.method = stereo::StereoMethod::Hybrid;
+  HostComfortFrame frame(*context_, hybrid);
+  const FrameImages i = images(0, frame.stereoFrame().eyeFormat());
+  // The masks wait in the layout s3d copies into; the test synchronizes them itself (stage NONE).
+  const vk::ImageState copyTarget{VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_PIPELINE_STAGE_2_COPY_BIT,
+                                  VK_ACCESS_2_TRANSFER_WRITE_BIT};
+  const VkImageUsageFlags maskUsage =
+      VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+  vk::Image leftMask = vk::createImage(*context_, VK_FORMAT_D32_SFLOAT, kWidth, kHeight, maskUsage);
+  vk::Image rightMask = vk::createImage(*context_, VK_FORMAT_D32_SFLOAT, kWidth, kHeight, maskUsage);
+  context_->submitAndWait([&](VkCommandBuffer cmd) {
+    for (const vk::Image* mask : {&leftMask, &rightMask}) vk::transition(cmd, *mask, vk::kUndefined, copyTarget);
+  });
+  stereo::StereoFrameDispatch d = dispatch(i);
+  d.leftMask = {leftMask.image, leftMask.view, VK_FORMAT_D32_SFLOAT, copyTarget.layout};
+  d.rightMask = {rightMask.image, rightMask.view, VK_FORMAT_D32_SFLOAT, copyTarget.layout};
+  d.centerView = glm::translate(glm::mat4(1.0f), glm::vec3(-0.5f, 0.1f, 0.0f));
+  d.centerProjection = glm::perspectiveRH_ZO(glm::radians(50.0f), float(kWidth) / float(kHeight), 0.5f, 100.0f);
+  auto masks = [&] {
+    return std::array{vk::readbackImage(*context_, leftMask, copyTarget), vk::readbackImage(*context_, rightMask, copyTarget)};
+  };
+
+  const comfort::FrameComfortState state = frame.update(input(0));
+  // Refused before anything is recorded, so no command buffer is needed.
+  EXPECT_EQ(errorOf([&] { frame.recordHybridComposite(VK_NULL_HANDLE, d); }),
+            "HostComfortFrame: recordHybridComposite needs this frame's recordHybridMasks first");
+  runOnHostQueue([&](VkCommandBuffer cmd) {
+    (void)frame.recordHybridMasks(cmd, d);
+    frame.recordHybridComposite(cmd, d);
+  });
+  const stereo::StereoPair comforted = eyes(i);
+  const auto comfortedMasks = masks();
+
+  stereo::StereoFrame plain(*context_, hybrid.stereo);
+  d.maxSeparation = state.parameters.maxSeparation;
+  d.zeroParallaxDistance = state.parameters.zeroParallaxDistance;
+  d.weaponDepthOffset = state.parameters.weaponDepthOffset;
+  d.weaponDepthScale = state.parameters.weaponDepthScale;
+  runOnHostQueue([&](VkCommandBuffer cmd) {
+    (void)plain.recordHybridMasks(cmd, d);
+    plain.recordHybridComposite(cmd, d);
+  });
+  EXPECT_EQ(comforted.left.pixels, eyes(i).left.pixels);
+  EXPECT_EQ(comforted.right.pixels, eyes(i).right.pixels);
+  EXPECT_EQ(comfortedMasks, masks());
+}
+
 TEST_F(HostComfortFrameTest, AFrameSlotOutOfRangeAndRecordBeforeUpdateAreRefusedNamingTheField) {
   HostComfortFrame frame(*context_, desc(false, 2));
   EXPECT_EQ(errorOf([&] { (void)frame.update(input(2)); }), "HostComfortInput.frameSlot 2 is outside [0, 2)");
   const FrameImages i = images(0, frame.stereoFrame().eyeFormat());
-  const std::string early = errorOf([&] { runOnHostQueue([&](VkCommandBuffer cmd) { frame.record(cmd, dispatch(i)); }); });
+  const std::string early = errorOf([&] { frame.record(VK_NULL_HANDLE, dispatch(i)); });  // before any command
   EXPECT_NE(early.find("record needs this frame's update"), std::string::npos) << early;
   HostComfortInput slow = input(0);
   slow.seconds = 0.0f;
