@@ -1,5 +1,7 @@
 // The C API's stereo frame over stereo::StereoFrame: the C structs checked field by field, then converted on the
 // stack (recording allocates nothing).
+#include "capi_stereo_frame.h"
+
 #include <cmath>
 #include <cstring>
 #include <string>
@@ -8,20 +10,15 @@
 
 #include "capi_common.h"
 #include "capi_validate.h"
-#include "s3d/stereo/stereo_frame.h"
 
 struct s3d_stereo_frame_t {
   s3d::stereo::StereoFrame frame;
 };
 
+namespace s3d::capi {
 namespace {
 
-using s3d::capi::guarded;
-using s3d::capi::present;
-using s3d::capi::requireNotNull;
-using s3d::capi::toCpp;
-
-s3d::stereo::StereoMethod toCpp(s3d_method method) {
+stereo::StereoMethod toCpp(s3d_method method) {
   switch (method) {
     case S3D_METHOD_SEED: return s3d::stereo::StereoMethod::Seed;
     case S3D_METHOD_ITERATIVE: return s3d::stereo::StereoMethod::Iterative;
@@ -31,7 +28,24 @@ s3d::stereo::StereoMethod toCpp(s3d_method method) {
   }
 }
 
-// The dispatch checked against the frame (fields named as the C struct's), then as StereoFrame takes it.
+}  // namespace
+
+stereo::StereoFrameDesc checkedDesc(const s3d_stereo_frame_desc& desc, std::uint32_t maxImageDimension2D) {
+  validate(desc, maxImageDimension2D);
+  stereo::StereoFrameDesc cpp;
+  cpp.width = desc.width;
+  cpp.height = desc.height;
+  cpp.colorFormat = desc.color_format;
+  cpp.depthFormat = desc.depth_format;
+  cpp.output = stereo::HostOutput(desc.output);
+  cpp.method = toCpp(desc.method);
+  cpp.searchTaps = desc.search_taps;
+  cpp.iterations = desc.iterations;
+  cpp.previousFrameFill = desc.previous_frame_fill != 0;
+  cpp.hybridBudget = desc.hybrid_budget;
+  return cpp;
+}
+
 s3d::stereo::StereoFrameDispatch checkedDispatch(const s3d::stereo::StereoFrame& f, const s3d_stereo_frame_dispatch& d) {
   const bool hybrid = f.desc().method == s3d::stereo::StereoMethod::Hybrid;
   const char* centerCameraFor = f.desc().previousFrameFill ? "the previous-frame fill"
@@ -63,13 +77,26 @@ s3d::stereo::StereoFrameDispatch checkedDispatch(const s3d::stereo::StereoFrame&
   return cpp;
 }
 
-// The C API names the step it refuses for another method.
 void requireHybrid(const s3d::stereo::StereoFrame& f, const char* function) {
   if (f.desc().method != s3d::stereo::StereoMethod::Hybrid)
     s3d::capi::fail(std::string(function) + " needs a frame made with S3D_METHOD_HYBRID (s3d_stereo_frame_desc.method)");
 }
 
-}  // namespace
+void toC(const stereo::HybridEyeCameras& eyes, s3d_eye_cameras* cameras) {
+  std::memcpy(cameras->left_view, glm::value_ptr(eyes.left.view), sizeof cameras->left_view);
+  std::memcpy(cameras->left_projection, glm::value_ptr(eyes.left.projection), sizeof cameras->left_projection);
+  std::memcpy(cameras->right_view, glm::value_ptr(eyes.right.view), sizeof cameras->right_view);
+  std::memcpy(cameras->right_projection, glm::value_ptr(eyes.right.projection), sizeof cameras->right_projection);
+}
+
+}  // namespace s3d::capi
+
+using s3d::capi::checkedDispatch;
+using s3d::capi::guarded;
+using s3d::capi::present;
+using s3d::capi::requireHybrid;
+using s3d::capi::requireNotNull;
+using s3d::capi::toCpp;
 
 extern "C" {
 
@@ -100,18 +127,7 @@ s3d_result s3d_stereo_frame_create(s3d_context context, const s3d_stereo_frame_d
     requireNotNull(context, {"context"});
     requireNotNull(desc, {"desc"});
     requireNotNull(out, {"out"});
-    s3d::capi::validate(*desc, context->maxImageDimension2D);
-    s3d::stereo::StereoFrameDesc cpp;
-    cpp.width = desc->width;
-    cpp.height = desc->height;
-    cpp.colorFormat = desc->color_format;
-    cpp.depthFormat = desc->depth_format;
-    cpp.output = s3d::stereo::HostOutput(desc->output);
-    cpp.method = toCpp(desc->method);
-    cpp.searchTaps = desc->search_taps;
-    cpp.iterations = desc->iterations;
-    cpp.previousFrameFill = desc->previous_frame_fill != 0;
-    cpp.hybridBudget = desc->hybrid_budget;
+    const s3d::stereo::StereoFrameDesc cpp = s3d::capi::checkedDesc(*desc, context->maxImageDimension2D);
     *out = new s3d_stereo_frame_t{s3d::stereo::StereoFrame(context->context, cpp)};
   });
 }
@@ -168,11 +184,7 @@ s3d_result s3d_stereo_frame_record_hybrid_masks(s3d_stereo_frame frame, VkComman
     requireNotNull(cameras, {"cameras"});
     requireHybrid(frame->frame, "s3d_stereo_frame_record_hybrid_masks");
     s3d::capi::validateHybridMasks(*dispatch);
-    const s3d::stereo::HybridEyeCameras eyes = frame->frame.recordHybridMasks(cmd, checkedDispatch(frame->frame, *dispatch));
-    std::memcpy(cameras->left_view, glm::value_ptr(eyes.left.view), sizeof cameras->left_view);
-    std::memcpy(cameras->left_projection, glm::value_ptr(eyes.left.projection), sizeof cameras->left_projection);
-    std::memcpy(cameras->right_view, glm::value_ptr(eyes.right.view), sizeof cameras->right_view);
-    std::memcpy(cameras->right_projection, glm::value_ptr(eyes.right.projection), sizeof cameras->right_projection);
+    s3d::capi::toC(frame->frame.recordHybridMasks(cmd, checkedDispatch(frame->frame, *dispatch)), cameras);
   });
 }
 

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "capi_comfort.h"
 #include "capi_common.h"
 #include "capi_validate.h"
 #include "s3d/comfort/frame_comfort_state.h"
@@ -41,31 +42,8 @@ using s3d::capi::lastError;
 using s3d::capi::Name;
 using s3d::capi::present;
 using s3d::capi::requireNotNull;
+using s3d::capi::toC;
 using s3d::capi::toCpp;
-
-// `p` passed s3d::capi::validate.
-s3d::stereo::StereoParameters toCpp(const s3d_stereo_parameters& p) {
-  s3d::stereo::StereoParameters result;
-  result.maxSeparation = p.max_separation;
-  result.zeroParallaxDistance = p.zero_parallax_distance;
-  result.edgeCrop = p.edge_crop;
-  result.method = p.method == S3D_METHOD_SEED ? s3d::stereo::StereoMethod::Seed : s3d::stereo::StereoMethod::Search;
-  result.searchTaps = p.search_taps;
-  result.weaponDepthOffset = p.weapon_depth_offset;
-  result.weaponDepthScale = p.weapon_depth_scale;
-  s3d::stereo::validate(result);  // a backstop: the C checks above cover every rule it has
-  return result;
-}
-
-s3d_stereo_parameters toC(const s3d::stereo::StereoParameters& p) {
-  return {p.maxSeparation, p.zeroParallaxDistance, p.edgeCrop,
-          p.method == s3d::stereo::StereoMethod::Seed ? S3D_METHOD_SEED : S3D_METHOD_SEARCH,
-          p.searchTaps, p.weaponDepthOffset, p.weaponDepthScale};
-}
-
-s3d_hud_element_state toC(const s3d::comfort::HudElementState& s) {
-  return {s.depth, s.parallaxPx, s.fadesBehindWeapon ? 1 : 0};
-}
 
 // One frame's HUD in C++ types, held on the stack: record() allocates nothing per frame.
 struct HudFrameStorage {
@@ -327,16 +305,7 @@ s3d_result s3d_budget_controller_create(const s3d_display* display, int32_t allo
     requireNotNull(display, {"display"});
     requireNotNull(out, {"out"});
     s3d::capi::validate(*display);
-    s3d::comfort::DisplayProfile profile;
-    profile.name = "host";
-    if (display->field_of_view_degrees != 0.0f) {
-      profile = s3d::comfort::headMountedDisplay("host", display->viewing_distance_meters,
-                                                 display->field_of_view_degrees, display->interocular_meters);
-    } else {
-      profile.screenWidthMeters = display->screen_width_meters;
-      profile.viewingDistanceMeters = display->viewing_distance_meters;
-      profile.interocularMeters = display->interocular_meters;
-    }
+    const s3d::comfort::DisplayProfile profile = s3d::capi::toCpp(*display);
     *out = new s3d_budget_controller_t{
         s3d::comfort::DisparityBudgetController(s3d::comfort::disparityBudget(profile), allow_negative_parallax != 0)};
   });
@@ -356,30 +325,7 @@ s3d_result s3d_frame_comfort_state_compute_budgeted(const s3d_frame_comfort_inpu
       s3d::capi::validate(*budget, input->allow_negative_parallax != 0,
                           budget->controller->controller.allowsNegativeParallax());
     }
-    s3d::comfort::FrameComfortInput cpp;
-    cpp.camera = {glm::vec3(input->camera_position[0], input->camera_position[1], input->camera_position[2]),
-                  glm::vec3(input->camera_aim[0], input->camera_aim[1], input->camera_aim[2]), input->camera_near};
-    if (input->ray_cast) {
-      const s3d_ray_cast cast = input->ray_cast;
-      void* user = input->ray_cast_user;
-      cpp.rayCast = [cast, user](glm::vec3 origin, glm::vec3 direction, float maxDistance) -> std::optional<float> {
-        const float o[3] = {origin.x, origin.y, origin.z}, d[3] = {direction.x, direction.y, direction.z};
-        float distance = 0.0f;
-        if (!cast(user, o, d, maxDistance, &distance)) return std::nullopt;
-        if (!(distance >= 0.0f) || !std::isfinite(distance))
-          s3d::capi::fail("s3d_frame_comfort_input.ray_cast returned distance " + s3d::numberText(distance) +
-                          "; a hit's distance must be >= 0 and finite");
-        return distance;
-      };
-    }
-    cpp.parameters = toCpp(input->parameters);
-    cpp.width = input->width;
-    cpp.crosshairDistance = input->crosshair_distance;
-    cpp.crosshairMargin = input->crosshair_margin;
-    cpp.weapon = {input->weapon_pixels, input->weapon_nearest_depth, input->weapon_farthest_depth};
-    if (input->has_nearest_world_depth) cpp.nearestWorldDepth = input->nearest_world_depth;
-    for (uint32_t i = 0; i < input->hud_count; ++i) cpp.hud.push_back({"hud" + std::to_string(i), input->hud_depths[i]});
-    cpp.allowNegativeParallax = input->allow_negative_parallax != 0;
+    s3d::comfort::FrameComfortInput cpp = s3d::capi::toCpp(*input);
     s3d::stereo::DepthRange range;
     if (budget) {
       const s3d_depth_range& depth = budget->depth;
@@ -395,22 +341,8 @@ s3d_result s3d_frame_comfort_state_compute_budgeted(const s3d_frame_comfort_inpu
       cpp.budget = frame;
     }
     const s3d::comfort::FrameComfortState state = s3d::comfort::frameComfortState(cpp);
-    out->parameters = toC(state.parameters);
-    out->weapon_pushed = state.weaponPushed;
-    out->zero_parallax_limited = state.zeroParallaxLimited;
-    out->crosshair_hit_world = state.crosshairHitWorld;
-    out->crosshair = toC(state.crosshair);
-    for (uint32_t i = 0; i < input->hud_count; ++i) hud_states[i] = toC(state.hud[i]);
-    if (choice) {
-      *choice = s3d_budget_choice{};
-      if (state.budget) {
-        const s3d::comfort::BudgetChoice& c = *state.budget;
-        const s3d::comfort::DisparityBudget& b = budget->controller->controller.budget();
-        *choice = {1, c.parameters.maxSeparation, c.parameters.zeroParallaxDistance, c.target.maxSeparation,
-                   c.target.zeroParallaxDistance, float(c.usedShare), c.cut ? 1 : 0, c.forced ? 1 : 0,
-                   float(b.crossedFraction), float(b.uncrossedFraction)};
-      }
-    }
+    s3d::capi::toC(state, input->hud_count, out, hud_states);
+    if (choice) *choice = budget ? s3d::capi::toC(state.budget, budget->controller->controller.budget()) : s3d_budget_choice{};
   });
 }
 

@@ -1,8 +1,9 @@
 // A game that is not s3d, using only the installed package: it makes its own Vulkan instance and device (s3d's
 // requirements patched in), renders its own lit scene with a first-person object in its own depth range (its own
-// pipeline and shaders, D32 depth), then per frame asks s3d for the comfort state, records the stereo pass (an
-// anaglyph and a side-by-side target) with the HUD drawn into the eyes before packing, all into its own command
-// buffer on its own queue. It reads back its colour and depth and checks both targets against s3d's C++ reference
+// pipeline and shaders, D32 depth), then per frame asks s3d's host comfort frame for the comfort state (the
+// zero-parallax plane held at the nearest depth its GPU reduction saw last frame) and records it (the reduction and
+// an anaglyph) and a second stereo pass (side by side) with the HUD drawn into the eyes before packing, all into its
+// own command buffer on its own queue. It reads back its colour and depth and checks both targets against s3d's C++ reference
 // on them; writes anaglyph.png and side_by_side.png (into the folder given, else the working directory).
 // Exit status 0 when they agree and the validation layer (when installed) reported nothing.
 #include <algorithm>
@@ -14,7 +15,7 @@
 
 #include <stb/stb_image_write.h>  // Debian's libstb: the implementation is in libstb.so
 
-#include <s3d/comfort/frame_comfort_state.h>
+#include <s3d/comfort/host_comfort_frame.h>
 #include <s3d/hud/hud_pass.h>
 #include <s3d/stereo/host_stereo_pass.h>
 #include <s3d/stereo/output_formats.h>
@@ -89,7 +90,12 @@ int main(int argc, char** argv) try {
   host::Image color(device, VK_FORMAT_R8G8B8A8_SRGB, kWidth, kHeight, inputUsage | VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT);
   host::Image depth(device, VK_FORMAT_D32_SFLOAT, kWidth, kHeight, inputUsage | VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT);
   using s3d::stereo::HostOutput;
-  const s3d::stereo::HostStereoPass anaglyphPass(context, {kWidth, kHeight, color.format, depth.format, HostOutput::Anaglyph});
+  // The anaglyph through the host comfort frame (one frame in flight: the host waits for each frame's submission).
+  s3d::comfort::HostComfortFrameDesc comfortDesc;
+  comfortDesc.stereo = {kWidth, kHeight, color.format, depth.format, HostOutput::Anaglyph};
+  comfortDesc.framesInFlight = 1;
+  s3d::comfort::HostComfortFrame anaglyphFrame(context, comfortDesc);
+  const s3d::stereo::StereoFrame& anaglyphPass = anaglyphFrame.stereoFrame();
   const s3d::stereo::HostStereoPass sideBySidePass(context, {kWidth, kHeight, color.format, depth.format,
                                                              HostOutput::SideBySideHalf});
   const VkImageUsageFlags targetUsage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
@@ -136,23 +142,21 @@ int main(int argc, char** argv) try {
   frame.projection = {camera.nearPlane, camera.farPlane, false, false, camera.firstPersonDepthRange,
                       camera.weaponNear, camera.weaponFar};
   std::vector<s3d::hud::HudElementFrame> hudFrames;
-  std::optional<float> nearestWorldDepth;  // from the previous frame's depth, as an engine has it
   for (int frameIndex = 0; frameIndex < 2; ++frameIndex) {
-    // The frame's comfort state from what the host knows: its camera, its physics, its weapon, its HUD depths.
-    s3d::comfort::FrameComfortInput comfortInput;
+    // The frame's comfort state from what the host knows: its camera, its physics, its weapon, its HUD depths; the
+    // nearest depth is the reduction's of the previous frame.
+    s3d::comfort::HostComfortInput comfortInput;
+    comfortInput.frameSlot = 0;
     comfortInput.camera = {camera.position, camera.forward, camera.nearPlane};
     comfortInput.rayCast = [&scene](glm::vec3 origin, glm::vec3 direction, float maxDistance) {
       return scene.rayCast(origin, direction, maxDistance);
     };
     comfortInput.parameters.maxSeparation = 0.025f;
     comfortInput.parameters.zeroParallaxDistance = 6.0f;
-    comfortInput.parameters.method = s3d::stereo::StereoMethod::Search;
-    comfortInput.width = kWidth;
     const glm::vec2 weaponDepths = scene.weaponDepthRange();
     comfortInput.weapon = {1, weaponDepths.x, weaponDepths.y};
-    comfortInput.nearestWorldDepth = nearestWorldDepth;
     comfortInput.hud = {{"health", 2.0f}, {"ammo", 2.0f}, {"compass", 4.0f}};
-    const s3d::comfort::FrameComfortState comfort = s3d::comfort::frameComfortState(comfortInput);
+    const s3d::comfort::FrameComfortState& comfort = anaglyphFrame.update(comfortInput);
     auto hudFrame = [](const s3d::comfort::HudElementState& state) {
       return s3d::hud::HudElementFrame{state.parallaxPx, state.fadesBehindWeapon, false};
     };
@@ -191,7 +195,13 @@ int main(int argc, char** argv) try {
       const s3d::stereo::HostImage sideBySideOut = hostImage(sideBySide, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
                                                              VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
       const s3d::hud::HudOverlay overlay = hud.overlay(hudFrames, std::span(&compassLayer, 1));
-      anaglyphPass.record(cmd, colorIn, depthIn, frame, nullptr, nullptr, &anaglyphOut, &overlay);
+      s3d::stereo::StereoFrameDispatch dispatch;  // the separation, plane and weapon push come from the state
+      dispatch.color = colorIn;
+      dispatch.depth = depthIn;
+      dispatch.target = anaglyphOut;
+      dispatch.projection = frame.projection;
+      dispatch.overlay = &overlay;
+      anaglyphFrame.record(cmd, dispatch);
       sideBySidePass.record(cmd, colorIn, depthIn, frame, nullptr, nullptr, &sideBySideOut, &overlay);
 
       host::imageBarrier(cmd, color, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
@@ -205,15 +215,6 @@ int main(int argc, char** argv) try {
       host::copyImageToBuffer(cmd, anaglyph, anaglyphBytes);
       host::copyImageToBuffer(cmd, sideBySide, sideBySideBytes);
     });
-
-    // The next frame's zero-parallax hold: this frame's nearest world depth (the first-person layer excluded).
-    const s3d::gpu::LinearDepthParams world = s3d::stereo::linearDepthParams(frame.projection, 0.0f, 1.0f);
-    const auto* deviceDepth = static_cast<const float*>(depthBytes.mapped);
-    float nearest = INFINITY;
-    for (std::size_t i = 0; i < std::size_t(kWidth) * kHeight; ++i)
-      if (deviceDepth[i] > camera.firstPersonDepthRange)
-        nearest = std::min(nearest, s3d::gpu::stereoDepthFromDevice(world, deviceDepth[i]));
-    if (std::isfinite(nearest)) nearestWorldDepth = nearest;
   }
 
   // s3d's C++ reference on the same colour and depth: linear depth by the shared formula, eyes, HUD, packing.

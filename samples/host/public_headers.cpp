@@ -4,6 +4,7 @@
 #include <s3d/comfort/crosshair.h>
 #include <s3d/comfort/display_profile.h>
 #include <s3d/comfort/frame_comfort_state.h>
+#include <s3d/comfort/host_comfort_frame.h>
 #include <s3d/comfort/world_queries.h>
 #include <s3d/hud/crosshair.h>
 #include <s3d/hud/hud_layers.h>
@@ -14,6 +15,7 @@
 #include <s3d/stereo/host_stereo_pass.h>
 #include <s3d/stereo/output_formats.h>
 #include <s3d/stereo/stereo.h>
+#include <s3d/stereo/stereo_frame.h>
 #include <s3d/stereo/stereo_pass.h>
 #include <s3d/vk/context.h>
 #include <s3d/vk/resources.h>

@@ -1,5 +1,5 @@
 /* s3d's C API for hosts that bind C (Godot GDExtension, Unity native plugins, C engines): opaque handles, POD
- * parameter structs, error codes plus a per-thread last-error string. Stable within a minor version (0.5).
+ * parameter structs, error codes plus a per-thread last-error string. Stable within a minor version (0.7).
  * See docs/INTEGRATION.md for the frame sequence and the synchronization contract. */
 #ifndef S3D_S3D_H
 #define S3D_S3D_H
@@ -12,7 +12,7 @@ extern "C" {
 #endif
 
 #define S3D_API_VERSION_MAJOR 0
-#define S3D_API_VERSION_MINOR 6
+#define S3D_API_VERSION_MINOR 7
 
 typedef enum s3d_result {
   S3D_SUCCESS = 0,
@@ -394,6 +394,57 @@ typedef struct s3d_budget_choice {
 s3d_result s3d_frame_comfort_state_compute_budgeted(const s3d_frame_comfort_input* input,
                                                     const s3d_frame_budget* budget, s3d_frame_comfort_state* out,
                                                     s3d_hud_element_state* hud_states, s3d_budget_choice* choice);
+
+/* ---- Host comfort frame: the stereo frame with its comfort rules in one object (C++: comfort::HostComfortFrame;
+ * docs/INTEGRATION.md section 4). Per frame: s3d_host_comfort_frame_update (CPU: the comfort state, which the HUD
+ * needs before its overlay is made), then s3d_host_comfort_frame_record (the frame's depth reduction of
+ * dispatch.depth into its slot, then the stereo frame). The slot's reduction is read back by the slot's next update,
+ * frames_in_flight frames later: the budget follows the depth of that frame; until then it waits (the host's
+ * parameters, or the controller's last choice). Synchronization: the reduction and the stereo frame each barrier the
+ * depth image from its stated layout, stage and access and back, the reduction first (stage 0: both read it in its
+ * layout, which must be one a compute shader samples). Recording creates no Vulkan object. ---- */
+typedef struct s3d_host_comfort_frame_desc {
+  s3d_stereo_frame_desc stereo;
+  const s3d_display* display; /* the disparity budget's display, read during create; NULL: no budget, the host's
+                                 max_separation and zero_parallax_distance as given (no-negative-parallax rules on) */
+  int32_t allow_negative_parallax;
+  uint32_t frames_in_flight; /* the host's frames in flight, >= 1: that many depth reductions */
+} s3d_host_comfort_frame_desc;
+
+typedef struct s3d_host_comfort_input {
+  uint32_t frame_slot; /* the host's frame-in-flight index, < frames_in_flight; the slot's previous submission has
+                          completed (the host's fence wait before reusing its command buffer) */
+  /* The host's frame: width must be the frame's, allow_negative_parallax the description's; parameters: the method
+   * fields are ignored (the description's). Without has_nearest_world_depth the reduction's nearest depth. */
+  s3d_frame_comfort_input frame;
+  float frame_seconds;             /* this frame's duration, > 0 */
+  int32_t camera_cut;              /* 1: the budget jumps to its target without a ramp */
+  int32_t receding;                /* 1: the camera moves away from what it sees */
+  int32_t has_anticipated_nearest; /* 1: a nearer surface is expected soon */
+  float anticipated_nearest;       /* > 0 */
+} s3d_host_comfort_input;
+
+typedef struct s3d_host_comfort_frame_t* s3d_host_comfort_frame;
+s3d_result s3d_host_comfort_frame_create(s3d_context context, const s3d_host_comfort_frame_desc* desc,
+                                         s3d_host_comfort_frame* out);
+void s3d_host_comfort_frame_destroy(s3d_host_comfort_frame frame);
+VkFormat s3d_host_comfort_frame_eye_format(s3d_host_comfort_frame frame);
+/* The frame's comfort state into out, hud_states (frame.hud_count entries; may be NULL when 0) and choice (may be
+ * NULL; chosen 0 without a budget or before the slot's first reduction). */
+s3d_result s3d_host_comfort_frame_update(s3d_host_comfort_frame frame, const s3d_host_comfort_input* input,
+                                         s3d_frame_comfort_state* out, s3d_hud_element_state* hud_states,
+                                         s3d_budget_choice* choice);
+/* After this frame's update: the dispatch's max_separation, zero_parallax_distance, weapon_depth_offset and
+ * weapon_depth_scale are replaced by the state's; eye_views must be NULL. */
+s3d_result s3d_host_comfort_frame_record(s3d_host_comfort_frame frame, VkCommandBuffer cmd,
+                                         const s3d_stereo_frame_dispatch* dispatch);
+/* S3D_METHOD_HYBRID, in place of s3d_host_comfort_frame_record: as s3d_stereo_frame_record_hybrid_masks (with the
+ * reduction first) and s3d_stereo_frame_record_hybrid_composite. */
+s3d_result s3d_host_comfort_frame_record_hybrid_masks(s3d_host_comfort_frame frame, VkCommandBuffer cmd,
+                                                      const s3d_stereo_frame_dispatch* dispatch,
+                                                      s3d_eye_cameras* cameras);
+s3d_result s3d_host_comfort_frame_record_hybrid_composite(s3d_host_comfort_frame frame, VkCommandBuffer cmd,
+                                                          const s3d_stereo_frame_dispatch* dispatch);
 
 #ifdef __cplusplus
 }
