@@ -151,7 +151,9 @@ struct HostFrameImages {
     color = vk::createImage(context, desc.colorFormat, kWidth, kHeight, inputUsage);
     depth = vk::createImage(context, desc.depthFormat, kWidth, kHeight, inputUsage);
     vk::uploadImage(context, color, std::as_bytes(std::span(view().color)), vk::kFragmentRead);
-    vk::uploadImage(context, depth, std::as_bytes(std::span(view().device)), vk::kFragmentRead);
+    const bool linearDepth = desc.depthFormat == VK_FORMAT_R32_SFLOAT;  // the host's own linear depth, else D32
+    vk::uploadImage(context, depth, std::as_bytes(std::span(linearDepth ? view().linear : view().device)),
+                    vk::kFragmentRead);
     left = vk::createImage(context, stereoFrame.eyeFormat(), kWidth, kHeight, VK_IMAGE_USAGE_STORAGE_BIT);
     right = vk::createImage(context, stereoFrame.eyeFormat(), kWidth, kHeight, VK_IMAGE_USAGE_STORAGE_BIT);
     target = vk::createImage(context, stereoFrame.eyeFormat(), stereoFrame.packedWidth(), stereoFrame.packedHeight(),
@@ -176,7 +178,8 @@ struct HostFrameImages {
 // The host's stereo frame from sRGB colour and D32 depth the host synchronizes itself. Arguments: the method as
 // BareKernel's (4: forward with the previous-frame fill), the output (0 two eyes, 1 anaglyph) and the colour's
 // view (0 sRGB: the sampler decodes, the gather encodes again; 1 UNORM, as a host's UNORM view of an sRGB image
-// made with VK_IMAGE_CREATE_MUTABLE_FORMAT_BIT reads: the display values as stored).
+// made with VK_IMAGE_CREATE_MUTABLE_FORMAT_BIT reads: the display values as stored) and the depth (0 D32, 1 the
+// host's linear depth in R32F: no conversion per tap).
 void HostStereoFrame(benchmark::State& state) {
   vk::Context& context = benchContext();
   const bool fill = state.range(0) == 4;
@@ -184,7 +187,7 @@ void HostStereoFrame(benchmark::State& state) {
   desc.width = kWidth;
   desc.height = kHeight;
   desc.colorFormat = state.range(2) == 0 ? VK_FORMAT_R8G8B8A8_SRGB : VK_FORMAT_R8G8B8A8_UNORM;
-  desc.depthFormat = VK_FORMAT_D32_SFLOAT;
+  desc.depthFormat = state.range(3) == 0 ? VK_FORMAT_D32_SFLOAT : VK_FORMAT_R32_SFLOAT;
   desc.method = kMethods[fill ? 3 : state.range(0)];
   desc.previousFrameFill = fill;
   desc.output = state.range(1) == 0 ? stereo::HostOutput::TwoEyes : stereo::HostOutput::Anaglyph;
@@ -192,7 +195,7 @@ void HostStereoFrame(benchmark::State& state) {
   const HostFrameImages images(context, desc, stereoFrame);
   timeRecording(state, [&](VkCommandBuffer cmd) { stereoFrame.record(cmd, images.dispatch); });
   state.SetLabel(context.deviceName() + ", " + stereo::methodName(desc.method) + (fill ? " + fill" : "") +
-                 (state.range(2) == 0 ? ", sRGB" : ", UNORM view"));
+                 (state.range(2) == 0 ? ", sRGB" : ", UNORM view") + (state.range(3) == 0 ? ", D32" : ", R32F"));
 }
 
 // The host's stereo frame with its comfort rules (comfort::HostComfortFrame): the frame's depth reduction, then
@@ -351,9 +354,10 @@ void HudPass(benchmark::State& state) {
 
 BENCHMARK(BareKernel)->DenseRange(0, 3)->ArgName("method")->UseManualTime()->Unit(benchmark::kMillisecond)->MinTime(0.05);
 BENCHMARK(HostStereoFrame)
-    ->ArgsProduct({{0, 1, 2, 3, 4}, {0, 1}, {0}})
-    ->ArgsProduct({{0, 1}, {0, 1}, {1}})
-    ->ArgNames({"method", "output", "unormView"})
+    ->ArgsProduct({{0, 1, 2, 3, 4}, {0, 1}, {0}, {0}})
+    ->ArgsProduct({{0, 1}, {0, 1}, {1}, {0}})
+    ->ArgsProduct({{0, 1}, {0, 1}, {0}, {1}})
+    ->ArgNames({"method", "output", "unormView", "linearDepth"})
     ->UseManualTime()
     ->Unit(benchmark::kMillisecond)
     ->MinTime(0.05);
