@@ -117,9 +117,9 @@ void scatterInterior(HybridPair pair, int x0, int from, int to) {
   }
 }
 
-// With shared slots, a long step interior (slots first..last) onto the group's list; false: the caller writes it.
+// A long step interior (slots first..last) onto the group's list; false: the caller writes it.
 bool queueInterior(HybridPair pair, int first, int last) {
-  if (kIndependentRuns || last - first + 1 < S3D_HYBRID_SHARED_INTERIOR_PX) return false;
+  if (last - first + 1 < S3D_HYBRID_SHARED_INTERIOR_PX) return false;
   uint entry = atomicAdd(interiorCount, 1u);
   if (entry >= uint(S3D_HYBRID_INTERIOR_CAP)) return false;
   interiors[entry] = uvec2(uint(first) | (uint(last) << 15) | (pair.edgeBase > 0.0f ? 1u << 30 : 0u),
@@ -144,6 +144,21 @@ void writeQueuedInteriors() {
   }
 }
 
+// Shared slots: a step's interior takes its constant terms (hybridPairInterior), queued for the group when long,
+// so no invocation loops across a hole while its SIMD group waits; its ends, and a span, are evaluated per pixel.
+void scatterSplit(HybridPair pair, int x0, int x1, int from, int to) {
+  vec2 interior = hybridPairInterior(pair);
+  int insideFrom = int(clamp(interior.x, float(x0), float(x1)));
+  int insideTo = int(clamp(interior.y, float(x0 - 1), float(x1 - 1)));
+  if (insideFrom > insideTo) {
+    scatterTerms(pair, x0, from, to);
+    return;
+  }
+  scatterTerms(pair, x0, from, insideFrom - 1);
+  if (!queueInterior(pair, insideFrom - x0, insideTo - x0)) scatterInterior(pair, x0, insideFrom, insideTo);
+  scatterTerms(pair, x0, insideTo + 1, to);
+}
+
 // Pair (i, i + 1), its sanitized depths and parallaxes given, into the eye pixels [x0, x1) (slots from 0) of the
 // eye looking along `direction`.
 void scatterPair(float direction, int x0, int x1, int i, float dA, float pA, float dB, float pB) {
@@ -153,16 +168,10 @@ void scatterPair(float direction, int x0, int x1, int i, float dA, float pA, flo
   vec2 reach = hybridPairReach(pair);
   int from = int(clamp(reach.x, float(x0), float(x1)));
   int to = int(clamp(reach.y, float(x0 - 1), float(x1 - 1)));
-  // A step's interior takes its constant terms (hybridPairInterior); its ends, and a span, are evaluated per pixel.
-  vec2 interior = hybridPairInterior(pair);
-  int insideFrom = int(clamp(interior.x, float(x0), float(x1)));
-  int insideTo = int(clamp(interior.y, float(x0 - 1), float(x1 - 1)));
-  if (insideFrom <= insideTo) {
-    scatterTerms(pair, x0, from, insideFrom - 1);
-    if (!queueInterior(pair, insideFrom - x0, insideTo - x0)) scatterInterior(pair, x0, insideFrom, insideTo);
-    scatterTerms(pair, x0, insideTo + 1, to);
-  } else {
+  if (kIndependentRuns) {  // one loop per pair: on a CPU device the split below costs more than it saves
     scatterTerms(pair, x0, from, to);
+  } else {
+    scatterSplit(pair, x0, x1, from, to);
   }
   if (pair.edgeBase > 0.0f) {  // a pair between two surfaces: its landings for the nearest boundary
     float start = ceil(pair.lo);  // the first pixel at or after lo (hybridChangeDistancePx's two extremes)
