@@ -10,6 +10,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "host_pass_fixture.h"
+#include "io_test_support.h"
 #include "s3d/comfort/display_profile.h"
 #include "s3d/comfort/host_comfort_frame.h"
 #include "s3d/stereo/depth_range.h"
@@ -81,14 +82,6 @@ class HostComfortFrameTest : public HostStereoPassTest {
         frame.update(input(std::uint32_t(k) % frame.desc().framesInFlight));
     runOnHostQueue([&](VkCommandBuffer cmd) { frame.record(cmd, dispatch(i)); });
     return state;
-  }
-  std::string errorOf(const std::function<void()>& call) const {
-    try {
-      call();
-    } catch (const std::invalid_argument& error) {
-      return error.what();
-    }
-    return "accepted";
   }
 };
 
@@ -208,7 +201,7 @@ TEST_F(HostComfortFrameTest, TheHybridsTwoStepsAreAPlainStereoFramesWithTheState
 
   const comfort::FrameComfortState state = frame.update(input(0));
   // Refused before anything is recorded, so no command buffer is needed.
-  EXPECT_EQ(errorOf([&] { frame.recordHybridComposite(VK_NULL_HANDLE, d); }),
+  EXPECT_EQ(test::errorOf<std::invalid_argument>([&] { frame.recordHybridComposite(VK_NULL_HANDLE, d); }),
             "HostComfortFrame: recordHybridComposite needs this frame's recordHybridMasks first");
   runOnHostQueue([&](VkCommandBuffer cmd) {
     (void)frame.recordHybridMasks(cmd, d);
@@ -233,16 +226,16 @@ TEST_F(HostComfortFrameTest, TheHybridsTwoStepsAreAPlainStereoFramesWithTheState
 
 TEST_F(HostComfortFrameTest, AFrameSlotOutOfRangeAndRecordBeforeUpdateAreRefusedNamingTheField) {
   HostComfortFrame frame(*context_, desc(false, 2));
-  EXPECT_EQ(errorOf([&] { (void)frame.update(input(2)); }), "HostComfortInput.frameSlot 2 is outside [0, 2)");
+  EXPECT_EQ(test::errorOf<std::invalid_argument>([&] { (void)frame.update(input(2)); }), "HostComfortInput.frameSlot 2 is outside [0, 2)");
   const FrameImages i = images(0, frame.stereoFrame().eyeFormat());
-  const std::string early = errorOf([&] { frame.record(VK_NULL_HANDLE, dispatch(i)); });  // before any command
+  const std::string early = test::errorOf<std::invalid_argument>([&] { frame.record(VK_NULL_HANDLE, dispatch(i)); });  // before any command
   EXPECT_NE(early.find("record needs this frame's update"), std::string::npos) << early;
   HostComfortInput slow = input(0);
   slow.seconds = 0.0f;
-  const std::string seconds = errorOf([&] { (void)frame.update(slow); });
+  const std::string seconds = test::errorOf<std::invalid_argument>([&] { (void)frame.update(slow); });
   EXPECT_NE(seconds.find("HostComfortInput.seconds"), std::string::npos) << seconds;
   HostComfortFrameDesc none = desc(false, 0);
-  const std::string ring = errorOf([&] { HostComfortFrame refused(*context_, none); });
+  const std::string ring = test::errorOf<std::invalid_argument>([&] { HostComfortFrame refused(*context_, none); });
   EXPECT_NE(ring.find("HostComfortFrameDesc.framesInFlight is 0"), std::string::npos) << ring;
 }
 

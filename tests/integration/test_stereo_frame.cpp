@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "host_pass_fixture.h"
+#include "io_test_support.h"
 #include "s3d/renderer/deferred_renderer.h"
 #include "s3d/renderer/scene.h"
 #include "s3d/s3d.h"
@@ -111,14 +112,6 @@ class StereoFrameTest : public HostStereoPassTest {
     return stereo::synthesizeStereoReference(view_.color, linear, stereo::makeStereoConstants(p, kWidth, kHeight));
   }
 
-  std::string errorOf(const std::function<void()>& call) const {
-    try {
-      call();
-    } catch (const std::invalid_argument& error) {
-      return error.what();
-    }
-    return "accepted";
-  }
 };
 
 TEST_F(StereoFrameTest, EveryMethodGivesItsReferenceEyesFromSrgbColourAndD32Depth) {
@@ -145,20 +138,20 @@ TEST_F(StereoFrameTest, TheEyesCanBeTheTwoLayersOfOneArrayImage) {
 TEST_F(StereoFrameTest, BadDescriptionsAreRefusedNamingTheField) {
   stereo::StereoFrameDesc d = desc(StereoMethod::Hybrid);
   d.output = HostOutput::SideBySideHalf;  // the host draws the hybrid's pixels into eye images
-  EXPECT_NE(errorOf([&] { stereo::StereoFrame(*context_, d); }).find("StereoFrameDesc.output"), std::string::npos);
+  EXPECT_NE(test::errorOf<std::invalid_argument>([&] { stereo::StereoFrame(*context_, d); }).find("StereoFrameDesc.output"), std::string::npos);
   d = desc(StereoMethod::Forward);
   d.colorFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
-  EXPECT_NE(errorOf([&] { stereo::StereoFrame(*context_, d); }).find("HDR colour"), std::string::npos);
+  EXPECT_NE(test::errorOf<std::invalid_argument>([&] { stereo::StereoFrame(*context_, d); }).find("HDR colour"), std::string::npos);
   d = desc(StereoMethod::Search);
   d.searchTaps = 0;
-  EXPECT_NE(errorOf([&] { stereo::StereoFrame(*context_, d); }).find("StereoFrameDesc.searchTaps 0"), std::string::npos);
+  EXPECT_NE(test::errorOf<std::invalid_argument>([&] { stereo::StereoFrame(*context_, d); }).find("StereoFrameDesc.searchTaps 0"), std::string::npos);
   d = desc(StereoMethod::Search);
   d.previousFrameFill = true;
-  EXPECT_NE(errorOf([&] { stereo::StereoFrame(*context_, d); }).find("StereoFrameDesc.previousFrameFill"),
+  EXPECT_NE(test::errorOf<std::invalid_argument>([&] { stereo::StereoFrame(*context_, d); }).find("StereoFrameDesc.previousFrameFill"),
             std::string::npos);
   d = desc(StereoMethod::Search);
   d.colorFormat = VK_FORMAT_R8_UNORM;
-  EXPECT_NE(errorOf([&] { stereo::StereoFrame(*context_, d); }).find("colour format"), std::string::npos);
+  EXPECT_NE(test::errorOf<std::invalid_argument>([&] { stereo::StereoFrame(*context_, d); }).find("colour format"), std::string::npos);
 }
 
 TEST_F(StereoFrameTest, ADispatchThatDoesNotMatchTheDescriptionIsRefused) {
@@ -166,10 +159,10 @@ TEST_F(StereoFrameTest, ADispatchThatDoesNotMatchTheDescriptionIsRefused) {
   vk::Image color = output(VK_FORMAT_R8G8B8A8_UNORM, kWidth, kHeight);  // not the description's sRGB format
   stereo::StereoFrameDispatch d = dispatch();
   d.color = d.depth = d.left = d.right = hostImage(color, kCopiedOut);
-  EXPECT_NE(errorOf([&] { runOnHostQueue([&](VkCommandBuffer cmd) { frame.record(cmd, d); }); }).find("format"),
+  EXPECT_NE(test::errorOf<std::invalid_argument>([&] { runOnHostQueue([&](VkCommandBuffer cmd) { frame.record(cmd, d); }); }).find("format"),
             std::string::npos);
   d.maxSeparation = -1.0f;
-  EXPECT_NE(errorOf([&] { runOnHostQueue([&](VkCommandBuffer cmd) { frame.record(cmd, d); }); }).find("maxSeparation"),
+  EXPECT_NE(test::errorOf<std::invalid_argument>([&] { runOnHostQueue([&](VkCommandBuffer cmd) { frame.record(cmd, d); }); }).find("maxSeparation"),
             std::string::npos);
 }
 
@@ -186,7 +179,7 @@ TEST_F(StereoFrameTest, ThePreviousFrameFillWithoutTheHostsCameraIsRefused) {
   dispatch.depth = hostImage(depth, kCopiedOut);
   dispatch.left = hostImage(left, kCopiedOut);
   dispatch.right = hostImage(right, kCopiedOut);
-  const std::string message = errorOf([&] { runOnHostQueue([&](VkCommandBuffer cmd) { frame.record(cmd, dispatch); }); });
+  const std::string message = test::errorOf<std::invalid_argument>([&] { runOnHostQueue([&](VkCommandBuffer cmd) { frame.record(cmd, dispatch); }); });
   EXPECT_NE(message.find("StereoFrameDispatch.centerView/centerProjection"), std::string::npos) << message;
 }
 
@@ -205,7 +198,7 @@ TEST_F(StereoFrameTest, EyeViewsTheKernelsCannotReproduceAreRefusedNamingTheFiel
   d.right = hostImage(right, kCopiedOut);
   d.eyeViews = stereo::ViewConfiguration{{stereo::EyeView{-0.0315, -0.7854, 0.6981, 0.7330, -0.8203, kWidth, kHeight},
                                           stereo::EyeView{0.0315, -0.6981, 0.7854, 0.7330, -0.8203, kWidth, kHeight}}};
-  const std::string message = errorOf([&] { runOnHostQueue([&](VkCommandBuffer cmd) { frame.record(cmd, d); }); });
+  const std::string message = test::errorOf<std::invalid_argument>([&] { runOnHostQueue([&](VkCommandBuffer cmd) { frame.record(cmd, d); }); });
   EXPECT_NE(message.find("StereoFrameDispatch.eyeViews.eyes[0].angleLeft"), std::string::npos) << message;
 }
 
