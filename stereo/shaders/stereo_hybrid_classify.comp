@@ -53,7 +53,7 @@ shared uint runEnd[kGroup], runStart[kGroup];  // each invocation's run: its lar
 const int kInteriorSlots = kIndependentRuns ? 1 : S3D_HYBRID_INTERIOR_CAP;
 shared uvec2 interiors[kInteriorSlots];
 shared uint interiorCount;
-const int kTeam = kGroup < 32 ? kGroup : 32;  // invocations to a step interior: one SIMD group of a GPU's
+const int kTeam = kGroup < 32 ? kGroup : 32;  // invocations per queued interior: a GPU's SIMD group (a warp)
 shared uint rowParallaxMin, rowParallaxMax;    // the row's parallax range, as ordered bits
 
 // Floats as unsigned integers in the same order (negative ones too), for atomicMin / atomicMax.

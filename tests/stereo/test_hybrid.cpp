@@ -371,9 +371,9 @@ int queuedInteriors(const DepthImage& depth, int y, const gpu::HybridConstants& 
   return count;
 }
 
-// Tolerance: as above. Posts 3 pixels wide at depth 1.5 against the sky (steps of a third of the sky's 82 px
-// parallax), their widths varying by row, put more step interiors in one row than the row group queues to write
-// together (S3D_HYBRID_INTERIOR_CAP): the rest are written by the invocation that found them, with the same bins.
+// Tolerance: as above. Posts 3 pixels wide at depth 1.5 (parallax 27 px) against the sky (82 px), their spacing
+// varying by row, put more step interiors in one row than the row group queues to write together
+// (S3D_HYBRID_INTERIOR_CAP): the rest are written by the invocation that found them, with the same bins.
 TEST_F(HybridPassTest, ClassificationMatchesTheCppReferenceWhereARowHasMoreStepsThanTheGroupQueues) {
   DepthImage depth(1024, 3, INFINITY);
   for (std::uint32_t y = 0; y < depth.height; ++y)
