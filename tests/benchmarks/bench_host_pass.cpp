@@ -175,7 +175,7 @@ struct HostFrameImages {
   }
 };
 
-// The host's stereo frame from sRGB colour and D32 depth the host synchronizes itself. Arguments: the method as
+// The host's stereo frame from colour and depth the host synchronizes itself. Arguments: the method as
 // BareKernel's (4: forward with the previous-frame fill), the output (0 two eyes, 1 anaglyph) and the colour's
 // view (0 sRGB: the sampler decodes, the gather encodes again; 1 UNORM, as a host's UNORM view of an sRGB image
 // made with VK_IMAGE_CREATE_MUTABLE_FORMAT_BIT reads: the display values as stored) and the depth (0 D32, 1 the
