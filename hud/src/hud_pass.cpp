@@ -65,9 +65,10 @@ HudPass::HudPass(vk::Context& context, const HudPassDesc& desc) : context_(&cont
   }
 }
 
-void HudPass::record(VkCommandBuffer cmd, std::span<const HudElementFrame> frames,
-                     std::span<const stereo::HostImage> hostLayers, const stereo::HostImage& left,
-                     const stereo::HostImage& right) const {
+std::array<VkImageLayout, S3D_HUD_MAX_ELEMENTS> HudPass::checkedLayerLayouts(std::span<const HudElementFrame> frames,
+                                                                             std::span<const stereo::HostImage> hostLayers,
+                                                                             const stereo::HostImage& left,
+                                                                             const stereo::HostImage& right) const {
   if (frames.size() != desc_.elements.size())
     throw std::invalid_argument("HudPass: " + std::to_string(frames.size()) + " element states for " +
                                 std::to_string(desc_.elements.size()) + " elements");
@@ -95,6 +96,13 @@ void HudPass::record(VkCommandBuffer cmd, std::span<const HudElementFrame> frame
         stereo::detail::sampledReadLayout(image.layout, image.stage, "HudPass: the layer '" + element.name + "'");
     ++hostIndex;
   }
+  return hostLayouts;
+}
+
+void HudPass::record(VkCommandBuffer cmd, std::span<const HudElementFrame> frames,
+                     std::span<const stereo::HostImage> hostLayers, const stereo::HostImage& left,
+                     const stereo::HostImage& right) const {
+  const std::array<VkImageLayout, S3D_HUD_MAX_ELEMENTS> hostLayouts = checkedLayerLayouts(frames, hostLayers, left, right);
 
   // Into the layouts s3d uses (eyes: GENERAL, read and written by compute; layers: sampled by compute).
   stereo::detail::HostBarriers<2 + S3D_HUD_MAX_ELEMENTS> before, after;
@@ -120,7 +128,7 @@ void HudPass::record(VkCommandBuffer cmd, std::span<const HudElementFrame> frame
   between.memory = true;
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_);
   bool first = true;
-  hostIndex = 0;
+  std::size_t hostIndex = 0;
   for (std::size_t i = 0; i < desc_.elements.size(); ++i) {
     const HudPassElement& element = desc_.elements[i];
     const bool host = element.isHostLayer();

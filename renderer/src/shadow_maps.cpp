@@ -131,9 +131,11 @@ VkPipeline ShadowMaps::depthPipeline(bool sun, std::size_t variant) {
   return pipeline;
 }
 
-void ShadowMaps::setScene(const Scene& scene, VkBuffer vertexBuffer, VkBuffer indexBuffer,
-                          std::vector<ShadowMeshRange> meshRanges, ShadowTextures textures) {
-  const std::string prefix = "scene '" + scene.name + "': ";
+namespace {
+
+// The sun's cascades and shadow map, and every spot light's cone, as the shadow views need them; throws
+// std::invalid_argument naming the scene (`prefix`) and the setting.
+void requireShadowLights(const Scene& scene, const std::string& prefix) {
   const SunLight& sun = scene.sun;
   if (sun.castsShadows) {
     if (sun.cascadeCount < 1 || sun.cascadeCount > S3D_MAX_SUN_CASCADES)
@@ -150,6 +152,15 @@ void ShadowMaps::setScene(const Scene& scene, VkBuffer vertexBuffer, VkBuffer in
           glm::length(spot.direction) > 0.0f))
       throw std::invalid_argument(prefix + "a spot light needs 0 <= inner <= outer < pi/2 cone angles, a radius > 0 "
                                            "and a direction");
+}
+
+}  // namespace
+
+void ShadowMaps::setScene(const Scene& scene, VkBuffer vertexBuffer, VkBuffer indexBuffer,
+                          std::vector<ShadowMeshRange> meshRanges, ShadowTextures textures) {
+  const std::string prefix = "scene '" + scene.name + "': ";
+  const SunLight& sun = scene.sun;
+  requireShadowLights(scene, prefix);
 
   localShadows_.clear();
   localAtlasKept_ = false;  // a new scene's lights render again

@@ -107,25 +107,11 @@ void ForwardStereoPass::record(VkCommandBuffer cmd, const vk::Image& centerColor
   };
   keysWritten_ = keyImages;
   if (rows) {
-    const int capacity = rowCapacity(c.width);
-    if (!row_ || row_->capacity != capacity) {
-      const VkSpecializationMapEntry entry{0, 0, sizeof(int)};
-      const VkSpecializationInfo specialization{1, &entry, sizeof(int), &capacity};
-      row_ = RowPipeline{capacity, vk::createComputePipeline(
-                                       *context_, layout_.layout,
-                                       keysWanted_ == ForwardKeys::Kept ? std::span<const std::uint32_t>(spirv_stereo_forward_row_keys_comp)
-                                                                        : std::span<const std::uint32_t>(spirv_stereo_forward_row_comp),
-                                       &specialization)};
-    }
-    dispatch(row_->pipeline, 1, std::uint32_t(c.height));  // one workgroup per row
+    dispatch(rowPipeline(rowCapacity(c.width)).pipeline, 1, std::uint32_t(c.height));  // one workgroup per row
     if (splatInto) splatInto->empty = false;  // it stores every key; the other pair is as it was
     return;
   }
-  if (!clear_) {  // created at the first use: lavapipe compiles at creation, and the row kernel needs none
-    clear_ = vk::createComputePipeline(*context_, layout_.layout, spirv_stereo_forward_clear_comp);
-    splat_ = vk::createComputePipeline(*context_, layout_.layout, spirv_stereo_forward_splat_comp);
-    resolve_ = vk::createComputePipeline(*context_, layout_.layout, spirv_stereo_forward_resolve_comp);
-  }
+  makeKeyImagePipelines();
   const std::uint32_t groupsX = groupsFor(c.width, S3D_FORWARD_GROUP_SIZE);
   const std::uint32_t groupsY = groupsFor(c.height, S3D_FORWARD_GROUP_SIZE);
   auto keysBarrier = [&] {
@@ -140,6 +126,25 @@ void ForwardStereoPass::record(VkCommandBuffer cmd, const vk::Image& centerColor
   dispatch(resolve_.get(), groupsX, groupsY);
   splatInto->empty = false;
   emptied->empty = true;
+}
+
+const ForwardStereoPass::RowPipeline& ForwardStereoPass::rowPipeline(int capacity) const {
+  if (!row_ || row_->capacity != capacity) {
+    const VkSpecializationMapEntry entry{0, 0, sizeof(int)};
+    const VkSpecializationInfo specialization{1, &entry, sizeof(int), &capacity};
+    const std::span<const std::uint32_t> code = keysWanted_ == ForwardKeys::Kept
+                                                    ? std::span<const std::uint32_t>(spirv_stereo_forward_row_keys_comp)
+                                                    : std::span<const std::uint32_t>(spirv_stereo_forward_row_comp);
+    row_ = RowPipeline{capacity, vk::createComputePipeline(*context_, layout_.layout, code, &specialization)};
+  }
+  return *row_;
+}
+
+void ForwardStereoPass::makeKeyImagePipelines() const {
+  if (clear_) return;  // the row kernel needs none of them
+  clear_ = vk::createComputePipeline(*context_, layout_.layout, spirv_stereo_forward_clear_comp);
+  splat_ = vk::createComputePipeline(*context_, layout_.layout, spirv_stereo_forward_splat_comp);
+  resolve_ = vk::createComputePipeline(*context_, layout_.layout, spirv_stereo_forward_resolve_comp);
 }
 
 const vk::Image& ForwardStereoPass::keys(Eye eye) const {

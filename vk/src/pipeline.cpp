@@ -54,6 +54,33 @@ Unique<VkPipeline> createComputePipeline(const Context& context, VkPipelineLayou
   return {context.device(), pipeline, vkDestroyPipeline, context.allocator()};
 }
 
+namespace {
+
+// Every colour attachment's blend state: all channels written, blended as desc.blend says.
+std::vector<VkPipelineColorBlendAttachmentState> colorBlendAttachments(const GraphicsPipelineDesc& desc) {
+  std::vector<VkPipelineColorBlendAttachmentState> blends(desc.colorFormats.size());
+  for (VkPipelineColorBlendAttachmentState& blend : blends) {
+    blend.colorWriteMask =
+        VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT | VK_COLOR_COMPONENT_B_BIT | VK_COLOR_COMPONENT_A_BIT;
+    if (desc.blend == GraphicsPipelineDesc::Blend::Additive) {
+      blend.blendEnable = VK_TRUE;
+      blend.srcColorBlendFactor = blend.dstColorBlendFactor = VK_BLEND_FACTOR_ONE;
+      blend.srcAlphaBlendFactor = blend.dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
+      blend.colorBlendOp = blend.alphaBlendOp = VK_BLEND_OP_ADD;
+    } else if (desc.blend == GraphicsPipelineDesc::Blend::Alpha) {
+      blend.blendEnable = VK_TRUE;
+      blend.srcColorBlendFactor = VK_BLEND_FACTOR_SRC_ALPHA;
+      blend.dstColorBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
+      blend.srcAlphaBlendFactor = VK_BLEND_FACTOR_ZERO;  // keep the opaque pass's alpha
+      blend.dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
+      blend.colorBlendOp = blend.alphaBlendOp = VK_BLEND_OP_ADD;
+    }
+  }
+  return blends;
+}
+
+}  // namespace
+
 Unique<VkPipeline> createGraphicsPipeline(const Context& context, VkPipelineLayout layout,
                                           const GraphicsPipelineDesc& desc) {
   Unique<VkShaderModule> vertex = createShaderModule(context, desc.vertexSpirv);
@@ -93,24 +120,7 @@ Unique<VkPipeline> createGraphicsPipeline(const Context& context, VkPipelineLayo
   depth.depthTestEnable = desc.depthTest;
   depth.depthWriteEnable = desc.depthWrite;
   depth.depthCompareOp = desc.depthCompare;
-  std::vector<VkPipelineColorBlendAttachmentState> blends(desc.colorFormats.size());
-  for (VkPipelineColorBlendAttachmentState& blend : blends) {
-    blend.colorWriteMask =
-        VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT | VK_COLOR_COMPONENT_B_BIT | VK_COLOR_COMPONENT_A_BIT;
-    if (desc.blend == GraphicsPipelineDesc::Blend::Additive) {
-      blend.blendEnable = VK_TRUE;
-      blend.srcColorBlendFactor = blend.dstColorBlendFactor = VK_BLEND_FACTOR_ONE;
-      blend.srcAlphaBlendFactor = blend.dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
-      blend.colorBlendOp = blend.alphaBlendOp = VK_BLEND_OP_ADD;
-    } else if (desc.blend == GraphicsPipelineDesc::Blend::Alpha) {
-      blend.blendEnable = VK_TRUE;
-      blend.srcColorBlendFactor = VK_BLEND_FACTOR_SRC_ALPHA;
-      blend.dstColorBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
-      blend.srcAlphaBlendFactor = VK_BLEND_FACTOR_ZERO;  // keep the opaque pass's alpha
-      blend.dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
-      blend.colorBlendOp = blend.alphaBlendOp = VK_BLEND_OP_ADD;
-    }
-  }
+  const std::vector<VkPipelineColorBlendAttachmentState> blends = colorBlendAttachments(desc);
   VkPipelineColorBlendStateCreateInfo colorBlend{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
   colorBlend.attachmentCount = static_cast<std::uint32_t>(blends.size());
   colorBlend.pAttachments = blends.data();

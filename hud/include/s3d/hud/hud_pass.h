@@ -3,6 +3,7 @@
 // over both eyes at the parallax of its depth, fading where the weapon mask (the eyes' alpha) covers an element
 // behind the weapon. Same layers, origins and per-pixel math as the C++ reference (hud_layers.h, compositeHud).
 // docs/INTEGRATION.md has the call sequence and the synchronization contract.
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <span>
@@ -92,6 +93,12 @@ class HudPass {
   vk::Unique<VkPipeline> pipeline_;
   vk::Unique<VkSampler> sampler_;
   std::vector<std::optional<vk::Image>> uploaded_;  // per element: s3d's copy of its layer (none for host layers)
+
+  // record()'s arguments checked against the description; returns each host layer's layout while s3d samples it.
+  std::array<VkImageLayout, S3D_HUD_MAX_ELEMENTS> checkedLayerLayouts(std::span<const HudElementFrame> frames,
+                                                                      std::span<const stereo::HostImage> hostLayers,
+                                                                      const stereo::HostImage& left,
+                                                                      const stereo::HostImage& right) const;
 };
 
 }  // namespace s3d::hud

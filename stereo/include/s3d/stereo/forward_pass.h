@@ -59,6 +59,10 @@ class ForwardStereoPass {
     vk::Unique<VkPipeline> pipeline;
   };
   mutable std::optional<RowPipeline> row_;
+  // The pipelines a record needs, made at their first use (lavapipe compiles at creation): the row kernel for a
+  // row capacity, the key-image kernel's three dispatches.
+  const RowPipeline& rowPipeline(int capacity) const;
+  void makeKeyImagePipelines() const;
   struct KeyPair {
     vk::Image left, right;
     bool empty = false;  // every key is S3D_FORWARD_EMPTY (a resolve emptied it for the next record)
