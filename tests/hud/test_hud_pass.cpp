@@ -96,16 +96,9 @@ struct HudScene {
   }
 };
 
-class HudPassTest : public HostTest {
+class HudPassTest : public HostContextTest {
  public:
-  void SetUp() override {
-    HostTest::SetUp();
-    context_ = std::make_unique<vk::Context>(host().hostDevice());
-  }
-  void TearDown() override {
-    context_.reset();
-    HostTest::TearDown();
-  }
+  using HostContextTest::context_;  // the frames-in-flight helper below uses it
   vk::Image eye(const ImageRGBA8& content, const vk::ImageState& state) {
     vk::Image image = vk::createImage(*context_, VK_FORMAT_R8G8B8A8_UNORM, content.width, content.height,
                                       VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT |
@@ -130,8 +123,6 @@ class HudPassTest : public HostTest {
     std::memcpy(result.pixels.data(), bytes.data(), bytes.size());
     return result;
   }
-
-  std::unique_ptr<vk::Context> context_;
 };
 
 // 1 level: the shader's float division may differ from the CPU's by an ulp (Vulkan allows 2.5), which moves a blend

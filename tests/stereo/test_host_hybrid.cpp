@@ -181,17 +181,8 @@ struct HybridRun {
   gpu::HybridConstants constants{};
 };
 
-class HostHybridTest : public HostTest {
+class HostHybridTest : public HostContextTest {
  protected:
-  void SetUp() override {
-    HostTest::SetUp();
-    context_ = std::make_unique<vk::Context>(host().hostDevice());
-  }
-  void TearDown() override {
-    context_.reset();
-    HostTest::TearDown();
-  }
-
   vk::Image image(VkFormat format, VkImageUsageFlags usage) {
     return vk::createImage(*context_, format, kWidth, kHeight, usage | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
   }
@@ -285,8 +276,6 @@ class HostHybridTest : public HostTest {
     result.constants = stereo::makeHybridConstants(parameters(budget), kWidth, kHeight);
     return result;
   }
-
-  std::unique_ptr<vk::Context> context_;
 };
 
 // Every mask depth is exactly the far or the near value; returns the masked pixels (far) of one eye.

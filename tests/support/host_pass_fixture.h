@@ -94,21 +94,16 @@ ImageRGBA8 toImage(const std::vector<std::byte>& bytes, std::uint32_t width, std
   return image;
 }
 
-class HostStereoPassTest : public HostTest {
+class HostStereoPassTest : public HostContextTest {
  public:
   void SetUp() override {
-    HostTest::SetUp();
-    context_ = std::make_unique<vk::Context>(host().hostDevice());
+    HostContextTest::SetUp();
     view_ = makeBlockView(kWidth, kHeight, 11, 0.6f, 7, 5, false);
     parameters_.maxSeparation = 0.06f;
     parameters_.zeroParallaxDistance = 3.0f;
     frame_.stereo = stereo::makeStereoConstants(parameters_, kWidth, kHeight);
     frame_.projection.nearPlane = 0.5f;
     frame_.projection.farPlane = 100.0f;
-  }
-  void TearDown() override {
-    context_.reset();
-    HostTest::TearDown();
   }
   bool supports(VkFormat format, VkFormatFeatureFlags features) {
     VkFormatProperties properties{};
@@ -176,7 +171,6 @@ class HostStereoPassTest : public HostTest {
 
   friend void expectHdrEyes(HostStereoPassTest&, VkFormat);
   friend void expectFramesInFlight(HostStereoPassTest&, int, bool);
-  std::unique_ptr<vk::Context> context_;
   SyntheticView view_;
   stereo::StereoParameters parameters_;
   stereo::HostFrame frame_;

@@ -202,4 +202,19 @@ class HostTest : public ::testing::Test {
   }
 };
 
+// A HostTest with an s3d context adopted on the shared host's device: made per test, destroyed before the
+// validation messages are checked (its objects' destruction is checked too).
+class HostContextTest : public HostTest {
+ protected:
+  void SetUp() override {
+    HostTest::SetUp();
+    context_ = std::make_unique<vk::Context>(host().hostDevice());
+  }
+  void TearDown() override {
+    context_.reset();
+    HostTest::TearDown();
+  }
+  std::unique_ptr<vk::Context> context_;
+};
+
 }  // namespace s3d::test
