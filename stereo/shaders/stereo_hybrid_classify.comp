@@ -108,12 +108,13 @@ void scatterTerms(HybridPair pair, int x0, int from, int to) {
   }
 }
 
-// A step's interior pixels [from, to]: the same terms for each, without evaluating them.
-void scatterInterior(HybridPair pair, int x0, int from, int to) {
-  uint holeBits = orderedBits(pair.jumpPx), edgeBits = orderedBits(pair.edgeBase);
-  for (int x = from; x <= to; ++x) {
-    if (pair.jumpPx > 0.0f) raiseHole(x - x0, holeBits);
-    if (pair.edgeBase > 0.0f) raiseEdge(x - x0, edgeBits);
+// A step's interior slots first, first + stride, ... up to last: the step's terms for each, without evaluating them
+// (the step's ordered bits; the edge band's base when it lies between two surfaces).
+void writeInterior(int first, int last, int stride, uint stepBits, bool betweenSurfaces) {
+  uint edge = orderedBits(hybridEdgeBase(orderedFloat(stepBits)));
+  for (int at = first; at <= last; at += stride) {
+    raiseHole(at, stepBits);
+    if (betweenSurfaces) raiseEdge(at, edge);
   }
 }
 
@@ -135,12 +136,7 @@ void writeQueuedInteriors() {
   for (uint entry = uint(team); entry < queued; entry += uint(teams)) {
     uvec2 interior = interiors[entry];
     int first = int(interior.x & 0x7fffu), last = int((interior.x >> 15) & 0x7fffu);
-    bool betweenSurfaces = (interior.x & (1u << 30)) != 0u;
-    uint edge = orderedBits(hybridEdgeBase(orderedFloat(interior.y)));
-    for (int at = first + local % kTeam; at <= last; at += kTeam) {
-      atomicMax(holeBits[at], interior.y);
-      if (betweenSurfaces) atomicMax(edgeBits[at], edge);
-    }
+    writeInterior(first + local % kTeam, last, kTeam, interior.y, (interior.x & (1u << 30)) != 0u);
   }
 }
 
@@ -155,7 +151,8 @@ void scatterSplit(HybridPair pair, int x0, int x1, int from, int to) {
     return;
   }
   scatterTerms(pair, x0, from, insideFrom - 1);
-  if (!queueInterior(pair, insideFrom - x0, insideTo - x0)) scatterInterior(pair, x0, insideFrom, insideTo);
+  if (!queueInterior(pair, insideFrom - x0, insideTo - x0))
+    writeInterior(insideFrom - x0, insideTo - x0, 1, orderedBits(pair.jumpPx), pair.edgeBase > 0.0f);
   scatterTerms(pair, x0, insideTo + 1, to);
 }
 
