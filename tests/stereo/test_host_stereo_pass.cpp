@@ -96,6 +96,29 @@ TEST_F(HostStereoPassTest, TheFirstPersonDepthRangeIsLinearizedAndPushed) {
   expectReferenceEyes(VK_FORMAT_R8G8B8A8_UNORM, VK_FORMAT_D32_SFLOAT);
 }
 
+// Device depth nearer than the range's near end, and NaN, hold no surface: each reads as the zero-parallax plane
+// (stereoDepthFromDevice), next to both layers, though the gather takes its minima per layer in device depth.
+void expectOutOfRangeDepthReadsAsTheScreen(HostStereoPassTest& t, float outOfRange) {
+  t.frame_.projection.firstPersonDepthRange = 0.1f;
+  t.frame_.projection.firstPersonNear = 0.05f;
+  t.frame_.projection.firstPersonFar = 5.0f;
+  t.frame_.weaponDepthOffset = 1.0f;
+  t.editDepth_ = [outOfRange](DepthUpload& depth) {
+    for (std::size_t i = 3; i < depth.expectedLinear.pixels.size(); i += 11) {
+      const float d = (i / 11) % 2 ? std::nanf("") : outOfRange;
+      std::memcpy(&depth.bytes[i * 4], &d, 4);
+      depth.expectedLinear.pixels[i] = 0.0f;  // sanitized to the zero-parallax plane by the reference
+    }
+  };
+  t.expectReferenceEyes(VK_FORMAT_R8G8B8A8_UNORM, VK_FORMAT_D32_SFLOAT);
+}
+TEST_F(HostStereoPassTest, DepthBelowZeroAndNaNReadAsTheZeroParallaxPlane) {
+  expectOutOfRangeDepthReadsAsTheScreen(*this, -0.25f);
+}
+TEST_F(HostStereoPassTest, ReversedDepthAboveOneAndNaNReadAsTheZeroParallaxPlane) {
+  frame_.projection.reversedZ = true;
+  expectOutOfRangeDepthReadsAsTheScreen(*this, 1.25f);
+}
 
 TEST_F(HostStereoPassTest, EveryPackedTargetIsOutputFormatsAppliedToThePassesOwnEyes) {
   DepthImage unused;

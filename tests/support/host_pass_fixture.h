@@ -139,7 +139,8 @@ class HostStereoPassTest : public HostContextTest {
   // Both eyes of the pass for the given colour and depth formats (8-bit eyes).
   stereo::StereoPair eyes(VkFormat colorFormat, VkFormat depthFormat, DepthImage* expectedLinear,
                           stereo::HostInputRead inputRead = stereo::HostInputRead::Auto) {
-    const DepthUpload depth = depthUpload(depthFormat);
+    DepthUpload depth = depthUpload(depthFormat);
+    if (editDepth_) editDepth_(depth);
     *expectedLinear = depth.expectedLinear;
     const bool hardware = depthFormat != VK_FORMAT_R32_SFLOAT;
     vk::Image color = uploaded(colorFormat, colorBytes(view_.color, colorFormat), kShaderRead);
@@ -172,6 +173,7 @@ class HostStereoPassTest : public HostContextTest {
   friend void expectHdrEyes(HostStereoPassTest&, VkFormat);
   friend void expectFramesInFlight(HostStereoPassTest&, int, bool);
   SyntheticView view_;
+  std::function<void(DepthUpload&)> editDepth_;  // a test's own texels in the uploaded depth, after hardwareDepth
   stereo::StereoParameters parameters_;
   stereo::HostFrame frame_;
 };

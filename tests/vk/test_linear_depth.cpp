@@ -65,5 +65,17 @@ TEST(StereoDepth, PushesOnlyTheFirstPersonLayer) {
   EXPECT_TRUE(std::isinf(stereoDepthFromDevice(p, 1.0f)));
 }
 
+TEST(StereoDepth, DepthNearerThanTheRangeAndNaNAreNoSurface) {
+  // 0 (the stereo pass's zero-parallax plane) below the near end; beyond the far end stays sky, in both conventions.
+  const LinearDepthParams p = makeLinearDepthParams(kWorldNear, kWorldFar, kWeaponNear, kWeaponFar, kSplit);
+  const LinearDepthParams reversed = makeReversedLinearDepthParams(kWorldNear, kWorldFar, kWeaponNear, kWeaponFar, kSplit);
+  EXPECT_EQ(stereoDepthFromDevice(p, -0.25f), 0.0f);
+  EXPECT_EQ(stereoDepthFromDevice(p, std::nanf("")), 0.0f);
+  EXPECT_TRUE(std::isinf(stereoDepthFromDevice(p, 1.5f)));
+  EXPECT_EQ(stereoDepthFromDevice(reversed, 1.25f), 0.0f);
+  EXPECT_EQ(stereoDepthFromDevice(reversed, std::nanf("")), 0.0f);
+  EXPECT_TRUE(std::isinf(stereoDepthFromDevice(reversed, -0.5f)));
+}
+
 }  // namespace
 }  // namespace s3d::gpu

@@ -55,12 +55,34 @@ S3D_INLINE float linearDepthFromDepthBuffer(LinearDepthParams p, float deviceDep
   return p.reversedZ != 0.0f ? linearDepthFromReversedDevice(p, deviceDepth) : linearDepthFromDevice(p, deviceDepth);
 }
 
+// A depth buffer's value with the convention folded in: within one layer a smaller key is nearer, so the layer,
+// sky and range tests below read the same in both conventions.
+S3D_INLINE float deviceDepthKey(LinearDepthParams p, float deviceDepth) {
+  return p.reversedZ != 0.0f ? -deviceDepth : deviceDepth;
+}
+// Keys at or below this belong to the first-person layer (isFirstPersonDeviceDepth in keys).
+S3D_INLINE float firstPersonKeyMax(LinearDepthParams p) {
+  return p.reversedZ != 0.0f ? p.firstPersonDeviceDepthMax - 1.0f : p.firstPersonDeviceDepthMax;
+}
+// Device depth nearer than the depth range's near end (below 0, or above 1 reversed) and NaN are no surface.
+// Keys from this up convert to positive depths; false for NaN.
+S3D_INLINE bool isDeviceDepthKeyInRange(LinearDepthParams p, float key) {
+  return key >= (p.reversedZ != 0.0f ? -1.0f : 0.0f);
+}
+
 // The depth the stereo pass sees: linear depth, with the first-person layer pushed into the screen by
 // offsetting and scaling its depth (seed 4.6.2). Per pixel, so the weapon's own visibility is untouched.
+// Out-of-range device depth reads 0, which the stereo pass takes as the zero-parallax plane (sanitizedDepth).
+// Branch-free with one division: the stereo gather converts every depth tap of a host's buffer with it.
 S3D_INLINE float stereoDepthFromDevice(LinearDepthParams p, float deviceDepth) {
-  float depth = linearDepthFromDepthBuffer(p, deviceDepth);
-  if (isFirstPersonDeviceDepth(p, deviceDepth)) depth = p.firstPersonDepthOffset + p.firstPersonDepthScale * depth;
-  return depth;
+  float key = deviceDepthKey(p, deviceDepth);
+  bool firstPerson = key <= firstPersonKeyMax(p);
+  vec2 ratio = firstPerson ? p.firstPersonRatio : p.worldRatio;
+  float offset = firstPerson ? p.firstPersonDepthOffset : 0.0f;
+  float scale = firstPerson ? p.firstPersonDepthScale : 1.0f;
+  float depth = offset + scale * ratio.y / (deviceDepth - ratio.x);  // Listing 4.3, then the push
+  depth = key >= deviceDepthKey(p, p.skyDeviceDepth) ? S3D_INFINITY : depth;
+  return isDeviceDepthKeyInRange(p, key) ? depth : 0.0f;
 }
 
 #ifdef __cplusplus
