@@ -54,8 +54,33 @@ vec4 centerAt(int x, int y) {
 #endif
 }
 
+#ifdef S3D_STEREO_HOST_INPUTS
+// Listing 4.5 on a host's depth buffer of one layer (no first-person depth range): its stereo depth never
+// decreases with the device depth's key (linear_depth.h), so the taps' minimum is taken in keys and converted
+// once instead of per tap. Out-of-range and NaN taps read as the zero-parallax plane, as their conversion does.
+float minDepthOverOneLayersTaps(int x, int y, int direction) {
+  float nearestKey = S3D_INFINITY;
+  bool outOfRange = false;
+  for (int i = 0; i < S3D_STEREO_TAP_CAPACITY; ++i) {
+    if (i >= c.tapCount) continue;
+    ivec2 texel = ivec2(clamp(x + direction * c.tapOffsetPx[i], 0, c.width - 1), y);
+    float key = deviceDepthKey(h.depth, texelFetch(hostDepth, texel, 0).r);
+    bool inRange = isDeviceDepthKeyInRange(h.depth, key);
+    outOfRange = outOfRange || !inRange;
+    nearestKey = inRange ? min(nearestKey, key) : nearestKey;
+  }
+  float minDepth = outOfRange ? c.zeroParallaxDistance : S3D_INFINITY;
+  if (nearestKey == S3D_INFINITY) return minDepth;  // no tap in range, or the sky at +inf
+  float deviceDepth = deviceDepthKey(h.depth, nearestKey);  // the key's negation is its own inverse
+  return min(minDepth, sanitizedDepth(stereoDepthFromDevice(h.depth, deviceDepth), c.zeroParallaxDistance));
+}
+#endif
+
 // Listing 4.5: minimum depth over the separation range on one side of the pixel.
 float minDepthOverTaps(int x, int y, int direction) {
+#ifdef S3D_STEREO_HOST_INPUTS
+  if (h.depthKind == S3D_HOST_DEPTH_DEVICE && hasNoFirstPersonLayer(h.depth)) return minDepthOverOneLayersTaps(x, y, direction);
+#endif
   float minDepth = S3D_INFINITY;  // the seed starts at 1.0, its normalized far plane
   // A compile-time trip count (the array's capacity) with the used count as a guard lets the compiler unroll.
   for (int i = 0; i < S3D_STEREO_TAP_CAPACITY; ++i)

@@ -179,7 +179,8 @@ struct HostFrameImages {
 // BareKernel's (4: forward with the previous-frame fill), the output (0 two eyes, 1 anaglyph) and the colour's
 // view (0 sRGB: the sampler decodes, the gather encodes again; 1 UNORM, as a host's UNORM view of an sRGB image
 // made with VK_IMAGE_CREATE_MUTABLE_FORMAT_BIT reads: the display values as stored) and the depth (0 D32, 1 the
-// host's linear depth in R32F: no conversion per tap).
+// host's linear depth in R32F: no conversion per tap) and whether the host's projection gives a first-person layer
+// its own depth range (1: every depth tap converted on its own; 0: one conversion per side).
 void HostStereoFrame(benchmark::State& state) {
   vk::Context& context = benchContext();
   const bool fill = state.range(0) == 4;
@@ -192,10 +193,16 @@ void HostStereoFrame(benchmark::State& state) {
   desc.previousFrameFill = fill;
   desc.output = state.range(1) == 0 ? stereo::HostOutput::TwoEyes : stereo::HostOutput::Anaglyph;
   stereo::StereoFrame stereoFrame(context, desc);
-  const HostFrameImages images(context, desc, stereoFrame);
+  HostFrameImages images(context, desc, stereoFrame);
+  if (state.range(4) != 0) {  // the world's device depths stay in the world's range [0.1, 1]
+    images.dispatch.projection.firstPersonDepthRange = 0.1f;
+    images.dispatch.projection.firstPersonNear = 0.05f;
+    images.dispatch.projection.firstPersonFar = 5.0f;
+  }
   timeRecording(state, [&](VkCommandBuffer cmd) { stereoFrame.record(cmd, images.dispatch); });
   state.SetLabel(context.deviceName() + ", " + stereo::methodName(desc.method) + (fill ? " + fill" : "") +
-                 (state.range(2) == 0 ? ", sRGB" : ", UNORM view") + (state.range(3) == 0 ? ", D32" : ", R32F"));
+                 (state.range(2) == 0 ? ", sRGB" : ", UNORM view") + (state.range(3) == 0 ? ", D32" : ", R32F") +
+                 (state.range(4) != 0 ? ", first-person layer" : ""));
 }
 
 // The host's stereo frame with its comfort rules (comfort::HostComfortFrame): the frame's depth reduction, then
@@ -354,10 +361,11 @@ void HudPass(benchmark::State& state) {
 
 BENCHMARK(BareKernel)->DenseRange(0, 3)->ArgName("method")->UseManualTime()->Unit(benchmark::kMillisecond)->MinTime(0.05);
 BENCHMARK(HostStereoFrame)
-    ->ArgsProduct({{0, 1, 2, 3, 4}, {0, 1}, {0}, {0}})
-    ->ArgsProduct({{0, 1}, {0, 1}, {1}, {0}})
-    ->ArgsProduct({{0, 1}, {0, 1}, {0}, {1}})
-    ->ArgNames({"method", "output", "unormView", "linearDepth"})
+    ->ArgsProduct({{0, 1, 2, 3, 4}, {0, 1}, {0}, {0}, {0}})
+    ->ArgsProduct({{0, 1}, {0, 1}, {1}, {0}, {0}})
+    ->ArgsProduct({{0, 1}, {0, 1}, {0}, {1}, {0}})
+    ->ArgsProduct({{0, 1}, {0, 1}, {0}, {0}, {1}})
+    ->ArgNames({"method", "output", "unormView", "linearDepth", "firstPersonLayer"})
     ->UseManualTime()
     ->Unit(benchmark::kMillisecond)
     ->MinTime(0.05);

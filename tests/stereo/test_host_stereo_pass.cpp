@@ -97,12 +97,15 @@ TEST_F(HostStereoPassTest, TheFirstPersonDepthRangeIsLinearizedAndPushed) {
 }
 
 // Device depth nearer than the range's near end, and NaN, hold no surface: each reads as the zero-parallax plane
-// (stereoDepthFromDevice), next to both layers, though the gather takes its minima per layer in device depth.
-void expectOutOfRangeDepthReadsAsTheScreen(HostStereoPassTest& t, float outOfRange) {
-  t.frame_.projection.firstPersonDepthRange = 0.1f;
-  t.frame_.projection.firstPersonNear = 0.05f;
-  t.frame_.projection.firstPersonFar = 5.0f;
-  t.frame_.weaponDepthOffset = 1.0f;
+// (stereoDepthFromDevice), among taps of both layers (converted per tap) or of the world alone (the gather takes
+// the minimum in device depth and converts once).
+void expectOutOfRangeDepthReadsAsTheScreen(HostStereoPassTest& t, float outOfRange, bool firstPersonLayer) {
+  if (firstPersonLayer) {
+    t.frame_.projection.firstPersonDepthRange = 0.1f;
+    t.frame_.projection.firstPersonNear = 0.05f;
+    t.frame_.projection.firstPersonFar = 5.0f;
+    t.frame_.weaponDepthOffset = 1.0f;
+  }
   t.editDepth_ = [outOfRange](DepthUpload& depth) {
     for (std::size_t i = 3; i < depth.expectedLinear.pixels.size(); i += 11) {
       const float d = (i / 11) % 2 ? std::nanf("") : outOfRange;
@@ -113,11 +116,18 @@ void expectOutOfRangeDepthReadsAsTheScreen(HostStereoPassTest& t, float outOfRan
   t.expectReferenceEyes(VK_FORMAT_R8G8B8A8_UNORM, VK_FORMAT_D32_SFLOAT);
 }
 TEST_F(HostStereoPassTest, DepthBelowZeroAndNaNReadAsTheZeroParallaxPlane) {
-  expectOutOfRangeDepthReadsAsTheScreen(*this, -0.25f);
+  expectOutOfRangeDepthReadsAsTheScreen(*this, -0.25f, false);
+}
+TEST_F(HostStereoPassTest, DepthBelowZeroAndNaNReadAsTheZeroParallaxPlaneNextToAFirstPersonLayer) {
+  expectOutOfRangeDepthReadsAsTheScreen(*this, -0.25f, true);
 }
 TEST_F(HostStereoPassTest, ReversedDepthAboveOneAndNaNReadAsTheZeroParallaxPlane) {
   frame_.projection.reversedZ = true;
-  expectOutOfRangeDepthReadsAsTheScreen(*this, 1.25f);
+  expectOutOfRangeDepthReadsAsTheScreen(*this, 1.25f, false);
+}
+TEST_F(HostStereoPassTest, ReversedDepthAboveOneAndNaNReadAsTheZeroParallaxPlaneNextToAFirstPersonLayer) {
+  frame_.projection.reversedZ = true;
+  expectOutOfRangeDepthReadsAsTheScreen(*this, 1.25f, true);
 }
 
 TEST_F(HostStereoPassTest, EveryPackedTargetIsOutputFormatsAppliedToThePassesOwnEyes) {

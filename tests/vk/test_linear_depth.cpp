@@ -77,5 +77,31 @@ TEST(StereoDepth, DepthNearerThanTheRangeAndNaNAreNoSurface) {
   EXPECT_TRUE(std::isinf(stereoDepthFromDevice(reversed, -0.5f)));
 }
 
+TEST(StereoDepth, NeverDecreasesWithTheKeyWithoutAFirstPersonLayer) {
+  // What lets the host gather take its taps' minimum in device depth: with no first-person range (split 0), the
+  // stereo depth never decreases as deviceDepthKey grows, from the near end through the sky, in both conventions.
+  for (bool isReversed : {false, true}) {
+    LinearDepthParams p = isReversed ? makeReversedLinearDepthParams(kWorldNear, kWorldFar, kWeaponNear, kWeaponFar, 0.0f)
+                                     : makeLinearDepthParams(kWorldNear, kWorldFar, kWeaponNear, kWeaponFar, 0.0f);
+    p.firstPersonDeviceDepthMax = -1.0f;  // as stereo::linearDepthParams sets it for no first-person range
+    ASSERT_TRUE(hasNoFirstPersonLayer(p));
+    float previousKey = -2.0f, previousDepth = 0.0f;
+    for (int i = 0; i <= 1 << 14; ++i) {
+      const float device = isReversed ? 1.0f - float(i) / float(1 << 14) : float(i) / float(1 << 14);
+      const float key = deviceDepthKey(p, device);
+      ASSERT_GT(key, previousKey);
+      const float depth = stereoDepthFromDevice(p, device);
+      EXPECT_GE(depth, previousDepth) << device << (isReversed ? " reversed" : "");
+      previousKey = key;
+      previousDepth = depth;
+    }
+  }
+}
+
+TEST(StereoDepth, AFirstPersonRangeIsALayer) {
+  EXPECT_FALSE(hasNoFirstPersonLayer(makeLinearDepthParams(kWorldNear, kWorldFar, kWeaponNear, kWeaponFar, kSplit)));
+  EXPECT_FALSE(hasNoFirstPersonLayer(makeReversedLinearDepthParams(kWorldNear, kWorldFar, kWeaponNear, kWeaponFar, kSplit)));
+}
+
 }  // namespace
 }  // namespace s3d::gpu

@@ -64,11 +64,13 @@ S3D_INLINE float deviceDepthKey(LinearDepthParams p, float deviceDepth) {
 S3D_INLINE float firstPersonKeyMax(LinearDepthParams p) {
   return p.reversedZ != 0.0f ? p.firstPersonDeviceDepthMax - 1.0f : p.firstPersonDeviceDepthMax;
 }
-// Device depth nearer than the depth range's near end (below 0, or above 1 reversed) and NaN are no surface.
-// Keys from this up convert to positive depths; false for NaN.
-S3D_INLINE bool isDeviceDepthKeyInRange(LinearDepthParams p, float key) {
-  return key >= (p.reversedZ != 0.0f ? -1.0f : 0.0f);
-}
+// The key of the depth range's near end (device depth 0, or 1 reversed).
+S3D_INLINE float deviceDepthKeyMin(LinearDepthParams p) { return p.reversedZ != 0.0f ? -1.0f : 0.0f; }
+// Device depth nearer than the depth range's near end and NaN are no surface. Keys from deviceDepthKeyMin up
+// convert to positive depths that never decrease with the key within a layer; false for NaN.
+S3D_INLINE bool isDeviceDepthKeyInRange(LinearDepthParams p, float key) { return key >= deviceDepthKeyMin(p); }
+// No device depth in range belongs to the first-person layer (the host gave it no depth range of its own).
+S3D_INLINE bool hasNoFirstPersonLayer(LinearDepthParams p) { return firstPersonKeyMax(p) < deviceDepthKeyMin(p); }
 
 // The depth the stereo pass sees: linear depth, with the first-person layer pushed into the screen by
 // offsetting and scaling its depth (seed 4.6.2). Per pixel, so the weapon's own visibility is untouched.
