@@ -54,7 +54,7 @@ vec4 centerAt(int x, int y) {
 #endif
 }
 
-#ifdef S3D_STEREO_HOST_INPUTS
+#ifdef S3D_STEREO_HOST_ONE_LAYER_DEPTH
 // Listing 4.5 on a host's depth buffer of one layer (no first-person depth range): its stereo depth never
 // decreases with the device depth's key (linear_depth.h), so the taps' minimum is taken in keys and converted
 // once instead of per tap. Out-of-range and NaN taps read as the zero-parallax plane, as their conversion does.
@@ -78,14 +78,15 @@ float minDepthOverOneLayersTaps(int x, int y, int direction) {
 
 // Listing 4.5: minimum depth over the separation range on one side of the pixel.
 float minDepthOverTaps(int x, int y, int direction) {
-#ifdef S3D_STEREO_HOST_INPUTS
-  if (h.depthKind == S3D_HOST_DEPTH_DEVICE && hasNoFirstPersonLayer(h.depth)) return minDepthOverOneLayersTaps(x, y, direction);
-#endif
+#ifdef S3D_STEREO_HOST_ONE_LAYER_DEPTH
+  return minDepthOverOneLayersTaps(x, y, direction);  // the host pass picks this module for such buffers only
+#else
   float minDepth = S3D_INFINITY;  // the seed starts at 1.0, its normalized far plane
   // A compile-time trip count (the array's capacity) with the used count as a guard lets the compiler unroll.
   for (int i = 0; i < S3D_STEREO_TAP_CAPACITY; ++i)
     if (i < c.tapCount) minDepth = min(minDepth, depthAt(x + direction * c.tapOffsetPx[i], y));
   return minDepth;
+#endif
 }
 
 // Both eyes' pixel: stored in the two eyes, or (from host images) packed straight into the target at binding 2.
