@@ -193,11 +193,14 @@ stereo::StereoMethod displaceAndClassify(HybridFrame& f, const stereo::StereoPar
 }
 
 // Ray-cast eyes over a gather base with ambient occlusion (and a mask): the rays are cast for the masked pixels
-// only, the occlusion's region takes the center's depth where the base samples (RayCastRegion: it is cast).
+// only, the occlusion's region takes the center's depth where the base samples (RayCastRegion: it is cast). The
+// center's device depth must be at the eyes' size and mean what theirs does (the same depth direction).
 bool givesBaseDepth(const HybridFrame& f, const renderer::Scene& scene, renderer::ShadeMask::Surfaces eyeSurfaces,
                     HybridSurfaces surfaces) {
+  const bool sameDeviceDepth = f.centerRenderer.supersample() == 1 &&
+                               f.centerRenderer.options().reversedZ == f.eyeRenderer.options().reversedZ;
   return eyeSurfaces == renderer::ShadeMask::Surfaces::RayCast && surfaces != HybridSurfaces::RayCastRegion &&
-         scene.ambientOcclusion && f.constants.baseTapCount > 0 && f.classify;
+         scene.ambientOcclusion && f.constants.baseTapCount > 0 && f.classify && sameDeviceDepth;
 }
 
 // Both eyes' base depth (stereo::HybridBaseDepthPass) from the center's linear and device depth, timed.

@@ -238,6 +238,25 @@ TEST_F(HybridRender, WithRayCastSurfacesOnlyTheMaskedPixelsAreCastAndTheBaseDept
   EXPECT_GT(scenes, 0u);
 }
 
+// An iterative base lands on the visible surface by construction and has no source texel per eye pixel: its
+// ray-cast eyes cast the occlusion's whole region, with no base depth pass.
+TEST_F(HybridRender, WithAnIterativeBaseTheRayCastEyesCastTheWholeRegion) {
+  stereo::StereoParameters parameters = hybridParameters(0.2f);
+  parameters.hybridBase = stereo::StereoMethod::Iterative;
+  HybridScene s = renderCenter(context(), "courtyard", 160, 90, parameters);
+  ASSERT_TRUE(s.scene.ambientOcclusion);
+  s.eyeRenderer =
+      std::make_unique<renderer::DeferredRenderer>(context(), 160, 90, eyeRendererOptions({}, HybridSurfaces::RayCast));
+  s.eyeRenderer->setScene(s.scene);
+  const HybridSynthesis hybrid = synthesizeHybrid(context(), *s.centerRenderer, *s.eyeRenderer, s.scene, s.center,
+                                                  parameters, 1, HybridSurfaces::RayCast);
+  const std::vector<std::uint32_t> ids = s.eyeRenderer->readVisibilityIds();  // the right eye's
+  std::size_t castUnmasked = 0;
+  for (std::size_t i = 0; i < ids.size(); ++i) castUnmasked += !hybrid.masks[1][i] && ids[i] != 0;
+  EXPECT_GT(castUnmasked, 0u);
+  EXPECT_EQ(hybrid.timings.baseDepth, 0.0);
+}
+
 // The surfaces can be chosen: Raster keeps an eye renderer that could cast rays rasterizing; RayCast refuses one
 // that cannot (raster shading), naming why, and eyeRendererOptions makes one that can.
 TEST_F(HybridRender, TheSurfacesCanBeChosen) {
