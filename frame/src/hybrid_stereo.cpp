@@ -9,6 +9,7 @@
 
 #include "s3d/frame/layered_reference.h"
 #include "s3d/renderer/scene_bvh.h"
+#include "s3d/stereo/hybrid_base_depth_pass.h"
 #include "s3d/stereo/hybrid_pass.h"
 #include "s3d/stereo/stereo_pass.h"
 #include "s3d/stereo/synthesis.h"
@@ -68,9 +69,9 @@ struct EyeRenderTimes {
 
 EyeRenderTimes renderEye(renderer::DeferredRenderer& eyeRenderer, const renderer::DeferredRenderer& centerRenderer,
                          const renderer::ViewMatrices& view, const vk::Image* mask, renderer::ShadeMask::Surfaces surfaces,
-                         int timedRuns) {
+                         const vk::Image* uncastDepth, int timedRuns) {
   // HybridPass masks: 1 where the eye camera renders the pixel; none: every pixel (an unmasked render).
-  const renderer::ShadeMask shadeMask{mask, 1, surfaces};
+  const renderer::ShadeMask shadeMask{mask, 1, surfaces, uncastDepth};
   (void)eyeRenderer.render(view, shadeMask, centerRenderer);
   std::vector<double> totals;
   std::map<std::string, std::vector<double>> passTimes;
@@ -102,19 +103,21 @@ const char* hybridSurfacesName(HybridSurfaces surfaces) {
   switch (surfaces) {
     case HybridSurfaces::Raster: return "raster";
     case HybridSurfaces::RayCast: return "raycast";
+    case HybridSurfaces::RayCastRegion: return "raycast-region";
     default: return "auto";
   }
 }
 
 std::optional<HybridSurfaces> hybridSurfacesFromName(std::string_view name) {
-  for (HybridSurfaces surfaces : {HybridSurfaces::Automatic, HybridSurfaces::Raster, HybridSurfaces::RayCast})
+  for (HybridSurfaces surfaces :
+       {HybridSurfaces::Automatic, HybridSurfaces::Raster, HybridSurfaces::RayCast, HybridSurfaces::RayCastRegion})
     if (name == hybridSurfacesName(surfaces)) return surfaces;
   return std::nullopt;
 }
 
 renderer::RendererOptions eyeRendererOptions(const renderer::RendererOptions& center, HybridSurfaces surfaces) {
   renderer::RendererOptions options = center;
-  if (surfaces == HybridSurfaces::RayCast) {
+  if (surfaces == HybridSurfaces::RayCast || surfaces == HybridSurfaces::RayCastRegion) {
     options.gbufferShading = renderer::RendererOptions::GBufferShading::Visibility;
     options.transparentCompositing = renderer::RendererOptions::TransparentCompositing::Compute;
   }
@@ -128,7 +131,7 @@ namespace {
 renderer::ShadeMask::Surfaces surfacesFor(renderer::DeferredRenderer& eyeRenderer, const renderer::Scene& scene,
                                           HybridSurfaces surfaces) {
   const std::optional<std::string> refusal = eyeRenderer.raycastSurfacesRefusal();
-  if (surfaces == HybridSurfaces::RayCast && refusal)
+  if ((surfaces == HybridSurfaces::RayCast || surfaces == HybridSurfaces::RayCastRegion) && refusal)
     throw std::invalid_argument("the hybrid cannot ray-cast its eye pixels here: " + *refusal);
   if (surfaces == HybridSurfaces::Raster || refusal) return renderer::ShadeMask::Surfaces::Raster;
   if (!eyeRenderer.hasSurfaceBvh()) eyeRenderer.setSurfaceBvh(renderer::SceneBvh::build(scene));
@@ -157,6 +160,10 @@ struct HybridFrame {
   stereo::HybridPass::Images images;
   vk::Image left, right;
   bool nothingMasked, everythingMasked, classify;
+  // Ray-cast eyes with ambient occlusion over a gather base: each eye's depth where the base samples, given to
+  // the pixels of the occlusion's region that are not cast (none: the region is cast).
+  std::array<vk::Image, 2> baseDepth;
+  bool givesBaseDepth = false;
 };
 
 // Displacement, classification, threshold and masks: one submission, nothing read back in between. Returns the
@@ -185,6 +192,35 @@ stereo::StereoMethod displaceAndClassify(HybridFrame& f, const stereo::StereoPar
   return displacement.method();
 }
 
+// Ray-cast eyes over a gather base with ambient occlusion (and a mask): the rays are cast for the masked pixels
+// only, the occlusion's region takes the center's depth where the base samples (RayCastRegion: it is cast). The
+// center's device depth must be at the eyes' size and mean what theirs does (the same depth direction).
+bool givesBaseDepth(const HybridFrame& f, const renderer::Scene& scene, renderer::ShadeMask::Surfaces eyeSurfaces,
+                    HybridSurfaces surfaces) {
+  const bool sameDeviceDepth = f.centerRenderer.supersample() == 1 &&
+                               f.centerRenderer.options().reversedZ == f.eyeRenderer.options().reversedZ;
+  return eyeSurfaces == renderer::ShadeMask::Surfaces::RayCast && surfaces != HybridSurfaces::RayCastRegion &&
+         scene.ambientOcclusion && f.constants.baseTapCount > 0 && f.classify && sameDeviceDepth;
+}
+
+// Both eyes' base depth (stereo::HybridBaseDepthPass) from the center's linear and device depth, timed.
+void recordBaseDepth(HybridFrame& f, HybridTimings& timings) {
+  const stereo::HybridBaseDepthPass pass(f.context);
+  for (vk::Image& eye : f.baseDepth) eye = stereo::HybridBaseDepthPass::createEyeDepth(f.context, f.width, f.height);
+  const vk::Image& linearDepth = f.centerRenderer.linearDepth();
+  const vk::Image& deviceDepth = f.centerRenderer.deviceDepth();
+  const std::vector<std::optional<double>> times =
+      timeSections(f.context, f.timedRuns, 1, [&](VkCommandBuffer cmd, const std::function<void()>& mark) {
+        vk::transition(cmd, linearDepth, vk::kComputeWrite, vk::kComputeRead);
+        for (const vk::Image& eye : f.baseDepth) vk::transition(cmd, eye, vk::kUndefined, vk::kComputeWrite);
+        pass.record(cmd, linearDepth, deviceDepth, f.baseDepth[0], f.baseDepth[1], f.constants);
+        mark();
+        vk::transition(cmd, linearDepth, vk::kComputeRead, vk::kComputeWrite);
+      });
+  timings.baseDepth = times[0];
+  f.givesBaseDepth = true;
+}
+
 // One eye: its masked pixels rendered from the eye camera, then composited into the displaced eye. An eye with
 // nothing masked is the displaced eye as it is, and costs no render.
 void renderAndComposite(HybridFrame& f, const renderer::Scene& scene, const renderer::ViewMatrices& center,
@@ -204,7 +240,8 @@ void renderAndComposite(HybridFrame& f, const renderer::Scene& scene, const rend
   HybridTimings& timings = result.timings;
   const EyeRenderTimes render =
       renderEye(f.eyeRenderer, f.centerRenderer, referenceEyeView(scene, center, eye, parameters),
-                f.everythingMasked ? nullptr : &mask, result.surfaces, f.timedRuns);
+                f.everythingMasked ? nullptr : &mask, result.surfaces,
+                f.givesBaseDepth ? &f.baseDepth[index] : nullptr, f.timedRuns);
   timings.eyeGeometry = sum(timings.eyeGeometry, render.geometry);
   timings.maskedShading = sum(timings.maskedShading, render.shading);
   (index == 0 ? timings.leftEyePasses : timings.rightEyePasses) = render.passes;
@@ -254,8 +291,10 @@ HybridSynthesis synthesizeHybrid(vk::Context& context, const renderer::DeferredR
   HybridTimings& timings = result.timings;
   timings.raycastSurfaces = result.surfaces == renderer::ShadeMask::Surfaces::RayCast;
   const stereo::StereoMethod base = displaceAndClassify(f, parameters, timings);
-  timings.eyeGeometry = timings.maskedShading = timings.composite = 0.0;
+  timings.maskedShading = timings.composite = timings.baseDepth = 0.0;
   if (f.everythingMasked) uploadCropMasks(context, f.images, f.constants, width, height);
+  if (givesBaseDepth(f, scene, result.surfaces, surfaces)) recordBaseDepth(f, timings);
+  timings.eyeGeometry = timings.baseDepth;
   // The masked counts come back first (the submission above was waited for anyway).
   for (const stereo::Eye eye : {stereo::Eye::Left, stereo::Eye::Right})
     renderAndComposite(f, scene, center, parameters, eye, result);

@@ -4,7 +4,8 @@
 // (raycast_shared.h's leafHit: snapped vertices, exact edge functions, the top-left rule), written as the raster
 // G-buffer pass writes it: the visibility id (narrow ids, R32_UINT) and the device depth (a miss: the cleared
 // depth). The first-person layer's tree is cast first with its own projection; a hit there wins, as its depth
-// range in front of the world's does in the raster pass. Pixels outside the mask are not written. The per-ray
+// range in front of the world's does in the raster pass. Pixels outside the mask are not written, or with an
+// uncast depth (constants.region.z) get its depth and id 0 (outside a region: the cleared depth). The per-ray
 // arithmetic is raycast_shared.h's, which the C++ reference traversal (SceneBvh::castPixel) runs in the same order.
 #extension GL_GOOGLE_include_directive : require
 #include "s3d/renderer/renderer_shared.h"
@@ -25,6 +26,8 @@ layout(std430, binding = 6) readonly buffer Region {
 };
 // Every triangle set up for this view by raycast_setup.comp.
 layout(std430, binding = 7) readonly buffer Snapped { SnappedTriangle snapped[]; };
+// With constants.region.z: the device depth of the pixels not cast (a hybrid's: its base displacement's depth).
+layout(binding = 8, r32f) uniform readonly image2D uncastDepth;
 
 // The closest hit of one tree along the pixel ray: its triangle index (S3D_BVH_NO_ROOT: none), ray parameter and
 // device depth.
@@ -84,11 +87,17 @@ uint closestHit(uint root, PixelRay ray, out float bestT, out float bestDepth) {
 void main() {
   uvec2 pixel = gl_GlobalInvocationID.xy;
   if (any(greaterThanEqual(pixel, uvec2(constants.screen.xy)))) return;
-  if (constants.options.y != 0u && imageLoad(mask, ivec2(pixel)).r < constants.options.x) return;
+  bool masked = constants.options.y == 0u || imageLoad(mask, ivec2(pixel)).r >= constants.options.x;
+  if (!masked && constants.region.z == 0u) return;
   if (constants.region.x != 0u &&
       regionFlags[(pixel.y / S3D_TILE_SIZE) * constants.region.y + pixel.x / S3D_TILE_SIZE] == 0u) {
     imageStore(visibilityIds, ivec2(pixel), uvec4(0u));
     imageStore(deviceDepth, ivec2(pixel), vec4(constants.clearedDepth.x));
+    return;
+  }
+  if (!masked) {  // a surface for the ambient occlusion to sample, which nothing shades (the resolve skips it)
+    imageStore(visibilityIds, ivec2(pixel), uvec4(0u));
+    imageStore(deviceDepth, ivec2(pixel), imageLoad(uncastDepth, ivec2(pixel)));
     return;
   }
   ivec2 subpixel = ivec2(pixel) * S3D_SUBPIXEL_UNITS + S3D_SUBPIXEL_UNITS / 2;  // the pixel's centre

@@ -91,6 +91,12 @@ void DeferredRenderer::Impl::validateMask(const ShadeMask& mask) const {
     throw std::invalid_argument("renderer: the shade mask is " + std::to_string(mask.image->width) + "x" +
                                 std::to_string(mask.image->height) + ", the output " + std::to_string(outputWidth) +
                                 "x" + std::to_string(outputHeight));
+  if (mask.uncastDepth == nullptr) return;
+  if (mask.surfaces != ShadeMask::Surfaces::RayCast)
+    throw std::invalid_argument("renderer: an uncast depth is for ray-cast surfaces only");
+  if (mask.uncastDepth->format != VK_FORMAT_R32_SFLOAT || mask.uncastDepth->width != outputWidth ||
+      mask.uncastDepth->height != outputHeight)
+    throw std::invalid_argument("renderer: the uncast depth must be an R32_SFLOAT image of the output's size");
 }
 
 const detail::ShadowMaps& DeferredRenderer::Impl::lentShadowMaps(const ViewMatrices& view, const Impl& source) const {
@@ -183,6 +189,7 @@ std::optional<RendererOptions::GBufferShading> gbufferShadingFromName(std::strin
 }
 const vk::Image& DeferredRenderer::displayColor() const { return impl_->display; }
 const vk::Image& DeferredRenderer::linearDepth() const { return impl_->linearDepth; }
+const vk::Image& DeferredRenderer::deviceDepth() const { return impl_->frameDepth(); }
 const vk::Image& DeferredRenderer::hdrColor() const { return impl_->resolvedHdr; }
 
 }  // namespace s3d::renderer

@@ -20,7 +20,8 @@ RaycastVisibility::RaycastVisibility(vk::Context& context) : context_(context) {
       computeBinding(0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER), computeBinding(1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER),
       computeBinding(2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER), computeBinding(3, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE),
       computeBinding(4, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE),  computeBinding(5, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE),
-      computeBinding(6, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER), computeBinding(7, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER)};
+      computeBinding(6, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER), computeBinding(7, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER),
+      computeBinding(8, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE)};
   layout_ = vk::createPushDescriptorLayout(context_, bindings, 0, 0);
   pipeline_ = vk::createComputePipeline(context_, layout_.layout, spirv_raycast_visibility_comp);
   const VkDescriptorSetLayoutBinding setupBindings[] = {computeBinding(0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER),
@@ -87,6 +88,9 @@ void RaycastVisibility::record(VkCommandBuffer cmd, const RaycastCamera& camera,
     throw std::invalid_argument("the ray-cast visibility pass needs R32_UINT ids and R32_SFLOAT depth of one size");
   if (mask.image && (mask.image->format != VK_FORMAT_R32_UINT || mask.image->width != width || mask.image->height != height))
     throw std::invalid_argument("the ray-cast visibility pass's mask must be R32_UINT and the size of its targets");
+  if (mask.uncastDepth && (mask.uncastDepth->format != VK_FORMAT_R32_SFLOAT || mask.uncastDepth->width != width ||
+                           mask.uncastDepth->height != height))
+    throw std::invalid_argument("the ray-cast visibility pass's uncast depth must be R32_SFLOAT and the size of its targets");
   gpu::RaycastConstants constants{};
   constants.clipToLayer[S3D_LAYER_WORLD] = clipToLayerOf(camera.worldViewProjection);
   constants.clipToLayer[S3D_LAYER_FIRST_PERSON] = clipToLayerOf(camera.firstPersonViewProjection);
@@ -97,7 +101,8 @@ void RaycastVisibility::record(VkCommandBuffer cmd, const RaycastCamera& camera,
   constants.roots = glm::uvec4(worldRoot_, firstPersonRoot_, 0u, 0u);
   constants.options = glm::uvec4(mask.threshold, mask.image ? 1u : 0u, packing_.x, packing_.y);
   constants.clearedDepth = glm::vec4(camera.clearedDepth, nearerOf(camera), 0.0f, 0.0f);
-  constants.region = glm::uvec4(region.tiles != VK_NULL_HANDLE ? 1u : 0u, region.tilesX, 0u, 0u);
+  constants.region = glm::uvec4(region.tiles != VK_NULL_HANDLE ? 1u : 0u, region.tilesX,
+                                 mask.image && mask.uncastDepth ? 1u : 0u, 0u);
   std::memcpy(constants_.mapped, &constants, sizeof(constants));
 
   VkDescriptorBufferInfo constantInfo{constants_.buffer, 0, VK_WHOLE_SIZE};
@@ -109,15 +114,19 @@ void RaycastVisibility::record(VkCommandBuffer cmd, const RaycastCamera& camera,
   VkDescriptorImageInfo maskInfo{VK_NULL_HANDLE, mask.image ? mask.image->view : visibilityIds.view, VK_IMAGE_LAYOUT_GENERAL};
   VkDescriptorImageInfo idInfo{VK_NULL_HANDLE, visibilityIds.view, VK_IMAGE_LAYOUT_GENERAL};
   VkDescriptorImageInfo depthInfo{VK_NULL_HANDLE, deviceDepth.view, VK_IMAGE_LAYOUT_GENERAL};
+  // Without an uncast depth the depth target stands in for it (the shader does not read it then).
+  VkDescriptorImageInfo uncastInfo{VK_NULL_HANDLE, mask.image && mask.uncastDepth ? mask.uncastDepth->view : deviceDepth.view,
+                                   VK_IMAGE_LAYOUT_GENERAL};
   // Without a region the node buffer stands in for it (the shader does not read it then).
   VkDescriptorBufferInfo regionInfo{region.tiles != VK_NULL_HANDLE ? region.tiles : nodes_.buffer, 0, VK_WHOLE_SIZE};
   VkWriteDescriptorSet writes[] = {vk::uniformBufferWrite(0, &constantInfo), vk::uniformBufferWrite(1, &nodeInfo),
                                    vk::uniformBufferWrite(2, &triangleInfo), vk::storageImageWrite(3, &maskInfo),
                                    vk::storageImageWrite(4, &idInfo),        vk::storageImageWrite(5, &depthInfo),
-                                   vk::uniformBufferWrite(6, &regionInfo),   vk::uniformBufferWrite(7, &snappedInfo)};
+                                   vk::uniformBufferWrite(6, &regionInfo),   vk::uniformBufferWrite(7, &snappedInfo),
+                                   vk::storageImageWrite(8, &uncastInfo)};
   for (std::uint32_t i : {1u, 2u, 6u, 7u}) writes[i].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_.get());
-  context_.cmdPushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_.layout, 0, 8, writes);
+  context_.cmdPushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_.layout, 0, 9, writes);
   const std::uint32_t group = S3D_RAYCAST_GROUP_SIZE;
   vkCmdDispatch(cmd, (width + group - 1) / group, (height + group - 1) / group, 1);
 }

@@ -44,9 +44,12 @@ void DeferredRenderer::Impl::recordRaycastSurfaces(VkCommandBuffer cmd, const Vi
   vk::transition(cmd, raycastIds, vk::kUndefined, vk::kComputeWrite);
   vk::transition(cmd, raycastDepth, vk::kUndefined, vk::kComputeWrite);
   // Ambient occlusion samples depth around the pixels it shades: with it, every pixel of its region (the masked
-  // tiles and their neighbours, flagged by the mask-tiles pass) is cast, and samples beyond see no surface.
+  // tiles and their neighbours, flagged by the mask-tiles pass) gets a surface, cast or (with an uncast depth, for
+  // the unmasked ones) given, and samples beyond see no surface.
   const bool region = scene.ambientOcclusion && mask.image != nullptr;
-  const ShadeMask cast = scene.ambientOcclusion ? ShadeMask{} : mask;
+  ShadeMask cast = mask;
+  if (!scene.ambientOcclusion) cast.uncastDepth = nullptr;
+  else if (mask.uncastDepth == nullptr) cast = ShadeMask{};
   raycast->record(cmd, raycastCamera(scene, view, options.reversedZ), cast, raycastIds, raycastDepth,
                   region ? RaycastRegion{tiles->buffer(), tiles->tilesX()} : RaycastRegion{});
   vk::transition(cmd, raycastIds, vk::kComputeWrite, kComputeSampled);

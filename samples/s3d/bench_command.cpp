@@ -89,14 +89,18 @@ class BenchCommand final : public Command {
             "--hybrid-surfaces",
             [this](const std::string& name) {
               const auto surfaces = frame::hybridSurfacesFromName(name);
-              if (!surfaces) throw CLI::ValidationError("--hybrid-surfaces", "must be auto, raster or raycast (got '" + name + "')");
+              if (!surfaces)
+                throw CLI::ValidationError("--hybrid-surfaces",
+                                           "must be auto, raster, raycast or raycast-region (got '" + name + "')");
               options_.hybridSurfaces = *surfaces;
             },
             "How the hybrid settings find their eye pixels' surfaces: auto (ray casting where the eye renderer can "
             "shade what rays find: a GPU's visibility shading, no textured or cut-out surfaces; else rasterized), "
-            "raster, or raycast (the eye renderer made to shade rays: visibility shading and the compute transparent "
-            "pass, also on a CPU device)")
-        ->type_name("auto|raster|raycast");
+            "raster, raycast (the eye renderer made to shade rays: visibility shading and the compute transparent "
+            "pass, also on a CPU device; with ambient occlusion only the masked pixels are cast, the occlusion's "
+            "region around them takes the center's depth where the base samples) or raycast-region (as raycast, "
+            "but the occlusion's whole region is cast)")
+        ->type_name("auto|raster|raycast|raycast-region");
     bench
         .add_option("--bandwidth-gbs", bandwidth_,
                     "Memory bandwidth of the device in GB/s for the memory-traffic target (H100 SXM: 3350, "

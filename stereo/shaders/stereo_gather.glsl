@@ -76,16 +76,16 @@ float minDepthOverOneLayersTaps(int x, int y, int direction) {
 }
 #endif
 
-// Listing 4.5: minimum depth over the separation range on one side of the pixel.
-float minDepthOverTaps(int x, int y, int direction) {
+#define S3D_GATHER_TAP_COUNT c.tapCount
+#define S3D_GATHER_TAP_OFFSET_PX c.tapOffsetPx
+#include "stereo_gather_source.glsl"
+
+// The taps' nearest depth on one side of the pixel: from a host's one-layer depth buffer in keys, else per tap.
+float nearestTapDepth(int x, int y, int direction) {
 #ifdef S3D_STEREO_HOST_ONE_LAYER_DEPTH
   return minDepthOverOneLayersTaps(x, y, direction);  // the host pass picks this module for such buffers only
 #else
-  float minDepth = S3D_INFINITY;  // the seed starts at 1.0, its normalized far plane
-  // A compile-time trip count (the array's capacity) with the used count as a guard lets the compiler unroll.
-  for (int i = 0; i < S3D_STEREO_TAP_CAPACITY; ++i)
-    if (i < c.tapCount) minDepth = min(minDepth, depthAt(x + direction * c.tapOffsetPx[i], y));
-  return minDepth;
+  return minDepthOverTaps(x, y, direction);
 #endif
 }
 
@@ -128,11 +128,6 @@ void main() {
     writeEyes(pixel, vec4(0, 0, 0, 1), vec4(0, 0, 0, 1));
     return;
   }
-  float minDepthLeft = minDepthOverTaps(pixel.x, pixel.y, +1);
-  float minDepthRight = minDepthOverTaps(pixel.x, pixel.y, -1);
-  float parallaxLeft = parallaxFromDepth(c.maxSeparation, c.zeroParallaxDistance, minDepthLeft);
-  float parallaxRight = parallaxFromDepth(c.maxSeparation, c.zeroParallaxDistance, minDepthRight);
-  // The left eye adds the parallax, the right eye subtracts it.
-  writeEyes(pixel, sampleRow(pixel.y, float(pixel.x) + parallaxLeft * float(c.width)),
-            sampleRow(pixel.y, float(pixel.x) - parallaxRight * float(c.width)));
+  writeEyes(pixel, sampleRow(pixel.y, gatherSourceColumn(pixel.x, +1, nearestTapDepth(pixel.x, pixel.y, +1))),
+            sampleRow(pixel.y, gatherSourceColumn(pixel.x, -1, nearestTapDepth(pixel.x, pixel.y, -1))));
 }

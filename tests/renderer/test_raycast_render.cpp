@@ -5,8 +5,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <iostream>
 #include <random>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -168,6 +170,83 @@ TEST_F(RaycastRenderPassTest, WithAmbientOcclusionTheOcclusionsRegionIsCast) {
     }
   EXPECT_EQ(castOutside, 0u);
   EXPECT_GT(castInside, insideRegion / 2);  // the region's surfaces were found (sky pixels get id 0 too)
+}
+
+std::vector<float> readDeviceDepth(vk::Context& context, const DeferredRenderer& renderer) {
+  constexpr vk::ImageState kSampledByCompute{VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+                                             VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT};
+  const std::vector<std::byte> bytes = vk::readbackImage(context, renderer.deviceDepth(), kSampledByCompute);
+  std::vector<float> depth(bytes.size() / sizeof(float));
+  std::memcpy(depth.data(), bytes.data(), bytes.size());
+  return depth;
+}
+
+// With an uncast depth (the hybrid's base depth) only the masked pixels are cast: they get the same ids and depth
+// as when the whole region is cast, and the raster pass's ids (ground pixels, away from triangle edges); the
+// region's other pixels get the given depth and id 0 exactly; pixels outside it the cleared depth as before.
+TEST_F(RaycastRenderPassTest, WithAnUncastDepthOnlyTheMaskedPixelsOfTheRegionAreCast) {
+  Scene scene = makeBuiltInScene("courtyard");
+  ASSERT_TRUE(scene.ambientOcclusion);
+  const ViewMatrices view = centerViewMatrices(scene, float(kWidth) / float(kHeight));
+  DeferredRenderer raster(context(), kWidth, kHeight, raycastOptions());
+  raster.setScene(scene);
+  raster.render(view);
+  const std::vector<std::uint32_t> rasterIds = raster.readVisibilityIds();
+  DeferredRenderer renderer(context(), kWidth, kHeight, raycastOptions());
+  renderer.setScene(scene);
+  renderer.setSurfaceBvh(SceneBvh::build(scene));
+  std::vector<std::uint32_t> values(std::size_t(kWidth) * kHeight, 0);
+  const std::uint32_t tileX = 4, tileY = 3;  // the ground, as above
+  for (std::uint32_t i = 0; i < 4; ++i) values[std::size_t(tileY * 16 + 3 + i) * kWidth + tileX * 16 + 5 + 2 * i] = 1;
+  const vk::Image mask = uploadMask(context(), values);
+  std::vector<float> given(values.size());
+  for (std::size_t i = 0; i < given.size(); ++i) given[i] = 0.5f + 1e-6f * float(i);  // a value of its own per pixel
+  const vk::Image uncast = vk::createImage(context(), VK_FORMAT_R32_SFLOAT, kWidth, kHeight,
+                                           VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
+  vk::uploadImage(context(), uncast, std::as_bytes(std::span(given)), vk::kComputeWrite);
+
+  renderer.render(view, {&mask, 1, ShadeMask::Surfaces::RayCast});
+  const std::vector<std::uint32_t> regionIds = renderer.readVisibilityIds();
+  const std::vector<float> regionDepth = readDeviceDepth(context(), renderer);
+  renderer.render(view, {&mask, 1, ShadeMask::Surfaces::RayCast, &uncast});
+  const std::vector<std::uint32_t> ids = renderer.readVisibilityIds();
+  const std::vector<float> depth = readDeviceDepth(context(), renderer);
+  std::size_t masked = 0, givenPixels = 0;
+  for (std::uint32_t y = 0; y < kHeight; ++y)
+    for (std::uint32_t x = 0; x < kWidth; ++x) {
+      const std::size_t i = std::size_t(y) * kWidth + x;
+      const bool inside = std::abs(int(x / 16) - int(tileX)) <= 1 && std::abs(int(y / 16) - int(tileY)) <= 1;
+      if (values[i] != 0) {
+        ++masked;
+        EXPECT_EQ(ids[i], regionIds[i]) << x << ", " << y;
+        EXPECT_EQ(ids[i], rasterIds[i]) << x << ", " << y;
+        EXPECT_EQ(depth[i], regionDepth[i]) << x << ", " << y;
+      } else if (inside) {
+        ++givenPixels;
+        EXPECT_EQ(ids[i], 0u) << x << ", " << y;
+        EXPECT_EQ(depth[i], given[i]) << x << ", " << y;
+      } else {
+        EXPECT_EQ(ids[i], 0u) << x << ", " << y;
+        EXPECT_EQ(depth[i], regionDepth[i]) << x << ", " << y;  // the cleared depth
+      }
+    }
+  EXPECT_EQ(masked, 4u);
+  EXPECT_EQ(givenPixels, 9u * 16u * 16u - 4u);
+}
+
+// An uncast depth is for ray-cast surfaces, as an R32_SFLOAT image of the output's size.
+TEST_F(RaycastRenderPassTest, AnUncastDepthOfAnotherKindIsRefused) {
+  Scene scene = makeBuiltInScene("cover");
+  const ViewMatrices view = centerViewMatrices(scene, float(kWidth) / float(kHeight));
+  DeferredRenderer renderer(context(), kWidth, kHeight, raycastOptions());
+  renderer.setScene(scene);
+  renderer.setSurfaceBvh(SceneBvh::build(scene));
+  const vk::Image mask = uploadMask(context(), scatteredMask(0.05, 3));
+  const vk::Image depth = vk::createImage(context(), VK_FORMAT_R32_SFLOAT, kWidth, kHeight, VK_IMAGE_USAGE_STORAGE_BIT);
+  const vk::Image small = vk::createImage(context(), VK_FORMAT_R32_SFLOAT, kWidth / 2, kHeight, VK_IMAGE_USAGE_STORAGE_BIT);
+  EXPECT_THROW(renderer.render(view, {&mask, 1, ShadeMask::Surfaces::Raster, &depth}), std::invalid_argument);
+  EXPECT_THROW(renderer.render(view, {&mask, 1, ShadeMask::Surfaces::RayCast, &small}), std::invalid_argument);
+  EXPECT_THROW(renderer.render(view, {&mask, 1, ShadeMask::Surfaces::RayCast, &mask}), std::invalid_argument);
 }
 
 // The first-person layer lives in camera space, so a camera that moves along its path needs no new BVH: every

@@ -23,6 +23,8 @@ struct HybridTimings {
   std::optional<double> classification;  // classification, threshold and masks (the sum of the next three)
   std::optional<double> classify, threshold, mask;  // each of the three passes
   std::optional<double> eyeGeometry;     // both eyes' surfaces: rasterized ("gbuffer", "ssao-depth") or ray-cast
+                                         // ("raycast", and baseDepth)
+  std::optional<double> baseDepth;       // ray-cast eyes with ambient occlusion: both eyes' base depth (else 0)
   std::optional<double> maskedShading;   // both eyes' other passes (mask tiles, SSAO, lighting, resolve; the
                                          // shadow maps are the center frame's)
   std::optional<double> composite;       // both eyes
@@ -55,10 +57,12 @@ struct HybridSynthesis {
 // (DeferredRenderer::raycastSurfacesRefusal), StereoSynthesis times both paths on a scene's first hybrid frame
 // and keeps the faster (thin geometry makes a poor BVH, where rays lose), and synthesizeHybrid alone casts rays;
 // elsewhere rasterized. Raster: always rasterized. RayCast: always by rays (a renderer that cannot is an error
-// naming why).
-enum class HybridSurfaces { Automatic, Raster, RayCast };
+// naming why). With ambient occlusion and a gather base (seed, search), rays are cast for the masked pixels only
+// and the rest of the occlusion's region takes the center's depth where the base samples
+// (stereo::HybridBaseDepthPass); RayCastRegion casts that whole region instead (the earlier way, for comparing).
+enum class HybridSurfaces { Automatic, Raster, RayCast, RayCastRegion };
 
-// "auto", "raster", "raycast"; and back (nullopt for any other name).
+// "auto", "raster", "raycast", "raycast-region"; and back (nullopt for any other name).
 const char* hybridSurfacesName(HybridSurfaces surfaces);
 std::optional<HybridSurfaces> hybridSurfacesFromName(std::string_view name);
 

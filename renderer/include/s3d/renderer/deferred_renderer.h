@@ -85,6 +85,9 @@ class DeferredRenderer {
   const vk::Image& displayColor() const;  // RGBA8, tone-mapped, sRGB-encoded
   const vk::Image& linearDepth() const;   // R32F, view depth in world units, +inf for sky (Listing 4.3), weapon pushed
   const vk::Image& hdrColor() const;      // RGBA16F, linear HDR before exposure and tone mapping (resolved)
+  // The device depth at render size (D32_SFLOAT, or R32_SFLOAT after a ray-cast render), left in
+  // VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL for compute to sample; after a masked render, valid on the mask only.
+  const vk::Image& deviceDepth() const;
 
   ImageRGBA8 readDisplayColor();
   DepthImage readLinearDepth();

@@ -34,12 +34,18 @@ struct ShadeMask {
   // How the shaded pixels' surfaces are found. Raster: the G-buffer pass above. RayCast: the ray-cast visibility
   // pass (raycast_visibility.h) casts the mask's pixels through the BVH given to setSurfaceBvh and the G-buffer
   // resolve, lighting and resolve shade them: no depth clear and no raster pass (compute runs on all of a GPU,
-  // the raster side on a small part of it). With ambient occlusion the occlusion's region is cast (the masked
-  // tiles and their 8 neighbours), and its samples beyond that region find no surface: near the region's border
-  // an occluder further away than a tile is missed (docs/RESULTS.md, "Hybrid by ray casting"). A null image with
+  // the raster side on a small part of it). With ambient occlusion the occlusion's region (the masked tiles and
+  // their 8 neighbours) gets surfaces: its masked pixels cast, its other pixels cast too, or given uncastDepth's
+  // depth where there is one; its samples beyond that region find no surface: near the region's border an
+  // occluder further away than a tile is missed (docs/RESULTS.md, "Hybrid by ray casting"). A null image with
   // RayCast casts and shades every pixel.
   enum class Surfaces { Raster, RayCast };
   Surfaces surfaces = Surfaces::Raster;
+  // RayCast with a mask and ambient occlusion only (ignored without ambient occlusion): the device depth of the
+  // unmasked pixels, which are then not cast (a hybrid's eye: the center's depth where its base displacement
+  // samples, stereo::HybridBaseDepthPass). VK_FORMAT_R32_SFLOAT, the mask's size and layout, written by compute
+  // before render() (the ray-cast pass orders earlier compute writes before its reads).
+  const vk::Image* uncastDepth = nullptr;
 };
 
 }  // namespace s3d::renderer

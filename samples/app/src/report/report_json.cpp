@@ -26,7 +26,8 @@ nlohmann::json toJson(const frame::HybridTimings& t) {
   return {{"displacement", optionalMs(t.displacement)}, {"classification", optionalMs(t.classification)},
           {"classify", optionalMs(t.classify)},         {"threshold", optionalMs(t.threshold)},
           {"mask", optionalMs(t.mask)},
-          {"eyeGeometry", optionalMs(t.eyeGeometry)},   {"maskedShading", optionalMs(t.maskedShading)},
+          {"eyeGeometry", optionalMs(t.eyeGeometry)},   {"baseDepth", optionalMs(t.baseDepth)},
+          {"maskedShading", optionalMs(t.maskedShading)},
           {"composite", optionalMs(t.composite)},       {"total", optionalMs(t.total)},
           {"surfaces", t.raycastSurfaces ? "raycast" : "raster"}};
 }

@@ -15,7 +15,8 @@ namespace s3d::app {
 double tidy(float value);
 nlohmann::json finiteOrNull(double value);
 nlohmann::json optionalMs(const std::optional<double>& value);  // null when absent or not finite
-// {"displacement", "classification", "eyeGeometry", "maskedShading", "composite", "total"}: ms or null;
+// {"displacement", "classification", "eyeGeometry" (with "baseDepth"), "maskedShading", "composite", "total"}: ms
+// or null;
 // "surfaces": "raycast" or "raster".
 nlohmann::json toJson(const frame::HybridTimings& timings);
 // {"psnrDb", "ssim", "meanAbsoluteError", "shareAbove8", "pixelCount"}: every ErrorStats field, non-finite as null.

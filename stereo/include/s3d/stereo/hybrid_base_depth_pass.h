@@ -1,0 +1,35 @@
+#pragma once
+// The hybrid's base depth on the GPU (shaders/stereo_hybrid_base_depth.comp; math and reference in
+// hybrid_base_depth.h): both eyes' device depth from the center's, at the gather base's source texels.
+#include <vulkan/vulkan.h>
+
+#include "s3d/stereo/hybrid_shared.h"
+#include "s3d/vk/context.h"
+#include "s3d/vk/pipeline.h"
+#include "s3d/vk/resources.h"
+
+namespace s3d::stereo {
+
+class HybridBaseDepthPass {
+ public:
+  explicit HybridBaseDepthPass(const vk::Context& context);
+
+  // An R32_SFLOAT storage image (readable back) for one eye's depth.
+  static vk::Image createEyeDepth(const vk::Context& context, std::uint32_t width, std::uint32_t height);
+
+  // linearDepth: the center's (R32F, GENERAL); deviceDepth: the center's device depth (D32_SFLOAT or R32_SFLOAT,
+  // VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, sampled); both written earlier and made visible to compute by the
+  // caller. leftDepth, rightDepth: R32_SFLOAT storage images in GENERAL, written by one compute dispatch (the
+  // caller orders later reads). Throws std::invalid_argument for another size than the constants' or constants
+  // without a gather base.
+  void record(VkCommandBuffer cmd, const vk::Image& linearDepth, const vk::Image& deviceDepth, const vk::Image& leftDepth,
+              const vk::Image& rightDepth, const gpu::HybridConstants& constants) const;
+
+ private:
+  const vk::Context* context_;
+  vk::Unique<VkSampler> nearest_;
+  vk::PipelineLayout layout_;
+  vk::Unique<VkPipeline> pipeline_;
+};
+
+}  // namespace s3d::stereo
