@@ -54,7 +54,7 @@ vec4 centerAt(int x, int y) {
 #endif
 }
 
-#ifdef S3D_STEREO_HOST_ONE_LAYER_DEPTH
+#ifdef S3D_STEREO_HOST_INPUTS
 // Listing 4.5 on a host's depth buffer of one layer (no first-person depth range): its stereo depth never
 // decreases with the device depth's key (linear_depth.h), so the taps' minimum is taken in keys and converted
 // once instead of per tap. Out-of-range and NaN taps read as the zero-parallax plane, as their conversion does.
@@ -82,11 +82,10 @@ float minDepthOverOneLayersTaps(int x, int y, int direction) {
 
 // The taps' nearest depth on one side of the pixel: from a host's one-layer depth buffer in keys, else per tap.
 float nearestTapDepth(int x, int y, int direction) {
-#ifdef S3D_STEREO_HOST_ONE_LAYER_DEPTH
-  return minDepthOverOneLayersTaps(x, y, direction);  // the host pass picks this module for such buffers only
-#else
-  return minDepthOverTaps(x, y, direction);
+#ifdef S3D_STEREO_HOST_INPUTS
+  if (h.depthKind == S3D_HOST_DEPTH_DEVICE && hasNoFirstPersonLayer(h.depth)) return minDepthOverOneLayersTaps(x, y, direction);
 #endif
+  return minDepthOverTaps(x, y, direction);
 }
 
 // Both eyes' pixel: stored in the two eyes, or (from host images) packed straight into the target at binding 2.

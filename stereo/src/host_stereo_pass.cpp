@@ -17,8 +17,6 @@
 #include <s3d_spirv/host_pack_rgba16f_comp.h>
 #include <s3d_spirv/stereo_gather_host_comp.h>
 #include <s3d_spirv/stereo_gather_host_hdr_comp.h>
-#include <s3d_spirv/stereo_gather_host_one_layer_comp.h>
-#include <s3d_spirv/stereo_gather_host_one_layer_hdr_comp.h>
 #include <s3d_spirv/stereo_search_comp.h>
 #include <s3d_spirv/stereo_search_hdr_comp.h>
 #include <s3d_spirv/stereo_seed_comp.h>
@@ -158,17 +156,11 @@ HostStereoPass::HostStereoPass(vk::Context& context, const HostStereoPassDesc& d
                           sizeof(gpu::HostInputConstants), S3D_HOST_GROUP_SIZE);
     const bool direct = desc.inputRead == HostInputRead::Direct ||
                         (desc.inputRead == HostInputRead::Auto && !context.isCpuDevice());
-    if (direct) {
+    if (direct)
       hostGather_ = makePipeline(context, bindings,
                                  hdr_ ? std::span<const std::uint32_t>(spirv_stereo_gather_host_hdr_comp)
                                       : std::span<const std::uint32_t>(spirv_stereo_gather_host_comp),
                                  kHostGatherBytes, S3D_STEREO_GROUP_SIZE);
-      if (isHostDepthFormat(desc.depthFormat))
-        hostGatherOneLayer_ = makePipeline(context, bindings,
-                                           hdr_ ? std::span<const std::uint32_t>(spirv_stereo_gather_host_one_layer_hdr_comp)
-                                                : std::span<const std::uint32_t>(spirv_stereo_gather_host_one_layer_comp),
-                                           kHostGatherBytes, S3D_STEREO_GROUP_SIZE);
-    }
   }
   shortTaps_ = makePipeline(context, storage4, hdr_ ? std::span<const std::uint32_t>(spirv_stereo_seed_hdr_comp)
                                                     : std::span<const std::uint32_t>(spirv_stereo_seed_comp),
@@ -350,9 +342,7 @@ void HostStereoPass::recordGatherFromHost(const Recording& r) const {
   std::memcpy(push.data(), &r.frame.stereo, kShortTapBytes);
   std::memcpy(push.data() + kShortTapBytes, &r.input, sizeof r.input);
   const SamplingWrites w(sampler_, r.color.view, r.colorLayout, r.depth.view, r.depthLayout, r.leftView, r.rightView);
-  // A depth buffer of one layer takes its taps' minimum in device depth (stereo_gather_host_one_layer.comp).
-  const bool oneLayer = r.input.depthKind == S3D_HOST_DEPTH_DEVICE && gpu::hasNoFirstPersonLayer(r.input.depth);
-  dispatch(r.cmd, oneLayer ? *hostGatherOneLayer_ : *hostGather_, w.writes, push.data(), desc_.width, desc_.height);
+  dispatch(r.cmd, *hostGather_, w.writes, push.data(), desc_.width, desc_.height);
 }
 
 void HostStereoPass::recordConversion(Recording& r) const {

@@ -146,8 +146,7 @@ class HostStereoPass {
   int colorTransfer_ = S3D_HOST_COLOR_AS_STORED;
   vk::Unique<VkSampler> sampler_;
   // hostGather_: seed and searches of up to four taps straight from the host's sampled images (no conversion).
-  // hostGatherOneLayer_: the same from a device depth buffer of one layer, its taps' minimum converted once.
-  std::optional<detail::EyePairPipeline> input_, hostGather_, hostGatherOneLayer_, shortTaps_, allTaps_, pack_;
+  std::optional<detail::EyePairPipeline> input_, hostGather_, shortTaps_, allTaps_, pack_;
   vk::Image centerColor_, linearDepth_, leftEye_, rightEye_;  // intermediates (unused ones stay empty)
 };
 
