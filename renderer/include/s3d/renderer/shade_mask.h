@@ -37,8 +37,8 @@ struct ShadeMask {
   // the raster side on a small part of it). With ambient occlusion the occlusion's region (the masked tiles and
   // their 8 neighbours) gets surfaces: its masked pixels cast, its other pixels cast too, or given uncastDepth's
   // depth where there is one; its samples beyond that region find no surface: near the region's border an
-  // occluder further away than a tile is missed (docs/RESULTS.md, "The budget by ray casting, current build"). A null image with
-  // RayCast casts and shades every pixel.
+  // occluder further away than a tile is missed (docs/RESULTS.md, "The budget by ray casting, current build").
+  // A null image with RayCast casts and shades every pixel.
   enum class Surfaces { Raster, RayCast };
   Surfaces surfaces = Surfaces::Raster;
   // RayCast with a mask and ambient occlusion only (ignored without ambient occlusion): the device depth of the
