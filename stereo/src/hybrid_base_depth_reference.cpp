@@ -2,6 +2,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "s3d/stereo/hybrid.h"
 #include "s3d/stereo/hybrid_base_depth.h"
 #include "s3d/stereo/stereo.h"
 
@@ -13,14 +14,7 @@ std::array<DepthImage, 2> hybridBaseDepthReference(const DepthImage& linearDepth
   for (const DepthImage* image : {&linearDepth, &deviceDepth})
     if (int(image->width) != c.width || int(image->height) != c.height)
       throw std::invalid_argument("hybrid base depth: an image's size does not match the constants");
-  // The gather's own constants, for its source column.
-  gpu::StereoConstants gather{};
-  gather.tapCount = c.baseTapCount;
-  gather.maxSeparation = c.maxSeparation;
-  gather.zeroParallaxDistance = c.zeroParallaxDistance;
-  gather.width = c.width;
-  gather.height = c.height;
-  std::copy_n(c.baseTapOffsetPx, c.baseTapCount, gather.tapOffsetPx);
+  const gpu::StereoConstants gather = hybridBaseGatherConstants(c);
   std::array<DepthImage, 2> eyes{DepthImage(linearDepth.width, linearDepth.height),
                                  DepthImage(linearDepth.width, linearDepth.height)};
   for (const Eye eye : {Eye::Left, Eye::Right}) {

@@ -33,6 +33,17 @@ gpu::HybridConstants makeHybridConstants(const StereoParameters& parameters, std
   return c;
 }
 
+gpu::StereoConstants hybridBaseGatherConstants(const gpu::HybridConstants& c) {
+  gpu::StereoConstants gather{};
+  gather.tapCount = c.baseTapCount;
+  gather.maxSeparation = c.maxSeparation;
+  gather.zeroParallaxDistance = c.zeroParallaxDistance;
+  gather.width = c.width;
+  gather.height = c.height;
+  std::copy_n(c.baseTapOffsetPx, c.baseTapCount, gather.tapOffsetPx);
+  return gather;
+}
+
 std::uint32_t hybridPixelCap(float budget, std::uint64_t classifiedPixels) {
   if (!(budget >= 0.0f && budget <= 1.0f))
     throw std::invalid_argument("hybrid budget must be in [0, 1] (got " + numberText(budget) + ")");
@@ -108,20 +119,16 @@ std::vector<float> rowScores(const DepthImage& linearDepth, int y, Eye eye, cons
   auto parallaxAt = [&](int column) {
     return gpu::hybridParallaxPx(depthAt(column), c.maxSeparation, c.zeroParallaxDistance, c.width);
   };
-  auto sanitizedDepthAt = [&](int column) { return gpu::sanitizedDepth(depthAt(column), c.zeroParallaxDistance); };
   const float direction = eye == Eye::Left ? 1.0f : -1.0f;
+  const gpu::StereoConstants gather = hybridBaseGatherConstants(c);
   const std::vector<gpu::HybridCoverage> coverage = hybridRowCoverageReference(linearDepth, y, eye, c);
   std::vector<float> scores(coverage.size(), 0.0f);
   for (int x = 0; x < c.width; ++x) {
     const std::size_t at = std::size_t(x);
     const float eyeX = float(x);
     float gatherError = 0.0f;
-    if (c.baseTapCount > 0) {  // the gather's own choice: the nearest depth over its taps (stereo_reference.cpp)
-      float minDepth = S3D_INFINITY;
-      for (int t = 0; t < c.baseTapCount; ++t)
-        minDepth = std::min(minDepth, sanitizedDepthAt(x + int(direction) * c.baseTapOffsetPx[t]));
-      const float u =
-          eyeX + direction * (gpu::parallaxFromDepth(c.maxSeparation, c.zeroParallaxDistance, minDepth) * float(c.width));
+    if (c.baseTapCount > 0) {  // the gather's own choice of source
+      const float u = gatherSourceColumn(linearDepth, x, y, eye, gather);
       const float base = std::floor(u);
       const float fraction = u - base;
       const float pLow = parallaxAt(int(base)), pHigh = parallaxAt(int(base) + 1);

@@ -31,6 +31,10 @@ std::uint32_t hybridPixelCap(float budget, std::uint64_t classifiedPixels);
 // gather base's taps.
 gpu::HybridConstants makeHybridConstants(const StereoParameters& parameters, std::uint32_t width, std::uint32_t height);
 
+// The gather base's own stereo constants (its taps, separation, zero-parallax distance, size), for its choice of
+// source (gatherSourceColumn); baseTapCount 0 (a base that is no gather) gives no taps.
+gpu::StereoConstants hybridBaseGatherConstants(const gpu::HybridConstants& constants);
+
 // What the center view shows at every eye pixel of row y (hybrid_shared.h): each pair of neighbouring center
 // texels of the edge-extended row scatters its terms into the pixels it reaches, and the change pairs' landing
 // intervals are swept along the row once each way for the nearest boundary.
