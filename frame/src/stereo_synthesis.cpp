@@ -76,22 +76,37 @@ SynthesizedEyes StereoSynthesis::synthesizeHybridFrame(const StereoSynthesisFram
 }
 
 HybridSynthesis StereoSynthesis::hybridWithChosenSurfaces(const StereoSynthesisFrame& frame) {
-  auto run = [&](HybridSurfaces surfaces) {
-    return synthesizeHybrid(*context_, frame.centerRenderer, *eyeRenderer_, frame.scene, frame.center,
-                            frame.parameters, description_.timedRuns, surfaces);
+  auto run = [&](HybridSurfaces surfaces, bool everyPixel = false) {
+    stereo::StereoParameters parameters = frame.parameters;
+    if (everyPixel) parameters.hybridBudget = 1.0f;
+    return synthesizeHybrid(*context_, frame.centerRenderer, *eyeRenderer_, frame.scene, frame.center, parameters,
+                            description_.timedRuns, surfaces);
   };
   if (description_.hybridSurfaces != HybridSurfaces::Automatic || eyeRenderer_->raycastSurfacesRefusal())
     return run(description_.hybridSurfaces);
-  if (measuredSurfaces_) return run(*measuredSurfaces_);
+  const float budget = frame.parameters.hybridBudget;
+  if (measuredSurfaces_ && measuredSurfaces_->timedBudget == budget)
+    return run(measuredSurfaces_->surfaces, measuredSurfaces_->everyPixel);
   HybridSynthesis rays = run(HybridSurfaces::RayCast);
   HybridSynthesis raster = run(HybridSurfaces::Raster);
-  const HybridSynthesis::SurfaceChoice choice{rays.timings.total, raster.timings.total};
-  // Without timestamps nothing is known: rays, as synthesizeHybrid's Automatic.
-  const bool rasterFaster = choice.raycastMs && choice.rasterMs && *choice.rasterMs < *choice.raycastMs;
-  measuredSurfaces_ = rasterFaster ? HybridSurfaces::Raster : HybridSurfaces::RayCast;
-  HybridSynthesis& chosen = rasterFaster ? raster : rays;
-  chosen.surfaceChoice = choice;
-  return std::move(chosen);
+  std::optional<HybridSynthesis> everyPixel;
+  if (budget < 1.0f) everyPixel = run(HybridSurfaces::RayCast, true);
+  HybridSynthesis::SurfaceChoice choice{rays.timings.total, raster.timings.total, std::nullopt};
+  if (everyPixel) choice.everyPixelRaycastMs = everyPixel->timings.total;
+  // Without timestamps nothing is known: rays at the frame's budget, as synthesizeHybrid's Automatic.
+  const auto faster = [](const std::optional<double>& a, const std::optional<double>& b) { return a && b && *a < *b; };
+  HybridSynthesis* chosen = &rays;
+  measuredSurfaces_ = SurfacePath{HybridSurfaces::RayCast, false, budget};
+  if (faster(choice.rasterMs, choice.raycastMs)) {
+    chosen = &raster;
+    measuredSurfaces_ = SurfacePath{HybridSurfaces::Raster, false, budget};
+  }
+  if (faster(choice.everyPixelRaycastMs, chosen->timings.total)) {
+    chosen = &*everyPixel;
+    measuredSurfaces_ = SurfacePath{HybridSurfaces::RayCast, true, budget};
+  }
+  chosen->surfaceChoice = choice;
+  return std::move(*chosen);
 }
 
 // The fill reprojects the previous frame's eyes with each eye camera's motion since then: the two-pass reference's

@@ -3,6 +3,7 @@
 // synthesis was not made for are refused. (The hybrid's own behaviour: test_hybrid_render.cpp.)
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <optional>
 #include <stdexcept>
@@ -103,10 +104,11 @@ TEST_F(StereoSynthesisTest, TheHybridsEyeRendererFollowsTheScene) {
   }
 }
 
-// Tolerance: none. Which path is faster is the device's to say (thin geometry makes a poor BVH); the rule is
-// that Automatic times both on a scene's first hybrid frame, keeps the faster for the scene's later frames, and
-// times them again for a new scene.
-TEST_F(StereoSynthesisTest, AutomaticSurfacesKeepThePathTimedFasterOnTheScenesFirstFrame) {
+// Tolerance: none. Which path is faster is the device's to say (thin geometry makes a poor BVH; where little is
+// masked, the classification can cost more than the rays it saves); the rule is that Automatic times rays, raster
+// and every pixel by rays on a scene's first hybrid frame, keeps the fastest for the scene's later frames of that
+// budget, and times them again for another budget or a new scene.
+TEST_F(StereoSynthesisTest, AutomaticSurfacesKeepThePathTimedFastestOnTheScenesFirstFrame) {
   stereo::StereoParameters parameters;
   parameters.method = stereo::StereoMethod::Hybrid;
   parameters.hybridBudget = 0.3f;
@@ -118,14 +120,25 @@ TEST_F(StereoSynthesisTest, AutomaticSurfacesKeepThePathTimedFasterOnTheScenesFi
   const SynthesizedEyes first = synthesis.synthesize({centerRenderer, frame.scene, frame.center, parameters});
   ASSERT_TRUE(first.hybrid && first.hybrid->surfaceChoice);
   const HybridSynthesis::SurfaceChoice& timed = *first.hybrid->surfaceChoice;
-  ASSERT_TRUE(timed.raycastMs && timed.rasterMs) << "the device gives no timestamps";
-  const renderer::ShadeMask::Surfaces faster = *timed.rasterMs < *timed.raycastMs
-                                                   ? renderer::ShadeMask::Surfaces::Raster
-                                                   : renderer::ShadeMask::Surfaces::RayCast;
-  EXPECT_EQ(first.hybrid->surfaces, faster);
+  ASSERT_TRUE(timed.raycastMs && timed.rasterMs && timed.everyPixelRaycastMs) << "the device gives no timestamps";
+  const bool rasterFaster = *timed.rasterMs < *timed.raycastMs;
+  const bool everyPixel = *timed.everyPixelRaycastMs < (rasterFaster ? *timed.rasterMs : *timed.raycastMs);
+  const renderer::ShadeMask::Surfaces fastest = rasterFaster && !everyPixel ? renderer::ShadeMask::Surfaces::Raster
+                                                                            : renderer::ShadeMask::Surfaces::RayCast;
+  // Every pixel shows as a masked share above the budget's (the budget caps it otherwise).
+  const auto castEveryPixel = [&](const HybridSynthesis& hybrid) {
+    const std::vector<std::uint8_t>& mask = hybrid.masks[0];
+    return double(std::count(mask.begin(), mask.end(), std::uint8_t{1})) > parameters.hybridBudget * double(mask.size());
+  };
+  EXPECT_EQ(first.hybrid->surfaces, fastest);
+  EXPECT_EQ(castEveryPixel(*first.hybrid), everyPixel);
   const SynthesizedEyes second = synthesis.synthesize({centerRenderer, frame.scene, frame.center, parameters});
   EXPECT_FALSE(second.hybrid->surfaceChoice.has_value()) << "the scene's choice is timed once";
-  EXPECT_EQ(second.hybrid->surfaces, faster);
+  EXPECT_EQ(second.hybrid->surfaces, fastest);
+  EXPECT_EQ(castEveryPixel(*second.hybrid), everyPixel);
+  parameters.hybridBudget = 0.1f;
+  EXPECT_TRUE(synthesis.synthesize({centerRenderer, frame.scene, frame.center, parameters}).hybrid->surfaceChoice)
+      << "another budget is timed again";
   synthesis.setScene(frame.scene);
   EXPECT_TRUE(synthesis.synthesize({centerRenderer, frame.scene, frame.center, parameters}).hybrid->surfaceChoice)
       << "a new scene is timed again";

@@ -45,17 +45,19 @@ struct HybridSynthesis {
   // (DeferredRenderer::raycastSurfacesRefusal), else rasterized.
   renderer::ShadeMask::Surfaces surfaces = renderer::ShadeMask::Surfaces::Raster;
   HybridTimings timings;
-  // Set on the frame where StereoSynthesis measured both surface paths to choose one (HybridSurfaces::Automatic):
-  // each path's total GPU time for this frame.
+  // Set on the frame where StereoSynthesis measured the surface paths to choose one (HybridSurfaces::Automatic):
+  // each path's total GPU time for this frame at its budget, and (for a budget below 1) every pixel's by rays.
   struct SurfaceChoice {
-    std::optional<double> raycastMs, rasterMs;
+    std::optional<double> raycastMs, rasterMs, everyPixelRaycastMs;
   };
   std::optional<SurfaceChoice> surfaceChoice;
 };
 
 // How the hybrid finds its masked pixels' surfaces. Automatic: where the eye renderer can shade what rays find
 // (DeferredRenderer::raycastSurfacesRefusal), StereoSynthesis times both paths on a scene's first hybrid frame
-// and keeps the faster (thin geometry makes a poor BVH, where rays lose), and synthesizeHybrid alone casts rays;
+// and keeps the faster (thin geometry makes a poor BVH, where rays lose), or casts every pixel (budget 1: the
+// exact eyes) where that was faster still, as it is where the classification costs more than the rays it
+// saves; synthesizeHybrid alone casts rays;
 // elsewhere rasterized. Raster: always rasterized. RayCast: always by rays (a renderer that cannot is an error
 // naming why). With ambient occlusion and a gather base (seed, search), rays are cast for the masked pixels only
 // and the rest of the occlusion's region takes the center's depth where the base samples

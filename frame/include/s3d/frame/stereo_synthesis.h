@@ -51,7 +51,8 @@ class StereoSynthesis {
   StereoSynthesis(vk::Context& context, const StereoSynthesisDescription& description);
 
   // A new scene, or a new pose of it (DeferredRenderer::setScene / updateGeometry), for the eye renderer if made.
-  // A new scene measures the hybrid's surface paths again (HybridSurfaces::Automatic); a new pose keeps the choice.
+  // A new scene measures the hybrid's surface paths again (HybridSurfaces::Automatic), as does a frame of another
+  // hybrid budget; a new pose keeps the choice.
   void setScene(const renderer::Scene& scene);
   void updateGeometry(const renderer::Scene& scene);
 
@@ -64,7 +65,8 @@ class StereoSynthesis {
   void makeEyeRenderer();
   SynthesizedEyes synthesizeHybridFrame(const StereoSynthesisFrame& frame);
   // The surface path for this frame: the description's, or with Automatic on an eye renderer that can cast rays,
-  // the faster of both as timed on this scene's first hybrid frame (that frame's result is the faster path's).
+  // the fastest of rays, raster and every pixel by rays as timed on this scene's first hybrid frame (that frame's
+  // result is the fastest path's).
   HybridSynthesis hybridWithChosenSurfaces(const StereoSynthesisFrame& frame);
   SynthesizedEyes synthesizeFilledFrame(const StereoSynthesisFrame& frame);
 
@@ -75,7 +77,12 @@ class StereoSynthesis {
   StereoSynthesisDescription description_;
   std::unique_ptr<renderer::DeferredRenderer> eyeRenderer_;
   bool eyeRendererHasScene_ = false;
-  std::optional<HybridSurfaces> measuredSurfaces_;  // Automatic's choice for the current scene, once timed
+  struct SurfacePath {
+    HybridSurfaces surfaces;
+    bool everyPixel;     // budget 1 whatever the frame's
+    float timedBudget;   // the budget it was timed at: another budget is timed again
+  };
+  std::optional<SurfacePath> measuredSurfaces_;  // Automatic's choice for the current scene, once timed
   std::optional<stereo::PreviousFillPass> fill_;
   std::optional<std::array<EyeCamera, 2>> previousEyes_;  // the last filled frame's eye cameras (the fill's motion)
 };
