@@ -38,7 +38,7 @@ void StereoSynthesis::setScene(const renderer::Scene& scene) {
   if (!eyeRenderer_) return;
   eyeRenderer_->setScene(scene);
   eyeRendererHasScene_ = true;
-  measuredSurfaces_.reset();
+  measuredSurfaces_.clear();
 }
 
 void StereoSynthesis::updateGeometry(const renderer::Scene& scene) {
@@ -85,8 +85,8 @@ HybridSynthesis StereoSynthesis::hybridWithChosenSurfaces(const StereoSynthesisF
   if (description_.hybridSurfaces != HybridSurfaces::Automatic || eyeRenderer_->raycastSurfacesRefusal())
     return run(description_.hybridSurfaces);
   const float budget = frame.parameters.hybridBudget;
-  if (measuredSurfaces_ && measuredSurfaces_->timedBudget == budget)
-    return run(measuredSurfaces_->surfaces, measuredSurfaces_->everyPixel);
+  if (const auto measured = measuredSurfaces_.find(budget); measured != measuredSurfaces_.end())
+    return run(measured->second.surfaces, measured->second.everyPixel);
   HybridSynthesis rays = run(HybridSurfaces::RayCast);
   HybridSynthesis raster = run(HybridSurfaces::Raster);
   std::optional<HybridSynthesis> everyPixel;
@@ -96,15 +96,16 @@ HybridSynthesis StereoSynthesis::hybridWithChosenSurfaces(const StereoSynthesisF
   // Without timestamps nothing is known: rays at the frame's budget, as synthesizeHybrid's Automatic.
   const auto faster = [](const std::optional<double>& a, const std::optional<double>& b) { return a && b && *a < *b; };
   HybridSynthesis* chosen = &rays;
-  measuredSurfaces_ = SurfacePath{HybridSurfaces::RayCast, false, budget};
+  SurfacePath path{HybridSurfaces::RayCast, false};
   if (faster(choice.rasterMs, choice.raycastMs)) {
     chosen = &raster;
-    measuredSurfaces_ = SurfacePath{HybridSurfaces::Raster, false, budget};
+    path = {HybridSurfaces::Raster, false};
   }
   if (faster(choice.everyPixelRaycastMs, chosen->timings.total)) {
     chosen = &*everyPixel;
-    measuredSurfaces_ = SurfacePath{HybridSurfaces::RayCast, true, budget};
+    path = {HybridSurfaces::RayCast, true};
   }
+  measuredSurfaces_[budget] = path;
   chosen->surfaceChoice = choice;
   return std::move(*chosen);
 }

@@ -106,8 +106,8 @@ TEST_F(StereoSynthesisTest, TheHybridsEyeRendererFollowsTheScene) {
 
 // Tolerance: none. Which path is faster is the device's to say (thin geometry makes a poor BVH; where little is
 // masked, the classification can cost more than the rays it saves); the rule is that Automatic times rays, raster
-// and every pixel by rays on a scene's first hybrid frame, keeps the fastest for the scene's later frames of that
-// budget, and times them again for another budget or a new scene.
+// and every pixel by rays on a scene's first hybrid frame at a budget, keeps the fastest for the scene's later
+// frames at that budget, and times them again for a new scene.
 TEST_F(StereoSynthesisTest, AutomaticSurfacesKeepThePathTimedFastestOnTheScenesFirstFrame) {
   stereo::StereoParameters parameters;
   parameters.method = stereo::StereoMethod::Hybrid;
@@ -138,7 +138,10 @@ TEST_F(StereoSynthesisTest, AutomaticSurfacesKeepThePathTimedFastestOnTheScenesF
   EXPECT_EQ(castEveryPixel(*second.hybrid), everyPixel);
   parameters.hybridBudget = 0.1f;
   EXPECT_TRUE(synthesis.synthesize({centerRenderer, frame.scene, frame.center, parameters}).hybrid->surfaceChoice)
-      << "another budget is timed again";
+      << "another budget is timed on its first frame";
+  parameters.hybridBudget = 0.3f;
+  EXPECT_FALSE(synthesis.synthesize({centerRenderer, frame.scene, frame.center, parameters}).hybrid->surfaceChoice)
+      << "a budget timed before keeps its choice";
   synthesis.setScene(frame.scene);
   EXPECT_TRUE(synthesis.synthesize({centerRenderer, frame.scene, frame.center, parameters}).hybrid->surfaceChoice)
       << "a new scene is timed again";

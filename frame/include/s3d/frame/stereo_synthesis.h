@@ -5,6 +5,7 @@
 // description, called once per frame. A host with its own renderer uses stereo::StereoFrame instead.
 #include <array>
 #include <cstdint>
+#include <map>
 #include <memory>
 #include <optional>
 
@@ -51,8 +52,8 @@ class StereoSynthesis {
   StereoSynthesis(vk::Context& context, const StereoSynthesisDescription& description);
 
   // A new scene, or a new pose of it (DeferredRenderer::setScene / updateGeometry), for the eye renderer if made.
-  // A new scene measures the hybrid's surface paths again (HybridSurfaces::Automatic), as does a frame of another
-  // hybrid budget; a new pose keeps the choice.
+  // A new scene measures the hybrid's surface paths again (HybridSurfaces::Automatic), as does the first frame of
+  // each hybrid budget; a new pose keeps the choices.
   void setScene(const renderer::Scene& scene);
   void updateGeometry(const renderer::Scene& scene);
 
@@ -65,8 +66,8 @@ class StereoSynthesis {
   void makeEyeRenderer();
   SynthesizedEyes synthesizeHybridFrame(const StereoSynthesisFrame& frame);
   // The surface path for this frame: the description's, or with Automatic on an eye renderer that can cast rays,
-  // the fastest of rays, raster and every pixel by rays as timed on this scene's first hybrid frame (that frame's
-  // result is the fastest path's).
+  // the fastest of rays, raster and every pixel by rays as timed on this scene's first hybrid frame at the frame's
+  // budget (that frame's result is the fastest path's).
   HybridSynthesis hybridWithChosenSurfaces(const StereoSynthesisFrame& frame);
   SynthesizedEyes synthesizeFilledFrame(const StereoSynthesisFrame& frame);
 
@@ -79,10 +80,9 @@ class StereoSynthesis {
   bool eyeRendererHasScene_ = false;
   struct SurfacePath {
     HybridSurfaces surfaces;
-    bool everyPixel;     // budget 1 whatever the frame's
-    float timedBudget;   // the budget it was timed at: another budget is timed again
+    bool everyPixel;  // budget 1 whatever the frame's
   };
-  std::optional<SurfacePath> measuredSurfaces_;  // Automatic's choice for the current scene, once timed
+  std::map<float, SurfacePath> measuredSurfaces_;  // Automatic's choice per hybrid budget for the current scene
   std::optional<stereo::PreviousFillPass> fill_;
   std::optional<std::array<EyeCamera, 2>> previousEyes_;  // the last filled frame's eye cameras (the fill's motion)
 };
