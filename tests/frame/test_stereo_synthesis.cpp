@@ -128,7 +128,8 @@ TEST_F(StereoSynthesisTest, AutomaticSurfacesKeepThePathTimedFastestOnTheScenesF
   // Every pixel shows as a masked share above the budget's (the budget caps it otherwise).
   const auto castEveryPixel = [&](const HybridSynthesis& hybrid) {
     const std::vector<std::uint8_t>& mask = hybrid.masks[0];
-    return double(std::count(mask.begin(), mask.end(), std::uint8_t{1})) > parameters.hybridBudget * double(mask.size());
+    const auto masked = double(std::count(mask.begin(), mask.end(), std::uint8_t{1}));
+    return masked > parameters.hybridBudget * double(mask.size());
   };
   EXPECT_EQ(first.hybrid->surfaces, fastest);
   EXPECT_EQ(castEveryPixel(*first.hybrid), everyPixel);

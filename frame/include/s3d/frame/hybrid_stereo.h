@@ -57,10 +57,11 @@ struct HybridSynthesis {
 // (DeferredRenderer::raycastSurfacesRefusal), StereoSynthesis times both paths on a scene's first hybrid frame
 // at each budget and keeps the faster (thin geometry makes a poor BVH, where rays lose), or casts every pixel
 // (budget 1: the exact eyes) where that was faster still, as it is where the classification costs more than the
-// rays it saves; synthesizeHybrid alone casts rays; elsewhere rasterized. Raster: always rasterized. RayCast: always by rays (a renderer that cannot is an error
-// naming why). With ambient occlusion and a gather base (seed, search), rays are cast for the masked pixels only
-// and the rest of the occlusion's region takes the center's depth where the base samples
-// (stereo::HybridBaseDepthPass); RayCastRegion casts that whole region instead (the earlier way, for comparing).
+// rays it saves; synthesizeHybrid alone casts rays; elsewhere rasterized. Raster: always rasterized. RayCast:
+// always by rays (a renderer that cannot is an error naming why). With ambient occlusion and a gather base (seed,
+// search), rays are cast for the masked pixels only and the rest of the occlusion's region takes the center's
+// depth where the base samples (stereo::HybridBaseDepthPass); RayCastRegion casts that whole region instead (the
+// earlier way, for comparing).
 enum class HybridSurfaces { Automatic, Raster, RayCast, RayCastRegion };
 
 // "auto", "raster", "raycast", "raycast-region"; and back (nullopt for any other name).
