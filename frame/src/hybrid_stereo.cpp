@@ -97,6 +97,11 @@ EyeRenderTimes renderEye(renderer::DeferredRenderer& eyeRenderer, const renderer
   return times;
 }
 
+// The settings that ask for ray-cast eye surfaces (the masked pixels alone, or the occlusion's whole region).
+bool forcesRays(HybridSurfaces surfaces) {
+  return surfaces == HybridSurfaces::RayCast || surfaces == HybridSurfaces::RayCastRegion;
+}
+
 }  // namespace
 
 const char* hybridSurfacesName(HybridSurfaces surfaces) {
@@ -117,7 +122,7 @@ std::optional<HybridSurfaces> hybridSurfacesFromName(std::string_view name) {
 
 renderer::RendererOptions eyeRendererOptions(const renderer::RendererOptions& center, HybridSurfaces surfaces) {
   renderer::RendererOptions options = center;
-  if (surfaces == HybridSurfaces::RayCast || surfaces == HybridSurfaces::RayCastRegion) {
+  if (forcesRays(surfaces)) {
     options.gbufferShading = renderer::RendererOptions::GBufferShading::Visibility;
     options.transparentCompositing = renderer::RendererOptions::TransparentCompositing::Compute;
   }
@@ -131,7 +136,7 @@ namespace {
 renderer::ShadeMask::Surfaces surfacesFor(renderer::DeferredRenderer& eyeRenderer, const renderer::Scene& scene,
                                           HybridSurfaces surfaces) {
   const std::optional<std::string> refusal = eyeRenderer.raycastSurfacesRefusal();
-  if ((surfaces == HybridSurfaces::RayCast || surfaces == HybridSurfaces::RayCastRegion) && refusal)
+  if (forcesRays(surfaces) && refusal)
     throw std::invalid_argument("the hybrid cannot ray-cast its eye pixels here: " + *refusal);
   if (surfaces == HybridSurfaces::Raster || refusal) return renderer::ShadeMask::Surfaces::Raster;
   if (!eyeRenderer.hasSurfaceBvh()) eyeRenderer.setSurfaceBvh(renderer::SceneBvh::build(scene));
