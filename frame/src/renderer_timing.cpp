@@ -27,7 +27,7 @@ std::pair<std::optional<double>, std::vector<renderer::PassTiming>> timeFrames(r
   std::vector<renderer::PassTiming> order;
   std::map<std::string, std::vector<double>> passTimes;
   // Untimed frames for at least `warmUp` first: a GPU that idled while the host computed metrics ramps its
-  // clocks back up (an H100 timed a reference eye at 25.7 ms instead of 4.7 ms after 50 ms of warm-up).
+  // clocks back up (a GPU timed a reference eye at several times its warm time after a short warm-up).
   const auto warmUpStart = std::chrono::steady_clock::now();
   do (void)deferred.render(view, mask);
   while (std::chrono::steady_clock::now() - warmUpStart < warmUp);

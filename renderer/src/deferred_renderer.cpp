@@ -66,7 +66,7 @@ std::vector<DeferredRenderer::Impl::ScheduledPass> DeferredRenderer::Impl::sched
                     S3D_COUNT_LIGHTING});
   const bool withTransparent = transparentPass->hasObjects();
   // Keeps a raster transparent pass within the mask (the compute pass reads the mask itself: cheaper than the
-  // full-screen fill, 0.078 ms for glass's whole frame against 0.16 ms an eye for the fill on an H200).
+  // full-screen fill, docs/RESULTS.md "What did not work").
   if (withTransparent && masked && maskedGBufferWritesEveryPixel() && !transparentPass->usesCompute())
     passes.push_back({"mask-depth", [this, mask](VkCommandBuffer cmd) {
                         vk::transition(cmd, depth, kComputeSampled, vk::kDepthAttachment);

@@ -24,8 +24,8 @@
 namespace s3d::renderer::detail {
 namespace {
 
-// 16-bit depth: the maps' raster cost follows the bytes cleared and written (on an H100 the four shadow passes of
-// the courtyard took 0.61 ms with D32, 0.40 ms with D16). Resolution: the sun cascades' boxes span tens of metres
+// 16-bit depth: the maps' raster cost follows the bytes cleared and written (D32 against D16: docs/RESULTS.md,
+// "What did not work"). Resolution: the sun cascades' boxes span tens of metres
 // (a millimetre a step, far under the 2 cm receiver bias); a local light's perspective map over its radius.
 constexpr VkFormat kShadowDepthFormat = VK_FORMAT_D16_UNORM;
 constexpr std::uint32_t kLocalAtlasColumns = 8;

@@ -18,8 +18,8 @@
 namespace s3d::renderer::detail {
 namespace {
 
-// RGBA8: storage-image writable without extended formats; as a raster target it was also faster than R8 on an
-// H100 (0.47 against 0.81 ms for the glass scene's pass).
+// RGBA8: storage-image writable without extended formats; as a raster target it was also faster than one byte
+// (docs/RESULTS.md "What did not work").
 constexpr VkFormat kCoverageFormat = VK_FORMAT_R8G8B8A8_UNORM;
 constexpr VkFormat kHdrFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
 // The HDR image and the coverage between two objects' dispatches: each reads what the one before wrote.
