@@ -161,13 +161,14 @@ struct HybridFrame {
   std::uint32_t width, height;
   int timedRuns;
   const stereo::HybridPass& hybrid;
+  const stereo::HybridBaseDepthPass& baseDepthPass;
   const gpu::HybridConstants constants;
-  stereo::HybridPass::Images images;
-  vk::Image left, right;
+  stereo::HybridPass::Images& images;
+  const vk::Image &left, &right;
   bool nothingMasked, everythingMasked, classify;
   // Ray-cast eyes with ambient occlusion over a gather base: each eye's depth where the base samples, given to
   // the pixels of the occlusion's region that are not cast (none: the region is cast).
-  std::array<vk::Image, 2> baseDepth;
+  const std::array<vk::Image, 2>& baseDepth;
   bool givesBaseDepth = false;
 };
 
@@ -210,15 +211,13 @@ bool givesBaseDepth(const HybridFrame& f, const renderer::Scene& scene, renderer
 
 // Both eyes' base depth (stereo::HybridBaseDepthPass) from the center's linear and device depth, timed.
 void recordBaseDepth(HybridFrame& f, HybridTimings& timings) {
-  const stereo::HybridBaseDepthPass pass(f.context);
-  for (vk::Image& eye : f.baseDepth) eye = stereo::HybridBaseDepthPass::createEyeDepth(f.context, f.width, f.height);
   const vk::Image& linearDepth = f.centerRenderer.linearDepth();
   const vk::Image& deviceDepth = f.centerRenderer.deviceDepth();
   const std::vector<std::optional<double>> times =
       timeSections(f.context, f.timedRuns, 1, [&](VkCommandBuffer cmd, const std::function<void()>& mark) {
         vk::transition(cmd, linearDepth, vk::kComputeWrite, vk::kComputeRead);
         for (const vk::Image& eye : f.baseDepth) vk::transition(cmd, eye, vk::kUndefined, vk::kComputeWrite);
-        pass.record(cmd, linearDepth, deviceDepth, f.baseDepth[0], f.baseDepth[1], f.constants);
+        f.baseDepthPass.record(cmd, linearDepth, deviceDepth, f.baseDepth[0], f.baseDepth[1], f.constants);
         mark();
         vk::transition(cmd, linearDepth, vk::kComputeRead, vk::kComputeWrite);
       });
@@ -269,24 +268,53 @@ void renderAndComposite(HybridFrame& f, const renderer::Scene& scene, const rend
 
 }  // namespace
 
-HybridSynthesis synthesizeHybrid(vk::Context& context, const renderer::DeferredRenderer& centerRenderer,
-                                 renderer::DeferredRenderer& eyeRenderer, const renderer::Scene& scene,
-                                 const renderer::ViewMatrices& center, const stereo::StereoParameters& parameters,
-                                 int timedRuns, HybridSurfaces surfaces) {
+struct HybridSynthesizer::Kept {
+  explicit Kept(vk::Context& c) : context(c), hybrid(c), baseDepthPass(c) {}
+
+  // The images of the center view's size: made for the first frame and again for a new size.
+  void fit(std::uint32_t w, std::uint32_t h) {
+    if (w == width && h == height) return;
+    const VkImageUsageFlags usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+    images = hybrid.createImages(w, h);
+    left = vk::createImage(context, stereo::StereoPass::kColorFormat, w, h, usage);
+    right = vk::createImage(context, stereo::StereoPass::kColorFormat, w, h, usage);
+    for (vk::Image& eye : baseDepth) eye = stereo::HybridBaseDepthPass::createEyeDepth(context, w, h);
+    width = w;
+    height = h;
+  }
+
+  vk::Context& context;
+  const stereo::HybridPass hybrid;
+  const stereo::HybridBaseDepthPass baseDepthPass;
+  std::uint32_t width = 0, height = 0;
+  stereo::HybridPass::Images images;
+  vk::Image left, right;
+  std::array<vk::Image, 2> baseDepth;
+};
+
+HybridSynthesizer::HybridSynthesizer(vk::Context& context) : kept_(std::make_unique<Kept>(context)) {}
+HybridSynthesizer::~HybridSynthesizer() = default;
+HybridSynthesizer::HybridSynthesizer(HybridSynthesizer&&) noexcept = default;
+HybridSynthesizer& HybridSynthesizer::operator=(HybridSynthesizer&&) noexcept = default;
+
+HybridSynthesis HybridSynthesizer::synthesize(const renderer::DeferredRenderer& centerRenderer,
+                                              renderer::DeferredRenderer& eyeRenderer, const renderer::Scene& scene,
+                                              const renderer::ViewMatrices& center,
+                                              const stereo::StereoParameters& parameters, int timedRuns,
+                                              HybridSurfaces surfaces) {
   if (parameters.method != stereo::StereoMethod::Hybrid)
     throw std::invalid_argument("synthesizeHybrid needs the hybrid method's parameters");
   if (timedRuns < 1) throw std::invalid_argument("synthesizeHybrid: timedRuns must be at least 1");
   const std::uint32_t width = centerRenderer.displayColor().width, height = centerRenderer.displayColor().height;
   if (eyeRenderer.width() != width || eyeRenderer.height() != height)
     throw std::invalid_argument("synthesizeHybrid: the eye renderer's size differs from the center view's");
+  vk::Context& context = kept_->context;
   HybridSynthesis result;
   result.surfaces = surfacesFor(eyeRenderer, scene, surfaces);
-  const stereo::HybridPass hybrid(context);
-  const VkImageUsageFlags usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
-  HybridFrame f{context, centerRenderer, eyeRenderer, width, height, timedRuns, hybrid,
-                stereo::makeHybridConstants(parameters, width, height), hybrid.createImages(width, height),
-                vk::createImage(context, stereo::StereoPass::kColorFormat, width, height, usage),
-                vk::createImage(context, stereo::StereoPass::kColorFormat, width, height, usage), false, false, false};
+  kept_->fit(width, height);
+  HybridFrame f{context, centerRenderer, eyeRenderer, width, height, timedRuns, kept_->hybrid, kept_->baseDepthPass,
+                stereo::makeHybridConstants(parameters, width, height), kept_->images, kept_->left, kept_->right,
+                false, false, false, kept_->baseDepth};
   result.classifiedPixels = std::uint64_t(f.constants.cropEnd - f.constants.cropBegin) * height;
   // The budget's ends need no classification: none masks nothing (the base displacement), all masks every
   // classified pixel (the eyes rendered whole, the two-pass reference), whatever the scores.
@@ -311,6 +339,14 @@ HybridSynthesis synthesizeHybrid(vk::Context& context, const renderer::DeferredR
     std::tie(result.filledLeft, result.filledRight) =
         stereo::countIterativeFills(context, centerRenderer.displayColor(), centerRenderer.linearDepth(), parameters);
   return result;
+}
+
+HybridSynthesis synthesizeHybrid(vk::Context& context, const renderer::DeferredRenderer& centerRenderer,
+                                 renderer::DeferredRenderer& eyeRenderer, const renderer::Scene& scene,
+                                 const renderer::ViewMatrices& center, const stereo::StereoParameters& parameters,
+                                 int timedRuns, HybridSurfaces surfaces) {
+  return HybridSynthesizer(context).synthesize(centerRenderer, eyeRenderer, scene, center, parameters, timedRuns,
+                                               surfaces);
 }
 
 }  // namespace s3d::frame

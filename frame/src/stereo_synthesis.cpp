@@ -32,6 +32,7 @@ void StereoSynthesis::makeEyeRenderer() {
   eyeRenderer_ = std::make_unique<renderer::DeferredRenderer>(
       *context_, description_.width, description_.height,
       eyeRendererOptions(description_.renderer, description_.hybridSurfaces));
+  hybrid_.emplace(*context_);
 }
 
 void StereoSynthesis::setScene(const renderer::Scene& scene) {
@@ -79,8 +80,8 @@ HybridSynthesis StereoSynthesis::hybridWithChosenSurfaces(const StereoSynthesisF
   auto run = [&](HybridSurfaces surfaces, bool everyPixel = false) {
     stereo::StereoParameters parameters = frame.parameters;
     if (everyPixel) parameters.hybridBudget = 1.0f;
-    return synthesizeHybrid(*context_, frame.centerRenderer, *eyeRenderer_, frame.scene, frame.center, parameters,
-                            description_.timedRuns, surfaces);
+    return hybrid_->synthesize(frame.centerRenderer, *eyeRenderer_, frame.scene, frame.center, parameters,
+                               description_.timedRuns, surfaces);
   };
   if (description_.hybridSurfaces != HybridSurfaces::Automatic || eyeRenderer_->raycastSurfacesRefusal())
     return run(description_.hybridSurfaces);

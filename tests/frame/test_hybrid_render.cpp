@@ -73,6 +73,30 @@ TEST_F(HybridRender, BudgetZeroIsTheBaseDisplacementBitForBit) {
   }
 }
 
+// A synthesizer kept between frames (its pipelines and images reused) gives each frame what a fresh one gives:
+// through a classified budget, the budget-1 end (masks uploaded, not classified) and back, then a new size and
+// another scene, whose images it makes again.
+TEST_F(HybridRender, AKeptSynthesizerGivesEachFrameWhatAFreshOneGives) {
+  HybridSynthesizer kept(context());
+  struct Frame {
+    const char* scene;
+    std::uint32_t width, height;
+    float budget;
+  };
+  for (const Frame frame : {Frame{"courtyard", 96, 54, 0.2f}, Frame{"courtyard", 96, 54, 1.0f},
+                            Frame{"courtyard", 96, 54, 0.2f}, Frame{"cover", 128, 72, 0.6f}}) {
+    const stereo::StereoParameters parameters = hybridParameters(frame.budget);
+    HybridScene s = renderCenter(context(), frame.scene, frame.width, frame.height, parameters);
+    const HybridSynthesis reused = kept.synthesize(*s.centerRenderer, *s.eyeRenderer, s.scene, s.center, parameters);
+    const HybridSynthesis fresh =
+        synthesizeHybrid(context(), *s.centerRenderer, *s.eyeRenderer, s.scene, s.center, parameters);
+    const std::string what = std::string(frame.scene) + " at " + std::to_string(frame.budget);
+    EXPECT_EQ(reused.masks, fresh.masks) << what;
+    EXPECT_EQ(reused.eyes.left.pixels, fresh.eyes.left.pixels) << what;
+    EXPECT_EQ(reused.eyes.right.pixels, fresh.eyes.right.pixels) << what;
+  }
+}
+
 // A budget whose share of the pixels rounds down to none (0.0001 of 96 x 54): the eyes are the base displacement
 // bit for bit, and neither eye is rendered (no pass ran, no time spent).
 TEST_F(HybridRender, AnEyeWithNothingMaskedIsNotRendered) {

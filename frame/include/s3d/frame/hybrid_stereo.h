@@ -5,6 +5,7 @@
 // can, docs/DESIGN.md "Hybrid"), and composite them into the displaced eyes. A host with its own renderer does the same with HybridPass and its renderer (docs/DESIGN.md).
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string_view>
 #include <vector>
@@ -72,13 +73,34 @@ std::optional<HybridSurfaces> hybridSurfacesFromName(std::string_view name);
 // the center view's; with Automatic or Raster, the center view's as they are.
 renderer::RendererOptions eyeRendererOptions(const renderer::RendererOptions& center, HybridSurfaces surfaces);
 
-// centerRenderer: its last frame is the center view `center` (its displayColor and linearDepth, in
-// vk::kComputeWrite state, left so, are what the eyes are displaced from, and its shadow maps light the eye
-// renders). eyeRenderer: a renderer of the same size with `scene` set, used for the eye cameras' masked renders (it
-// holds the right eye's afterwards; given the scene's BVH when it ray-casts and has none); an eye with no masked
-// pixel is not rendered. parameters (method Hybrid) are
-// for that size (the guard band's rescaled ones when it has one). Every GPU part runs once untimed (first use
-// compiles on lavapipe), then timedRuns times; the timings are medians.
+// The hybrid's own GPU objects, kept between frames so that a frame compiles and allocates nothing of its own:
+// the classification's pipelines, the base depth pass, and the masks, bins and eyes of the last size (a new size
+// makes them again).
+class HybridSynthesizer {
+ public:
+  explicit HybridSynthesizer(vk::Context& context);
+  ~HybridSynthesizer();
+  HybridSynthesizer(HybridSynthesizer&&) noexcept;
+  HybridSynthesizer& operator=(HybridSynthesizer&&) noexcept;
+
+  // centerRenderer: its last frame is the center view `center` (its displayColor and linearDepth, in
+  // vk::kComputeWrite state, left so, are what the eyes are displaced from, and its shadow maps light the eye
+  // renders). eyeRenderer: a renderer of the same size with `scene` set, used for the eye cameras' masked renders
+  // (it holds the right eye's afterwards; given the scene's BVH when it ray-casts and has none); an eye with no
+  // masked pixel is not rendered. parameters (method Hybrid) are for that size (the guard band's rescaled ones
+  // when it has one). Every GPU part runs once untimed (first use compiles on lavapipe), then timedRuns times;
+  // the timings are medians.
+  HybridSynthesis synthesize(const renderer::DeferredRenderer& centerRenderer, renderer::DeferredRenderer& eyeRenderer,
+                             const renderer::Scene& scene, const renderer::ViewMatrices& center,
+                             const stereo::StereoParameters& parameters, int timedRuns = 1,
+                             HybridSurfaces surfaces = HybridSurfaces::Automatic);
+
+ private:
+  struct Kept;
+  std::unique_ptr<Kept> kept_;
+};
+
+// One frame with a synthesizer of its own (its pipelines compiled for this call alone).
 HybridSynthesis synthesizeHybrid(vk::Context& context, const renderer::DeferredRenderer& centerRenderer,
                                  renderer::DeferredRenderer& eyeRenderer, const renderer::Scene& scene,
                                  const renderer::ViewMatrices& center, const stereo::StereoParameters& parameters,

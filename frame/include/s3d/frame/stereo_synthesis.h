@@ -1,8 +1,9 @@
 #pragma once
 // Both eyes from s3d's own renderer's center view, whatever the method: the one place that chooses between the
 // displacement methods (stereo::synthesizeTimed), the forward method with the previous-frame fill (its history
-// kept here between frames) and the hybrid (synthesizeHybrid, with an eye renderer kept here). Created from a
-// description, called once per frame. A host with its own renderer uses stereo::StereoFrame instead.
+// kept here between frames) and the hybrid (a HybridSynthesizer and an eye renderer, both kept here: a hybrid
+// frame compiles nothing). Created from a description, called once per frame. A host with its own renderer uses
+// stereo::StereoFrame instead.
 #include <array>
 #include <cstdint>
 #include <map>
@@ -77,6 +78,7 @@ class StereoSynthesis {
   vk::Context* context_;
   StereoSynthesisDescription description_;
   std::unique_ptr<renderer::DeferredRenderer> eyeRenderer_;
+  std::optional<HybridSynthesizer> hybrid_;  // made with the eye renderer
   bool eyeRendererHasScene_ = false;
   struct SurfacePath {
     HybridSurfaces surfaces;
