@@ -1,6 +1,6 @@
 // Listing 4.5's choice of source: the fractional center column a gather (seed, search) filters an eye pixel from.
-// Shared by stereo_gather.glsl and stereo_hybrid_base_depth.comp, so the hybrid's base depth follows the gather's
-// own choice. The includer declares `c` (maxSeparation, zeroParallaxDistance, width), float depthAt(int x, int y)
+// Shared by stereo_gather.glsl and the hybrid's classification and base depth, so both follow the gather's own
+// choice. The includer declares `c` (maxSeparation, zeroParallaxDistance, width), float depthAt(int x, int y)
 // (the sanitized linear depth, edge-clamped), S3D_GATHER_TAP_COUNT and S3D_GATHER_TAP_OFFSET_PX (the taps).
 
 // Minimum depth over the separation range on one side of the pixel.

@@ -178,6 +178,11 @@ void scatterPair(float direction, int x0, int x1, int i, float dA, float pA, flo
   }
 }
 
+float depthAt(int x, int y) { return sanitizedDepthAt(x, y); }
+#define S3D_GATHER_TAP_COUNT c.baseTapCount
+#define S3D_GATHER_TAP_OFFSET_PX c.baseTapOffsetPx
+#include "stereo_gather_source.glsl"
+
 // The score of eye pixel x (chunk slot `at`) in the eye looking along `direction`, the nearest boundary's extremes
 // given.
 float pixelScore(int x, int y, int at, float direction, float farthestEnd, float nearestStart) {
@@ -189,12 +194,9 @@ float pixelScore(int x, int y, int at, float direction, float farthestEnd, float
   coverage.edgeScore = orderedFloat(kIndependentRuns ? runEdgeBits[at] : edgeBits[at]);
   coverage.nearestChangePx = hybridChangeDistancePx(eyeX, farthestEnd, nearestStart);
   float gatherError = 0.0f;
-  if (c.baseTapCount > 0) {  // the gather's own choice: the nearest depth over its taps (stereo_gather.glsl)
-    float minDepth = S3D_INFINITY;
-    for (int t = 0; t < S3D_STEREO_MAX_TAPS; ++t)
-      if (t < c.baseTapCount)
-        minDepth = min(minDepth, sanitizedDepthAt(x + int(direction) * c.baseTapOffsetPx[t], y));
-    precise float u = float(x) + direction * (parallaxFromDepth(c.maxSeparation, c.zeroParallaxDistance, minDepth) * float(c.width));
+  if (c.baseTapCount > 0) {  // the gather's own choice of source column (stereo_gather_source.glsl)
+    int side = int(direction);
+    precise float u = gatherSourceColumn(x, side, minDepthOverTaps(x, y, side));
     float base = floor(u);
     float fraction = u - base;
     float pLow = parallaxAt(int(base), y), pHigh = parallaxAt(int(base) + 1, y);
