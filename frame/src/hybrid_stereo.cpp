@@ -139,7 +139,9 @@ renderer::ShadeMask::Surfaces surfacesFor(renderer::DeferredRenderer& eyeRendere
   if (forcesRays(surfaces) && refusal)
     throw std::invalid_argument("the hybrid cannot ray-cast its eye pixels here: " + *refusal);
   if (surfaces == HybridSurfaces::Raster || refusal) return renderer::ShadeMask::Surfaces::Raster;
-  if (!eyeRenderer.hasSurfaceBvh()) eyeRenderer.setSurfaceBvh(renderer::SceneBvh::build(scene));
+  // A posed scene rebuilds its tree with every pose: the fast build; a still one builds once, with spatial splits.
+  const renderer::BvhQuality quality = scene.animation ? renderer::BvhQuality::Fast : renderer::BvhQuality::SpatialSplits;
+  if (!eyeRenderer.hasSurfaceBvh()) eyeRenderer.setSurfaceBvh(renderer::SceneBvh::build(scene, quality));
   return renderer::ShadeMask::Surfaces::RayCast;
 }
 

@@ -48,6 +48,42 @@ void* createLeaf(RTCThreadLocalAllocator alloc, const RTCBuildPrimitive* primiti
   return leaf;
 }
 
+// Spatial splits: the part of a triangle's reference on each side of an axis-aligned plane, as the bounds of the
+// triangle clipped to that side, within the reference's own bounds (a reference may already be a part).
+void splitPrimitive(const RTCBuildPrimitive* primitive, unsigned int dimension, float position, RTCBounds* left,
+                    RTCBounds* right, void* userPtr) {
+  const auto& source = *static_cast<const std::vector<gpu::BvhTriangle>*>(userPtr);
+  const gpu::BvhTriangle& t = source[primitive->primID];
+  const glm::vec3 v[3] = {t.v0, t.v1, t.v2};
+  glm::vec3 leftLo(INFINITY), leftHi(-INFINITY), rightLo(INFINITY), rightHi(-INFINITY);
+  auto add = [](glm::vec3& lo, glm::vec3& hi, glm::vec3 p) {
+    lo = glm::min(lo, p);
+    hi = glm::max(hi, p);
+  };
+  for (int i = 0; i < 3; ++i) {
+    const glm::vec3 a = v[i], b = v[(i + 1) % 3];
+    const float da = a[dimension], db = b[dimension];
+    if (da <= position) add(leftLo, leftHi, a);
+    if (da >= position) add(rightLo, rightHi, a);
+    if ((da < position && db > position) || (da > position && db < position)) {
+      glm::vec3 crossing = a + (b - a) * ((position - da) / (db - da));
+      crossing[dimension] = position;
+      add(leftLo, leftHi, crossing);
+      add(rightLo, rightHi, crossing);
+    }
+  }
+  const glm::vec3 lo(primitive->lower_x, primitive->lower_y, primitive->lower_z);
+  const glm::vec3 hi(primitive->upper_x, primitive->upper_y, primitive->upper_z);
+  leftLo = glm::max(leftLo, lo);
+  leftHi = glm::min(leftHi, hi);
+  rightLo = glm::max(rightLo, lo);
+  rightHi = glm::min(rightHi, hi);
+  leftHi[dimension] = std::min(leftHi[dimension], position);
+  rightLo[dimension] = std::max(rightLo[dimension], position);
+  *left = {leftLo.x, leftLo.y, leftLo.z, 0.0f, leftHi.x, leftHi.y, leftHi.z, 0.0f};
+  *right = {rightLo.x, rightLo.y, rightLo.z, 0.0f, rightHi.x, rightHi.y, rightHi.z, 0.0f};
+}
+
 struct EmbreeDevice {
   RTCDevice device = rtcNewDevice(nullptr);
   RTCBVH bvh = device ? rtcNewBVH(device) : nullptr;
@@ -129,8 +165,9 @@ std::vector<gpu::BvhTriangle> layerTriangles(const Scene& scene, Layer layer) {
 }
 
 // Builds one layer's tree into the arrays; returns its root (S3D_BVH_NO_ROOT without triangles).
-std::uint32_t buildLayer(const std::vector<gpu::BvhTriangle>& source, SceneBvh& bvh) {
+std::uint32_t buildLayer(const std::vector<gpu::BvhTriangle>& source, BvhQuality quality, SceneBvh& bvh) {
   if (source.empty()) return S3D_BVH_NO_ROOT;
+  const bool spatialSplits = quality == BvhQuality::SpatialSplits;
   std::vector<RTCBuildPrimitive> primitives(source.size());
   RTCBounds rootBounds{INFINITY, INFINITY, INFINITY, 0.0f, -INFINITY, -INFINITY, -INFINITY, 0.0f};
   for (std::size_t i = 0; i < source.size(); ++i) {
@@ -140,10 +177,11 @@ std::uint32_t buildLayer(const std::vector<gpu::BvhTriangle>& source, SceneBvh& 
     rootBounds = {std::min(rootBounds.lower_x, lo.x), std::min(rootBounds.lower_y, lo.y), std::min(rootBounds.lower_z, lo.z), 0.0f,
                   std::max(rootBounds.upper_x, hi.x), std::max(rootBounds.upper_y, hi.y), std::max(rootBounds.upper_z, hi.z), 0.0f};
   }
+  if (spatialSplits) primitives.resize(2 * source.size());  // room for the split references (Embree's rule)
   EmbreeDevice embree;
   if (!embree.bvh) throw std::runtime_error("Embree could not create a BVH builder");
   RTCBuildArguments arguments = rtcDefaultBuildArguments();
-  arguments.buildQuality = RTC_BUILD_QUALITY_MEDIUM;
+  arguments.buildQuality = spatialSplits ? RTC_BUILD_QUALITY_HIGH : RTC_BUILD_QUALITY_MEDIUM;
   arguments.maxBranchingFactor = 2;
   arguments.maxDepth = S3D_BVH_MAX_DEPTH;
   arguments.minLeafSize = 1;
@@ -152,8 +190,10 @@ std::uint32_t buildLayer(const std::vector<gpu::BvhTriangle>& source, SceneBvh& 
   arguments.intersectionCost = 1.0f;
   arguments.bvh = embree.bvh;
   arguments.primitives = primitives.data();
-  arguments.primitiveCount = primitives.size();
+  arguments.primitiveCount = source.size();
   arguments.primitiveArrayCapacity = primitives.size();
+  arguments.splitPrimitive = spatialSplits ? splitPrimitive : nullptr;
+  arguments.userPtr = const_cast<std::vector<gpu::BvhTriangle>*>(&source);
   arguments.createNode = createNode;
   arguments.setNodeChildren = setChildren;
   arguments.setNodeBounds = setBounds;
@@ -176,17 +216,17 @@ std::uint32_t treeDepth(const SceneBvh& bvh, std::uint32_t node) {
 
 }  // namespace
 
-SceneBvh SceneBvh::build(const Scene& scene) {
+SceneBvh SceneBvh::build(const Scene& scene, BvhQuality quality) {
   SceneBvh bvh;
   std::uint64_t mostTriangles = 0;
   for (const Mesh& mesh : scene.meshes) mostTriangles = std::max<std::uint64_t>(mostTriangles, mesh.indices.size() / 3);
   bvh.visibilityPacking = gpu::visibilityPacking(scene.objects.size(), mostTriangles);
   const std::vector<gpu::BvhTriangle> world = layerTriangles(scene, Layer::World);
   const std::vector<gpu::BvhTriangle> firstPerson = layerTriangles(scene, Layer::FirstPerson);
-  bvh.triangles.reserve(world.size() + firstPerson.size());
-  bvh.worldRoot = buildLayer(world, bvh);
+  bvh.triangles.reserve(world.size() + firstPerson.size());  // more with spatial splits
+  bvh.worldRoot = buildLayer(world, quality, bvh);
   bvh.firstPersonFirst = std::uint32_t(bvh.triangles.size());
-  bvh.firstPersonRoot = buildLayer(firstPerson, bvh);
+  bvh.firstPersonRoot = buildLayer(firstPerson, quality, bvh);
   if (bvh.depth() > S3D_BVH_MAX_DEPTH)
     throw std::runtime_error("scene '" + scene.name + "': its ray-cast BVH is deeper than " +
                              std::to_string(S3D_BVH_MAX_DEPTH) + " levels");

@@ -1,6 +1,6 @@
 // The ray-cast visibility pass (renderer::RaycastVisibility) over every pixel of a 1920x1080 center view: GPU time
 // from Vulkan timestamps and million rays per second; and the CPU time of building the scene's BVH (Embree's
-// builder into s3d's node layout, renderer::SceneBvh). Scenes: the built-in ones, and the public glTF scenes
+// builder into s3d's node layout, renderer::SceneBvh), each with both tree qualities (splits, fast). Scenes: the built-in ones, and the public glTF scenes
 // (tests/data/scenes/README.md) when the cache holds them ($S3D_SCENE_CACHE, else ~/.cache/s3d/scenes).
 // Each timed submission records the pass kRecordsPerTiming times, so the GPU stays busy (an idle GPU lowers its
 // clocks). Device: S3D_BENCH_DEVICE (default auto).
@@ -50,21 +50,21 @@ renderer::Scene sceneAtFrame0(const std::string& name) {
 }
 
 
-void BvhBuild(benchmark::State& state, const std::string& name) {
+void BvhBuild(benchmark::State& state, const std::string& name, renderer::BvhQuality quality) {
   const renderer::Scene scene = sceneAtFrame0(name);
   std::size_t count = 0;
   for (auto _ : state) {
-    const renderer::SceneBvh bvh = renderer::SceneBvh::build(scene);
+    const renderer::SceneBvh bvh = renderer::SceneBvh::build(scene, quality);
     count = bvh.triangles.size();
     benchmark::DoNotOptimize(count);
   }
   state.counters["triangles"] = double(count);
 }
 
-void RaycastAllPixels(benchmark::State& state, const std::string& name) {
+void RaycastAllPixels(benchmark::State& state, const std::string& name, renderer::BvhQuality quality) {
   vk::Context& context = benchContext();
   const renderer::Scene scene = sceneAtFrame0(name);
-  const renderer::SceneBvh bvh = renderer::SceneBvh::build(scene);
+  const renderer::SceneBvh bvh = renderer::SceneBvh::build(scene, quality);
   const renderer::RaycastCamera camera =
       renderer::raycastCamera(scene, renderer::centerViewMatrices(scene, float(kWidth) / float(kHeight)));
   renderer::RaycastVisibility pass(context);
@@ -111,11 +111,16 @@ void RaycastAllPixels(benchmark::State& state, const std::string& name) {
 int main(int argc, char** argv) {
   for (const std::string& name : benchScenes()) {
     const std::string label = renderer::isSceneFile(name) ? fs::path(name).stem().string() : name;
-    benchmark::RegisterBenchmark(("BvhBuild/" + label).c_str(), BvhBuild, name)->Unit(benchmark::kMillisecond);
-    benchmark::RegisterBenchmark(("RaycastAllPixels/" + label).c_str(), RaycastAllPixels, name)
-        ->UseManualTime()
-        ->Unit(benchmark::kMillisecond)
-        ->MinTime(0.05);
+    for (const auto& [quality, tree] : {std::pair{renderer::BvhQuality::SpatialSplits, "splits"},
+                                        std::pair{renderer::BvhQuality::Fast, "fast"}}) {
+      benchmark::RegisterBenchmark(("BvhBuild/" + std::string(tree) + "/" + label).c_str(), BvhBuild, name, quality)
+          ->Unit(benchmark::kMillisecond);
+      benchmark::RegisterBenchmark(("RaycastAllPixels/" + std::string(tree) + "/" + label).c_str(), RaycastAllPixels,
+                                   name, quality)
+          ->UseManualTime()
+          ->Unit(benchmark::kMillisecond)
+          ->MinTime(0.05);
+    }
   }
   benchmark::Initialize(&argc, argv);
   benchmark::RunSpecifiedBenchmarks();

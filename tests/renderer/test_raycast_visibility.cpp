@@ -8,6 +8,7 @@
 #include <iostream>
 #include <map>
 #include <random>
+#include <set>
 #include <span>
 #include <string>
 #include <vector>
@@ -27,54 +28,77 @@ using renderer::SceneBvh;
 bool contains(const gpu::BvhNode& node, glm::vec3 lo, glm::vec3 hi) {
   return glm::all(glm::lessThanEqual(node.boundsMin, lo)) && glm::all(glm::greaterThanEqual(node.boundsMax, hi));
 }
-
-TEST(SceneBvh, HoldsEveryOpaqueTriangleExactlyOnce) {
-  for (const std::string& name : renderer::builtInSceneNames()) {
-    const renderer::Scene scene = renderer::makeBuiltInScene(name);
-    const SceneBvh bvh = SceneBvh::build(scene);
-    std::map<std::pair<std::uint32_t, std::uint32_t>, int> seen;
-    for (const gpu::BvhTriangle& t : bvh.triangles) ++seen[{t.object, t.triangle}];
-    std::size_t expected = 0;
-    for (std::uint32_t o = 0; o < scene.objects.size(); ++o) {
-      if (scene.objects[o].material.isTransparent()) continue;  // never in the raster pass's depth or ids either
-      const std::uint32_t count = std::uint32_t(scene.meshes[scene.objects[o].mesh].indices.size() / 3);
-      for (std::uint32_t t = 0; t < count; ++t) EXPECT_EQ(seen[std::make_pair(o, t)], 1) << name << ": object " << o << " triangle " << t;
-      expected += count;
-    }
-    EXPECT_EQ(bvh.triangles.size(), expected) << name;
-    EXPECT_EQ(seen.size(), expected) << name;  // nothing else (no transparent object's triangle)
-  }
+bool touches(const gpu::BvhNode& node, glm::vec3 lo, glm::vec3 hi) {
+  return glm::all(glm::lessThanEqual(node.boundsMin, hi)) && glm::all(glm::greaterThanEqual(node.boundsMax, lo));
 }
 
-TEST(SceneBvh, EveryNodeContainsItsChildrenAndTriangles) {
-  for (const std::string& name : renderer::builtInSceneNames()) {
-    const SceneBvh bvh = SceneBvh::build(renderer::makeBuiltInScene(name));
-    ASSERT_NE(bvh.worldRoot, S3D_BVH_NO_ROOT) << name;
-    std::vector<int> reached(bvh.nodes.size(), 0);
-    for (std::uint32_t root : {bvh.worldRoot, bvh.firstPersonRoot}) {
-      if (root == S3D_BVH_NO_ROOT) continue;
-      std::vector<std::uint32_t> pending{root};
-      while (!pending.empty()) {
-        const gpu::BvhNode& node = bvh.nodes[pending.back()];
-        ++reached[pending.back()];
-        pending.pop_back();
-        if (node.count == 0) {
-          for (std::uint32_t child : {node.first, node.first + 1}) {
-            EXPECT_TRUE(contains(node, bvh.nodes[child].boundsMin, bvh.nodes[child].boundsMax)) << name << ": node " << child;
-            pending.push_back(child);
-          }
-          continue;
+// The fast tree holds every opaque triangle exactly once; the split tree at least once, in no more references
+// than the builder's room (twice the triangles), and never twice in one leaf.
+TEST(SceneBvh, HoldsEveryOpaqueTriangle) {
+  for (const renderer::BvhQuality quality : {renderer::BvhQuality::Fast, renderer::BvhQuality::SpatialSplits})
+    for (const std::string& name : renderer::builtInSceneNames()) {
+      const renderer::Scene scene = renderer::makeBuiltInScene(name);
+      const SceneBvh bvh = SceneBvh::build(scene, quality);
+      const bool fast = quality == renderer::BvhQuality::Fast;
+      const std::string what = name + (fast ? " (fast)" : " (splits)");
+      std::map<std::pair<std::uint32_t, std::uint32_t>, int> seen;
+      for (const gpu::BvhTriangle& t : bvh.triangles) ++seen[{t.object, t.triangle}];
+      std::size_t expected = 0;
+      for (std::uint32_t o = 0; o < scene.objects.size(); ++o) {
+        if (scene.objects[o].material.isTransparent()) continue;  // never in the raster pass's depth or ids either
+        const std::uint32_t count = std::uint32_t(scene.meshes[scene.objects[o].mesh].indices.size() / 3);
+        for (std::uint32_t t = 0; t < count; ++t) {
+          const int references = seen[std::make_pair(o, t)];
+          EXPECT_TRUE(fast ? references == 1 : references >= 1) << what << ": object " << o << " triangle " << t;
         }
-        for (std::uint32_t i = node.first; i < node.first + node.count; ++i) {
-          const gpu::BvhTriangle& t = bvh.triangles[i];
-          EXPECT_TRUE(contains(node, glm::min(glm::min(t.v0, t.v1), t.v2), glm::max(glm::max(t.v0, t.v1), t.v2)))
-              << name << ": triangle " << i;
-        }
+        expected += count;
+      }
+      EXPECT_EQ(seen.size(), expected) << what;  // nothing else (no transparent object's triangle)
+      if (fast) EXPECT_EQ(bvh.triangles.size(), expected) << what;
+      if (!fast && name == "courtyard") EXPECT_GT(bvh.triangles.size(), expected) << what;  // its walls and ground split
+      EXPECT_LE(bvh.triangles.size(), 2 * expected) << what;
+      for (const gpu::BvhNode& node : bvh.nodes) {
+        std::set<std::pair<std::uint32_t, std::uint32_t>> leaf;
+        for (std::uint32_t i = node.first; node.count > 0 && i < node.first + node.count; ++i)
+          EXPECT_TRUE(leaf.insert({bvh.triangles[i].object, bvh.triangles[i].triangle}).second) << what;
       }
     }
-    for (std::size_t i = 0; i < reached.size(); ++i) EXPECT_EQ(reached[i], 1) << name << ": node " << i << " reached";
-    EXPECT_LE(bvh.depth(), std::uint32_t(S3D_BVH_MAX_DEPTH)) << name;
-  }
+}
+
+// Every node's box contains its children's. A fast tree's leaf contains its triangles whole; a split tree's leaf
+// at least touches each of its triangles' bounds (it bounds only the part of a split triangle on its side).
+TEST(SceneBvh, EveryNodeContainsItsChildrenAndTriangles) {
+  for (const renderer::BvhQuality quality : {renderer::BvhQuality::Fast, renderer::BvhQuality::SpatialSplits})
+    for (const std::string& name : renderer::builtInSceneNames()) {
+      const SceneBvh bvh = SceneBvh::build(renderer::makeBuiltInScene(name), quality);
+      const bool fast = quality == renderer::BvhQuality::Fast;
+      const std::string what = name + (fast ? " (fast)" : " (splits)");
+      ASSERT_NE(bvh.worldRoot, S3D_BVH_NO_ROOT) << what;
+      std::vector<int> reached(bvh.nodes.size(), 0);
+      for (std::uint32_t root : {bvh.worldRoot, bvh.firstPersonRoot}) {
+        if (root == S3D_BVH_NO_ROOT) continue;
+        std::vector<std::uint32_t> pending{root};
+        while (!pending.empty()) {
+          const gpu::BvhNode& node = bvh.nodes[pending.back()];
+          ++reached[pending.back()];
+          pending.pop_back();
+          if (node.count == 0) {
+            for (std::uint32_t child : {node.first, node.first + 1}) {
+              EXPECT_TRUE(contains(node, bvh.nodes[child].boundsMin, bvh.nodes[child].boundsMax)) << what << ": node " << child;
+              pending.push_back(child);
+            }
+            continue;
+          }
+          for (std::uint32_t i = node.first; i < node.first + node.count; ++i) {
+            const gpu::BvhTriangle& t = bvh.triangles[i];
+            const glm::vec3 lo = glm::min(glm::min(t.v0, t.v1), t.v2), hi = glm::max(glm::max(t.v0, t.v1), t.v2);
+            EXPECT_TRUE(fast ? contains(node, lo, hi) : touches(node, lo, hi)) << what << ": triangle " << i;
+          }
+        }
+      }
+      for (std::size_t i = 0; i < reached.size(); ++i) EXPECT_EQ(reached[i], 1) << what << ": node " << i << " reached";
+      EXPECT_LE(bvh.depth(), std::uint32_t(S3D_BVH_MAX_DEPTH)) << what;
+    }
 }
 
 // The closest hit over all triangles of the world layer, with the same leaf test and tie rule.
@@ -101,22 +125,29 @@ std::uint32_t bruteForce(const renderer::Scene& scene, const SceneBvh& bvh, cons
 // conventions.
 TEST(SceneBvh, TraversalFindsWhatSearchingEveryTriangleFinds) {
   const renderer::Scene scene = renderer::makeBuiltInScene("courtyard");
-  const SceneBvh bvh = SceneBvh::build(scene);
   const glm::uvec2 size(160, 90);
-  std::mt19937 random(7);
-  std::uniform_int_distribution<int> x(0, int(size.x) * S3D_SUBPIXEL_UNITS - 1), y(0, int(size.y) * S3D_SUBPIXEL_UNITS - 1);
-  for (const bool reversed : {false, true}) {
-    const RaycastCamera camera =
-        renderer::raycastCamera(scene, renderer::centerViewMatrices(scene, float(size.x) / float(size.y)), reversed);
-    int hits = 0;
-    for (int i = 0; i < 2000; ++i) {
-      const gpu::PixelRay ray = renderer::pixelRayOf(camera, renderer::Layer::World, glm::ivec2(x(random), y(random)), size);
-      float t = 0.0f, depth = 0.0f;
-      const std::uint32_t found = bvh.closestHit(bvh.worldRoot, ray, t, depth);
-      ASSERT_EQ(found, bruteForce(scene, bvh, ray)) << "sample " << i << (reversed ? " (reversed depth)" : "");
-      hits += found != S3D_BVH_NO_ROOT ? 1 : 0;
+  auto id = [](const SceneBvh& bvh, std::uint32_t index) {
+    if (index == S3D_BVH_NO_ROOT) return std::pair{S3D_BVH_NO_ROOT, S3D_BVH_NO_ROOT};
+    return std::pair{bvh.triangles[index].object, bvh.triangles[index].triangle};
+  };
+  for (const renderer::BvhQuality quality : {renderer::BvhQuality::Fast, renderer::BvhQuality::SpatialSplits}) {
+    const SceneBvh bvh = SceneBvh::build(scene, quality);
+    const char* tree = quality == renderer::BvhQuality::Fast ? " (fast)" : " (splits)";
+    std::mt19937 random(7);
+    std::uniform_int_distribution<int> x(0, int(size.x) * S3D_SUBPIXEL_UNITS - 1), y(0, int(size.y) * S3D_SUBPIXEL_UNITS - 1);
+    for (const bool reversed : {false, true}) {
+      const RaycastCamera camera =
+          renderer::raycastCamera(scene, renderer::centerViewMatrices(scene, float(size.x) / float(size.y)), reversed);
+      int hits = 0;
+      for (int i = 0; i < 2000; ++i) {
+        const gpu::PixelRay ray = renderer::pixelRayOf(camera, renderer::Layer::World, glm::ivec2(x(random), y(random)), size);
+        float t = 0.0f, depth = 0.0f;
+        const std::uint32_t found = bvh.closestHit(bvh.worldRoot, ray, t, depth);
+        ASSERT_EQ(id(bvh, found), id(bvh, bruteForce(scene, bvh, ray))) << "sample " << i << tree << (reversed ? " (reversed depth)" : "");
+        hits += found != S3D_BVH_NO_ROOT ? 1 : 0;
+      }
+      EXPECT_GT(hits, 1000);  // the rays mostly hit something (the courtyard fills most of the view)
     }
-    EXPECT_GT(hits, 1000);  // the rays mostly hit something (the courtyard fills most of the view)
   }
 }
 

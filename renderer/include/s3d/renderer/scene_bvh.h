@@ -54,9 +54,15 @@ struct RaycastHit {
 // for a cut-out; a miss writes 0 (its cleared depth says it shows nothing, as the G-buffer resolve reads it).
 glm::uvec2 visibilityIdOf(const RaycastHit& hit, glm::uvec2 visibilityPacking);
 
+// How a tree is built. SpatialSplits: Embree's high-quality builder, which may split a triangle's reference at a
+// node plane (a triangle then sits in several leaves, each leaf's box bounding only its part): fewer boxes
+// overlap where triangles are long or large, so rays visit fewer nodes, for about ten times the build
+// (docs/RESULTS.md "Ray-cast visibility"). Fast: every triangle once, for trees rebuilt with each pose.
+enum class BvhQuality { Fast, SpatialSplits };
+
 struct SceneBvh {
   std::vector<gpu::BvhNode> nodes;
-  std::vector<gpu::BvhTriangle> triangles;
+  std::vector<gpu::BvhTriangle> triangles;  // each leaf's contiguous (a split triangle: once in each of its leaves)
   std::uint32_t worldRoot = S3D_BVH_NO_ROOT;
   std::uint32_t firstPersonRoot = S3D_BVH_NO_ROOT;
   std::uint32_t firstPersonFirst = 0;  // triangles[firstPersonFirst..] are the first-person layer's, the rest the world's
@@ -65,7 +71,7 @@ struct SceneBvh {
   // Builds both layers' trees. Throws std::invalid_argument naming the scene and the object for an index past
   // its mesh's vertices or a non-finite vertex position, and std::runtime_error when Embree fails or a tree is
   // deeper than S3D_BVH_MAX_DEPTH.
-  static SceneBvh build(const Scene& scene);
+  static SceneBvh build(const Scene& scene, BvhQuality quality = BvhQuality::SpatialSplits);
 
   // The reference traversal: the closest hit of render pixel `pixel` of a width x height image (its centre's
   // sample), exactly the GPU pass's rule (raycast_shared.h), first-person layer first.
