@@ -73,9 +73,9 @@ std::optional<HybridSurfaces> hybridSurfacesFromName(std::string_view name);
 // the center view's; with Automatic or Raster, the center view's as they are.
 renderer::RendererOptions eyeRendererOptions(const renderer::RendererOptions& center, HybridSurfaces surfaces);
 
-// The hybrid's own GPU objects, kept between frames so that a frame compiles and allocates nothing of its own:
-// the classification's pipelines, the base depth pass, and the masks, bins and eyes of the last size (a new size
-// makes them again).
+// The hybrid's own GPU objects, kept between frames so that a frame does not make them again: the
+// classification's pipelines (the costly part of a small frame on lavapipe), the base depth pass, and the masks,
+// bins and eyes of the last size (a new size makes them again).
 class HybridSynthesizer {
  public:
   explicit HybridSynthesizer(vk::Context& context);

@@ -2,8 +2,8 @@
 // Both eyes from s3d's own renderer's center view, whatever the method: the one place that chooses between the
 // displacement methods (stereo::synthesizeTimed), the forward method with the previous-frame fill (its history
 // kept here between frames) and the hybrid (a HybridSynthesizer and an eye renderer, both kept here: a hybrid
-// frame compiles nothing). Created from a description, called once per frame. A host with its own renderer uses
-// stereo::StereoFrame instead.
+// frame does not make its pipelines again). Created from a description, called once per frame. A host with its
+// own renderer uses stereo::StereoFrame instead.
 #include <array>
 #include <cstdint>
 #include <map>
