@@ -177,10 +177,6 @@ struct HybridFrame {
 // Displacement, classification, threshold and masks: one submission, nothing read back in between. Returns the
 // displacement's method (the hybrid's base).
 stereo::StereoMethod displaceAndClassify(HybridFrame& f, const stereo::StereoParameters& parameters, HybridTimings& timings) {
-  if (f.everythingMasked) {  // no displaced pixel is kept: renderAndComposite writes the whole eye (recordWholeEye)
-    timings.displacement = timings.classify = timings.threshold = timings.mask = timings.classification = 0.0;
-    return stereo::displacementParameters(parameters).method;
-  }
   const vk::Image& centerColor = f.centerRenderer.displayColor();
   const vk::Image& linearDepth = f.centerRenderer.linearDepth();
   const stereo::DisplacementPass displacement(f.context, parameters, f.width, f.height);
@@ -231,28 +227,6 @@ void recordBaseDepth(HybridFrame& f, HybridTimings& timings) {
   f.givesBaseDepth = true;
 }
 
-// Every classified pixel masked: the eye is the rendered eye inside the crop and black outside it, as the base
-// displacement leaves its cropped edges (and as the composite over it would give): a clear and a copy, no
-// displacement or composite pass.
-void recordWholeEye(VkCommandBuffer cmd, const HybridFrame& f, const vk::Image& rendered, const vk::Image& target) {
-  constexpr vk::ImageState kTransferWrite{VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
-                                          VK_ACCESS_2_TRANSFER_WRITE_BIT};
-  vk::transition(cmd, rendered, vk::kComputeWrite, vk::kTransferSource);
-  vk::transition(cmd, target, vk::kUndefined, kTransferWrite);
-  const VkClearColorValue black{{0.0f, 0.0f, 0.0f, 1.0f}};
-  const VkImageSubresourceRange whole{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-  vkCmdClearColorImage(cmd, target.image.get(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &black, 1, &whole);
-  vk::transition(cmd, target, kTransferWrite, kTransferWrite);  // the clear before the copy over it
-  VkImageCopy crop{};
-  crop.srcSubresource = crop.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-  crop.srcOffset = crop.dstOffset = {f.constants.cropBegin, 0, 0};
-  crop.extent = {std::uint32_t(f.constants.cropEnd - f.constants.cropBegin), f.height, 1};
-  vkCmdCopyImage(cmd, rendered.image.get(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, target.image.get(),
-                 VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &crop);
-  vk::transition(cmd, rendered, vk::kTransferSource, vk::kComputeWrite);
-  vk::transition(cmd, target, kTransferWrite, vk::kComputeWrite);
-}
-
 // One eye: its masked pixels rendered from the eye camera, then composited into the displaced eye. An eye with
 // nothing masked is the displaced eye as it is, and costs no render.
 void renderAndComposite(HybridFrame& f, const renderer::Scene& scene, const renderer::ViewMatrices& center,
@@ -281,11 +255,6 @@ void renderAndComposite(HybridFrame& f, const renderer::Scene& scene, const rend
   const vk::Image& rendered = f.eyeRenderer.displayColor();
   const std::vector<std::optional<double>> composite =
       timeSections(f.context, f.timedRuns, 1, [&](VkCommandBuffer cmd, const std::function<void()>& mark) {
-        if (f.everythingMasked) {
-          recordWholeEye(cmd, f, rendered, target);
-          mark();
-          return;
-        }
         vk::transition(cmd, rendered, vk::kComputeWrite, vk::kComputeRead);
         vk::transition(cmd, target, vk::kComputeWrite, vk::kComputeWrite);
         vk::transition(cmd, mask, vk::kComputeWrite, vk::kComputeRead);
@@ -307,8 +276,7 @@ struct HybridSynthesizer::Kept {
   // The images of the center view's size: made for the first frame and again for a new size.
   void fit(std::uint32_t w, std::uint32_t h) {
     if (w == width && h == height) return;
-    const VkImageUsageFlags usage =
-        VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+    const VkImageUsageFlags usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
     images = hybrid.createImages(w, h);
     left = vk::createImage(context, stereo::StereoPass::kColorFormat, w, h, usage);
     right = vk::createImage(context, stereo::StereoPass::kColorFormat, w, h, usage);
@@ -353,8 +321,7 @@ HybridSynthesis HybridSynthesizer::synthesize(const renderer::DeferredRenderer& 
   // The budget's ends need no classification: none masks nothing (the base displacement), all masks every
   // classified pixel (the eyes rendered whole, the two-pass reference), whatever the scores.
   f.nothingMasked = f.constants.maskedPixelCap == 0;
-  f.everythingMasked =
-      !f.nothingMasked && result.classifiedPixels > 0 && f.constants.maskedPixelCap >= result.classifiedPixels;
+  f.everythingMasked = !f.nothingMasked && f.constants.maskedPixelCap >= result.classifiedPixels;
   f.classify = !f.nothingMasked && !f.everythingMasked;
   HybridTimings& timings = result.timings;
   timings.raycastSurfaces = result.surfaces == renderer::ShadeMask::Surfaces::RayCast;

@@ -20,7 +20,7 @@ namespace s3d::frame {
 
 // GPU milliseconds of one hybrid frame, both eyes (empty without timestamps).
 struct HybridTimings {
-  std::optional<double> displacement;    // the base method's pass (0 where every classified pixel is rendered)
+  std::optional<double> displacement;    // the base method's pass
   std::optional<double> classification;  // classification, threshold and masks (the sum of the next three)
   std::optional<double> classify, threshold, mask;  // each of the three passes
   std::optional<double> eyeGeometry;     // both eyes' surfaces: rasterized ("gbuffer", "ssao-depth") or ray-cast
@@ -28,7 +28,7 @@ struct HybridTimings {
   std::optional<double> baseDepth;       // ray-cast eyes with ambient occlusion: both eyes' base depth (else 0)
   std::optional<double> maskedShading;   // both eyes' other passes (mask tiles, SSAO, lighting, resolve; the
                                          // shadow maps are the center frame's)
-  std::optional<double> composite;       // both eyes (where every classified pixel is rendered: a clear and a copy)
+  std::optional<double> composite;       // both eyes
   std::optional<double> total;           // the sum
   std::vector<renderer::PassTiming> leftEyePasses, rightEyePasses;  // the masked renders' passes
   bool raycastSurfaces = false;  // eyeGeometry cast rays (HybridSynthesis::surfaces), or rasterized
