@@ -25,8 +25,9 @@ ResolvePass::ResolvePass(vk::Context& context, bool counting) : context_(context
 
 void ResolvePass::record(VkCommandBuffer cmd, const Inputs& in, const Outputs& out) {
   if (in.hdrJustWritten) vk::transition(cmd, in.hdr, vk::kComputeWrite, vk::kComputeRead);
+  // The lighting pass earlier in the frame bound them for writing (its fused resolve), so they are ordered after it.
   for (const vk::Image* image : {&out.display, &out.linearDepth, &out.resolvedHdr})
-    vk::transition(cmd, *image, vk::kUndefined, vk::kComputeWrite);
+    vk::transition(cmd, *image, vk::kComputeWrite, vk::kComputeWrite);
   const gpu::ResolveConstants resolve{int(in.supersample), int(in.outputWidth), int(in.outputHeight), 0};
   VkDescriptorBufferInfo frameInfo{in.frameConstants, 0, VK_WHOLE_SIZE};
   VkDescriptorImageInfo hdrInfo{VK_NULL_HANDLE, in.hdr.view, VK_IMAGE_LAYOUT_GENERAL};
