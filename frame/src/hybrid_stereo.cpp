@@ -169,8 +169,8 @@ struct HybridFrame {
   const vk::Image &left, &right;
   bool nothingMasked, everythingMasked, classify;
   // Ray-cast eyes with ambient occlusion over a gather base: each eye's depth where the base samples, given to
-  // the pixels of the occlusion's region that are not cast (none: the region is cast).
-  const std::array<vk::Image, 2>& baseDepth;
+  // the pixels of the occlusion's region that are not cast (none: the region is cast); made on first use.
+  std::array<vk::Image, 2>& baseDepth;
   bool givesBaseDepth = false;
 };
 
@@ -213,6 +213,8 @@ bool givesBaseDepth(const HybridFrame& f, const renderer::Scene& scene, renderer
 
 // Both eyes' base depth (stereo::HybridBaseDepthPass) from the center's linear and device depth, timed.
 void recordBaseDepth(HybridFrame& f, HybridTimings& timings) {
+  if (f.baseDepth[0].width != f.width || f.baseDepth[0].height != f.height)
+    for (vk::Image& eye : f.baseDepth) eye = stereo::HybridBaseDepthPass::createEyeDepth(f.context, f.width, f.height);
   const vk::Image& linearDepth = f.centerRenderer.linearDepth();
   const vk::Image& deviceDepth = f.centerRenderer.deviceDepth();
   const std::vector<std::optional<double>> times =
@@ -273,14 +275,14 @@ void renderAndComposite(HybridFrame& f, const renderer::Scene& scene, const rend
 struct HybridSynthesizer::Kept {
   explicit Kept(vk::Context& c) : context(c), hybrid(c), baseDepthPass(c) {}
 
-  // The images of the center view's size: made for the first frame and again for a new size.
+  // The images of the center view's size: made for the first frame and again for a new size (the base depth's
+  // only where a frame needs it: recordBaseDepth).
   void fit(std::uint32_t w, std::uint32_t h) {
     if (w == width && h == height) return;
     const VkImageUsageFlags usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
     images = hybrid.createImages(w, h);
     left = vk::createImage(context, stereo::StereoPass::kColorFormat, w, h, usage);
     right = vk::createImage(context, stereo::StereoPass::kColorFormat, w, h, usage);
-    for (vk::Image& eye : baseDepth) eye = stereo::HybridBaseDepthPass::createEyeDepth(context, w, h);
     width = w;
     height = h;
   }
