@@ -1,7 +1,8 @@
 // Listing 4.5 as a compute pass (and its N-tap search): one invocation writes the pixel of both eyes.
 // Included by stereo_seed.comp and stereo_search.comp, which set S3D_STEREO_TAP_CAPACITY first. With
 // S3D_STEREO_HOST_INPUTS (stereo_gather_host*.comp) it reads a host's colour and depth buffer as they are, sampled,
-// converting each texel as the host pass's input conversion would (host_input.glsl), so no conversion pass runs.
+// converting each texel as the host pass's input conversion would (host_input.glsl), so no conversion pass runs;
+// with S3D_STEREO_HOST_HALF_PACKING too, each invocation writes one pixel of a half packing instead.
 #include "s3d/stereo/stereo_shared.h"
 #ifdef S3D_STEREO_HOST_INPUTS
 #include "s3d/stereo/host_pass_shared.h"
@@ -120,13 +121,61 @@ vec4 sampleRow(int y, float u) {
   return a * (1.0 - fraction) + b * fraction;
 }
 
+#ifdef S3D_STEREO_HOST_HALF_PACKING
+// Eye pixel `pixel` of the eye looking along `side` (+1 left, -1 right), as an 8-bit eye stores it.
+vec4 storedEyePixel(ivec2 pixel, int side) {
+  if (pixel.x < c.cropBegin || pixel.x >= c.cropEnd) return vec4(0, 0, 0, 1);  // cropped edges
+  vec4 color = sampleRow(pixel.y, gatherSourceColumn(pixel.x, side, nearestTapDepth(pixel.x, pixel.y, side)));
+  return round(clamp(color, 0.0, 1.0) * 255.0) * (1.0 / 255.0);
+}
+
+vec3 linearOfStored(vec4 v) { return vec3(hostSrgbToLinear(v.r), hostSrgbToLinear(v.g), hostSrgbToLinear(v.b)); }
+
+// Slot k of one eye squeezed from `length` pixels to `slots` along one axis: host_pack.glsl's area-weighted box
+// filter in linear light over the eye pixels it covers, each gathered here instead of read from a stored eye.
+vec4 squeezedEyePixel(int side, ivec2 fixedPixel, bool horizontal, int k, int length, int slots) {
+  ivec2 step = horizontal ? ivec2(1, 0) : ivec2(0, 1);
+  ivec2 row = horizontal ? ivec2(0, fixedPixel.y) : ivec2(fixedPixel.x, 0);
+  if (length == 2 * slots) {  // an even size: two whole pixels of weight 1/2 (the loop's terms, unrolled)
+    vec4 a = storedEyePixel(row + 2 * k * step, side), b = storedEyePixel(row + (2 * k + 1) * step, side);
+    vec3 color = 0.5 * linearOfStored(a) + 0.5 * linearOfStored(b);
+    return vec4(hostLinearToSrgb(color.r), hostLinearToSrgb(color.g), hostLinearToSrgb(color.b), 0.5 * a.a + 0.5 * b.a);
+  }
+  vec3 color = vec3(0);
+  float alpha = 0.0;
+  int begin = k * length, end = (k + 1) * length;
+  for (int s = begin / slots; s * slots < end; ++s) {
+    float weight = float(min(end, (s + 1) * slots) - max(begin, s * slots)) / float(length);
+    vec4 v = storedEyePixel(row + s * step, side);
+    color += weight * linearOfStored(v);
+    alpha += weight * v.a;
+  }
+  return vec4(hostLinearToSrgb(color.r), hostLinearToSrgb(color.g), hostLinearToSrgb(color.b), alpha);
+}
+
+// Pixel `pixel` of a half packing: the left (top) eye's squeezed columns (rows), then the right (bottom) eye's; an
+// odd size gives the spare one to the left (top) eye, as output_formats.cpp.
+vec4 halfPackedPixel(ivec2 pixel) {
+  bool horizontal = h.gatherOutput == S3D_HOST_GATHER_SIDE_BY_SIDE_HALF;
+  int length = horizontal ? c.width : c.height, at = horizontal ? pixel.x : pixel.y;
+  int firstSlots = (length + 1) / 2;
+  bool first = at < firstSlots;
+  return squeezedEyePixel(first ? 1 : -1, pixel, horizontal, first ? at : at - firstSlots, length,
+                          first ? firstSlots : length - firstSlots);
+}
+#endif
+
 void main() {
   ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
   if (pixel.x >= c.width || pixel.y >= c.height) return;
+#ifdef S3D_STEREO_HOST_HALF_PACKING
+  imageStore(leftEye, pixel, halfPackedPixel(pixel));
+#else
   if (pixel.x < c.cropBegin || pixel.x >= c.cropEnd) {  // cropped edges
     writeEyes(pixel, vec4(0, 0, 0, 1), vec4(0, 0, 0, 1));
     return;
   }
   writeEyes(pixel, sampleRow(pixel.y, gatherSourceColumn(pixel.x, +1, nearestTapDepth(pixel.x, pixel.y, +1))),
             sampleRow(pixel.y, gatherSourceColumn(pixel.x, -1, nearestTapDepth(pixel.x, pixel.y, -1))));
+#endif
 }

@@ -16,6 +16,7 @@
 #include <s3d_spirv/host_pack_rgba8_comp.h>
 #include <s3d_spirv/host_pack_rgba16f_comp.h>
 #include <s3d_spirv/stereo_gather_host_comp.h>
+#include <s3d_spirv/stereo_gather_host_half_comp.h>
 #include <s3d_spirv/stereo_gather_host_hdr_comp.h>
 #include <s3d_spirv/stereo_search_comp.h>
 #include <s3d_spirv/stereo_search_hdr_comp.h>
@@ -82,15 +83,17 @@ VkImageLayout inputLayout(const HostImage& image, bool storage, const char* what
   return detail::sampledReadLayout(image.layout, image.stage, std::string("HostStereoPass: the ") + what + " image");
 }
 
-// What the gather from host images writes for an output, or -1 where the packing pass must run: the half packings
-// filter pixel pairs of one eye, HDR anaglyphs mix without the 8-bit eyes' encoding, and an overlay (the HUD) draws
-// on the eyes before they are packed.
+// What the gather from host images writes for an output, or -1 where the packing pass must run: HDR packings
+// mix without the 8-bit eyes' encoding, and an overlay (the HUD) draws on the eyes before they are packed.
 int gatherOutputFor(HostOutput output, bool hdr, bool overlay) {
+  if (output == HostOutput::TwoEyes) return S3D_HOST_GATHER_TWO_EYES;
+  if (overlay) return -1;
   switch (output) {
-    case HostOutput::TwoEyes: return S3D_HOST_GATHER_TWO_EYES;
-    case HostOutput::Anaglyph: return hdr || overlay ? -1 : S3D_HOST_GATHER_ANAGLYPH;
-    case HostOutput::SideBySideFull: return overlay ? -1 : S3D_HOST_GATHER_SIDE_BY_SIDE_FULL;
-    case HostOutput::TopBottomFull: return overlay ? -1 : S3D_HOST_GATHER_TOP_BOTTOM_FULL;
+    case HostOutput::Anaglyph: return hdr ? -1 : S3D_HOST_GATHER_ANAGLYPH;
+    case HostOutput::SideBySideHalf: return hdr ? -1 : S3D_HOST_GATHER_SIDE_BY_SIDE_HALF;
+    case HostOutput::TopBottomHalf: return hdr ? -1 : S3D_HOST_GATHER_TOP_BOTTOM_HALF;
+    case HostOutput::SideBySideFull: return S3D_HOST_GATHER_SIDE_BY_SIDE_FULL;
+    case HostOutput::TopBottomFull: return S3D_HOST_GATHER_TOP_BOTTOM_FULL;
     default: return -1;
   }
 }
@@ -156,11 +159,11 @@ HostStereoPass::HostStereoPass(vk::Context& context, const HostStereoPassDesc& d
                           sizeof(gpu::HostInputConstants), S3D_HOST_GROUP_SIZE);
     const bool direct = desc.inputRead == HostInputRead::Direct ||
                         (desc.inputRead == HostInputRead::Auto && !context.isCpuDevice());
-    if (direct)
-      hostGather_ = makePipeline(context, bindings,
-                                 hdr_ ? std::span<const std::uint32_t>(spirv_stereo_gather_host_hdr_comp)
-                                      : std::span<const std::uint32_t>(spirv_stereo_gather_host_comp),
-                                 kHostGatherBytes, S3D_STEREO_GROUP_SIZE);
+    const bool halfPacking = desc.output == HostOutput::SideBySideHalf || desc.output == HostOutput::TopBottomHalf;
+    const std::span<const std::uint32_t> gather = hdr_         ? std::span<const std::uint32_t>(spirv_stereo_gather_host_hdr_comp)
+                                                  : halfPacking ? std::span<const std::uint32_t>(spirv_stereo_gather_host_half_comp)
+                                                                : std::span<const std::uint32_t>(spirv_stereo_gather_host_comp);
+    if (direct) hostGather_ = makePipeline(context, bindings, gather, kHostGatherBytes, S3D_STEREO_GROUP_SIZE);
   }
   shortTaps_ = makePipeline(context, storage4, hdr_ ? std::span<const std::uint32_t>(spirv_stereo_seed_hdr_comp)
                                                     : std::span<const std::uint32_t>(spirv_stereo_seed_comp),
@@ -259,8 +262,8 @@ HostStereoPass::Recording HostStereoPass::begin(VkCommandBuffer cmd, const HostI
   r.input.height = int(desc_.height);
   r.input.colorTransfer = colorTransfer_;
   r.input.depthKind = isHostDepthFormat(desc_.depthFormat) ? S3D_HOST_DEPTH_DEVICE : S3D_HOST_DEPTH_LINEAR;
-  // Seed and short searches read the host's images themselves, and pack straight into the target where a packing
-  // needs only each eye's own pixel: one dispatch instead of a conversion, a kernel and a packing pass.
+  // Seed and short searches read the host's images themselves and pack straight into the target, each packed
+  // pixel gathering the eye pixels it holds: one dispatch instead of a conversion, a kernel and a packing pass.
   r.input.gatherOutput = gatherOutputFor(desc_.output, hdr_, overlay);
   r.gatherFromHost =
       hostGather_ && !kernel && constants.tapCount <= S3D_STEREO_SMALL_TAP_CAPACITY && r.input.gatherOutput >= 0;

@@ -176,11 +176,16 @@ struct HostFrameImages {
 };
 
 // The host's stereo frame from colour and depth the host synchronizes itself. Arguments: the method as
-// BareKernel's (4: forward with the previous-frame fill), the output (0 two eyes, 1 anaglyph) and the colour's
+// BareKernel's (4: forward with the previous-frame fill), the output (kFrameOutputs: 0 two eyes, 1 anaglyph, 2
+// side-by-side half, 3 top-bottom half, 4 side-by-side full) and the colour's
 // view (0 sRGB: the sampler decodes, the gather encodes again; 1 UNORM, as a host's UNORM view of an sRGB image
 // made with VK_IMAGE_CREATE_MUTABLE_FORMAT_BIT reads: the display values as stored) and the depth (0 D32, 1 the
 // host's linear depth in R32F: no conversion per tap) and whether the host's projection gives a first-person layer
 // its own depth range (1: every depth tap converted on its own; 0: one conversion per side).
+const stereo::HostOutput kFrameOutputs[] = {stereo::HostOutput::TwoEyes, stereo::HostOutput::Anaglyph,
+                                            stereo::HostOutput::SideBySideHalf, stereo::HostOutput::TopBottomHalf,
+                                            stereo::HostOutput::SideBySideFull};
+
 void HostStereoFrame(benchmark::State& state) {
   vk::Context& context = benchContext();
   const bool fill = state.range(0) == 4;
@@ -191,7 +196,7 @@ void HostStereoFrame(benchmark::State& state) {
   desc.depthFormat = state.range(3) == 0 ? VK_FORMAT_D32_SFLOAT : VK_FORMAT_R32_SFLOAT;
   desc.method = kMethods[fill ? 3 : state.range(0)];
   desc.previousFrameFill = fill;
-  desc.output = state.range(1) == 0 ? stereo::HostOutput::TwoEyes : stereo::HostOutput::Anaglyph;
+  desc.output = kFrameOutputs[state.range(1)];
   stereo::StereoFrame stereoFrame(context, desc);
   HostFrameImages images(context, desc, stereoFrame);
   if (state.range(4) != 0) {  // the world's device depths stay in the world's range [0.1, 1]
@@ -362,6 +367,7 @@ void HudPass(benchmark::State& state) {
 BENCHMARK(BareKernel)->DenseRange(0, 3)->ArgName("method")->UseManualTime()->Unit(benchmark::kMillisecond)->MinTime(0.05);
 BENCHMARK(HostStereoFrame)
     ->ArgsProduct({{0, 1, 2, 3, 4}, {0, 1}, {0}, {0}, {0}})
+    ->ArgsProduct({{0, 1}, {2, 3, 4}, {0}, {0}, {0}})
     ->ArgsProduct({{0, 1}, {0, 1}, {1}, {0}, {0}})
     ->ArgsProduct({{0, 1}, {0, 1}, {0}, {1}, {0}})
     ->ArgsProduct({{0, 1}, {0, 1}, {0}, {0}, {1}})

@@ -161,6 +161,39 @@ TEST_F(HostStereoPassTest, EveryPackedTargetIsOutputFormatsAppliedToThePassesOwn
     }
 }
 
+TEST_F(HostStereoPassTest, HalfPackingsOfAnOddSizeGiveTheSpareColumnAndRowToTheFirstEye) {
+  // 47 x 31: each packed pixel of the gather's own half packing box-filters two or three eye pixels.
+  constexpr std::uint32_t width = 47, height = 31;
+  const SyntheticView view = makeBlockView(width, height, 11, 0.6f, 7, 5, false);
+  const gpu::StereoConstants constants = stereo::makeStereoConstants(parameters_, width, height);
+  const stereo::StereoPair reference = stereo::synthesizeStereoReference(view.color, view.depth, constants);
+  auto upload = [&](VkFormat format, std::span<const std::byte> bytes) {
+    vk::Image image = vk::createImage(*context_, format, width, height, VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
+    vk::uploadImage(*context_, image, bytes, kShaderRead);
+    return image;
+  };
+  vk::Image color = upload(VK_FORMAT_R8G8B8A8_UNORM, std::as_bytes(std::span(view.color.pixels)));
+  vk::Image depth = upload(VK_FORMAT_R32_SFLOAT, std::as_bytes(std::span(view.depth.pixels)));
+  stereo::HostFrame frame = frame_;
+  frame.stereo = constants;
+  using stereo::PackingMode;
+  const std::pair<HostOutput, ImageRGBA8> cases[] = {
+      {HostOutput::SideBySideHalf, stereo::makeSideBySide(reference.left, reference.right, PackingMode::Half)},
+      {HostOutput::TopBottomHalf, stereo::makeTopAndBottom(reference.left, reference.right, PackingMode::Half)}};
+  for (const auto& [mode, expected] : cases)
+    for (stereo::HostInputRead read : {stereo::HostInputRead::Direct, stereo::HostInputRead::Convert}) {
+      stereo::HostStereoPass pass(*context_, {width, height, VK_FORMAT_R8G8B8A8_UNORM, VK_FORMAT_R32_SFLOAT, mode, false, read});
+      vk::Image target = output(pass.eyeFormat(), pass.packedWidth(), pass.packedHeight());
+      const HostImage targetHost = hostImage(target, kCopiedOut);
+      runOnHostQueue([&](VkCommandBuffer cmd) {
+        pass.record(cmd, hostImage(color, kShaderRead), hostImage(depth, kShaderRead), frame, nullptr, nullptr, &targetHost);
+      });
+      const ImageRGBA8 packed = toImage(vk::readbackImage(*context_, target, kCopiedOut), width, height);
+      // 1 level: the eyes' rounding against the reference's (test_stereo_pass), then the same filter.
+      EXPECT_LE(largestChannelDifference(packed, expected), 1) << "output " << int(mode) << " read " << int(read);
+    }
+}
+
 // HDR colour before tone mapping: gathered in half floats at the reference's source columns.
 void expectHdrEyes(HostStereoPassTest& test, VkFormat format);
 

@@ -16,11 +16,13 @@ S3D_GPU_BEGIN
 #define S3D_HOST_DEPTH_DEVICE 1  // a hardware depth buffer, linearized with LinearDepthParams
 
 // Where the gather from a host's images (stereo_gather_host*.comp) writes: the two eyes, or packed straight into
-// one target (the half packings, which filter pixel pairs of one eye, keep the packing pass).
+// one target (the half packings gather the pixels of one eye that a packed pixel filters).
 #define S3D_HOST_GATHER_TWO_EYES 0
 #define S3D_HOST_GATHER_ANAGLYPH 1
 #define S3D_HOST_GATHER_SIDE_BY_SIDE_FULL 2
 #define S3D_HOST_GATHER_TOP_BOTTOM_FULL 3
+#define S3D_HOST_GATHER_SIDE_BY_SIDE_HALF 4
+#define S3D_HOST_GATHER_TOP_BOTTOM_HALF 5
 
 struct HostInputConstants {
   LinearDepthParams depth;

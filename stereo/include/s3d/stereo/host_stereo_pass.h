@@ -145,7 +145,8 @@ class HostStereoPass {
   bool hdr_ = false;
   int colorTransfer_ = S3D_HOST_COLOR_AS_STORED;
   vk::Unique<VkSampler> sampler_;
-  // hostGather_: seed and searches of up to four taps straight from the host's sampled images (no conversion).
+  // hostGather_: seed and searches of up to four taps straight from the host's sampled images (no conversion), in
+  // the half packings' own module for those outputs.
   std::optional<detail::EyePairPipeline> input_, hostGather_, shortTaps_, allTaps_, pack_;
   vk::Image centerColor_, linearDepth_, leftEye_, rightEye_;  // intermediates (unused ones stay empty)
 };
