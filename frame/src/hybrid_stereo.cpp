@@ -69,9 +69,9 @@ struct EyeRenderTimes {
 
 EyeRenderTimes renderEye(renderer::DeferredRenderer& eyeRenderer, const renderer::DeferredRenderer& centerRenderer,
                          const renderer::ViewMatrices& view, const vk::Image* mask, renderer::ShadeMask::Surfaces surfaces,
-                         const vk::Image* uncastDepth, int timedRuns) {
+                         const vk::Image* uncastDepth, const vk::Image* displayTarget, int timedRuns) {
   // HybridPass masks: 1 where the eye camera renders the pixel; none: every pixel (an unmasked render).
-  const renderer::ShadeMask shadeMask{mask, 1, surfaces, uncastDepth};
+  const renderer::ShadeMask shadeMask{mask, 1, surfaces, uncastDepth, displayTarget};
   (void)eyeRenderer.render(view, shadeMask, centerRenderer);
   std::vector<double> totals;
   std::map<std::string, std::vector<double>> passTimes;
@@ -229,8 +229,9 @@ void recordBaseDepth(HybridFrame& f, HybridTimings& timings) {
   f.givesBaseDepth = true;
 }
 
-// One eye: its masked pixels rendered from the eye camera, then composited into the displaced eye. An eye with
-// nothing masked is the displaced eye as it is, and costs no render.
+// One eye: its masked pixels rendered from the eye camera straight into the displaced eye (the renderer's display
+// target), or every pixel rendered and the classified ones composited (an eye with every pixel masked keeps its
+// cropped columns). An eye with nothing masked is the displaced eye as it is, and costs no render.
 void renderAndComposite(HybridFrame& f, const renderer::Scene& scene, const renderer::ViewMatrices& center,
                         const stereo::StereoParameters& parameters, stereo::Eye eye, HybridSynthesis& result) {
   const std::size_t index = eye == stereo::Eye::Left ? 0 : 1;
@@ -249,23 +250,27 @@ void renderAndComposite(HybridFrame& f, const renderer::Scene& scene, const rend
   const EyeRenderTimes render =
       renderEye(f.eyeRenderer, f.centerRenderer, referenceEyeView(scene, center, eye, parameters),
                 f.everythingMasked ? nullptr : &mask, result.surfaces,
-                f.givesBaseDepth ? &f.baseDepth[index] : nullptr, f.timedRuns);
+                f.givesBaseDepth ? &f.baseDepth[index] : nullptr, f.everythingMasked ? nullptr : &target, f.timedRuns);
   timings.eyeGeometry = sum(timings.eyeGeometry, render.geometry);
   timings.maskedShading = sum(timings.maskedShading, render.shading);
   (index == 0 ? timings.leftEyePasses : timings.rightEyePasses) = render.passes;
-  // The composite copies the masked pixels of the same rendered eye each run: repeating it changes nothing.
-  const vk::Image& rendered = f.eyeRenderer.displayColor();
-  const std::vector<std::optional<double>> composite =
-      timeSections(f.context, f.timedRuns, 1, [&](VkCommandBuffer cmd, const std::function<void()>& mark) {
-        vk::transition(cmd, rendered, vk::kComputeWrite, vk::kComputeRead);
-        vk::transition(cmd, target, vk::kComputeWrite, vk::kComputeWrite);
-        vk::transition(cmd, mask, vk::kComputeWrite, vk::kComputeRead);
-        f.hybrid.recordComposite(cmd, target, rendered, mask, f.constants);
-        mark();
-        vk::transition(cmd, rendered, vk::kComputeRead, vk::kComputeWrite);
-        vk::transition(cmd, mask, vk::kComputeRead, vk::kComputeWrite);
-      });
-  timings.composite = sum(timings.composite, composite[0]);
+  if (f.everythingMasked) {
+    // The composite copies the masked pixels of the same rendered eye each run: repeating it changes nothing.
+    const vk::Image& rendered = f.eyeRenderer.displayColor();
+    const std::vector<std::optional<double>> composite =
+        timeSections(f.context, f.timedRuns, 1, [&](VkCommandBuffer cmd, const std::function<void()>& mark) {
+          vk::transition(cmd, rendered, vk::kComputeWrite, vk::kComputeRead);
+          vk::transition(cmd, target, vk::kComputeWrite, vk::kComputeWrite);
+          vk::transition(cmd, mask, vk::kComputeWrite, vk::kComputeRead);
+          f.hybrid.recordComposite(cmd, target, rendered, mask, f.constants);
+          mark();
+          vk::transition(cmd, rendered, vk::kComputeRead, vk::kComputeWrite);
+          vk::transition(cmd, mask, vk::kComputeRead, vk::kComputeWrite);
+        });
+    timings.composite = sum(timings.composite, composite[0]);
+  } else {
+    timings.composite = sum(timings.composite, 0.0);  // written by the render itself
+  }
   result.renderedHdr[index] = f.eyeRenderer.readHdrColor();
   result.masks[index] = stereo::HybridPass::readMask(f.context, mask);
 }

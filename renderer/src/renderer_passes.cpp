@@ -286,7 +286,8 @@ void DeferredRenderer::Impl::recordLighting(VkCommandBuffer cmd, const ShadeMask
                                              mask.image != nullptr,
                                              tiles->tilesX(),
                                              tiles->tilesY()};
-  lighting->record(cmd, inputs, frameShadows, {hdr, display, resolvedHdr, linearDepth, resolveInLighting()});
+  lighting->record(cmd, inputs, frameShadows,
+                   {hdr, displayOutput(mask), resolvedHdr, linearDepth, resolveInLighting(), mask.displayTarget != nullptr});
 }
 
 void DeferredRenderer::Impl::recordTransparent(VkCommandBuffer cmd, const ViewMatrices& view, const ShadeMask& mask) {
@@ -309,7 +310,7 @@ void DeferredRenderer::Impl::recordResolve(VkCommandBuffer cmd, const ShadeMask&
                                            supersample,
                                            outputWidth,
                                            outputHeight};
-  resolvePass->record(cmd, inputs, {display, resolvedHdr, linearDepth});
+  resolvePass->record(cmd, inputs, {displayOutput(mask), resolvedHdr, linearDepth});
 }
 
 }  // namespace s3d::renderer

@@ -103,8 +103,9 @@ void TiledLighting::prepareFrame(const Scene& scene, const ViewMatrices& view, c
 }
 
 void TiledLighting::record(VkCommandBuffer cmd, const Inputs& in, const ShadowMaps& shadows, const Outputs& out) {
-  for (const vk::Image* image : {&out.hdr, &out.display, &out.resolvedHdr, &out.linearDepth})
+  for (const vk::Image* image : {&out.hdr, &out.resolvedHdr, &out.linearDepth})
     vk::transition(cmd, *image, vk::kUndefined, vk::kComputeWrite);
+  vk::transition(cmd, out.display, out.displayKeepsUnshaded ? vk::kComputeWrite : vk::kUndefined, vk::kComputeWrite);
   VkDescriptorBufferInfo frameInfo{in.frameConstants, 0, VK_WHOLE_SIZE};
   VkDescriptorImageInfo depthInfo{nearest_, in.depth.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
   VkDescriptorImageInfo normalInfo{nearest_, in.normalGlossiness.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};

@@ -51,8 +51,10 @@ class TiledLighting {
     const vk::Image& resolvedHdr;
     const vk::Image& linearDepth;
     bool resolveInPlace;
+    bool displayKeepsUnshaded;  // display is in vk::kComputeWrite and keeps the pixels this render does not shade
   };
-  // All outputs in any state, left in vk::kComputeWrite (those not written: undefined contents).
+  // All outputs in any state (display in vk::kComputeWrite where it keeps its unshaded pixels), left in
+  // vk::kComputeWrite (those not written: undefined contents).
   void record(VkCommandBuffer cmd, const Inputs& inputs, const ShadowMaps& shadows, const Outputs& outputs);
 
  private:

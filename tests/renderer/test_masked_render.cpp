@@ -244,6 +244,70 @@ TEST_P(MaskedSceneTest, MaskedPixelsEqualTheUnmaskedRender) {
   expectMaskedPixelsEqualTheUnmaskedRender(context(), std::get<0>(GetParam()), options);
 }
 
+// A display target (the hybrid's displaced eye) takes the masked pixels' display colour, as the unmasked render's
+// within one 8-bit level (the tolerance above), and keeps every other pixel's bytes exactly: no pass writes them.
+// Courtyard resolves in the lighting pass; glass, and any scene supersampled, in the resolve pass after it.
+void expectADisplayTargetTakesOnlyTheMaskedPixels(vk::Context& context, const std::string& sceneName,
+                                                  std::uint32_t supersample) {
+  Scene scene = makeBuiltInScene(sceneName);
+  scene.camera = cameraForFrame(scene, 0);
+  RendererOptions options;
+  options.supersample = supersample;
+  DeferredRenderer renderer(context, kWidth, kHeight, options);
+  renderer.setScene(scene);
+  const ViewMatrices view = centerViewMatrices(scene, float(kWidth) / float(kHeight));
+  renderer.render(view);
+  const ImageRGBA8 fullColor = renderer.readDisplayColor();
+  const std::vector<std::uint32_t> values = scatteredMask(kWidth, kHeight, 0.2, 5);
+  const vk::Image mask = uploadMask(context, kWidth, kHeight, values);
+  const std::vector<std::uint8_t> before(std::size_t(kWidth) * kHeight * 4, 77);
+  const vk::Image target = vk::createImage(context, VK_FORMAT_R8G8B8A8_UNORM, kWidth, kHeight,
+                                           VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT |
+                                               VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
+  vk::uploadImage(context, target, std::as_bytes(std::span(before)), vk::kComputeWrite);
+  ShadeMask shadeMask{&mask};
+  shadeMask.displayTarget = &target;
+  renderer.render(view, shadeMask);
+  const std::vector<std::byte> after = vk::readbackImage(context, target, vk::kComputeWrite);
+  int worst = 0;
+  for (std::uint32_t y = 0; y < kHeight; ++y)
+    for (std::uint32_t x = 0; x < kWidth; ++x)
+      for (int c = 0; c < 4; ++c) {
+        const int got = int(after[(std::size_t(y) * kWidth + x) * 4 + std::size_t(c)]);
+        if (values[std::size_t(y) * kWidth + x] == 0)
+          ASSERT_EQ(got, 77) << "(" << x << ", " << y << ") outside the mask";
+        else
+          worst = std::max(worst, std::abs(got - int(fullColor.at(x, y)[c])));
+      }
+  EXPECT_LE(worst, 1);
+}
+
+TEST_F(MaskedRenderTest, ADisplayTargetTakesOnlyTheMaskedPixelsFromTheLightingPass) {
+  expectADisplayTargetTakesOnlyTheMaskedPixels(context(), "courtyard", 1);
+}
+TEST_F(MaskedRenderTest, ADisplayTargetTakesOnlyTheMaskedPixelsFromTheResolveAfterGlass) {
+  expectADisplayTargetTakesOnlyTheMaskedPixels(context(), "glass", 1);
+}
+TEST_F(MaskedRenderTest, ADisplayTargetTakesOnlyTheMaskedPixelsOfASupersampledRender) {
+  expectADisplayTargetTakesOnlyTheMaskedPixels(context(), "courtyard", 2);
+}
+
+TEST_F(MaskedRenderTest, ADisplayTargetNeedsAMaskAndTheDisplayFormatAndSize) {
+  const Scene scene = wallScene();
+  DeferredRenderer renderer(context(), kWidth, kHeight);
+  renderer.setScene(scene);
+  const ViewMatrices view = centerViewMatrices(scene, float(kWidth) / float(kHeight));
+  const vk::Image mask = uploadMask(context(), kWidth, kHeight, std::vector<std::uint32_t>(kWidth * kHeight, 1));
+  const vk::Image target = vk::createImage(context(), VK_FORMAT_R8G8B8A8_UNORM, kWidth, kHeight, VK_IMAGE_USAGE_STORAGE_BIT);
+  const vk::Image small = vk::createImage(context(), VK_FORMAT_R8G8B8A8_UNORM, kWidth / 2, kHeight, VK_IMAGE_USAGE_STORAGE_BIT);
+  ShadeMask noMask;
+  noMask.displayTarget = &target;
+  EXPECT_THROW(renderer.render(view, noMask), std::invalid_argument);
+  ShadeMask wrongSize{&mask};
+  wrongSize.displayTarget = &small;
+  EXPECT_THROW(renderer.render(view, wrongSize), std::invalid_argument);
+}
+
 // The compute transparent pass (a GPU's) reads the shade mask itself instead of a depth fill before it; same
 // tolerance as above.
 TEST_F(MaskedRenderTest, TheComputeTransparentPassKeepsTheMaskedGlassPixels) {
