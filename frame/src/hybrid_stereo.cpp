@@ -175,11 +175,15 @@ struct HybridFrame {
 };
 
 // Displacement, classification, threshold and masks: one submission, nothing read back in between. Returns the
-// displacement's method (the hybrid's base).
+// displacement's method (the hybrid's base). With every pixel masked the eyes are rendered whole: no displacement.
 stereo::StereoMethod displaceAndClassify(HybridFrame& f, const stereo::StereoParameters& parameters, HybridTimings& timings) {
   const vk::Image& centerColor = f.centerRenderer.displayColor();
   const vk::Image& linearDepth = f.centerRenderer.linearDepth();
   const stereo::DisplacementPass displacement(f.context, parameters, f.width, f.height);
+  if (f.everythingMasked) {
+    timings.displacement = timings.classify = timings.threshold = timings.mask = timings.classification = 0.0;
+    return displacement.method();
+  }
   const std::vector<std::optional<double>> front = timeSections(
       f.context, f.timedRuns, f.classify ? 4 : 1, [&](VkCommandBuffer cmd, const std::function<void()>& mark) {
         stereo::StereoPass::recordInputBarriers(cmd, centerColor, linearDepth, f.left, f.right);
@@ -230,10 +234,10 @@ void recordBaseDepth(HybridFrame& f, HybridTimings& timings) {
 }
 
 // One eye: its masked pixels rendered from the eye camera straight into the displaced eye (the renderer's display
-// target), or every pixel rendered and the classified ones composited (an eye with every pixel masked keeps its
-// cropped columns). An eye with nothing masked is the displaced eye as it is, and costs no render.
-void renderAndComposite(HybridFrame& f, const renderer::Scene& scene, const renderer::ViewMatrices& center,
-                        const stereo::StereoParameters& parameters, stereo::Eye eye, HybridSynthesis& result) {
+// target), or with every pixel masked the whole eye rendered into it and its cropped columns made black. An eye
+// with nothing masked is the displaced eye as it is, and costs no render.
+void renderIntoEye(HybridFrame& f, const renderer::Scene& scene, const renderer::ViewMatrices& center,
+                   const stereo::StereoParameters& parameters, stereo::Eye eye, HybridSynthesis& result) {
   const std::size_t index = eye == stereo::Eye::Left ? 0 : 1;
   const vk::Image& target = index == 0 ? f.left : f.right;
   const vk::Image& mask = index == 0 ? f.images.leftMask : f.images.rightMask;
@@ -250,26 +254,18 @@ void renderAndComposite(HybridFrame& f, const renderer::Scene& scene, const rend
   const EyeRenderTimes render =
       renderEye(f.eyeRenderer, f.centerRenderer, referenceEyeView(scene, center, eye, parameters),
                 f.everythingMasked ? nullptr : &mask, result.surfaces,
-                f.givesBaseDepth ? &f.baseDepth[index] : nullptr, f.everythingMasked ? nullptr : &target, f.timedRuns);
+                f.givesBaseDepth ? &f.baseDepth[index] : nullptr, &target, f.timedRuns);
   timings.eyeGeometry = sum(timings.eyeGeometry, render.geometry);
   timings.maskedShading = sum(timings.maskedShading, render.shading);
   (index == 0 ? timings.leftEyePasses : timings.rightEyePasses) = render.passes;
   if (f.everythingMasked) {
-    // The composite copies the masked pixels of the same rendered eye each run: repeating it changes nothing.
-    const vk::Image& rendered = f.eyeRenderer.displayColor();
-    const std::vector<std::optional<double>> composite =
+    const std::vector<std::optional<double>> cropEdges =
         timeSections(f.context, f.timedRuns, 1, [&](VkCommandBuffer cmd, const std::function<void()>& mark) {
-          vk::transition(cmd, rendered, vk::kComputeWrite, vk::kComputeRead);
           vk::transition(cmd, target, vk::kComputeWrite, vk::kComputeWrite);
-          vk::transition(cmd, mask, vk::kComputeWrite, vk::kComputeRead);
-          f.hybrid.recordComposite(cmd, target, rendered, mask, f.constants);
+          f.hybrid.recordCropEdges(cmd, target, f.constants);
           mark();
-          vk::transition(cmd, rendered, vk::kComputeRead, vk::kComputeWrite);
-          vk::transition(cmd, mask, vk::kComputeRead, vk::kComputeWrite);
         });
-    timings.composite = sum(timings.composite, composite[0]);
-  } else {
-    timings.composite = sum(timings.composite, 0.0);  // written by the render itself
+    timings.composite = sum(timings.composite, cropEdges[0]);
   }
   result.renderedHdr[index] = f.eyeRenderer.readHdrColor();
   result.masks[index] = stereo::HybridPass::readMask(f.context, mask);
@@ -288,6 +284,10 @@ struct HybridSynthesizer::Kept {
     images = hybrid.createImages(w, h);
     left = vk::createImage(context, stereo::StereoPass::kColorFormat, w, h, usage);
     right = vk::createImage(context, stereo::StereoPass::kColorFormat, w, h, usage);
+    // In GENERAL from the start: a frame with every pixel masked renders into them before any displacement.
+    context.submitAndWait([&](VkCommandBuffer cmd) {
+      for (const vk::Image* eye : {&left, &right}) vk::transition(cmd, *eye, vk::kUndefined, vk::kComputeWrite);
+    });
     width = w;
     height = h;
   }
@@ -339,7 +339,7 @@ HybridSynthesis HybridSynthesizer::synthesize(const renderer::DeferredRenderer& 
   timings.eyeGeometry = timings.baseDepth;
   // The masked counts come back first (the submission above was waited for anyway).
   for (const stereo::Eye eye : {stereo::Eye::Left, stereo::Eye::Right})
-    renderAndComposite(f, scene, center, parameters, eye, result);
+    renderIntoEye(f, scene, center, parameters, eye, result);
   timings.total =
       sum(sum(sum(sum(timings.displacement, timings.classification), timings.eyeGeometry), timings.maskedShading),
           timings.composite);

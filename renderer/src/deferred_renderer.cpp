@@ -84,14 +84,11 @@ std::vector<DeferredRenderer::Impl::ScheduledPass> DeferredRenderer::Impl::sched
 }
 
 void DeferredRenderer::Impl::validateMask(const ShadeMask& mask) const {
-  if (mask.image == nullptr) {
-    if (mask.displayTarget != nullptr) throw std::invalid_argument("renderer: a display target needs a shade mask");
-    return;
-  }
   if (mask.displayTarget != nullptr &&
       (mask.displayTarget->format != kDisplayFormat || mask.displayTarget->width != outputWidth ||
        mask.displayTarget->height != outputHeight))
     throw std::invalid_argument("renderer: the display target must be an R8G8B8A8_UNORM image of the output's size");
+  if (mask.image == nullptr) return;
   if (mask.image->format != VK_FORMAT_R32_UINT)
     throw std::invalid_argument("renderer: the shade mask must be an R32_UINT image");
   if (mask.image->width != outputWidth || mask.image->height != outputHeight)

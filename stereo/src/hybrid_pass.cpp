@@ -9,6 +9,7 @@
 #include <s3d_spirv/stereo_hybrid_threshold_comp.h>
 #include <s3d_spirv/stereo_hybrid_mask_comp.h>
 #include <s3d_spirv/stereo_hybrid_composite_comp.h>
+#include <s3d_spirv/stereo_hybrid_crop_edges_comp.h>
 // clang-format on
 
 namespace s3d::stereo {
@@ -108,7 +109,8 @@ HybridPass::HybridPass(const vk::Context& context, std::optional<HybridRowShape>
       classifyLayout_(storageImageLayout(context, 5)),
       thresholdLayout_(storageImageLayout(context, 4)),
       maskLayout_(storageImageLayout(context, 6)),
-      compositeLayout_(storageImageLayout(context, 3)) {
+      compositeLayout_(storageImageLayout(context, 3)),
+      cropEdgesLayout_(storageImageLayout(context, 1)) {
   // Specialization: constant 0 the row group (also the workgroup size), 1 the classification's chunk.
   // 2 whether the invocations classify independent runs (a 32-bit VkBool32).
   const std::int32_t values[] = {shape_.rowGroup, shape_.chunk, std::int32_t(shape_.independentRuns ? VK_TRUE : VK_FALSE)};
@@ -121,6 +123,7 @@ HybridPass::HybridPass(const vk::Context& context, std::optional<HybridRowShape>
   threshold_ = vk::createComputePipeline(context, thresholdLayout_.layout, spirv_stereo_hybrid_threshold_comp);
   mask_ = vk::createComputePipeline(context, maskLayout_.layout, spirv_stereo_hybrid_mask_comp, &maskShape);
   composite_ = vk::createComputePipeline(context, compositeLayout_.layout, spirv_stereo_hybrid_composite_comp);
+  cropEdges_ = vk::createComputePipeline(context, cropEdgesLayout_.layout, spirv_stereo_hybrid_crop_edges_comp);
 }
 
 HybridPass::Images HybridPass::createImages(std::uint32_t width, std::uint32_t height) const {
@@ -185,6 +188,13 @@ void HybridPass::recordComposite(VkCommandBuffer cmd, const vk::Image& eye, cons
   requireSize(mask, c, "mask");
   dispatch(*context_, cmd, composite_.get(), compositeLayout_.layout, {&eye, &renderedEye, &mask}, c, groups(c.width),
            groups(c.height));
+}
+
+void HybridPass::recordCropEdges(VkCommandBuffer cmd, const vk::Image& eye, const gpu::HybridConstants& c) const {
+  requireSize(eye, c, "eye");
+  const int croppedColumns = c.cropBegin + (c.width - c.cropEnd);
+  if (croppedColumns <= 0) return;
+  dispatch(*context_, cmd, cropEdges_.get(), cropEdgesLayout_.layout, {&eye}, c, groups(croppedColumns), groups(c.height));
 }
 
 HybridHistogram HybridPass::readHistogram(vk::Context& context, const vk::Image& histogram, int row) {

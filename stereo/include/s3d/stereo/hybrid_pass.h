@@ -67,6 +67,10 @@ class HybridPass {
   // earlier writes made visible by the caller; eye is left in vk::kComputeWrite state.
   void recordComposite(VkCommandBuffer cmd, const vk::Image& eye, const vk::Image& renderedEye, const vk::Image& mask,
                        const gpu::HybridConstants& constants) const;
+  // Budget 1's eye rendered whole into `eye` (RGBA8): its cropped columns black, as the displacement leaves them;
+  // nothing recorded without a crop. In VK_IMAGE_LAYOUT_GENERAL with earlier writes made visible by the caller;
+  // left in vk::kComputeWrite state.
+  void recordCropEdges(VkCommandBuffer cmd, const vk::Image& eye, const gpu::HybridConstants& constants) const;
 
   static HybridHistogram readHistogram(vk::Context& context, const vk::Image& histogram, int row);
   static HybridThreshold readThreshold(vk::Context& context, const vk::Image& thresholds, int row);
@@ -78,8 +82,8 @@ class HybridPass {
  private:
   const vk::Context* context_;
   HybridRowShape shape_;
-  vk::PipelineLayout classifyLayout_, thresholdLayout_, maskLayout_, compositeLayout_;
-  vk::Unique<VkPipeline> classify_, threshold_, mask_, composite_;
+  vk::PipelineLayout classifyLayout_, thresholdLayout_, maskLayout_, compositeLayout_, cropEdgesLayout_;
+  vk::Unique<VkPipeline> classify_, threshold_, mask_, composite_, cropEdges_;
 };
 
 // What the GPU passes produce for one depth image (tests): bins, histograms, thresholds and masks.
