@@ -135,6 +135,8 @@ float frameFraction(std::size_t frame, std::size_t frames) {  // 0 at the first 
 
 }  // namespace
 
+// The built-in scenes are data written as code: each make*Scene lists its scene's objects, lights and camera path
+// in one place, so a scene reads top to bottom (which makes three of them longer than 80 lines).
 Scene makeCourtyardScene() {
   Scene scene;
   scene.name = "courtyard";
