@@ -1,8 +1,10 @@
 #include "s3d/frame/hybrid_stereo.h"
 
+#include <array>
 #include <cstring>
 #include <functional>
 #include <map>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <tuple>
@@ -290,6 +292,15 @@ struct HybridSynthesizer::Kept {
     });
     width = w;
     height = h;
+    cropMasks.reset();
+  }
+
+  // Budget 1's masks (every classified pixel) uploaded once for a crop, until a classifying frame writes the masks.
+  void holdCropMasks(const gpu::HybridConstants& constants) {
+    const std::array<int, 2> crop{constants.cropBegin, constants.cropEnd};
+    if (cropMasks == crop) return;
+    uploadCropMasks(context, images, constants, width, height);
+    cropMasks = crop;
   }
 
   vk::Context& context;
@@ -299,6 +310,7 @@ struct HybridSynthesizer::Kept {
   stereo::HybridPass::Images images;
   vk::Image left, right;
   std::array<vk::Image, 2> baseDepth;
+  std::optional<std::array<int, 2>> cropMasks;  // the crop the masks hold every pixel of, if they do
 };
 
 HybridSynthesizer::HybridSynthesizer(vk::Context& context) : kept_(std::make_unique<Kept>(context)) {}
@@ -334,7 +346,8 @@ HybridSynthesis HybridSynthesizer::synthesize(const renderer::DeferredRenderer& 
   timings.raycastSurfaces = result.surfaces == renderer::ShadeMask::Surfaces::RayCast;
   const stereo::StereoMethod base = displaceAndClassify(f, parameters, timings);
   timings.maskedShading = timings.composite = timings.baseDepth = 0.0;
-  if (f.everythingMasked) uploadCropMasks(context, f.images, f.constants, width, height);
+  if (f.everythingMasked) kept_->holdCropMasks(f.constants);
+  if (f.classify) kept_->cropMasks.reset();  // the mask pass wrote them
   if (givesBaseDepth(f, scene, result.surfaces, surfaces)) recordBaseDepth(f, timings);
   timings.eyeGeometry = timings.baseDepth;
   // The masked counts come back first (the submission above was waited for anyway).
