@@ -221,7 +221,9 @@ struct DeferredRenderer::Impl {
   // No transparent pass and no supersampling: the lighting pass writes the resolve's outputs itself.
   bool resolveInLighting() const { return !transparentPass->hasObjects() && supersample == 1; }
   // Where a render writes its display colour: the mask's display target, else its own.
-  const vk::Image& displayOutput(const ShadeMask& mask) const { return mask.displayTarget ? *mask.displayTarget : display; }
+  const vk::Image& displayOutput(const ShadeMask& mask) const {
+    return mask.displayTarget ? *mask.displayTarget : display;
+  }
 
   // frameShadows: this renderer's shadow maps, rendered this frame, or a shadow source's (already readable).
   void recordLighting(VkCommandBuffer cmd, const ShadeMask& mask, const detail::ShadowMaps& frameShadows);

@@ -286,8 +286,9 @@ void DeferredRenderer::Impl::recordLighting(VkCommandBuffer cmd, const ShadeMask
                                              mask.image != nullptr,
                                              tiles->tilesX(),
                                              tiles->tilesY()};
+  const bool keepsUnshaded = mask.displayTarget != nullptr;
   lighting->record(cmd, inputs, frameShadows,
-                   {hdr, displayOutput(mask), resolvedHdr, linearDepth, resolveInLighting(), mask.displayTarget != nullptr});
+                   {hdr, displayOutput(mask), resolvedHdr, linearDepth, resolveInLighting(), keepsUnshaded});
 }
 
 void DeferredRenderer::Impl::recordTransparent(VkCommandBuffer cmd, const ViewMatrices& view, const ShadeMask& mask) {

@@ -160,9 +160,10 @@ HostStereoPass::HostStereoPass(vk::Context& context, const HostStereoPassDesc& d
     const bool direct = desc.inputRead == HostInputRead::Direct ||
                         (desc.inputRead == HostInputRead::Auto && !context.isCpuDevice());
     const bool halfPacking = desc.output == HostOutput::SideBySideHalf || desc.output == HostOutput::TopBottomHalf;
-    const std::span<const std::uint32_t> gather = hdr_         ? std::span<const std::uint32_t>(spirv_stereo_gather_host_hdr_comp)
-                                                  : halfPacking ? std::span<const std::uint32_t>(spirv_stereo_gather_host_half_comp)
-                                                                : std::span<const std::uint32_t>(spirv_stereo_gather_host_comp);
+    using Spirv = std::span<const std::uint32_t>;
+    const Spirv gather = hdr_          ? Spirv(spirv_stereo_gather_host_hdr_comp)
+                         : halfPacking ? Spirv(spirv_stereo_gather_host_half_comp)
+                                       : Spirv(spirv_stereo_gather_host_comp);
     if (direct) hostGather_ = makePipeline(context, bindings, gather, kHostGatherBytes, S3D_STEREO_GROUP_SIZE);
   }
   shortTaps_ = makePipeline(context, storage4, hdr_ ? std::span<const std::uint32_t>(spirv_stereo_seed_hdr_comp)

@@ -194,7 +194,8 @@ void HybridPass::recordCropEdges(VkCommandBuffer cmd, const vk::Image& eye, cons
   requireSize(eye, c, "eye");
   const int croppedColumns = c.cropBegin + (c.width - c.cropEnd);
   if (croppedColumns <= 0) return;
-  dispatch(*context_, cmd, cropEdges_.get(), cropEdgesLayout_.layout, {&eye}, c, groups(croppedColumns), groups(c.height));
+  dispatch(*context_, cmd, cropEdges_.get(), cropEdgesLayout_.layout, {&eye}, c, groups(croppedColumns),
+           groups(c.height));
 }
 
 HybridHistogram HybridPass::readHistogram(vk::Context& context, const vk::Image& histogram, int row) {

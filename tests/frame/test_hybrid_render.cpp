@@ -86,7 +86,8 @@ TEST_F(HybridRender, AKeptSynthesizerGivesEachFrameWhatAFreshOneGives) {
   // Budget 1 twice: the second frame keeps the first's crop masks; a classifying frame between rewrites them.
   for (const Frame frame : {Frame{"courtyard", 96, 54, 0.2f}, Frame{"courtyard", 96, 54, 1.0f},
                             Frame{"courtyard", 96, 54, 1.0f}, Frame{"courtyard", 96, 54, 0.2f},
-                            Frame{"courtyard", 96, 54, 1.0f}, Frame{"cover", 128, 72, 0.6f}, Frame{"cover", 128, 72, 1.0f}}) {
+                            Frame{"courtyard", 96, 54, 1.0f}, Frame{"cover", 128, 72, 0.6f},
+                            Frame{"cover", 128, 72, 1.0f}}) {
     const stereo::StereoParameters parameters = hybridParameters(frame.budget);
     HybridScene s = renderCenter(context(), frame.scene, frame.width, frame.height, parameters);
     const HybridSynthesis reused = kept.synthesize(*s.centerRenderer, *s.eyeRenderer, s.scene, s.center, parameters);

@@ -319,8 +319,9 @@ TEST_F(MaskedRenderTest, ADisplayTargetOfAnotherSizeOrFormatIsRejected) {
   DeferredRenderer renderer(context(), kWidth, kHeight);
   renderer.setScene(scene);
   const ViewMatrices view = centerViewMatrices(scene, float(kWidth) / float(kHeight));
-  const vk::Image small = vk::createImage(context(), VK_FORMAT_R8G8B8A8_UNORM, kWidth / 2, kHeight, VK_IMAGE_USAGE_STORAGE_BIT);
-  const vk::Image wide = vk::createImage(context(), VK_FORMAT_R16G16B16A16_SFLOAT, kWidth, kHeight, VK_IMAGE_USAGE_STORAGE_BIT);
+  const VkImageUsageFlags storage = VK_IMAGE_USAGE_STORAGE_BIT;
+  const vk::Image small = vk::createImage(context(), VK_FORMAT_R8G8B8A8_UNORM, kWidth / 2, kHeight, storage);
+  const vk::Image wide = vk::createImage(context(), VK_FORMAT_R16G16B16A16_SFLOAT, kWidth, kHeight, storage);
   for (const vk::Image* target : {&small, &wide}) {
     ShadeMask mask;
     mask.displayTarget = target;

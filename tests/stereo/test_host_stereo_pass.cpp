@@ -168,7 +168,8 @@ TEST_F(HostStereoPassTest, HalfPackingsOfAnOddSizeGiveTheSpareColumnAndRowToTheF
   const gpu::StereoConstants constants = stereo::makeStereoConstants(parameters_, width, height);
   const stereo::StereoPair reference = stereo::synthesizeStereoReference(view.color, view.depth, constants);
   auto upload = [&](VkFormat format, std::span<const std::byte> bytes) {
-    vk::Image image = vk::createImage(*context_, format, width, height, VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
+    vk::Image image =
+        vk::createImage(*context_, format, width, height, VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
     vk::uploadImage(*context_, image, bytes, kShaderRead);
     return image;
   };
@@ -182,7 +183,8 @@ TEST_F(HostStereoPassTest, HalfPackingsOfAnOddSizeGiveTheSpareColumnAndRowToTheF
       {HostOutput::TopBottomHalf, stereo::makeTopAndBottom(reference.left, reference.right, PackingMode::Half)}};
   for (const auto& [mode, expected] : cases)
     for (stereo::HostInputRead read : {stereo::HostInputRead::Direct, stereo::HostInputRead::Convert}) {
-      stereo::HostStereoPass pass(*context_, {width, height, VK_FORMAT_R8G8B8A8_UNORM, VK_FORMAT_R32_SFLOAT, mode, false, read});
+      stereo::HostStereoPass pass(*context_,
+                                  {width, height, VK_FORMAT_R8G8B8A8_UNORM, VK_FORMAT_R32_SFLOAT, mode, false, read});
       vk::Image target = output(pass.eyeFormat(), pass.packedWidth(), pass.packedHeight());
       const HostImage targetHost = hostImage(target, kCopiedOut);
       runOnHostQueue([&](VkCommandBuffer cmd) {

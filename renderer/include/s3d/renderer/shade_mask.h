@@ -48,8 +48,9 @@ struct ShadeMask {
   const vk::Image* uncastDepth = nullptr;
   // The image the shaded pixels' display colour is written into instead of displayColor() (every pixel without a
   // mask), its other pixels left as they are (a hybrid's displaced eye: no composite pass after the render);
-  // displayColor() is then undefined. VK_FORMAT_R8G8B8A8_UNORM, the output size, storage usage, in VK_IMAGE_LAYOUT_GENERAL,
-  // written or read by compute before render(), which orders its writes after that and leaves it in the same state.
+  // displayColor() is then undefined. VK_FORMAT_R8G8B8A8_UNORM, the output size, storage usage, in
+  // VK_IMAGE_LAYOUT_GENERAL, written or read by compute before render(), which orders its writes after that and
+  // leaves it in the same state.
   const vk::Image* displayTarget = nullptr;
 };
 
