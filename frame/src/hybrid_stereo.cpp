@@ -147,14 +147,13 @@ renderer::ShadeMask::Surfaces surfacesFor(renderer::DeferredRenderer& eyeRendere
   return renderer::ShadeMask::Surfaces::RayCast;
 }
 
-// Every classified pixel (the crop) set, as the mask pass would leave it at budget 1.
-void uploadCropMasks(vk::Context& context, const stereo::HybridPass::Images& images,
-                     const gpu::HybridConstants& constants, std::uint32_t width, std::uint32_t height) {
-  std::vector<std::uint32_t> crop(std::size_t(width) * height, 0);
+// Budget 1's mask: every classified pixel (the crop) set, as the mask pass would leave it. Made here, not on the
+// GPU: budget 1 renders the eyes whole, so no pass reads it.
+std::vector<std::uint8_t> cropMask(const gpu::HybridConstants& constants, std::uint32_t width, std::uint32_t height) {
+  std::vector<std::uint8_t> crop(std::size_t(width) * height, 0);
   for (std::uint32_t y = 0; y < height; ++y)
     for (int x = constants.cropBegin; x < constants.cropEnd; ++x) crop[std::size_t(y) * width + std::size_t(x)] = 1;
-  for (const vk::Image* mask : {&images.leftMask, &images.rightMask})
-    vk::uploadImage(context, *mask, std::as_bytes(std::span(crop)), vk::kComputeWrite);
+  return crop;
 }
 
 // One hybrid frame's GPU objects and the state its steps share.
@@ -179,13 +178,13 @@ struct HybridFrame {
 // Displacement, classification, threshold and masks: one submission, nothing read back in between. Returns the
 // displacement's method (the hybrid's base). With every pixel masked the eyes are rendered whole: no displacement.
 stereo::StereoMethod displaceAndClassify(HybridFrame& f, const stereo::StereoParameters& parameters, HybridTimings& timings) {
+  if (f.everythingMasked) {
+    timings.displacement = timings.classify = timings.threshold = timings.mask = timings.classification = 0.0;
+    return stereo::displacementParameters(parameters).method;
+  }
   const vk::Image& centerColor = f.centerRenderer.displayColor();
   const vk::Image& linearDepth = f.centerRenderer.linearDepth();
   const stereo::DisplacementPass displacement(f.context, parameters, f.width, f.height);
-  if (f.everythingMasked) {
-    timings.displacement = timings.classify = timings.threshold = timings.mask = timings.classification = 0.0;
-    return displacement.method();
-  }
   const std::vector<std::optional<double>> front = timeSections(
       f.context, f.timedRuns, f.classify ? 4 : 1, [&](VkCommandBuffer cmd, const std::function<void()>& mark) {
         stereo::StereoPass::recordInputBarriers(cmd, centerColor, linearDepth, f.left, f.right);
@@ -270,7 +269,8 @@ void renderIntoEye(HybridFrame& f, const renderer::Scene& scene, const renderer:
     timings.composite = sum(timings.composite, cropEdges[0]);
   }
   result.renderedHdr[index] = f.eyeRenderer.readHdrColor();
-  result.masks[index] = stereo::HybridPass::readMask(f.context, mask);
+  result.masks[index] = f.everythingMasked ? cropMask(f.constants, f.width, f.height)
+                                           : stereo::HybridPass::readMask(f.context, mask);
 }
 
 }  // namespace
@@ -292,15 +292,6 @@ struct HybridSynthesizer::Kept {
     });
     width = w;
     height = h;
-    cropMasks.reset();
-  }
-
-  // Budget 1's masks (every classified pixel) uploaded once for a crop, until a classifying frame writes the masks.
-  void holdCropMasks(const gpu::HybridConstants& constants) {
-    const std::array<int, 2> crop{constants.cropBegin, constants.cropEnd};
-    if (cropMasks == crop) return;
-    uploadCropMasks(context, images, constants, width, height);
-    cropMasks = crop;
   }
 
   vk::Context& context;
@@ -310,7 +301,6 @@ struct HybridSynthesizer::Kept {
   stereo::HybridPass::Images images;
   vk::Image left, right;
   std::array<vk::Image, 2> baseDepth;
-  std::optional<std::array<int, 2>> cropMasks;  // the crop the masks hold every pixel of, if they do
 };
 
 HybridSynthesizer::HybridSynthesizer(vk::Context& context) : kept_(std::make_unique<Kept>(context)) {}
@@ -346,8 +336,6 @@ HybridSynthesis HybridSynthesizer::synthesize(const renderer::DeferredRenderer& 
   timings.raycastSurfaces = result.surfaces == renderer::ShadeMask::Surfaces::RayCast;
   const stereo::StereoMethod base = displaceAndClassify(f, parameters, timings);
   timings.maskedShading = timings.composite = timings.baseDepth = 0.0;
-  if (f.everythingMasked) kept_->holdCropMasks(f.constants);
-  if (f.classify) kept_->cropMasks.reset();  // the mask pass wrote them
   if (givesBaseDepth(f, scene, result.surfaces, surfaces)) recordBaseDepth(f, timings);
   timings.eyeGeometry = timings.baseDepth;
   // The masked counts come back first (the submission above was waited for anyway).

@@ -83,7 +83,7 @@ TEST_F(HybridRender, AKeptSynthesizerGivesEachFrameWhatAFreshOneGives) {
     std::uint32_t width, height;
     float budget;
   };
-  // Budget 1 twice: the second frame keeps the first's crop masks; a classifying frame between rewrites them.
+  // Budget 1 twice, and again after a classifying frame: what the kept images held before changes nothing.
   for (const Frame frame : {Frame{"courtyard", 96, 54, 0.2f}, Frame{"courtyard", 96, 54, 1.0f},
                             Frame{"courtyard", 96, 54, 1.0f}, Frame{"courtyard", 96, 54, 0.2f},
                             Frame{"courtyard", 96, 54, 1.0f}, Frame{"cover", 128, 72, 0.6f},
@@ -179,10 +179,11 @@ TEST_F(HybridRender, BudgetOneIsTheTwoPassReferenceOnEveryBuiltInScene) {
       ASSERT_GT(crop.cropBegin, 0) << "the test needs cropped columns";
       for (std::uint32_t y = 0; y < 54; ++y)
         for (std::uint32_t x = 0; x < 96; ++x)
-          if (int(x) < crop.cropBegin || int(x) >= crop.cropEnd)
+          if (int(x) < crop.cropBegin || int(x) >= crop.cropEnd) {
             ASSERT_EQ(std::vector<std::uint8_t>(synthesized.at(x, y), synthesized.at(x, y) + 4),
                       (std::vector<std::uint8_t>{0, 0, 0, 255}))
                 << name << " (" << x << ", " << y << ")";
+          }
     }
   }
 }
