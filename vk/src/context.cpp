@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "s3d/vk/check.h"
+#include "s3d/vk/pipeline_statistics.h"
 #include "s3d/vk/unique.h"
 
 namespace s3d::vk {
@@ -212,6 +213,15 @@ Context::Context(const ContextOptions& options) {
     VkDeviceCreateInfo deviceInfo{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
     deviceInfo.queueCreateInfoCount = 1;
     deviceInfo.pQueueCreateInfos = &queueInfo;
+    VkPhysicalDevicePipelineExecutablePropertiesFeaturesKHR statisticsFeature{
+        VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PIPELINE_EXECUTABLE_PROPERTIES_FEATURES_KHR};
+    capturesPipelineStatistics_ = pipelineStatisticsRequested() &&
+                                  hasDeviceExtension(physicalDevice_, VK_KHR_PIPELINE_EXECUTABLE_PROPERTIES_EXTENSION_NAME);
+    if (capturesPipelineStatistics_) {
+      extensions.push_back(VK_KHR_PIPELINE_EXECUTABLE_PROPERTIES_EXTENSION_NAME);
+      statisticsFeature.pipelineExecutableInfo = VK_TRUE;
+      deviceInfo.pNext = &statisticsFeature;
+    }
     deviceInfo.enabledExtensionCount = std::uint32_t(extensions.size());
     deviceInfo.ppEnabledExtensionNames = extensions.data();
     DeviceRequirementsPatch requirements(physicalDevice_, deviceInfo);

@@ -1,6 +1,7 @@
 #include "s3d/vk/pipeline.h"
 
 #include "s3d/vk/check.h"
+#include "s3d/vk/pipeline_statistics.h"
 
 namespace s3d::vk {
 
@@ -40,7 +41,7 @@ PipelineLayout createPushDescriptorLayout(const Context& context,
 
 Unique<VkPipeline> createComputePipeline(const Context& context, VkPipelineLayout layout,
                                          std::span<const std::uint32_t> spirv,
-                                         const VkSpecializationInfo* specialization) {
+                                         const VkSpecializationInfo* specialization, std::source_location madeAt) {
   Unique<VkShaderModule> module = createShaderModule(context, spirv);
   VkComputePipelineCreateInfo info{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
   info.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
@@ -49,8 +50,10 @@ Unique<VkPipeline> createComputePipeline(const Context& context, VkPipelineLayou
   info.stage.pName = "main";
   info.stage.pSpecializationInfo = specialization;
   info.layout = layout;
+  if (context.capturesPipelineStatistics()) info.flags |= VK_PIPELINE_CREATE_CAPTURE_STATISTICS_BIT_KHR;
   VkPipeline pipeline = VK_NULL_HANDLE;
   S3D_VK_CHECK(vkCreateComputePipelines(context.device(), context.pipelineCache(), 1, &info, context.allocator(), &pipeline));
+  if (context.capturesPipelineStatistics()) printPipelineStatistics(context, pipeline, madeAt, spirv.size());
   return {context.device(), pipeline, vkDestroyPipeline, context.allocator()};
 }
 

@@ -108,6 +108,8 @@ class Context {
   VkPipelineCache pipelineCache() const { return pipelineCache_; }
   // Nanoseconds per timestamp tick; 0 when the queue has no timestamp support.
   double timestampPeriodNs() const { return timestampPeriodNs_; }
+  // Whether pipelines capture the driver's statistics (pipeline_statistics.h): asked for, and s3d's own device.
+  bool capturesPipelineStatistics() const { return capturesPipelineStatistics_; }
 
   std::uint32_t findMemoryType(std::uint32_t typeBits, VkMemoryPropertyFlags required,
                                VkMemoryPropertyFlags preferred = 0) const;
@@ -144,6 +146,7 @@ class Context {
   std::string deviceName_;
   VkPhysicalDeviceType deviceType_ = VK_PHYSICAL_DEVICE_TYPE_OTHER;
   double timestampPeriodNs_ = 0.0;
+  bool capturesPipelineStatistics_ = false;
   VkPhysicalDeviceMemoryProperties memoryProperties_{};
 
   mutable std::mutex messagesMutex_;
