@@ -8,6 +8,8 @@
 #include "s3d/stereo/hybrid_shared.h"
 
 layout(local_size_x = S3D_HYBRID_GROUP_SIZE, local_size_y = S3D_HYBRID_GROUP_SIZE) in;
+// The gather base's tap array as compiled (detail/base_tap_pipelines.h): short for the seed and short searches
+layout(constant_id = 0) const int kBaseTapCapacity = S3D_STEREO_MAX_TAPS;
 
 layout(binding = 0, r32f) uniform readonly image2D linearDepth;
 layout(binding = 1) uniform sampler2D deviceDepth;  // the center's (a depth attachment: sampled, not storage)
@@ -20,6 +22,8 @@ float depthAt(int x, int y) {
   return sanitizedDepth(imageLoad(linearDepth, ivec2(clamp(x, 0, c.width - 1), y)).r, c.zeroParallaxDistance);
 }
 
+#undef S3D_STEREO_TAP_CAPACITY
+#define S3D_STEREO_TAP_CAPACITY kBaseTapCapacity
 #define S3D_GATHER_TAP_COUNT c.baseTapCount
 #define S3D_GATHER_TAP_OFFSET_PX c.baseTapOffsetPx
 #include "stereo_gather_source.glsl"

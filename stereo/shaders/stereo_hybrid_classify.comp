@@ -22,6 +22,8 @@ layout(constant_id = 0) const int kGroup = S3D_HYBRID_ROW_GROUP;  // invocations
 layout(constant_id = 1) const int kChunk = S3D_HYBRID_CHUNK;      // eye pixels per step along the row
 // Each invocation classifies its own run of the chunk alone (private slots, no atomics, no barriers)
 layout(constant_id = 2) const bool kIndependentRuns = false;
+// The gather base's tap array as compiled (detail/base_tap_pipelines.h): short for the seed and short searches
+layout(constant_id = 3) const int kBaseTapCapacity = S3D_STEREO_MAX_TAPS;
 layout(local_size_x_id = 0) in;
 
 layout(binding = 0, r32f) uniform readonly image2D linearDepth;
@@ -179,6 +181,8 @@ void scatterPair(float direction, int x0, int x1, int i, float dA, float pA, flo
 }
 
 float depthAt(int x, int y) { return sanitizedDepthAt(x, y); }
+#undef S3D_STEREO_TAP_CAPACITY
+#define S3D_STEREO_TAP_CAPACITY kBaseTapCapacity
 #define S3D_GATHER_TAP_COUNT c.baseTapCount
 #define S3D_GATHER_TAP_OFFSET_PX c.baseTapOffsetPx
 #include "stereo_gather_source.glsl"

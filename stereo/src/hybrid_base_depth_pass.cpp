@@ -7,17 +7,24 @@
 // clang-format on
 
 namespace s3d::stereo {
+namespace {
 
-HybridBaseDepthPass::HybridBaseDepthPass(const vk::Context& context)
-    : context_(&context), nearest_(vk::createNearestClampSampler(context)) {
+vk::PipelineLayout createLayout(const vk::Context& context) {
   const VkDescriptorSetLayoutBinding bindings[] = {
       {0, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
       {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
       {2, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
       {3, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr}};
-  layout_ = vk::createPushDescriptorLayout(context, bindings, sizeof(gpu::HybridConstants), VK_SHADER_STAGE_COMPUTE_BIT);
-  pipeline_ = vk::createComputePipeline(context, layout_.layout, spirv_stereo_hybrid_base_depth_comp);
+  return vk::createPushDescriptorLayout(context, bindings, sizeof(gpu::HybridConstants), VK_SHADER_STAGE_COMPUTE_BIT);
 }
+
+}  // namespace
+
+HybridBaseDepthPass::HybridBaseDepthPass(const vk::Context& context)
+    : context_(&context),
+      nearest_(vk::createNearestClampSampler(context)),
+      layout_(createLayout(context)),
+      pipeline_(context, layout_.layout, spirv_stereo_hybrid_base_depth_comp, {}) {}
 
 vk::Image HybridBaseDepthPass::createEyeDepth(const vk::Context& context, std::uint32_t width, std::uint32_t height) {
   return vk::createImage(context, VK_FORMAT_R32_SFLOAT, width, height,
@@ -38,7 +45,7 @@ void HybridBaseDepthPass::record(VkCommandBuffer cmd, const vk::Image& linearDep
   VkWriteDescriptorSet writes[] = {vk::storageImageWrite(0, &infos[0]), vk::sampledImageWrite(1, &infos[1]),
                                    vk::storageImageWrite(2, &infos[2]), vk::storageImageWrite(3, &infos[3])};
   writes[1].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_.get());
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_.forTaps(c.baseTapCount));
   context_->cmdPushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_.layout, 0, 4, writes);
   vkCmdPushConstants(cmd, layout_.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(c), &c);
   const auto groups = [](int size) { return std::uint32_t((size + S3D_HYBRID_GROUP_SIZE - 1) / S3D_HYBRID_GROUP_SIZE); };

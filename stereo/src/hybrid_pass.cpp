@@ -110,16 +110,13 @@ HybridPass::HybridPass(const vk::Context& context, std::optional<HybridRowShape>
       thresholdLayout_(storageImageLayout(context, 4)),
       maskLayout_(storageImageLayout(context, 6)),
       compositeLayout_(storageImageLayout(context, 3)),
-      cropEdgesLayout_(storageImageLayout(context, 1)) {
-  // Specialization: constant 0 the row group (also the workgroup size), 1 the classification's chunk.
-  // 2 whether the invocations classify independent runs (a 32-bit VkBool32).
-  const std::int32_t values[] = {shape_.rowGroup, shape_.chunk, std::int32_t(shape_.independentRuns ? VK_TRUE : VK_FALSE)};
-  const VkSpecializationMapEntry entries[] = {{0, 0, sizeof(std::int32_t)},
-                                              {1, sizeof(std::int32_t), sizeof(std::int32_t)},
-                                              {2, 2 * sizeof(std::int32_t), sizeof(VkBool32)}};
-  const VkSpecializationInfo classifyShape{3, entries, sizeof(values), values};
-  const VkSpecializationInfo maskShape{1, entries, sizeof(std::int32_t), &shape_.maskGroup};
-  classify_ = vk::createComputePipeline(context, classifyLayout_.layout, spirv_stereo_hybrid_classify_comp, &classifyShape);
+      cropEdgesLayout_(storageImageLayout(context, 1)),
+      // Specialization: constant 0 the row group (also the workgroup size), 1 the classification's chunk, 2
+      // whether the invocations classify independent runs (a 32-bit VkBool32), 3 the base's tap capacity.
+      classify_(context, classifyLayout_.layout, spirv_stereo_hybrid_classify_comp,
+                {shape_.rowGroup, shape_.chunk, std::int32_t(shape_.independentRuns ? VK_TRUE : VK_FALSE)}) {
+  const VkSpecializationMapEntry maskEntry{0, 0, sizeof(std::int32_t)};
+  const VkSpecializationInfo maskShape{1, &maskEntry, sizeof(std::int32_t), &shape_.maskGroup};
   threshold_ = vk::createComputePipeline(context, thresholdLayout_.layout, spirv_stereo_hybrid_threshold_comp);
   mask_ = vk::createComputePipeline(context, maskLayout_.layout, spirv_stereo_hybrid_mask_comp, &maskShape);
   composite_ = vk::createComputePipeline(context, compositeLayout_.layout, spirv_stereo_hybrid_composite_comp);
@@ -158,7 +155,7 @@ void HybridPass::recordMasks(VkCommandBuffer cmd, const vk::Image& linearDepth, 
   vkCmdClearColorImage(cmd, images.histogram.image, VK_IMAGE_LAYOUT_GENERAL, &zero, 1, &range);
   vk::transition(cmd, images.histogram, kCleared, kAtomics);
 
-  dispatch(*context_, cmd, classify_.get(), classifyLayout_.layout,
+  dispatch(*context_, cmd, classify_.forTaps(c.baseTapCount), classifyLayout_.layout,
            {&linearDepth, &images.leftBins, &images.rightBins, &images.histogram, &images.rowHistograms}, c,
            std::uint32_t(c.height), 1);
   mark();

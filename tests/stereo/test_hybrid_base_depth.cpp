@@ -82,7 +82,8 @@ TEST(HybridBaseDepth, RefusesABaseWithoutASourceColumn) {
 class HybridBaseDepthPassTest : public test::VulkanTest {};
 
 // Tolerance: none (the same taps, the same precise source column, the same rounding). Both eyes of a view with
-// sky, steps, a first-person layer and a slope, at two separations (the second reaches past the row's ends).
+// sky, steps, a first-person layer and a slope, at two separations (the second reaches past the row's ends), from
+// a 4-tap search (the short tap pipeline) and a 9-tap one (the full array).
 TEST_F(HybridBaseDepthPassTest, MatchesTheCppReferenceTexelForTexel) {
   const DepthImage linear = steppedLinearDepth();
   const DepthImage device = distinctDeviceDepth(linear);
@@ -97,9 +98,11 @@ TEST_F(HybridBaseDepthPassTest, MatchesTheCppReferenceTexelForTexel) {
   const vk::Image left = HybridBaseDepthPass::createEyeDepth(context(), kWidth, kHeight);
   const vk::Image right = HybridBaseDepthPass::createEyeDepth(context(), kWidth, kHeight);
   const HybridBaseDepthPass pass(context());
-  for (const float maxSeparation : {0.05f, 0.2f}) {
-    const gpu::HybridConstants c = makeHybridConstants(searchHybrid(maxSeparation), kWidth, kHeight);
-    ASSERT_GT(c.baseTapCount, 1);
+  for (const auto [maxSeparation, taps] : {std::pair{0.05f, 4}, std::pair{0.2f, 4}, std::pair{0.2f, 9}}) {
+    StereoParameters parameters = searchHybrid(maxSeparation);
+    parameters.searchTaps = taps;
+    const gpu::HybridConstants c = makeHybridConstants(parameters, kWidth, kHeight);
+    ASSERT_EQ(c.baseTapCount, taps);
     context().submitAndWait([&](VkCommandBuffer cmd) {
       vk::transition(cmd, left, vk::kUndefined, vk::kComputeWrite);
       vk::transition(cmd, right, vk::kUndefined, vk::kComputeWrite);
@@ -111,7 +114,8 @@ TEST_F(HybridBaseDepthPassTest, MatchesTheCppReferenceTexelForTexel) {
       const std::vector<std::byte> bytes = vk::readbackImage(context(), *image, vk::kComputeWrite);
       std::vector<float> got(bytes.size() / sizeof(float));
       std::memcpy(got.data(), bytes.data(), bytes.size());
-      EXPECT_EQ(got, expected[eye].pixels) << "separation " << maxSeparation << (eye == 0 ? " left" : " right");
+      EXPECT_EQ(got, expected[eye].pixels)
+          << "separation " << maxSeparation << ", " << taps << " taps" << (eye == 0 ? " left" : " right");
       ++eye;
     }
     EXPECT_NE(expected[0].pixels, expected[1].pixels);  // the eyes do sample different texels

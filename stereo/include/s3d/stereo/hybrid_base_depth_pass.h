@@ -3,6 +3,7 @@
 // hybrid_base_depth.h): both eyes' device depth from the center's, at the gather base's source texels.
 #include <vulkan/vulkan.h>
 
+#include "s3d/stereo/detail/base_tap_pipelines.h"
 #include "s3d/stereo/hybrid_shared.h"
 #include "s3d/vk/context.h"
 #include "s3d/vk/pipeline.h"
@@ -29,7 +30,7 @@ class HybridBaseDepthPass {
   const vk::Context* context_;
   vk::Unique<VkSampler> nearest_;
   vk::PipelineLayout layout_;
-  vk::Unique<VkPipeline> pipeline_;
+  detail::BaseTapPipelines pipeline_;
 };
 
 }  // namespace s3d::stereo

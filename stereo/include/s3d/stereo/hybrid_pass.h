@@ -8,6 +8,7 @@
 #include <functional>
 #include <optional>
 
+#include "s3d/stereo/detail/base_tap_pipelines.h"
 #include "s3d/stereo/hybrid.h"
 #include "s3d/vk/context.h"
 #include "s3d/vk/pipeline.h"
@@ -83,7 +84,8 @@ class HybridPass {
   const vk::Context* context_;
   HybridRowShape shape_;
   vk::PipelineLayout classifyLayout_, thresholdLayout_, maskLayout_, compositeLayout_, cropEdgesLayout_;
-  vk::Unique<VkPipeline> classify_, threshold_, mask_, composite_, cropEdges_;
+  detail::BaseTapPipelines classify_;
+  vk::Unique<VkPipeline> threshold_, mask_, composite_, cropEdges_;
 };
 
 // What the GPU passes produce for one depth image (tests): bins, histograms, thresholds and masks.
