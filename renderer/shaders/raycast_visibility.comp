@@ -84,6 +84,24 @@ uint closestHit(uint root, PixelRay ray, out float bestT, out float bestDepth) {
   return best;
 }
 
+// The pixel's closest hit in one layer's tree, written; false: the layer has no tree or the ray misses it.
+bool castLayer(int layer, uvec2 pixel, ivec2 subpixel) {
+  uint root = layer == S3D_LAYER_WORLD ? constants.roots.x : constants.roots.y;
+  if (root == S3D_BVH_NO_ROOT) return false;
+  vec2 range = layer == S3D_LAYER_WORLD ? constants.depthRanges.xy : constants.depthRanges.zw;
+  PixelRay ray = pixelRayOf(constants.clipToLayer[layer], constants.viewProjection[layer], constants.screen, subpixel,
+                            range, constants.clearedDepth.y);
+  float t, depth;
+  uint hit = closestHit(root, ray, t, depth);
+  if (hit == S3D_BVH_NO_ROOT) return false;
+  uvec2 id = (triangles[hit].flags & S3D_BVH_CUTOUT) != 0u
+                 ? uvec2(S3D_RASTER_SHADED, 0u)
+                 : packVisibility(triangles[hit].object, triangles[hit].triangle, constants.options);
+  imageStore(visibilityIds, ivec2(pixel), uvec4(id.x, 0u, 0u, 0u));
+  imageStore(deviceDepth, ivec2(pixel), vec4(depth));
+  return true;
+}
+
 void main() {
   uvec2 pixel = gl_GlobalInvocationID.xy;
   if (any(greaterThanEqual(pixel, uvec2(constants.screen.xy)))) return;
@@ -101,22 +119,9 @@ void main() {
     return;
   }
   ivec2 subpixel = ivec2(pixel) * S3D_SUBPIXEL_UNITS + S3D_SUBPIXEL_UNITS / 2;  // the pixel's centre
-  for (int layer = 1; layer >= 0; --layer) {  // S3D_LAYER_FIRST_PERSON, then S3D_LAYER_WORLD
-    uint root = layer == S3D_LAYER_WORLD ? constants.roots.x : constants.roots.y;
-    if (root == S3D_BVH_NO_ROOT) continue;
-    vec2 range = layer == S3D_LAYER_WORLD ? constants.depthRanges.xy : constants.depthRanges.zw;
-    PixelRay ray = pixelRayOf(constants.clipToLayer[layer], constants.viewProjection[layer], constants.screen, subpixel,
-                              range, constants.clearedDepth.y);
-    float t, depth;
-    uint hit = closestHit(root, ray, t, depth);
-    if (hit == S3D_BVH_NO_ROOT) continue;
-    uvec2 id = (triangles[hit].flags & S3D_BVH_CUTOUT) != 0u
-                   ? uvec2(S3D_RASTER_SHADED, 0u)
-                   : packVisibility(triangles[hit].object, triangles[hit].triangle, constants.options);
-    imageStore(visibilityIds, ivec2(pixel), uvec4(id.x, 0u, 0u, 0u));
-    imageStore(deviceDepth, ivec2(pixel), vec4(depth));
-    return;
-  }
+  // The first-person layer, then the world; each call with its layer as a constant, so the layer's matrices are
+  // read where they are used rather than held through the traversal.
+  if (castLayer(S3D_LAYER_FIRST_PERSON, pixel, subpixel) || castLayer(S3D_LAYER_WORLD, pixel, subpixel)) return;
   imageStore(visibilityIds, ivec2(pixel), uvec4(0u));
   imageStore(deviceDepth, ivec2(pixel), vec4(constants.clearedDepth.x));
 }
