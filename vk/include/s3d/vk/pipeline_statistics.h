@@ -1,6 +1,6 @@
 #pragma once
-// The driver's own statistics of each compute pipeline s3d makes (registers, shared memory, spills, as the driver
-// names them), printed to stderr: a developer's view of what limits a kernel's occupancy, with no profiler.
+// The driver's own statistics of each compute pipeline s3d makes (registers, shared memory, binary size, as the
+// driver names them), printed to stderr: a developer's view of what limits a kernel's occupancy, with no profiler.
 // Asked for with the environment variable S3D_PIPELINE_STATISTICS=1 on a device that s3d creates itself and that
 // has VK_KHR_pipeline_executable_properties; otherwise nothing is captured and nothing printed.
 #include <cstddef>
