@@ -53,7 +53,7 @@ Unique<VkPipeline> createComputePipeline(const Context& context, VkPipelineLayou
   if (context.capturesPipelineStatistics()) info.flags |= VK_PIPELINE_CREATE_CAPTURE_STATISTICS_BIT_KHR;
   VkPipeline pipeline = VK_NULL_HANDLE;
   S3D_VK_CHECK(vkCreateComputePipelines(context.device(), context.pipelineCache(), 1, &info, context.allocator(), &pipeline));
-  if (context.capturesPipelineStatistics()) printPipelineStatistics(context, pipeline, madeAt, spirv.size());
+  if (context.capturesPipelineStatistics()) printPipelineStatistics(context.device(), pipeline, madeAt, spirv.size());
   return {context.device(), pipeline, vkDestroyPipeline, context.allocator()};
 }
 

@@ -6,7 +6,6 @@
 #include <vector>
 
 #include "s3d/vk/check.h"
-#include "s3d/vk/context.h"
 
 namespace s3d::vk {
 
@@ -35,9 +34,8 @@ void printStatistic(const VkPipelineExecutableStatisticKHR& statistic) {
 
 }  // namespace
 
-void printPipelineStatistics(const Context& context, VkPipeline pipeline, const std::source_location& madeAt,
+void printPipelineStatistics(VkDevice device, VkPipeline pipeline, const std::source_location& madeAt,
                              std::size_t spirvWords) {
-  VkDevice device = context.device();
   auto executables = reinterpret_cast<PFN_vkGetPipelineExecutablePropertiesKHR>(
       vkGetDeviceProcAddr(device, "vkGetPipelineExecutablePropertiesKHR"));
   auto statistics = reinterpret_cast<PFN_vkGetPipelineExecutableStatisticsKHR>(

@@ -10,15 +10,13 @@
 
 namespace s3d::vk {
 
-class Context;
-
 // Whether the environment asks for the statistics (S3D_PIPELINE_STATISTICS set and not "0").
 bool pipelineStatisticsRequested();
 
 // Prints each executable's statistics of `pipeline`, made with VK_PIPELINE_CREATE_CAPTURE_STATISTICS_BIT_KHR, to
 // stderr, headed by the source line that made it and its SPIR-V's size in words (which tells apart the shaders one
 // helper makes).
-void printPipelineStatistics(const Context& context, VkPipeline pipeline, const std::source_location& madeAt,
+void printPipelineStatistics(VkDevice device, VkPipeline pipeline, const std::source_location& madeAt,
                              std::size_t spirvWords);
 
 }  // namespace s3d::vk
