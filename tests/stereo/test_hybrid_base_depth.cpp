@@ -98,7 +98,7 @@ TEST_F(HybridBaseDepthPassTest, MatchesTheCppReferenceTexelForTexel) {
   const vk::Image left = HybridBaseDepthPass::createEyeDepth(context(), kWidth, kHeight);
   const vk::Image right = HybridBaseDepthPass::createEyeDepth(context(), kWidth, kHeight);
   const HybridBaseDepthPass pass(context());
-  for (const auto [maxSeparation, taps] : {std::pair{0.05f, 4}, std::pair{0.2f, 4}, std::pair{0.2f, 9}}) {
+  for (const auto& [maxSeparation, taps] : {std::pair{0.05f, 4}, std::pair{0.2f, 4}, std::pair{0.2f, 9}}) {
     StereoParameters parameters = searchHybrid(maxSeparation);
     parameters.searchTaps = taps;
     const gpu::HybridConstants c = makeHybridConstants(parameters, kWidth, kHeight);

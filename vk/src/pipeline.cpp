@@ -41,7 +41,7 @@ PipelineLayout createPushDescriptorLayout(const Context& context,
 
 Unique<VkPipeline> createComputePipeline(const Context& context, VkPipelineLayout layout,
                                          std::span<const std::uint32_t> spirv,
-                                         const VkSpecializationInfo* specialization, std::source_location madeAt) {
+                                         const VkSpecializationInfo* specialization) {
   Unique<VkShaderModule> module = createShaderModule(context, spirv);
   VkComputePipelineCreateInfo info{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
   info.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
@@ -53,7 +53,7 @@ Unique<VkPipeline> createComputePipeline(const Context& context, VkPipelineLayou
   if (context.capturesPipelineStatistics()) info.flags |= VK_PIPELINE_CREATE_CAPTURE_STATISTICS_BIT_KHR;
   VkPipeline pipeline = VK_NULL_HANDLE;
   S3D_VK_CHECK(vkCreateComputePipelines(context.device(), context.pipelineCache(), 1, &info, context.allocator(), &pipeline));
-  if (context.capturesPipelineStatistics()) printPipelineStatistics(context.device(), pipeline, madeAt, spirv.size());
+  if (context.capturesPipelineStatistics()) printPipelineStatistics(context.device(), pipeline, spirv.size(), specialization);
   return {context.device(), pipeline, vkDestroyPipeline, context.allocator()};
 }
 

@@ -1,8 +1,11 @@
 #include "s3d/vk/pipeline_statistics.h"
 
+#include <cstddef>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <string>
 #include <vector>
 
 #include "s3d/vk/check.h"
@@ -32,10 +35,24 @@ void printStatistic(const VkPipelineExecutableStatisticKHR& statistic) {
   }
 }
 
+// The specialization constants as 32-bit values in map order ("" without any).
+std::string specializationText(const VkSpecializationInfo* specialization) {
+  std::string text;
+  if (!specialization) return text;
+  for (std::uint32_t i = 0; i < specialization->mapEntryCount; ++i) {
+    const VkSpecializationMapEntry& entry = specialization->pMapEntries[i];
+    std::int32_t value = 0;
+    if (entry.size == sizeof value && entry.offset + sizeof value <= specialization->dataSize)
+      std::memcpy(&value, static_cast<const std::byte*>(specialization->pData) + entry.offset, sizeof value);
+    text += (text.empty() ? "" : ", ") + std::to_string(entry.constantID) + ": " + std::to_string(value);
+  }
+  return text;
+}
+
 }  // namespace
 
-void printPipelineStatistics(VkDevice device, VkPipeline pipeline, const std::source_location& madeAt,
-                             std::size_t spirvWords) {
+void printPipelineStatistics(VkDevice device, VkPipeline pipeline, std::size_t spirvWords,
+                             const VkSpecializationInfo* specialization) {
   auto executables = reinterpret_cast<PFN_vkGetPipelineExecutablePropertiesKHR>(
       vkGetDeviceProcAddr(device, "vkGetPipelineExecutablePropertiesKHR"));
   auto statistics = reinterpret_cast<PFN_vkGetPipelineExecutableStatisticsKHR>(
@@ -48,8 +65,8 @@ void printPipelineStatistics(VkDevice device, VkPipeline pipeline, const std::so
   std::vector<VkPipelineExecutablePropertiesKHR> properties(count, {VK_STRUCTURE_TYPE_PIPELINE_EXECUTABLE_PROPERTIES_KHR});
   S3D_VK_CHECK(executables(device, &pipelineInfo, &count, properties.data()));
   for (std::uint32_t i = 0; i < count; ++i) {
-    std::fprintf(stderr, "s3d pipeline statistics, %s:%u, %zu SPIR-V words, %s (subgroup %u):\n", madeAt.file_name(),
-                 static_cast<unsigned>(madeAt.line()), spirvWords, properties[i].name, properties[i].subgroupSize);
+    std::fprintf(stderr, "s3d pipeline statistics: SPIR-V of %zu words, specialization {%s}, %s (subgroup %u):\n",
+                 spirvWords, specializationText(specialization).c_str(), properties[i].name, properties[i].subgroupSize);
     VkPipelineExecutableInfoKHR executable{VK_STRUCTURE_TYPE_PIPELINE_EXECUTABLE_INFO_KHR};
     executable.pipeline = pipeline;
     executable.executableIndex = i;

@@ -1,7 +1,6 @@
 #pragma once
 // Shader modules, push-descriptor layouts and pipelines.
 #include <cstdint>
-#include <source_location>
 #include <span>
 #include <vector>
 
@@ -23,12 +22,11 @@ PipelineLayout createPushDescriptorLayout(const Context& context,
                                           std::span<const VkDescriptorSetLayoutBinding> bindings,
                                           std::uint32_t pushConstantBytes, VkShaderStageFlags pushConstantStages);
 
-// `specialization`: values of the shader's specialization constants (null: their defaults). `madeAt` heads the
-// driver's statistics when the context captures them (pipeline_statistics.h).
+// `specialization`: values of the shader's specialization constants (null: their defaults). Prints the driver's
+// statistics when the context captures them (pipeline_statistics.h).
 Unique<VkPipeline> createComputePipeline(const Context& context, VkPipelineLayout layout,
                                          std::span<const std::uint32_t> spirv,
-                                         const VkSpecializationInfo* specialization = nullptr,
-                                         std::source_location madeAt = std::source_location::current());
+                                         const VkSpecializationInfo* specialization = nullptr);
 
 // Graphics pipeline for dynamic rendering (no render pass objects).
 struct GraphicsPipelineDesc {

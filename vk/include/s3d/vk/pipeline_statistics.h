@@ -4,7 +4,6 @@
 // Asked for with the environment variable S3D_PIPELINE_STATISTICS=1 on a device that s3d creates itself and that
 // has VK_KHR_pipeline_executable_properties; otherwise nothing is captured and nothing printed.
 #include <cstddef>
-#include <source_location>
 
 #include <vulkan/vulkan.h>
 
@@ -14,9 +13,9 @@ namespace s3d::vk {
 bool pipelineStatisticsRequested();
 
 // Prints each executable's statistics of `pipeline`, made with VK_PIPELINE_CREATE_CAPTURE_STATISTICS_BIT_KHR, to
-// stderr, headed by the source line that made it and its SPIR-V's size in words (which tells apart the shaders one
-// helper makes).
-void printPipelineStatistics(VkDevice device, VkPipeline pipeline, const std::source_location& madeAt,
-                             std::size_t spirvWords);
+// stderr, headed by its SPIR-V's size in words (which names the shader: each embedded module's size is in the
+// build's s3d_spirv headers) and its specialization constants' 32-bit values.
+void printPipelineStatistics(VkDevice device, VkPipeline pipeline, std::size_t spirvWords,
+                             const VkSpecializationInfo* specialization);
 
 }  // namespace s3d::vk
