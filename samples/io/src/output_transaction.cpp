@@ -214,14 +214,6 @@ void OutputTransaction::commit() {
   fs::remove_all(staging_, error);  // the staging folder, with the files the run replaced
 }
 
-void OutputTransaction::requireReplaceable(const fs::path& folder, const std::vector<std::string>& names) {
-  std::error_code error;
-  for (const std::string& name : names)
-    if (fs::is_directory(fs::symlink_status(folder / name, error)))
-      throw std::invalid_argument("output " + quoted(folder / name) +
-                                  " is a folder: it cannot be replaced by a file; move it or choose another --output");
-}
-
 namespace {
 // What `file` is after links (as far as it exists): two paths name one file when these are equal.
 fs::path resolved(const fs::path& file) {

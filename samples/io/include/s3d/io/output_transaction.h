@@ -27,10 +27,6 @@ class OutputTransaction {
   // replaced file back when a move fails part-way; throws std::runtime_error naming the file either way.
   void commit();
 
-  // Before a run: throws std::invalid_argument naming the first of `names` (files inside `folder`) that exists
-  // as a folder, which no output file can replace.
-  static void requireReplaceable(const std::filesystem::path& folder, const std::vector<std::string>& names);
-
   // Where a write of `file` must go now: inside the open transaction's staging folder when `file` lies in
   // its output folder, else `file` itself. Used by s3d_io's writers.
   static std::filesystem::path stagedTarget(const std::filesystem::path& file);
