@@ -62,6 +62,9 @@ struct DeferredRenderer::Impl {
   vk::Image raycastIds, raycastDepth;
   bool raycastBvhCurrent = false;  // the BVH last given matches the scene (setScene, updateGeometry drop it)
   bool raycastFrame = false;       // the last render ray-cast its surfaces
+  // What the G-buffer resolve samples for ray-cast textured surfaces: per texture (first texel, width, height,
+  // sRGB) and every texture's RGBA8 texels; made at setSurfaceBvh for the scene (setScene drops them).
+  vk::Buffer surfaceTextureTable, surfaceTexels;
   vk::Unique<VkSampler> nearestSampler;
   vk::Unique<VkSampler> textureSampler;  // bilinear, repeating, no mipmaps
   vk::Image whiteTexture, flatNormalTexture;  // what untextured objects sample: albedo x 1, normal (0, 0, 1)
@@ -211,6 +214,7 @@ struct DeferredRenderer::Impl {
   const vk::Image& frameDepth() const { return raycastFrame ? raycastDepth : depth; }
   const vk::Image& frameVisibility() const { return raycastFrame ? raycastIds : visibility; }
   std::optional<std::string> raycastRefusal() const;
+  void uploadSurfaceTexels();  // surfaceTextureTable and surfaceTexels from the scene's textures
   // The ray-cast visibility pass for the mask's pixels (every pixel with ambient occlusion), left sampled.
   void recordRaycastSurfaces(VkCommandBuffer cmd, const ViewMatrices& view, const ShadeMask& mask);
 

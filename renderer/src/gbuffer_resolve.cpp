@@ -29,7 +29,8 @@ GBufferResolve::GBufferResolve(vk::Context& context, bool counting) : context_(c
   const VkDescriptorSetLayoutBinding bindings[] = {
       computeBinding(0, ubo),     computeBinding(1, sampled), computeBinding(2, sampled), computeBinding(3, ssbo),
       computeBinding(4, ssbo),    computeBinding(5, ssbo),    computeBinding(6, storage), computeBinding(7, storage),
-      computeBinding(8, ssbo),    computeBinding(9, storage)};
+      computeBinding(8, ssbo),    computeBinding(9, storage), computeBinding(10, ssbo),   computeBinding(11, ssbo),
+      computeBinding(12, ssbo)};
   layout_ = vk::createPushDescriptorLayout(context_, bindings, 0, 0);
   pipelines_ = std::make_unique<TilePipelines>(context_, layout_.layout, spirv_gbuffer_resolve_comp, counting);
   nearest_ = vk::createNearestClampSampler(context_);
@@ -49,15 +50,20 @@ void GBufferResolve::record(VkCommandBuffer cmd, const Inputs& in, const vk::Ima
   VkDescriptorImageInfo materialInfo{VK_NULL_HANDLE, material.view, VK_IMAGE_LAYOUT_GENERAL};
   VkDescriptorBufferInfo tileInfo{in.tiles, 0, VK_WHOLE_SIZE};
   VkDescriptorImageInfo maskInfo = in.shadeMask;
+  VkDescriptorBufferInfo surfaceInfo{in.surfaceVertices, 0, VK_WHOLE_SIZE};
+  VkDescriptorBufferInfo tableInfo{in.textureTable, 0, VK_WHOLE_SIZE};
+  VkDescriptorBufferInfo texelInfo{in.texels, 0, VK_WHOLE_SIZE};
   VkWriteDescriptorSet writes[] = {
       vk::uniformBufferWrite(0, &frameInfo),  vk::sampledImageWrite(1, &depthInfo), vk::sampledImageWrite(2, &visibilityInfo),
       vk::uniformBufferWrite(3, &objectInfo), vk::uniformBufferWrite(4, &indexInfo), vk::uniformBufferWrite(5, &vertexInfo),
       vk::storageImageWrite(6, &normalInfo),  vk::storageImageWrite(7, &materialInfo), vk::uniformBufferWrite(8, &tileInfo),
-      vk::storageImageWrite(9, &maskInfo)};
+      vk::storageImageWrite(9, &maskInfo),    vk::uniformBufferWrite(10, &surfaceInfo), vk::uniformBufferWrite(11, &tableInfo),
+      vk::uniformBufferWrite(12, &texelInfo)};
   for (std::uint32_t i : {1u, 2u}) writes[i].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-  for (std::uint32_t i : {3u, 4u, 5u, 8u}) writes[i].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelines_->get(in.masked));
-  context_.cmdPushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_.layout, 0, 10, writes);
+  for (std::uint32_t i : {3u, 4u, 5u, 8u, 10u, 11u, 12u}) writes[i].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelines_->get(in.masked, {in.surfaceMaterials}));
+  context_.cmdPushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_.layout, 0, std::uint32_t(std::size(writes)),
+                                writes);
   if (in.masked)
     vkCmdDispatchIndirect(cmd, in.tiles, TileLists::kMaskedTilesDispatch);
   else

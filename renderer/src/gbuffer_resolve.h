@@ -4,8 +4,11 @@
 // chip where the raster pass's cost follows the bytes each fragment writes. Pixels the raster pass shaded itself
 // (textured objects) are kept; sky pixels get the cleared values. Counts the render pixels with a surface.
 //
+// With surface materials (ray-cast surfaces, which no raster pass shades) it also textures and flips what the
+// raster pass would: textured and double-sided objects, sampling the scene's texels from storage buffers.
+//
 // Reads: device depth and the visibility target (sampled by compute), the frame and object constants, the index
-// and vertex buffers, the tile buffer (a masked render also the shade mask). Writes: the normal/glossiness and
+// and vertex buffers, the tile buffer (a masked render also the shade mask), the surface vertices and texels. Writes: the normal/glossiness and
 // material targets (storage images, GENERAL), left sampled by compute (SHADER_READ_ONLY) for the passes after it.
 #include <cstdint>
 #include <memory>
@@ -29,6 +32,10 @@ class GBufferResolve {
     VkDescriptorImageInfo shadeMask;  // the tile lists' mask descriptor (placeholder when unmasked)
     bool masked;
     std::uint32_t tilesX, tilesY;
+    // Read only with surfaceMaterials (any valid buffer otherwise): gpu::SurfaceVertex per vertex, the texture
+    // table (first texel, width, height, sRGB per texture) and the RGBA8 texels (SurfaceTexels).
+    VkBuffer surfaceVertices, textureTable, texels;
+    bool surfaceMaterials;
   };
   // `targets`: the state the G-buffer pass left them in (kUndefined when it wrote neither).
   void record(VkCommandBuffer cmd, const Inputs& inputs, const vk::Image& normalGlossiness, const vk::Image& material,

@@ -129,6 +129,9 @@ void DeferredRenderer::Impl::writeFrameConstants(const ViewMatrices& view, const
     constants.normalUv = glm::vec4(normal[0][0], normal[1][0], normal[0][1], normal[1][1]);
     constants.uvOffsets = glm::vec4(base[2][0], base[2][1], normal[2][0], normal[2][1]);
     constants.emissive = glm::vec4(material.emissive, material.alphaCutoff);
+    auto textureSlot = [](std::int32_t index) { return index == kNoTexture ? S3D_NO_TEXTURE : std::uint32_t(index); };
+    constants.surfaceTextures = glm::uvec4(textureSlot(material.baseColorTexture), textureSlot(material.normalTexture),
+                                           material.doubleSided ? 1u : 0u, 0u);
   }
 }
 
@@ -254,9 +257,14 @@ void DeferredRenderer::Impl::recordGBufferResolve(VkCommandBuffer cmd, const Sha
                                               tiles->maskDescriptor(mask.image),
                                               mask.image != nullptr,
                                               tiles->tilesX(),
-                                              tiles->tilesY()};
+                                              tiles->tilesY(),
+                                              surfaceBuffer.buffer,
+                                              raycastFrame ? surfaceTextureTable.buffer : objectBuffer.buffer,
+                                              raycastFrame ? surfaceTexels.buffer : objectBuffer.buffer,
+                                              raycastFrame && surfaceTargetsBound};
+  // Ray-cast surfaces run no raster pass: the resolve shades textured and double-sided objects itself.
   gbufferResolve->record(cmd, inputs, normalGlossiness, materialTarget,
-                         surfaceTargetsBound ? vk::kColorAttachment : vk::kUndefined);
+                         surfaceTargetsBound && !raycastFrame ? vk::kColorAttachment : vk::kUndefined);
 }
 
 void DeferredRenderer::Impl::recordAmbientDepth(VkCommandBuffer cmd) {

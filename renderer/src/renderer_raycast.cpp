@@ -22,6 +22,24 @@ void DeferredRenderer::setSurfaceBvh(const SceneBvh& bvh) {
   if (bvh.visibilityPacking != r.visibilityPacking) return;
   r.raycast->setBvh(bvh);
   r.raycastBvhCurrent = true;
+  if (r.surfaceTexels.buffer == VK_NULL_HANDLE) r.uploadSurfaceTexels();
+}
+
+void DeferredRenderer::Impl::uploadSurfaceTexels() {
+  std::vector<glm::uvec4> table;
+  std::vector<std::uint8_t> texels;
+  for (const Texture& texture : scene.textures) {
+    table.push_back({std::uint32_t(texels.size() / 4), texture.width, texture.height,
+                     texture.encoding == Texture::Encoding::Srgb ? 1u : 0u});
+    texels.insert(texels.end(), texture.rgba.begin(), texture.rgba.end());
+  }
+  if (table.empty()) table.emplace_back(0u);  // buffers are never empty
+  if (texels.empty()) texels.assign(4, 0);
+  constexpr VkBufferUsageFlags usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
+  surfaceTextureTable = vk::createBuffer(context, table.size() * sizeof(glm::uvec4), usage, vk::MemoryLocation::Device);
+  vk::uploadBuffer(context, surfaceTextureTable, std::as_bytes(std::span(table)));
+  surfaceTexels = vk::createBuffer(context, texels.size(), usage, vk::MemoryLocation::Device);
+  vk::uploadBuffer(context, surfaceTexels, std::as_bytes(std::span(texels)));
 }
 
 std::optional<std::string> DeferredRenderer::raycastSurfacesRefusal() const { return impl_->raycastRefusal(); }
@@ -30,10 +48,8 @@ bool DeferredRenderer::hasSurfaceBvh() const { return impl_->raycast && impl_->r
 std::optional<std::string> DeferredRenderer::Impl::raycastRefusal() const {
   if (!visibilityShading) return "ray-cast surfaces need visibility G-buffer shading (the resolve shades them)";
   if (visibilityPacking.y != 0) return "ray-cast surfaces need narrow visibility ids; this scene needs wide ones";
-  const bool rasterShaded = surfaceTargetsBound || std::any_of(scene.objects.begin(), scene.objects.end(),
-                                                               [](const Object& o) { return o.material.isCutout(); });
-  if (rasterShaded)
-    return "scene '" + scene.name + "' has textured or cut-out objects, which only the raster G-buffer pass shades";
+  if (std::any_of(scene.objects.begin(), scene.objects.end(), [](const Object& o) { return o.material.isCutout(); }))
+    return "scene '" + scene.name + "' has cut-out objects, whose alpha test only the raster G-buffer pass runs";
   if (supersample != 1) return "ray-cast surfaces cast one ray per output pixel: no supersampling";
   if (transparentPass->hasObjects() && !transparentPass->usesCompute())
     return "scene '" + scene.name + "' has transparent objects that the raster pass blends (it needs the depth buffer)";

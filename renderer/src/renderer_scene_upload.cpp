@@ -17,6 +17,8 @@ glm::uvec2 DeferredRenderer::Impl::visibilityPackingFor(const Scene& scene) {
 
 void DeferredRenderer::Impl::setScene(const Scene& newScene) {
   raycastBvhCurrent = false;
+  surfaceTextureTable = {};
+  surfaceTexels = {};
   std::vector<Vertex> vertices;
   std::vector<gpu::SurfaceVertex> surface;
   std::vector<std::uint32_t> indices;

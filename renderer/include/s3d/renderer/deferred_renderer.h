@@ -56,9 +56,9 @@ class DeferredRenderer {
   // by updateGeometry), uploaded once. setScene and updateGeometry drop it, since it no longer matches.
   void setSurfaceBvh(const SceneBvh& bvh);
   // Why this renderer cannot ray-cast its surfaces for the scene last set (nullopt: it can, given a BVH): raster
-  // G-buffer shading, objects the raster pass shades itself (textured or cut-out: the compute resolve samples no
-  // textures), wide visibility ids, supersampling, or transparent objects the raster pass blends (it needs the
-  // depth buffer).
+  // G-buffer shading, cut-out objects (only the raster pass runs their alpha test), wide visibility ids,
+  // supersampling, or transparent objects the raster pass blends (it needs the depth buffer). Textured and
+  // double-sided objects are cast: the compute resolve samples their texels and flips their back faces.
   std::optional<std::string> raycastSurfacesRefusal() const;
   // Whether a BVH of the current scene (or pose) was given (setSurfaceBvh).
   bool hasSurfaceBvh() const;

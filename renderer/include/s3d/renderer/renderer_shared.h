@@ -77,7 +77,11 @@ struct ObjectConstants {  // storage buffer, std430, one per object
   vec4 normalUv;       // the normal map's, likewise
   vec4 uvOffsets;      // xy: base-colour transform offset, zw: the normal map's
   vec4 emissive;       // rgb: emitted radiance (Material::emissive); a: alpha cutoff (0: not a cut-out)
+  // What the compute G-buffer resolve samples for a ray-cast pixel (surface_texels.glsl): x the base-colour
+  // texture, y the normal map (Scene::textures indices, S3D_NO_TEXTURE: none); z 1: double-sided.
+  uvec4 surfaceTextures;
 };
+#define S3D_NO_TEXTURE 0xffffffffu
 // albedo.a holds the opacity of transparent objects and the coverage alpha (Material::cutoutAlpha) of cut-outs.
 
 // A texture transform packed as ObjectConstants holds it: rows (r0.x, r0.y; r1.x, r1.y) of T*R*S's 2x2 part
