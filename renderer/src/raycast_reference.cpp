@@ -2,6 +2,7 @@
 // same arithmetic from raycast_shared.h) and the camera a renderer view casts with.
 #include <algorithm>
 #include <array>
+#include <cmath>
 
 #include "s3d/renderer/scene_bvh.h"
 
@@ -44,7 +45,39 @@ gpu::PixelRay pixelRayOf(const RaycastCamera& camera, Layer layer, glm::ivec2 su
 
 float nearerOf(const RaycastCamera& camera) { return camera.clearedDepth > 0.5f ? 1.0f : -1.0f; }
 
-std::uint32_t SceneBvh::closestHit(std::uint32_t root, const gpu::PixelRay& ray, float& bestT, float& bestDepth) const {
+bool CutoutCoverage::covers(std::uint32_t objectIndex, std::uint32_t triangle, glm::vec3 b) const {
+  const Object& object = scene_.objects[objectIndex];
+  const Material& material = object.material;
+  const Mesh& mesh = scene_.meshes[object.mesh];
+  glm::vec2 uv(0.0f);
+  if (!mesh.texCoords.empty())
+    uv = b.x * mesh.texCoords[mesh.indices[3 * triangle]] + b.y * mesh.texCoords[mesh.indices[3 * triangle + 1]] +
+         b.z * mesh.texCoords[mesh.indices[3 * triangle + 2]];
+  float texelAlpha = 1.0f;
+  if (material.baseColorTexture != kNoTexture) {
+    const Texture& texture = scene_.textures[std::size_t(material.baseColorTexture)];
+    const glm::mat3 t = material.baseColorTransform.matrix();  // packed as the renderer's ObjectConstants packs it
+    const glm::vec2 at = gpu::transformTexCoord(glm::vec4(t[0][0], t[1][0], t[0][1], t[1][1]), glm::vec2(t[2][0], t[2][1]), uv);
+    // surface_texels.glsl's filter, alpha only (never sRGB-encoded).
+    glm::vec2 wrapped = at - glm::floor(at);
+    if (!std::isfinite(wrapped.x) || !std::isfinite(wrapped.y)) wrapped = glm::vec2(0.0f);
+    const glm::ivec2 size(int(texture.width), int(texture.height));
+    const glm::vec2 position = wrapped * glm::vec2(size) - 0.5f;
+    const glm::vec2 corner = glm::floor(position), weight = position - corner;
+    auto alpha = [&](int x, int y) {
+      x = ((x % size.x) + size.x) % size.x;
+      y = ((y % size.y) + size.y) % size.y;
+      return float(texture.rgba[4 * (std::size_t(y) * texture.width + std::size_t(x)) + 3]) / 255.0f;
+    };
+    const int x0 = int(corner.x), y0 = int(corner.y);
+    texelAlpha = glm::mix(glm::mix(alpha(x0, y0), alpha(x0 + 1, y0), weight.x),
+                          glm::mix(alpha(x0, y0 + 1), alpha(x0 + 1, y0 + 1), weight.x), weight.y);
+  }
+  return !gpu::cutOut(material.cutoutAlpha, texelAlpha, material.alphaCutoff);
+}
+
+std::uint32_t SceneBvh::closestHit(std::uint32_t root, const gpu::PixelRay& ray, float& bestT, float& bestDepth,
+                                   const CutoutCoverage* cutouts) const {
   bestT = S3D_INFINITY;
   bestDepth = S3D_INFINITY;
   float bestKey = S3D_INFINITY;
@@ -64,7 +97,9 @@ std::uint32_t SceneBvh::closestHit(std::uint32_t root, const gpu::PixelRay& ray,
         float t = 0.0f, depth = 0.0f;
         if (gpu::leafHit(ray, tri.v0, tri.v1, tri.v2, tri.flags, t, depth) &&
             (best == S3D_BVH_NO_ROOT || gpu::closerHit(depth * ray.nearer, t, tri.object, tri.triangle, bestKey, bestT,
-                                                       triangles[best].object, triangles[best].triangle))) {
+                                                       triangles[best].object, triangles[best].triangle)) &&
+            (cutouts == nullptr || (tri.flags & S3D_BVH_CUTOUT) == 0 ||
+             cutouts->covers(tri.object, tri.triangle, gpu::rayBarycentrics(ray.origin, ray.direction, tri.v0, tri.v1, tri.v2)))) {
           bestT = t;
           bestDepth = depth;
           bestKey = depth * ray.nearer;
@@ -96,20 +131,22 @@ std::uint32_t SceneBvh::closestHit(std::uint32_t root, const gpu::PixelRay& ray,
   return best;
 }
 
-RaycastHit SceneBvh::castPixel(const RaycastCamera& camera, glm::uvec2 pixel, glm::uvec2 size) const {
-  return castSubpixel(camera, glm::ivec2(pixel) * S3D_SUBPIXEL_UNITS + S3D_SUBPIXEL_UNITS / 2, size);
+RaycastHit SceneBvh::castPixel(const RaycastCamera& camera, glm::uvec2 pixel, glm::uvec2 size,
+                               const CutoutCoverage* cutouts) const {
+  return castSubpixel(camera, glm::ivec2(pixel) * S3D_SUBPIXEL_UNITS + S3D_SUBPIXEL_UNITS / 2, size, cutouts);
 }
 
-RaycastHit SceneBvh::castSubpixel(const RaycastCamera& camera, glm::ivec2 subpixel, glm::uvec2 size) const {
+RaycastHit SceneBvh::castSubpixel(const RaycastCamera& camera, glm::ivec2 subpixel, glm::uvec2 size,
+                                  const CutoutCoverage* cutouts) const {
   const std::uint32_t roots[2] = {firstPersonRoot, worldRoot};
   const Layer layers[2] = {Layer::FirstPerson, Layer::World};
   for (int layer = 0; layer < 2; ++layer) {  // the first-person layer is in front of the world wherever it is hit
     if (roots[layer] == S3D_BVH_NO_ROOT) continue;
     float t = 0.0f, depth = 0.0f;
-    const std::uint32_t index = closestHit(roots[layer], pixelRayOf(camera, layers[layer], subpixel, size), t, depth);
+    const std::uint32_t index = closestHit(roots[layer], pixelRayOf(camera, layers[layer], subpixel, size), t, depth, cutouts);
     if (index == S3D_BVH_NO_ROOT) continue;
     const gpu::BvhTriangle& tri = triangles[index];
-    return {true, tri.object, tri.triangle, (tri.flags & S3D_BVH_CUTOUT) != 0, depth};
+    return {true, tri.object, tri.triangle, cutouts == nullptr && (tri.flags & S3D_BVH_CUTOUT) != 0, depth};
   }
   return {false, 0, 0, false, camera.clearedDepth};
 }

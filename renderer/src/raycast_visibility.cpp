@@ -21,7 +21,9 @@ RaycastVisibility::RaycastVisibility(vk::Context& context) : context_(context) {
       computeBinding(2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER), computeBinding(3, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE),
       computeBinding(4, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE),  computeBinding(5, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE),
       computeBinding(6, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER), computeBinding(7, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER),
-      computeBinding(8, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE)};
+      computeBinding(8, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE),  computeBinding(9, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER),
+      computeBinding(10, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER), computeBinding(11, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER),
+      computeBinding(12, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER), computeBinding(13, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER)};
   layout_ = vk::createPushDescriptorLayout(context_, bindings, 0, 0);
   pipeline_ = vk::createComputePipeline(context_, layout_.layout, spirv_raycast_visibility_comp);
   const VkDescriptorSetLayoutBinding setupBindings[] = {computeBinding(0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER),
@@ -80,7 +82,7 @@ void RaycastVisibility::recordSetup(VkCommandBuffer cmd, const VkDescriptorBuffe
 
 void RaycastVisibility::record(VkCommandBuffer cmd, const RaycastCamera& camera, const ShadeMask& mask,
                                const vk::Image& visibilityIds, const vk::Image& deviceDepth,
-                               const RaycastRegion& region) {
+                               const RaycastRegion& region, const RaycastCutouts& cutouts) {
   if (!hasBvh_) throw std::invalid_argument("the ray-cast visibility pass was recorded before it had a BVH");
   const std::uint32_t width = visibilityIds.width, height = visibilityIds.height;
   if (visibilityIds.format != VK_FORMAT_R32_UINT || deviceDepth.format != VK_FORMAT_R32_SFLOAT ||
@@ -102,7 +104,7 @@ void RaycastVisibility::record(VkCommandBuffer cmd, const RaycastCamera& camera,
   constants.options = glm::uvec4(mask.threshold, mask.image ? 1u : 0u, packing_.x, packing_.y);
   constants.clearedDepth = glm::vec4(camera.clearedDepth, nearerOf(camera), 0.0f, 0.0f);
   constants.region = glm::uvec4(region.tiles != VK_NULL_HANDLE ? 1u : 0u, region.tilesX,
-                                 mask.image && mask.uncastDepth ? 1u : 0u, 0u);
+                                 mask.image && mask.uncastDepth ? 1u : 0u, cutouts.objects != VK_NULL_HANDLE ? 1u : 0u);
   std::memcpy(constants_.mapped, &constants, sizeof(constants));
 
   VkDescriptorBufferInfo constantInfo{constants_.buffer, 0, VK_WHOLE_SIZE};
@@ -119,14 +121,24 @@ void RaycastVisibility::record(VkCommandBuffer cmd, const RaycastCamera& camera,
                                    VK_IMAGE_LAYOUT_GENERAL};
   // Without a region the node buffer stands in for it (the shader does not read it then).
   VkDescriptorBufferInfo regionInfo{region.tiles != VK_NULL_HANDLE ? region.tiles : nodes_.buffer, 0, VK_WHOLE_SIZE};
+  // Without cut-outs' alpha test the node buffer stands in for its buffers (the shader does not read them then).
+  const bool alphaTest = cutouts.objects != VK_NULL_HANDLE;
+  VkDescriptorBufferInfo objectInfo{alphaTest ? cutouts.objects : nodes_.buffer, 0, VK_WHOLE_SIZE};
+  VkDescriptorBufferInfo indexInfo{alphaTest ? cutouts.indices : nodes_.buffer, 0, VK_WHOLE_SIZE};
+  VkDescriptorBufferInfo surfaceInfo{alphaTest ? cutouts.surfaceVertices : nodes_.buffer, 0, VK_WHOLE_SIZE};
+  VkDescriptorBufferInfo tableInfo{alphaTest ? cutouts.textureTable : nodes_.buffer, 0, VK_WHOLE_SIZE};
+  VkDescriptorBufferInfo texelInfo{alphaTest ? cutouts.texels : nodes_.buffer, 0, VK_WHOLE_SIZE};
   VkWriteDescriptorSet writes[] = {vk::uniformBufferWrite(0, &constantInfo), vk::uniformBufferWrite(1, &nodeInfo),
                                    vk::uniformBufferWrite(2, &triangleInfo), vk::storageImageWrite(3, &maskInfo),
                                    vk::storageImageWrite(4, &idInfo),        vk::storageImageWrite(5, &depthInfo),
                                    vk::uniformBufferWrite(6, &regionInfo),   vk::uniformBufferWrite(7, &snappedInfo),
-                                   vk::storageImageWrite(8, &uncastInfo)};
-  for (std::uint32_t i : {1u, 2u, 6u, 7u}) writes[i].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+                                   vk::storageImageWrite(8, &uncastInfo),    vk::uniformBufferWrite(9, &objectInfo),
+                                   vk::uniformBufferWrite(10, &indexInfo),   vk::uniformBufferWrite(11, &surfaceInfo),
+                                   vk::uniformBufferWrite(12, &tableInfo),   vk::uniformBufferWrite(13, &texelInfo)};
+  for (std::uint32_t i : {1u, 2u, 6u, 7u, 9u, 10u, 11u, 12u, 13u}) writes[i].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_.get());
-  context_.cmdPushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_.layout, 0, 9, writes);
+  context_.cmdPushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_.layout, 0, std::uint32_t(std::size(writes)),
+                                writes);
   const std::uint32_t group = S3D_RAYCAST_GROUP_SIZE;
   vkCmdDispatch(cmd, (width + group - 1) / group, (height + group - 1) / group, 1);
 }

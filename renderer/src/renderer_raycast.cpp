@@ -48,8 +48,6 @@ bool DeferredRenderer::hasSurfaceBvh() const { return impl_->raycast && impl_->r
 std::optional<std::string> DeferredRenderer::Impl::raycastRefusal() const {
   if (!visibilityShading) return "ray-cast surfaces need visibility G-buffer shading (the resolve shades them)";
   if (visibilityPacking.y != 0) return "ray-cast surfaces need narrow visibility ids; this scene needs wide ones";
-  if (std::any_of(scene.objects.begin(), scene.objects.end(), [](const Object& o) { return o.material.isCutout(); }))
-    return "scene '" + scene.name + "' has cut-out objects, whose alpha test only the raster G-buffer pass runs";
   if (supersample != 1) return "ray-cast surfaces cast one ray per output pixel: no supersampling";
   if (transparentPass->hasObjects() && !transparentPass->usesCompute())
     return "scene '" + scene.name + "' has transparent objects that the raster pass blends (it needs the depth buffer)";
@@ -67,7 +65,9 @@ void DeferredRenderer::Impl::recordRaycastSurfaces(VkCommandBuffer cmd, const Vi
   if (!scene.ambientOcclusion) cast.uncastDepth = nullptr;
   else if (mask.uncastDepth == nullptr) cast = ShadeMask{};
   raycast->record(cmd, raycastCamera(scene, view, options.reversedZ), cast, raycastIds, raycastDepth,
-                  region ? RaycastRegion{tiles->buffer(), tiles->tilesX()} : RaycastRegion{});
+                  region ? RaycastRegion{tiles->buffer(), tiles->tilesX()} : RaycastRegion{},
+                  RaycastCutouts{objectBuffer.buffer, indexBuffer.buffer, surfaceBuffer.buffer, surfaceTextureTable.buffer,
+                                 surfaceTexels.buffer});
   vk::transition(cmd, raycastIds, vk::kComputeWrite, kComputeSampled);
   vk::transition(cmd, raycastDepth, vk::kComputeWrite, kComputeSampled);
 }

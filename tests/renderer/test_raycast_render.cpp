@@ -313,19 +313,6 @@ TEST_F(RaycastRenderPassTest, WithoutABvhOrUnderRasterShadingItIsRefused) {
   EXPECT_NE(raster.raycastSurfacesRefusal()->find("visibility"), std::string::npos);
 }
 
-// The compute resolve shades untextured surfaces only: a scene with a textured or a cut-out object is refused with
-// its name, and the hybrid keeps the rasterized eye there.
-TEST_F(RaycastRenderPassTest, CutOutSurfacesAreRefused) {
-  Scene scene = makeBuiltInScene("cover");
-  scene.objects[0].material.alphaCutoff = 0.5f;
-  DeferredRenderer renderer(context(), kWidth, kHeight, raycastOptions());
-  renderer.setScene(scene);
-  const std::optional<std::string> refusal = renderer.raycastSurfacesRefusal();
-  ASSERT_TRUE(refusal.has_value());
-  EXPECT_NE(refusal->find("'cover'"), std::string::npos) << *refusal;
-  EXPECT_NE(refusal->find("cut-out"), std::string::npos) << *refusal;
-}
-
 // A texture whose texels change by at most 40 levels between neighbours (a filtered value is then within a level
 // of the hardware's, whose filter weights are rounded to 8 bits on some devices) with a red-green-blue pattern.
 Texture patternTexture(std::uint32_t width, std::uint32_t height, Texture::Encoding encoding) {
@@ -406,6 +393,76 @@ TEST_F(RaycastRenderPassTest, TexturedAndDoubleSidedSurfacesComeOutAsTheRasterRe
   EXPECT_GT(onQuads, std::size_t(kWidth) * kHeight / 10) << "the quads cover a tenth of the image";
   EXPECT_LE(beyondOneLevel, compared / 100);
   EXPECT_LE(worst, 3);
+}
+
+// A cut-out (alpha cutoff 0.5 over a texture whose alpha rises and falls across it) is cast where its alpha test
+// keeps it: the rays' ids are the reference traversal's with CutoutCoverage (the same filter and arithmetic; a
+// hit whose alpha lies within rounding of the cutoff may differ: at most 2 pixels), and against the raster render,
+// whose sampler filters the alpha with its own weights, the two see different surfaces on at most 2 % of the
+// quad's pixels (along the cut's edges) and elsewhere match within 3 levels.
+TEST_F(RaycastRenderPassTest, ACutOutIsCastWhereItsAlphaTestKeepsIt) {
+  Scene scene = makeBuiltInScene("cover");
+  scene.camera = cameraForFrame(scene, 0);
+  Texture leaf = patternTexture(16, 16, Texture::Encoding::Srgb);
+  for (std::uint32_t i = 0; i < 16 * 16; ++i)
+    leaf.rgba[4 * i + 3] = std::uint8_t(128 + 120 * std::sin(0.9f * float(i % 16)) * std::cos(0.7f * float(i / 16)));
+  scene.textures = {leaf};
+  scene.meshes.push_back(test::makeTexturedQuad());
+  Object quad;
+  quad.mesh = std::uint32_t(scene.meshes.size() - 1);
+  quad.material.baseColorTexture = 0;
+  quad.material.alphaCutoff = 0.5f;
+  quad.transform = glm::inverse(cameraView(scene.camera)) * glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, 0.0f, -3.0f)) *
+                   glm::rotate(glm::mat4(1.0f), 0.4f, glm::vec3(0.0f, 1.0f, 0.0f));
+  scene.objects.push_back(quad);
+  const std::uint32_t quadIndex = std::uint32_t(scene.objects.size() - 1);
+
+  const ViewMatrices matrices = centerViewMatrices(scene, float(kWidth) / float(kHeight));
+  DeferredRenderer raster(context(), kWidth, kHeight, raycastOptions());
+  raster.setScene(scene);
+  raster.render(matrices);
+  const ImageRGBA8 rasterColor = raster.readDisplayColor();
+  const DepthImage rasterDepth = raster.readLinearDepth();
+  DeferredRenderer cast(context(), kWidth, kHeight, raycastOptions());
+  cast.setScene(scene);
+  ASSERT_FALSE(cast.raycastSurfacesRefusal().has_value()) << *cast.raycastSurfacesRefusal();
+  const SceneBvh bvh = SceneBvh::build(scene);
+  cast.setSurfaceBvh(bvh);
+  const vk::Image mask = uploadMask(context(), std::vector<std::uint32_t>(std::size_t(kWidth) * kHeight, 1u));
+  cast.render(matrices, {&mask, 1, ShadeMask::Surfaces::RayCast});
+  const ImageRGBA8 color = cast.readDisplayColor();
+  const DepthImage depth = cast.readLinearDepth();
+  const std::vector<std::uint32_t> ids = cast.readVisibilityIds();
+
+  const RaycastCamera camera = raycastCamera(scene, matrices);
+  const CutoutCoverage coverage(scene);
+  std::size_t otherId = 0, cutAway = 0, onQuad = 0, otherSurface = 0, beyondThree = 0;
+  for (std::uint32_t y = 0; y < kHeight; ++y)
+    for (std::uint32_t x = 0; x < kWidth; ++x) {
+      const RaycastHit tested = bvh.castPixel(camera, {x, y}, {kWidth, kHeight}, &coverage);
+      const RaycastHit untested = bvh.castPixel(camera, {x, y}, {kWidth, kHeight});
+      otherId += ids[std::size_t(y) * kWidth + x] != visibilityIdOf(tested, bvh.visibilityPacking).x ? 1 : 0;
+      const bool quadHit = untested.hit && untested.object == quadIndex;
+      onQuad += quadHit ? 1 : 0;
+      cutAway += quadHit && (!tested.hit || tested.object != quadIndex) ? 1 : 0;
+      const float seen = *rasterDepth.at(x, y), castDepth = *depth.at(x, y);
+      const bool sameSurface = std::isinf(seen) ? std::isinf(castDepth) : std::abs(castDepth - seen) <= 1e-4f * seen;
+      if (!sameSurface) {
+        otherSurface += quadHit ? 1 : 0;
+        continue;
+      }
+      int largest = 0;
+      for (int c = 0; c < 4; ++c) largest = std::max(largest, std::abs(int(color.at(x, y)[c]) - int(rasterColor.at(x, y)[c])));
+      beyondThree += largest > 3 ? 1 : 0;
+    }
+  std::cout << "[ ray-cast render ] cut-out quad: " << onQuad << " pixels on it, " << cutAway << " cut away; "
+            << otherId << " ids off the reference, " << otherSurface << " on another surface than the raster's, "
+            << beyondThree << " beyond 3 levels\n";
+  EXPECT_GT(cutAway, onQuad / 5) << "the alpha test cuts a fifth of the quad away";
+  EXPECT_LT(cutAway, onQuad * 4 / 5) << "and keeps a fifth of it";
+  EXPECT_LE(otherId, 2u);
+  EXPECT_LE(otherSurface, onQuad / 50);
+  EXPECT_EQ(beyondThree, 0u);
 }
 
 // A new scene (or pose) drops the BVH: rays through the old tree would find the old triangles.

@@ -71,7 +71,8 @@ struct RaycastConstants {
   vec4 clearedDepth;       // x: the device depth of a pixel that shows nothing (sky), y: PixelRay::nearer
   uvec4 region;            // x: 1 casts only the pixels of the tiles flagged in the region's buffer (the others get
                            // the cleared depth and id 0), y: tiles per row (S3D_TILE_SIZE pixels square), z: 1 gives
-                           // the unmasked pixels (of the region, if any) the uncast depth image's depth and id 0
+                           // the unmasked pixels (of the region, if any) the uncast depth image's depth and id 0,
+                           // w: 1 runs cut-outs' alpha test on their hits (RaycastCutouts)
 };
 
 // One pixel ray of one layer, what its leaf tests need: the ray from the near plane (t 0) to the far plane (t 1)
@@ -222,6 +223,21 @@ S3D_INLINE bool interpolateDepth(ivec2 p0, ivec2 p1, ivec2 p2, float z0, float z
 // snapped; past the far plane its edges stay the triangle's own (coverSample drops samples whose depth lies beyond).
 // Front faces are counter-clockwise in the framebuffer (VK_FRONT_FACE_COUNTER_CLOCKWISE); back faces (but
 // double-sided ones) and polygons of zero snapped area never cover. Left to the ray test: a vertex past
+// The barycentrics (of v0, v1, v2) where the ray's line meets the triangle's plane: the perspective-correct
+// weights the raster pass interpolates with at the ray's sample (Möller-Trumbore's u, v, without its range
+// tests); a triangle seen edge-on gets its centroid.
+S3D_INLINE vec3 rayBarycentrics(vec3 origin, vec3 direction, vec3 v0, vec3 v1, vec3 v2) {
+  vec3 e1 = v1 - v0;
+  vec3 e2 = v2 - v0;
+  vec3 p = cross(direction, e2);
+  float det = dot(e1, p);
+  if (det == 0.0f) return vec3(1.0f / 3.0f, 1.0f / 3.0f, 1.0f / 3.0f);
+  vec3 s = origin - v0;
+  float u = dot(s, p) / det;
+  float v = dot(direction, cross(s, e1)) / det;
+  return vec3(1.0f - u - v, u, v);
+}
+
 // S3D_RASTER_REACH, or a clipped polygon whose first three vertices snap onto one line.
 S3D_INLINE SnappedTriangle setupTriangle(mat4 m, vec4 screen, float nearer, vec3 v0, vec3 v1, vec3 v2, uint flags) {
   SnappedTriangle snapped;

@@ -22,6 +22,16 @@ struct RaycastRegion {
   std::uint32_t tilesX = 0;
 };
 
+// What cut-outs' alpha test (CutoutCoverage) reads on the GPU, the renderer's scene buffers: its object constants
+// (gpu::ObjectConstants), index buffer, surface vertices (gpu::SurfaceVertex) and the texture table and texels of
+// the G-buffer resolve (surface_texels.glsl). Null objects: a cut-out's hit is not tested and writes
+// S3D_RASTER_SHADED.
+struct RaycastCutouts {
+  VkBuffer objects = VK_NULL_HANDLE;
+  VkBuffer indices = VK_NULL_HANDLE, surfaceVertices = VK_NULL_HANDLE;
+  VkBuffer textureTable = VK_NULL_HANDLE, texels = VK_NULL_HANDLE;
+};
+
 class RaycastVisibility {
  public:
   explicit RaycastVisibility(vk::Context& context);
@@ -35,13 +45,14 @@ class RaycastVisibility {
   // Records the pass for the pixels of `mask` (ShadeMask's image and threshold; a null image: every pixel):
   // `visibilityIds` (R32_UINT) and `deviceDepth` (R32_SFLOAT), both the mask's size when there is one, created
   // with VK_IMAGE_USAGE_STORAGE_BIT and in VK_IMAGE_LAYOUT_GENERAL, get the masked pixels' ids and depths
-  // (SceneBvh::castPixel); other pixels are not written, but for a region's (RaycastRegion), and with the mask's
+  // (SceneBvh::castPixel, with a CutoutCoverage where `cutouts` are given); other pixels are not written, but
+  // for a region's (RaycastRegion), and with the mask's
   // uncastDepth they get its depth and id 0 (within the region, when there is one). The caller orders it against
   // earlier and later uses of the images with barriers (it records compute barriers for its own buffers only: the
   // per-view triangle setup). Uses one uniform buffer: one recording in flight at a time.
   // Throws std::invalid_argument for images of other formats or sizes, or before setBvh.
   void record(VkCommandBuffer cmd, const RaycastCamera& camera, const ShadeMask& mask, const vk::Image& visibilityIds,
-              const vk::Image& deviceDepth, const RaycastRegion& region = {});
+              const vk::Image& deviceDepth, const RaycastRegion& region = {}, const RaycastCutouts& cutouts = {});
 
  private:
   void recordSetup(VkCommandBuffer cmd, const VkDescriptorBufferInfo& constants, const VkDescriptorBufferInfo& triangles,

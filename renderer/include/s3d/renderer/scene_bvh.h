@@ -55,6 +55,20 @@ struct RaycastHit {
 // for a cut-out; a miss writes 0 (its cleared depth says it shows nothing, as the G-buffer resolve reads it).
 glm::uvec2 visibilityIdOf(const RaycastHit& hit, glm::uvec2 visibilityPacking);
 
+// The alpha test of cut-out objects (Material::alphaCutoff) run on a ray's hit, as the raster pass runs it on its
+// fragment: the coverage alpha (cutoutAlpha x the base-colour texel's alpha, bilinear and repeating at level 0,
+// after the texture transform) at the hit's perspective-correct texture coordinate. The GPU pass runs the same
+// test (raycast_visibility.comp, RaycastCutouts). Keeps a reference to the scene.
+class CutoutCoverage {
+ public:
+  explicit CutoutCoverage(const Scene& scene) : scene_(scene) {}
+  // Whether triangle `triangle` of object `object` (a cut-out) covers the point with barycentrics `b`.
+  bool covers(std::uint32_t object, std::uint32_t triangle, glm::vec3 b) const;
+
+ private:
+  const Scene& scene_;
+};
+
 // How a tree is built. SpatialSplits: Embree's high-quality builder, which may split a triangle's reference at a
 // node plane (a triangle then sits in several leaves, each leaf's box bounding only its part): fewer boxes
 // overlap where triangles are long or large, so rays visit fewer nodes, for about ten times the build
@@ -76,12 +90,16 @@ struct SceneBvh {
 
   // The reference traversal: the closest hit of render pixel `pixel` of a width x height image (its centre's
   // sample), exactly the GPU pass's rule (raycast_shared.h), first-person layer first.
-  RaycastHit castPixel(const RaycastCamera& camera, glm::uvec2 pixel, glm::uvec2 size) const;
+  // With `cutouts` a cut-out's hit counts where its alpha test keeps it (and is not flagged `cutout`).
+  RaycastHit castPixel(const RaycastCamera& camera, glm::uvec2 pixel, glm::uvec2 size,
+                       const CutoutCoverage* cutouts = nullptr) const;
   // The same for a sample anywhere in the image, in 1 / S3D_SUBPIXEL_UNITS pixel units.
-  RaycastHit castSubpixel(const RaycastCamera& camera, glm::ivec2 subpixel, glm::uvec2 size) const;
+  RaycastHit castSubpixel(const RaycastCamera& camera, glm::ivec2 subpixel, glm::uvec2 size,
+                          const CutoutCoverage* cutouts = nullptr) const;
   // The closest hit of one tree along a pixel ray: its triangle's index in `triangles`, its ray parameter and
   // device depth (S3D_BVH_NO_ROOT and infinities for none).
-  std::uint32_t closestHit(std::uint32_t root, const gpu::PixelRay& ray, float& t, float& deviceDepth) const;
+  std::uint32_t closestHit(std::uint32_t root, const gpu::PixelRay& ray, float& t, float& deviceDepth,
+                           const CutoutCoverage* cutouts = nullptr) const;
   // Depth of the deeper tree (1 for a single leaf, 0 for no tree).
   std::uint32_t depth() const;
 };
