@@ -95,7 +95,7 @@ class BenchCommand final : public Command {
               options_.hybridSurfaces = *surfaces;
             },
             "How the hybrid settings find their eye pixels' surfaces: auto (ray casting where the eye renderer can "
-            "shade what rays find: a GPU's visibility shading, no textured or cut-out surfaces; else rasterized), "
+            "shade what rays find: a GPU's visibility shading; else rasterized), "
             "raster, raycast (the eye renderer made to shade rays: visibility shading and the compute transparent "
             "pass, also on a CPU device; with ambient occlusion only the masked pixels are cast, the occlusion's "
             "region around them takes the center's depth where the base samples) or raycast-region (as raycast, "
