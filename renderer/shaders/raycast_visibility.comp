@@ -6,7 +6,7 @@
 // depth). The first-person layer's tree is cast first with its own projection; a hit there wins, as its depth
 // range in front of the world's does in the raster pass. Pixels outside the mask are not written, or with an
 // uncast depth (constants.region.z) get its depth and id 0 (outside a region: the cleared depth). Cut-outs' hits
-// run their alpha test with constants.region.w (else they write S3D_RASTER_SHADED). The per-ray
+// run their alpha test with kCutoutAlphaTest (else they write S3D_RASTER_SHADED). The per-ray
 // arithmetic is raycast_shared.h's, which the C++ reference traversal (SceneBvh::castPixel) runs in the same order.
 #extension GL_GOOGLE_include_directive : require
 #include "s3d/renderer/renderer_shared.h"
@@ -29,7 +29,8 @@ layout(std430, binding = 6) readonly buffer Region {
 layout(std430, binding = 7) readonly buffer Snapped { SnappedTriangle snapped[]; };
 // With constants.region.z: the device depth of the pixels not cast (a hybrid's: its base displacement's depth).
 layout(binding = 8, r32f) uniform readonly image2D uncastDepth;
-// With constants.region.w: what cut-outs' alpha test reads (RaycastCutouts).
+// With kCutoutAlphaTest: what cut-outs' alpha test reads (RaycastCutouts).
+layout(constant_id = 0) const bool kCutoutAlphaTest = false;
 layout(std430, binding = 9) readonly buffer Objects { ObjectConstants objects[]; };
 layout(std430, binding = 10) readonly buffer Indices { uint indices[]; };
 layout(std430, binding = 11) readonly buffer Surfaces { float surfaceFloats[]; };  // texture coordinates, tangent
@@ -39,16 +40,19 @@ layout(std430, binding = 11) readonly buffer Surfaces { float surfaceFloats[]; }
 
 vec2 vertexTexCoord(uint v) { return vec2(surfaceFloats[6u * v], surfaceFloats[6u * v + 1u]); }
 
-// CutoutCoverage::covers: the coverage alpha at the hit's perspective-correct texture coordinate.
-bool coversCutout(uint objectIndex, uint triangle, vec3 b) {
-  uint first = objects[objectIndex].firstIndex + 3u * triangle;
+// CutoutCoverage::covers for the ray's hit on tree triangle i: the coverage alpha at its perspective-correct
+// texture coordinate.
+bool coversCutout(uint i, PixelRay ray) {
+  uint objectIndex = triangles[i].object;
+  vec3 b = rayBarycentrics(ray.origin, ray.direction, triangles[i].v0, triangles[i].v1, triangles[i].v2);
+  uint first = objects[objectIndex].firstIndex + 3u * triangles[i].triangle;
   uvec3 v = uvec3(indices[first], indices[first + 1u], indices[first + 2u]) + objects[objectIndex].vertexOffset;
   vec2 uv = b.x * vertexTexCoord(v.x) + b.y * vertexTexCoord(v.y) + b.z * vertexTexCoord(v.z);
-  uint texture = objects[objectIndex].surfaceTextures.x;
+  uint baseColor = objects[objectIndex].surfaceTextures.x;
   float texelAlpha = 1.0;
-  if (texture != S3D_NO_TEXTURE)
-    texelAlpha = sampleTexels(texture, transformTexCoord(objects[objectIndex].baseColorUv,
-                                                          objects[objectIndex].uvOffsets.xy, uv)).a;
+  if (baseColor != S3D_NO_TEXTURE)
+    texelAlpha = sampleTexels(baseColor, transformTexCoord(objects[objectIndex].baseColorUv,
+                                                            objects[objectIndex].uvOffsets.xy, uv)).a;
   return !cutOut(objects[objectIndex].albedo.a, texelAlpha, objects[objectIndex].emissive.a);
 }
 
@@ -75,9 +79,7 @@ uint closestHit(uint root, PixelRay ray, out float bestT, out float bestDepth) {
                          depth) &&
             (best == S3D_BVH_NO_ROOT || closerHit(depth * ray.nearer, t, triangles[i].object, triangles[i].triangle, bestKey, bestT,
                                                   triangles[best].object, triangles[best].triangle)) &&
-            (constants.region.w == 0u || (triangles[i].flags & S3D_BVH_CUTOUT) == 0u ||
-             coversCutout(triangles[i].object, triangles[i].triangle,
-                          rayBarycentrics(ray.origin, ray.direction, triangles[i].v0, triangles[i].v1, triangles[i].v2)))) {
+            (!kCutoutAlphaTest || (triangles[i].flags & S3D_BVH_CUTOUT) == 0u || coversCutout(i, ray))) {
           bestT = t;
           bestDepth = depth;
           bestKey = depth * ray.nearer;
@@ -120,7 +122,7 @@ bool castLayer(int layer, uvec2 pixel, ivec2 subpixel) {
   float t, depth;
   uint hit = closestHit(root, ray, t, depth);
   if (hit == S3D_BVH_NO_ROOT) return false;
-  uvec2 id = constants.region.w == 0u && (triangles[hit].flags & S3D_BVH_CUTOUT) != 0u
+  uvec2 id = !kCutoutAlphaTest && (triangles[hit].flags & S3D_BVH_CUTOUT) != 0u
                  ? uvec2(S3D_RASTER_SHADED, 0u)
                  : packVisibility(triangles[hit].object, triangles[hit].triangle, constants.options);
   imageStore(visibilityIds, ivec2(pixel), uvec4(id.x, 0u, 0u, 0u));

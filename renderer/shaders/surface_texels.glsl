@@ -11,9 +11,9 @@ float decodeSrgb(float encoded) {
   return encoded <= 0.04045 ? encoded / 12.92 : pow((encoded + 0.055) / 1.055, 2.4);
 }
 
-vec4 texelOf(uvec4 texture, int x, int y) {
-  vec4 texel = unpackUnorm4x8(texels[texture.x + uint(y) * texture.y + uint(x)]);
-  if (texture.w != 0u) texel.rgb = vec3(decodeSrgb(texel.r), decodeSrgb(texel.g), decodeSrgb(texel.b));
+vec4 texelOf(uvec4 entry, int x, int y) {
+  vec4 texel = unpackUnorm4x8(texels[entry.x + uint(y) * entry.y + uint(x)]);
+  if (entry.w != 0u) texel.rgb = vec3(decodeSrgb(texel.r), decodeSrgb(texel.g), decodeSrgb(texel.b));
   return texel;
 }
 
@@ -24,17 +24,17 @@ int wrapTexel(int i, int size) {
 }
 
 vec4 sampleTexels(uint textureIndex, vec2 uv) {
-  uvec4 texture = textureTable[textureIndex];
-  vec2 size = vec2(texture.yz);
+  uvec4 entry = textureTable[textureIndex];  // first texel, width, height, sRGB
+  vec2 size = vec2(entry.yz);
   // Only the coordinate within one repeat matters, so a large or non-finite one cannot overflow the index.
   vec2 wrapped = uv - floor(uv);
   if (any(isnan(wrapped)) || any(isinf(wrapped))) wrapped = vec2(0.0);
   vec2 position = wrapped * size - 0.5;
   vec2 corner = floor(position);
   vec2 weight = position - corner;
-  int x0 = wrapTexel(int(corner.x), int(texture.y)), x1 = wrapTexel(int(corner.x) + 1, int(texture.y));
-  int y0 = wrapTexel(int(corner.y), int(texture.z)), y1 = wrapTexel(int(corner.y) + 1, int(texture.z));
-  vec4 top = mix(texelOf(texture, x0, y0), texelOf(texture, x1, y0), weight.x);
-  vec4 bottom = mix(texelOf(texture, x0, y1), texelOf(texture, x1, y1), weight.x);
+  int x0 = wrapTexel(int(corner.x), int(entry.y)), x1 = wrapTexel(int(corner.x) + 1, int(entry.y));
+  int y0 = wrapTexel(int(corner.y), int(entry.z)), y1 = wrapTexel(int(corner.y) + 1, int(entry.z));
+  vec4 top = mix(texelOf(entry, x0, y0), texelOf(entry, x1, y0), weight.x);
+  vec4 bottom = mix(texelOf(entry, x0, y1), texelOf(entry, x1, y1), weight.x);
   return mix(top, bottom, weight.y);
 }

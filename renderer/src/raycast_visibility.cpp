@@ -1,5 +1,6 @@
 #include "s3d/renderer/raycast_visibility.h"
 
+#include <algorithm>
 #include <cstring>
 #include <span>
 #include <stdexcept>
@@ -25,7 +26,7 @@ RaycastVisibility::RaycastVisibility(vk::Context& context) : context_(context) {
       computeBinding(10, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER), computeBinding(11, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER),
       computeBinding(12, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER), computeBinding(13, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER)};
   layout_ = vk::createPushDescriptorLayout(context_, bindings, 0, 0);
-  pipeline_ = vk::createComputePipeline(context_, layout_.layout, spirv_raycast_visibility_comp);
+  pipeline_ = vk::createComputePipeline(context_, layout_.layout, spirv_raycast_visibility_comp);  // no alpha test
   const VkDescriptorSetLayoutBinding setupBindings[] = {computeBinding(0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER),
                                                         computeBinding(1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER),
                                                         computeBinding(2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER)};
@@ -55,7 +56,21 @@ void RaycastVisibility::setBvh(const SceneBvh& bvh) {
   worldRoot_ = bvh.worldRoot;
   firstPersonRoot_ = bvh.firstPersonRoot;
   packing_ = bvh.visibilityPacking;
+  hasCutouts_ = std::any_of(bvh.triangles.begin(), bvh.triangles.end(),
+                            [](const gpu::BvhTriangle& t) { return (t.flags & S3D_BVH_CUTOUT) != 0; });
   hasBvh_ = true;
+}
+
+// The traversal with cut-outs' alpha test compiled in (kCutoutAlphaTest), made at the first tree that needs it:
+// trees without cut-outs keep the traversal whose registers nothing rarely taken adds to.
+VkPipeline RaycastVisibility::alphaTestPipeline() {
+  if (!alphaTestPipeline_) {
+    const VkBool32 on = VK_TRUE;
+    const VkSpecializationMapEntry entry{0, 0, sizeof(VkBool32)};
+    const VkSpecializationInfo specialization{1, &entry, sizeof(on), &on};
+    alphaTestPipeline_ = vk::createComputePipeline(context_, layout_.layout, spirv_raycast_visibility_comp, &specialization);
+  }
+  return alphaTestPipeline_.get();
 }
 
 // Every triangle set up for the view (after the previous recording's casts read the buffer), then ordered before
@@ -104,7 +119,7 @@ void RaycastVisibility::record(VkCommandBuffer cmd, const RaycastCamera& camera,
   constants.options = glm::uvec4(mask.threshold, mask.image ? 1u : 0u, packing_.x, packing_.y);
   constants.clearedDepth = glm::vec4(camera.clearedDepth, nearerOf(camera), 0.0f, 0.0f);
   constants.region = glm::uvec4(region.tiles != VK_NULL_HANDLE ? 1u : 0u, region.tilesX,
-                                 mask.image && mask.uncastDepth ? 1u : 0u, cutouts.objects != VK_NULL_HANDLE ? 1u : 0u);
+                                 mask.image && mask.uncastDepth ? 1u : 0u, 0u);
   std::memcpy(constants_.mapped, &constants, sizeof(constants));
 
   VkDescriptorBufferInfo constantInfo{constants_.buffer, 0, VK_WHOLE_SIZE};
@@ -122,7 +137,7 @@ void RaycastVisibility::record(VkCommandBuffer cmd, const RaycastCamera& camera,
   // Without a region the node buffer stands in for it (the shader does not read it then).
   VkDescriptorBufferInfo regionInfo{region.tiles != VK_NULL_HANDLE ? region.tiles : nodes_.buffer, 0, VK_WHOLE_SIZE};
   // Without cut-outs' alpha test the node buffer stands in for its buffers (the shader does not read them then).
-  const bool alphaTest = cutouts.objects != VK_NULL_HANDLE;
+  const bool alphaTest = cutouts.objects != VK_NULL_HANDLE && hasCutouts_;
   VkDescriptorBufferInfo objectInfo{alphaTest ? cutouts.objects : nodes_.buffer, 0, VK_WHOLE_SIZE};
   VkDescriptorBufferInfo indexInfo{alphaTest ? cutouts.indices : nodes_.buffer, 0, VK_WHOLE_SIZE};
   VkDescriptorBufferInfo surfaceInfo{alphaTest ? cutouts.surfaceVertices : nodes_.buffer, 0, VK_WHOLE_SIZE};
@@ -136,7 +151,7 @@ void RaycastVisibility::record(VkCommandBuffer cmd, const RaycastCamera& camera,
                                    vk::uniformBufferWrite(10, &indexInfo),   vk::uniformBufferWrite(11, &surfaceInfo),
                                    vk::uniformBufferWrite(12, &tableInfo),   vk::uniformBufferWrite(13, &texelInfo)};
   for (std::uint32_t i : {1u, 2u, 6u, 7u, 9u, 10u, 11u, 12u, 13u}) writes[i].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_.get());
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, alphaTest ? alphaTestPipeline() : pipeline_.get());
   context_.cmdPushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_.layout, 0, std::uint32_t(std::size(writes)),
                                 writes);
   const std::uint32_t group = S3D_RAYCAST_GROUP_SIZE;

@@ -71,8 +71,7 @@ struct RaycastConstants {
   vec4 clearedDepth;       // x: the device depth of a pixel that shows nothing (sky), y: PixelRay::nearer
   uvec4 region;            // x: 1 casts only the pixels of the tiles flagged in the region's buffer (the others get
                            // the cleared depth and id 0), y: tiles per row (S3D_TILE_SIZE pixels square), z: 1 gives
-                           // the unmasked pixels (of the region, if any) the uncast depth image's depth and id 0,
-                           // w: 1 runs cut-outs' alpha test on their hits (RaycastCutouts)
+                           // the unmasked pixels (of the region, if any) the uncast depth image's depth and id 0
 };
 
 // One pixel ray of one layer, what its leaf tests need: the ray from the near plane (t 0) to the far plane (t 1)

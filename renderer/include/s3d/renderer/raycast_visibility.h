@@ -55,6 +55,7 @@ class RaycastVisibility {
               const vk::Image& deviceDepth, const RaycastRegion& region = {}, const RaycastCutouts& cutouts = {});
 
  private:
+  VkPipeline alphaTestPipeline();
   void recordSetup(VkCommandBuffer cmd, const VkDescriptorBufferInfo& constants, const VkDescriptorBufferInfo& triangles,
                    const VkDescriptorBufferInfo& snapped) const;
 
@@ -65,6 +66,8 @@ class RaycastVisibility {
   vk::Buffer snapped_;  // every triangle set up for the recorded view (raycast_setup.comp)
   std::uint32_t triangleCount_ = 0, firstPersonFirst_ = 0;
   std::uint32_t worldRoot_ = S3D_BVH_NO_ROOT, firstPersonRoot_ = S3D_BVH_NO_ROOT;
+  bool hasCutouts_ = false;  // the tree holds cut-out triangles (S3D_BVH_CUTOUT)
+  vk::Unique<VkPipeline> alphaTestPipeline_;
   glm::uvec2 packing_{0, 0};
   bool hasBvh_ = false;
 };
