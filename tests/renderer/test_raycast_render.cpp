@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstring>
 #include <iostream>
+#include <optional>
 #include <random>
 #include <span>
 #include <string>
@@ -313,6 +314,35 @@ TEST_F(RaycastRenderPassTest, WithoutABvhOrUnderRasterShadingItIsRefused) {
   EXPECT_NE(raster.raycastSurfacesRefusal()->find("visibility"), std::string::npos);
 }
 
+// The scene's center view rendered by the raster pass and by rays (every pixel masked), both under visibility
+// shading; refusal: why the rays were refused (nothing else is rendered then).
+struct RasterAndCast {
+  std::optional<std::string> refusal;
+  ImageRGBA8 rasterColor, color;
+  DepthImage rasterDepth, depth;
+  std::vector<std::uint32_t> ids;  // the rays' visibility ids
+};
+RasterAndCast renderBothWays(vk::Context& context, const Scene& scene, const SceneBvh& bvh) {
+  RasterAndCast result;
+  const ViewMatrices matrices = centerViewMatrices(scene, float(kWidth) / float(kHeight));
+  DeferredRenderer cast(context, kWidth, kHeight, raycastOptions());
+  cast.setScene(scene);
+  result.refusal = cast.raycastSurfacesRefusal();
+  if (result.refusal) return result;
+  DeferredRenderer raster(context, kWidth, kHeight, raycastOptions());
+  raster.setScene(scene);
+  raster.render(matrices);
+  result.rasterColor = raster.readDisplayColor();
+  result.rasterDepth = raster.readLinearDepth();
+  cast.setSurfaceBvh(bvh);
+  const vk::Image mask = uploadMask(context, std::vector<std::uint32_t>(std::size_t(kWidth) * kHeight, 1u));
+  cast.render(matrices, {&mask, 1, ShadeMask::Surfaces::RayCast});
+  result.color = cast.readDisplayColor();
+  result.depth = cast.readLinearDepth();
+  result.ids = cast.readVisibilityIds();
+  return result;
+}
+
 // A texture whose texels change by at most 40 levels between neighbours (a filtered value is then within a level
 // of the hardware's, whose filter weights are rounded to 8 bits on some devices) with a red-green-blue pattern.
 Texture patternTexture(std::uint32_t width, std::uint32_t height, Texture::Encoding encoding) {
@@ -360,20 +390,10 @@ TEST_F(RaycastRenderPassTest, TexturedAndDoubleSidedSurfacesComeOutAsTheRasterRe
   scene.objects.push_back(front);
   scene.objects.push_back(back);
 
-  const ViewMatrices matrices = centerViewMatrices(scene, float(kWidth) / float(kHeight));
-  DeferredRenderer raster(context(), kWidth, kHeight, raycastOptions());
-  raster.setScene(scene);
-  raster.render(matrices);
-  const ImageRGBA8 rasterColor = raster.readDisplayColor();
-  const DepthImage rasterDepth = raster.readLinearDepth();
-  DeferredRenderer cast(context(), kWidth, kHeight, raycastOptions());
-  cast.setScene(scene);
-  ASSERT_FALSE(cast.raycastSurfacesRefusal().has_value()) << *cast.raycastSurfacesRefusal();
-  cast.setSurfaceBvh(SceneBvh::build(scene));
-  const vk::Image mask = uploadMask(context(), std::vector<std::uint32_t>(std::size_t(kWidth) * kHeight, 1u));
-  cast.render(matrices, {&mask, 1, ShadeMask::Surfaces::RayCast});
-  const ImageRGBA8 color = cast.readDisplayColor();
-  const DepthImage depth = cast.readLinearDepth();
+  const RasterAndCast renders = renderBothWays(context(), scene, SceneBvh::build(scene));
+  ASSERT_FALSE(renders.refusal.has_value()) << *renders.refusal;
+  const ImageRGBA8 &rasterColor = renders.rasterColor, &color = renders.color;
+  const DepthImage &rasterDepth = renders.rasterDepth, &depth = renders.depth;
 
   std::size_t compared = 0, onQuads = 0, beyondOneLevel = 0;
   int worst = 0;
@@ -417,24 +437,14 @@ TEST_F(RaycastRenderPassTest, ACutOutIsCastWhereItsAlphaTestKeepsIt) {
   scene.objects.push_back(quad);
   const std::uint32_t quadIndex = std::uint32_t(scene.objects.size() - 1);
 
-  const ViewMatrices matrices = centerViewMatrices(scene, float(kWidth) / float(kHeight));
-  DeferredRenderer raster(context(), kWidth, kHeight, raycastOptions());
-  raster.setScene(scene);
-  raster.render(matrices);
-  const ImageRGBA8 rasterColor = raster.readDisplayColor();
-  const DepthImage rasterDepth = raster.readLinearDepth();
-  DeferredRenderer cast(context(), kWidth, kHeight, raycastOptions());
-  cast.setScene(scene);
-  ASSERT_FALSE(cast.raycastSurfacesRefusal().has_value()) << *cast.raycastSurfacesRefusal();
   const SceneBvh bvh = SceneBvh::build(scene);
-  cast.setSurfaceBvh(bvh);
-  const vk::Image mask = uploadMask(context(), std::vector<std::uint32_t>(std::size_t(kWidth) * kHeight, 1u));
-  cast.render(matrices, {&mask, 1, ShadeMask::Surfaces::RayCast});
-  const ImageRGBA8 color = cast.readDisplayColor();
-  const DepthImage depth = cast.readLinearDepth();
-  const std::vector<std::uint32_t> ids = cast.readVisibilityIds();
+  const RasterAndCast renders = renderBothWays(context(), scene, bvh);
+  ASSERT_FALSE(renders.refusal.has_value()) << *renders.refusal;
+  const ImageRGBA8 &rasterColor = renders.rasterColor, &color = renders.color;
+  const DepthImage &rasterDepth = renders.rasterDepth, &depth = renders.depth;
+  const std::vector<std::uint32_t>& ids = renders.ids;
 
-  const RaycastCamera camera = raycastCamera(scene, matrices);
+  const RaycastCamera camera = raycastCamera(scene, centerViewMatrices(scene, float(kWidth) / float(kHeight)));
   const CutoutCoverage coverage(scene);
   std::size_t otherId = 0, cutAway = 0, onQuad = 0, otherSurface = 0, beyondThree = 0;
   for (std::uint32_t y = 0; y < kHeight; ++y)
