@@ -8,8 +8,9 @@
 // raster pass would: textured and double-sided objects, sampling the scene's texels from storage buffers.
 //
 // Reads: device depth and the visibility target (sampled by compute), the frame and object constants, the index
-// and vertex buffers, the tile buffer (a masked render also the shade mask), the surface vertices and texels. Writes: the normal/glossiness and
-// material targets (storage images, GENERAL), left sampled by compute (SHADER_READ_ONLY) for the passes after it.
+// and vertex buffers, the tile buffer (a masked render also the shade mask), the surface vertices and texels.
+// Writes: the normal/glossiness and material targets (storage images, GENERAL), left sampled by compute
+// (SHADER_READ_ONLY) for the passes after it.
 #include <cstdint>
 #include <memory>
 
@@ -33,7 +34,7 @@ class GBufferResolve {
     bool masked;
     std::uint32_t tilesX, tilesY;
     // Read only with surfaceMaterials (any valid buffer otherwise): gpu::SurfaceVertex per vertex, the texture
-    // table (first texel, width, height, sRGB per texture) and the RGBA8 texels (SurfaceTexels).
+    // table (first texel, width, height, sRGB per texture) and the RGBA8 texels (surface_texels.glsl).
     VkBuffer surfaceVertices, textureTable, texels;
     bool surfaceMaterials;
   };

@@ -57,7 +57,8 @@ bool CutoutCoverage::covers(std::uint32_t objectIndex, std::uint32_t triangle, g
   if (material.baseColorTexture != kNoTexture) {
     const Texture& texture = scene_.textures[std::size_t(material.baseColorTexture)];
     const glm::mat3 t = material.baseColorTransform.matrix();  // packed as the renderer's ObjectConstants packs it
-    const glm::vec2 at = gpu::transformTexCoord(glm::vec4(t[0][0], t[1][0], t[0][1], t[1][1]), glm::vec2(t[2][0], t[2][1]), uv);
+    const glm::vec2 at =
+        gpu::transformTexCoord(glm::vec4(t[0][0], t[1][0], t[0][1], t[1][1]), glm::vec2(t[2][0], t[2][1]), uv);
     // surface_texels.glsl's filter, alpha only (never sRGB-encoded).
     glm::vec2 wrapped = at - glm::floor(at);
     if (!std::isfinite(wrapped.x) || !std::isfinite(wrapped.y)) wrapped = glm::vec2(0.0f);
@@ -99,7 +100,8 @@ std::uint32_t SceneBvh::closestHit(std::uint32_t root, const gpu::PixelRay& ray,
             (best == S3D_BVH_NO_ROOT || gpu::closerHit(depth * ray.nearer, t, tri.object, tri.triangle, bestKey, bestT,
                                                        triangles[best].object, triangles[best].triangle)) &&
             (cutouts == nullptr || (tri.flags & S3D_BVH_CUTOUT) == 0 ||
-             cutouts->covers(tri.object, tri.triangle, gpu::rayBarycentrics(ray.origin, ray.direction, tri.v0, tri.v1, tri.v2)))) {
+             cutouts->covers(tri.object, tri.triangle,
+                             gpu::rayBarycentrics(ray.origin, ray.direction, tri.v0, tri.v1, tri.v2)))) {
           bestT = t;
           bestDepth = depth;
           bestKey = depth * ray.nearer;
@@ -143,7 +145,8 @@ RaycastHit SceneBvh::castSubpixel(const RaycastCamera& camera, glm::ivec2 subpix
   for (int layer = 0; layer < 2; ++layer) {  // the first-person layer is in front of the world wherever it is hit
     if (roots[layer] == S3D_BVH_NO_ROOT) continue;
     float t = 0.0f, depth = 0.0f;
-    const std::uint32_t index = closestHit(roots[layer], pixelRayOf(camera, layers[layer], subpixel, size), t, depth, cutouts);
+    const std::uint32_t index =
+        closestHit(roots[layer], pixelRayOf(camera, layers[layer], subpixel, size), t, depth, cutouts);
     if (index == S3D_BVH_NO_ROOT) continue;
     const gpu::BvhTriangle& tri = triangles[index];
     return {true, tri.object, tri.triangle, cutouts == nullptr && (tri.flags & S3D_BVH_CUTOUT) != 0, depth};

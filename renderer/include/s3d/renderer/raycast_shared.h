@@ -217,11 +217,6 @@ S3D_INLINE bool interpolateDepth(ivec2 p0, ivec2 p1, ivec2 p2, float z0, float z
   return w0 >= 0.0f && w1 >= 0.0f && w2 >= 0.0f;
 }
 
-// How the rasterizer sets a triangle up for a view (m: its layer's view-projection; nearer: PixelRay::nearer):
-// clipped at the near plane in clip space (into a polygon of up to 4 vertices, as the rasterizer clips it) and
-// snapped; past the far plane its edges stay the triangle's own (coverSample drops samples whose depth lies beyond).
-// Front faces are counter-clockwise in the framebuffer (VK_FRONT_FACE_COUNTER_CLOCKWISE); back faces (but
-// double-sided ones) and polygons of zero snapped area never cover. Left to the ray test: a vertex past
 // The barycentrics (of v0, v1, v2) where the ray's line meets the triangle's plane: the perspective-correct
 // weights the raster pass interpolates with at the ray's sample (Möller-Trumbore's u, v, without its range
 // tests); a triangle seen edge-on gets its centroid.
@@ -237,6 +232,11 @@ S3D_INLINE vec3 rayBarycentrics(vec3 origin, vec3 direction, vec3 v0, vec3 v1, v
   return vec3(1.0f - u - v, u, v);
 }
 
+// How the rasterizer sets a triangle up for a view (m: its layer's view-projection; nearer: PixelRay::nearer):
+// clipped at the near plane in clip space (into a polygon of up to 4 vertices, as the rasterizer clips it) and
+// snapped; past the far plane its edges stay the triangle's own (coverSample drops samples whose depth lies beyond).
+// Front faces are counter-clockwise in the framebuffer (VK_FRONT_FACE_COUNTER_CLOCKWISE); back faces (but
+// double-sided ones) and polygons of zero snapped area never cover. Left to the ray test: a vertex past
 // S3D_RASTER_REACH, or a clipped polygon whose first three vertices snap onto one line.
 S3D_INLINE SnappedTriangle setupTriangle(mat4 m, vec4 screen, float nearer, vec3 v0, vec3 v1, vec3 v2, uint flags) {
   SnappedTriangle snapped;

@@ -46,10 +46,10 @@ class RaycastVisibility {
   // `visibilityIds` (R32_UINT) and `deviceDepth` (R32_SFLOAT), both the mask's size when there is one, created
   // with VK_IMAGE_USAGE_STORAGE_BIT and in VK_IMAGE_LAYOUT_GENERAL, get the masked pixels' ids and depths
   // (SceneBvh::castPixel, with a CutoutCoverage where `cutouts` are given); other pixels are not written, but
-  // for a region's (RaycastRegion), and with the mask's
-  // uncastDepth they get its depth and id 0 (within the region, when there is one). The caller orders it against
-  // earlier and later uses of the images with barriers (it records compute barriers for its own buffers only: the
-  // per-view triangle setup). Uses one uniform buffer: one recording in flight at a time.
+  // for a region's (RaycastRegion), and with the mask's uncastDepth they get its depth and id 0 (within the
+  // region, when there is one). The caller orders it against earlier and later uses of the images with barriers
+  // (it records compute barriers for its own buffers only: the per-view triangle setup). Uses one uniform buffer:
+  // one recording in flight at a time.
   // Throws std::invalid_argument for images of other formats or sizes, or before setBvh.
   void record(VkCommandBuffer cmd, const RaycastCamera& camera, const ShadeMask& mask, const vk::Image& visibilityIds,
               const vk::Image& deviceDepth, const RaycastRegion& region = {}, const RaycastCutouts& cutouts = {});

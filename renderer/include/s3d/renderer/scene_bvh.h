@@ -11,10 +11,10 @@
 //   layer's device depth range in front of the world's does in the raster pass.
 // Transparent objects (Material::isTransparent) are not in it: they write neither depth nor ids in the raster
 // G-buffer pass either (the transparent pass blends them over the lit image later). Alpha cut-outs are in it,
-// flagged S3D_BVH_CUTOUT: a ray cannot run their texture's alpha test, so a pixel whose closest hit is a cut-out
-// gets S3D_RASTER_SHADED instead of an id: such pixels must stay on the raster path. Textured objects get
-// their real ids (the raster visibility pass writes S3D_RASTER_SHADED for them, as it shades them itself; a
-// ray-cast render's G-buffer resolve textures them).
+// flagged S3D_BVH_CUTOUT: a cast given their alpha test (CutoutCoverage, RaycastCutouts) goes on through a cut
+// texel; without it a pixel whose closest hit is a cut-out gets S3D_RASTER_SHADED instead of an id, for the
+// raster path to decide. Textured objects get their real ids (the raster visibility pass writes
+// S3D_RASTER_SHADED for them, as it shades them itself; a ray-cast render's G-buffer resolve textures them).
 #include <cstdint>
 #include <vector>
 
