@@ -2,6 +2,7 @@
 // and the pass that stands in for the G-buffer's raster pass.
 #include <algorithm>
 #include <stdexcept>
+#include <string>
 
 #include "deferred_renderer_impl.h"
 #include "s3d/renderer/scene_bvh.h"
@@ -48,6 +49,15 @@ bool DeferredRenderer::hasSurfaceBvh() const { return impl_->raycast && impl_->r
 std::optional<std::string> DeferredRenderer::Impl::raycastRefusal() const {
   if (!visibilityShading) return "ray-cast surfaces need visibility G-buffer shading (the resolve shades them)";
   if (visibilityPacking.y != 0) return "ray-cast surfaces need narrow visibility ids; this scene needs wide ones";
+  // Every texture's texels lie in one storage buffer (surface_texels.glsl), which one binding must span.
+  std::uint64_t texelBytes = 0;
+  for (const Texture& texture : scene.textures) texelBytes += texture.rgba.size();
+  VkPhysicalDeviceProperties properties;
+  vkGetPhysicalDeviceProperties(context.physicalDevice(), &properties);
+  if (texelBytes > properties.limits.maxStorageBufferRange)
+    return "scene '" + scene.name + "' has " + std::to_string(texelBytes >> 20) + " MiB of texels, more than the " +
+           std::to_string(properties.limits.maxStorageBufferRange >> 20) +
+           " MiB storage buffer the ray-cast surfaces sample them from on this device";
   if (supersample != 1) return "ray-cast surfaces cast one ray per output pixel: no supersampling";
   if (transparentPass->hasObjects() && !transparentPass->usesCompute())
     return "scene '" + scene.name + "' has transparent objects that the raster pass blends (it needs the depth buffer)";

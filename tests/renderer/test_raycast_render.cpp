@@ -343,6 +343,32 @@ RasterAndCast renderBothWays(vk::Context& context, const Scene& scene, const Sce
   return result;
 }
 
+// Every texture's texels are sampled from one storage buffer: a scene whose texels exceed the device's largest
+// storage-buffer range (128 MiB on lavapipe) is refused, naming the scene, rather than bound past the range.
+TEST_F(RaycastRenderPassTest, TexelsBeyondTheDevicesStorageBufferRangeAreRefused) {
+  VkPhysicalDeviceProperties properties;
+  vkGetPhysicalDeviceProperties(context().physicalDevice(), &properties);
+  const std::uint64_t range = properties.limits.maxStorageBufferRange;
+  if (range > (std::uint64_t(256) << 20)) GTEST_SKIP() << "a texture past this device's range would not fit the test";
+  Scene scene = makeBuiltInScene("cover");
+  Texture large;
+  large.width = 4096;
+  large.height = std::uint32_t(range / (4 * 4096)) + 1;  // one row past the range
+  large.rgba.assign(std::size_t(large.width) * large.height * 4, 255);
+  scene.textures = {large};
+  scene.meshes.push_back(test::makeTexturedQuad());
+  Object quad;
+  quad.mesh = std::uint32_t(scene.meshes.size() - 1);
+  quad.material.baseColorTexture = 0;
+  scene.objects.push_back(quad);
+  DeferredRenderer renderer(context(), kWidth, kHeight, raycastOptions());
+  renderer.setScene(scene);
+  const std::optional<std::string> refusal = renderer.raycastSurfacesRefusal();
+  ASSERT_TRUE(refusal.has_value());
+  EXPECT_NE(refusal->find("'cover'"), std::string::npos) << *refusal;
+  EXPECT_NE(refusal->find("MiB of texels"), std::string::npos) << *refusal;
+}
+
 // A texture whose texels change by at most 40 levels between neighbours (a filtered value is then within a level
 // of the hardware's, whose filter weights are rounded to 8 bits on some devices) with a red-green-blue pattern.
 Texture patternTexture(std::uint32_t width, std::uint32_t height, Texture::Encoding encoding) {

@@ -56,9 +56,9 @@ class DeferredRenderer {
   // by updateGeometry), uploaded once. setScene and updateGeometry drop it, since it no longer matches.
   void setSurfaceBvh(const SceneBvh& bvh);
   // Why this renderer cannot ray-cast its surfaces for the scene last set (nullopt: it can, given a BVH): raster
-  // G-buffer shading, wide visibility ids, supersampling, or transparent objects the raster pass blends (it needs
-  // the depth buffer). Textured, double-sided and cut-out objects are cast: the rays run cut-outs' alpha test, the
-  // compute resolve samples the texels and flips back faces.
+  // G-buffer shading, wide visibility ids, more texels than one storage buffer of the device spans, supersampling,
+  // or transparent objects the raster pass blends (it needs the depth buffer). Textured, double-sided and cut-out
+  // objects are cast: the rays run cut-outs' alpha test, the compute resolve samples the texels and flips back faces.
   std::optional<std::string> raycastSurfacesRefusal() const;
   // Whether a BVH of the current scene (or pose) was given (setSurfaceBvh).
   bool hasSurfaceBvh() const;
