@@ -64,13 +64,9 @@ void RaycastVisibility::setBvh(const SceneBvh& bvh) {
 // The traversal with cut-outs' alpha test compiled in (kCutoutAlphaTest), made at the first tree that needs it;
 // trees without cut-outs keep the plain traversal.
 VkPipeline RaycastVisibility::alphaTestPipeline() {
-  if (!alphaTestPipeline_) {
-    const VkBool32 on = VK_TRUE;
-    const VkSpecializationMapEntry entry{0, 0, sizeof(VkBool32)};
-    const VkSpecializationInfo specialization{1, &entry, sizeof(on), &on};
-    alphaTestPipeline_ =
-        vk::createComputePipeline(context_, layout_.layout, spirv_raycast_visibility_comp, &specialization);
-  }
+  if (!alphaTestPipeline_)
+    alphaTestPipeline_ = vk::createComputePipeline(context_, layout_.layout, spirv_raycast_visibility_comp,
+                                                   vk::SpecializationWords({VK_TRUE}));
   return alphaTestPipeline_.get();
 }
 

@@ -178,13 +178,10 @@ vk::Unique<VkPipeline> DeferredRenderer::Impl::createGBufferPipeline(std::size_t
   else
     gbuffer.fragmentSpirv = cutout ? std::span<const std::uint32_t>(spirv_gbuffer_cutout_frag)
                                    : std::span<const std::uint32_t>(spirv_gbuffer_frag);
-  const VkSpecializationMapEntry switches[] = {{0, 0, sizeof(VkBool32)},
-                                               {1, sizeof(VkBool32), sizeof(VkBool32)},
-                                               {2, 2 * sizeof(VkBool32), sizeof(VkBool32)}};
   auto on = [variant](std::size_t bit) -> VkBool32 { return (variant & bit) != 0 ? VK_TRUE : VK_FALSE; };
-  const VkBool32 values[] = {on(detail::kBaseColorVariant), on(detail::kNormalMapVariant), on(detail::kDoubleSidedVariant)};
-  const VkSpecializationInfo specialization{3, switches, sizeof(values), values};
-  gbuffer.fragmentSpecialization = &specialization;
+  const vk::SpecializationWords switches(
+      {on(detail::kBaseColorVariant), on(detail::kNormalMapVariant), on(detail::kDoubleSidedVariant)});
+  gbuffer.fragmentSpecialization = switches.info();
   return vk::createGraphicsPipeline(context, geometryLayout.layout, gbuffer);
 }
 

@@ -1,5 +1,7 @@
 #include "tile_lists.h"
 
+#include <utility>
+
 #include "compute_binding.h"
 
 #include <cstring>
@@ -29,16 +31,10 @@ constexpr VkAccessFlags2 kStorageAndIndirect = VK_ACCESS_2_SHADER_STORAGE_READ_B
 vk::Unique<VkPipeline> createTilePipeline(const vk::Context& context, VkPipelineLayout layout,
                                           std::span<const std::uint32_t> spirv, bool masked, bool counting,
                                           std::span<const bool> switches, std::span<const std::uint32_t> words) {
-  static_assert(sizeof(VkBool32) == sizeof(std::uint32_t));
   std::vector<std::uint32_t> values = {masked ? VK_TRUE : VK_FALSE, counting ? VK_TRUE : VK_FALSE};
   for (bool on : switches) values.push_back(on ? VK_TRUE : VK_FALSE);
   values.insert(values.end(), words.begin(), words.end());
-  std::vector<VkSpecializationMapEntry> entries;
-  for (std::uint32_t id = 0; id < values.size(); ++id)
-    entries.push_back({id, std::uint32_t(id * sizeof(std::uint32_t)), sizeof(std::uint32_t)});
-  const VkSpecializationInfo info{std::uint32_t(entries.size()), entries.data(), values.size() * sizeof(std::uint32_t),
-                                  values.data()};
-  return vk::createComputePipeline(context, layout, spirv, &info);
+  return vk::createComputePipeline(context, layout, spirv, vk::SpecializationWords(std::move(values)));
 }
 
 VkPipeline TilePipelines::get(bool masked, std::initializer_list<bool> switches) {

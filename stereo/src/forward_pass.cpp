@@ -130,12 +130,11 @@ void ForwardStereoPass::record(VkCommandBuffer cmd, const vk::Image& centerColor
 
 const ForwardStereoPass::RowPipeline& ForwardStereoPass::rowPipeline(int capacity) const {
   if (!row_ || row_->capacity != capacity) {
-    const VkSpecializationMapEntry entry{0, 0, sizeof(int)};
-    const VkSpecializationInfo specialization{1, &entry, sizeof(int), &capacity};
     const std::span<const std::uint32_t> code = keysWanted_ == ForwardKeys::Kept
                                                     ? std::span<const std::uint32_t>(spirv_stereo_forward_row_keys_comp)
                                                     : std::span<const std::uint32_t>(spirv_stereo_forward_row_comp);
-    row_ = RowPipeline{capacity, vk::createComputePipeline(*context_, layout_.layout, code, &specialization)};
+    row_ = RowPipeline{capacity, vk::createComputePipeline(*context_, layout_.layout, code,
+                                                           vk::SpecializationWords({std::uint32_t(capacity)}))};
   }
   return *row_;
 }

@@ -114,11 +114,11 @@ HybridPass::HybridPass(const vk::Context& context, std::optional<HybridRowShape>
       // Specialization: constant 0 the row group (also the workgroup size), 1 the classification's chunk, 2
       // whether the invocations classify independent runs (a 32-bit VkBool32), 3 the base's tap capacity.
       classify_(context, classifyLayout_.layout, spirv_stereo_hybrid_classify_comp,
-                {shape_.rowGroup, shape_.chunk, std::int32_t(shape_.independentRuns ? VK_TRUE : VK_FALSE)}) {
-  const VkSpecializationMapEntry maskEntry{0, 0, sizeof(std::int32_t)};
-  const VkSpecializationInfo maskShape{1, &maskEntry, sizeof(std::int32_t), &shape_.maskGroup};
+                {std::uint32_t(shape_.rowGroup), std::uint32_t(shape_.chunk),
+                 shape_.independentRuns ? VK_TRUE : VK_FALSE}) {
   threshold_ = vk::createComputePipeline(context, thresholdLayout_.layout, spirv_stereo_hybrid_threshold_comp);
-  mask_ = vk::createComputePipeline(context, maskLayout_.layout, spirv_stereo_hybrid_mask_comp, &maskShape);
+  mask_ = vk::createComputePipeline(context, maskLayout_.layout, spirv_stereo_hybrid_mask_comp,
+                                    vk::SpecializationWords({std::uint32_t(shape_.maskGroup)}));
   composite_ = vk::createComputePipeline(context, compositeLayout_.layout, spirv_stereo_hybrid_composite_comp);
   cropEdges_ = vk::createComputePipeline(context, cropEdgesLayout_.layout, spirv_stereo_hybrid_crop_edges_comp);
 }

@@ -1,5 +1,7 @@
 #include "s3d/vk/pipeline.h"
 
+#include <utility>
+
 #include "s3d/vk/check.h"
 #include "s3d/vk/pipeline_statistics.h"
 
@@ -55,6 +57,17 @@ Unique<VkPipeline> createComputePipeline(const Context& context, VkPipelineLayou
   S3D_VK_CHECK(vkCreateComputePipelines(context.device(), context.pipelineCache(), 1, &info, context.allocator(), &pipeline));
   if (context.capturesPipelineStatistics()) printPipelineStatistics(context.device(), pipeline, spirv.size(), specialization);
   return {context.device(), pipeline, vkDestroyPipeline, context.allocator()};
+}
+
+SpecializationWords::SpecializationWords(std::vector<std::uint32_t> words) : words_(std::move(words)) {
+  for (std::uint32_t id = 0; id < words_.size(); ++id)
+    entries_.push_back({id, std::uint32_t(id * sizeof(std::uint32_t)), sizeof(std::uint32_t)});
+  info_ = {std::uint32_t(entries_.size()), entries_.data(), words_.size() * sizeof(std::uint32_t), words_.data()};
+}
+
+Unique<VkPipeline> createComputePipeline(const Context& context, VkPipelineLayout layout,
+                                         std::span<const std::uint32_t> spirv, const SpecializationWords& constants) {
+  return createComputePipeline(context, layout, spirv, constants.info());
 }
 
 namespace {

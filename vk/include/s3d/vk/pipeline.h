@@ -28,6 +28,22 @@ Unique<VkPipeline> createComputePipeline(const Context& context, VkPipelineLayou
                                          std::span<const std::uint32_t> spirv,
                                          const VkSpecializationInfo* specialization = nullptr);
 
+// Specialization constants of one 32-bit word each (a VkBool32 is one word), ids 0, 1, 2, ... in order.
+class SpecializationWords {
+ public:
+  explicit SpecializationWords(std::vector<std::uint32_t> words);
+  SpecializationWords(const SpecializationWords&) = delete;  // info() points into this object
+  SpecializationWords& operator=(const SpecializationWords&) = delete;
+  const VkSpecializationInfo* info() const { return &info_; }
+
+ private:
+  std::vector<std::uint32_t> words_;
+  std::vector<VkSpecializationMapEntry> entries_;
+  VkSpecializationInfo info_{};
+};
+Unique<VkPipeline> createComputePipeline(const Context& context, VkPipelineLayout layout,
+                                         std::span<const std::uint32_t> spirv, const SpecializationWords& constants);
+
 // Graphics pipeline for dynamic rendering (no render pass objects).
 struct GraphicsPipelineDesc {
   std::span<const std::uint32_t> vertexSpirv;

@@ -18,10 +18,10 @@ namespace s3d::stereo::detail {
 
 class BaseTapPipelines {
  public:
-  // constants: the shader's other specialization constants, ids 0, 1, ... as 32-bit values; the tap capacity
+  // constants: the shader's other specialization constants, ids 0, 1, ... as 32-bit words; the tap capacity
   // takes the next id.
   BaseTapPipelines(const vk::Context& context, VkPipelineLayout layout, std::span<const std::uint32_t> spirv,
-                   std::vector<std::int32_t> constants)
+                   std::vector<std::uint32_t> constants)
       : context_(&context), layout_(layout), spirv_(spirv), constants_(std::move(constants)) {
     short_ = create(S3D_STEREO_SMALL_TAP_CAPACITY);
   }
@@ -34,21 +34,16 @@ class BaseTapPipelines {
   }
 
  private:
-  vk::Unique<VkPipeline> create(std::int32_t capacity) const {
-    std::vector<std::int32_t> values = constants_;
+  vk::Unique<VkPipeline> create(std::uint32_t capacity) const {
+    std::vector<std::uint32_t> values = constants_;
     values.push_back(capacity);
-    std::vector<VkSpecializationMapEntry> entries;
-    for (std::uint32_t id = 0; id < values.size(); ++id)
-      entries.push_back({id, id * std::uint32_t(sizeof(std::int32_t)), sizeof(std::int32_t)});
-    const VkSpecializationInfo info{std::uint32_t(entries.size()), entries.data(), values.size() * sizeof(std::int32_t),
-                                    values.data()};
-    return vk::createComputePipeline(*context_, layout_, spirv_, &info);
+    return vk::createComputePipeline(*context_, layout_, spirv_, vk::SpecializationWords(std::move(values)));
   }
 
   const vk::Context* context_;
   VkPipelineLayout layout_;
   std::span<const std::uint32_t> spirv_;
-  std::vector<std::int32_t> constants_;
+  std::vector<std::uint32_t> constants_;
   vk::Unique<VkPipeline> short_;
   mutable std::optional<vk::Unique<VkPipeline>> full_;
 };
