@@ -23,7 +23,8 @@ layout(binding = 7, rg32ui) uniform writeonly uimage2D material;
 #define S3D_TILES_BINDING 8
 #define S3D_SHADE_MASK_BINDING 9
 #include "tiles.glsl"
-layout(std430, binding = 10) readonly buffer Surfaces { float surfaceFloats[]; };  // texture coordinates, tangent
+#define S3D_SURFACE_VERTICES_BINDING 10
+#include "surface_vertices.glsl"
 #define S3D_TEXTURE_TABLE_BINDING 11
 #define S3D_TEXELS_BINDING 12
 #include "material.glsl"
@@ -32,10 +33,6 @@ layout(constant_id = 2) const bool kSurfaceMaterials = false;
 
 vec3 vertexPosition(uint v) { return vec3(vertexFloats[6u * v], vertexFloats[6u * v + 1u], vertexFloats[6u * v + 2u]); }
 vec3 vertexNormal(uint v) { return vec3(vertexFloats[6u * v + 3u], vertexFloats[6u * v + 4u], vertexFloats[6u * v + 5u]); }
-vec2 vertexTexCoord(uint v) { return vec2(surfaceFloats[6u * v], surfaceFloats[6u * v + 1u]); }
-vec4 vertexTangent(uint v) {
-  return vec4(surfaceFloats[6u * v + 2u], surfaceFloats[6u * v + 3u], surfaceFloats[6u * v + 4u], surfaceFloats[6u * v + 5u]);
-}
 
 // A textured or double-sided object's normal/glossiness and material at barycentrics b, as gbuffer.glsl writes
 // them. Facing: the sign of the triangle's homogeneous (x, y, w) determinant, negative for a counter-clockwise

@@ -33,12 +33,11 @@ layout(binding = 8, r32f) uniform readonly image2D uncastDepth;
 layout(constant_id = 0) const bool kCutoutAlphaTest = false;
 layout(std430, binding = 9) readonly buffer Objects { ObjectConstants objects[]; };
 layout(std430, binding = 10) readonly buffer Indices { uint indices[]; };
-layout(std430, binding = 11) readonly buffer Surfaces { float surfaceFloats[]; };  // texture coordinates, tangent
+#define S3D_SURFACE_VERTICES_BINDING 11
+#include "surface_vertices.glsl"
 #define S3D_TEXTURE_TABLE_BINDING 12
 #define S3D_TEXELS_BINDING 13
 #include "surface_texels.glsl"
-
-vec2 vertexTexCoord(uint v) { return vec2(surfaceFloats[6u * v], surfaceFloats[6u * v + 1u]); }
 
 // CutoutCoverage::covers for the ray's hit on tree triangle i: the coverage alpha at its perspective-correct
 // texture coordinate.

@@ -21,7 +21,8 @@ layout(binding = 0) uniform Frame { FrameConstants frame; };
 layout(std430, binding = 1) readonly buffer Objects { ObjectConstants objects[]; };
 layout(std430, binding = 2) readonly buffer Indices { uint indices[]; };
 layout(std430, binding = 3) readonly buffer Vertices { float vertexFloats[]; };    // Vertex: position, normal
-layout(std430, binding = 4) readonly buffer Surfaces { float surfaceFloats[]; };  // texture coordinates, tangent
+#define S3D_SURFACE_VERTICES_BINDING 4
+#include "surface_vertices.glsl"
 layout(binding = 5) uniform sampler2D deviceDepth;
 layout(binding = 6, rgba16f) uniform image2D hdrColor;
 layout(binding = 7, rgba8) uniform image2D coverage;  // red: 1 - prod(1 - opacity) of the layers over the pixel
@@ -35,10 +36,6 @@ shared uint overlapsTile[CHUNK];
 
 vec3 vertexPosition(uint v) { return vec3(vertexFloats[6u * v], vertexFloats[6u * v + 1u], vertexFloats[6u * v + 2u]); }
 vec3 vertexNormal(uint v) { return vec3(vertexFloats[6u * v + 3u], vertexFloats[6u * v + 4u], vertexFloats[6u * v + 5u]); }
-vec2 vertexTexCoord(uint v) { return vec2(surfaceFloats[6u * v], surfaceFloats[6u * v + 1u]); }
-vec4 vertexTangent(uint v) {
-  return vec4(surfaceFloats[6u * v + 2u], surfaceFloats[6u * v + 3u], surfaceFloats[6u * v + 4u], surfaceFloats[6u * v + 5u]);
-}
 uvec3 triangleVertices(uint triangle) {
   uint first = objects[pass.objectIndex].firstIndex + 3u * triangle;
   return uvec3(indices[first], indices[first + 1u], indices[first + 2u]) + objects[pass.objectIndex].vertexOffset;
