@@ -134,7 +134,8 @@ renderer::RendererOptions eyeRendererOptions(const renderer::RendererOptions& ce
 namespace {
 
 // The masked pixels' surfaces by ray casting wherever the eye renderer can shade what the rays find (a GPU's
-// visibility shading, a scene without textures); its BVH is built once per scene or pose. Otherwise rasterized.
+// visibility shading; DeferredRenderer::raycastSurfacesRefusal); its BVH is built once per scene or pose.
+// Otherwise rasterized.
 renderer::ShadeMask::Surfaces surfacesFor(renderer::DeferredRenderer& eyeRenderer, const renderer::Scene& scene,
                                           HybridSurfaces surfaces) {
   const std::optional<std::string> refusal = eyeRenderer.raycastSurfacesRefusal();
