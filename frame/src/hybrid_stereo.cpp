@@ -1,5 +1,6 @@
 #include "s3d/frame/hybrid_stereo.h"
 
+#include <algorithm>
 #include <array>
 #include <cstring>
 #include <functional>
@@ -246,7 +247,7 @@ void renderIntoEye(HybridFrame& f, const renderer::Scene& scene, const renderer:
   if (f.classify)
     result.thresholds[index] = stereo::HybridPass::readThreshold(f.context, f.images.thresholds, int(index));
   else if (f.everythingMasked)  // bin 0 and up: every classified pixel, no split (hybridThreshold's)
-    result.thresholds[index] = {0, result.classifiedPixels, S3D_HYBRID_NO_PIXEL, 0};
+    result.thresholds[index] = {0, result.classifiedCells, S3D_HYBRID_NO_PIXEL, 0};
   if (result.thresholds[index].maskedPixels == 0) {
     result.masks[index].assign(std::size_t(f.width) * f.height, 0);
     result.renderedHdr[index] = ImageRGBA32F(f.width, f.height);
@@ -272,6 +273,7 @@ void renderIntoEye(HybridFrame& f, const renderer::Scene& scene, const renderer:
   result.renderedHdr[index] = f.eyeRenderer.readHdrColor();
   result.masks[index] = f.everythingMasked ? cropMask(f.constants, f.width, f.height)
                                            : stereo::HybridPass::readMask(f.context, mask);
+  result.maskedPixels[index] = std::uint64_t(std::count(result.masks[index].begin(), result.masks[index].end(), 1));
 }
 
 }  // namespace
@@ -279,12 +281,12 @@ void renderIntoEye(HybridFrame& f, const renderer::Scene& scene, const renderer:
 struct HybridSynthesizer::Kept {
   explicit Kept(vk::Context& c) : context(c), hybrid(c), baseDepthPass(c) {}
 
-  // The images of the center view's size: made for the first frame and again for a new size (the base depth's
-  // only where a frame needs it: recordBaseDepth).
-  void fit(std::uint32_t w, std::uint32_t h) {
-    if (w == width && h == height) return;
+  // The images of the center view's size: made for the first frame and again for a new size or classification
+  // cell (the base depth's only where a frame needs it: recordBaseDepth).
+  void fit(std::uint32_t w, std::uint32_t h, int cell) {
+    if (w == width && h == height && cell == images.cell) return;
     const VkImageUsageFlags usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
-    images = hybrid.createImages(w, h);
+    images = hybrid.createImages(w, h, cell);
     left = vk::createImage(context, stereo::StereoPass::kColorFormat, w, h, usage);
     right = vk::createImage(context, stereo::StereoPass::kColorFormat, w, h, usage);
     // In GENERAL from the start: a frame with every pixel masked renders into them before any displacement.
@@ -323,15 +325,17 @@ HybridSynthesis HybridSynthesizer::synthesize(const renderer::DeferredRenderer& 
   vk::Context& context = kept_->context;
   HybridSynthesis result;
   result.surfaces = surfacesFor(eyeRenderer, scene, surfaces);
-  kept_->fit(width, height);
+  kept_->fit(width, height, parameters.hybridCell);
   HybridFrame f{context, centerRenderer, eyeRenderer, width, height, timedRuns, kept_->hybrid, kept_->baseDepthPass,
                 stereo::makeHybridConstants(parameters, width, height), kept_->images, kept_->left, kept_->right,
                 false, false, false, kept_->baseDepth};
+  const gpu::HybridConstants grid = stereo::hybridGridConstants(f.constants);
   result.classifiedPixels = std::uint64_t(f.constants.cropEnd - f.constants.cropBegin) * height;
+  result.classifiedCells = std::uint64_t(grid.cropEnd - grid.cropBegin) * std::uint64_t(grid.height);
   // The budget's ends need no classification: none masks nothing (the base displacement), all masks every
-  // classified pixel (the eyes rendered whole, the two-pass reference), whatever the scores.
-  f.nothingMasked = f.constants.maskedPixelCap == 0;
-  f.everythingMasked = !f.nothingMasked && f.constants.maskedPixelCap >= result.classifiedPixels;
+  // classified cell (the eyes rendered whole, the two-pass reference), whatever the scores.
+  f.nothingMasked = grid.maskedPixelCap == 0;
+  f.everythingMasked = !f.nothingMasked && grid.maskedPixelCap >= result.classifiedCells;
   f.classify = !f.nothingMasked && !f.everythingMasked;
   HybridTimings& timings = result.timings;
   timings.raycastSurfaces = result.surfaces == renderer::ShadeMask::Surfaces::RayCast;

@@ -102,6 +102,12 @@ class BenchCommand final : public Command {
             "but the occlusion's whole region is cast)")
         ->type_name("auto|raster|raycast|raycast-region");
     bench
+        .add_option("--hybrid-cell", options_.stereo.hybridCell,
+                    "The hybrid settings' classification cell in pixels per side: 2 classifies each 2x2 block once, "
+                    "from its nearest depth; 1 every pixel")
+        ->check(CLI::IsMember({1, 2}))
+        ->capture_default_str();
+    bench
         .add_option("--bandwidth-gbs", bandwidth_,
                     "Memory bandwidth of the device in GB/s for the memory-traffic target (H100 SXM: 3350, "
                     "H100 PCIe: 2000); without it that target is skipped")

@@ -1,10 +1,12 @@
 #include "s3d/stereo/hybrid_pass.h"
 
 #include <cstring>
+#include <vector>
 #include <stdexcept>
 #include <string>
 
 // clang-format off
+#include <s3d_spirv/stereo_hybrid_grid_depth_comp.h>
 #include <s3d_spirv/stereo_hybrid_classify_comp.h>
 #include <s3d_spirv/stereo_hybrid_threshold_comp.h>
 #include <s3d_spirv/stereo_hybrid_mask_comp.h>
@@ -106,6 +108,7 @@ HybridRowShape hybridRowShapeFor(const vk::Context& context) {
 HybridPass::HybridPass(const vk::Context& context, std::optional<HybridRowShape> shape)
     : context_(&context),
       shape_(checkedShape(context, shape)),
+      gridDepthLayout_(storageImageLayout(context, 2)),
       classifyLayout_(storageImageLayout(context, 5)),
       thresholdLayout_(storageImageLayout(context, 4)),
       maskLayout_(storageImageLayout(context, 6)),
@@ -116,6 +119,7 @@ HybridPass::HybridPass(const vk::Context& context, std::optional<HybridRowShape>
       classify_(context, classifyLayout_.layout, spirv_stereo_hybrid_classify_comp,
                 {std::uint32_t(shape_.rowGroup), std::uint32_t(shape_.chunk),
                  shape_.independentRuns ? VK_TRUE : VK_FALSE}) {
+  gridDepth_ = vk::createComputePipeline(context, gridDepthLayout_.layout, spirv_stereo_hybrid_grid_depth_comp);
   threshold_ = vk::createComputePipeline(context, thresholdLayout_.layout, spirv_stereo_hybrid_threshold_comp);
   mask_ = vk::createComputePipeline(context, maskLayout_.layout, spirv_stereo_hybrid_mask_comp,
                                     vk::SpecializationWords({std::uint32_t(shape_.maskGroup)}));
@@ -123,18 +127,25 @@ HybridPass::HybridPass(const vk::Context& context, std::optional<HybridRowShape>
   cropEdges_ = vk::createComputePipeline(context, cropEdgesLayout_.layout, spirv_stereo_hybrid_crop_edges_comp);
 }
 
-HybridPass::Images HybridPass::createImages(std::uint32_t width, std::uint32_t height) const {
+HybridPass::Images HybridPass::createImages(std::uint32_t width, std::uint32_t height, int cell) const {
+  if (cell < 1) throw std::invalid_argument("hybrid stereo: the classification's cell must be at least one pixel");
   const VkImageUsageFlags usage =
       VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
   auto image = [&](std::uint32_t w, std::uint32_t h) { return vk::createImage(*context_, kUintFormat, w, h, usage); };
-  return {image(width, height),
-          image(width, height),
-          image(S3D_HYBRID_BINS, 2),
-          image(2 * S3D_HYBRID_BINS, height),
-          image(S3D_HYBRID_THRESHOLD_FIELDS, 2),
-          image(height, 2),
-          image(width, height),
-          image(width, height)};
+  const auto gridWidth = std::uint32_t(gpu::hybridGridSize(int(width), cell));
+  const auto gridHeight = std::uint32_t(gpu::hybridGridSize(int(height), cell));
+  Images images;
+  images.cell = cell;
+  if (cell > 1) images.gridDepth = vk::createImage(*context_, VK_FORMAT_R32_SFLOAT, gridWidth, gridHeight, usage);
+  images.leftBins = image(gridWidth, gridHeight);
+  images.rightBins = image(gridWidth, gridHeight);
+  images.histogram = image(S3D_HYBRID_BINS, 2);
+  images.rowHistograms = image(2 * S3D_HYBRID_BINS, gridHeight);
+  images.thresholds = image(S3D_HYBRID_THRESHOLD_FIELDS, 2);
+  images.splitOffsets = image(gridHeight, 2);
+  images.leftMask = image(width, height);
+  images.rightMask = image(width, height);
+  return images;
 }
 
 void HybridPass::recordMasks(VkCommandBuffer cmd, const vk::Image& linearDepth, Images& images,
@@ -142,39 +153,50 @@ void HybridPass::recordMasks(VkCommandBuffer cmd, const vk::Image& linearDepth, 
   auto mark = [&] {
     if (afterEachDispatch) afterEachDispatch();
   };
+  if (c.cell != images.cell) throw std::invalid_argument("hybrid stereo: the images were made for another cell");
+  const gpu::HybridConstants grid = hybridGridConstants(c);
   requireSize(linearDepth, c, "linear depth");
-  for (const vk::Image* image : {&images.leftBins, &images.rightBins, &images.leftMask, &images.rightMask})
-    requireSize(*image, c, "bins or mask");
+  for (const vk::Image* image : {&images.leftMask, &images.rightMask}) requireSize(*image, c, "mask");
+  for (const vk::Image* image : {&images.leftBins, &images.rightBins}) requireSize(*image, grid, "bins");
   const vk::ImageState previous = images.written ? kReadAnywhere : vk::kUndefined;
-  for (const vk::Image* image : {&images.leftBins, &images.rightBins, &images.rowHistograms, &images.thresholds,
-                                 &images.splitOffsets, &images.leftMask, &images.rightMask})
-    vk::transition(cmd, *image, previous, vk::kComputeWrite);
+  std::vector<const vk::Image*> written{&images.leftBins, &images.rightBins, &images.rowHistograms, &images.thresholds,
+                                        &images.splitOffsets, &images.leftMask, &images.rightMask};
+  if (c.cell > 1) written.push_back(&images.gridDepth);
+  for (const vk::Image* image : written) vk::transition(cmd, *image, previous, vk::kComputeWrite);
   vk::transition(cmd, images.histogram, previous, kCleared);
   const VkClearColorValue zero{};
   const VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
   vkCmdClearColorImage(cmd, images.histogram.image, VK_IMAGE_LAYOUT_GENERAL, &zero, 1, &range);
   vk::transition(cmd, images.histogram, kCleared, kAtomics);
 
-  dispatch(*context_, cmd, classify_.forTaps(c.baseTapCount), classifyLayout_.layout,
-           {&linearDepth, &images.leftBins, &images.rightBins, &images.histogram, &images.rowHistograms}, c,
-           std::uint32_t(c.height), 1);
+  const vk::Image* classifiedDepth = &linearDepth;
+  if (c.cell > 1) {  // the cells' nearest depths, classified as pixels
+    dispatch(*context_, cmd, gridDepth_.get(), gridDepthLayout_.layout, {&linearDepth, &images.gridDepth}, c,
+             groups(grid.width), groups(grid.height));
+    vk::transition(cmd, images.gridDepth, vk::kComputeWrite, vk::kComputeRead);
+    classifiedDepth = &images.gridDepth;
+  }
+  dispatch(*context_, cmd, classify_.forTaps(grid.baseTapCount), classifyLayout_.layout,
+           {classifiedDepth, &images.leftBins, &images.rightBins, &images.histogram, &images.rowHistograms}, grid,
+           std::uint32_t(grid.height), 1);
   mark();
   vk::transition(cmd, images.histogram, kAtomics, vk::kComputeRead);
   vk::transition(cmd, images.rowHistograms, vk::kComputeWrite, vk::kComputeRead);
   dispatch(*context_, cmd, threshold_.get(), thresholdLayout_.layout,
-           {&images.histogram, &images.rowHistograms, &images.thresholds, &images.splitOffsets}, c, 2, 1);
+           {&images.histogram, &images.rowHistograms, &images.thresholds, &images.splitOffsets}, grid, 2, 1);
   mark();
   for (const vk::Image* image : {&images.thresholds, &images.splitOffsets, &images.leftBins, &images.rightBins})
     vk::transition(cmd, *image, vk::kComputeWrite, vk::kComputeRead);
   dispatch(*context_, cmd, mask_.get(), maskLayout_.layout,
            {&images.leftBins, &images.rightBins, &images.thresholds, &images.splitOffsets, &images.leftMask,
             &images.rightMask},
-           c, std::uint32_t(c.height), 1);
+           c, std::uint32_t(grid.height), 1);
   mark();
   // Everything ends in one state, so the next frame (and the read-backs) start from one.
   for (const vk::Image* image : {&images.leftBins, &images.rightBins, &images.histogram, &images.rowHistograms,
                                  &images.thresholds, &images.splitOffsets})
     vk::transition(cmd, *image, vk::kComputeRead, vk::kComputeWrite);
+  if (c.cell > 1) vk::transition(cmd, images.gridDepth, vk::kComputeRead, vk::kComputeWrite);
   images.written = true;
 }
 
@@ -223,7 +245,7 @@ HybridGpuResult classifyHybridOnGpu(vk::Context& context, const DepthImage& line
   const VkImageUsageFlags usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
   const vk::Image depth = vk::createImage(context, VK_FORMAT_R32_SFLOAT, linearDepth.width, linearDepth.height, usage);
   vk::uploadImage(context, depth, std::as_bytes(std::span(linearDepth.pixels)), vk::kComputeRead);
-  HybridPass::Images images = pass.createImages(linearDepth.width, linearDepth.height);
+  HybridPass::Images images = pass.createImages(linearDepth.width, linearDepth.height, constants.cell);
   context.submitAndWait([&](VkCommandBuffer cmd) { pass.recordMasks(cmd, depth, images, constants); });
   HybridGpuResult result;
   result.classification = {HybridPass::readBins(context, images.leftBins), HybridPass::readBins(context, images.rightBins),

@@ -23,6 +23,7 @@ gpu::HybridConstants makeHybridConstants(const StereoParameters& parameters, std
   c.windowPx = int(std::ceil(parameters.maxSeparation * float(width))) + 1;
   const std::uint64_t classified = std::uint64_t(std::max(c.cropEnd - c.cropBegin, 0)) * height;
   c.maskedPixelCap = hybridPixelCap(parameters.hybridBudget, classified);
+  c.cell = parameters.hybridCell;
   // A gather base's taps (its choice of source is recomputed per pixel); the others land on the visible surface.
   const StereoParameters base = displacementParameters(parameters);
   if (base.method == StereoMethod::Seed || base.method == StereoMethod::Search) {
@@ -31,6 +32,44 @@ gpu::HybridConstants makeHybridConstants(const StereoParameters& parameters, std
     for (int i = 0; i < taps.tapCount; ++i) c.baseTapOffsetPx[i] = taps.tapOffsetPx[i];
   }
   return c;
+}
+
+gpu::HybridConstants hybridGridConstants(const gpu::HybridConstants& image) {
+  if (image.cell < 1) throw std::invalid_argument("hybrid classification: the cell must be at least one pixel");
+  const int cell = image.cell;
+  gpu::HybridConstants g = image;
+  g.cell = 1;
+  g.width = gpu::hybridGridSize(image.width, cell);
+  g.height = gpu::hybridGridSize(image.height, cell);
+  g.cropBegin = gpu::hybridGridCropBegin(image.cropBegin, cell);
+  g.cropEnd = std::max(gpu::hybridGridCropEnd(image.cropEnd, cell), g.cropBegin);
+  g.windowPx = int(std::ceil(image.maxSeparation * float(g.width))) + 1;
+  for (int i = 0; i < image.baseTapCount; ++i)  // rounded half up: whole cells, as the taps are whole pixels
+    g.baseTapOffsetPx[i] = (image.baseTapOffsetPx[i] + cell / 2) / cell;
+  // The same share of the grid's classified cells as of the image's classified pixels (all of them at budget 1).
+  const std::uint64_t pixels = std::uint64_t(std::max(image.cropEnd - image.cropBegin, 0)) * std::uint64_t(image.height);
+  const std::uint64_t cells = std::uint64_t(g.cropEnd - g.cropBegin) * std::uint64_t(g.height);
+  g.maskedPixelCap = pixels == 0 ? 0u
+                     : image.maskedPixelCap >= pixels
+                         ? std::uint32_t(cells)
+                         : std::uint32_t(std::uint64_t(image.maskedPixelCap) * cells / pixels);
+  return g;
+}
+
+DepthImage hybridGridDepthReference(const DepthImage& linearDepth, const gpu::HybridConstants& c) {
+  if (int(linearDepth.width) != c.width || int(linearDepth.height) != c.height || c.cell < 1)
+    throw std::invalid_argument("hybrid grid depth: depth size does not match the constants");
+  const auto cell = std::uint32_t(c.cell);
+  DepthImage grid(std::uint32_t(gpu::hybridGridSize(c.width, c.cell)), std::uint32_t(gpu::hybridGridSize(c.height, c.cell)));
+  for (std::uint32_t gy = 0; gy < grid.height; ++gy)
+    for (std::uint32_t gx = 0; gx < grid.width; ++gx) {
+      float nearest = S3D_INFINITY;
+      for (std::uint32_t y = gy * cell; y < std::min((gy + 1) * cell, linearDepth.height); ++y)
+        for (std::uint32_t x = gx * cell; x < std::min((gx + 1) * cell, linearDepth.width); ++x)
+          nearest = std::min(nearest, gpu::sanitizedDepth(*linearDepth.at(x, y), c.zeroParallaxDistance));
+      *grid.at(gx, gy) = nearest;
+    }
+  return grid;
 }
 
 gpu::StereoConstants hybridBaseGatherConstants(const gpu::HybridConstants& c) {
@@ -58,6 +97,7 @@ std::vector<gpu::HybridCoverage> hybridRowCoverageReference(const DepthImage& li
                                                              const gpu::HybridConstants& c) {
   if (int(linearDepth.width) != c.width || int(linearDepth.height) != c.height || y < 0 || y >= c.height)
     throw std::invalid_argument("hybrid coverage: depth size or row does not match the constants");
+  if (c.cell != 1) throw std::invalid_argument("hybrid coverage: the constants' cell is not one pixel (use hybridGridConstants)");
   auto sanitizedDepthAt = [&](int column) {
     return gpu::sanitizedDepth(*linearDepth.at(std::uint32_t(std::clamp(column, 0, c.width - 1)), std::uint32_t(y)),
                                c.zeroParallaxDistance);
@@ -148,9 +188,11 @@ float hybridPixelScoreReference(const DepthImage& linearDepth, int x, int y, Eye
   return rowScores(linearDepth, y, eye, c)[std::size_t(x)];
 }
 
-HybridClassification classifyHybridReference(const DepthImage& linearDepth, const gpu::HybridConstants& c) {
-  if (int(linearDepth.width) != c.width || int(linearDepth.height) != c.height)
+HybridClassification classifyHybridReference(const DepthImage& linearDepth, const gpu::HybridConstants& image) {
+  if (int(linearDepth.width) != image.width || int(linearDepth.height) != image.height)
     throw std::invalid_argument("hybrid classification: depth size does not match the constants");
+  if (image.cell > 1) return classifyHybridReference(hybridGridDepthReference(linearDepth, image), hybridGridConstants(image));
+  const gpu::HybridConstants& c = image;
   const std::size_t count = std::size_t(c.width) * std::size_t(c.height);
   HybridClassification result{std::vector<std::uint32_t>(count, 0u), std::vector<std::uint32_t>(count, 0u), {}, {}};
   for (int y = 0; y < c.height; ++y) {
@@ -187,16 +229,19 @@ HybridThreshold hybridThreshold(const HybridHistogram& histogram, std::uint32_t 
 }
 
 std::vector<std::uint8_t> hybridMaskReference(const std::vector<std::uint32_t>& bins, const HybridThreshold& threshold,
-                                              const gpu::HybridConstants& c) {
-  if (bins.size() != std::size_t(c.width) * std::size_t(c.height))
+                                              const gpu::HybridConstants& image) {
+  const gpu::HybridConstants g = hybridGridConstants(image);
+  if (bins.size() != std::size_t(g.width) * std::size_t(g.height))
     throw std::invalid_argument("hybrid mask: bins size does not match the constants");
-  std::vector<std::uint8_t> mask(bins.size(), 0);
+  std::vector<std::uint8_t> mask(std::size_t(image.width) * std::size_t(image.height), 0);
   std::uint64_t split = 0;
-  for (int y = 0; y < c.height; ++y)
-    for (int x = c.cropBegin; x < c.cropEnd; ++x) {
-      const std::size_t i = std::size_t(y) * std::size_t(c.width) + std::size_t(x);
-      const int bin = int(bins[i]);
-      if (bin >= threshold.bin || (bin == threshold.splitBin && split++ < threshold.splitPixels)) mask[i] = 1;
+  for (int gy = 0; gy < g.height; ++gy)
+    for (int gx = g.cropBegin; gx < g.cropEnd; ++gx) {
+      const int bin = int(bins[std::size_t(gy) * std::size_t(g.width) + std::size_t(gx)]);
+      if (!(bin >= threshold.bin || (bin == threshold.splitBin && split++ < threshold.splitPixels))) continue;
+      for (int y = gy * image.cell; y < std::min((gy + 1) * image.cell, image.height); ++y)  // the cell's pixels in the crop
+        for (int x = std::max(gx * image.cell, image.cropBegin); x < std::min((gx + 1) * image.cell, image.cropEnd); ++x)
+          mask[std::size_t(y) * std::size_t(image.width) + std::size_t(x)] = 1;
     }
   return mask;
 }

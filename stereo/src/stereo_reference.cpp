@@ -55,6 +55,8 @@ void validate(const StereoParameters& p) {
     requireFinite(p.hybridBudget, "hybridBudget");
     if (p.hybridBudget < 0.0f || p.hybridBudget > 1.0f)
       throw std::invalid_argument("hybridBudget " + numberText(p.hybridBudget) + " is outside [0, 1]");
+    if (p.hybridCell != 1 && p.hybridCell != 2)
+      throw std::invalid_argument("hybridCell " + std::to_string(p.hybridCell) + " is neither 1 nor 2");
     StereoParameters base = p;
     base.method = p.hybridBase;
     validate(base);

@@ -125,9 +125,10 @@ void IterativePass(benchmark::State& state) {
                                                       setup.deferred.height()));
 }
 
-// The hybrid method's classification (both eyes, default budget and search base) in a row shape (third argument:
-// 0 the device's own, hybridRowShapeFor; 1 the fallback, many invocations sharing each chunk's slots), timed from
-// before its dispatch to after it.
+// The hybrid method's classification (both eyes, default budget and search base: the classify, threshold and mask
+// passes) in a row shape (third argument: 0 the device's own, hybridRowShapeFor; 1 the fallback, many invocations
+// sharing each chunk's slots) on cells of the fourth argument's pixels, timed from before its first dispatch to
+// after the masks; the counter classifyMs is the classify pass alone (with the cells' depth before it).
 void HybridClassify(benchmark::State& state) {
   Setup& setup = setupFor(std::uint32_t(state.range(0)), std::uint32_t(state.range(1)));
   vk::Context& context = benchContext();
@@ -136,14 +137,15 @@ void HybridClassify(benchmark::State& state) {
   const stereo::HybridPass pass(context, shape);
   stereo::StereoParameters parameters = setup.parameters;
   parameters.method = stereo::StereoMethod::Hybrid;
+  parameters.hybridCell = int(state.range(3));
   const std::uint32_t width = setup.deferred.width(), height = setup.deferred.height();
   const gpu::HybridConstants constants = stereo::makeHybridConstants(parameters, width, height);
-  stereo::HybridPass::Images images = pass.createImages(width, height);
+  stereo::HybridPass::Images images = pass.createImages(width, height, parameters.hybridCell);
   vk::Image left = vk::createImage(context, stereo::StereoPass::kColorFormat, width, height, VK_IMAGE_USAGE_STORAGE_BIT);
   vk::Image right = vk::createImage(context, stereo::StereoPass::kColorFormat, width, height, VK_IMAGE_USAGE_STORAGE_BIT);
   const vk::Image& color = setup.deferred.displayColor();
   const vk::Image& depth = setup.deferred.linearDepth();
-  vk::TimestampQueries timestamps(context, 2);
+  vk::TimestampQueries timestamps(context, 4);
   bool timed = false;
   auto record = [&](VkCommandBuffer cmd) {
     stereo::StereoPass::recordInputBarriers(cmd, color, depth, left, right);
@@ -153,18 +155,22 @@ void HybridClassify(benchmark::State& state) {
     }
     int dispatches = 0;
     pass.recordMasks(cmd, depth, images, constants, [&] {
-      if (timed && dispatches++ == 0) timestamps.write(cmd, 1, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT);
+      if (timed) timestamps.write(cmd, std::uint32_t(++dispatches), VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT);
     });
     stereo::StereoPass::recordInputRelease(cmd, color, depth);
   };
   context.submitAndWait(record);  // warm-up
   timed = true;
+  double classifyMs = 0.0;
   for (auto _ : state) {
     context.submitAndWait(record);
-    state.SetIterationTime(timestamps.elapsedMs(0, 1).value_or(0.0) * 1e-3);
+    state.SetIterationTime(timestamps.elapsedMs(0, 3).value_or(0.0) * 1e-3);
+    classifyMs += timestamps.elapsedMs(0, 1).value_or(0.0);
   }
+  state.counters["classifyMs"] = classifyMs / double(std::max<benchmark::IterationCount>(state.iterations(), 1));
   state.SetLabel(context.deviceName() + ", row group " + std::to_string(shape.rowGroup) + " x chunk " +
-                 std::to_string(shape.chunk) + (shape.independentRuns ? ", independent runs" : ", shared slots"));
+                 std::to_string(shape.chunk) + (shape.independentRuns ? ", independent runs" : ", shared slots") +
+                 ", cell " + std::to_string(parameters.hybridCell));
 }
 
 void resolutions(benchmark::internal::Benchmark* benchmark) {
@@ -181,10 +187,12 @@ BENCHMARK(CenterFrame)->Apply(resolutions)->MinTime(0.2);
 BENCHMARK(ReferenceEye)->Apply(resolutions)->MinTime(0.2);
 BENCHMARK(StereoPass)->Apply(methods)->MinTime(0.2);
 BENCHMARK(HybridClassify)
-    ->Args({1280, 720, 0})
-    ->Args({1280, 720, 1})
-    ->Args({1920, 1080, 0})
-    ->ArgNames({"width", "height", "fallbackShape"})
+    ->Args({1280, 720, 0, 1})
+    ->Args({1280, 720, 0, 2})
+    ->Args({1280, 720, 1, 2})
+    ->Args({1920, 1080, 0, 1})
+    ->Args({1920, 1080, 0, 2})
+    ->ArgNames({"width", "height", "fallbackShape", "cell"})
     ->UseManualTime()
     ->Unit(benchmark::kMillisecond);
 BENCHMARK(IterativePass)

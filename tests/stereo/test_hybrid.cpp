@@ -43,11 +43,13 @@ std::string shapeName(HybridRowShape shape) {
          std::to_string(shape.maskGroup);
 }
 
-StereoParameters parametersFor(float maxSeparation) {
+// Every pixel its own cell: the row classification's definitions, pixel for pixel (the tests of cells say so).
+StereoParameters parametersFor(float maxSeparation, int cell = 1) {
   StereoParameters parameters;
   parameters.maxSeparation = maxSeparation;
   parameters.zeroParallaxDistance = 1.0f;
   parameters.edgeCrop = 0.0f;
+  parameters.hybridCell = cell;
   return parameters;
 }
 
@@ -311,6 +313,84 @@ TEST(HybridMask, TakesTheSplitBinsFirstPixelsInRasterOrderInsideTheCrop) {
   EXPECT_EQ(std::count(mask.begin(), mask.end(), 1), 3);
 }
 
+TEST(HybridParameters, RefuseACellOtherThanOneOrTwoPixels) {
+  StereoParameters p;
+  p.method = StereoMethod::Hybrid;
+  for (int cell : {1, 2}) {
+    p.hybridCell = cell;
+    EXPECT_NO_THROW(validate(p)) << cell;
+  }
+  for (int cell : {0, 3, -2}) {
+    p.hybridCell = cell;
+    EXPECT_THROW(validate(p), std::invalid_argument) << cell;
+  }
+}
+
+TEST(HybridGrid, ACellsDepthIsTheNearestOfItsPixelsAndTheLastRowAndColumnOfCellsArePartial) {
+  DepthImage depth(5, 3, 4.0f);
+  *depth.at(1, 1) = 2.0f;       // cell (0, 0)'s nearest
+  *depth.at(2, 0) = NAN;        // no information: the zero-parallax distance (1), nearer than the rest
+  *depth.at(4, 2) = INFINITY;   // the sky, alone in its partial cell (2, 1)
+  *depth.at(4, 0) = 3.0f;       // cell (2, 0) holds column 4 of rows 0 and 1 only
+  const gpu::HybridConstants c = makeHybridConstants(parametersFor(0.05f, 2), 5, 3);
+  const DepthImage grid = hybridGridDepthReference(depth, c);
+  ASSERT_EQ(grid.width, 3u);
+  ASSERT_EQ(grid.height, 2u);
+  EXPECT_EQ(*grid.at(0, 0), 2.0f);
+  EXPECT_EQ(*grid.at(1, 0), 1.0f);
+  EXPECT_EQ(*grid.at(2, 0), 3.0f);
+  EXPECT_EQ(*grid.at(0, 1), 4.0f);
+  EXPECT_EQ(*grid.at(2, 1), INFINITY);
+}
+
+TEST(HybridGrid, TheGridsConstantsScaleTheSizeCropTapsAndCapAndTakeEveryCellAtBudgetOne) {
+  StereoParameters parameters = parametersFor(0.1f, 2);
+  parameters.edgeCrop = 0.055f;  // 11 columns each side: the crop [11, 189) touches cells 5 to 94
+  parameters.method = StereoMethod::Hybrid;
+  parameters.hybridBase = StereoMethod::Search;
+  parameters.hybridBudget = 0.1f;
+  const gpu::HybridConstants image = makeHybridConstants(parameters, 201, 7);
+  const gpu::HybridConstants grid = hybridGridConstants(image);
+  EXPECT_EQ(grid.cell, 1);
+  EXPECT_EQ(grid.width, 101);
+  EXPECT_EQ(grid.height, 4);
+  EXPECT_EQ(grid.cropBegin, image.cropBegin / 2);
+  EXPECT_EQ(grid.cropEnd, (image.cropEnd + 1) / 2);
+  EXPECT_EQ(grid.windowPx, int(std::ceil(0.1f * 101.0f)) + 1);
+  ASSERT_EQ(grid.baseTapCount, image.baseTapCount);
+  for (int i = 0; i < grid.baseTapCount; ++i) EXPECT_EQ(grid.baseTapOffsetPx[i], (image.baseTapOffsetPx[i] + 1) / 2);
+  const std::uint64_t cells = std::uint64_t(grid.cropEnd - grid.cropBegin) * 4;
+  const std::uint64_t pixels = std::uint64_t(image.cropEnd - image.cropBegin) * 7;
+  EXPECT_EQ(grid.maskedPixelCap, std::uint64_t(image.maskedPixelCap) * cells / pixels);
+  parameters.hybridBudget = 1.0f;
+  EXPECT_EQ(hybridGridConstants(makeHybridConstants(parameters, 201, 7)).maskedPixelCap, cells);
+  EXPECT_EQ(hybridGridConstants(makeHybridConstants(parametersFor(0.1f, 1), 201, 7)).width, 201);  // cell 1: as is
+}
+
+TEST(HybridMask, ACellMasksItsPixelsInsideTheCropOnly) {
+  StereoParameters parameters = parametersFor(0.1f, 2);
+  parameters.edgeCrop = 0.055f;  // the crop [11, 189) of 200 columns: cells 5 and 94 are half inside
+  const gpu::HybridConstants c = makeHybridConstants(parameters, 200, 3);
+  ASSERT_EQ(c.cropBegin, 11);
+  ASSERT_EQ(c.cropEnd, 189);
+  const gpu::HybridConstants grid = hybridGridConstants(c);
+  std::vector<std::uint32_t> bins(std::size_t(grid.width * grid.height), 0);
+  bins[5] = bins[20] = bins[94] = 9;  // row 0 of cells: pixels rows 0 and 1
+  bins[100 + 30] = 9;                 // row 1 of cells: pixel row 2 only
+  HybridThreshold threshold;
+  threshold.bin = 5;
+  const std::vector<std::uint8_t> mask = hybridMaskReference(bins, threshold, c);
+  auto at = [&](int x, int y) { return int(mask[std::size_t(y) * 200 + std::size_t(x)]); };
+  EXPECT_EQ(at(10, 0), 0);  // cell 5's cropped column
+  EXPECT_EQ(at(11, 0), 1);
+  EXPECT_EQ(at(11, 1), 1);
+  EXPECT_EQ(at(40, 0) + at(41, 0) + at(40, 1) + at(41, 1), 4);
+  EXPECT_EQ(at(188, 1), 1);
+  EXPECT_EQ(at(189, 1), 0);  // cell 94's cropped column
+  EXPECT_EQ(at(60, 2) + at(61, 2), 2);
+  EXPECT_EQ(std::count(mask.begin(), mask.end(), 1), 2 + 4 + 2 + 2);
+}
+
 // The GPU classification against the C++ reference in every row shape the device runs. Tolerance: a bin off by
 // one in at most 1 pixel in 1000 (the GPU may round the parallax division differently in the last bit, which can
 // move a score across a bin boundary); with no pixel off, the histograms are the same.
@@ -339,6 +419,12 @@ TEST_F(HybridPassTest, ClassificationMatchesTheCppReferenceBinForBin) {
   const test::SyntheticView view = test::makeBlockView(160, 24, 7, 1.0f, 9, 4, true);
   const gpu::HybridConstants c = makeHybridConstants(parametersFor(0.05f), 160, 24);
   expectClassificationMatchesTheReference(context(), view.depth, c);
+}
+
+// Tolerance: as above. On 2x2 cells of an image of odd size: the cells' depth on the GPU, then the same rows.
+TEST_F(HybridPassTest, ClassificationOnCellsMatchesTheCppReference) {
+  const test::SyntheticView view = test::makeBlockView(161, 25, 7, 1.0f, 9, 4, true);
+  expectClassificationMatchesTheReference(context(), view.depth, makeHybridConstants(parametersFor(0.05f, 2), 161, 25));
 }
 
 // Tolerance: as above. A wider image classified in several chunks of a row, inside an edge crop, at a separation
@@ -384,33 +470,43 @@ TEST_F(HybridPassTest, ClassificationMatchesTheCppReferenceWhereARowHasMoreSteps
   expectClassificationMatchesTheReference(context(), depth, c);
 }
 
-// The threshold and the masks follow from the GPU's own histogram exactly (integer math), at every budget.
+// The threshold and the masks follow from the GPU's own histogram exactly (integer math), at every budget, for
+// cells of one pixel and of 2x2 (an odd size, the crop across a cell).
 TEST_F(HybridPassTest, ThresholdAndMasksMatchTheCppReferenceAtEveryBudget) {
-  const test::SyntheticView view = test::makeBlockView(160, 24, 7, 1.0f, 9, 4, true);
   for (HybridRowShape shape : rowShapesToCheck(context())) {
-    SCOPED_TRACE(shapeName(shape));
-    for (float budget : {0.0f, 0.01f, 0.05f, 0.2f, 0.5f, 0.99f, 1.0f}) {
-      StereoParameters parameters = parametersFor(0.05f);
-      parameters.hybridBudget = budget;
-      const gpu::HybridConstants c = makeHybridConstants(parameters, 160, 24);
-      const HybridGpuResult gpu = classifyHybridOnGpu(context(), view.depth, c, shape);
-      for (auto [histogram, threshold, bins, mask] :
-           {std::tuple{&gpu.classification.leftHistogram, &gpu.leftThreshold, &gpu.classification.leftBins, &gpu.leftMask},
-            std::tuple{&gpu.classification.rightHistogram, &gpu.rightThreshold, &gpu.classification.rightBins,
-                       &gpu.rightMask}}) {
-        const HybridThreshold expected = hybridThreshold(*histogram, c.maskedPixelCap);
-        EXPECT_EQ(threshold->bin, expected.bin) << "budget " << budget;
-        EXPECT_EQ(threshold->maskedPixels, expected.maskedPixels) << "budget " << budget;
-        EXPECT_LE(threshold->maskedPixels, c.maskedPixelCap);
-        // The budget is met as closely as the scored pixels allow (bin 0 is rendered only at budget 1).
-        const std::uint64_t classified = std::accumulate(histogram->begin(), histogram->end(), std::uint64_t(0));
-        EXPECT_EQ(threshold->maskedPixels,
-                  budget >= 1.0f ? classified : std::min<std::uint64_t>(c.maskedPixelCap, classified - (*histogram)[0]))
-            << "budget " << budget;
-        EXPECT_EQ(threshold->splitBin, expected.splitBin) << "budget " << budget;
-        EXPECT_EQ(threshold->splitPixels, expected.splitPixels) << "budget " << budget;
-        EXPECT_EQ(*mask, hybridMaskReference(*bins, *threshold, c)) << "budget " << budget;
-        EXPECT_EQ(std::uint64_t(std::count(mask->begin(), mask->end(), 1)), expected.maskedPixels);
+    for (int cell : {1, 2}) {
+      SCOPED_TRACE(shapeName(shape) + ", cell " + std::to_string(cell));
+      const std::uint32_t width = 160 + std::uint32_t(cell) - 1, height = 24 + std::uint32_t(cell) - 1;
+      const test::SyntheticView view = test::makeBlockView(width, height, 7, 1.0f, 9, 4, true);
+      for (float budget : {0.0f, 0.01f, 0.05f, 0.2f, 0.5f, 0.99f, 1.0f}) {
+        StereoParameters parameters = parametersFor(0.05f, cell);
+        parameters.hybridBudget = budget;
+        parameters.edgeCrop = cell == 2 ? 0.014f : 0.0f;  // an odd first column: a cell across the crop's edge
+        const gpu::HybridConstants image = makeHybridConstants(parameters, width, height);
+        const gpu::HybridConstants grid = hybridGridConstants(image);
+        ASSERT_TRUE(cell == 1 || image.cropBegin % 2 == 1) << image.cropBegin;
+        const HybridGpuResult gpu = classifyHybridOnGpu(context(), view.depth, image, shape);
+        for (auto [histogram, threshold, bins, mask] :
+             {std::tuple{&gpu.classification.leftHistogram, &gpu.leftThreshold, &gpu.classification.leftBins, &gpu.leftMask},
+              std::tuple{&gpu.classification.rightHistogram, &gpu.rightThreshold, &gpu.classification.rightBins,
+                         &gpu.rightMask}}) {
+          const HybridThreshold expected = hybridThreshold(*histogram, grid.maskedPixelCap);
+          EXPECT_EQ(threshold->bin, expected.bin) << "budget " << budget;
+          EXPECT_EQ(threshold->maskedPixels, expected.maskedPixels) << "budget " << budget;
+          EXPECT_LE(threshold->maskedPixels, grid.maskedPixelCap);
+          // The budget is met as closely as the scored cells allow (bin 0 is rendered only at budget 1).
+          const std::uint64_t classified = std::accumulate(histogram->begin(), histogram->end(), std::uint64_t(0));
+          EXPECT_EQ(threshold->maskedPixels, budget >= 1.0f ? classified
+                                                            : std::min<std::uint64_t>(grid.maskedPixelCap,
+                                                                                      classified - (*histogram)[0]))
+              << "budget " << budget;
+          EXPECT_EQ(threshold->splitBin, expected.splitBin) << "budget " << budget;
+          EXPECT_EQ(threshold->splitPixels, expected.splitPixels) << "budget " << budget;
+          EXPECT_EQ(*mask, hybridMaskReference(*bins, *threshold, image)) << "budget " << budget;
+          if (cell == 1) {
+            EXPECT_EQ(std::uint64_t(std::count(mask->begin(), mask->end(), 1)), expected.maskedPixels);
+          }
+        }
       }
     }
   }

@@ -239,6 +239,8 @@ std::string commandLineOf(const BenchOptions& options, const ValidatedBench& ben
     if (!options.targetSetting.empty()) command += " --target-setting " + target.name();
     if (options.hybridSurfaces != frame::HybridSurfaces::Automatic)
       command += std::string(" --hybrid-surfaces ") + frame::hybridSurfacesName(options.hybridSurfaces);
+    if (options.stereo.hybridCell != stereo::StereoParameters{}.hybridCell)
+      command += " --hybrid-cell " + std::to_string(options.stereo.hybridCell);
   }
   command += " --repeat " + std::to_string(options.repeat);
   if (options.supersample != 1) command += " --supersample " + std::to_string(options.supersample);

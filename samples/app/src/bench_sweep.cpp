@@ -94,8 +94,8 @@ BenchRow settingRow(const std::string& sceneName, const MethodSetting& setting,
   row.traffic = stereoPassTraffic(methodParameters, options.width, options.height, cpuDevice);
   if (const std::optional<frame::HybridSynthesis>& hybrid = synthesis.hybrid) {
     const double classified = double(std::max<std::uint64_t>(hybrid->classifiedPixels, 1));
-    row.maskedShareLeft = double(hybrid->thresholds[0].maskedPixels) / classified;
-    row.maskedShareRight = double(hybrid->thresholds[1].maskedPixels) / classified;
+    row.maskedShareLeft = double(hybrid->maskedPixels[0]) / classified;
+    row.maskedShareRight = double(hybrid->maskedPixels[1]) / classified;
     row.hybridTimings = hybrid->timings;
   }
   return row;

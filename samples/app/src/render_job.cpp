@@ -137,19 +137,20 @@ ValidatedJob validateJob(const RenderJobOptions& options) {
 // tidy, finiteOrNull, optionalMs, statsJson and errorJson: extracted to eye_comparison.cpp (shared with s3d bench).
 
 nlohmann::json hybridJson(const HybridReport& hybrid) {
-  auto eyeJson = [&](const stereo::HybridThreshold& threshold) {
+  auto eyeJson = [&](const stereo::HybridThreshold& threshold, std::uint64_t maskedPixels) {
     return nlohmann::json{{"thresholdBin", threshold.bin},
                           {"splitBin", threshold.splitBin < S3D_HYBRID_BINS ? nlohmann::json(threshold.splitBin) : nlohmann::json()},
-                          {"splitPixels", threshold.splitPixels},
-                          {"maskedPixels", threshold.maskedPixels},
-                          {"maskedShare", finiteOrNull(tidy(float(threshold.maskedPixels) /
+                          {"splitCells", threshold.splitPixels},
+                          {"maskedPixels", maskedPixels},
+                          {"maskedShare", finiteOrNull(tidy(float(maskedPixels) /
                                                             float(std::max<std::uint64_t>(hybrid.classifiedPixels, 1))))}};
   };
   return {{"budget", finiteOrNull(tidy(hybrid.budget))},
           {"base", stereo::methodName(hybrid.base)},
+          {"cell", hybrid.cell},
           {"classifiedPixels", hybrid.classifiedPixels},
-          {"left", eyeJson(hybrid.thresholds[0])},
-          {"right", eyeJson(hybrid.thresholds[1])},
+          {"left", eyeJson(hybrid.thresholds[0], hybrid.maskedPixels[0])},
+          {"right", eyeJson(hybrid.thresholds[1], hybrid.maskedPixels[1])},
           {"gpuTimeMs", toJson(hybrid.timings)}};
 }
 
@@ -212,7 +213,8 @@ stereo::HdrStereoPair outputHdrEyes(frame::ComfortedFrame& frame, RenderReport& 
     stereo::compositeHybridReference(eyes.left, hybrid->renderedHdr[0], hybrid->masks[0]);
     stereo::compositeHybridReference(eyes.right, hybrid->renderedHdr[1], hybrid->masks[1]);
     report.hybrid = HybridReport{frame.parameters.hybridBudget, frame.parameters.hybridBase, hybrid->classifiedPixels,
-                                 hybrid->thresholds, std::move(frame.synthesized.hybrid->timings)};
+                                 frame.parameters.hybridCell, hybrid->thresholds, hybrid->maskedPixels,
+                                 std::move(frame.synthesized.hybrid->timings)};
   }
   return {frame.toOutput(eyes.left), frame.toOutput(eyes.right)};
 }

@@ -36,9 +36,11 @@ struct HybridTimings {
 
 struct HybridSynthesis {
   stereo::StereoPair eyes;  // at the renderer's size; alpha as the displaced eyes' (the weapon mask)
-  std::array<stereo::HybridThreshold, 2> thresholds;  // left, right
+  std::array<stereo::HybridThreshold, 2> thresholds;  // left, right; counted in the classification's cells
   std::uint64_t classifiedPixels = 0;                 // per eye (the crop's area)
+  std::uint64_t classifiedCells = 0;                  // per eye: the classification grid's cells in the crop
   std::array<std::vector<std::uint8_t>, 2> masks;     // left, right: 1 where the eye camera rendered the pixel
+  std::array<std::uint64_t, 2> maskedPixels{};        // left, right: the masks' set pixels
   std::array<ImageRGBA32F, 2> renderedHdr;            // the masked renders' HDR colour (valid where masked; zero
                                                       // for an eye with nothing masked, which is not rendered)
   std::uint64_t filledLeft = 0, filledRight = 0;      // the iterative base's filled pixels that stayed displaced

@@ -18,7 +18,7 @@ namespace s3d::stereo {
 using HybridHistogram = std::array<std::uint64_t, S3D_HYBRID_BINS>;
 
 struct HybridClassification {
-  std::vector<std::uint32_t> leftBins, rightBins;  // per pixel, row-major; 0 in the cropped columns
+  std::vector<std::uint32_t> leftBins, rightBins;  // per cell of the grid (hybridGridConstants), row-major; 0 outside its crop
   HybridHistogram leftHistogram{}, rightHistogram{};
 };
 
@@ -27,24 +27,36 @@ struct HybridClassification {
 std::uint32_t hybridPixelCap(float budget, std::uint64_t classifiedPixels);
 
 // Constants for the parameters at the given size: the crop as the stereo pass's, the window = the largest
-// parallax the zero-parallax distance allows + 1 px, the cap of parameters.hybridBudget over the crop, and a
-// gather base's taps.
+// parallax the zero-parallax distance allows + 1 px, the cap of parameters.hybridBudget over the crop, a gather
+// base's taps, and the classification's cell (parameters.hybridCell).
 gpu::HybridConstants makeHybridConstants(const StereoParameters& parameters, std::uint32_t width, std::uint32_t height);
+
+// The classification grid's constants for an image's (hybridGridSize): one pixel per cell, the grid's size and
+// crop, its window, the taps in whole cells (rounded half up) and the same share of its classified cells as the
+// image's cap is of its classified pixels (all of them when the cap takes every pixel). A cell of 1 gives the
+// image's own constants.
+gpu::HybridConstants hybridGridConstants(const gpu::HybridConstants& image);
+// The grid's depth: each cell's nearest sanitized linear depth over its pixels (the nearest surface's parallax
+// opens the widest holes, so a cell with an edge is classified as the edge's near side).
+DepthImage hybridGridDepthReference(const DepthImage& linearDepth, const gpu::HybridConstants& image);
 
 // The gather base's own stereo constants (its taps, separation, zero-parallax distance, size), for its choice of
 // source (gatherSourceColumn); baseTapCount 0 (a base that is no gather) gives no taps.
 gpu::StereoConstants hybridBaseGatherConstants(const gpu::HybridConstants& constants);
 
-// What the center view shows at every eye pixel of row y (hybrid_shared.h): each pair of neighbouring center
+// What the center view shows at every eye pixel of row y (hybrid_shared.h), at the constants' own resolution (a
+// cell of one pixel: hybridGridConstants gives a grid's): each pair of neighbouring center
 // texels of the edge-extended row scatters its terms into the pixels it reaches, and the change pairs' landing
 // intervals are swept along the row once each way for the nearest boundary.
 std::vector<gpu::HybridCoverage> hybridRowCoverageReference(const DepthImage& linearDepth, int y, Eye eye,
                                                              const gpu::HybridConstants& constants);
 
-// The expected error of one eye pixel in pixels of parallax (hybrid_shared.h), and every pixel's bin.
+// The expected error of one eye pixel in pixels of parallax (hybrid_shared.h; a cell of one pixel), and every
+// cell's bin: the image's depth classified on its grid (hybridGridDepthReference, hybridGridConstants).
 float hybridPixelScoreReference(const DepthImage& linearDepth, int x, int y, Eye eye, const gpu::HybridConstants& constants);
 HybridClassification classifyHybridReference(const DepthImage& linearDepth, const gpu::HybridConstants& constants);
 
+// Counted in the classification grid's cells (pixels for a cell of one pixel).
 struct HybridThreshold {
   int bin = S3D_HYBRID_NO_PIXEL;  // pixels with bin >= this are rendered
   std::uint64_t maskedPixels = 0;  // all of them, the split bin's share included
@@ -60,8 +72,9 @@ struct HybridThreshold {
 // everything.
 HybridThreshold hybridThreshold(const HybridHistogram& histogram, std::uint32_t maskedPixelCap);
 
-// 1 for the pixels inside the crop whose bin is >= threshold.bin, and for the first threshold.splitPixels pixels of
-// threshold.splitBin inside the crop in raster order; else 0 (what the renderer shades).
+// Per pixel of the image: 1 for the pixels inside the crop whose cell's bin is >= threshold.bin, or whose cell is
+// one of the first threshold.splitPixels cells of threshold.splitBin in the grid's crop in raster order; else 0
+// (what the renderer shades). bins and the threshold are the grid's (cells), `constants` the image's.
 std::vector<std::uint8_t> hybridMaskReference(const std::vector<std::uint32_t>& bins, const HybridThreshold& threshold,
                                               const gpu::HybridConstants& constants);
 

@@ -43,25 +43,30 @@ class HybridPass {
   explicit HybridPass(const vk::Context& context, std::optional<HybridRowShape> shape = std::nullopt);
   HybridRowShape rowShape() const { return shape_; }
 
-  // One size's intermediate images, created once and reused every frame. All R32_UINT.
+  // One size's intermediate images, created once and reused every frame. R32_UINT but the grid's depth; the bins,
+  // row histograms and split offsets are the classification grid's (hybridGridConstants), the masks the image's.
   struct Images {
-    vk::Image leftBins, rightBins;  // score bin per eye pixel
+    int cell = 1;                   // the classification's cell they were made for
+    vk::Image gridDepth;            // R32F, each cell's nearest depth (a cell of more than one pixel only)
+    vk::Image leftBins, rightBins;  // score bin per cell
     vk::Image histogram;            // S3D_HYBRID_BINS x 2, row 0 the left eye
-    vk::Image rowHistograms;        // 2 S3D_HYBRID_BINS x height: each row's left-eye bins, then its right-eye bins
-    // S3D_HYBRID_THRESHOLD_FIELDS x 2: (0, eye) the threshold bin, (1, eye) the masked pixel count, (2, eye) the
-    // split bin, (3, eye) its masked pixels (HybridThreshold)
+    vk::Image rowHistograms;        // 2 S3D_HYBRID_BINS x the grid's height: each row's left-eye bins, then right
+    // S3D_HYBRID_THRESHOLD_FIELDS x 2: (0, eye) the threshold bin, (1, eye) the masked cell count, (2, eye) the
+    // split bin, (3, eye) its masked cells (HybridThreshold)
     vk::Image thresholds;
-    vk::Image splitOffsets;         // height x 2: the split bin's pixels in the rows above each row
-    vk::Image leftMask, rightMask;  // 1 where the eye camera renders the pixel
+    vk::Image splitOffsets;         // the grid's height x 2: the split bin's cells in the rows above each row
+    vk::Image leftMask, rightMask;  // per pixel: 1 where the eye camera renders it
     bool written = false;           // set by recordMasks: later frames wait for the earlier frame's reads
   };
-  Images createImages(std::uint32_t width, std::uint32_t height) const;
+  // cell: the classification's (StereoParameters::hybridCell); recordMasks refuses constants of another.
+  Images createImages(std::uint32_t width, std::uint32_t height, int cell) const;
 
-  // Classification, threshold and masks in three dispatches (one workgroup per row, two, one per row). linearDepth: the center view's (R32F, GENERAL,
+  // Classification, threshold and masks in three dispatches (one workgroup per row of cells, two, one per row of
+  // cells), after the grid's depth for a cell of more than one pixel. linearDepth: the center view's (R32F, GENERAL,
   // written by an earlier compute pass and made visible by the caller). Leaves every image of `images` in
   // vk::kComputeWrite state: a consumer of the masks (the renderer) transitions them to what it reads with.
   // afterEachDispatch (optional) is called right after each of the three dispatches is recorded (a caller's
-  // timestamps: classify, threshold, mask).
+  // timestamps: classify with the grid's depth before it, threshold, mask).
   void recordMasks(VkCommandBuffer cmd, const vk::Image& linearDepth, Images& images,
                    const gpu::HybridConstants& constants, const std::function<void()>& afterEachDispatch = {}) const;
   // eye (RGBA8) takes renderedEye's (RGBA8) colour where mask is set; all three in VK_IMAGE_LAYOUT_GENERAL with
@@ -83,9 +88,9 @@ class HybridPass {
  private:
   const vk::Context* context_;
   HybridRowShape shape_;
-  vk::PipelineLayout classifyLayout_, thresholdLayout_, maskLayout_, compositeLayout_, cropEdgesLayout_;
+  vk::PipelineLayout gridDepthLayout_, classifyLayout_, thresholdLayout_, maskLayout_, compositeLayout_, cropEdgesLayout_;
   detail::BaseTapPipelines classify_;
-  vk::Unique<VkPipeline> threshold_, mask_, composite_, cropEdges_;
+  vk::Unique<VkPipeline> gridDepth_, threshold_, mask_, composite_, cropEdges_;
 };
 
 // What the GPU passes produce for one depth image (tests): bins, histograms, thresholds and masks.

@@ -58,11 +58,20 @@ struct HybridConstants {
   int windowPx;         // the separation window: the largest parallax behind the screen + 1 px (the nearness tier's reach)
   uint maskedPixelCap;  // the budget: at most this many pixels per eye are masked (hybridPixelCap in hybrid.h)
   int baseTapCount;     // a gather base (seed, search): its taps, so its choice of source can be checked;
-  int padding0;         // 0 for a base that lands on the visible surface by design (iterative, forward)
+                        // 0 for a base that lands on the visible surface by design (iterative, forward)
+  int cell;             // the classification's cell, pixels per side: 1 every pixel, 2 each 2x2 block (hybridGridSize)
   int padding1;
   int padding2;
   int baseTapOffsetPx[S3D_STEREO_MAX_TAPS];  // the gather's depth taps in whole pixels
 };
+
+// The classification's grid: cells of `cell` x `cell` pixels from the image's top left (the last row and column of
+// cells may be partial), each classified as one pixel of an image of the cells' nearest depths, so a 2-pixel cell
+// classifies a quarter of the pixels with the same row walk. A cell is classified when any of its columns lies in
+// the crop; its pixels inside the crop take its mask.
+S3D_INLINE int hybridGridSize(int pixels, int cell) { return (pixels + cell - 1) / cell; }
+S3D_INLINE int hybridGridCropBegin(int cropBegin, int cell) { return cropBegin / cell; }
+S3D_INLINE int hybridGridCropEnd(int cropEnd, int cell) { return (cropEnd + cell - 1) / cell; }
 
 // Parallax in pixels of the (sanitized) linear depth.
 S3D_INLINE float hybridParallaxPx(float linearDepth, float maxSeparation, float zeroParallaxDistance, int width) {

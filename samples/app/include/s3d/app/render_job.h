@@ -92,7 +92,9 @@ struct HybridReport {
   float budget = 0.0f;
   stereo::StereoMethod base = stereo::StereoMethod::Search;
   std::uint64_t classifiedPixels = 0;               // per eye: the compared area
-  std::array<stereo::HybridThreshold, 2> thresholds;  // left, right: the threshold bin and the masked pixel count
+  int cell = 1;                                      // the classification's cell, pixels per side
+  std::array<stereo::HybridThreshold, 2> thresholds;  // left, right: the threshold and split bins (in cells)
+  std::array<std::uint64_t, 2> maskedPixels{};        // left, right
   frame::HybridTimings timings;
 };
 
