@@ -325,13 +325,14 @@ HybridSynthesis HybridSynthesizer::synthesize(const renderer::DeferredRenderer& 
   vk::Context& context = kept_->context;
   HybridSynthesis result;
   result.surfaces = surfacesFor(eyeRenderer, scene, surfaces);
-  kept_->fit(width, height, parameters.hybridCell);
+  const gpu::HybridConstants constants = stereo::makeHybridConstants(parameters, width, height);
+  kept_->fit(width, height, constants.cell);
   HybridFrame f{context, centerRenderer, eyeRenderer, width, height, timedRuns, kept_->hybrid, kept_->baseDepthPass,
-                stereo::makeHybridConstants(parameters, width, height), kept_->images, kept_->left, kept_->right,
-                false, false, false, kept_->baseDepth};
+                constants, kept_->images, kept_->left, kept_->right, false, false, false, kept_->baseDepth};
   const gpu::HybridConstants grid = stereo::hybridGridConstants(f.constants);
   result.classifiedPixels = std::uint64_t(f.constants.cropEnd - f.constants.cropBegin) * height;
   result.classifiedCells = std::uint64_t(grid.cropEnd - grid.cropBegin) * std::uint64_t(grid.height);
+  result.cell = constants.cell;
   // The budget's ends need no classification: none masks nothing (the base displacement), all masks every
   // classified cell (the eyes rendered whole, the two-pass reference), whatever the scores.
   f.nothingMasked = grid.maskedPixelCap == 0;

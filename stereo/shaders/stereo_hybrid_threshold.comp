@@ -37,10 +37,14 @@ void main() {
   // The sums fall as the bin rises, so the bins within the cap are one run up to the top.
   if (above[bin] <= c.maskedPixelCap) atomicMin(lowestBin, bin);
   barrier();
-  uint threshold = lowestBin;
+  // Below budget 1 (the cap takes fewer than every pixel: a lowest bin above 0) bin 0 and the bins below the floor
+  // are never masked.
+  uint lowest = uint(max(c.minimumBin, 1));
+  uint threshold = lowestBin == 0u ? 0u : max(lowestBin, lowest);
   uint wholeBins = threshold < S3D_HYBRID_BINS ? above[threshold] : 0u;
-  // The bin below the threshold holds more than the cap leaves (else it would be taken whole); bin 0 never splits.
-  uint splitBin = threshold >= 2u ? threshold - 1u : S3D_HYBRID_NO_PIXEL;
+  // The bin below the threshold holds more than the cap leaves (else it would be taken whole); a bin below the
+  // lowest never splits.
+  uint splitBin = threshold >= lowest + 1u ? threshold - 1u : S3D_HYBRID_NO_PIXEL;
   uint split = splitBin != S3D_HYBRID_NO_PIXEL ? c.maskedPixelCap - wholeBins : 0u;
   if (split == 0u) splitBin = S3D_HYBRID_NO_PIXEL;
   barrier();  // everyone has read `above`: it now holds row sums

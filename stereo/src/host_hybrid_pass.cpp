@@ -45,7 +45,7 @@ HostHybridPass::HostHybridPass(vk::Context& context, std::uint32_t width, std::u
       height_(height),
       displacement_(context, kernel),
       hybrid_(context),
-      images_(hybrid_.createImages(width, height, StereoParameters{}.hybridCell)),  // the hosts' cell: the default
+      images_(hybrid_.createImages(width, height, hybridCellFor(StereoParameters{}, width))),  // the hosts': the default
       depths_(vk::createBuffer(context, VkDeviceSize(width) * height * 2 * sizeof(float),
                                VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
                                vk::MemoryLocation::Device)),

@@ -9,6 +9,11 @@
 
 namespace s3d::stereo {
 
+int hybridCellFor(const StereoParameters& parameters, std::uint32_t width) {
+  if (parameters.hybridCell > 0) return parameters.hybridCell;
+  return width >= kHybridCellWidth ? 2 : 1;
+}
+
 gpu::HybridConstants makeHybridConstants(const StereoParameters& parameters, std::uint32_t width, std::uint32_t height) {
   const gpu::StereoConstants stereo = makeSeedConstants(parameters, width, height);  // the crop rule of every method
   gpu::HybridConstants c{};
@@ -23,7 +28,8 @@ gpu::HybridConstants makeHybridConstants(const StereoParameters& parameters, std
   c.windowPx = int(std::ceil(parameters.maxSeparation * float(width))) + 1;
   const std::uint64_t classified = std::uint64_t(std::max(c.cropEnd - c.cropBegin, 0)) * height;
   c.maskedPixelCap = hybridPixelCap(parameters.hybridBudget, classified);
-  c.cell = parameters.hybridCell;
+  c.cell = hybridCellFor(parameters, width);
+  c.minimumBin = int(gpu::hybridScoreBin(parameters.hybridScoreFloor));  // 0 without a floor
   // A gather base's taps (its choice of source is recomputed per pixel); the others land on the visible surface.
   const StereoParameters base = displacementParameters(parameters);
   if (base.method == StereoMethod::Seed || base.method == StereoMethod::Search) {
@@ -209,16 +215,18 @@ HybridClassification classifyHybridReference(const DepthImage& linearDepth, cons
   return result;
 }
 
-HybridThreshold hybridThreshold(const HybridHistogram& histogram, std::uint32_t maskedPixelCap) {
+HybridThreshold hybridThreshold(const HybridHistogram& histogram, std::uint32_t maskedPixelCap, int minimumBin) {
   HybridThreshold threshold;
-  for (int bin = S3D_HYBRID_BINS - 1; bin >= 0; --bin) {
+  const std::uint64_t classified = std::accumulate(histogram.begin(), histogram.end(), std::uint64_t(0));
+  if (maskedPixelCap >= classified) return {0, classified, S3D_HYBRID_NO_PIXEL, 0};  // every pixel, whatever its score
+  // Bin 0 (nothing expected wrong) and the bins below the floor are never masked below budget 1.
+  const int lowest = std::max(minimumBin, 1);
+  for (int bin = S3D_HYBRID_BINS - 1; bin >= lowest; --bin) {
     const std::uint64_t masked = threshold.maskedPixels + histogram[std::size_t(bin)];
-    if (masked > maskedPixelCap) {
-      if (bin > 0) {  // the cap falls inside this bin: split its ties
-        threshold.splitBin = bin;
-        threshold.splitPixels = maskedPixelCap - threshold.maskedPixels;
-        threshold.maskedPixels = maskedPixelCap;
-      }
+    if (masked > maskedPixelCap) {  // the cap falls inside this bin: split its ties
+      threshold.splitBin = bin;
+      threshold.splitPixels = maskedPixelCap - threshold.maskedPixels;
+      threshold.maskedPixels = maskedPixelCap;
       break;
     }
     threshold.bin = bin;

@@ -55,8 +55,11 @@ void validate(const StereoParameters& p) {
     requireFinite(p.hybridBudget, "hybridBudget");
     if (p.hybridBudget < 0.0f || p.hybridBudget > 1.0f)
       throw std::invalid_argument("hybridBudget " + numberText(p.hybridBudget) + " is outside [0, 1]");
-    if (p.hybridCell != 1 && p.hybridCell != 2)
-      throw std::invalid_argument("hybridCell " + std::to_string(p.hybridCell) + " is neither 1 nor 2");
+    if (p.hybridCell < 0 || p.hybridCell > 2)
+      throw std::invalid_argument("hybridCell " + std::to_string(p.hybridCell) + " is not 0 (by the width), 1 or 2");
+    requireFinite(p.hybridScoreFloor, "hybridScoreFloor");
+    if (p.hybridScoreFloor < 0.0f || p.hybridScoreFloor > 32.0f)
+      throw std::invalid_argument("hybridScoreFloor " + numberText(p.hybridScoreFloor) + " is outside [0, 32] (pixels)");
     StereoParameters base = p;
     base.method = p.hybridBase;
     validate(base);

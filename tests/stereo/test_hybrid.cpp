@@ -50,6 +50,7 @@ StereoParameters parametersFor(float maxSeparation, int cell = 1) {
   parameters.zeroParallaxDistance = 1.0f;
   parameters.edgeCrop = 0.0f;
   parameters.hybridCell = cell;
+  parameters.hybridScoreFloor = 0.0f;
   return parameters;
 }
 
@@ -276,6 +277,41 @@ TEST(HybridBudget, TakesTheHighestScoresFirstAndMeetsTheBudgetBySplittingTheTies
   EXPECT_EQ(exact.splitBin, S3D_HYBRID_NO_PIXEL);
 }
 
+TEST(HybridBudget, TheScoreFloorKeepsLowerBinsUnmaskedBelowBudgetOne) {
+  HybridHistogram histogram{};
+  histogram[0] = 500;
+  histogram[3] = 40;
+  histogram[200] = 10;
+  // A floor at bin 4: bin 3 is never masked, however much of the cap is left; below the floor nothing splits.
+  const HybridThreshold floored = hybridThreshold(histogram, 55, 4);
+  EXPECT_EQ(floored.maskedPixels, 10u);
+  EXPECT_GE(floored.bin, 4);
+  EXPECT_LE(floored.bin, 200);
+  EXPECT_EQ(floored.splitBin, S3D_HYBRID_NO_PIXEL);
+  // Above the floor the cap splits as without one.
+  const HybridThreshold five = hybridThreshold(histogram, 5, 4);
+  EXPECT_EQ(five.splitBin, 200);
+  EXPECT_EQ(five.splitPixels, 5u);
+  // Budget 1 takes every pixel whatever the floor.
+  EXPECT_EQ(hybridThreshold(histogram, 550, 4).bin, 0);
+  EXPECT_EQ(hybridThreshold(histogram, 550, 4).maskedPixels, 550u);
+  // Floors of 0 and 1 are no floor (bin 0 is never masked below budget 1 anyway).
+  for (int minimumBin : {0, 1}) EXPECT_EQ(hybridThreshold(histogram, 55, minimumBin).maskedPixels, 50u);
+}
+
+TEST(HybridParameters, TheScoreFloorIsABinOfTheScoreAndRefusedOutsideItsRange) {
+  StereoParameters p = parametersFor(0.05f);
+  p.method = StereoMethod::Hybrid;
+  p.hybridScoreFloor = 0.15f;
+  EXPECT_EQ(makeHybridConstants(p, 64, 8).minimumBin, int(gpu::hybridScoreBin(0.15f)));
+  p.hybridScoreFloor = 0.0f;
+  EXPECT_EQ(makeHybridConstants(p, 64, 8).minimumBin, 0);
+  for (float floor : {-0.1f, 40.0f, float(NAN)}) {
+    p.hybridScoreFloor = floor;
+    EXPECT_THROW(validate(p), std::invalid_argument) << floor;
+  }
+}
+
 TEST(HybridMask, MarksTheBinsAtOrAboveTheThresholdInsideTheCropOnly) {
   StereoParameters parameters = parametersFor(0.1f);
   parameters.edgeCrop = 0.05f;  // 10 columns each side
@@ -313,14 +349,19 @@ TEST(HybridMask, TakesTheSplitBinsFirstPixelsInRasterOrderInsideTheCrop) {
   EXPECT_EQ(std::count(mask.begin(), mask.end(), 1), 3);
 }
 
-TEST(HybridParameters, RefuseACellOtherThanOneOrTwoPixels) {
+TEST(HybridParameters, TheCellIsTwoPixelsFrom1280ColumnsUnlessGivenAndRefusedOutsideZeroToTwo) {
   StereoParameters p;
   p.method = StereoMethod::Hybrid;
-  for (int cell : {1, 2}) {
+  EXPECT_EQ(hybridCellFor(p, kHybridCellWidth - 1), 1);
+  EXPECT_EQ(hybridCellFor(p, kHybridCellWidth), 2);
+  EXPECT_EQ(makeHybridConstants(p, 1920, 8).cell, 2);
+  for (int cell : {0, 1, 2}) {
     p.hybridCell = cell;
     EXPECT_NO_THROW(validate(p)) << cell;
   }
-  for (int cell : {0, 3, -2}) {
+  p.hybridCell = 1;
+  EXPECT_EQ(hybridCellFor(p, 1920), 1);
+  for (int cell : {3, -2}) {
     p.hybridCell = cell;
     EXPECT_THROW(validate(p), std::invalid_argument) << cell;
   }
@@ -471,7 +512,7 @@ TEST_F(HybridPassTest, ClassificationMatchesTheCppReferenceWhereARowHasMoreSteps
 }
 
 // The threshold and the masks follow from the GPU's own histogram exactly (integer math), at every budget, for
-// cells of one pixel and of 2x2 (an odd size, the crop across a cell).
+// cells of one pixel and of 2x2 with the score floor (an odd size, the crop across a cell).
 TEST_F(HybridPassTest, ThresholdAndMasksMatchTheCppReferenceAtEveryBudget) {
   for (HybridRowShape shape : rowShapesToCheck(context())) {
     for (int cell : {1, 2}) {
@@ -481,6 +522,7 @@ TEST_F(HybridPassTest, ThresholdAndMasksMatchTheCppReferenceAtEveryBudget) {
       for (float budget : {0.0f, 0.01f, 0.05f, 0.2f, 0.5f, 0.99f, 1.0f}) {
         StereoParameters parameters = parametersFor(0.05f, cell);
         parameters.hybridBudget = budget;
+        parameters.hybridScoreFloor = cell == 2 ? 0.15f : 0.0f;  // the defaults, floor included, on cells
         parameters.edgeCrop = cell == 2 ? 0.014f : 0.0f;  // an odd first column: a cell across the crop's edge
         const gpu::HybridConstants image = makeHybridConstants(parameters, width, height);
         const gpu::HybridConstants grid = hybridGridConstants(image);
@@ -490,15 +532,17 @@ TEST_F(HybridPassTest, ThresholdAndMasksMatchTheCppReferenceAtEveryBudget) {
              {std::tuple{&gpu.classification.leftHistogram, &gpu.leftThreshold, &gpu.classification.leftBins, &gpu.leftMask},
               std::tuple{&gpu.classification.rightHistogram, &gpu.rightThreshold, &gpu.classification.rightBins,
                          &gpu.rightMask}}) {
-          const HybridThreshold expected = hybridThreshold(*histogram, grid.maskedPixelCap);
+          const HybridThreshold expected = hybridThreshold(*histogram, grid.maskedPixelCap, grid.minimumBin);
           EXPECT_EQ(threshold->bin, expected.bin) << "budget " << budget;
           EXPECT_EQ(threshold->maskedPixels, expected.maskedPixels) << "budget " << budget;
           EXPECT_LE(threshold->maskedPixels, grid.maskedPixelCap);
-          // The budget is met as closely as the scored cells allow (bin 0 is rendered only at budget 1).
+          // The budget is met as closely as the cells scored at or above the floor allow (bin 0 and those below the
+          // floor are rendered only at budget 1).
           const std::uint64_t classified = std::accumulate(histogram->begin(), histogram->end(), std::uint64_t(0));
-          EXPECT_EQ(threshold->maskedPixels, budget >= 1.0f ? classified
-                                                            : std::min<std::uint64_t>(grid.maskedPixelCap,
-                                                                                      classified - (*histogram)[0]))
+          const std::uint64_t scored = std::accumulate(histogram->begin() + std::max(grid.minimumBin, 1),
+                                                       histogram->end(), std::uint64_t(0));
+          EXPECT_EQ(threshold->maskedPixels,
+                    budget >= 1.0f ? classified : std::min<std::uint64_t>(grid.maskedPixelCap, scored))
               << "budget " << budget;
           EXPECT_EQ(threshold->splitBin, expected.splitBin) << "budget " << budget;
           EXPECT_EQ(threshold->splitPixels, expected.splitPixels) << "budget " << budget;

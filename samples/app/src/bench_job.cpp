@@ -241,6 +241,8 @@ std::string commandLineOf(const BenchOptions& options, const ValidatedBench& ben
       command += std::string(" --hybrid-surfaces ") + frame::hybridSurfacesName(options.hybridSurfaces);
     if (options.stereo.hybridCell != stereo::StereoParameters{}.hybridCell)
       command += " --hybrid-cell " + std::to_string(options.stereo.hybridCell);
+    if (options.stereo.hybridScoreFloor != stereo::StereoParameters{}.hybridScoreFloor)
+      command += " --hybrid-score-floor " + format("%g", double(options.stereo.hybridScoreFloor));
   }
   command += " --repeat " + std::to_string(options.repeat);
   if (options.supersample != 1) command += " --supersample " + std::to_string(options.supersample);

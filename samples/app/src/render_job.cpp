@@ -213,7 +213,7 @@ stereo::HdrStereoPair outputHdrEyes(frame::ComfortedFrame& frame, RenderReport& 
     stereo::compositeHybridReference(eyes.left, hybrid->renderedHdr[0], hybrid->masks[0]);
     stereo::compositeHybridReference(eyes.right, hybrid->renderedHdr[1], hybrid->masks[1]);
     report.hybrid = HybridReport{frame.parameters.hybridBudget, frame.parameters.hybridBase, hybrid->classifiedPixels,
-                                 frame.parameters.hybridCell, hybrid->thresholds, hybrid->maskedPixels,
+                                 hybrid->cell, hybrid->thresholds, hybrid->maskedPixels,
                                  std::move(frame.synthesized.hybrid->timings)};
   }
   return {frame.toOutput(eyes.left), frame.toOutput(eyes.right)};

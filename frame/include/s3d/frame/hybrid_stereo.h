@@ -38,6 +38,7 @@ struct HybridSynthesis {
   stereo::StereoPair eyes;  // at the renderer's size; alpha as the displaced eyes' (the weapon mask)
   std::array<stereo::HybridThreshold, 2> thresholds;  // left, right; counted in the classification's cells
   std::uint64_t classifiedPixels = 0;                 // per eye (the crop's area)
+  int cell = 1;                                       // the classification's cell, pixels per side
   std::uint64_t classifiedCells = 0;                  // per eye: the classification grid's cells in the crop
   std::array<std::vector<std::uint8_t>, 2> masks;     // left, right: 1 where the eye camera rendered the pixel
   std::array<std::uint64_t, 2> maskedPixels{};        // left, right: the masks' set pixels

@@ -26,9 +26,14 @@ struct HybridClassification {
 // whatever the rounding. Throws std::invalid_argument unless budget is in [0, 1].
 std::uint32_t hybridPixelCap(float budget, std::uint64_t classifiedPixels);
 
+// The classification's cell for an image `width` pixels wide: parameters.hybridCell, or where that is 0, 2 from
+// kHybridCellWidth columns up and 1 below.
+inline constexpr std::uint32_t kHybridCellWidth = 1280;
+int hybridCellFor(const StereoParameters& parameters, std::uint32_t width);
+
 // Constants for the parameters at the given size: the crop as the stereo pass's, the window = the largest
 // parallax the zero-parallax distance allows + 1 px, the cap of parameters.hybridBudget over the crop, a gather
-// base's taps, and the classification's cell (parameters.hybridCell).
+// base's taps, the classification's cell (hybridCellFor) and the score floor's bin.
 gpu::HybridConstants makeHybridConstants(const StereoParameters& parameters, std::uint32_t width, std::uint32_t height);
 
 // The classification grid's constants for an image's (hybridGridSize): one pixel per cell, the grid's size and
@@ -66,11 +71,12 @@ struct HybridThreshold {
   std::uint64_t splitPixels = 0;
 };
 
-// The masked pixels for a cap: whole bins from the highest score down while they stay within maskedPixelCap, then
-// as many pixels of the next bin as the cap leaves (its ties split in raster order), so min(cap, scored pixels)
-// are masked. Bin 0 (nothing expected wrong) is never split: a cap of 0 masks nothing, the classified count
-// everything.
-HybridThreshold hybridThreshold(const HybridHistogram& histogram, std::uint32_t maskedPixelCap);
+// The masked pixels for a cap: whole bins from the highest score down to minimumBin while they stay within
+// maskedPixelCap, then as many pixels of the next bin as the cap leaves (its ties split in raster order), so
+// min(cap, pixels scored at or above the floor) are masked. Bin 0 (nothing expected wrong) and the bins below
+// minimumBin are never masked, unless the cap takes every classified pixel (budget 1): a cap of 0 masks nothing,
+// the classified count everything.
+HybridThreshold hybridThreshold(const HybridHistogram& histogram, std::uint32_t maskedPixelCap, int minimumBin = 0);
 
 // Per pixel of the image: 1 for the pixels inside the crop whose cell's bin is >= threshold.bin, or whose cell is
 // one of the first threshold.splitPixels cells of threshold.splitBin in the grid's crop in raster order; else 0

@@ -60,7 +60,7 @@ struct HybridConstants {
   int baseTapCount;     // a gather base (seed, search): its taps, so its choice of source can be checked;
                         // 0 for a base that lands on the visible surface by design (iterative, forward)
   int cell;             // the classification's cell, pixels per side: 1 every pixel, 2 each 2x2 block (hybridGridSize)
-  int padding1;
+  int minimumBin;       // below budget 1, cells in lower bins are never masked (StereoParameters::hybridScoreFloor)
   int padding2;
   int baseTapOffsetPx[S3D_STEREO_MAX_TAPS];  // the gather's depth taps in whole pixels
 };

@@ -86,10 +86,18 @@ struct StereoParameters {
   // (docs/RESULTS.md, "Hybrid stereo").
   StereoMethod hybridBase = StereoMethod::Search;
   float hybridBudget = 0.6f;
-  // Hybrid only: the classification's cell in pixels per side, 1 or 2. At 2 each 2x2 block is classified once, from
-  // its nearest depth, and masked whole: a quarter of the classification's work, for a few more masked pixels at
-  // the same quality (docs/RESULTS.md, "The classification on 2x2 cells").
-  int hybridCell = 2;
+  // Hybrid only: the classification's cell in pixels per side, 1 or 2, or 0 to choose by the image's width
+  // (hybridCellFor). At 2 each 2x2 block is classified once, from its nearest depth, and masked whole: a quarter of
+  // the classification's work, for a few more masked pixels at the same quality from 1280 columns up; at 640x360
+  // the fence's 1-2 pixel slats fall below the quality target on 2x2 cells (docs/RESULTS.md, "The classification
+  // on 2x2 cells").
+  int hybridCell = 0;
+  // Hybrid only: below budget 1, cells whose expected error (the classification's score, pixels of parallax on its
+  // grid) lies below this are never rendered, however much of the budget is left. 0.15 keeps the nearness tier's
+  // pixels closest to a boundary (its scores fall from 0.2) and every edge band, hole and wrong source: the largest
+  // floor at which every built-in scene kept >= 35 dB whole and >= 32 dB halo at the default budget
+  // (docs/RESULTS.md, "The score floor").
+  float hybridScoreFloor = 0.15f;
   // Forward only, over frames: disocclusions take the previous frame's eyes, reprojected with their depth and the
   // camera's motion, where that frame saw them (previous_fill_pass.h); a single frame has no previous one.
   bool previousFrameFill = false;
