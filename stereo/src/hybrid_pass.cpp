@@ -1,7 +1,6 @@
 #include "s3d/stereo/hybrid_pass.h"
 
 #include <cstring>
-#include <vector>
 #include <stdexcept>
 #include <string>
 
@@ -159,10 +158,10 @@ void HybridPass::recordMasks(VkCommandBuffer cmd, const vk::Image& linearDepth, 
   for (const vk::Image* image : {&images.leftMask, &images.rightMask}) requireSize(*image, c, "mask");
   for (const vk::Image* image : {&images.leftBins, &images.rightBins}) requireSize(*image, grid, "bins");
   const vk::ImageState previous = images.written ? kReadAnywhere : vk::kUndefined;
-  std::vector<const vk::Image*> written{&images.leftBins, &images.rightBins, &images.rowHistograms, &images.thresholds,
-                                        &images.splitOffsets, &images.leftMask, &images.rightMask};
-  if (c.cell > 1) written.push_back(&images.gridDepth);
-  for (const vk::Image* image : written) vk::transition(cmd, *image, previous, vk::kComputeWrite);
+  for (const vk::Image* image : {&images.leftBins, &images.rightBins, &images.rowHistograms, &images.thresholds,
+                                 &images.splitOffsets, &images.leftMask, &images.rightMask})
+    vk::transition(cmd, *image, previous, vk::kComputeWrite);
+  if (c.cell > 1) vk::transition(cmd, images.gridDepth, previous, vk::kComputeWrite);
   vk::transition(cmd, images.histogram, previous, kCleared);
   const VkClearColorValue zero{};
   const VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
