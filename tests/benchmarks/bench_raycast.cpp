@@ -1,16 +1,22 @@
-// The ray-cast visibility pass (renderer::RaycastVisibility) over every pixel of a 1920x1080 center view: GPU time
-// from Vulkan timestamps and million rays per second; and the CPU time of building the scene's BVH (Embree's
-// builder into s3d's node layout, renderer::SceneBvh), each with both tree qualities (splits, fast). Scenes: the built-in ones, and the public glTF scenes
-// (tests/data/scenes/README.md) when the cache holds them ($S3D_SCENE_CACHE, else ~/.cache/s3d/scenes).
-// Each timed submission records the pass kRecordsPerTiming times, so the GPU stays busy (an idle GPU lowers its
-// clocks). Device: S3D_BENCH_DEVICE (default auto).
+// The ray-cast visibility pass (renderer::RaycastVisibility) over every pixel of a 1920x1080 center view, and
+// through masks of a few shapes (none, one pixel, 5 % as whole 8x8 tiles or scattered 2x2 cells, 25 % of cells,
+// every pixel): GPU time from Vulkan timestamps and million rays per second; and the CPU time of building the
+// scene's BVH (Embree's builder into s3d's node layout, renderer::SceneBvh), each with both tree qualities (splits,
+// fast). Scenes: the built-in ones, and the public glTF scenes (tests/data/scenes/README.md) when the cache holds
+// them ($S3D_SCENE_CACHE, else ~/.cache/s3d/scenes). Each timed submission records the pass kRecordsPerTiming
+// times, so the GPU stays busy (an idle GPU lowers its clocks). Device: S3D_BENCH_DEVICE (default auto).
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdlib>
 #include <filesystem>
 #include <memory>
+#include <optional>
+#include <random>
+#include <span>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "s3d/renderer/raycast_visibility.h"
@@ -61,7 +67,29 @@ void BvhBuild(benchmark::State& state, const std::string& name, renderer::BvhQua
   state.counters["triangles"] = double(count);
 }
 
-void RaycastAllPixels(benchmark::State& state, const std::string& name, renderer::BvhQuality quality) {
+// Which pixels a masked cast casts: none, the centre one, a share of the 8x8 tiles whole (full waves), a share
+// of the 2x2 cells scattered (a few rays per wave, as a hybrid's edge cells are), or every pixel through the mask.
+enum class MaskShape { Empty, OnePixel, Tiles, Cells, All };
+
+std::vector<std::uint32_t> maskOf(MaskShape shape, double share) {
+  std::vector<std::uint32_t> mask(std::size_t(kWidth) * kHeight, shape == MaskShape::All ? 1u : 0u);
+  std::mt19937 random(7);
+  std::bernoulli_distribution picked(share);
+  const std::uint32_t block = shape == MaskShape::Tiles ? 8 : 2;
+  if (shape == MaskShape::OnePixel) mask[std::size_t(kHeight / 2) * kWidth + kWidth / 2] = 1;
+  if (shape == MaskShape::Tiles || shape == MaskShape::Cells)
+    for (std::uint32_t by = 0; by < kHeight; by += block)
+      for (std::uint32_t bx = 0; bx < kWidth; bx += block) {
+        if (!picked(random)) continue;
+        for (std::uint32_t y = by; y < std::min(by + block, kHeight); ++y)
+          for (std::uint32_t x = bx; x < std::min(bx + block, kWidth); ++x) mask[std::size_t(y) * kWidth + x] = 1;
+      }
+  return mask;
+}
+
+// `maskShape` null: every pixel without a mask (the pass's unmasked dispatch).
+void RaycastPixels(benchmark::State& state, const std::string& name, renderer::BvhQuality quality,
+                   std::optional<MaskShape> maskShape, double share) {
   vk::Context& context = benchContext();
   const renderer::Scene scene = sceneAtFrame0(name);
   const renderer::SceneBvh bvh = renderer::SceneBvh::build(scene, quality);
@@ -75,13 +103,24 @@ void RaycastAllPixels(benchmark::State& state, const std::string& name, renderer
     vk::transition(cmd, ids, vk::kUndefined, vk::kComputeWrite);
     vk::transition(cmd, depth, vk::kUndefined, vk::kComputeWrite);
   });
+  vk::Image maskImage;
+  renderer::ShadeMask shadeMask;
+  double rayCount = double(kWidth) * kHeight;
+  if (maskShape) {
+    const std::vector<std::uint32_t> mask = maskOf(*maskShape, share);
+    rayCount = double(std::count(mask.begin(), mask.end(), 1u));
+    maskImage = vk::createImage(context, VK_FORMAT_R32_UINT, kWidth, kHeight,
+                                VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
+    vk::uploadImage(context, maskImage, std::as_bytes(std::span(mask)), vk::kComputeRead);
+    shadeMask.image = &maskImage;
+  }
   auto recordAll = [&](VkCommandBuffer cmd) {
     for (int i = 0; i < kRecordsPerTiming; ++i) {
       if (i > 0) {  // each recording's writes before the next one's
         vk::transition(cmd, ids, vk::kComputeWrite, vk::kComputeWrite);
         vk::transition(cmd, depth, vk::kComputeWrite, vk::kComputeWrite);
       }
-      pass.record(cmd, camera, renderer::ShadeMask{}, ids, depth);
+      pass.record(cmd, camera, shadeMask, ids, depth);
     }
   };
   const auto warmUpEnd = std::chrono::steady_clock::now() + kWarmUp;
@@ -100,9 +139,10 @@ void RaycastAllPixels(benchmark::State& state, const std::string& name, renderer
     state.SetIterationTime(iteration);
     seconds += iteration;
   }
-  const double rays = double(kWidth) * kHeight * double(state.iterations());
+  const double rays = rayCount * double(state.iterations());
   state.counters["Mrays/s"] = seconds > 0.0 ? rays / seconds * 1e-6 : 0.0;
   state.counters["triangles"] = double(bvh.triangles.size());
+  state.counters["rays"] = rayCount;
   state.SetLabel(context.deviceName());
 }
 
@@ -115,12 +155,22 @@ int main(int argc, char** argv) {
                                         std::pair{renderer::BvhQuality::Fast, "fast"}}) {
       benchmark::RegisterBenchmark(("BvhBuild/" + std::string(tree) + "/" + label).c_str(), BvhBuild, name, quality)
           ->Unit(benchmark::kMillisecond);
-      benchmark::RegisterBenchmark(("RaycastAllPixels/" + std::string(tree) + "/" + label).c_str(), RaycastAllPixels,
-                                   name, quality)
+      benchmark::RegisterBenchmark(("RaycastAllPixels/" + std::string(tree) + "/" + label).c_str(), RaycastPixels,
+                                   name, quality, std::nullopt, 1.0)
           ->UseManualTime()
           ->Unit(benchmark::kMillisecond)
           ->MinTime(0.05);
     }
+    // A masked cast's cost against its rays: its floor (no pixel, one pixel) and sparse against dense waves.
+    for (const auto& [shape, share, shapeName] :
+         {std::tuple{MaskShape::Empty, 0.0, "empty"}, std::tuple{MaskShape::OnePixel, 0.0, "one-pixel"},
+          std::tuple{MaskShape::Tiles, 0.05, "tiles-5%"}, std::tuple{MaskShape::Cells, 0.05, "cells-5%"},
+          std::tuple{MaskShape::Cells, 0.25, "cells-25%"}, std::tuple{MaskShape::All, 1.0, "all"}})
+      benchmark::RegisterBenchmark(("RaycastMasked/" + std::string(shapeName) + "/" + label).c_str(), RaycastPixels,
+                                   name, renderer::BvhQuality::SpatialSplits, shape, share)
+          ->UseManualTime()
+          ->Unit(benchmark::kMillisecond)
+          ->MinTime(0.05);
   }
   benchmark::Initialize(&argc, argv);
   benchmark::RunSpecifiedBenchmarks();
