@@ -43,6 +43,8 @@ stereo::StereoFrameDesc checkedDesc(const s3d_stereo_frame_desc& desc, std::uint
   cpp.iterations = desc.iterations;
   cpp.previousFrameFill = desc.previous_frame_fill != 0;
   cpp.hybridBudget = desc.hybrid_budget;
+  cpp.hybridCell = desc.hybrid_cell;
+  cpp.hybridScoreFloor = desc.hybrid_score_floor;
   return cpp;
 }
 
@@ -104,7 +106,8 @@ void s3d_default_stereo_frame_desc(s3d_stereo_frame_desc* out) {
   if (!present(out, "out")) return;
   const s3d::stereo::StereoFrameDesc defaults;
   *out = {0, 0, VK_FORMAT_R8G8B8A8_SRGB, VK_FORMAT_D32_SFLOAT, S3D_OUTPUT_TWO_EYES, S3D_METHOD_SEARCH,
-          defaults.searchTaps, defaults.iterations, 0, defaults.hybridBudget};
+          defaults.searchTaps, defaults.iterations, 0, defaults.hybridBudget, defaults.hybridCell,
+          defaults.hybridScoreFloor};
 }
 
 void s3d_default_stereo_frame_dispatch(s3d_stereo_frame_dispatch* out) {

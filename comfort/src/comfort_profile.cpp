@@ -36,6 +36,8 @@ void readStereo(const nlohmann::json& section, stereo::StereoParameters& p) {
   reader.integer("searchTaps", p.searchTaps, 1, S3D_STEREO_MAX_TAPS);
   reader.integer("iterations", p.iterations, 1, 16);
   reader.number("hybridBudget", p.hybridBudget, {0.0, 1.0, false});
+  reader.integer("hybridCell", p.hybridCell, 0, 2);
+  reader.number("hybridScoreFloor", p.hybridScoreFloor, {0.0, 32.0, false});
   std::string base = stereo::methodName(p.hybridBase);
   reader.choice("hybridBase", base, kHybridBases);
   p.hybridBase = stereo::parseStereoMethod(base);
@@ -135,6 +137,8 @@ nlohmann::json toJson(const ComfortProfile& profile) {
             {"searchTaps", s.searchTaps},
             {"iterations", s.iterations},
             {"hybridBudget", detail::shortest(s.hybridBudget)},
+            {"hybridCell", s.hybridCell},
+            {"hybridScoreFloor", detail::shortest(s.hybridScoreFloor)},
             {"hybridBase", stereo::methodName(s.hybridBase)},
             {"disparityMapping", stereo::disparityMappingName(s.disparityMapping)}}},
           {"weapon", {{"depthOffset", detail::shortest(s.weaponDepthOffset)}, {"depthScale", detail::shortest(s.weaponDepthScale)}}},

@@ -101,18 +101,7 @@ class BenchCommand final : public Command {
             "region around them takes the center's depth where the base samples) or raycast-region (as raycast, "
             "but the occlusion's whole region is cast)")
         ->type_name("auto|raster|raycast|raycast-region");
-    bench
-        .add_option("--hybrid-cell", options_.stereo.hybridCell,
-                    "The hybrid settings' classification cell in pixels per side: 2 classifies each 2x2 block once, "
-                    "from its nearest depth; 1 every pixel; 0 by the width (2 from 1280 columns up)")
-        ->check(CLI::IsMember({0, 1, 2}))
-        ->capture_default_str();
-    bench
-        .add_option("--hybrid-score-floor", options_.stereo.hybridScoreFloor,
-                    "The hybrid settings' floor: below budget 1, pixels whose expected error (pixels of parallax on "
-                    "the classification's cells) lies below it are not rendered")
-        ->check(floatRange(0.0, 32.0, false, "pixels of parallax"))
-        ->capture_default_str();
+    addHybridClassificationOptions(bench, options_.stereo, "The hybrid settings' classification");
     bench
         .add_option("--bandwidth-gbs", bandwidth_,
                     "Memory bandwidth of the device in GB/s for the memory-traffic target (H100 SXM: 3350, "

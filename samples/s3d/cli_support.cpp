@@ -147,7 +147,8 @@ void StereoOptions::requireMethodOptionsApply(const CLI::App& command, const ste
   const stereo::StereoMethod method = parameters.method;
   const std::string used = std::string("(the method is ") + stereo::methodName(method) + ")";
   if (method != stereo::StereoMethod::Hybrid)
-    rejectGiven(command, {"--hybrid-budget", "--hybrid-base"}, "applies to --method hybrid " + used);
+    rejectGiven(command, {"--hybrid-budget", "--hybrid-base", "--hybrid-cell", "--hybrid-score-floor"},
+                "applies to --method hybrid " + used);
   // A hybrid's displacement is its base: --taps and --iterations apply to that.
   const stereo::StereoMethod displacement = stereo::displacementParameters(parameters).method;
   const std::string base = method == stereo::StereoMethod::Hybrid
@@ -210,6 +211,7 @@ void StereoOptions::add(CLI::App& command, const std::string& depthUnits, bool o
                   "base displacement bit for bit, 1: every pixel, the two-pass reference)")
       ->check(floatRange(0.0, 1.0, false, "a share of the pixels"))
       ->capture_default_str();
+  addHybridClassificationOptions(command, parameters, "--method hybrid: the classification's");
   command
       .add_option("--hybrid-base", hybridBase, "--method hybrid: the displacement it starts from")
       ->check(CLI::IsMember(stereo::stereoMethodNames(false)))
@@ -219,6 +221,21 @@ void StereoOptions::add(CLI::App& command, const std::string& depthUnits, bool o
       ->capture_default_str();
   command.add_option("--iterations", parameters.iterations, "Fixed-point iterations of --method iterative")
       ->check(CLI::Range(1, 16))
+      ->capture_default_str();
+}
+
+void addHybridClassificationOptions(CLI::App& command, stereo::StereoParameters& parameters, const std::string& whose) {
+  command
+      .add_option("--hybrid-cell", parameters.hybridCell,
+                  whose + " cell in pixels per side: 2 classifies each 2x2 block once, from its nearest depth; 1 "
+                          "every pixel; 0 by the width (2 from 1280 columns up)")
+      ->check(CLI::IsMember({0, 1, 2}))
+      ->capture_default_str();
+  command
+      .add_option("--hybrid-score-floor", parameters.hybridScoreFloor,
+                  whose + " floor: below budget 1, pixels whose expected error (pixels of parallax on the "
+                          "classification's cells) lies below it are not rendered")
+      ->check(floatRange(0.0, 32.0, false, "pixels of parallax"))
       ->capture_default_str();
 }
 

@@ -106,6 +106,10 @@ void rejectGiven(const CLI::App& command, const std::vector<std::string>& option
 // --hybrid-base on `command`, their defaults read from stereo::StereoParameters (the help prints what a run
 // uses); call finish() after parsing to turn the method name into StereoParameters::method and validate.
 // With offerAuto, --method also takes "auto" (finish() then sets `automatic` and leaves parameters.method).
+// --hybrid-cell and --hybrid-score-floor into `parameters`; `whose` starts their help ("--method hybrid: the
+// classification's").
+void addHybridClassificationOptions(CLI::App& command, stereo::StereoParameters& parameters, const std::string& whose);
+
 struct StereoOptions {
   stereo::StereoParameters parameters;
   std::string method = stereo::methodName(stereo::StereoParameters{}.method);

@@ -61,6 +61,8 @@ comfort::ComfortProfile ProfileOptions::resolve(const CLI::App& command, const S
   if (given("--iterations")) p.iterations = cli.iterations;
   if (given("--hybrid-budget")) p.hybridBudget = cli.hybridBudget;
   if (given("--hybrid-base")) p.hybridBase = cli.hybridBase;
+  if (given("--hybrid-cell")) p.hybridCell = cli.hybridCell;
+  if (given("--hybrid-score-floor")) p.hybridScoreFloor = cli.hybridScoreFloor;
   if (given("--weapon-depth-offset")) p.weaponDepthOffset = cli.weaponDepthOffset;
   if (given("--weapon-depth-scale")) p.weaponDepthScale = cli.weaponDepthScale;
   if (given("--display")) profile.display = comfort::resolveDisplayProfile(display);

@@ -125,7 +125,8 @@ class RenderCommand final : public Command {
       rejectGiven(*subcommand,
                   {"--sequence", "--previous-frame-fill", "--width", "--height", "--resolution", "--outputs", "--sbs",
                    "--tab", "--max-separation", "--zero-parallax-distance", "--edge-crop", "--method", "--taps",
-                   "--iterations", "--hybrid-budget", "--hybrid-base", "--weapon-depth-offset", "--weapon-depth-scale",
+                   "--iterations", "--hybrid-budget", "--hybrid-base", "--hybrid-cell", "--hybrid-score-floor",
+                   "--weapon-depth-offset", "--weapon-depth-scale",
                    "--supersample", "--save-profile", "--allow-negative-parallax", "--disparity-budget",
                    "--disparity-mapping", "--reversed-z", "--hud"},
                   std::string("does not apply to ") +

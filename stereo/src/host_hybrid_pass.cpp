@@ -39,13 +39,14 @@ std::uint32_t groups(std::uint32_t size) { return (size + S3D_HOST_HYBRID_GROUP_
 
 }  // namespace
 
-HostHybridPass::HostHybridPass(vk::Context& context, std::uint32_t width, std::uint32_t height, StereoKernel kernel)
+HostHybridPass::HostHybridPass(vk::Context& context, std::uint32_t width, std::uint32_t height, StereoKernel kernel,
+                               int cell)
     : context_(&context),
       width_(width),
       height_(height),
       displacement_(context, kernel),
       hybrid_(context),
-      images_(hybrid_.createImages(width, height, hybridCellFor(StereoParameters{}, width))),  // the hosts': the default
+      images_(hybrid_.createImages(width, height, cell)),
       depths_(vk::createBuffer(context, VkDeviceSize(width) * height * 2 * sizeof(float),
                                VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
                                vk::MemoryLocation::Device)),

@@ -30,6 +30,8 @@ StereoParameters parametersOf(const StereoFrameDesc& desc, const StereoFrameDisp
   p.previousFrameFill = desc.previousFrameFill;
   p.hybridBase = StereoMethod::Search;
   p.hybridBudget = desc.hybridBudget;
+  p.hybridCell = desc.hybridCell;
+  p.hybridScoreFloor = desc.hybridScoreFloor;
   p.maxSeparation = dispatch.maxSeparation;
   p.zeroParallaxDistance = dispatch.zeroParallaxDistance;
   if (dispatch.eyeViews) {  // checked by record() first
@@ -95,7 +97,9 @@ StereoFrame::StereoFrame(vk::Context& context, const StereoFrameDesc& desc)
   if (desc.method == StereoMethod::Forward)
     forward_.emplace(context, desc.kernel, desc.previousFrameFill ? ForwardKeys::Kept : ForwardKeys::Discarded);
   if (desc.previousFrameFill) fill_.emplace(context);
-  if (desc.method == StereoMethod::Hybrid) hybrid_.emplace(context, desc.width, desc.height, desc.kernel);
+  if (desc.method == StereoMethod::Hybrid)
+    hybrid_.emplace(context, desc.width, desc.height, desc.kernel,
+                    hybridCellFor(parametersOf(desc, StereoFrameDispatch{}), desc.width));
   if (!iterative_ && !forward_ && !hybrid_) return;
   // The passes make their pipelines, z-buffers and history at their first record: one here, so record()
   // allocates nothing.

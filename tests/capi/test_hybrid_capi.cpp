@@ -155,6 +155,35 @@ TEST_F(CApiHybrid, MasksCamerasAndEyesOfOneFrame) {
   }
 }
 
+// The description's cell and score floor reach the masks: 2x2 cells and a floor of half a pixel give the built-in
+// classification's masks for those parameters, and other masks than the defaults (cells of one pixel below 1280
+// columns, floor 0.15).
+TEST_F(CApiHybrid, TheCellAndTheScoreFloorReachTheMasks) {
+  CContext c(context());
+  s3d_stereo_frame frame = nullptr;
+  desc_.hybrid_cell = 2;
+  desc_.hybrid_score_floor = 0.5f;
+  ASSERT_EQ(s3d_stereo_frame_create(c.get(), &desc_, &frame), S3D_SUCCESS) << s3d_last_error();
+  s3d_eye_cameras cameras{};
+  s3d_result result = S3D_ERROR_UNKNOWN;
+  context().submitAndWait([&](VkCommandBuffer cmd) { result = s3d_stereo_frame_record_hybrid_masks(frame, cmd, &dispatch_, &cameras); });
+  ASSERT_EQ(result, S3D_SUCCESS) << s3d_last_error();
+  s3d_stereo_frame_destroy(frame);
+
+  stereo::StereoParameters cells = parameters();
+  cells.hybridCell = 2;
+  cells.hybridScoreFloor = 0.5f;
+  const stereo::HybridGpuResult expected =
+      stereo::classifyHybridOnGpu(context(), view_.depth, stereo::makeHybridConstants(cells, kWidth, kHeight));
+  const stereo::HybridGpuResult defaults =
+      stereo::classifyHybridOnGpu(context(), view_.depth, stereo::makeHybridConstants(parameters(), kWidth, kHeight));
+  const std::vector<std::uint8_t> left = readMask(leftMask_), right = readMask(rightMask_);
+  EXPECT_GT(std::count(left.begin(), left.end(), 1), 0);
+  EXPECT_EQ(left, expected.leftMask);
+  EXPECT_EQ(right, expected.rightMask);
+  EXPECT_NE(left, defaults.leftMask);
+}
+
 TEST_F(CApiHybrid, RefusesWhatTheHybridCannotTakeNamingTheField) {
   CContext c(context());
   s3d_stereo_frame frame = nullptr;
@@ -166,6 +195,15 @@ TEST_F(CApiHybrid, RefusesWhatTheHybridCannotTakeNamingTheField) {
   bad.hybrid_budget = 1.5f;
   EXPECT_EQ(s3d_stereo_frame_create(c.get(), &bad, &frame), S3D_ERROR_INVALID_ARGUMENT);
   EXPECT_NE(std::string(s3d_last_error()).find("s3d_stereo_frame_desc.hybrid_budget"), std::string::npos) << s3d_last_error();
+  bad = desc_;
+  bad.hybrid_cell = 3;
+  EXPECT_EQ(s3d_stereo_frame_create(c.get(), &bad, &frame), S3D_ERROR_INVALID_ARGUMENT);
+  EXPECT_NE(std::string(s3d_last_error()).find("s3d_stereo_frame_desc.hybrid_cell 3"), std::string::npos) << s3d_last_error();
+  bad = desc_;
+  bad.hybrid_score_floor = -1.0f;
+  EXPECT_EQ(s3d_stereo_frame_create(c.get(), &bad, &frame), S3D_ERROR_INVALID_ARGUMENT);
+  EXPECT_NE(std::string(s3d_last_error()).find("s3d_stereo_frame_desc.hybrid_score_floor"), std::string::npos)
+      << s3d_last_error();
 
   ASSERT_EQ(s3d_stereo_frame_create(c.get(), &desc_, &frame), S3D_SUCCESS) << s3d_last_error();
   s3d_eye_cameras cameras{};

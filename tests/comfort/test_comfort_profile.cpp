@@ -42,6 +42,9 @@ ComfortProfile unusualProfile() {
   p.stereo.method = stereo::StereoMethod::Search;
   p.stereo.searchTaps = 5;
   p.stereo.iterations = 9;
+  p.stereo.hybridBudget = 0.35f;
+  p.stereo.hybridCell = 2;
+  p.stereo.hybridScoreFloor = 0.4f;
   p.stereo.weaponDepthOffset = 0.4f;
   p.stereo.weaponDepthScale = 1.7f;
   p.stereo.disparityMapping = stereo::DisparityMapping::Nonlinear;
@@ -68,6 +71,9 @@ void expectSameProfile(const ComfortProfile& a, const ComfortProfile& b) {
   EXPECT_EQ(a.stereo.method, b.stereo.method);
   EXPECT_EQ(a.stereo.searchTaps, b.stereo.searchTaps);
   EXPECT_EQ(a.stereo.iterations, b.stereo.iterations);
+  EXPECT_EQ(a.stereo.hybridBudget, b.stereo.hybridBudget);
+  EXPECT_EQ(a.stereo.hybridCell, b.stereo.hybridCell);
+  EXPECT_EQ(a.stereo.hybridScoreFloor, b.stereo.hybridScoreFloor);
   EXPECT_EQ(a.stereo.weaponDepthOffset, b.stereo.weaponDepthOffset);
   EXPECT_EQ(a.stereo.weaponDepthScale, b.stereo.weaponDepthScale);
   EXPECT_EQ(a.stereo.disparityMapping, b.stereo.disparityMapping);

@@ -172,6 +172,25 @@ TEST_F(Cli, TheEstimateInReportJsonIsAtLeastThePeakResidentMemory) {
   EXPECT_GT(memory["peakResidentBytes"].get<std::uint64_t>(), 0u);
 }
 
+// --hybrid-cell and --hybrid-score-floor reach the hybrid's classification: the report names the cell given (the
+// width alone would choose 1 at 320 columns) and masks fewer pixels under a higher floor.
+TEST_F(Cli, TheHybridCellAndScoreFloorOptionsReachTheClassification) {
+  auto hybridReport = [&](const std::string& options, const std::string& name) {
+    const fs::path output = folder_ / name;
+    EXPECT_EQ(run("render --method hybrid --hybrid-budget 0.5 --resolution 320x180 --disparity-budget off --outputs "
+                  "report.json " + options + " --output '" + output.string() + "'")
+                  .status,
+              0);
+    return nlohmann::json::parse(readText(output / "report.json"))["hybrid"];
+  };
+  const nlohmann::json defaults = hybridReport("", "defaults");
+  const nlohmann::json cells = hybridReport("--hybrid-cell 2", "cells");
+  const nlohmann::json floor = hybridReport("--hybrid-score-floor 4", "floor");
+  EXPECT_EQ(defaults["cell"], 1);
+  EXPECT_EQ(cells["cell"], 2);
+  EXPECT_LT(floor["left"]["maskedPixels"].get<std::uint64_t>(), defaults["left"]["maskedPixels"].get<std::uint64_t>());
+}
+
 // The hybrid method's second renderer and masks are in the estimate too.
 TEST_F(Cli, TheHybridEstimateInReportJsonIsAtLeastThePeakResidentMemory) {
   if (kSanitizedBuild) GTEST_SKIP() << "AddressSanitizer's shadow memory and redzones inflate the peak resident memory";

@@ -174,9 +174,14 @@ typedef struct s3d_stereo_frame_desc {
   int32_t iterations;          /* S3D_METHOD_ITERATIVE: 1..16 */
   int32_t previous_frame_fill; /* S3D_METHOD_FORWARD: 1 fills holes from the previous frame's eyes */
   float hybrid_budget;         /* S3D_METHOD_HYBRID: the largest share of each eye's pixels the host re-draws, 0..1 */
+  int32_t hybrid_cell;         /* S3D_METHOD_HYBRID: pixels per side of the classification's cell, 1 or 2 (each 2x2
+                                  block classified once: less time, a few edge pixels left displaced); 0 by the
+                                  width (2 from 1280 pixels) */
+  float hybrid_score_floor;    /* S3D_METHOD_HYBRID: below a budget of 1, pixels whose expected parallax error in
+                                  pixels lies under this are never re-drawn, 0..32 */
 } s3d_stereo_frame_desc;
-/* Search with 4 taps, two eyes, R8G8B8A8_SRGB colour and D32 depth, hybrid budget 0.6; width and height 0 (the
- * host sets them). */
+/* Search with 4 taps, two eyes, R8G8B8A8_SRGB colour and D32 depth, hybrid budget 0.6, cell by the width, score
+ * floor 0.15; width and height 0 (the host sets them). */
 void s3d_default_stereo_frame_desc(s3d_stereo_frame_desc* out);
 
 typedef struct s3d_stereo_frame_dispatch {

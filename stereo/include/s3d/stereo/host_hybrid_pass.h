@@ -18,7 +18,8 @@ namespace s3d::stereo {
 
 class HostHybridPass {
  public:
-  HostHybridPass(vk::Context& context, std::uint32_t width, std::uint32_t height, StereoKernel kernel);
+  // cell: the classification's (hybridCellFor); recordKernel refuses parameters of another.
+  HostHybridPass(vk::Context& context, std::uint32_t width, std::uint32_t height, StereoKernel kernel, int cell);
 
   // Inside HostStereoPass::record as its kernel (inputs and eyes GENERAL, ordered after the conversion): the base
   // displacement (parameters' hybridBase) into the eyes, the masks, and both eyes' mask depth into the pass's
