@@ -104,6 +104,16 @@ class CApiHybrid : public VulkanTest {
     }
     return result;
   }
+  // The masks the host received are the built-in classification's for `p`, and not empty; returns the left one.
+  std::vector<std::uint8_t> expectBuiltInMasks(const stereo::StereoParameters& p) {
+    const stereo::HybridGpuResult builtIn =
+        stereo::classifyHybridOnGpu(context(), view_.depth, stereo::makeHybridConstants(p, kWidth, kHeight));
+    const std::vector<std::uint8_t> left = readMask(leftMask_), right = readMask(rightMask_);
+    EXPECT_GT(std::count(left.begin(), left.end(), 1), 0);
+    EXPECT_EQ(left, builtIn.leftMask);
+    EXPECT_EQ(right, builtIn.rightMask);
+    return left;
+  }
   ImageRGBA8 readEye(const vk::Image& eye) {
     const std::vector<std::byte> bytes = vk::readbackImage(context(), eye, kGeneral);
     ImageRGBA8 result(kWidth, kHeight);
@@ -129,13 +139,7 @@ TEST_F(CApiHybrid, MasksCamerasAndEyesOfOneFrame) {
   context().submitAndWait([&](VkCommandBuffer cmd) { result = s3d_stereo_frame_record_hybrid_composite(frame, cmd, &dispatch_); });
   EXPECT_EQ(result, S3D_SUCCESS) << s3d_last_error();
   s3d_stereo_frame_destroy(frame);
-
-  const stereo::HybridGpuResult builtIn =
-      stereo::classifyHybridOnGpu(context(), view_.depth, stereo::makeHybridConstants(parameters(), kWidth, kHeight));
-  const std::vector<std::uint8_t> left = readMask(leftMask_), right = readMask(rightMask_);
-  EXPECT_GT(std::count(left.begin(), left.end(), 1), 0);
-  EXPECT_EQ(left, builtIn.leftMask);
-  EXPECT_EQ(right, builtIn.rightMask);
+  expectBuiltInMasks(parameters());
 
   // The eyes are the search's (1 level: the reference's rounding, as test_stereo_pass).
   stereo::StereoParameters search = parameters();
@@ -173,14 +177,9 @@ TEST_F(CApiHybrid, TheCellAndTheScoreFloorReachTheMasks) {
   stereo::StereoParameters cells = parameters();
   cells.hybridCell = 2;
   cells.hybridScoreFloor = 0.5f;
-  const stereo::HybridGpuResult expected =
-      stereo::classifyHybridOnGpu(context(), view_.depth, stereo::makeHybridConstants(cells, kWidth, kHeight));
+  const std::vector<std::uint8_t> left = expectBuiltInMasks(cells);
   const stereo::HybridGpuResult defaults =
       stereo::classifyHybridOnGpu(context(), view_.depth, stereo::makeHybridConstants(parameters(), kWidth, kHeight));
-  const std::vector<std::uint8_t> left = readMask(leftMask_), right = readMask(rightMask_);
-  EXPECT_GT(std::count(left.begin(), left.end(), 1), 0);
-  EXPECT_EQ(left, expected.leftMask);
-  EXPECT_EQ(right, expected.rightMask);
   EXPECT_NE(left, defaults.leftMask);
 }
 
