@@ -102,13 +102,15 @@ CLI::Validator frameNumberValidator();
 // does nothing in the mode the command line chose is an error naming the mode, never silently ignored.
 void rejectGiven(const CLI::App& command, const std::vector<std::string>& options, const std::string& reason);
 
-// --max-separation, --zero-parallax-distance, --edge-crop, --method, --taps, --iterations, --hybrid-budget and
-// --hybrid-base on `command`, their defaults read from stereo::StereoParameters (the help prints what a run
-// uses); call finish() after parsing to turn the method name into StereoParameters::method and validate.
-// With offerAuto, --method also takes "auto" (finish() then sets `automatic` and leaves parameters.method).
 // --hybrid-cell and --hybrid-score-floor into `parameters`; `whose` starts their help ("--method hybrid: the
 // classification's").
 void addHybridClassificationOptions(CLI::App& command, stereo::StereoParameters& parameters, const std::string& whose);
+
+// --max-separation, --zero-parallax-distance, --edge-crop, --method, --taps, --iterations, --hybrid-budget,
+// --hybrid-cell, --hybrid-score-floor and --hybrid-base on `command`, their defaults read from
+// stereo::StereoParameters (the help prints what a run uses); call finish() after parsing to turn the method name
+// into StereoParameters::method and validate. With offerAuto, --method also takes "auto" (finish() then sets
+// `automatic` and leaves parameters.method).
 
 struct StereoOptions {
   stereo::StereoParameters parameters;

@@ -54,10 +54,10 @@ struct StereoFrameDesc {
   StereoKernel kernel = StereoKernel::Auto;
   bool previousFrameFill = false;  // Forward only: holes take the previous frame's eyes, reprojected
   float hybridBudget = 0.6f;       // Hybrid only: the largest share of each eye's pixels the host re-draws, [0, 1]
-  int hybridCell = 0;               // Hybrid only: the classification's cell in pixels per side, 1 or 2; 0 by the
-                                    // width (StereoParameters::hybridCell)
-  float hybridScoreFloor = 0.15f;   // Hybrid only: pixels of parallax error below which no pixel is re-drawn below
-                                    // budget 1, [0, 32] (StereoParameters::hybridScoreFloor)
+  int hybridCell = 0;              // Hybrid only: the classification's cell in pixels per side, 1 or 2; 0 by the
+                                   // width (StereoParameters::hybridCell)
+  float hybridScoreFloor = 0.15f;  // Hybrid only: pixels of parallax error below which no pixel is re-drawn below
+                                   // budget 1, [0, 32] (StereoParameters::hybridScoreFloor)
 };
 
 // Per frame. The images must have the description's formats and sizes.
