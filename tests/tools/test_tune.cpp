@@ -56,7 +56,8 @@ TEST(TuneParameters, EveryNamedParameterCanBeSet) {
       {"zppEngageDistance", "3"},     {"zppReleaseMargin", "0.5"},     {"zppMinimumDistance", "0.3"},
       {"zppResponseSeconds", "0.5"},  {"zppMaxChangePerSecond", "2"},  {"crosshairDistance", "6"},
       {"crosshairMargin", "0.5"},     {"display", "monitor27"},        {"allowNegativeParallax", "on"},
-      {"hybridBudget", "0.25"},       {"hybridBase", "iterative"},
+      {"hybridBudget", "0.25"},       {"hybridBase", "iterative"},     {"hybridCell", "2"},
+      {"hybridScoreFloor", "0.4"},
       {"disparityMapping", "nonlinear"}};
   ASSERT_EQ(values.size(), parameterNames().size());
   for (const auto& [name, value] : values) setParameter(settings, name, value);
@@ -78,6 +79,8 @@ TEST(TuneParameters, EveryNamedParameterCanBeSet) {
   EXPECT_FLOAT_EQ(settings.profile.crosshair.margin, 0.5f);
   EXPECT_FLOAT_EQ(settings.profile.stereo.hybridBudget, 0.25f);
   EXPECT_EQ(settings.profile.stereo.hybridBase, stereo::StereoMethod::Iterative);
+  EXPECT_EQ(settings.profile.stereo.hybridCell, 2);
+  EXPECT_FLOAT_EQ(settings.profile.stereo.hybridScoreFloor, 0.4f);
   EXPECT_EQ(settings.profile.display.name, "monitor27");
   EXPECT_TRUE(settings.profile.allowNegativeParallax);
   EXPECT_EQ(settings.profile.stereo.disparityMapping, stereo::DisparityMapping::Nonlinear);

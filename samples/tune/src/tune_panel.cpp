@@ -52,6 +52,8 @@ void drawStereoSection(stereo::StereoParameters& s) {
     if (comboOfNames("hybrid base", base, stereo::stereoMethodNames(false)))
       s.hybridBase = stereo::parseStereoMethod(base);
     ImGui::SliderFloat("hybrid budget", &s.hybridBudget, 0.0f, 1.0f, "%.3f");
+    ImGui::SliderInt("hybrid cell (0: by width)", &s.hybridCell, 0, 2);
+    ImGui::SliderFloat("hybrid score floor", &s.hybridScoreFloor, 0.0f, 2.0f, "%.2f px");
   }
   if (s.method == stereo::StereoMethod::Search) ImGui::SliderInt("taps", &s.searchTaps, 1, S3D_STEREO_MAX_TAPS);
   if (s.method == stereo::StereoMethod::Iterative) ImGui::SliderInt("iterations", &s.iterations, 1, 16);

@@ -65,7 +65,7 @@ const std::vector<std::string>& parameterNames() {
       "taps",              "iterations",           "weaponDepthOffset",  "weaponDepthScale",
       "zppControl",        "zppEngageDistance",    "zppReleaseMargin",   "zppMinimumDistance",
       "zppResponseSeconds", "zppMaxChangePerSecond", "crosshairDistance", "crosshairMargin", "display",
-      "allowNegativeParallax", "hybridBudget", "hybridBase",
+      "allowNegativeParallax", "hybridBudget", "hybridBase", "hybridCell", "hybridScoreFloor",
       "disparityMapping"};
   return names;
 }
@@ -91,6 +91,8 @@ void assignParameter(TuneSettings& settings, const std::string& name, const std:
       throw std::invalid_argument("hybridBase: " + std::string(error.what()));
     }
   } else if (name == "hybridBudget") next.stereo.hybridBudget = number();
+  else if (name == "hybridCell") next.stereo.hybridCell = parseIntegerOf(name, value);
+  else if (name == "hybridScoreFloor") next.stereo.hybridScoreFloor = number();
   else if (name == "taps") next.stereo.searchTaps = parseIntegerOf(name, value);
   else if (name == "iterations") next.stereo.iterations = parseIntegerOf(name, value);
   else if (name == "weaponDepthOffset") next.stereo.weaponDepthOffset = number();
