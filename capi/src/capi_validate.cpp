@@ -106,10 +106,10 @@ void validate(const s3d_stereo_frame_desc& desc, std::uint32_t maxImageDimension
          "colour: with an HDR color_format use S3D_METHOD_SEED or S3D_METHOD_SEARCH");
   if (method == S3D_METHOD_HYBRID) {
     requireRange(desc.hybrid_budget, 0.0f, 1.0f, name / "hybrid_budget");
-    if (desc.hybrid_cell < 0 || desc.hybrid_cell > 2)
+    if (desc.hybrid_cell < 0 || desc.hybrid_cell > stereo::kHybridCellLimit)
       fail("s3d_stereo_frame_desc.hybrid_cell " + std::to_string(desc.hybrid_cell) +
            " is not 0 (by the width), 1 or 2 pixels per side");
-    requireRange(desc.hybrid_score_floor, 0.0f, 32.0f, name / "hybrid_score_floor");
+    requireRange(desc.hybrid_score_floor, 0.0f, stereo::kHybridScoreFloorLimit, name / "hybrid_score_floor");
     if (rawEnum(desc.output) != S3D_OUTPUT_TWO_EYES)
       fail("s3d_stereo_frame_desc.output must be S3D_OUTPUT_TWO_EYES for S3D_METHOD_HYBRID: the host draws into the "
            "eye images");

@@ -36,8 +36,8 @@ void readStereo(const nlohmann::json& section, stereo::StereoParameters& p) {
   reader.integer("searchTaps", p.searchTaps, 1, S3D_STEREO_MAX_TAPS);
   reader.integer("iterations", p.iterations, 1, 16);
   reader.number("hybridBudget", p.hybridBudget, {0.0, 1.0, false});
-  reader.integer("hybridCell", p.hybridCell, 0, 2);
-  reader.number("hybridScoreFloor", p.hybridScoreFloor, {0.0, 32.0, false});
+  reader.integer("hybridCell", p.hybridCell, 0, stereo::kHybridCellLimit);
+  reader.number("hybridScoreFloor", p.hybridScoreFloor, {0.0, double(stereo::kHybridScoreFloorLimit), false});
   std::string base = stereo::methodName(p.hybridBase);
   reader.choice("hybridBase", base, kHybridBases);
   p.hybridBase = stereo::parseStereoMethod(base);

@@ -229,13 +229,13 @@ void addHybridClassificationOptions(CLI::App& command, stereo::StereoParameters&
       .add_option("--hybrid-cell", parameters.hybridCell,
                   whose + " cell in pixels per side: 2 classifies each 2x2 block once, from its nearest depth; 1 "
                           "every pixel; 0 by the width (2 from 1280 columns up)")
-      ->check(CLI::IsMember({0, 1, 2}))
+      ->check(CLI::Range(0, stereo::kHybridCellLimit))
       ->capture_default_str();
   command
       .add_option("--hybrid-score-floor", parameters.hybridScoreFloor,
                   whose + " floor: below budget 1, pixels whose expected error (pixels of parallax on the "
                           "classification's cells) lies below it are not rendered")
-      ->check(floatRange(0.0, 32.0, false, "pixels of parallax"))
+      ->check(floatRange(0.0, double(stereo::kHybridScoreFloorLimit), false, "pixels of parallax"))
       ->capture_default_str();
 }
 

@@ -55,11 +55,12 @@ void validate(const StereoParameters& p) {
     requireFinite(p.hybridBudget, "hybridBudget");
     if (p.hybridBudget < 0.0f || p.hybridBudget > 1.0f)
       throw std::invalid_argument("hybridBudget " + numberText(p.hybridBudget) + " is outside [0, 1]");
-    if (p.hybridCell < 0 || p.hybridCell > 2)
+    if (p.hybridCell < 0 || p.hybridCell > kHybridCellLimit)
       throw std::invalid_argument("hybridCell " + std::to_string(p.hybridCell) + " is not 0 (by the width), 1 or 2");
     requireFinite(p.hybridScoreFloor, "hybridScoreFloor");
-    if (p.hybridScoreFloor < 0.0f || p.hybridScoreFloor > 32.0f)
-      throw std::invalid_argument("hybridScoreFloor " + numberText(p.hybridScoreFloor) + " is outside [0, 32] (pixels)");
+    if (p.hybridScoreFloor < 0.0f || p.hybridScoreFloor > kHybridScoreFloorLimit)
+      throw std::invalid_argument("hybridScoreFloor " + numberText(p.hybridScoreFloor) + " is outside [0, " +
+                                  numberText(kHybridScoreFloorLimit) + "] (pixels)");
     StereoParameters base = p;
     base.method = p.hybridBase;
     validate(base);

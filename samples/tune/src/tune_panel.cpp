@@ -52,7 +52,7 @@ void drawStereoSection(stereo::StereoParameters& s) {
     if (comboOfNames("hybrid base", base, stereo::stereoMethodNames(false)))
       s.hybridBase = stereo::parseStereoMethod(base);
     ImGui::SliderFloat("hybrid budget", &s.hybridBudget, 0.0f, 1.0f, "%.3f");
-    ImGui::SliderInt("hybrid cell (0: by width)", &s.hybridCell, 0, 2);
+    ImGui::SliderInt("hybrid cell (0: by width)", &s.hybridCell, 0, stereo::kHybridCellLimit);
     ImGui::SliderFloat("hybrid score floor", &s.hybridScoreFloor, 0.0f, 2.0f, "%.2f px");
   }
   if (s.method == stereo::StereoMethod::Search) ImGui::SliderInt("taps", &s.searchTaps, 1, S3D_STEREO_MAX_TAPS);

@@ -91,13 +91,13 @@ struct StereoParameters {
   // the classification's work, for a few more masked pixels at the same quality from 1280 columns up; at 640x360
   // the fence's 1-2 pixel slats fall below the quality target on 2x2 cells (docs/RESULTS.md, "The classification
   // on 2x2 cells").
-  int hybridCell = 0;
+  int hybridCell = 0;  // 0 .. kHybridCellLimit
   // Hybrid only: below budget 1, cells whose expected error (the classification's score, pixels of parallax on its
   // grid) lies below this are never rendered, however much of the budget is left. 0.15 keeps the nearness tier's
   // pixels closest to a boundary (its scores fall from 0.2) and every edge band, hole and wrong source: the largest
   // floor at which every built-in scene kept >= 35 dB whole and >= 32 dB halo at the default budget
   // (docs/RESULTS.md, "The score floor").
-  float hybridScoreFloor = 0.15f;
+  float hybridScoreFloor = 0.15f;  // 0 .. kHybridScoreFloorLimit
   // Forward only, over frames: disocclusions take the previous frame's eyes, reprojected with their depth and the
   // camera's motion, where that frame saw them (previous_fill_pass.h); a single frame has no previous one.
   bool previousFrameFill = false;
@@ -110,6 +110,9 @@ StereoParameters displacementParameters(StereoParameters parameters);
 
 // Largest accepted maxSeparation / edgeCrop: beyond a quarter of the screen the eyes cannot fuse anything.
 inline constexpr float kMaxSeparationLimit = 0.25f;
+// Largest accepted hybridCell (2x2 cells) and hybridScoreFloor (pixels of parallax, far above any useful floor).
+inline constexpr int kHybridCellLimit = 2;
+inline constexpr float kHybridScoreFloorLimit = 32.0f;
 
 // Throws std::invalid_argument naming the parameter when a value is NaN, negative or absurd.
 void validate(const StereoParameters& parameters);
