@@ -31,6 +31,19 @@ bool hasDeviceExtension(VkPhysicalDevice device, const char* name) {
                      [&](const VkExtensionProperties& e) { return std::strcmp(e.extensionName, name) == 0; });
 }
 
+// A family with compute and without graphics (a GPU's asynchronous compute), or UINT32_MAX.
+std::uint32_t findComputeOnlyQueue(VkPhysicalDevice device) {
+  std::uint32_t count = 0;
+  vkGetPhysicalDeviceQueueFamilyProperties(device, &count, nullptr);
+  std::vector<VkQueueFamilyProperties> families(count);
+  vkGetPhysicalDeviceQueueFamilyProperties(device, &count, families.data());
+  for (std::uint32_t i = 0; i < count; ++i)
+    if ((families[i].queueFlags & VK_QUEUE_COMPUTE_BIT) && !(families[i].queueFlags & VK_QUEUE_GRAPHICS_BIT) &&
+        families[i].timestampValidBits > 0)
+      return i;
+  return UINT32_MAX;
+}
+
 std::uint32_t findComputeGraphicsQueue(VkPhysicalDevice device) {
   std::uint32_t count = 0;
   vkGetPhysicalDeviceQueueFamilyProperties(device, &count, nullptr);
@@ -201,18 +214,26 @@ Context::Context(const ContextOptions& options) {
     deviceName_ = infos[chosen].name;
     deviceType_ = infos[chosen].type;
     queueFamily_ = findComputeGraphicsQueue(physicalDevice_);
+    sharingFamilies_ = {queueFamily_};
 
-    float priority = 1.0f;
-    VkDeviceQueueCreateInfo queueInfo{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
-    queueInfo.queueFamilyIndex = queueFamily_;
-    queueInfo.queueCount = 1;
-    queueInfo.pQueuePriorities = &priority;
+    // And an asynchronous compute queue where the device has one: a stereo frame's second eye render runs there
+    // beside the first (submitConcurrentlyAndWait).
+    const float priority = 1.0f;
+    VkDeviceQueueCreateInfo queueInfos[2]{{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO},
+                                          {VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO}};
+    queueInfos[0].queueFamilyIndex = queueFamily_;
+    const std::uint32_t computeFamily = findComputeOnlyQueue(physicalDevice_);
+    queueInfos[1].queueFamilyIndex = computeFamily;
+    for (VkDeviceQueueCreateInfo& queueInfo : queueInfos) {
+      queueInfo.queueCount = 1;
+      queueInfo.pQueuePriorities = &priority;
+    }
     // The tools' own device goes through the same requirements a host enables.
     std::vector<const char*> extensions;
     if (surface_) extensions.push_back(VK_KHR_SWAPCHAIN_EXTENSION_NAME);
     VkDeviceCreateInfo deviceInfo{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
-    deviceInfo.queueCreateInfoCount = 1;
-    deviceInfo.pQueueCreateInfos = &queueInfo;
+    deviceInfo.queueCreateInfoCount = computeFamily != UINT32_MAX ? 2u : 1u;
+    deviceInfo.pQueueCreateInfos = queueInfos;
     VkPhysicalDevicePipelineExecutablePropertiesFeaturesKHR statisticsFeature{
         VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PIPELINE_EXECUTABLE_PROPERTIES_FEATURES_KHR};
     capturesPipelineStatistics_ = pipelineStatisticsRequested() &&
@@ -227,6 +248,10 @@ Context::Context(const ContextOptions& options) {
     DeviceRequirementsPatch requirements(physicalDevice_, deviceInfo);
     S3D_VK_CHECK(vkCreateDevice(physicalDevice_, &deviceInfo, nullptr, &device_));
     vkGetDeviceQueue(device_, queueFamily_, 0, &queue_);
+    if (computeFamily != UINT32_MAX) {
+      vkGetDeviceQueue(device_, computeFamily, 0, &concurrentQueue_);
+      sharingFamilies_ = {queueFamily_, computeFamily};
+    }
     initDeviceState();
   } catch (...) {
     release();  // a throwing constructor runs no destructor
@@ -257,6 +282,7 @@ Context::Context(const HostDevice& host) : ownsDevice_(false), allocator_(host.a
   device_ = host.device;
   queue_ = host.queue;
   queueFamily_ = host.queueFamily;
+  sharingFamilies_ = {queueFamily_};
   try {
     initDeviceState();
   } catch (...) {
@@ -285,6 +311,10 @@ void Context::initDeviceState() {
   poolInfo.flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT | VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
   poolInfo.queueFamilyIndex = queueFamily_;
   S3D_VK_CHECK(vkCreateCommandPool(device_, &poolInfo, allocator_, &commandPool_));
+  if (concurrentQueue_ != VK_NULL_HANDLE) {
+    poolInfo.queueFamilyIndex = sharingFamilies_[1];
+    S3D_VK_CHECK(vkCreateCommandPool(device_, &poolInfo, allocator_, &concurrentPool_));
+  }
 }
 
 Context::~Context() { release(); }
@@ -298,6 +328,7 @@ void Context::release() {
   if (device_) {
     vkDeviceWaitIdle(device_);
     if (commandPool_) vkDestroyCommandPool(device_, commandPool_, nullptr);
+    if (concurrentPool_) vkDestroyCommandPool(device_, concurrentPool_, allocator_);
     vkDestroyDevice(device_, nullptr);
   }
   if (messenger_) {
@@ -307,7 +338,7 @@ void Context::release() {
   }
   if (surface_) vkDestroySurfaceKHR(instance_, surface_, nullptr);
   if (instance_) vkDestroyInstance(instance_, nullptr);
-  commandPool_ = VK_NULL_HANDLE;
+  commandPool_ = concurrentPool_ = VK_NULL_HANDLE;
   device_ = VK_NULL_HANDLE;
   messenger_ = VK_NULL_HANDLE;
   surface_ = VK_NULL_HANDLE;
@@ -355,6 +386,62 @@ void Context::submitAndWait(const std::function<void(VkCommandBuffer)>& record) 
   submit.pCommandBufferInfos = &cmdInfo;
   S3D_VK_CHECK(vkQueueSubmit2(queue_, 1, &submit, fence));
   S3D_VK_CHECK(vkWaitForFences(device_, 1, &rawFence, VK_TRUE, UINT64_MAX));
+}
+
+void Context::submitConcurrentlyAndWait(const std::vector<std::function<void(VkCommandBuffer)>>& records) {
+  if (records.empty()) return;
+  std::vector<VkCommandBuffer> cmds(records.size(), VK_NULL_HANDLE);
+  const VkCommandPool restPool = concurrentPool_ != VK_NULL_HANDLE ? concurrentPool_ : commandPool_;
+  VkCommandBufferAllocateInfo allocInfo{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+  allocInfo.commandPool = commandPool_;
+  allocInfo.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+  allocInfo.commandBufferCount = 1;
+  S3D_VK_CHECK(vkAllocateCommandBuffers(device_, &allocInfo, cmds.data()));
+  if (cmds.size() > 1) {
+    allocInfo.commandPool = restPool;
+    allocInfo.commandBufferCount = std::uint32_t(cmds.size() - 1);
+    S3D_VK_CHECK(vkAllocateCommandBuffers(device_, &allocInfo, cmds.data() + 1));
+  }
+  struct FreeOnExit {
+    VkDevice device;
+    VkCommandPool pool, restPool;
+    std::vector<VkCommandBuffer>& cmds;
+    ~FreeOnExit() {
+      vkFreeCommandBuffers(device, pool, 1, cmds.data());
+      if (cmds.size() > 1) vkFreeCommandBuffers(device, restPool, std::uint32_t(cmds.size() - 1), cmds.data() + 1);
+    }
+  } freeOnExit{device_, commandPool_, restPool, cmds};
+  for (std::size_t i = 0; i < records.size(); ++i) {
+    VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+    begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+    S3D_VK_CHECK(vkBeginCommandBuffer(cmds[i], &begin));
+    records[i](cmds[i]);
+    S3D_VK_CHECK(vkEndCommandBuffer(cmds[i]));
+  }
+  std::vector<VkCommandBufferSubmitInfo> cmdInfos(cmds.size(), {VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO});
+  for (std::size_t i = 0; i < cmds.size(); ++i) cmdInfos[i].commandBuffer = cmds[i];
+  // The first recording on queue(), the rest together on the compute queue (or after it on queue()).
+  const VkQueue rest = concurrentQueue_ != VK_NULL_HANDLE ? concurrentQueue_ : queue_;
+  VkSubmitInfo2 firstSubmit{VK_STRUCTURE_TYPE_SUBMIT_INFO_2};
+  firstSubmit.commandBufferInfoCount = 1;
+  firstSubmit.pCommandBufferInfos = cmdInfos.data();
+  VkSubmitInfo2 restSubmit{VK_STRUCTURE_TYPE_SUBMIT_INFO_2};
+  restSubmit.commandBufferInfoCount = std::uint32_t(cmdInfos.size() - 1);
+  restSubmit.pCommandBufferInfos = cmdInfos.data() + 1;
+  std::vector<Unique<VkFence>> fences;
+  fences.reserve(2);
+  std::vector<VkFence> rawFences;
+  for (int i = 0; i < 2; ++i) {
+    VkFenceCreateInfo fenceInfo{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+    VkFence rawFence = VK_NULL_HANDLE;
+    S3D_VK_CHECK(vkCreateFence(device_, &fenceInfo, allocator_, &rawFence));
+    fences.emplace_back(device_, rawFence, vkDestroyFence, allocator_);
+    rawFences.push_back(rawFence);
+  }
+  S3D_VK_CHECK(vkQueueSubmit2(queue_, 1, &firstSubmit, rawFences[0]));
+  if (restSubmit.commandBufferInfoCount > 0) S3D_VK_CHECK(vkQueueSubmit2(rest, 1, &restSubmit, rawFences[1]));
+  const std::uint32_t waited = restSubmit.commandBufferInfoCount > 0 ? 2u : 1u;
+  S3D_VK_CHECK(vkWaitForFences(device_, waited, rawFences.data(), VK_TRUE, UINT64_MAX));
 }
 
 std::vector<std::string> Context::validationMessages() const {

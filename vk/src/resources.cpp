@@ -7,13 +7,26 @@
 #include "s3d/vk/check.h"
 
 namespace s3d::vk {
+namespace {
+
+// Concurrent sharing where the context has a compute queue beside its main one: a resource may then be used on
+// either without a queue family ownership transfer.
+template <typename CreateInfo>
+void shareBetweenQueues(const Context& context, CreateInfo& info) {
+  const std::vector<std::uint32_t>& families = context.sharingFamilies();
+  info.sharingMode = families.size() > 1 ? VK_SHARING_MODE_CONCURRENT : VK_SHARING_MODE_EXCLUSIVE;
+  info.queueFamilyIndexCount = families.size() > 1 ? std::uint32_t(families.size()) : 0u;
+  info.pQueueFamilyIndices = families.size() > 1 ? families.data() : nullptr;
+}
+
+}  // namespace
 
 Buffer createBuffer(const Context& context, VkDeviceSize size, VkBufferUsageFlags usage, MemoryLocation location) {
   VkDevice device = context.device();
   VkBufferCreateInfo info{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
   info.size = size;
   info.usage = usage;
-  info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
+  shareBetweenQueues(context, info);
   VkBuffer rawBuffer = VK_NULL_HANDLE;
   S3D_VK_CHECK(vkCreateBuffer(device, &info, context.allocator(), &rawBuffer));
   Buffer buffer;
@@ -95,6 +108,7 @@ Image createImage(const Context& context, VkFormat format, std::uint32_t width, 
   info.samples = VK_SAMPLE_COUNT_1_BIT;
   info.tiling = VK_IMAGE_TILING_OPTIMAL;
   info.usage = usage;
+  shareBetweenQueues(context, info);
   info.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
   VkImage rawImage = VK_NULL_HANDLE;
   S3D_VK_CHECK(vkCreateImage(device, &info, context.allocator(), &rawImage));

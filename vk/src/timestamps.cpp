@@ -33,15 +33,18 @@ void TimestampQueries::write(VkCommandBuffer cmd, std::uint32_t index, VkPipelin
   vkCmdPipelineBarrier2(cmd, &dependency);
 }
 
+std::optional<std::uint64_t> TimestampQueries::ticks(std::uint32_t index) const {
+  if (!supported_) return std::nullopt;
+  std::uint64_t value = 0;
+  S3D_VK_CHECK(vkGetQueryPoolResults(context_->device(), pool_, index, 1, sizeof(std::uint64_t), &value,
+                                     sizeof(std::uint64_t), VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
+  return value;
+}
+
 std::optional<double> TimestampQueries::elapsedMs(std::uint32_t begin, std::uint32_t end) const {
   if (!supported_) return std::nullopt;
-  std::uint64_t ticks[2]{};
   // Two queries read separately: they need not be adjacent.
-  S3D_VK_CHECK(vkGetQueryPoolResults(context_->device(), pool_, begin, 1, sizeof(std::uint64_t), &ticks[0],
-                                     sizeof(std::uint64_t), VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
-  S3D_VK_CHECK(vkGetQueryPoolResults(context_->device(), pool_, end, 1, sizeof(std::uint64_t), &ticks[1],
-                                     sizeof(std::uint64_t), VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
-  return double(ticks[1] - ticks[0]) * context_->timestampPeriodNs() * 1e-6;
+  return double(*ticks(end) - *ticks(begin)) * context_->timestampPeriodNs() * 1e-6;
 }
 
 }  // namespace s3d::vk

@@ -99,6 +99,12 @@ class Context {
   VkPhysicalDevice physicalDevice() const { return physicalDevice_; }
   VkDevice device() const { return device_; }
   VkQueue queue() const { return queue_; }
+  // Whether s3d's own device has an asynchronous compute queue (a family with compute and no graphics: GPUs; not
+  // lavapipe, not a host's device): work submitted there runs beside queue()'s (submitConcurrentlyAndWait).
+  bool hasConcurrentQueue() const { return concurrentQueue_ != VK_NULL_HANDLE; }
+  // The queue families every buffer and image is shared between (VK_SHARING_MODE_CONCURRENT where two): queue()'s,
+  // and the compute queue's where there is one, so either queue may use any resource without ownership transfers.
+  const std::vector<std::uint32_t>& sharingFamilies() const { return sharingFamilies_; }
   VkSurfaceKHR surface() const { return surface_; }  // VK_NULL_HANDLE without ContextOptions::createSurface
   std::uint32_t queueFamily() const { return queueFamily_; }
   const std::string& deviceName() const { return deviceName_; }
@@ -116,6 +122,11 @@ class Context {
 
   // Records commands into a fresh command buffer, submits them and waits for the queue to finish.
   void submitAndWait(const std::function<void(VkCommandBuffer)>& record);
+  // Records each function into a command buffer of its own and waits for all of them: the first on queue(), the
+  // others on the compute queue where there is one (so they may record only compute and transfer work: no
+  // graphics stages, not even in barriers), so that one's passes run while another's wait on their barriers;
+  // without it, all on queue() in order. The recordings must not touch each other's resources.
+  void submitConcurrentlyAndWait(const std::vector<std::function<void(VkCommandBuffer)>>& records);
 
   // Messages reported by the validation layer since creation (empty when validation is off).
   std::vector<std::string> validationMessages() const;
@@ -138,6 +149,9 @@ class Context {
   VkPhysicalDevice physicalDevice_ = VK_NULL_HANDLE;
   VkDevice device_ = VK_NULL_HANDLE;
   VkQueue queue_ = VK_NULL_HANDLE;
+  VkQueue concurrentQueue_ = VK_NULL_HANDLE;
+  VkCommandPool concurrentPool_ = VK_NULL_HANDLE;
+  std::vector<std::uint32_t> sharingFamilies_;  // set in the constructors
   VkCommandPool commandPool_ = VK_NULL_HANDLE;
   bool ownsDevice_ = true;
   const VkAllocationCallbacks* allocator_ = nullptr;
