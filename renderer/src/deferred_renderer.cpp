@@ -1,6 +1,8 @@
 #include "s3d/renderer/deferred_renderer.h"
 
+#include <algorithm>
 #include <array>
+#include <functional>
 #include <stdexcept>
 #include <string>
 
@@ -16,7 +18,7 @@ std::vector<DeferredRenderer::Impl::ScheduledPass> DeferredRenderer::Impl::sched
   const bool withAmbientOcclusion = scene.ambientOcclusion;
   if (masked) {
     passes.push_back({"mask-tiles", [this, mask](VkCommandBuffer cmd) {
-                        tiles->recordReset(cmd, mask.image);
+                        tiles->recordReset(cmd, mask.image, !raycastFrame);
                         tiles->recordBuild(cmd, frameBuffer.buffer, *mask.image);
                       }});
     if (withAmbientOcclusion && !maskedGBufferWritesEveryPixel() && !raycastFrame)
@@ -26,13 +28,13 @@ std::vector<DeferredRenderer::Impl::ScheduledPass> DeferredRenderer::Impl::sched
   // shading from a counting pass of its own.
   if (raycastFrame)
     passes.push_back({"raycast", [this, view, mask](VkCommandBuffer cmd) {
-                        if (mask.image == nullptr) tiles->recordReset(cmd, nullptr);
+                        if (mask.image == nullptr) tiles->recordReset(cmd, nullptr, false);
                         recordRaycastSurfaces(cmd, view, mask);
                       }});
   else
     passes.push_back({"gbuffer",
                       [this, mask](VkCommandBuffer cmd) {
-                        if (mask.image == nullptr) tiles->recordReset(cmd, nullptr);
+                        if (mask.image == nullptr) tiles->recordReset(cmd, nullptr, true);
                         recordGBuffer(cmd, mask);
                       },
                       S3D_COUNT_GBUFFER});
@@ -118,7 +120,8 @@ const detail::ShadowMaps& DeferredRenderer::Impl::lentShadowMaps(const ViewMatri
   return *source.shadows;
 }
 
-FrameTimings DeferredRenderer::Impl::render(const ViewMatrices& view, const ShadeMask& mask, const Impl* shadowSource) {
+std::vector<DeferredRenderer::Impl::ScheduledPass> DeferredRenderer::Impl::prepareFrame(
+    const ViewMatrices& view, const ShadeMask& mask, const Impl* shadowSource) {
   if (meshRanges.empty()) throw std::logic_error("DeferredRenderer::render called before setScene");
   validateMask(mask);
   raycastFrame = mask.surfaces == ShadeMask::Surfaces::RayCast;
@@ -129,18 +132,23 @@ FrameTimings DeferredRenderer::Impl::render(const ViewMatrices& view, const Shad
   }
   const detail::ShadowMaps* lentShadows = shadowSource != nullptr ? &lentShadowMaps(view, *shadowSource) : nullptr;
   writeFrameConstants(view, mask);
-  const std::vector<ScheduledPass> passes = schedulePasses(view, mask, lentShadows);
+  std::vector<ScheduledPass> passes = schedulePasses(view, mask, lentShadows);
   if (passes.size() > kMaxPasses) throw std::logic_error("renderer: more passes than timestamps");
+  return passes;
+}
+
+void DeferredRenderer::Impl::recordFrame(VkCommandBuffer cmd, const std::vector<ScheduledPass>& passes) {
   constexpr VkPipelineStageFlags2 kAll = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
-  context.submitAndWait([&](VkCommandBuffer cmd) {
-    timestamps.reset(cmd);
-    timestamps.write(cmd, 0, kAll);
-    for (std::uint32_t pass = 0; pass < passes.size(); ++pass) {
-      passes[pass].record(cmd);
-      timestamps.write(cmd, pass + 1, kAll);
-    }
-    if (options.countShadedPixels) tiles->recordCountReadback(cmd);
-  });
+  timestamps.reset(cmd);
+  timestamps.write(cmd, 0, kAll);
+  for (std::uint32_t pass = 0; pass < passes.size(); ++pass) {
+    passes[pass].record(cmd);
+    timestamps.write(cmd, pass + 1, kAll);
+  }
+  if (options.countShadedPixels) tiles->recordCountReadback(cmd);
+}
+
+FrameTimings DeferredRenderer::Impl::frameTimings(const std::vector<ScheduledPass>& passes) const {
   FrameTimings timings;
   const auto passCount = std::uint32_t(passes.size());
   timings.totalGpuMs = timestamps.elapsedMs(0, passCount);
@@ -152,6 +160,55 @@ FrameTimings DeferredRenderer::Impl::render(const ViewMatrices& view, const Shad
       timing.shadedPixels = counts[std::size_t(passes[pass].counterSlot)];
     timings.passes.push_back(timing);
   }
+  return timings;
+}
+
+FrameTimings DeferredRenderer::Impl::render(const ViewMatrices& view, const ShadeMask& mask, const Impl* shadowSource) {
+  const std::vector<ScheduledPass> passes = prepareFrame(view, mask, shadowSource);
+  context.submitAndWait([&](VkCommandBuffer cmd) { recordFrame(cmd, passes); });
+  return frameTimings(passes);
+}
+
+ConcurrentTimings DeferredRenderer::renderConcurrently(std::span<const ConcurrentView> views) {
+  if (views.empty()) return {};
+  for (std::size_t i = 0; i < views.size(); ++i) {
+    if (views[i].renderer == nullptr) throw std::invalid_argument("renderer: a concurrent view has no renderer");
+    if (&views[i].renderer->impl_->context != &views[0].renderer->impl_->context)
+      throw std::invalid_argument("renderer: concurrent views' renderers must share one context");
+    for (std::size_t j = 0; j < views.size(); ++j)
+      if ((j != i && views[j].renderer == views[i].renderer) || views[j].shadowSource == views[i].renderer)
+        throw std::invalid_argument("renderer: a renderer of a concurrent view renders only that view and lends it no shadows");
+  }
+  std::vector<std::vector<Impl::ScheduledPass>> passes;
+  for (const ConcurrentView& v : views)
+    passes.push_back(v.renderer->impl_->prepareFrame(v.view, v.mask, v.shadowSource ? v.shadowSource->impl_.get() : nullptr));
+  // A ray-cast frame lit with lent shadow maps records compute and transfer work only: it may run on the compute
+  // queue. Any other frame after the first makes the call submit every view on the main queue, in turn.
+  bool restComputeOnly = true;
+  for (std::size_t i = 1; i < views.size(); ++i)
+    restComputeOnly = restComputeOnly && views[i].renderer->impl_->raycastFrame && views[i].shadowSource != nullptr;
+  vk::Context& context = views[0].renderer->impl_->context;
+  if (restComputeOnly) {
+    std::vector<std::function<void(VkCommandBuffer)>> records;
+    for (std::size_t i = 0; i < views.size(); ++i)
+      records.push_back([&, i](VkCommandBuffer cmd) { views[i].renderer->impl_->recordFrame(cmd, passes[i]); });
+    context.submitConcurrentlyAndWait(records);
+  } else {
+    context.submitAndWait([&](VkCommandBuffer cmd) {
+      for (std::size_t i = 0; i < views.size(); ++i) views[i].renderer->impl_->recordFrame(cmd, passes[i]);
+    });
+  }
+  ConcurrentTimings timings;
+  std::optional<std::uint64_t> first, last;
+  for (std::size_t i = 0; i < views.size(); ++i) {
+    const Impl& r = *views[i].renderer->impl_;
+    timings.views.push_back(r.frameTimings(passes[i]));
+    const std::optional<std::uint64_t> begin = r.timestamps.ticks(0), end = r.timestamps.ticks(std::uint32_t(passes[i].size()));
+    if (!begin || !end) continue;
+    first = first ? std::min(*first, *begin) : *begin;
+    last = last ? std::max(*last, *end) : *end;
+  }
+  if (first && last) timings.spanGpuMs = double(*last - *first) * context.timestampPeriodNs() * 1e-6;
   return timings;
 }
 

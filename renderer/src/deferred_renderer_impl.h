@@ -255,6 +255,11 @@ struct DeferredRenderer::Impl {
   // A shadow source's maps, checked to be the ones this view would render (the scene, the size and the fit).
   const detail::ShadowMaps& lentShadowMaps(const ViewMatrices& view, const Impl& source) const;
 
+  // A frame in three steps (render() runs them around one submission; renderConcurrently around one per view):
+  // check and schedule; record with a timestamp after each pass; read the timings after the GPU finished.
+  std::vector<ScheduledPass> prepareFrame(const ViewMatrices& view, const ShadeMask& mask, const Impl* shadowSource);
+  void recordFrame(VkCommandBuffer cmd, const std::vector<ScheduledPass>& passes);
+  FrameTimings frameTimings(const std::vector<ScheduledPass>& passes) const;
   FrameTimings render(const ViewMatrices& view, const ShadeMask& mask, const Impl* shadowSource);
 };
 

@@ -80,7 +80,7 @@ TileLists::TileLists(vk::Context& context, std::uint32_t renderWidth, std::uint3
   count_ = createTilePipeline(context_, countLayout_.layout, spirv_gbuffer_count_comp, false, true);
 }
 
-void TileLists::recordReset(VkCommandBuffer cmd, const vk::Image* mask) {
+void TileLists::recordReset(VkCommandBuffer cmd, const vk::Image* mask, bool fragmentReads) {
   // Earlier frames' compute reads and indirect reads finish before the reset overwrites the buffer.
   vk::memoryBarrier(cmd, kComputeAndIndirect | VK_PIPELINE_STAGE_2_COPY_BIT, kStorageAndIndirect,
                 VK_PIPELINE_STAGE_2_CLEAR_BIT | VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
@@ -93,7 +93,7 @@ void TileLists::recordReset(VkCommandBuffer cmd, const vk::Image* mask) {
     vkCmdFillBuffer(cmd, buffer_.buffer, sizeof(header), VkDeviceSize(tilesX_) * tilesY_ * sizeof(std::uint32_t), 0);
     // The host wrote the mask in an earlier submission (or earlier in its command buffer): make it visible.
     vk::transition(cmd, *mask, {VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_WRITE_BIT},
-                   kShadeMaskRead);
+                   fragmentReads ? kShadeMaskRead : kShadeMaskComputeRead);
   }
   vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_CLEAR_BIT | VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
                 kComputeAndIndirect, kStorageAndIndirect);

@@ -25,6 +25,8 @@ inline constexpr vk::ImageState kShadeMaskRead{VK_IMAGE_LAYOUT_GENERAL,
                                                VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT |
                                                    VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
                                                VK_ACCESS_2_SHADER_STORAGE_READ_BIT};
+inline constexpr vk::ImageState kShadeMaskComputeRead{VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                                                      VK_ACCESS_2_SHADER_STORAGE_READ_BIT};
 
 // A compute pass that runs over tiles (tiles.glsl), specialized: constant 0 a masked render, 1 shaded-pixel
 // counting, 2... the pass's own switches (`switches`, in order), then its 32-bit values (`values`, in order).
@@ -65,8 +67,9 @@ class TileLists {
 
   // Zeroes the counters and the dispatch counts (and, for a masked render, the ambient-region flags), then
   // makes the buffer readable and writable by compute and readable as indirect arguments. `mask` (masked
-  // renders): the host's image, made readable after any earlier write.
-  void recordReset(VkCommandBuffer cmd, const vk::Image* mask);
+  // renders): the host's image, made readable after any earlier write: by compute, and by the fragment stage
+  // where `fragmentReads` (a raster G-buffer; a compute-only frame names no graphics stage).
+  void recordReset(VkCommandBuffer cmd, const vk::Image* mask, bool fragmentReads);
   // mask-tiles: reads the frame constants and the mask; writes the lists and dispatch counts, readable by the
   // compute passes and their indirect dispatches after it.
   void recordBuild(VkCommandBuffer cmd, VkBuffer frameBuffer, const vk::Image& mask);

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -35,6 +36,20 @@ struct FrameTimings {
 };
 
 struct SceneBvh;
+class DeferredRenderer;
+
+// One view of DeferredRenderer::renderConcurrently: what render() takes, with the renderer that draws it.
+struct ConcurrentView {
+  DeferredRenderer* renderer = nullptr;
+  ViewMatrices view;
+  ShadeMask mask;
+  const DeferredRenderer* shadowSource = nullptr;  // as render()'s; null: the view renders its own shadow maps
+};
+
+struct ConcurrentTimings {
+  std::vector<FrameTimings> views;   // each view's own passes, as render() times them (they overlap in time)
+  std::optional<double> spanGpuMs;   // from the first view's start to the last view's end (empty without timestamps)
+};
 
 class DeferredRenderer {
  public:
@@ -73,6 +88,13 @@ class DeferredRenderer {
   // readable, so they must not be re-rendered until this render returns (render() waits for the GPU). Throws
   // std::invalid_argument when shadowSource has no frame or another scene, size or shadow fit.
   FrameTimings render(const ViewMatrices& view, const ShadeMask& mask, const DeferredRenderer& shadowSource);
+  // Several views at once, each by its own renderer (as its render() would, with the same checks and results):
+  // the first view's passes on the context's main queue, the others' on its compute queue where the device has
+  // one (vk::Context::hasConcurrentQueue) and they are compute-only frames (ray-cast surfaces lit with a shadow
+  // source's maps), so one view's small passes fill the GPU while another's wait on their barriers; otherwise one
+  // after the other on the main queue. The renderers share a context; none appears twice or lends its shadows to
+  // another view of the call (it would be read while written). Waits for the GPU.
+  static ConcurrentTimings renderConcurrently(std::span<const ConcurrentView> views);
 
   std::uint32_t width() const;   // output size
   std::uint32_t height() const;
