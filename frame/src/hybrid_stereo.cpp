@@ -62,40 +62,67 @@ std::vector<std::optional<double>> timeSections(vk::Context& context, int timedR
 }
 
 // The eye renders, masked (renderer::ShadeMask: only the mask's pixels are shaded) or whole, and lit with the center
-// frame's shadow maps (the eye views plan theirs for the center camera, so they are the same maps): median total
-// and median per pass; "gbuffer" and "ssao-depth" (the eye's rasterized geometry, every pixel's depth) or
-// "raycast" find the surfaces, all others shade the masked pixels.
-struct EyeRenderTimes {
-  std::optional<double> geometry, shading;
-  std::vector<renderer::PassTiming> passes;
+// frame's shadow maps (the eye views plan theirs for the center camera, so they are the same maps): per eye the
+// median of each pass, and of "gbuffer" and "ssao-depth" (the eye's rasterized geometry, every pixel's depth) or
+// "raycast" (its surfaces) against all others (shading the masked pixels); and the median time of all eyes'
+// renders together (one after another: their totals' sum; at once: from the first start to the last end).
+struct EyeRender {
+  renderer::DeferredRenderer* renderer;
+  renderer::ViewMatrices view;
+  renderer::ShadeMask mask;
 };
 
-EyeRenderTimes renderEye(renderer::DeferredRenderer& eyeRenderer, const renderer::DeferredRenderer& centerRenderer,
-                         const renderer::ViewMatrices& view, const vk::Image* mask, renderer::ShadeMask::Surfaces surfaces,
-                         const vk::Image* uncastDepth, const vk::Image* displayTarget, int timedRuns) {
-  // HybridPass masks: 1 where the eye camera renders the pixel; none: every pixel (an unmasked render).
-  const renderer::ShadeMask shadeMask{mask, 1, surfaces, uncastDepth, displayTarget};
-  (void)eyeRenderer.render(view, shadeMask, centerRenderer);
+struct EyeRenderTimes {
+  std::optional<double> geometry, shading, together;  // geometry, shading: summed over the eyes
+  std::vector<std::vector<renderer::PassTiming>> passes;  // per eye
+};
+
+// One timed run of every eye's render: each eye's frame timings and their time together. With one renderer per
+// eye the renders run at once (DeferredRenderer::renderConcurrently); sharing one, one after another.
+std::pair<std::vector<renderer::FrameTimings>, std::optional<double>> renderOnce(
+    const std::vector<EyeRender>& eyes, const renderer::DeferredRenderer& centerRenderer, bool together) {
+  if (together) {
+    std::vector<renderer::ConcurrentView> views;
+    for (const EyeRender& eye : eyes) views.push_back({eye.renderer, eye.view, eye.mask, &centerRenderer});
+    renderer::ConcurrentTimings timings = renderer::DeferredRenderer::renderConcurrently(views);
+    return {std::move(timings.views), timings.spanGpuMs};
+  }
+  std::vector<renderer::FrameTimings> frames;
+  std::optional<double> sum = 0.0;
+  for (const EyeRender& eye : eyes) {
+    frames.push_back(eye.renderer->render(eye.view, eye.mask, centerRenderer));
+    sum = frames.back().totalGpuMs && sum ? std::optional<double>(*sum + *frames.back().totalGpuMs) : std::nullopt;
+  }
+  return {std::move(frames), sum};
+}
+
+EyeRenderTimes renderEyes(const std::vector<EyeRender>& eyes, const renderer::DeferredRenderer& centerRenderer,
+                          bool together, int timedRuns) {
+  (void)renderOnce(eyes, centerRenderer, together);
   std::vector<double> totals;
-  std::map<std::string, std::vector<double>> passTimes;
-  std::vector<renderer::PassTiming> order;
+  std::vector<std::map<std::string, std::vector<double>>> passTimes(eyes.size());
+  std::vector<std::vector<renderer::PassTiming>> order(eyes.size());
   for (int run = 0; run < timedRuns; ++run) {
-    const renderer::FrameTimings frame = eyeRenderer.render(view, shadeMask, centerRenderer);
-    if (!frame.totalGpuMs) continue;
-    totals.push_back(*frame.totalGpuMs);
-    if (order.empty()) order = frame.passes;
-    for (const renderer::PassTiming& pass : frame.passes) passTimes[pass.name].push_back(pass.gpuMs);
+    const auto [frames, total] = renderOnce(eyes, centerRenderer, together);
+    if (!total) continue;
+    totals.push_back(*total);
+    for (std::size_t eye = 0; eye < eyes.size(); ++eye) {
+      if (order[eye].empty()) order[eye] = frames[eye].passes;
+      for (const renderer::PassTiming& pass : frames[eye].passes) passTimes[eye][pass.name].push_back(pass.gpuMs);
+    }
   }
   EyeRenderTimes times;
-  const std::optional<double> total = stereo::medianMs(totals);
-  if (!total) return times;
-  double geometry = 0.0;
-  for (renderer::PassTiming& pass : order) {
-    pass.gpuMs = stereo::medianMs(passTimes[pass.name]).value_or(0.0);
-    if (pass.name == "gbuffer" || pass.name == "ssao-depth" || pass.name == "raycast") geometry += pass.gpuMs;
-  }
+  times.together = stereo::medianMs(totals);
+  if (!times.together) return times;
+  double geometry = 0.0, shading = 0.0;
+  for (std::size_t eye = 0; eye < eyes.size(); ++eye)
+    for (renderer::PassTiming& pass : order[eye]) {
+      pass.gpuMs = stereo::medianMs(passTimes[eye][pass.name]).value_or(0.0);
+      const bool finds = pass.name == "gbuffer" || pass.name == "ssao-depth" || pass.name == "raycast";
+      (finds ? geometry : shading) += pass.gpuMs;
+    }
   times.geometry = geometry;
-  times.shading = *total - geometry;
+  times.shading = shading;
   times.passes = std::move(order);
   return times;
 }
@@ -134,18 +161,24 @@ renderer::RendererOptions eyeRendererOptions(const renderer::RendererOptions& ce
 
 namespace {
 
-// The masked pixels' surfaces by ray casting wherever the eye renderer can shade what the rays find (a GPU's
-// visibility shading; DeferredRenderer::raycastSurfacesRefusal); its BVH is built once per scene or pose.
-// Otherwise rasterized.
-renderer::ShadeMask::Surfaces surfacesFor(renderer::DeferredRenderer& eyeRenderer, const renderer::Scene& scene,
-                                          HybridSurfaces surfaces) {
-  const std::optional<std::string> refusal = eyeRenderer.raycastSurfacesRefusal();
+// The masked pixels' surfaces by ray casting wherever the eye renderers can shade what the rays find (a GPU's
+// visibility shading; DeferredRenderer::raycastSurfacesRefusal); the BVH is built once per scene or pose and
+// given to each eye renderer without it. Otherwise rasterized.
+renderer::ShadeMask::Surfaces surfacesFor(const std::array<renderer::DeferredRenderer*, 2>& eyeRenderers,
+                                          const renderer::Scene& scene, HybridSurfaces surfaces) {
+  std::optional<std::string> refusal = eyeRenderers[0]->raycastSurfacesRefusal();
+  if (!refusal) refusal = eyeRenderers[1]->raycastSurfacesRefusal();
   if (forcesRays(surfaces) && refusal)
     throw std::invalid_argument("the hybrid cannot ray-cast its eye pixels here: " + *refusal);
   if (surfaces == HybridSurfaces::Raster || refusal) return renderer::ShadeMask::Surfaces::Raster;
   // A posed scene rebuilds its tree with every pose: the fast build; a still one builds once, with spatial splits.
   const renderer::BvhQuality quality = scene.animation ? renderer::BvhQuality::Fast : renderer::BvhQuality::SpatialSplits;
-  if (!eyeRenderer.hasSurfaceBvh()) eyeRenderer.setSurfaceBvh(renderer::SceneBvh::build(scene, quality));
+  std::optional<renderer::SceneBvh> bvh;
+  for (renderer::DeferredRenderer* eyeRenderer : eyeRenderers)
+    if (!eyeRenderer->hasSurfaceBvh()) {
+      if (!bvh) bvh = renderer::SceneBvh::build(scene, quality);
+      eyeRenderer->setSurfaceBvh(*bvh);
+    }
   return renderer::ShadeMask::Surfaces::RayCast;
 }
 
@@ -162,7 +195,8 @@ std::vector<std::uint8_t> cropMask(const gpu::HybridConstants& constants, std::u
 struct HybridFrame {
   vk::Context& context;
   const renderer::DeferredRenderer& centerRenderer;
-  renderer::DeferredRenderer& eyeRenderer;
+  // Left, right: one renderer for both eyes (one after the other) or one each (at once).
+  std::array<renderer::DeferredRenderer*, 2> eyeRenderers;
   std::uint32_t width, height;
   int timedRuns;
   const stereo::HybridPass& hybrid;
@@ -213,7 +247,7 @@ stereo::StereoMethod displaceAndClassify(HybridFrame& f, const stereo::StereoPar
 bool givesBaseDepth(const HybridFrame& f, const renderer::Scene& scene, renderer::ShadeMask::Surfaces eyeSurfaces,
                     HybridSurfaces surfaces) {
   const bool sameDeviceDepth = f.centerRenderer.supersample() == 1 &&
-                               f.centerRenderer.options().reversedZ == f.eyeRenderer.options().reversedZ;
+                               f.centerRenderer.options().reversedZ == f.eyeRenderers[0]->options().reversedZ;
   return eyeSurfaces == renderer::ShadeMask::Surfaces::RayCast && surfaces != HybridSurfaces::RayCastRegion &&
          scene.ambientOcclusion && f.constants.baseTapCount > 0 && f.classify && sameDeviceDepth;
 }
@@ -236,44 +270,68 @@ void recordBaseDepth(HybridFrame& f, HybridTimings& timings) {
   f.givesBaseDepth = true;
 }
 
-// One eye: its masked pixels rendered from the eye camera straight into the displaced eye (the renderer's display
-// target), or with every pixel masked the whole eye rendered into it and its cropped columns made black. An eye
-// with nothing masked is the displaced eye as it is, and costs no render.
-void renderIntoEye(HybridFrame& f, const renderer::Scene& scene, const renderer::ViewMatrices& center,
-                   const stereo::StereoParameters& parameters, stereo::Eye eye, HybridSynthesis& result) {
-  const std::size_t index = eye == stereo::Eye::Left ? 0 : 1;
-  const vk::Image& target = index == 0 ? f.left : f.right;
-  const vk::Image& mask = index == 0 ? f.images.leftMask : f.images.rightMask;
-  if (f.classify)
-    result.thresholds[index] = stereo::HybridPass::readThreshold(f.context, f.images.thresholds, int(index));
-  else if (f.everythingMasked)  // bin 0 and up: every classified pixel, no split (hybridThreshold's)
-    result.thresholds[index] = {0, result.classifiedCells, S3D_HYBRID_NO_PIXEL, 0};
-  if (result.thresholds[index].maskedPixels == 0) {
-    result.masks[index].assign(std::size_t(f.width) * f.height, 0);
-    result.renderedHdr[index] = ImageRGBA32F(f.width, f.height);
-    return;
+// Both eyes: their masked pixels rendered from the eye cameras straight into the displaced eyes (the renderers'
+// display targets), or with every pixel masked the whole eyes rendered into them and their cropped columns made
+// black. An eye with nothing masked is the displaced eye as it is, and costs no render.
+void renderIntoEyes(HybridFrame& f, const renderer::Scene& scene, const renderer::ViewMatrices& center,
+                    const stereo::StereoParameters& parameters, HybridSynthesis& result) {
+  std::vector<EyeRender> renders;
+  std::vector<std::size_t> rendered;  // the eyes (0 left, 1 right) with masked pixels
+  for (const std::size_t index : {std::size_t(0), std::size_t(1)}) {
+    const vk::Image& mask = index == 0 ? f.images.leftMask : f.images.rightMask;
+    if (f.classify)
+      result.thresholds[index] = stereo::HybridPass::readThreshold(f.context, f.images.thresholds, int(index));
+    else if (f.everythingMasked)  // bin 0 and up: every classified pixel, no split (hybridThreshold's)
+      result.thresholds[index] = {0, result.classifiedCells, S3D_HYBRID_NO_PIXEL, 0};
+    if (result.thresholds[index].maskedPixels == 0) {
+      result.masks[index].assign(std::size_t(f.width) * f.height, 0);
+      result.renderedHdr[index] = ImageRGBA32F(f.width, f.height);
+      continue;
+    }
+    const stereo::Eye eye = index == 0 ? stereo::Eye::Left : stereo::Eye::Right;
+    // HybridPass masks: 1 where the eye camera renders the pixel; none: every pixel (an unmasked render).
+    const renderer::ShadeMask shadeMask{f.everythingMasked ? nullptr : &mask, 1, result.surfaces,
+                                        f.givesBaseDepth ? &f.baseDepth[index] : nullptr, index == 0 ? &f.left : &f.right};
+    renders.push_back({f.eyeRenderers[index], referenceEyeView(scene, center, eye, parameters), shadeMask});
+    rendered.push_back(index);
   }
   HybridTimings& timings = result.timings;
-  const EyeRenderTimes render =
-      renderEye(f.eyeRenderer, f.centerRenderer, referenceEyeView(scene, center, eye, parameters),
-                f.everythingMasked ? nullptr : &mask, result.surfaces,
-                f.givesBaseDepth ? &f.baseDepth[index] : nullptr, &target, f.timedRuns);
-  timings.eyeGeometry = sum(timings.eyeGeometry, render.geometry);
-  timings.maskedShading = sum(timings.maskedShading, render.shading);
-  (index == 0 ? timings.leftEyePasses : timings.rightEyePasses) = render.passes;
-  if (f.everythingMasked) {
-    const std::vector<std::optional<double>> cropEdges =
-        timeSections(f.context, f.timedRuns, 1, [&](VkCommandBuffer cmd, const std::function<void()>& mark) {
-          vk::transition(cmd, target, vk::kComputeWrite, vk::kComputeWrite);
-          f.hybrid.recordCropEdges(cmd, target, f.constants);
-          mark();
-        });
-    timings.composite = sum(timings.composite, cropEdges[0]);
+  timings.eyeRenders = 0.0;
+  if (renders.empty()) return;
+  // At once where the right eye's render can run on the GPU's compute queue (ray-cast surfaces: compute only).
+  const bool together = renders.size() == 2 && f.eyeRenderers[0] != f.eyeRenderers[1] && f.context.hasConcurrentQueue() &&
+                        result.surfaces == renderer::ShadeMask::Surfaces::RayCast;
+  timings.concurrentEyes = together;
+  // Sharing one renderer, each eye's results are read before the next eye renders over them.
+  const std::size_t batch = together ? renders.size() : 1;
+  for (std::size_t first = 0; first < renders.size(); first += batch) {
+    const std::vector<EyeRender> now(renders.begin() + std::ptrdiff_t(first), renders.begin() + std::ptrdiff_t(first + batch));
+    const EyeRenderTimes times = renderEyes(now, f.centerRenderer, together, f.timedRuns);
+    timings.eyeGeometry = sum(timings.eyeGeometry, times.geometry);
+    timings.maskedShading = sum(timings.maskedShading, times.shading);
+    timings.eyeRenders = sum(timings.eyeRenders, times.together);
+    for (std::size_t i = 0; i < now.size(); ++i) {
+      const std::size_t index = rendered[first + i];
+      if (i < times.passes.size()) (index == 0 ? timings.leftEyePasses : timings.rightEyePasses) = times.passes[i];
+      result.renderedHdr[index] = now[i].renderer->readHdrColor();
+    }
   }
-  result.renderedHdr[index] = f.eyeRenderer.readHdrColor();
-  result.masks[index] = f.everythingMasked ? cropMask(f.constants, f.width, f.height)
-                                           : stereo::HybridPass::readMask(f.context, mask);
-  result.maskedPixels[index] = std::uint64_t(std::count(result.masks[index].begin(), result.masks[index].end(), 1));
+  for (const std::size_t index : rendered) {
+    const vk::Image& target = index == 0 ? f.left : f.right;
+    if (f.everythingMasked) {
+      const std::vector<std::optional<double>> cropEdges =
+          timeSections(f.context, f.timedRuns, 1, [&](VkCommandBuffer cmd, const std::function<void()>& mark) {
+            vk::transition(cmd, target, vk::kComputeWrite, vk::kComputeWrite);
+            f.hybrid.recordCropEdges(cmd, target, f.constants);
+            mark();
+          });
+      timings.composite = sum(timings.composite, cropEdges[0]);
+    }
+    result.masks[index] = f.everythingMasked
+                              ? cropMask(f.constants, f.width, f.height)
+                              : stereo::HybridPass::readMask(f.context, index == 0 ? f.images.leftMask : f.images.rightMask);
+    result.maskedPixels[index] = std::uint64_t(std::count(result.masks[index].begin(), result.masks[index].end(), 1));
+  }
 }
 
 }  // namespace
@@ -316,18 +374,31 @@ HybridSynthesis HybridSynthesizer::synthesize(const renderer::DeferredRenderer& 
                                               const renderer::ViewMatrices& center,
                                               const stereo::StereoParameters& parameters, int timedRuns,
                                               HybridSurfaces surfaces) {
+  return synthesize(centerRenderer, {&eyeRenderer, &eyeRenderer}, scene, center, parameters, timedRuns, surfaces);
+}
+
+HybridSynthesis HybridSynthesizer::synthesize(const renderer::DeferredRenderer& centerRenderer,
+                                              const std::array<renderer::DeferredRenderer*, 2>& eyeRenderers,
+                                              const renderer::Scene& scene, const renderer::ViewMatrices& center,
+                                              const stereo::StereoParameters& parameters, int timedRuns,
+                                              HybridSurfaces surfaces) {
   if (parameters.method != stereo::StereoMethod::Hybrid)
     throw std::invalid_argument("synthesizeHybrid needs the hybrid method's parameters");
   if (timedRuns < 1) throw std::invalid_argument("synthesizeHybrid: timedRuns must be at least 1");
   const std::uint32_t width = centerRenderer.displayColor().width, height = centerRenderer.displayColor().height;
-  if (eyeRenderer.width() != width || eyeRenderer.height() != height)
-    throw std::invalid_argument("synthesizeHybrid: the eye renderer's size differs from the center view's");
+  for (const renderer::DeferredRenderer* eyeRenderer : eyeRenderers) {
+    if (eyeRenderer == nullptr) throw std::invalid_argument("synthesizeHybrid: an eye renderer is missing");
+    if (eyeRenderer == &centerRenderer)
+      throw std::invalid_argument("synthesizeHybrid: the center renderer cannot render the eyes");
+    if (eyeRenderer->width() != width || eyeRenderer->height() != height)
+      throw std::invalid_argument("synthesizeHybrid: the eye renderer's size differs from the center view's");
+  }
   vk::Context& context = kept_->context;
   HybridSynthesis result;
-  result.surfaces = surfacesFor(eyeRenderer, scene, surfaces);
+  result.surfaces = surfacesFor(eyeRenderers, scene, surfaces);
   const gpu::HybridConstants constants = stereo::makeHybridConstants(parameters, width, height);
   kept_->fit(width, height, constants.cell);
-  HybridFrame f{context, centerRenderer, eyeRenderer, width, height, timedRuns, kept_->hybrid, kept_->baseDepthPass,
+  HybridFrame f{context, centerRenderer, eyeRenderers, width, height, timedRuns, kept_->hybrid, kept_->baseDepthPass,
                 constants, kept_->images, kept_->left, kept_->right, false, false, false, kept_->baseDepth};
   const gpu::HybridConstants grid = stereo::hybridGridConstants(f.constants);
   result.classifiedPixels = std::uint64_t(f.constants.cropEnd - f.constants.cropBegin) * height;
@@ -345,11 +416,9 @@ HybridSynthesis HybridSynthesizer::synthesize(const renderer::DeferredRenderer& 
   if (givesBaseDepth(f, scene, result.surfaces, surfaces)) recordBaseDepth(f, timings);
   timings.eyeGeometry = timings.baseDepth;
   // The masked counts come back first (the submission above was waited for anyway).
-  for (const stereo::Eye eye : {stereo::Eye::Left, stereo::Eye::Right})
-    renderIntoEye(f, scene, center, parameters, eye, result);
-  timings.total =
-      sum(sum(sum(sum(timings.displacement, timings.classification), timings.eyeGeometry), timings.maskedShading),
-          timings.composite);
+  renderIntoEyes(f, scene, center, parameters, result);
+  timings.total = sum(sum(sum(sum(timings.displacement, timings.classification), timings.baseDepth), timings.eyeRenders),
+                      timings.composite);
   result.eyes = {readEye(context, f.left), readEye(context, f.right)};
   if (base == stereo::StereoMethod::Iterative)
     std::tie(result.filledLeft, result.filledRight) =

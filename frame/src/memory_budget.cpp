@@ -90,6 +90,7 @@ MemoryEstimate renderMemoryEstimate(std::uint32_t width, std::uint32_t height, s
     estimate.hostBytes += kHybridFixedBytes + kHybridHostBytesPerRenderedPixel * renderedPixels;
     estimate.deviceBytes += (kDeviceBytesPerSample * samples + kHybridDeviceBytesPerRenderedPixel) * renderedPixels +
                             kHybridDeviceBytesPerRow * height;
+    estimate.concurrentDeviceBytes = (kDeviceBytesPerSample * samples + kDeviceBytesPerRenderedPixel) * renderedPixels;
   }
   if (referenceLayers > 1)
     estimate.hostBytes += (kReferenceLayerHostBytesPerRenderedPixel * (referenceLayers + 1) +
@@ -153,8 +154,9 @@ void requireMemory(const vk::Context& context, const MemoryEstimate& estimate, s
   for (std::uint32_t i = 0; i < properties.memoryHeapCount; ++i)
     if (properties.memoryHeaps[i].flags & VK_MEMORY_HEAP_DEVICE_LOCAL_BIT)
       largest = std::max<std::uint64_t>(largest, properties.memoryHeaps[i].size);
-  if (largest > 0 && estimate.deviceBytes > largest)
-    failEstimate(estimate, estimate.deviceBytes, "GPU memory", largest, "of " + context.deviceName());
+  const std::uint64_t deviceBytes = estimate.deviceBytes + (context.hasConcurrentQueue() ? estimate.concurrentDeviceBytes : 0);
+  if (largest > 0 && deviceBytes > largest)
+    failEstimate(estimate, deviceBytes, "GPU memory", largest, "of " + context.deviceName());
 }
 
 std::uint64_t peakResidentBytes() {

@@ -24,26 +24,32 @@ StereoSynthesis::StereoSynthesis(vk::Context& context, const StereoSynthesisDesc
   if (description.timedRuns < 1)
     throw std::invalid_argument("stereo synthesis: timedRuns must be at least 1 (got " +
                                 std::to_string(description.timedRuns) + ")");
-  if (description.hybrid) makeEyeRenderer();
+  if (description.hybrid) makeEyeRenderers();
   if (description.previousFrameFill) fill_.emplace(context);
 }
 
-void StereoSynthesis::makeEyeRenderer() {
-  eyeRenderer_ = std::make_unique<renderer::DeferredRenderer>(
-      *context_, description_.width, description_.height,
-      eyeRendererOptions(description_.renderer, description_.hybridSurfaces));
+void StereoSynthesis::makeEyeRenderers() {
+  const renderer::RendererOptions options = eyeRendererOptions(description_.renderer, description_.hybridSurfaces);
+  eyeRenderer_ = std::make_unique<renderer::DeferredRenderer>(*context_, description_.width, description_.height, options);
+  // Rasterized eyes need the graphics queue: they render in turn.
+  if (description_.concurrentEyes && context_->hasConcurrentQueue() && description_.hybridSurfaces != HybridSurfaces::Raster)
+    rightEyeRenderer_ =
+        std::make_unique<renderer::DeferredRenderer>(*context_, description_.width, description_.height, options);
   hybrid_.emplace(*context_);
 }
 
 void StereoSynthesis::setScene(const renderer::Scene& scene) {
   if (!eyeRenderer_) return;
   eyeRenderer_->setScene(scene);
+  if (rightEyeRenderer_) rightEyeRenderer_->setScene(scene);
   eyeRendererHasScene_ = true;
   measuredSurfaces_.clear();
 }
 
 void StereoSynthesis::updateGeometry(const renderer::Scene& scene) {
-  if (eyeRenderer_ && eyeRendererHasScene_) eyeRenderer_->updateGeometry(scene);
+  if (!eyeRenderer_ || !eyeRendererHasScene_) return;
+  eyeRenderer_->updateGeometry(scene);
+  if (rightEyeRenderer_) rightEyeRenderer_->updateGeometry(scene);
 }
 
 SynthesizedEyes StereoSynthesis::synthesize(const StereoSynthesisFrame& frame) {
@@ -64,7 +70,7 @@ SynthesizedEyes StereoSynthesis::synthesize(const StereoSynthesisFrame& frame) {
 }
 
 SynthesizedEyes StereoSynthesis::synthesizeHybridFrame(const StereoSynthesisFrame& frame) {
-  if (!eyeRenderer_) makeEyeRenderer();
+  if (!eyeRenderer_) makeEyeRenderers();
   if (!eyeRendererHasScene_) setScene(frame.scene);
   HybridSynthesis hybrid = hybridWithChosenSurfaces(frame);
   SynthesizedEyes result;
@@ -80,7 +86,8 @@ HybridSynthesis StereoSynthesis::hybridWithChosenSurfaces(const StereoSynthesisF
   auto run = [&](HybridSurfaces surfaces, bool everyPixel = false) {
     stereo::StereoParameters parameters = frame.parameters;
     if (everyPixel) parameters.hybridBudget = 1.0f;
-    return hybrid_->synthesize(frame.centerRenderer, *eyeRenderer_, frame.scene, frame.center, parameters,
+    renderer::DeferredRenderer* right = rightEyeRenderer_ ? rightEyeRenderer_.get() : eyeRenderer_.get();
+    return hybrid_->synthesize(frame.centerRenderer, {eyeRenderer_.get(), right}, frame.scene, frame.center, parameters,
                                description_.timedRuns, surfaces);
   };
   if (description_.hybridSurfaces != HybridSurfaces::Automatic || eyeRenderer_->raycastSurfacesRefusal())

@@ -28,8 +28,12 @@ struct HybridTimings {
   std::optional<double> baseDepth;       // ray-cast eyes with ambient occlusion: both eyes' base depth (else 0)
   std::optional<double> maskedShading;   // both eyes' other passes (mask tiles, SSAO, lighting, resolve; the
                                          // shadow maps are the center frame's)
+  // Both eyes' renders (eyeGeometry without baseDepth, and maskedShading): one after the other, their sum; at
+  // once (concurrentEyes), from the first start to the last end, less than the sum where they overlap.
+  std::optional<double> eyeRenders;
+  bool concurrentEyes = false;           // the eyes rendered at once, by one eye renderer each
   std::optional<double> composite;       // both eyes
-  std::optional<double> total;           // the sum
+  std::optional<double> total;           // displacement, classification, baseDepth, eyeRenders and composite
   std::vector<renderer::PassTiming> leftEyePasses, rightEyePasses;  // the masked renders' passes
   bool raycastSurfaces = false;  // eyeGeometry cast rays (HybridSynthesis::surfaces), or rasterized
 };
@@ -94,6 +98,15 @@ class HybridSynthesizer {
   // when it has one). Every GPU part runs once untimed (first use compiles on lavapipe), then timedRuns times;
   // the timings are medians.
   HybridSynthesis synthesize(const renderer::DeferredRenderer& centerRenderer, renderer::DeferredRenderer& eyeRenderer,
+                             const renderer::Scene& scene, const renderer::ViewMatrices& center,
+                             const stereo::StereoParameters& parameters, int timedRuns = 1,
+                             HybridSurfaces surfaces = HybridSurfaces::Automatic);
+  // The same with an eye renderer per eye (left, right; each as eyeRenderer above, the same options): on a device
+  // with a compute queue (vk::Context::hasConcurrentQueue) ray-cast eyes render at once (renderer::DeferredRenderer::
+  // renderConcurrently), so one eye's small masked passes fill the GPU while the other's wait on their barriers;
+  // elsewhere, or rasterized, in turn. The eyes are the same as with one renderer.
+  HybridSynthesis synthesize(const renderer::DeferredRenderer& centerRenderer,
+                             const std::array<renderer::DeferredRenderer*, 2>& eyeRenderers,
                              const renderer::Scene& scene, const renderer::ViewMatrices& center,
                              const stereo::StereoParameters& parameters, int timedRuns = 1,
                              HybridSurfaces surfaces = HybridSurfaces::Automatic);

@@ -14,6 +14,9 @@ namespace s3d::frame {
 struct MemoryEstimate {
   std::uint64_t hostBytes = 0;    // images in main memory: read back, compared, packed and encoded
   std::uint64_t deviceBytes = 0;  // GPU images: render targets at N x N samples, eyes, staging
+  // GPU images added on a device with a second queue (vk::Context::hasConcurrentQueue): the hybrid's second eye
+  // renderer, which renders the right eye while the first renders the left (requireMemory counts them there).
+  std::uint64_t concurrentDeviceBytes = 0;
   std::string what;               // what was counted, e.g. "1920x1080, supersample 2, guard band 2 x 40 columns"
   std::string lower;              // the options that lower it, e.g. "--resolution or --supersample"
   std::uint64_t totalBytes() const { return hostBytes + deviceBytes; }
@@ -28,10 +31,10 @@ inline constexpr std::uint64_t kDeviceBytesPerRenderedPixel = 40;  // resolved d
 // One `s3d render` frame (also a --sequence frame, a bench scene, a regress case, the tune view): the center
 // view and the reference eyes at renderedWidth x height with supersample^2 samples, and every output-size image
 // the job keeps at once (eyes and references in 8-bit and HDR, depth, masks, HUD copies, packed outputs, PNG
-// and EXR encoding). hybridEyes: the hybrid method's second renderer (the eye cameras), its classification and
-// masks on the device and the masks and rendered HDR eyes read back. referenceLayers: the renderings per reference
-// eye (a nonlinear map's per-layer reference, layered_reference.h: all layers of an eye held at once, and the
-// mapped depths); 1 for the linear mapping.
+// and EXR encoding). hybridEyes: the hybrid method's eye renderer (and a second one's device bytes where the eyes
+// render at once), its classification and masks on the device and the masks and rendered HDR eyes read back.
+// referenceLayers: the renderings per reference eye (a nonlinear map's per-layer reference, layered_reference.h:
+// all layers of an eye held at once, and the mapped depths); 1 for the linear mapping.
 MemoryEstimate renderMemoryEstimate(std::uint32_t width, std::uint32_t height, std::uint32_t renderedWidth,
                                     std::uint32_t supersample, bool hybridEyes = false,
                                     std::uint32_t referenceLayers = 1);

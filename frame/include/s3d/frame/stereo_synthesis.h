@@ -27,6 +27,10 @@ struct StereoSynthesisDescription {
   // first hybrid frame, with that frame's scene).
   bool hybrid = false;
   HybridSurfaces hybridSurfaces = HybridSurfaces::Automatic;  // how its eye pixels' surfaces are found
+  // On a device with a compute queue (vk::Context::hasConcurrentQueue), a second eye renderer so that the
+  // hybrid's ray-cast eyes render at once (HybridSynthesizer's two-renderer synthesize): the same eyes, in less
+  // time, for a second eye renderer's memory. Elsewhere, or false: one eye renderer renders both eyes in turn.
+  bool concurrentEyes = true;
   // Forward frames fill their disocclusions from the previous frame's eyes (the frames' parameters say the same).
   bool previousFrameFill = false;
   int timedRuns = 1;  // every GPU part runs once untimed, then this many times; times are medians
@@ -63,8 +67,9 @@ class StereoSynthesis {
   SynthesizedEyes synthesize(const StereoSynthesisFrame& frame);
 
  private:
-  // The hybrid's eye renderer: the center view's size and options, made to shade rays where the description asks.
-  void makeEyeRenderer();
+  // The hybrid's eye renderers: the center view's size and options, made to shade rays where the description
+  // asks; a second one for the right eye where the eyes can render at once (concurrentEyes).
+  void makeEyeRenderers();
   SynthesizedEyes synthesizeHybridFrame(const StereoSynthesisFrame& frame);
   // The surface path for this frame: the description's, or with Automatic on an eye renderer that can cast rays,
   // the fastest of rays, raster and every pixel by rays as timed on this scene's first hybrid frame at the frame's
@@ -77,8 +82,8 @@ class StereoSynthesis {
   };
   vk::Context* context_;
   StereoSynthesisDescription description_;
-  std::unique_ptr<renderer::DeferredRenderer> eyeRenderer_;
-  std::optional<HybridSynthesizer> hybrid_;  // made with the eye renderer
+  std::unique_ptr<renderer::DeferredRenderer> eyeRenderer_, rightEyeRenderer_;  // the second: concurrent eyes only
+  std::optional<HybridSynthesizer> hybrid_;  // made with the eye renderers
   bool eyeRendererHasScene_ = false;
   struct SurfacePath {
     HybridSurfaces surfaces;
