@@ -101,6 +101,9 @@ class BenchCommand final : public Command {
             "region around them takes the center's depth where the base samples) or raycast-region (as raycast, "
             "but the occlusion's whole region is cast)")
         ->type_name("auto|raster|raycast|raycast-region");
+    bench.add_flag("--hybrid-eyes-in-turn", options_.hybridEyesInTurn,
+                   "Render the hybrid settings' eyes one after the other with one eye renderer, also on a GPU with a "
+                   "compute queue, where ray-cast eyes otherwise render at once (two eye renderers)");
     addHybridClassificationOptions(bench, options_.stereo, "The hybrid settings' classification");
     bench
         .add_option("--bandwidth-gbs", bandwidth_,

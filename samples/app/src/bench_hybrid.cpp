@@ -35,18 +35,20 @@ std::string hybridBenchMarkdown(const BenchReport& report) {
         "base's depth, or with --hybrid-surfaces raycast-region is cast too) or rasterized (G-buffer and occlusion\n"
         "depth). Times: the base displacement, the classification (classify, threshold, masks), both eyes' surfaces\n"
         "(with the base's depth), both eyes' other renderer passes (mask tiles, occlusion, lighting and resolve of\n"
-        "the masked pixels; the shadow maps are the center frame's) and both composites; / eye: the total over one\n"
-        "reference eye.\n"
+        "the masked pixels; the shadow maps are the center frame's), the eye renders together (surfaces less the\n"
+        "base's depth, and shading: their sum one eye after the other, the span from first start to last end where\n"
+        "the eyes render at once, marked *) and both composites; / eye: the total over one reference eye.\n"
         "PSNR and SSIM left / right against the two-pass reference.\n\n"
         "| scene | sep % | budget | masked % | surfaces | displace ms | classify ms | surfaces ms | shading ms | "
-        "composite ms | total ms | / eye | PSNR all | halo | disocclusion | SSIM |\n"
-        "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+        "eye renders ms | composite ms | total ms | / eye | PSNR all | halo | disocclusion | SSIM |\n"
+        "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const BenchRow* row : rows) {
     const frame::HybridTimings& t = row->hybridTimings ? *row->hybridTimings : frame::HybridTimings{};
     md << "| " << row->scene << " | " << percentText(row->maxSeparation) << " | " << format("%g", row->setting.budget)
        << " | " << shareText(row->maskedShareLeft) << " / " << shareText(row->maskedShareRight) << " | "
        << (t.raycastSurfaces ? "ray cast" : "raster") << " | " << msText(t.displacement) << " | " << msText(t.classification) << " | " << msText(t.eyeGeometry) << " | "
-       << msText(t.maskedShading) << " | " << msText(t.composite) << " | " << msText(row->stereoGpuMs) << " | "
+       << msText(t.maskedShading) << " | " << msText(t.eyeRenders) << (t.concurrentEyes ? "*" : "") << " | "
+       << msText(t.composite) << " | " << msText(row->stereoGpuMs) << " | "
        << ratioText(ratio(row->stereoGpuMs, row->referenceEyeGpuMs)) << " | "
        << dbPair(row->left.display.psnrDb, row->right.display.psnrDb) << " | "
        << dbPair(row->left.halo.psnrDb, row->right.halo.psnrDb) << " | "

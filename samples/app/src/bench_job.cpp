@@ -239,6 +239,7 @@ std::string commandLineOf(const BenchOptions& options, const ValidatedBench& ben
     if (!options.targetSetting.empty()) command += " --target-setting " + target.name();
     if (options.hybridSurfaces != frame::HybridSurfaces::Automatic)
       command += std::string(" --hybrid-surfaces ") + frame::hybridSurfacesName(options.hybridSurfaces);
+    if (options.hybridEyesInTurn) command += " --hybrid-eyes-in-turn";
     if (options.stereo.hybridCell != stereo::StereoParameters{}.hybridCell)
       command += " --hybrid-cell " + std::to_string(options.stereo.hybridCell);
     if (options.stereo.hybridScoreFloor != stereo::StereoParameters{}.hybridScoreFloor)

@@ -110,7 +110,7 @@ class Sweep {
         deferred_(context, options.width, options.height, {options.supersample}),
         synthesis_(context, {.width = options.width, .height = options.height, .renderer = {options.supersample},
                              .hybrid = anyHybrid(bench), .hybridSurfaces = options.hybridSurfaces,
-                             .timedRuns = options.repeat}),
+                             .concurrentEyes = !options.hybridEyesInTurn, .timedRuns = options.repeat}),
         reduction_(context), mapping_(context),
         total_(bench.scenes.size() * bench.separations.size() * bench.settings.size()) {
     // A CPU device has no clocks to bring back, and other load on the machine would keep its frame times from

@@ -65,6 +65,9 @@ struct BenchOptions {
   // --renderer: how the timed renderers' G-buffer pass shades (Automatic: the device's default).
   renderer::RendererOptions::GBufferShading gbufferShading = renderer::RendererOptions::GBufferShading::Automatic;
   frame::HybridSurfaces hybridSurfaces = frame::HybridSurfaces::Automatic;  // the hybrid settings' eye pixels
+  // The hybrid's eyes one after the other by one eye renderer, also on a device that renders them at once
+  // (frame::StereoSynthesisDescription::concurrentEyes): what rendering them at once buys.
+  bool hybridEyesInTurn = false;
   std::optional<double> bandwidthGBs;  // memory bandwidth for the traffic target; no guess when absent
   std::string targetSetting;      // the setting the targets judge; empty: defaultMethodSetting()
   stereo::StereoParameters stereo;  // zeroParallaxDistance and the weapon push; method and maxSeparation are swept
