@@ -137,5 +137,42 @@ TEST_F(ConcurrentEyes, TheHybridWithAnEyeRendererPerEyeMakesTheSameEyes) {
   }
 }
 
+// The frame's time is its parts': in turn the eye renders take their passes' sum (one timed run: no medians
+// between them); at once, their span (not less than the slower eye). Tolerance: the timestamps' float sums.
+TEST_F(ConcurrentEyes, TheHybridsTotalIsItsPartsWithTheEyeRendersTogether) {
+  const renderer::Scene scene = builtIn("courtyard");
+  stereo::StereoParameters parameters;
+  parameters.method = stereo::StereoMethod::Hybrid;
+  const renderer::RendererOptions options = eyeRendererOptions({}, HybridSurfaces::RayCast);
+  renderer::DeferredRenderer center(context(), kWidth, kHeight, options), left(context(), kWidth, kHeight, options),
+      right(context(), kWidth, kHeight, options);
+  for (renderer::DeferredRenderer* r : {&center, &left, &right}) r->setScene(scene);
+  const renderer::ViewMatrices centerView = renderer::centerViewMatrices(
+      scene, float(kWidth) / float(kHeight), {parameters.weaponDepthOffset, parameters.weaponDepthScale});
+  (void)center.render(centerView);
+  HybridSynthesizer synthesizer(context());
+  for (const bool together : {false, true}) {
+    const HybridSynthesis hybrid =
+        together ? synthesizer.synthesize(center, {&left, &right}, scene, centerView, parameters, 1, HybridSurfaces::RayCast)
+                 : synthesizer.synthesize(center, left, scene, centerView, parameters, 1, HybridSurfaces::RayCast);
+    const HybridTimings& t = hybrid.timings;
+    ASSERT_TRUE(t.total && t.displacement && t.classification && t.baseDepth && t.eyeRenders && t.composite &&
+                t.eyeGeometry && t.maskedShading);
+    EXPECT_NEAR(*t.total, *t.displacement + *t.classification + *t.baseDepth + *t.eyeRenders + *t.composite, 1e-9);
+    const double passes = *t.eyeGeometry - *t.baseDepth + *t.maskedShading;
+    if (t.concurrentEyes) {
+      double slower = 0.0;
+      for (const auto* eye : {&t.leftEyePasses, &t.rightEyePasses}) {
+        double own = 0.0;
+        for (const renderer::PassTiming& pass : *eye) own += pass.gpuMs;
+        slower = std::max(slower, own);
+      }
+      EXPECT_GE(*t.eyeRenders, slower * 0.999);
+    } else {
+      EXPECT_NEAR(*t.eyeRenders, passes, 1e-6 * std::max(1.0, passes));
+    }
+  }
+}
+
 }  // namespace
 }  // namespace s3d::frame

@@ -118,6 +118,9 @@ TEST_F(HybridRender, AnEyeWithNothingMaskedIsNotRendered) {
   if (hybrid.timings.maskedShading) {
     EXPECT_EQ(*hybrid.timings.maskedShading, 0.0);
   }
+  if (hybrid.timings.eyeRenders) {
+    EXPECT_EQ(*hybrid.timings.eyeRenders, 0.0);
+  }
   EXPECT_EQ(hybrid.eyes.left.pixels, displaced.eyes.left.pixels);
   EXPECT_EQ(hybrid.eyes.right.pixels, displaced.eyes.right.pixels);
 }
