@@ -15,6 +15,7 @@
 
 #include "s3d/frame/hybrid_stereo.h"
 #include "s3d/frame/layered_reference.h"
+#include "s3d/frame/memory_budget.h"
 #include "s3d/renderer/deferred_renderer.h"
 #include "s3d/renderer/scene.h"
 #include "s3d/renderer/scene_bvh.h"
@@ -172,6 +173,15 @@ TEST_F(ConcurrentEyes, TheHybridsTotalIsItsPartsWithTheEyeRendersTogether) {
       EXPECT_NEAR(*t.eyeRenders, passes, 1e-6 * std::max(1.0, passes));
     }
   }
+}
+
+// The second eye renderer is planned for only where it is made: a hybrid run on a device with a compute queue
+// (requireMemory adds concurrentDeviceBytes there). It holds a renderer's targets: at least the per-sample bytes.
+TEST(ConcurrentEyesMemory, AHybridRunPlansASecondEyeRendererForAComputeQueue) {
+  const MemoryEstimate hybrid = renderMemoryEstimate(1920, 1080, 1920, 2, true);
+  const MemoryEstimate search = renderMemoryEstimate(1920, 1080, 1920, 2, false);
+  EXPECT_GE(hybrid.concurrentDeviceBytes, kDeviceBytesPerSample * 4 * 1920 * 1080);
+  EXPECT_EQ(search.concurrentDeviceBytes, 0u);
 }
 
 }  // namespace
