@@ -200,15 +200,22 @@ ConcurrentTimings DeferredRenderer::renderConcurrently(std::span<const Concurren
   }
   ConcurrentTimings timings;
   std::optional<std::uint64_t> first, last;
+  double longest = 0.0;
   for (std::size_t i = 0; i < views.size(); ++i) {
     const Impl& r = *views[i].renderer->impl_;
     timings.views.push_back(r.frameTimings(passes[i]));
+    longest = std::max(longest, timings.views.back().totalGpuMs.value_or(0.0));
     const std::optional<std::uint64_t> begin = r.timestamps.ticks(0), end = r.timestamps.ticks(std::uint32_t(passes[i].size()));
     if (!begin || !end) continue;
     first = first ? std::min(*first, *begin) : *begin;
     last = last ? std::max(*last, *end) : *end;
   }
-  if (first && last) timings.spanGpuMs = double(*last - *first) * context.timestampPeriodNs() * 1e-6;
+  // Ticks from two queues compare on one device clock (vk::TimestampQueries::ticks); a span shorter than one of
+  // its views would show they do not, and is left empty rather than reported.
+  if (first && last) {
+    const double span = double(std::int64_t(*last - *first)) * context.timestampPeriodNs() * 1e-6;
+    if (span >= longest * 0.999) timings.spanGpuMs = span;
+  }
   return timings;
 }
 

@@ -328,7 +328,7 @@ void Context::release() {
   if (device_) {
     vkDeviceWaitIdle(device_);
     if (commandPool_) vkDestroyCommandPool(device_, commandPool_, nullptr);
-    if (concurrentPool_) vkDestroyCommandPool(device_, concurrentPool_, allocator_);
+    if (concurrentPool_) vkDestroyCommandPool(device_, concurrentPool_, nullptr);
     vkDestroyDevice(device_, nullptr);
   }
   if (messenger_) {

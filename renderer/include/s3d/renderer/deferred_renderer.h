@@ -48,7 +48,9 @@ struct ConcurrentView {
 
 struct ConcurrentTimings {
   std::vector<FrameTimings> views;   // each view's own passes, as render() times them (they overlap in time)
-  std::optional<double> spanGpuMs;   // from the first view's start to the last view's end (empty without timestamps)
+  // From the first view's start to the last view's end; empty without timestamps, or where the queues' clocks
+  // do not compare (a span shorter than a view's own time).
+  std::optional<double> spanGpuMs;
 };
 
 class DeferredRenderer {

@@ -17,8 +17,9 @@ class TimestampQueries {
   void write(VkCommandBuffer cmd, std::uint32_t index, VkPipelineStageFlags2 stage);
   // Milliseconds between two written timestamps; nullopt when the device has no timestamps.
   std::optional<double> elapsedMs(std::uint32_t begin, std::uint32_t end) const;
-  // A written timestamp's raw ticks (Context::timestampPeriodNs each); every queue of a device counts on one
-  // clock, so ticks from different pools compare. nullopt when the device has no timestamps.
+  // A written timestamp's raw ticks (Context::timestampPeriodNs each); nullopt when the device has no timestamps.
+  // Ticks of one queue compare; across queues they share the device's time domain (VK_KHR_calibrated_timestamps'
+  // DEVICE domain covers every vkCmdWriteTimestamp), which core Vulkan does not promise: check what they give.
   std::optional<std::uint64_t> ticks(std::uint32_t index) const;
   bool supported() const { return supported_; }
 
