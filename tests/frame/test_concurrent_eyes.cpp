@@ -108,25 +108,37 @@ TEST_F(ConcurrentEyes, ARendererTwiceOrLendingItsShadowsToAViewOfTheCallIsRefuse
   EXPECT_THROW(renderer::DeferredRenderer::renderConcurrently(lending), std::invalid_argument);
 }
 
+// The courtyard's center view rendered for the hybrid at the default budget, and two eye renderers, all made for
+// `surfaces`.
+struct HybridViews {
+  HybridViews(vk::Context& context, HybridSurfaces surfaces)
+      : options(eyeRendererOptions({}, surfaces)),
+        center(context, kWidth, kHeight, options),
+        left(context, kWidth, kHeight, options),
+        right(context, kWidth, kHeight, options) {
+    parameters.method = stereo::StereoMethod::Hybrid;
+    for (renderer::DeferredRenderer* r : {&center, &left, &right}) r->setScene(scene);
+    centerView = renderer::centerViewMatrices(scene, float(kWidth) / float(kHeight),
+                                              {parameters.weaponDepthOffset, parameters.weaponDepthScale});
+    (void)center.render(centerView);
+  }
+  const renderer::Scene scene = builtIn("courtyard");
+  stereo::StereoParameters parameters;
+  renderer::RendererOptions options;
+  renderer::DeferredRenderer center, left, right;
+  renderer::ViewMatrices centerView;
+};
+
 // Tolerance: none. With an eye renderer per eye the hybrid renders the same masked pixels with the same passes;
 // only which renderer (and queue) draws the right eye differs. Ray-cast surfaces with the occlusion's base depth
 // (courtyard) and rasterized ones, at the default budget.
 TEST_F(ConcurrentEyes, TheHybridWithAnEyeRendererPerEyeMakesTheSameEyes) {
   for (const HybridSurfaces surfaces : {HybridSurfaces::RayCast, HybridSurfaces::Raster}) {
-    const renderer::Scene scene = builtIn("courtyard");
-    stereo::StereoParameters parameters;
-    parameters.method = stereo::StereoMethod::Hybrid;
-    const renderer::RendererOptions options = eyeRendererOptions({}, surfaces);
-    renderer::DeferredRenderer center(context(), kWidth, kHeight, options), shared(context(), kWidth, kHeight, options),
-        right(context(), kWidth, kHeight, options);
-    for (renderer::DeferredRenderer* r : {&center, &shared, &right}) r->setScene(scene);
-    const renderer::ViewMatrices centerView = renderer::centerViewMatrices(
-        scene, float(kWidth) / float(kHeight), {parameters.weaponDepthOffset, parameters.weaponDepthScale});
-    (void)center.render(centerView);
+    HybridViews v(context(), surfaces);
     HybridSynthesizer synthesizer(context());
-    const HybridSynthesis inTurn = synthesizer.synthesize(center, shared, scene, centerView, parameters, 1, surfaces);
+    const HybridSynthesis inTurn = synthesizer.synthesize(v.center, v.left, v.scene, v.centerView, v.parameters, 1, surfaces);
     const HybridSynthesis atOnce =
-        synthesizer.synthesize(center, {&shared, &right}, scene, centerView, parameters, 1, surfaces);
+        synthesizer.synthesize(v.center, {&v.left, &v.right}, v.scene, v.centerView, v.parameters, 1, surfaces);
     const char* name = hybridSurfacesName(surfaces);
     ASSERT_GT(inTurn.maskedPixels[0] + inTurn.maskedPixels[1], 0u) << name;
     // At once only where the right eye can run on a compute queue (a GPU's; lavapipe has none).
@@ -141,21 +153,12 @@ TEST_F(ConcurrentEyes, TheHybridWithAnEyeRendererPerEyeMakesTheSameEyes) {
 // The frame's time is its parts': in turn the eye renders take their passes' sum (one timed run: no medians
 // between them); at once, their span (not less than the slower eye). Tolerance: the timestamps' float sums.
 TEST_F(ConcurrentEyes, TheHybridsTotalIsItsPartsWithTheEyeRendersTogether) {
-  const renderer::Scene scene = builtIn("courtyard");
-  stereo::StereoParameters parameters;
-  parameters.method = stereo::StereoMethod::Hybrid;
-  const renderer::RendererOptions options = eyeRendererOptions({}, HybridSurfaces::RayCast);
-  renderer::DeferredRenderer center(context(), kWidth, kHeight, options), left(context(), kWidth, kHeight, options),
-      right(context(), kWidth, kHeight, options);
-  for (renderer::DeferredRenderer* r : {&center, &left, &right}) r->setScene(scene);
-  const renderer::ViewMatrices centerView = renderer::centerViewMatrices(
-      scene, float(kWidth) / float(kHeight), {parameters.weaponDepthOffset, parameters.weaponDepthScale});
-  (void)center.render(centerView);
+  HybridViews v(context(), HybridSurfaces::RayCast);
   HybridSynthesizer synthesizer(context());
   for (const bool together : {false, true}) {
+    const std::array<renderer::DeferredRenderer*, 2> eyes = {&v.left, together ? &v.right : &v.left};
     const HybridSynthesis hybrid =
-        together ? synthesizer.synthesize(center, {&left, &right}, scene, centerView, parameters, 1, HybridSurfaces::RayCast)
-                 : synthesizer.synthesize(center, left, scene, centerView, parameters, 1, HybridSurfaces::RayCast);
+        synthesizer.synthesize(v.center, eyes, v.scene, v.centerView, v.parameters, 1, HybridSurfaces::RayCast);
     const HybridTimings& t = hybrid.timings;
     ASSERT_TRUE(t.total && t.displacement && t.classification && t.baseDepth && t.eyeRenders && t.composite &&
                 t.eyeGeometry && t.maskedShading);

@@ -31,13 +31,18 @@ bool hasDeviceExtension(VkPhysicalDevice device, const char* name) {
                      [&](const VkExtensionProperties& e) { return std::strcmp(e.extensionName, name) == 0; });
 }
 
-// A family with compute and without graphics (a GPU's asynchronous compute), or UINT32_MAX.
-std::uint32_t findComputeOnlyQueue(VkPhysicalDevice device) {
+std::vector<VkQueueFamilyProperties> queueFamilies(VkPhysicalDevice device) {
   std::uint32_t count = 0;
   vkGetPhysicalDeviceQueueFamilyProperties(device, &count, nullptr);
   std::vector<VkQueueFamilyProperties> families(count);
   vkGetPhysicalDeviceQueueFamilyProperties(device, &count, families.data());
-  for (std::uint32_t i = 0; i < count; ++i)
+  return families;
+}
+
+// A family with compute and without graphics (a GPU's asynchronous compute) and timestamps, or UINT32_MAX.
+std::uint32_t findComputeOnlyQueue(VkPhysicalDevice device) {
+  const std::vector<VkQueueFamilyProperties> families = queueFamilies(device);
+  for (std::uint32_t i = 0; i < families.size(); ++i)
     if ((families[i].queueFlags & VK_QUEUE_COMPUTE_BIT) && !(families[i].queueFlags & VK_QUEUE_GRAPHICS_BIT) &&
         families[i].timestampValidBits > 0)
       return i;
@@ -45,11 +50,8 @@ std::uint32_t findComputeOnlyQueue(VkPhysicalDevice device) {
 }
 
 std::uint32_t findComputeGraphicsQueue(VkPhysicalDevice device) {
-  std::uint32_t count = 0;
-  vkGetPhysicalDeviceQueueFamilyProperties(device, &count, nullptr);
-  std::vector<VkQueueFamilyProperties> families(count);
-  vkGetPhysicalDeviceQueueFamilyProperties(device, &count, families.data());
-  for (std::uint32_t i = 0; i < count; ++i)
+  const std::vector<VkQueueFamilyProperties> families = queueFamilies(device);
+  for (std::uint32_t i = 0; i < families.size(); ++i)
     if ((families[i].queueFlags & VK_QUEUE_GRAPHICS_BIT) && (families[i].queueFlags & VK_QUEUE_COMPUTE_BIT)) return i;
   return UINT32_MAX;
 }
@@ -270,11 +272,8 @@ Context::Context(const HostDevice& host) : ownsDevice_(false), allocator_(host.a
     throw std::runtime_error("s3d cannot run on the host's device: it lacks " + names +
                              " (enable s3d::vk::deviceRequirements() when creating it, e.g. with DeviceRequirementsPatch)");
   }
-  std::uint32_t familyCount = 0;
-  vkGetPhysicalDeviceQueueFamilyProperties(host.physicalDevice, &familyCount, nullptr);
-  std::vector<VkQueueFamilyProperties> families(familyCount);
-  vkGetPhysicalDeviceQueueFamilyProperties(host.physicalDevice, &familyCount, families.data());
-  if (host.queueFamily >= familyCount || !(families[host.queueFamily].queueFlags & VK_QUEUE_COMPUTE_BIT))
+  const std::vector<VkQueueFamilyProperties> families = queueFamilies(host.physicalDevice);
+  if (host.queueFamily >= families.size() || !(families[host.queueFamily].queueFlags & VK_QUEUE_COMPUTE_BIT))
     throw std::runtime_error("s3d cannot run on the host's queue family " + std::to_string(host.queueFamily) +
                              ": s3d records compute work and the family has no compute");
   instance_ = host.instance;
@@ -296,11 +295,7 @@ void Context::initDeviceState() {
   vkGetPhysicalDeviceProperties(physicalDevice_, &properties);
   deviceName_ = properties.deviceName;
   deviceType_ = properties.deviceType;
-  std::uint32_t familyCount = 0;
-  vkGetPhysicalDeviceQueueFamilyProperties(physicalDevice_, &familyCount, nullptr);
-  std::vector<VkQueueFamilyProperties> families(familyCount);
-  vkGetPhysicalDeviceQueueFamilyProperties(physicalDevice_, &familyCount, families.data());
-  if (families[queueFamily_].timestampValidBits > 0) timestampPeriodNs_ = properties.limits.timestampPeriod;
+  if (queueFamilies(physicalDevice_)[queueFamily_].timestampValidBits > 0) timestampPeriodNs_ = properties.limits.timestampPeriod;
   vkGetPhysicalDeviceMemoryProperties(physicalDevice_, &memoryProperties_);
 
   cmdPushDescriptorSet =
