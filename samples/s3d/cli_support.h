@@ -111,7 +111,6 @@ void addHybridClassificationOptions(CLI::App& command, stereo::StereoParameters&
 // stereo::StereoParameters (the help prints what a run uses); call finish() after parsing to turn the method name
 // into StereoParameters::method and validate. With offerAuto, --method also takes "auto" (finish() then sets
 // `automatic` and leaves parameters.method).
-
 struct StereoOptions {
   stereo::StereoParameters parameters;
   std::string method = stereo::methodName(stereo::StereoParameters{}.method);

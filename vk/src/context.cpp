@@ -350,38 +350,7 @@ std::uint32_t Context::findMemoryType(std::uint32_t typeBits, VkMemoryPropertyFl
   throw std::runtime_error("no Vulkan memory type with the required properties on " + deviceName_);
 }
 
-void Context::submitAndWait(const std::function<void(VkCommandBuffer)>& record) {
-  VkCommandBufferAllocateInfo allocInfo{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
-  allocInfo.commandPool = commandPool_;
-  allocInfo.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
-  allocInfo.commandBufferCount = 1;
-  VkCommandBuffer cmd = VK_NULL_HANDLE;
-  S3D_VK_CHECK(vkAllocateCommandBuffers(device_, &allocInfo, &cmd));
-  struct FreeOnExit {
-    VkDevice device;
-    VkCommandPool pool;
-    VkCommandBuffer cmd;
-    ~FreeOnExit() { vkFreeCommandBuffers(device, pool, 1, &cmd); }
-  } freeOnExit{device_, commandPool_, cmd};
-
-  VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
-  begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
-  S3D_VK_CHECK(vkBeginCommandBuffer(cmd, &begin));
-  record(cmd);
-  S3D_VK_CHECK(vkEndCommandBuffer(cmd));
-
-  VkFenceCreateInfo fenceInfo{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
-  VkFence rawFence = VK_NULL_HANDLE;
-  S3D_VK_CHECK(vkCreateFence(device_, &fenceInfo, allocator_, &rawFence));
-  Unique<VkFence> fence(device_, rawFence, vkDestroyFence, allocator_);
-  VkCommandBufferSubmitInfo cmdInfo{VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO};
-  cmdInfo.commandBuffer = cmd;
-  VkSubmitInfo2 submit{VK_STRUCTURE_TYPE_SUBMIT_INFO_2};
-  submit.commandBufferInfoCount = 1;
-  submit.pCommandBufferInfos = &cmdInfo;
-  S3D_VK_CHECK(vkQueueSubmit2(queue_, 1, &submit, fence));
-  S3D_VK_CHECK(vkWaitForFences(device_, 1, &rawFence, VK_TRUE, UINT64_MAX));
-}
+void Context::submitAndWait(const std::function<void(VkCommandBuffer)>& record) { submitConcurrentlyAndWait({record}); }
 
 void Context::submitConcurrentlyAndWait(const std::vector<std::function<void(VkCommandBuffer)>>& records) {
   if (records.empty()) return;
@@ -423,10 +392,12 @@ void Context::submitConcurrentlyAndWait(const std::vector<std::function<void(VkC
   VkSubmitInfo2 restSubmit{VK_STRUCTURE_TYPE_SUBMIT_INFO_2};
   restSubmit.commandBufferInfoCount = std::uint32_t(cmdInfos.size() - 1);
   restSubmit.pCommandBufferInfos = cmdInfos.data() + 1;
+  // One fence per submission: the first's, and the rest's where there are more recordings.
+  const std::uint32_t submissions = restSubmit.commandBufferInfoCount > 0 ? 2u : 1u;
   std::vector<Unique<VkFence>> fences;
-  fences.reserve(2);
+  fences.reserve(submissions);
   std::vector<VkFence> rawFences;
-  for (int i = 0; i < 2; ++i) {
+  for (std::uint32_t i = 0; i < submissions; ++i) {
     VkFenceCreateInfo fenceInfo{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
     VkFence rawFence = VK_NULL_HANDLE;
     S3D_VK_CHECK(vkCreateFence(device_, &fenceInfo, allocator_, &rawFence));
@@ -434,9 +405,8 @@ void Context::submitConcurrentlyAndWait(const std::vector<std::function<void(VkC
     rawFences.push_back(rawFence);
   }
   S3D_VK_CHECK(vkQueueSubmit2(queue_, 1, &firstSubmit, rawFences[0]));
-  if (restSubmit.commandBufferInfoCount > 0) S3D_VK_CHECK(vkQueueSubmit2(rest, 1, &restSubmit, rawFences[1]));
-  const std::uint32_t waited = restSubmit.commandBufferInfoCount > 0 ? 2u : 1u;
-  S3D_VK_CHECK(vkWaitForFences(device_, waited, rawFences.data(), VK_TRUE, UINT64_MAX));
+  if (submissions > 1) S3D_VK_CHECK(vkQueueSubmit2(rest, 1, &restSubmit, rawFences[1]));
+  S3D_VK_CHECK(vkWaitForFences(device_, submissions, rawFences.data(), VK_TRUE, UINT64_MAX));
 }
 
 std::vector<std::string> Context::validationMessages() const {

@@ -120,7 +120,8 @@ class Context {
   std::uint32_t findMemoryType(std::uint32_t typeBits, VkMemoryPropertyFlags required,
                                VkMemoryPropertyFlags preferred = 0) const;
 
-  // Records commands into a fresh command buffer, submits them and waits for the queue to finish.
+  // Records commands into a fresh command buffer, submits them to queue() and waits for them (the one-recording
+  // submitConcurrentlyAndWait).
   void submitAndWait(const std::function<void(VkCommandBuffer)>& record);
   // Records each function into a command buffer of its own and waits for all of them: the first on queue(), the
   // others on the compute queue where there is one (so they may record only compute and transfer work: no
