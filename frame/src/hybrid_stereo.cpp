@@ -127,9 +127,11 @@ EyeRenderTimes renderEyes(const std::vector<EyeRender>& eyes, const renderer::De
   return times;
 }
 
-// The settings that ask for ray-cast eye surfaces (the masked pixels alone, or the occlusion's whole region).
+// The settings that ask for ray-cast eye surfaces (the masked pixels alone, the occlusion's whole region, or the
+// right eye's).
 bool forcesRays(HybridSurfaces surfaces) {
-  return surfaces == HybridSurfaces::RayCast || surfaces == HybridSurfaces::RayCastRegion;
+  return surfaces == HybridSurfaces::RayCast || surfaces == HybridSurfaces::RayCastRegion ||
+         surfaces == HybridSurfaces::Mixed;
 }
 
 }  // namespace
@@ -139,13 +141,15 @@ const char* hybridSurfacesName(HybridSurfaces surfaces) {
     case HybridSurfaces::Raster: return "raster";
     case HybridSurfaces::RayCast: return "raycast";
     case HybridSurfaces::RayCastRegion: return "raycast-region";
+    case HybridSurfaces::Mixed: return "mixed";
     default: return "auto";
   }
 }
 
 std::optional<HybridSurfaces> hybridSurfacesFromName(std::string_view name) {
   for (HybridSurfaces surfaces :
-       {HybridSurfaces::Automatic, HybridSurfaces::Raster, HybridSurfaces::RayCast, HybridSurfaces::RayCastRegion})
+       {HybridSurfaces::Automatic, HybridSurfaces::Raster, HybridSurfaces::RayCast, HybridSurfaces::RayCastRegion,
+        HybridSurfaces::Mixed})
     if (name == hybridSurfacesName(surfaces)) return surfaces;
   return std::nullopt;
 }
@@ -161,25 +165,33 @@ renderer::RendererOptions eyeRendererOptions(const renderer::RendererOptions& ce
 
 namespace {
 
-// The masked pixels' surfaces by ray casting wherever the eye renderers can shade what the rays find (a GPU's
-// visibility shading; DeferredRenderer::raycastSurfacesRefusal); the BVH is built once per scene or pose and
-// given to each eye renderer without it. Otherwise rasterized.
-renderer::ShadeMask::Surfaces surfacesFor(const std::array<renderer::DeferredRenderer*, 2>& eyeRenderers,
-                                          const renderer::Scene& scene, HybridSurfaces surfaces) {
+// Each eye's masked pixels' surfaces (left, right): by ray casting wherever the eye renderers can shade what the
+// rays find (a GPU's visibility shading; DeferredRenderer::raycastSurfacesRefusal), the left eye rasterized for
+// Mixed; the BVH is built once per scene or pose and given to each casting eye renderer without it. Otherwise
+// rasterized.
+std::array<renderer::ShadeMask::Surfaces, 2> surfacesFor(const std::array<renderer::DeferredRenderer*, 2>& eyeRenderers,
+                                                         const renderer::Scene& scene, HybridSurfaces surfaces) {
+  using Surfaces = renderer::ShadeMask::Surfaces;
   std::optional<std::string> refusal = eyeRenderers[0]->raycastSurfacesRefusal();
   if (!refusal) refusal = eyeRenderers[1]->raycastSurfacesRefusal();
   if (forcesRays(surfaces) && refusal)
     throw std::invalid_argument("the hybrid cannot ray-cast its eye pixels here: " + *refusal);
-  if (surfaces == HybridSurfaces::Raster || refusal) return renderer::ShadeMask::Surfaces::Raster;
+  if (surfaces == HybridSurfaces::Raster || refusal) return {Surfaces::Raster, Surfaces::Raster};
+  const std::array<Surfaces, 2> eyes{surfaces == HybridSurfaces::Mixed ? Surfaces::Raster : Surfaces::RayCast,
+                                     Surfaces::RayCast};
   // A posed scene rebuilds its tree with every pose: the fast build; a still one builds once, with spatial splits.
   const renderer::BvhQuality quality = scene.animation ? renderer::BvhQuality::Fast : renderer::BvhQuality::SpatialSplits;
   std::optional<renderer::SceneBvh> bvh;
-  for (renderer::DeferredRenderer* eyeRenderer : eyeRenderers)
-    if (!eyeRenderer->hasSurfaceBvh()) {
+  for (std::size_t eye = 0; eye < 2; ++eye)
+    if (eyes[eye] == Surfaces::RayCast && !eyeRenderers[eye]->hasSurfaceBvh()) {
       if (!bvh) bvh = renderer::SceneBvh::build(scene, quality);
-      eyeRenderer->setSurfaceBvh(*bvh);
+      eyeRenderers[eye]->setSurfaceBvh(*bvh);
     }
-  return renderer::ShadeMask::Surfaces::RayCast;
+  return eyes;
+}
+
+bool castsRays(const std::array<renderer::ShadeMask::Surfaces, 2>& surfaces) {
+  return surfaces[0] == renderer::ShadeMask::Surfaces::RayCast || surfaces[1] == renderer::ShadeMask::Surfaces::RayCast;
 }
 
 // Budget 1's mask: every classified pixel (the crop) set, as the mask pass would leave it. Made here, not on the
@@ -244,12 +256,12 @@ stereo::StereoMethod displaceAndClassify(HybridFrame& f, const stereo::StereoPar
 // Ray-cast eyes over a gather base with ambient occlusion (and a mask): the rays are cast for the masked pixels
 // only, the occlusion's region takes the center's depth where the base samples (RayCastRegion: it is cast). The
 // center's device depth must be at the eyes' size and mean what theirs does (the same depth direction).
-bool givesBaseDepth(const HybridFrame& f, const renderer::Scene& scene, renderer::ShadeMask::Surfaces eyeSurfaces,
-                    HybridSurfaces surfaces) {
+bool givesBaseDepth(const HybridFrame& f, const renderer::Scene& scene,
+                    const std::array<renderer::ShadeMask::Surfaces, 2>& eyeSurfaces, HybridSurfaces surfaces) {
   const bool sameDeviceDepth = f.centerRenderer.supersample() == 1 &&
                                f.centerRenderer.options().reversedZ == f.eyeRenderers[0]->options().reversedZ;
-  return eyeSurfaces == renderer::ShadeMask::Surfaces::RayCast && surfaces != HybridSurfaces::RayCastRegion &&
-         scene.ambientOcclusion && f.constants.baseTapCount > 0 && f.classify && sameDeviceDepth;
+  return castsRays(eyeSurfaces) && surfaces != HybridSurfaces::RayCastRegion && scene.ambientOcclusion &&
+         f.constants.baseTapCount > 0 && f.classify && sameDeviceDepth;
 }
 
 // Both eyes' base depth (stereo::HybridBaseDepthPass) from the center's linear and device depth, timed.
@@ -290,17 +302,20 @@ void renderIntoEyes(HybridFrame& f, const renderer::Scene& scene, const renderer
     }
     const stereo::Eye eye = index == 0 ? stereo::Eye::Left : stereo::Eye::Right;
     // HybridPass masks: 1 where the eye camera renders the pixel; none: every pixel (an unmasked render).
-    const renderer::ShadeMask shadeMask{f.everythingMasked ? nullptr : &mask, 1, result.surfaces,
-                                        f.givesBaseDepth ? &f.baseDepth[index] : nullptr, index == 0 ? &f.left : &f.right};
+    const bool casts = result.surfaces[index] == renderer::ShadeMask::Surfaces::RayCast;
+    const renderer::ShadeMask shadeMask{f.everythingMasked ? nullptr : &mask, 1, result.surfaces[index],
+                                        f.givesBaseDepth && casts ? &f.baseDepth[index] : nullptr,
+                                        index == 0 ? &f.left : &f.right};
     renders.push_back({f.eyeRenderers[index], referenceEyeView(scene, center, eye, parameters), shadeMask});
     rendered.push_back(index);
   }
   HybridTimings& timings = result.timings;
   timings.eyeRenders = 0.0;
   if (renders.empty()) return;
-  // At once where the right eye's render can run on the GPU's compute queue (ray-cast surfaces: compute only).
+  // At once where the right eye's render can run on the GPU's compute queue (ray-cast surfaces: compute only); the
+  // left eye's, on the graphics queue, may be rasterized.
   const bool together = renders.size() == 2 && f.eyeRenderers[0] != f.eyeRenderers[1] && f.context.hasConcurrentQueue() &&
-                        result.surfaces == renderer::ShadeMask::Surfaces::RayCast;
+                        result.surfaces[1] == renderer::ShadeMask::Surfaces::RayCast;
   timings.concurrentEyes = together;
   // Sharing one renderer, each eye's results are read before the next eye renders over them.
   const std::size_t batch = together ? renders.size() : 1;
@@ -410,7 +425,8 @@ HybridSynthesis HybridSynthesizer::synthesize(const renderer::DeferredRenderer& 
   f.everythingMasked = !f.nothingMasked && grid.maskedPixelCap >= result.classifiedCells;
   f.classify = !f.nothingMasked && !f.everythingMasked;
   HybridTimings& timings = result.timings;
-  timings.raycastSurfaces = result.surfaces == renderer::ShadeMask::Surfaces::RayCast;
+  timings.raycastSurfaces = castsRays(result.surfaces);
+  timings.mixedSurfaces = result.surfaces[0] != result.surfaces[1];
   const stereo::StereoMethod base = displaceAndClassify(f, parameters, timings);
   timings.maskedShading = timings.composite = timings.baseDepth = 0.0;
   if (givesBaseDepth(f, scene, result.surfaces, surfaces)) recordBaseDepth(f, timings);

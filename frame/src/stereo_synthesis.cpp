@@ -95,23 +95,33 @@ HybridSynthesis StereoSynthesis::hybridWithChosenSurfaces(const StereoSynthesisF
   const float budget = frame.parameters.hybridBudget;
   if (const auto measured = measuredSurfaces_.find(budget); measured != measuredSurfaces_.end())
     return run(measured->second.surfaces, measured->second.everyPixel);
-  HybridSynthesis rays = run(HybridSurfaces::RayCast);
-  HybridSynthesis raster = run(HybridSurfaces::Raster);
-  std::optional<HybridSynthesis> everyPixel;
-  if (budget < 1.0f) everyPixel = run(HybridSurfaces::RayCast, true);
-  HybridSynthesis::SurfaceChoice choice{rays.timings.total, raster.timings.total, std::nullopt};
-  if (everyPixel) choice.everyPixelRaycastMs = everyPixel->timings.total;
-  // Without timestamps nothing is known: rays at the frame's budget, as synthesizeHybrid's Automatic.
-  const auto faster = [](const std::optional<double>& a, const std::optional<double>& b) { return a && b && *a < *b; };
-  HybridSynthesis* chosen = &rays;
-  SurfacePath path{HybridSurfaces::RayCast, false};
-  if (faster(choice.rasterMs, choice.raycastMs)) {
-    chosen = &raster;
-    path = {HybridSurfaces::Raster, false};
+  // Each path timed once, in this order (a tie keeps the earlier): masked rays, raster, the left eye's raster beside
+  // the right eye's rays (it pays only where the two render at once), and below budget 1 every pixel (the exact
+  // eyes) by rays and mixed.
+  std::vector<SurfacePath> paths = {{HybridSurfaces::RayCast, false}, {HybridSurfaces::Raster, false}};
+  if (rightEyeRenderer_) paths.push_back({HybridSurfaces::Mixed, false});
+  if (budget < 1.0f) {
+    paths.push_back({HybridSurfaces::RayCast, true});
+    if (rightEyeRenderer_) paths.push_back({HybridSurfaces::Mixed, true});
   }
-  if (faster(choice.everyPixelRaycastMs, chosen->timings.total)) {
-    chosen = &*everyPixel;
-    path = {HybridSurfaces::RayCast, true};
+  // Only the fastest run so far is kept (each holds its eyes and HDR renders). Without timestamps nothing is known:
+  // rays at the frame's budget, as synthesizeHybrid's Automatic.
+  std::optional<HybridSynthesis> chosen;
+  SurfacePath path = paths.front();
+  HybridSynthesis::SurfaceChoice choice;
+  for (const SurfacePath& candidate : paths) {
+    HybridSynthesis result = run(candidate.surfaces, candidate.everyPixel);
+    const std::optional<double> ms = result.timings.total;
+    const bool mixed = candidate.surfaces == HybridSurfaces::Mixed;
+    std::optional<double>& slot = candidate.everyPixel ? (mixed ? choice.everyPixelMixedMs : choice.everyPixelRaycastMs)
+                                  : mixed                ? choice.mixedMs
+                                  : candidate.surfaces == HybridSurfaces::Raster ? choice.rasterMs
+                                                                                 : choice.raycastMs;
+    slot = ms;
+    if (!chosen || (ms && chosen->timings.total && *ms < *chosen->timings.total)) {
+      chosen = std::move(result);
+      path = candidate;
+    }
   }
   measuredSurfaces_[budget] = path;
   chosen->surfaceChoice = choice;

@@ -91,16 +91,18 @@ class BenchCommand final : public Command {
               const auto surfaces = frame::hybridSurfacesFromName(name);
               if (!surfaces)
                 throw CLI::ValidationError("--hybrid-surfaces",
-                                           "must be auto, raster, raycast or raycast-region (got '" + name + "')");
+                                           "must be auto, raster, raycast, raycast-region or mixed (got '" + name + "')");
               options_.hybridSurfaces = *surfaces;
             },
             "How the hybrid settings find their eye pixels' surfaces: auto (ray casting where the eye renderer can "
-            "shade what rays find: a GPU's visibility shading; else rasterized), "
+            "shade what rays find: a GPU's visibility shading, timing rays, raster and mixed on each scene's first "
+            "frame and keeping the fastest; else rasterized), "
             "raster, raycast (the eye renderer made to shade rays: visibility shading and the compute transparent "
             "pass, also on a CPU device; with ambient occlusion only the masked pixels are cast, the occlusion's "
             "region around them takes the center's depth where the base samples) or raycast-region (as raycast, "
-            "but the occlusion's whole region is cast)")
-        ->type_name("auto|raster|raycast|raycast-region");
+            "but the occlusion's whole region is cast) or mixed (the left eye rasterized, the right eye's pixels cast: "
+            "on a GPU the two render at once, the rays on the compute queue)")
+        ->type_name("auto|raster|raycast|raycast-region|mixed");
     bench.add_flag("--hybrid-eyes-in-turn", options_.hybridEyesInTurn,
                    "Render the hybrid settings' eyes one after the other with one eye renderer, also on a GPU with a "
                    "compute queue, where ray-cast eyes otherwise render at once (two eye renderers)");

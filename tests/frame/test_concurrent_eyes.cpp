@@ -131,9 +131,9 @@ struct HybridViews {
 
 // Tolerance: none. With an eye renderer per eye the hybrid renders the same masked pixels with the same passes;
 // only which renderer (and queue) draws the right eye differs. Ray-cast surfaces with the occlusion's base depth
-// (courtyard) and rasterized ones, at the default budget.
+// (courtyard), rasterized ones, and the left eye rasterized beside the right eye's rays, at the default budget.
 TEST_F(ConcurrentEyes, TheHybridWithAnEyeRendererPerEyeMakesTheSameEyes) {
-  for (const HybridSurfaces surfaces : {HybridSurfaces::RayCast, HybridSurfaces::Raster}) {
+  for (const HybridSurfaces surfaces : {HybridSurfaces::RayCast, HybridSurfaces::Raster, HybridSurfaces::Mixed}) {
     HybridViews v(context(), surfaces);
     HybridSynthesizer synthesizer(context());
     const HybridSynthesis inTurn = synthesizer.synthesize(v.center, v.left, v.scene, v.centerView, v.parameters, 1, surfaces);
@@ -141,13 +141,34 @@ TEST_F(ConcurrentEyes, TheHybridWithAnEyeRendererPerEyeMakesTheSameEyes) {
         synthesizer.synthesize(v.center, {&v.left, &v.right}, v.scene, v.centerView, v.parameters, 1, surfaces);
     const char* name = hybridSurfacesName(surfaces);
     ASSERT_GT(inTurn.maskedPixels[0] + inTurn.maskedPixels[1], 0u) << name;
-    // At once only where the right eye can run on a compute queue (a GPU's; lavapipe has none).
-    EXPECT_EQ(atOnce.timings.concurrentEyes, context().hasConcurrentQueue() && surfaces == HybridSurfaces::RayCast) << name;
+    // At once only where the right eye's rays can run on a compute queue (a GPU's; lavapipe has none).
+    EXPECT_EQ(atOnce.timings.concurrentEyes, context().hasConcurrentQueue() && surfaces != HybridSurfaces::Raster) << name;
     EXPECT_FALSE(inTurn.timings.concurrentEyes) << name;
     EXPECT_EQ(atOnce.masks, inTurn.masks) << name;
     EXPECT_EQ(atOnce.eyes.left.pixels, inTurn.eyes.left.pixels) << name;
     EXPECT_EQ(atOnce.eyes.right.pixels, inTurn.eyes.right.pixels) << name;
   }
+}
+
+// Tolerance: none. Mixed surfaces are each eye's own path: the left eye as the rasterized hybrid makes it, the right
+// as the ray-cast hybrid does (its occlusion region given the base's depth), from the same masks; the right eye
+// renders on a GPU's compute queue beside the left eye's raster.
+TEST_F(ConcurrentEyes, MixedSurfacesRasterizeTheLeftEyeAndCastTheRightEyesRays) {
+  HybridViews v(context(), HybridSurfaces::Mixed);
+  HybridSynthesizer synthesizer(context());
+  auto run = [&](HybridSurfaces surfaces) {
+    return synthesizer.synthesize(v.center, {&v.left, &v.right}, v.scene, v.centerView, v.parameters, 1, surfaces);
+  };
+  const HybridSynthesis raster = run(HybridSurfaces::Raster), rays = run(HybridSurfaces::RayCast);
+  const HybridSynthesis mixed = run(HybridSurfaces::Mixed);
+  using Surfaces = renderer::ShadeMask::Surfaces;
+  EXPECT_EQ(mixed.surfaces, (std::array<Surfaces, 2>{Surfaces::Raster, Surfaces::RayCast}));
+  EXPECT_TRUE(mixed.timings.mixedSurfaces && mixed.timings.raycastSurfaces);
+  ASSERT_GT(mixed.maskedPixels[0], 0u);
+  ASSERT_GT(mixed.maskedPixels[1], 0u);
+  EXPECT_EQ(mixed.masks, raster.masks);
+  EXPECT_EQ(mixed.eyes.left.pixels, raster.eyes.left.pixels);
+  EXPECT_EQ(mixed.eyes.right.pixels, rays.eyes.right.pixels);
 }
 
 // The frame's time is its parts': in turn the eye renders take their passes' sum (one timed run: no medians

@@ -213,7 +213,8 @@ TEST_F(HybridRender, WithRayCastSurfacesBudgetOneIsTheTwoPassReferenceOffTriangl
     s.eyeRenderer = std::make_unique<renderer::DeferredRenderer>(context(), 96, 54, eyeOptions);
     s.eyeRenderer->setScene(s.scene);
     const frame::HybridSynthesis hybrid = frame::synthesizeHybrid(context(), *s.centerRenderer, *s.eyeRenderer, s.scene, s.center, parameters);
-    ASSERT_EQ(hybrid.surfaces, renderer::ShadeMask::Surfaces::RayCast) << name;
+    ASSERT_EQ(hybrid.surfaces[0], renderer::ShadeMask::Surfaces::RayCast) << name;
+    ASSERT_EQ(hybrid.surfaces[1], renderer::ShadeMask::Surfaces::RayCast) << name;
     const gpu::StereoConstants crop = stereo::makeStereoConstants(parameters, 96, 54);
     for (const stereo::Eye eye : {stereo::Eye::Left, stereo::Eye::Right}) {
       (void)s.centerRenderer->render(frame::referenceEyeView(s.scene, s.center, eye, parameters));
@@ -255,7 +256,7 @@ TEST_F(HybridRender, WithRayCastSurfacesOnlyTheMaskedPixelsAreCastAndTheBaseDept
     const HybridSynthesis given = synthesizeHybrid(context(), *s.centerRenderer, *s.eyeRenderer, s.scene, s.center,
                                                    parameters, 1, HybridSurfaces::RayCast);
     const std::vector<std::uint32_t> givenIds = s.eyeRenderer->readVisibilityIds();
-    ASSERT_EQ(given.surfaces, renderer::ShadeMask::Surfaces::RayCast) << name;
+    ASSERT_EQ(given.surfaces[1], renderer::ShadeMask::Surfaces::RayCast) << name;
     std::size_t castUnmasked = 0, regionCastUnmasked = 0;
     for (std::size_t i = 0; i < givenIds.size(); ++i)
       if (!given.masks[1][i]) {
@@ -327,14 +328,19 @@ TEST_F(HybridRender, TheSurfacesCanBeChosen) {
   s.eyeRenderer = std::make_unique<renderer::DeferredRenderer>(
       context(), 96, 54, frame::eyeRendererOptions(raster, frame::HybridSurfaces::RayCast));
   s.eyeRenderer->setScene(s.scene);
+  using Surfaces = renderer::ShadeMask::Surfaces;
+  using EyeSurfaces = std::array<Surfaces, 2>;
   EXPECT_EQ(frame::synthesizeHybrid(context(), *s.centerRenderer, *s.eyeRenderer, s.scene, s.center, parameters, 1,
                                     frame::HybridSurfaces::Raster).surfaces,
-            renderer::ShadeMask::Surfaces::Raster);
+            (EyeSurfaces{Surfaces::Raster, Surfaces::Raster}));
   EXPECT_EQ(frame::synthesizeHybrid(context(), *s.centerRenderer, *s.eyeRenderer, s.scene, s.center, parameters).surfaces,
-            renderer::ShadeMask::Surfaces::RayCast);
+            (EyeSurfaces{Surfaces::RayCast, Surfaces::RayCast}));
+  EXPECT_EQ(frame::synthesizeHybrid(context(), *s.centerRenderer, *s.eyeRenderer, s.scene, s.center, parameters, 1,
+                                    frame::HybridSurfaces::Mixed).surfaces,
+            (EyeSurfaces{Surfaces::Raster, Surfaces::RayCast}));
   for (frame::HybridSurfaces surfaces :
        {frame::HybridSurfaces::Automatic, frame::HybridSurfaces::Raster, frame::HybridSurfaces::RayCast,
-        frame::HybridSurfaces::RayCastRegion})
+        frame::HybridSurfaces::RayCastRegion, frame::HybridSurfaces::Mixed})
     EXPECT_EQ(frame::hybridSurfacesFromName(frame::hybridSurfacesName(surfaces)), surfaces);
   EXPECT_FALSE(frame::hybridSurfacesFromName("rays").has_value());
 }

@@ -32,8 +32,8 @@ std::string hybridBenchMarkdown(const BenchReport& report) {
   md << "\n#### Hybrid: budget against error and time (both eyes)\n\n"
         "Masked: the share of each eye's compared pixels rendered from the eye camera (left / right). Surfaces: how\n"
         "the masked pixels' surfaces were found, ray cast (with ambient occlusion the region around them takes the\n"
-        "base's depth, or with --hybrid-surfaces raycast-region is cast too) or rasterized (G-buffer and occlusion\n"
-        "depth). Times: the base displacement, the classification (classify, threshold, masks), both eyes' surfaces\n"
+        "base's depth, or with --hybrid-surfaces raycast-region is cast too), rasterized (G-buffer and occlusion\n"
+        "depth), or the left eye rasterized beside the right eye's rays (raster + ray cast). Times: the base displacement, the classification (classify, threshold, masks), both eyes' surfaces\n"
         "(with the base's depth), both eyes' other renderer passes (mask tiles, occlusion, lighting and resolve of\n"
         "the masked pixels; the shadow maps are the center frame's), the eye renders together (surfaces less the\n"
         "base's depth, and shading: their sum one eye after the other, the span from first start to last end where\n"
@@ -46,7 +46,7 @@ std::string hybridBenchMarkdown(const BenchReport& report) {
     const frame::HybridTimings& t = row->hybridTimings ? *row->hybridTimings : frame::HybridTimings{};
     md << "| " << row->scene << " | " << percentText(row->maxSeparation) << " | " << format("%g", row->setting.budget)
        << " | " << shareText(row->maskedShareLeft) << " / " << shareText(row->maskedShareRight) << " | "
-       << (t.raycastSurfaces ? "ray cast" : "raster") << " | " << msText(t.displacement) << " | " << msText(t.classification) << " | " << msText(t.eyeGeometry) << " | "
+       << (t.mixedSurfaces ? "raster + ray cast" : t.raycastSurfaces ? "ray cast" : "raster") << " | " << msText(t.displacement) << " | " << msText(t.classification) << " | " << msText(t.eyeGeometry) << " | "
        << msText(t.maskedShading) << " | " << msText(t.eyeRenders) << (t.concurrentEyes ? "*" : "") << " | "
        << msText(t.composite) << " | " << msText(row->stereoGpuMs) << " | "
        << ratioText(ratio(row->stereoGpuMs, row->referenceEyeGpuMs)) << " | "

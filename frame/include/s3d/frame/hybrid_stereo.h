@@ -35,7 +35,8 @@ struct HybridTimings {
   std::optional<double> composite;       // both eyes
   std::optional<double> total;           // displacement, classification, baseDepth, eyeRenders and composite
   std::vector<renderer::PassTiming> leftEyePasses, rightEyePasses;  // the masked renders' passes
-  bool raycastSurfaces = false;  // eyeGeometry cast rays (HybridSynthesis::surfaces), or rasterized
+  bool raycastSurfaces = false;  // an eye's geometry cast rays (HybridSynthesis::surfaces), or both rasterized
+  bool mixedSurfaces = false;    // the left eye rasterized, the right eye's surfaces cast (HybridSurfaces::Mixed)
 };
 
 struct HybridSynthesis {
@@ -49,14 +50,18 @@ struct HybridSynthesis {
   std::array<ImageRGBA32F, 2> renderedHdr;            // the masked renders' HDR colour (valid where masked; zero
                                                       // for an eye with nothing masked, which is not rendered)
   std::uint64_t filledLeft = 0, filledRight = 0;      // the iterative base's filled pixels that stayed displaced
-  // How the masked pixels' surfaces were found: ray-cast where the eye renderer can shade what rays find
-  // (DeferredRenderer::raycastSurfacesRefusal), else rasterized.
-  renderer::ShadeMask::Surfaces surfaces = renderer::ShadeMask::Surfaces::Raster;
+  // Left, right: how each eye's masked pixels' surfaces were found: ray-cast where the eye renderer can shade what
+  // rays find (DeferredRenderer::raycastSurfacesRefusal), else rasterized.
+  std::array<renderer::ShadeMask::Surfaces, 2> surfaces{renderer::ShadeMask::Surfaces::Raster,
+                                                        renderer::ShadeMask::Surfaces::Raster};
   HybridTimings timings;
   // Set on the frame where StereoSynthesis measured the surface paths to choose one (HybridSurfaces::Automatic):
-  // each path's total GPU time for this frame at its budget, and (for a budget below 1) every pixel's by rays.
+  // each path's total GPU time for this frame at its budget, and (for a budget below 1) every pixel's.
   struct SurfaceChoice {
     std::optional<double> raycastMs, rasterMs, everyPixelRaycastMs;
+    // Timed where the eyes can render at once (a second eye renderer): the left eye rasterized beside the right
+    // eye's rays, at the frame's budget and for every pixel.
+    std::optional<double> mixedMs, everyPixelMixedMs;
   };
   std::optional<SurfaceChoice> surfaceChoice;
 };
@@ -69,10 +74,13 @@ struct HybridSynthesis {
 // always by rays (a renderer that cannot is an error naming why). With ambient occlusion and a gather base (seed,
 // search), rays are cast for the masked pixels only and the rest of the occlusion's region takes the center's
 // depth where the base samples (stereo::HybridBaseDepthPass); RayCastRegion casts that whole region instead (the
-// earlier way, for comparing).
-enum class HybridSurfaces { Automatic, Raster, RayCast, RayCastRegion };
+// earlier way, for comparing). Mixed: the left eye rasterized and the right eye's surfaces cast, so that with an
+// eye renderer each the two render at once, the raster on the graphics queue and the rays on the compute queue
+// (where rays cost more than the raster but less than the two rasterized eyes one after the other); Automatic
+// times it too where the eyes can render at once.
+enum class HybridSurfaces { Automatic, Raster, RayCast, RayCastRegion, Mixed };
 
-// "auto", "raster", "raycast", "raycast-region"; and back (nullopt for any other name).
+// "auto", "raster", "raycast", "raycast-region", "mixed"; and back (nullopt for any other name).
 const char* hybridSurfacesName(HybridSurfaces surfaces);
 std::optional<HybridSurfaces> hybridSurfacesFromName(std::string_view name);
 

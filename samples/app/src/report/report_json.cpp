@@ -30,7 +30,7 @@ nlohmann::json toJson(const frame::HybridTimings& t) {
           {"maskedShading", optionalMs(t.maskedShading)}, {"eyeRenders", optionalMs(t.eyeRenders)},
           {"concurrentEyes", t.concurrentEyes},
           {"composite", optionalMs(t.composite)},       {"total", optionalMs(t.total)},
-          {"surfaces", t.raycastSurfaces ? "raycast" : "raster"}};
+          {"surfaces", t.mixedSurfaces ? "mixed" : t.raycastSurfaces ? "raycast" : "raster"}};
 }
 
 nlohmann::json statsJson(const stereo::ErrorStats& stats) {
