@@ -73,8 +73,8 @@ class StereoSynthesis {
   SynthesizedEyes synthesizeHybridFrame(const StereoSynthesisFrame& frame);
   // The surface path for this frame: the description's, or with Automatic on an eye renderer that can cast rays,
   // the fastest of rays, raster, the left eye rasterized with the right eye's rays at once (where a second eye
-  // renderer exists) and every pixel by rays as timed on this scene's first hybrid frame at the frame's budget
-  // (that frame's result is the fastest path's).
+  // renderer exists) and every pixel (by rays, and mixed there) as timed on this scene's first hybrid frame at the
+  // frame's budget (that frame's result is the fastest path's).
   HybridSynthesis hybridWithChosenSurfaces(const StereoSynthesisFrame& frame);
   SynthesizedEyes synthesizeFilledFrame(const StereoSynthesisFrame& frame);
 
