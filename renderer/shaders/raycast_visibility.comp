@@ -33,6 +33,9 @@ layout(binding = 8, r32f) uniform readonly image2D uncastDepth;
 layout(constant_id = 0) const bool kCutoutAlphaTest = false;
 layout(std430, binding = 9) readonly buffer Objects { ObjectConstants objects[]; };
 layout(std430, binding = 10) readonly buffer Indices { uint indices[]; };
+// With constants.bins.z: each screen bin's triangle count and list (raycast_bin.comp).
+layout(std430, binding = 14) readonly buffer BinCounts { uint binCounts[]; };
+layout(std430, binding = 15) readonly buffer BinEntries { uint binEntries[]; };
 #define S3D_SURFACE_VERTICES_BINDING 11
 #include "surface_vertices.glsl"
 #define S3D_TEXTURE_TABLE_BINDING 12
@@ -55,6 +58,32 @@ bool coversCutout(uint i, PixelRay ray) {
   return !cutOut(objects[objectIndex].albedo.a, texelAlpha, objects[objectIndex].emissive.a);
 }
 
+// Tree triangle i's hit made the best so far where it is closer (closerHit) and its alpha test keeps it.
+void considerTriangle(uint i, PixelRay ray, inout uint best, inout float bestT, inout float bestDepth,
+                      inout float bestKey) {
+  float t, depth;
+  if (leafHitSetUp(ray, snapped[i], triangles[i].v0, triangles[i].v1, triangles[i].v2, triangles[i].flags, t, depth) &&
+      (best == S3D_BVH_NO_ROOT || closerHit(depth * ray.nearer, t, triangles[i].object, triangles[i].triangle, bestKey,
+                                            bestT, triangles[best].object, triangles[best].triangle)) &&
+      (!kCutoutAlphaTest || (triangles[i].flags & S3D_BVH_CUTOUT) == 0u || coversCutout(i, ray))) {
+    bestT = t;
+    bestDepth = depth;
+    bestKey = depth * ray.nearer;
+    best = i;
+  }
+}
+
+// The closest hit among the `count` triangles a bin lists from binEntries[first]: what the tree's traversal
+// finds, as every triangle that may cover the bin's pixels is listed.
+uint closestListed(uint first, uint count, PixelRay ray, out float bestT, out float bestDepth) {
+  bestT = S3D_INFINITY;
+  bestDepth = S3D_INFINITY;
+  float bestKey = S3D_INFINITY;
+  uint best = S3D_BVH_NO_ROOT;
+  for (uint k = first; k < first + count; ++k) considerTriangle(binEntries[k], ray, best, bestT, bestDepth, bestKey);
+  return best;
+}
+
 // The closest hit of one tree along the pixel ray: its triangle index (S3D_BVH_NO_ROOT: none), ray parameter and
 // device depth.
 uint closestHit(uint root, PixelRay ray, out float bestT, out float bestDepth) {
@@ -72,19 +101,7 @@ uint closestHit(uint root, PixelRay ray, out float bestT, out float bestDepth) {
   while (visit) {
     uint first = nodes[node].first, count = nodes[node].count;
     if (count > 0u) {
-      for (uint i = first; i < first + count; ++i) {
-        float t, depth;
-        if (leafHitSetUp(ray, snapped[i], triangles[i].v0, triangles[i].v1, triangles[i].v2, triangles[i].flags, t,
-                         depth) &&
-            (best == S3D_BVH_NO_ROOT || closerHit(depth * ray.nearer, t, triangles[i].object, triangles[i].triangle, bestKey, bestT,
-                                                  triangles[best].object, triangles[best].triangle)) &&
-            (!kCutoutAlphaTest || (triangles[i].flags & S3D_BVH_CUTOUT) == 0u || coversCutout(i, ray))) {
-          bestT = t;
-          bestDepth = depth;
-          bestKey = depth * ray.nearer;
-          best = i;
-        }
-      }
+      for (uint i = first; i < first + count; ++i) considerTriangle(i, ray, best, bestT, bestDepth, bestKey);
     } else {
       float limit = pruneLimit(bestT);
       float a = boxEntry(ray.origin, inverseDirection, nodes[first].boundsMin, nodes[first].boundsMax, limit);
@@ -119,7 +136,14 @@ bool castLayer(int layer, uvec2 pixel, ivec2 subpixel) {
   PixelRay ray = pixelRayOf(constants.clipToLayer[layer], constants.viewProjection[layer], constants.screen, subpixel,
                             range, constants.clearedDepth.y);
   float t, depth;
-  uint hit = closestHit(root, ray, t, depth);
+  uint hit;
+  uint bin = (layer == S3D_LAYER_WORLD ? 0u : constants.bins.y) + (pixel.y / S3D_RAYCAST_BIN_SIZE) * constants.bins.x +
+             pixel.x / S3D_RAYCAST_BIN_SIZE;
+  uint listed = constants.bins.z != 0u ? binCounts[bin] : S3D_RAYCAST_BIN_CAPACITY + 1u;
+  if (listed <= S3D_RAYCAST_BIN_CAPACITY)
+    hit = closestListed(bin * S3D_RAYCAST_BIN_CAPACITY, listed, ray, t, depth);
+  else
+    hit = closestHit(root, ray, t, depth);
   if (hit == S3D_BVH_NO_ROOT) return false;
   uvec2 id = !kCutoutAlphaTest && (triangles[hit].flags & S3D_BVH_CUTOUT) != 0u
                  ? uvec2(S3D_RASTER_SHADED, 0u)

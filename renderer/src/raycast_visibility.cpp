@@ -9,6 +9,7 @@
 #include "s3d/renderer/renderer_shared.h"
 
 // clang-format off
+#include <s3d_spirv/raycast_bin_comp.h>
 #include <s3d_spirv/raycast_setup_comp.h>
 #include <s3d_spirv/raycast_visibility_comp.h>
 // clang-format on
@@ -24,15 +25,26 @@ RaycastVisibility::RaycastVisibility(vk::Context& context) : context_(context) {
       computeBinding(6, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER), computeBinding(7, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER),
       computeBinding(8, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE),  computeBinding(9, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER),
       computeBinding(10, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER), computeBinding(11, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER),
-      computeBinding(12, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER), computeBinding(13, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER)};
+      computeBinding(12, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER), computeBinding(13, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER),
+      computeBinding(14, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER), computeBinding(15, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER)};
   layout_ = vk::createPushDescriptorLayout(context_, bindings, 0, 0);
   pipeline_ = vk::createComputePipeline(context_, layout_.layout, spirv_raycast_visibility_comp);  // no alpha test
-  const VkDescriptorSetLayoutBinding setupBindings[] = {computeBinding(0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER),
-                                                        computeBinding(1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER),
-                                                        computeBinding(2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER)};
-  setupLayout_ = vk::createPushDescriptorLayout(context_, setupBindings, 2 * sizeof(std::uint32_t),
+  const VkDescriptorSetLayoutBinding setupBindings[] = {
+      computeBinding(0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER), computeBinding(1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER),
+      computeBinding(2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER), computeBinding(3, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER),
+      computeBinding(4, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER)};
+  setupLayout_ = vk::createPushDescriptorLayout(context_, setupBindings, 3 * sizeof(std::uint32_t),
                                                 VK_SHADER_STAGE_COMPUTE_BIT);
   setupPipeline_ = vk::createComputePipeline(context_, setupLayout_.layout, spirv_raycast_setup_comp);
+  const VkDescriptorSetLayoutBinding binBindings[] = {
+      computeBinding(0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER), computeBinding(1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER),
+      computeBinding(2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER), computeBinding(3, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER),
+      computeBinding(4, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER)};
+  binLayout_ = vk::createPushDescriptorLayout(context_, binBindings, 2 * sizeof(std::uint32_t),
+                                              VK_SHADER_STAGE_COMPUTE_BIT);
+  binPipeline_ = vk::createComputePipeline(context_, binLayout_.layout, spirv_raycast_bin_comp);
+  largeBinPipeline_ = vk::createComputePipeline(context_, binLayout_.layout, spirv_raycast_bin_comp,
+                                                vk::SpecializationWords({VK_TRUE}));
   constants_ = vk::createBuffer(context_, sizeof(gpu::RaycastConstants), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
                                 vk::MemoryLocation::HostVisible);
 }
@@ -56,6 +68,9 @@ void RaycastVisibility::setBvh(const SceneBvh& bvh) {
   worldRoot_ = bvh.worldRoot;
   firstPersonRoot_ = bvh.firstPersonRoot;
   packing_ = bvh.visibilityPacking;
+  binLarge_ = vk::createBuffer(context_, sizeof(gpu::RaycastBinLarge) + std::max<VkDeviceSize>(triangleCount_, 1) * 4,
+                               VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT,
+                               vk::MemoryLocation::Device);
   hasCutouts_ = std::any_of(bvh.triangles.begin(), bvh.triangles.end(),
                             [](const gpu::BvhTriangle& t) { return (t.flags & S3D_BVH_CUTOUT) != 0; });
   hasBvh_ = true;
@@ -80,16 +95,66 @@ void RaycastVisibility::recordSetup(VkCommandBuffer cmd, const VkDescriptorBuffe
   };
   computeToCompute();
   if (triangleCount_ > 0) {
+    const std::uint32_t binCount = binning_ ? 2 * binsPerLayer_ : 0;
+    // Without bins the triangles stand in for their buffers (the shader does not write them then).
+    VkDescriptorBufferInfo countInfo{binning_ ? binCounts_.buffer : triangles.buffer, 0, VK_WHOLE_SIZE};
+    VkDescriptorBufferInfo largeInfo{binning_ ? binLarge_.buffer : triangles.buffer, 0, VK_WHOLE_SIZE};
     VkWriteDescriptorSet writes[] = {vk::uniformBufferWrite(0, &constants), vk::uniformBufferWrite(1, &triangles),
-                                     vk::uniformBufferWrite(2, &snapped)};
-    writes[1].descriptorType = writes[2].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+                                     vk::uniformBufferWrite(2, &snapped), vk::uniformBufferWrite(3, &countInfo),
+                                     vk::uniformBufferWrite(4, &largeInfo)};
+    for (std::uint32_t i : {1u, 2u, 3u, 4u}) writes[i].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, setupPipeline_.get());
-    context_.cmdPushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, setupLayout_.layout, 0, 3, writes);
-    const std::uint32_t push[2] = {triangleCount_, firstPersonFirst_};
+    context_.cmdPushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, setupLayout_.layout, 0, 5, writes);
+    const std::uint32_t push[3] = {triangleCount_, firstPersonFirst_, binCount};
     vkCmdPushConstants(cmd, setupLayout_.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push, push);
-    vkCmdDispatch(cmd, (triangleCount_ + 63) / 64, 1, 1);
+    vkCmdDispatch(cmd, (std::max(triangleCount_, binCount) + 63) / 64, 1, 1);
   }
   computeToCompute();
+}
+
+bool RaycastVisibility::usesBins(std::uint32_t width, std::uint32_t height) const {
+  if (search_ != RaycastSearch::Automatic) return search_ == RaycastSearch::Bins;
+  const std::uint64_t bins = std::uint64_t((width + S3D_RAYCAST_BIN_SIZE - 1) / S3D_RAYCAST_BIN_SIZE) *
+                             ((height + S3D_RAYCAST_BIN_SIZE - 1) / S3D_RAYCAST_BIN_SIZE);
+  return triangleCount_ <= bins * S3D_RAYCAST_BIN_AUTO_REFERENCES;
+}
+
+// Bins of S3D_RAYCAST_BIN_SIZE pixels for images of this size (made again only when the size changes).
+void RaycastVisibility::sizeBins(std::uint32_t width, std::uint32_t height) {
+  if (binsSize_ == glm::uvec2(width, height)) return;
+  binsX_ = (width + S3D_RAYCAST_BIN_SIZE - 1) / S3D_RAYCAST_BIN_SIZE;
+  binsPerLayer_ = binsX_ * ((height + S3D_RAYCAST_BIN_SIZE - 1) / S3D_RAYCAST_BIN_SIZE);
+  binCounts_ = vk::createBuffer(context_, VkDeviceSize(2) * binsPerLayer_ * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                vk::MemoryLocation::Device);
+  binEntries_ = vk::createBuffer(context_, VkDeviceSize(2) * binsPerLayer_ * S3D_RAYCAST_BIN_CAPACITY * 4,
+                                 VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryLocation::Device);
+  binsSize_ = {width, height};
+}
+
+// Every set-up triangle into the bins its pixel bounds touch: the small ones by their own threads, then the large
+// ones by the indirect pass; ordered before the casts.
+void RaycastVisibility::recordBins(VkCommandBuffer cmd, const VkDescriptorBufferInfo& constants,
+                                   const VkDescriptorBufferInfo& snapped) const {
+  if (triangleCount_ == 0) return;
+  constexpr VkAccessFlags2 storage = VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
+  VkDescriptorBufferInfo countInfo{binCounts_.buffer, 0, VK_WHOLE_SIZE};
+  VkDescriptorBufferInfo entryInfo{binEntries_.buffer, 0, VK_WHOLE_SIZE};
+  VkDescriptorBufferInfo largeInfo{binLarge_.buffer, 0, VK_WHOLE_SIZE};
+  VkWriteDescriptorSet writes[] = {vk::uniformBufferWrite(0, &constants), vk::uniformBufferWrite(1, &snapped),
+                                   vk::uniformBufferWrite(2, &countInfo), vk::uniformBufferWrite(3, &entryInfo),
+                                   vk::uniformBufferWrite(4, &largeInfo)};
+  for (std::uint32_t i : {1u, 2u, 3u, 4u}) writes[i].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+  const std::uint32_t push[2] = {triangleCount_, firstPersonFirst_};
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, binPipeline_.get());
+  context_.cmdPushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, binLayout_.layout, 0, 5, writes);
+  vkCmdPushConstants(cmd, binLayout_.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push, push);
+  vkCmdDispatch(cmd, (triangleCount_ + S3D_RAYCAST_BIN_GROUP - 1) / S3D_RAYCAST_BIN_GROUP, 1, 1);
+  vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, storage,
+                    VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT,
+                    storage | VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT);
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, largeBinPipeline_.get());
+  vkCmdDispatchIndirect(cmd, binLarge_.buffer, 0);
+  vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, storage, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, storage);
 }
 
 void RaycastVisibility::record(VkCommandBuffer cmd, const RaycastCamera& camera, const ShadeMask& mask,
@@ -105,6 +170,8 @@ void RaycastVisibility::record(VkCommandBuffer cmd, const RaycastCamera& camera,
   if (mask.uncastDepth && (mask.uncastDepth->format != VK_FORMAT_R32_SFLOAT || mask.uncastDepth->width != width ||
                            mask.uncastDepth->height != height))
     throw std::invalid_argument("the ray-cast visibility pass's uncast depth must be R32_SFLOAT and the size of its targets");
+  binning_ = usesBins(width, height);
+  if (binning_) sizeBins(width, height);
   gpu::RaycastConstants constants{};
   constants.clipToLayer[S3D_LAYER_WORLD] = clipToLayerOf(camera.worldViewProjection);
   constants.clipToLayer[S3D_LAYER_FIRST_PERSON] = clipToLayerOf(camera.firstPersonViewProjection);
@@ -117,6 +184,7 @@ void RaycastVisibility::record(VkCommandBuffer cmd, const RaycastCamera& camera,
   constants.clearedDepth = glm::vec4(camera.clearedDepth, nearerOf(camera), 0.0f, 0.0f);
   constants.region = glm::uvec4(region.tiles != VK_NULL_HANDLE ? 1u : 0u, region.tilesX,
                                  mask.image && mask.uncastDepth ? 1u : 0u, 0u);
+  constants.bins = glm::uvec4(binsX_, binsPerLayer_, binning_ ? 1u : 0u, 0u);
   std::memcpy(constants_.mapped, &constants, sizeof(constants));
 
   VkDescriptorBufferInfo constantInfo{constants_.buffer, 0, VK_WHOLE_SIZE};
@@ -124,6 +192,7 @@ void RaycastVisibility::record(VkCommandBuffer cmd, const RaycastCamera& camera,
   VkDescriptorBufferInfo triangleInfo{triangles_.buffer, 0, VK_WHOLE_SIZE};
   VkDescriptorBufferInfo snappedInfo{snapped_.buffer, 0, VK_WHOLE_SIZE};
   recordSetup(cmd, constantInfo, triangleInfo, snappedInfo);
+  if (binning_) recordBins(cmd, constantInfo, snappedInfo);
   // Without a mask the ids image stands in for it (the shader does not read it then).
   VkDescriptorImageInfo maskInfo{VK_NULL_HANDLE, mask.image ? mask.image->view : visibilityIds.view, VK_IMAGE_LAYOUT_GENERAL};
   VkDescriptorImageInfo idInfo{VK_NULL_HANDLE, visibilityIds.view, VK_IMAGE_LAYOUT_GENERAL};
@@ -140,14 +209,19 @@ void RaycastVisibility::record(VkCommandBuffer cmd, const RaycastCamera& camera,
   VkDescriptorBufferInfo surfaceInfo{alphaTest ? cutouts.surfaceVertices : nodes_.buffer, 0, VK_WHOLE_SIZE};
   VkDescriptorBufferInfo tableInfo{alphaTest ? cutouts.textureTable : nodes_.buffer, 0, VK_WHOLE_SIZE};
   VkDescriptorBufferInfo texelInfo{alphaTest ? cutouts.texels : nodes_.buffer, 0, VK_WHOLE_SIZE};
+  // Without bins the node buffer stands in for theirs (the shader does not read them then).
+  VkDescriptorBufferInfo binCountInfo{binning_ ? binCounts_.buffer : nodes_.buffer, 0, VK_WHOLE_SIZE};
+  VkDescriptorBufferInfo binEntryInfo{binning_ ? binEntries_.buffer : nodes_.buffer, 0, VK_WHOLE_SIZE};
   VkWriteDescriptorSet writes[] = {vk::uniformBufferWrite(0, &constantInfo), vk::uniformBufferWrite(1, &nodeInfo),
                                    vk::uniformBufferWrite(2, &triangleInfo), vk::storageImageWrite(3, &maskInfo),
                                    vk::storageImageWrite(4, &idInfo),        vk::storageImageWrite(5, &depthInfo),
                                    vk::uniformBufferWrite(6, &regionInfo),   vk::uniformBufferWrite(7, &snappedInfo),
                                    vk::storageImageWrite(8, &uncastInfo),    vk::uniformBufferWrite(9, &objectInfo),
                                    vk::uniformBufferWrite(10, &indexInfo),   vk::uniformBufferWrite(11, &surfaceInfo),
-                                   vk::uniformBufferWrite(12, &tableInfo),   vk::uniformBufferWrite(13, &texelInfo)};
-  for (std::uint32_t i : {1u, 2u, 6u, 7u, 9u, 10u, 11u, 12u, 13u}) writes[i].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+                                   vk::uniformBufferWrite(12, &tableInfo),   vk::uniformBufferWrite(13, &texelInfo),
+                                   vk::uniformBufferWrite(14, &binCountInfo), vk::uniformBufferWrite(15, &binEntryInfo)};
+  for (std::uint32_t i : {1u, 2u, 6u, 7u, 9u, 10u, 11u, 12u, 13u, 14u, 15u})
+    writes[i].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, alphaTest ? alphaTestPipeline() : pipeline_.get());
   context_.cmdPushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_.layout, 0, std::uint32_t(std::size(writes)),
                                 writes);

@@ -3,6 +3,7 @@
 // pass computes what the C++ traversal computes, and both agree with the raster G-buffer pass's visibility ids.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <iostream>
@@ -215,7 +216,8 @@ class RaycastVisibilityTest : public test::VulkanTest {
   };
   // Runs the pass on ids and depth images pre-filled with sentinels; `mask`: R32_UINT values (empty: no mask).
   Result cast(const SceneBvh& bvh, const RaycastCamera& camera, std::uint32_t width, std::uint32_t height,
-              const std::vector<std::uint32_t>& mask = {}) {
+              const std::vector<std::uint32_t>& mask = {},
+              renderer::RaycastSearch search = renderer::RaycastSearch::Automatic) {
     const VkImageUsageFlags usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
     const std::size_t count = std::size_t(width) * height;
     vk::Image ids = vk::createImage(context(), VK_FORMAT_R32_UINT, width, height, usage);
@@ -233,6 +235,7 @@ class RaycastVisibilityTest : public test::VulkanTest {
     }
     renderer::RaycastVisibility pass(context());
     pass.setBvh(bvh);
+    pass.setSearch(search);
     context().submitAndWait([&](VkCommandBuffer cmd) {
       vk::transition(cmd, ids, vk::kComputeWrite, vk::kComputeWrite);  // the uploads before the pass
       vk::transition(cmd, depth, vk::kComputeWrite, vk::kComputeWrite);
@@ -252,33 +255,101 @@ class RaycastVisibilityTest : public test::VulkanTest {
 };
 
 // Every pixel of every built-in scene (the courtyard with its first-person weapon) at 96x54, in both depth
-// conventions: the GPU's id and device depth are the reference traversal's. The arithmetic is shared and marked
-// precise (no fused multiply-add but the explicit fma), so ids must match exactly; device depth within 1e-6, as
-// Vulkan lets a GPU divide with 2.5 ulp of error.
+// conventions, decided by screen bins and by the tree alone: the GPU's id and device depth are the reference
+// traversal's. The arithmetic is shared and marked precise (no fused multiply-add but the explicit fma), so ids
+// must match exactly; device depth within 1e-6, as Vulkan lets a GPU divide with 2.5 ulp of error.
 TEST_F(RaycastVisibilityTest, GpuEqualsTheReferenceTraversal) {
   constexpr std::uint32_t width = 96, height = 54;
   int firstPerson = 0, sky = 0;
   for (const std::string& name : renderer::builtInSceneNames()) {
     const renderer::Scene scene = renderer::makeBuiltInScene(name);
     const SceneBvh bvh = SceneBvh::build(scene);
-    for (const bool reversed : {false, true}) {
-      const RaycastCamera camera =
-          renderer::raycastCamera(scene, renderer::centerViewMatrices(scene, float(width) / height), reversed);
-      const Result gpu = cast(bvh, camera, width, height);
-      for (std::uint32_t y = 0; y < height; ++y)
-        for (std::uint32_t x = 0; x < width; ++x) {
-          const renderer::RaycastHit hit = bvh.castPixel(camera, {x, y}, {width, height});
-          const std::size_t i = std::size_t(y) * width + x;
-          ASSERT_EQ(gpu.ids[i], renderer::visibilityIdOf(hit, bvh.visibilityPacking).x)
-              << name << (reversed ? " reversed" : "") << ", pixel " << x << ", " << y;
-          ASSERT_NEAR(gpu.depth[i], hit.deviceDepth, 1e-6f) << name << (reversed ? " reversed" : "") << ", pixel " << x << ", " << y;
-          firstPerson += hit.hit && scene.objects[hit.object].layer == renderer::Layer::FirstPerson ? 1 : 0;
-          sky += hit.hit ? 0 : 1;
-        }
-    }
+    for (const bool reversed : {false, true})
+      for (const auto search : {renderer::RaycastSearch::Bins, renderer::RaycastSearch::Tree}) {
+        const RaycastCamera camera =
+            renderer::raycastCamera(scene, renderer::centerViewMatrices(scene, float(width) / height), reversed);
+        const Result gpu = cast(bvh, camera, width, height, {}, search);
+        const std::string what = name + (reversed ? " reversed" : "") +
+                                 (search == renderer::RaycastSearch::Bins ? " (bins)" : " (tree)");
+        for (std::uint32_t y = 0; y < height; ++y)
+          for (std::uint32_t x = 0; x < width; ++x) {
+            const renderer::RaycastHit hit = bvh.castPixel(camera, {x, y}, {width, height});
+            const std::size_t i = std::size_t(y) * width + x;
+            ASSERT_EQ(gpu.ids[i], renderer::visibilityIdOf(hit, bvh.visibilityPacking).x)
+                << what << ", pixel " << x << ", " << y;
+            ASSERT_NEAR(gpu.depth[i], hit.deviceDepth, 1e-6f) << what << ", pixel " << x << ", " << y;
+            firstPerson += hit.hit && scene.objects[hit.object].layer == renderer::Layer::FirstPerson ? 1 : 0;
+            sky += hit.hit ? 0 : 1;
+          }
+      }
   }
   EXPECT_GT(firstPerson, 0);  // a weapon's tree was cast
   EXPECT_GT(sky, 0);          // so was a miss
+}
+
+// The screen bins' rule (raycast_shared.h): a set-up triangle covers no pixel centre outside its pixel bounds, so
+// a bin that lists every triangle whose bounds touch it lists every triangle that can cover its pixels. Checked
+// for every triangle of every built-in scene against every pixel of a 48x27 view.
+TEST(RaycastBins, ATriangleCoversNoPixelOutsideItsPixelBounds) {
+  constexpr std::uint32_t width = 48, height = 27;
+  std::size_t covered = 0;
+  for (const std::string& name : renderer::builtInSceneNames()) {
+    const renderer::Scene scene = renderer::makeBuiltInScene(name);
+    const SceneBvh bvh = SceneBvh::build(scene, renderer::BvhQuality::Fast);
+    const RaycastCamera camera = renderer::raycastCamera(scene, renderer::centerViewMatrices(scene, float(width) / height));
+    const glm::vec4 screen(float(width), float(height), 1.0f / width, 1.0f / height);
+    for (std::size_t t = 0; t < bvh.triangles.size(); ++t) {
+      const gpu::BvhTriangle& triangle = bvh.triangles[t];
+      const bool firstPerson = t >= bvh.firstPersonFirst;
+      const gpu::SnappedTriangle snapped = gpu::setupTriangle(
+          firstPerson ? camera.firstPersonViewProjection : camera.worldViewProjection, screen,
+          renderer::nearerOf(camera), triangle.v0, triangle.v1, triangle.v2, triangle.flags);
+      const glm::ivec4 bounds = gpu::snappedPixelBounds(snapped, screen);
+      for (std::uint32_t y = 0; y < height; ++y)
+        for (std::uint32_t x = 0; x < width; ++x) {
+          float depth = 0.0f;
+          const glm::ivec2 sample = glm::ivec2(x, y) * S3D_SUBPIXEL_UNITS + S3D_SUBPIXEL_UNITS / 2;
+          if (gpu::coverSample(snapped, sample, depth) == 0) continue;
+          ++covered;
+          ASSERT_TRUE(int(x) >= bounds.x && int(x) <= bounds.z && int(y) >= bounds.y && int(y) <= bounds.w)
+              << name << ": triangle " << t << " covers pixel " << x << ", " << y << " outside its bounds";
+        }
+    }
+  }
+  EXPECT_GT(covered, std::size_t(width) * height);  // the scenes fill their views
+}
+
+// A bin listing more triangles than its capacity leaves its pixels to the tree: the fence's chain link in a
+// 32x18 view (2x2 bins, thousands of triangles each) still gives the reference traversal's ids and depths.
+TEST_F(RaycastVisibilityTest, AnOverfullBinTraversesTheTree) {
+  constexpr std::uint32_t width = 32, height = 18;
+  const renderer::Scene scene = renderer::makeBuiltInScene("fence");
+  const SceneBvh bvh = SceneBvh::build(scene);
+  const RaycastCamera camera = renderer::raycastCamera(scene, renderer::centerViewMatrices(scene, float(width) / height));
+  // The world layer's list of each bin, counted as raycast_bin.comp counts it: one bin must overflow.
+  const glm::vec4 screen(float(width), float(height), 1.0f / width, 1.0f / height);
+  std::map<std::pair<int, int>, std::size_t> listed;
+  for (std::size_t t = 0; t < bvh.firstPersonFirst; ++t) {
+    const gpu::BvhTriangle& triangle = bvh.triangles[t];
+    const glm::ivec4 bounds = gpu::snappedPixelBounds(
+        gpu::setupTriangle(camera.worldViewProjection, screen, renderer::nearerOf(camera), triangle.v0, triangle.v1,
+                           triangle.v2, triangle.flags),
+        screen);
+    if (bounds.z < bounds.x || bounds.w < bounds.y) continue;
+    for (int y = bounds.y / S3D_RAYCAST_BIN_SIZE; y <= bounds.w / S3D_RAYCAST_BIN_SIZE; ++y)
+      for (int x = bounds.x / S3D_RAYCAST_BIN_SIZE; x <= bounds.z / S3D_RAYCAST_BIN_SIZE; ++x) ++listed[{x, y}];
+  }
+  std::size_t longest = 0;
+  for (const auto& [bin, count] : listed) longest = std::max(longest, count);
+  ASSERT_GT(longest, std::size_t(S3D_RAYCAST_BIN_CAPACITY));
+  const Result gpu = cast(bvh, camera, width, height, {}, renderer::RaycastSearch::Bins);
+  for (std::uint32_t y = 0; y < height; ++y)
+    for (std::uint32_t x = 0; x < width; ++x) {
+      const renderer::RaycastHit hit = bvh.castPixel(camera, {x, y}, {width, height});
+      const std::size_t i = std::size_t(y) * width + x;
+      ASSERT_EQ(gpu.ids[i], renderer::visibilityIdOf(hit, bvh.visibilityPacking).x) << "pixel " << x << ", " << y;
+      ASSERT_NEAR(gpu.depth[i], hit.deviceDepth, 1e-6f) << "pixel " << x << ", " << y;
+    }
 }
 
 // An all-zero mask: no pixel is written (the sentinels stay).
@@ -302,8 +373,8 @@ TEST_F(RaycastVisibilityTest, AMaskWritesExactlyItsPixels) {
   std::vector<std::uint32_t> mask(width * height);
   std::mt19937 random(3);
   for (std::uint32_t& value : mask) value = random() % 4;  // threshold 1: three quarters of the pixels
-  const Result full = cast(bvh, camera, width, height);
-  const Result masked = cast(bvh, camera, width, height, mask);
+  const Result full = cast(bvh, camera, width, height, {}, renderer::RaycastSearch::Tree);
+  const Result masked = cast(bvh, camera, width, height, mask, renderer::RaycastSearch::Bins);
   for (std::size_t i = 0; i < mask.size(); ++i) {
     ASSERT_EQ(masked.ids[i], mask[i] >= 1 ? full.ids[i] : kSentinelId) << "pixel " << i;
     ASSERT_EQ(masked.depth[i], mask[i] >= 1 ? full.depth[i] : kSentinelDepth) << "pixel " << i;

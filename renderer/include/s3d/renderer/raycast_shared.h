@@ -72,6 +72,26 @@ struct RaycastConstants {
   uvec4 region;            // x: 1 casts only the pixels of the tiles flagged in the region's buffer (the others get
                            // the cleared depth and id 0), y: tiles per row (S3D_TILE_SIZE pixels square), z: 1 gives
                            // the unmasked pixels (of the region, if any) the uncast depth image's depth and id 0
+  uvec4 bins;              // x: bins per row, y: bins per layer (S3D_RAYCAST_BIN_SIZE pixels square), z: 1 decides
+                           // a pixel by its bin's triangle list where that list is complete; w: 0
+};
+
+// Screen bins: each bin lists the set-up triangles of each layer whose snapped bounds hold one of its pixel
+// centres (raycast_bin.comp), so a pixel of a complete list is decided by testing that list alone, the same
+// leaf test in a loop every pixel of the bin shares, instead of a traversal whose length and path differ from
+// ray to ray. A list longer than its capacity is incomplete: its pixels traverse the tree.
+#define S3D_RAYCAST_BIN_SIZE 16
+#define S3D_RAYCAST_BIN_CAPACITY 64
+// A triangle whose bounds span more bins than this is binned by a workgroup of its own (the indirect pass).
+#define S3D_RAYCAST_BIN_DIRECT 8
+// RaycastSearch::Automatic bins a tree of at most this many triangle references per bin of the view.
+#define S3D_RAYCAST_BIN_AUTO_REFERENCES 4
+#define S3D_RAYCAST_BIN_GROUP 256
+#define S3D_RAYCAST_BIN_SPLIT 8  // workgroups per large triangle
+
+// The indirect pass's arguments and the large triangles it bins (std430).
+struct RaycastBinLarge {
+  uvec4 dispatch;  // x: large triangles so far (workgroups), y: S3D_RAYCAST_BIN_SPLIT, z: 1, w: 0
 };
 
 // One pixel ray of one layer, what its leaf tests need: the ray from the near plane (t 0) to the far plane (t 1)
@@ -331,6 +351,28 @@ S3D_INLINE int rasterCoverage(PixelRay ray, vec3 v0, vec3 v1, vec3 v2, uint flag
 S3D_INLINE float rayParameterOf(vec4 depthToT, float z) {
   S3D_PRECISE float a = depthToT.x, b = depthToT.y, zStart = depthToT.z, zEnd = depthToT.w;
   return (z - zStart) / (zEnd - zStart) * (a + zEnd * b) / (a + z * b);
+}
+
+// The pixels whose centres a set-up triangle may cover: xy the first, zw the last (inclusive, clamped to the
+// screen; empty when z < x or w < y). A polygon's samples lie within its snapped bounds; a triangle left to the
+// ray test may cover any pixel.
+S3D_INLINE ivec4 snappedPixelBounds(SnappedTriangle snapped, vec4 screen) {
+  ivec2 last = ivec2(int(screen.x) - 1, int(screen.y) - 1);
+  if (snapped.shape.y == S3D_SNAPPED_NEVER) return ivec4(0, 0, -1, -1);
+  if (snapped.shape.y == S3D_SNAPPED_RAY_TEST) return ivec4(0, 0, last.x, last.y);
+  ivec2 lo = min(min(ivec2(snapped.xy01.x, snapped.xy01.y), ivec2(snapped.xy01.z, snapped.xy01.w)),
+                 ivec2(snapped.xy23.x, snapped.xy23.y));
+  ivec2 hi = max(max(ivec2(snapped.xy01.x, snapped.xy01.y), ivec2(snapped.xy01.z, snapped.xy01.w)),
+                 ivec2(snapped.xy23.x, snapped.xy23.y));
+  if (snapped.shape.x == 4u) {
+    lo = min(lo, ivec2(snapped.xy23.z, snapped.xy23.w));
+    hi = max(hi, ivec2(snapped.xy23.z, snapped.xy23.w));
+  }
+  // Pixel p's centre lies at p * units + units / 2: the first centre at or past lo, the last at or before hi.
+  const int centre = S3D_SUBPIXEL_UNITS / 2;
+  ivec2 first = max((lo - centre + (S3D_SUBPIXEL_UNITS - 1)) >> S3D_SUBPIXEL_BITS, ivec2(0, 0));
+  ivec2 lastCentre = min((hi - centre) >> S3D_SUBPIXEL_BITS, last);
+  return ivec4(first.x, first.y, lastCentre.x, lastCentre.y);
 }
 
 // The tie rule of the closest hit, on depth keys (device depth times PixelRay::nearer): the smaller key; at equal

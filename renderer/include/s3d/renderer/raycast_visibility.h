@@ -32,6 +32,12 @@ struct RaycastCutouts {
   VkBuffer textureTable = VK_NULL_HANDLE, texels = VK_NULL_HANDLE;
 };
 
+// How the pass finds each pixel's closest triangle. Bins: the view's screen bins list the set-up triangles that may
+// cover their pixels (raycast_shared.h), and a pixel of a complete list tests that list alone; a list past its
+// capacity traverses the tree. Binning costs a pass over every triangle per view, so Automatic bins only trees of
+// at most S3D_RAYCAST_BIN_AUTO_REFERENCES references per bin of the view (docs/RESULTS.md "Screen bins").
+enum class RaycastSearch { Automatic, Bins, Tree };
+
 class RaycastVisibility {
  public:
   explicit RaycastVisibility(vk::Context& context);
@@ -41,6 +47,9 @@ class RaycastVisibility {
   // Uploads the tree (device-local buffers); call again when the scene changes. Throws std::invalid_argument for
   // a scene whose visibility ids are wide (R32G32_UINT): the pass writes narrow ids only.
   void setBvh(const SceneBvh& bvh);
+  void setSearch(RaycastSearch search) { search_ = search; }
+  // Whether a recording at this image size decides pixels by screen bins.
+  bool usesBins(std::uint32_t width, std::uint32_t height) const;
 
   // Records the pass for the pixels of `mask` (ShadeMask's image and threshold; a null image: every pixel):
   // `visibilityIds` (R32_UINT) and `deviceDepth` (R32_SFLOAT), both the mask's size when there is one, created
@@ -48,8 +57,9 @@ class RaycastVisibility {
   // (SceneBvh::castPixel, with a CutoutCoverage where `cutouts` are given); other pixels are not written, but
   // for a region's (RaycastRegion), and with the mask's uncastDepth they get its depth and id 0 (within the
   // region, when there is one). The caller orders it against earlier and later uses of the images with barriers
-  // (it records compute barriers for its own buffers only: the per-view triangle setup). Uses one uniform buffer:
-  // one recording in flight at a time.
+  // (it records compute and indirect-argument barriers for its own buffers only: the per-view triangle setup and
+  // screen bins). Uses one uniform buffer and one set of bins: one recording in flight at a time. The bins are
+  // made at the first recording of a size that uses them (2 x 4 x S3D_RAYCAST_BIN_CAPACITY bytes per bin).
   // Throws std::invalid_argument for images of other formats or sizes, or before setBvh.
   void record(VkCommandBuffer cmd, const RaycastCamera& camera, const ShadeMask& mask, const vk::Image& visibilityIds,
               const vk::Image& deviceDepth, const RaycastRegion& region = {}, const RaycastCutouts& cutouts = {});
@@ -58,12 +68,22 @@ class RaycastVisibility {
   VkPipeline alphaTestPipeline();
   void recordSetup(VkCommandBuffer cmd, const VkDescriptorBufferInfo& constants, const VkDescriptorBufferInfo& triangles,
                    const VkDescriptorBufferInfo& snapped) const;
+  void sizeBins(std::uint32_t width, std::uint32_t height);
+  void recordBins(VkCommandBuffer cmd, const VkDescriptorBufferInfo& constants, const VkDescriptorBufferInfo& snapped) const;
 
   vk::Context& context_;
   vk::PipelineLayout layout_, setupLayout_;
   vk::Unique<VkPipeline> pipeline_, setupPipeline_;
   vk::Buffer constants_, nodes_, triangles_;
   vk::Buffer snapped_;  // every triangle set up for the recorded view (raycast_setup.comp)
+  // The recorded view's screen bins (raycast_bin.comp): counts, lists, and the large triangles' indirect pass.
+  vk::PipelineLayout binLayout_;
+  vk::Unique<VkPipeline> binPipeline_, largeBinPipeline_;
+  vk::Buffer binCounts_, binEntries_, binLarge_;
+  glm::uvec2 binsSize_{0, 0};  // the image size the bins were made for
+  std::uint32_t binsX_ = 0, binsPerLayer_ = 0;
+  bool binning_ = false;  // the recording being made uses bins
+  RaycastSearch search_ = RaycastSearch::Automatic;
   std::uint32_t triangleCount_ = 0, firstPersonFirst_ = 0;
   std::uint32_t worldRoot_ = S3D_BVH_NO_ROOT, firstPersonRoot_ = S3D_BVH_NO_ROOT;
   bool hasCutouts_ = false;  // the tree holds cut-out triangles (S3D_BVH_CUTOUT)
