@@ -27,7 +27,11 @@ constexpr std::uint64_t kRenderHostBytesPerOutputPixel = 65 + 50 + 3 + 16 + 20 +
 constexpr std::uint64_t kRenderHostBytesPerRenderedPixel = 84;
 // The hybrid method per rendered pixel: device: the eye renderer's G-buffer per sample and its resolved images,
 // score bins and masks 16, the displaced eyes 8; host: masks 2, rendered HDR eyes 32.
-constexpr std::uint64_t kHybridDeviceBytesPerRenderedPixel = kDeviceBytesPerRenderedPixel + 16 + 8;
+// Each eye renderer's ray-cast screen bins: two layers' count and S3D_RAYCAST_BIN_CAPACITY (64) entries of 4 bytes
+// per 16x16 pixels, 2.03 bytes, rounded up.
+constexpr std::uint64_t kRaycastBinBytesPerRenderedPixel = 3;
+constexpr std::uint64_t kHybridDeviceBytesPerRenderedPixel =
+    kDeviceBytesPerRenderedPixel + 16 + 8 + kRaycastBinBytesPerRenderedPixel;
 constexpr std::uint64_t kHybridHostBytesPerRenderedPixel = 2 + 32;
 // And per row: the classification's row histograms (2 x 256 bins) and the threshold's split offsets (2).
 constexpr std::uint64_t kHybridDeviceBytesPerRow = 4 * (2 * 256 + 2);
@@ -90,7 +94,9 @@ MemoryEstimate renderMemoryEstimate(std::uint32_t width, std::uint32_t height, s
     estimate.hostBytes += kHybridFixedBytes + kHybridHostBytesPerRenderedPixel * renderedPixels;
     estimate.deviceBytes += (kDeviceBytesPerSample * samples + kHybridDeviceBytesPerRenderedPixel) * renderedPixels +
                             kHybridDeviceBytesPerRow * height;
-    estimate.concurrentDeviceBytes = (kDeviceBytesPerSample * samples + kDeviceBytesPerRenderedPixel) * renderedPixels;
+    estimate.concurrentDeviceBytes =
+        (kDeviceBytesPerSample * samples + kDeviceBytesPerRenderedPixel + kRaycastBinBytesPerRenderedPixel) *
+        renderedPixels;
   }
   if (referenceLayers > 1)
     estimate.hostBytes += (kReferenceLayerHostBytesPerRenderedPixel * (referenceLayers + 1) +
