@@ -37,13 +37,15 @@ void append(uint i, ivec4 bins, uint k) {
 }
 
 void main() {
-  if (kLargeTriangles) {
-    uint i = largeTriangles[gl_WorkGroupID.x];
-    ivec4 bins = binBounds(i);
-    uint count = uint(bins.z - bins.x + 1) * uint(bins.w - bins.y + 1);
-    uint stride = S3D_RAYCAST_BIN_GROUP * gl_NumWorkGroups.y;
-    for (uint k = gl_WorkGroupID.y * S3D_RAYCAST_BIN_GROUP + gl_LocalInvocationID.x; k < count; k += stride)
-      append(i, bins, k);
+  if (kLargeTriangles) {  // workgroup x takes queued triangles x, x + the dispatch's width, ...
+    for (uint queued = gl_WorkGroupID.x; queued < large.dispatch.w; queued += gl_NumWorkGroups.x) {
+      uint i = largeTriangles[queued];
+      ivec4 bins = binBounds(i);
+      uint count = uint(bins.z - bins.x + 1) * uint(bins.w - bins.y + 1);
+      uint stride = S3D_RAYCAST_BIN_GROUP * gl_NumWorkGroups.y;
+      for (uint k = gl_WorkGroupID.y * S3D_RAYCAST_BIN_GROUP + gl_LocalInvocationID.x; k < count; k += stride)
+        append(i, bins, k);
+    }
     return;
   }
   uint i = gl_GlobalInvocationID.x;
@@ -54,6 +56,9 @@ void main() {
   if (count <= S3D_RAYCAST_BIN_DIRECT) {
     for (uint k = 0u; k < count; ++k) append(i, bins, k);
   } else {
-    largeTriangles[atomicAdd(large.dispatch.x, 1u)] = i;
+    uint queued = atomicAdd(large.dispatch.w, 1u);
+    largeTriangles[queued] = i;
+    // The dispatch's width, at most the 65535 workgroups every Vulkan device can dispatch.
+    atomicMax(large.dispatch.x, min(queued + 1u, 65535u));
   }
 }

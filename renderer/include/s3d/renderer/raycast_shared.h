@@ -91,7 +91,8 @@ struct RaycastConstants {
 
 // The indirect pass's arguments and the large triangles it bins (std430).
 struct RaycastBinLarge {
-  uvec4 dispatch;  // x: large triangles so far (workgroups), y: S3D_RAYCAST_BIN_SPLIT, z: 1, w: 0
+  uvec4 dispatch;  // x: workgroups (the queued triangles, at most 65535), y: S3D_RAYCAST_BIN_SPLIT, z: 1,
+                   // w: the queued triangles
 };
 
 // One pixel ray of one layer, what its leaf tests need: the ray from the near plane (t 0) to the far plane (t 1)
