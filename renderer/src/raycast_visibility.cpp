@@ -29,6 +29,7 @@ RaycastVisibility::RaycastVisibility(vk::Context& context) : context_(context) {
       computeBinding(14, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER), computeBinding(15, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER)};
   layout_ = vk::createPushDescriptorLayout(context_, bindings, 0, 0);
   pipeline_ = vk::createComputePipeline(context_, layout_.layout, spirv_raycast_visibility_comp);  // no alpha test
+  // The setup and the bins: a uniform buffer, four storage buffers and up to three words of push constants.
   const VkDescriptorSetLayoutBinding setupBindings[] = {
       computeBinding(0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER), computeBinding(1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER),
       computeBinding(2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER), computeBinding(3, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER),
@@ -36,14 +37,8 @@ RaycastVisibility::RaycastVisibility(vk::Context& context) : context_(context) {
   setupLayout_ = vk::createPushDescriptorLayout(context_, setupBindings, 3 * sizeof(std::uint32_t),
                                                 VK_SHADER_STAGE_COMPUTE_BIT);
   setupPipeline_ = vk::createComputePipeline(context_, setupLayout_.layout, spirv_raycast_setup_comp);
-  const VkDescriptorSetLayoutBinding binBindings[] = {
-      computeBinding(0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER), computeBinding(1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER),
-      computeBinding(2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER), computeBinding(3, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER),
-      computeBinding(4, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER)};
-  binLayout_ = vk::createPushDescriptorLayout(context_, binBindings, 2 * sizeof(std::uint32_t),
-                                              VK_SHADER_STAGE_COMPUTE_BIT);
-  binPipeline_ = vk::createComputePipeline(context_, binLayout_.layout, spirv_raycast_bin_comp);
-  largeBinPipeline_ = vk::createComputePipeline(context_, binLayout_.layout, spirv_raycast_bin_comp,
+  binPipeline_ = vk::createComputePipeline(context_, setupLayout_.layout, spirv_raycast_bin_comp);
+  largeBinPipeline_ = vk::createComputePipeline(context_, setupLayout_.layout, spirv_raycast_bin_comp,
                                                 vk::SpecializationWords({VK_TRUE}));
   constants_ = vk::createBuffer(context_, sizeof(gpu::RaycastConstants), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
                                 vk::MemoryLocation::HostVisible);
@@ -146,8 +141,8 @@ void RaycastVisibility::recordBins(VkCommandBuffer cmd, const VkDescriptorBuffer
   for (std::uint32_t i : {1u, 2u, 3u, 4u}) writes[i].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
   const std::uint32_t push[2] = {triangleCount_, firstPersonFirst_};
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, binPipeline_.get());
-  context_.cmdPushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, binLayout_.layout, 0, 5, writes);
-  vkCmdPushConstants(cmd, binLayout_.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push, push);
+  context_.cmdPushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, setupLayout_.layout, 0, 5, writes);
+  vkCmdPushConstants(cmd, setupLayout_.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push, push);
   vkCmdDispatch(cmd, (triangleCount_ + S3D_RAYCAST_BIN_GROUP - 1) / S3D_RAYCAST_BIN_GROUP, 1, 1);
   vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, storage,
                     VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT,

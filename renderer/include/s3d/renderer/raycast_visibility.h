@@ -77,8 +77,7 @@ class RaycastVisibility {
   vk::Buffer constants_, nodes_, triangles_;
   vk::Buffer snapped_;  // every triangle set up for the recorded view (raycast_setup.comp)
   // The recorded view's screen bins (raycast_bin.comp): counts, lists, and the large triangles' indirect pass.
-  vk::PipelineLayout binLayout_;
-  vk::Unique<VkPipeline> binPipeline_, largeBinPipeline_;
+  vk::Unique<VkPipeline> binPipeline_, largeBinPipeline_;  // in setupLayout_
   vk::Buffer binCounts_, binEntries_, binLarge_;
   glm::uvec2 binsSize_{0, 0};  // the image size the bins were made for
   std::uint32_t binsX_ = 0, binsPerLayer_ = 0;
