@@ -319,6 +319,23 @@ TEST(RaycastBins, ATriangleCoversNoPixelOutsideItsPixelBounds) {
   EXPECT_GT(covered, std::size_t(width) * height);  // the scenes fill their views
 }
 
+// Automatic search bins a tree of at most S3D_RAYCAST_BIN_AUTO_REFERENCES references per bin of the view (binning
+// costs a pass over every triangle, and long lists overflow): the courtyard's tree at 1920x1080 (8,160 bins), not
+// in a 64x32 view (8 bins); Bins and Tree hold whatever the size.
+TEST_F(RaycastVisibilityTest, AutomaticSearchBinsTreesOfFewReferencesPerBin) {
+  const SceneBvh bvh = SceneBvh::build(renderer::makeBuiltInScene("courtyard"));
+  ASSERT_GT(bvh.triangles.size(), std::size_t(8 * S3D_RAYCAST_BIN_AUTO_REFERENCES));
+  ASSERT_LT(bvh.triangles.size(), std::size_t(8160 * S3D_RAYCAST_BIN_AUTO_REFERENCES));
+  renderer::RaycastVisibility pass(context());
+  pass.setBvh(bvh);
+  EXPECT_TRUE(pass.usesBins(1920, 1080));
+  EXPECT_FALSE(pass.usesBins(64, 32));
+  pass.setSearch(renderer::RaycastSearch::Bins);
+  EXPECT_TRUE(pass.usesBins(64, 32));
+  pass.setSearch(renderer::RaycastSearch::Tree);
+  EXPECT_FALSE(pass.usesBins(1920, 1080));
+}
+
 // A bin listing more triangles than its capacity leaves its pixels to the tree: the fence's chain link in a
 // 32x18 view (2x2 bins, thousands of triangles each) still gives the reference traversal's ids and depths.
 TEST_F(RaycastVisibilityTest, AnOverfullBinTraversesTheTree) {
