@@ -59,7 +59,8 @@ class RaycastVisibility {
   // region, when there is one). The caller orders it against earlier and later uses of the images with barriers
   // (it records compute and indirect-argument barriers for its own buffers only: the per-view triangle setup and
   // screen bins). Uses one uniform buffer and one set of bins: one recording in flight at a time. The bins are
-  // made at the first recording of a size that uses them (2 x 4 x S3D_RAYCAST_BIN_CAPACITY bytes per bin).
+  // made at the first recording of a size that uses them (per bin: two layers of a count and
+  // S3D_RAYCAST_BIN_CAPACITY entries, 4 bytes each).
   // Throws std::invalid_argument for images of other formats or sizes, or before setBvh.
   void record(VkCommandBuffer cmd, const RaycastCamera& camera, const ShadeMask& mask, const vk::Image& visibilityIds,
               const vk::Image& deviceDepth, const RaycastRegion& region = {}, const RaycastCutouts& cutouts = {});
