@@ -1,6 +1,7 @@
 #include "s3d/renderer/raycast_visibility.h"
 
 #include <algorithm>
+#include <array>
 #include <cstring>
 #include <span>
 #include <stdexcept>
@@ -80,45 +81,66 @@ VkPipeline RaycastVisibility::alphaTestPipeline() {
   return alphaTestPipeline_.get();
 }
 
+namespace {
+
+constexpr VkAccessFlags2 kStorageAccess = VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
+
+void computeToCompute(VkCommandBuffer cmd) {
+  vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, kStorageAccess, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                    kStorageAccess);
+}
+
+// Bins of S3D_RAYCAST_BIN_SIZE pixels across and down an image.
+glm::uvec2 binGrid(std::uint32_t width, std::uint32_t height) {
+  return {(width + S3D_RAYCAST_BIN_SIZE - 1) / S3D_RAYCAST_BIN_SIZE, (height + S3D_RAYCAST_BIN_SIZE - 1) / S3D_RAYCAST_BIN_SIZE};
+}
+
+}  // namespace
+
+// A pass of setupLayout_: the pipeline, the uniform constants at binding 0, four storage buffers at 1-4 and the
+// push constants.
+void RaycastVisibility::bindSetupLayoutPass(VkCommandBuffer cmd, VkPipeline pipeline, const VkDescriptorBufferInfo& constants,
+                                            const std::array<VkDescriptorBufferInfo, 4>& buffers,
+                                            std::span<const std::uint32_t> push) const {
+  VkWriteDescriptorSet writes[] = {vk::uniformBufferWrite(0, &constants), vk::uniformBufferWrite(1, &buffers[0]),
+                                   vk::uniformBufferWrite(2, &buffers[1]), vk::uniformBufferWrite(3, &buffers[2]),
+                                   vk::uniformBufferWrite(4, &buffers[3])};
+  for (std::uint32_t i : {1u, 2u, 3u, 4u}) writes[i].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
+  context_.cmdPushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, setupLayout_.layout, 0, 5, writes);
+  vkCmdPushConstants(cmd, setupLayout_.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, std::uint32_t(push.size_bytes()),
+                     push.data());
+}
+
 // Every triangle set up for the view (after the previous recording's casts read the buffer), then ordered before
 // this recording's casts.
 void RaycastVisibility::recordSetup(VkCommandBuffer cmd, const VkDescriptorBufferInfo& constants,
                                     const VkDescriptorBufferInfo& triangles, const VkDescriptorBufferInfo& snapped) const {
-  auto computeToCompute = [cmd] {
-    constexpr VkAccessFlags2 storage = VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
-    vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, storage, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, storage);
-  };
-  computeToCompute();
+  computeToCompute(cmd);
   if (triangleCount_ > 0) {
     const std::uint32_t binCount = binning_ ? 2 * binsPerLayer_ : 0;
     // Without bins the triangles stand in for their buffers (the shader does not write them then).
-    VkDescriptorBufferInfo countInfo{binning_ ? binCounts_.buffer : triangles.buffer, 0, VK_WHOLE_SIZE};
-    VkDescriptorBufferInfo largeInfo{binning_ ? binLarge_.buffer : triangles.buffer, 0, VK_WHOLE_SIZE};
-    VkWriteDescriptorSet writes[] = {vk::uniformBufferWrite(0, &constants), vk::uniformBufferWrite(1, &triangles),
-                                     vk::uniformBufferWrite(2, &snapped), vk::uniformBufferWrite(3, &countInfo),
-                                     vk::uniformBufferWrite(4, &largeInfo)};
-    for (std::uint32_t i : {1u, 2u, 3u, 4u}) writes[i].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, setupPipeline_.get());
-    context_.cmdPushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, setupLayout_.layout, 0, 5, writes);
+    const VkDescriptorBufferInfo countInfo{binning_ ? binCounts_.buffer : triangles.buffer, 0, VK_WHOLE_SIZE};
+    const VkDescriptorBufferInfo largeInfo{binning_ ? binLarge_.buffer : triangles.buffer, 0, VK_WHOLE_SIZE};
     const std::uint32_t push[3] = {triangleCount_, firstPersonFirst_, binCount};
-    vkCmdPushConstants(cmd, setupLayout_.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push, push);
+    bindSetupLayoutPass(cmd, setupPipeline_.get(), constants, {triangles, snapped, countInfo, largeInfo}, push);
     vkCmdDispatch(cmd, (std::max(triangleCount_, binCount) + 63) / 64, 1, 1);
   }
-  computeToCompute();
+  computeToCompute(cmd);
 }
 
 bool RaycastVisibility::usesBins(std::uint32_t width, std::uint32_t height) const {
   if (search_ != RaycastSearch::Automatic) return search_ == RaycastSearch::Bins;
-  const std::uint64_t bins = std::uint64_t((width + S3D_RAYCAST_BIN_SIZE - 1) / S3D_RAYCAST_BIN_SIZE) *
-                             ((height + S3D_RAYCAST_BIN_SIZE - 1) / S3D_RAYCAST_BIN_SIZE);
-  return triangleCount_ <= bins * S3D_RAYCAST_BIN_AUTO_REFERENCES;
+  const glm::uvec2 grid = binGrid(width, height);
+  return triangleCount_ <= std::uint64_t(grid.x) * grid.y * S3D_RAYCAST_BIN_AUTO_REFERENCES;
 }
 
 // Bins of S3D_RAYCAST_BIN_SIZE pixels for images of this size (made again only when the size changes).
 void RaycastVisibility::sizeBins(std::uint32_t width, std::uint32_t height) {
   if (binsSize_ == glm::uvec2(width, height)) return;
-  binsX_ = (width + S3D_RAYCAST_BIN_SIZE - 1) / S3D_RAYCAST_BIN_SIZE;
-  binsPerLayer_ = binsX_ * ((height + S3D_RAYCAST_BIN_SIZE - 1) / S3D_RAYCAST_BIN_SIZE);
+  const glm::uvec2 grid = binGrid(width, height);
+  binsX_ = grid.x;
+  binsPerLayer_ = grid.x * grid.y;
   binCounts_ = vk::createBuffer(context_, VkDeviceSize(2) * binsPerLayer_ * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                                 vk::MemoryLocation::Device);
   binEntries_ = vk::createBuffer(context_, VkDeviceSize(2) * binsPerLayer_ * S3D_RAYCAST_BIN_CAPACITY * 4,
@@ -131,25 +153,18 @@ void RaycastVisibility::sizeBins(std::uint32_t width, std::uint32_t height) {
 void RaycastVisibility::recordBins(VkCommandBuffer cmd, const VkDescriptorBufferInfo& constants,
                                    const VkDescriptorBufferInfo& snapped) const {
   if (triangleCount_ == 0) return;
-  constexpr VkAccessFlags2 storage = VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
-  VkDescriptorBufferInfo countInfo{binCounts_.buffer, 0, VK_WHOLE_SIZE};
-  VkDescriptorBufferInfo entryInfo{binEntries_.buffer, 0, VK_WHOLE_SIZE};
-  VkDescriptorBufferInfo largeInfo{binLarge_.buffer, 0, VK_WHOLE_SIZE};
-  VkWriteDescriptorSet writes[] = {vk::uniformBufferWrite(0, &constants), vk::uniformBufferWrite(1, &snapped),
-                                   vk::uniformBufferWrite(2, &countInfo), vk::uniformBufferWrite(3, &entryInfo),
-                                   vk::uniformBufferWrite(4, &largeInfo)};
-  for (std::uint32_t i : {1u, 2u, 3u, 4u}) writes[i].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+  const VkDescriptorBufferInfo countInfo{binCounts_.buffer, 0, VK_WHOLE_SIZE};
+  const VkDescriptorBufferInfo entryInfo{binEntries_.buffer, 0, VK_WHOLE_SIZE};
+  const VkDescriptorBufferInfo largeInfo{binLarge_.buffer, 0, VK_WHOLE_SIZE};
   const std::uint32_t push[2] = {triangleCount_, firstPersonFirst_};
-  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, binPipeline_.get());
-  context_.cmdPushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, setupLayout_.layout, 0, 5, writes);
-  vkCmdPushConstants(cmd, setupLayout_.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push, push);
+  bindSetupLayoutPass(cmd, binPipeline_.get(), constants, {snapped, countInfo, entryInfo, largeInfo}, push);
   vkCmdDispatch(cmd, (triangleCount_ + S3D_RAYCAST_BIN_GROUP - 1) / S3D_RAYCAST_BIN_GROUP, 1, 1);
-  vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, storage,
+  vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, kStorageAccess,
                     VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT,
-                    storage | VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT);
-  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, largeBinPipeline_.get());
+                    kStorageAccess | VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT);
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, largeBinPipeline_.get());  // the same descriptors and push
   vkCmdDispatchIndirect(cmd, binLarge_.buffer, 0);
-  vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, storage, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, storage);
+  computeToCompute(cmd);
 }
 
 void RaycastVisibility::record(VkCommandBuffer cmd, const RaycastCamera& camera, const ShadeMask& mask,

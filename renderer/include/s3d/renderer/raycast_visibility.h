@@ -4,7 +4,9 @@
 // there (visibility id and device depth), so the G-buffer resolve and lighting can shade those pixels without a
 // raster pass: compute runs on all of a GPU where the raster side is a small part of it, and an eye needs no
 // depth clear. Agreement with the raster pass: docs/DESIGN.md "Ray-cast visibility".
+#include <array>
 #include <cstdint>
+#include <span>
 
 #include "s3d/renderer/scene_bvh.h"
 #include "s3d/renderer/shade_mask.h"
@@ -67,6 +69,8 @@ class RaycastVisibility {
 
  private:
   VkPipeline alphaTestPipeline();
+  void bindSetupLayoutPass(VkCommandBuffer cmd, VkPipeline pipeline, const VkDescriptorBufferInfo& constants,
+                           const std::array<VkDescriptorBufferInfo, 4>& buffers, std::span<const std::uint32_t> push) const;
   void recordSetup(VkCommandBuffer cmd, const VkDescriptorBufferInfo& constants, const VkDescriptorBufferInfo& triangles,
                    const VkDescriptorBufferInfo& snapped) const;
   void sizeBins(std::uint32_t width, std::uint32_t height);
