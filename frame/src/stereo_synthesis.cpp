@@ -14,6 +14,13 @@ std::string sizeText(std::uint32_t width, std::uint32_t height) {
   return std::to_string(width) + "x" + std::to_string(height);
 }
 
+// Where a surface path's time goes in the automatic choice's record.
+std::optional<double>& timedPath(HybridSynthesis::SurfaceChoice& choice, HybridSurfaces surfaces, bool everyPixel) {
+  if (surfaces == HybridSurfaces::Mixed) return everyPixel ? choice.everyPixelMixedMs : choice.mixedMs;
+  if (everyPixel) return choice.everyPixelRaycastMs;
+  return surfaces == HybridSurfaces::Raster ? choice.rasterMs : choice.raycastMs;
+}
+
 }  // namespace
 
 StereoSynthesis::StereoSynthesis(vk::Context& context, const StereoSynthesisDescription& description)
@@ -112,12 +119,7 @@ HybridSynthesis StereoSynthesis::hybridWithChosenSurfaces(const StereoSynthesisF
   for (const SurfacePath& candidate : paths) {
     HybridSynthesis result = run(candidate.surfaces, candidate.everyPixel);
     const std::optional<double> ms = result.timings.total;
-    const bool mixed = candidate.surfaces == HybridSurfaces::Mixed;
-    std::optional<double>& slot = candidate.everyPixel ? (mixed ? choice.everyPixelMixedMs : choice.everyPixelRaycastMs)
-                                  : mixed                ? choice.mixedMs
-                                  : candidate.surfaces == HybridSurfaces::Raster ? choice.rasterMs
-                                                                                 : choice.raycastMs;
-    slot = ms;
+    timedPath(choice, candidate.surfaces, candidate.everyPixel) = ms;
     if (!chosen || (ms && chosen->timings.total && *ms < *chosen->timings.total)) {
       chosen = std::move(result);
       path = candidate;
