@@ -1,11 +1,11 @@
 # `cmake --install`: the libraries a host links (s3d::vkcore, s3d::stereo, s3d::renderer, s3d::frame, s3d::comfort, s3d::hud,
-# s3d::capi for C hosts),
+# s3d::io for image and depth files, s3d::capi for C hosts),
 # their public headers (shaders stay embedded in the libraries), an exported CMake package with a version file,
 # and a pkg-config file. A consumer: find_package(s3d 0.4 CONFIG REQUIRED) + target_link_libraries(app s3d::stereo).
 include(GNUInstallDirs)
 include(CMakePackageConfigHelpers)
 
-set(S3D_PACKAGE_LIBRARIES vkcore stereo renderer frame comfort hud capi)
+set(S3D_PACKAGE_LIBRARIES vkcore stereo renderer frame comfort hud io capi)
 set(S3D_PACKAGE_TARGETS "")
 foreach(name ${S3D_PACKAGE_LIBRARIES})
   set_target_properties(s3d_${name} PROPERTIES EXPORT_NAME ${name})
@@ -15,7 +15,7 @@ endforeach()
 
 install(TARGETS ${S3D_PACKAGE_TARGETS} EXPORT s3dTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR})
-foreach(dir vk/include stereo/include renderer/include frame/include comfort/include hud/include capi/include)
+foreach(dir vk/include stereo/include renderer/include frame/include comfort/include hud/include io/include capi/include)
   install(DIRECTORY ${PROJECT_SOURCE_DIR}/${dir}/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 endforeach()
 

@@ -13,10 +13,9 @@
 #include <string>
 #include <vector>
 
-#include <stb/stb_image_write.h>  // Debian's libstb: the implementation is in libstb.so
-
 #include <s3d/comfort/host_comfort_frame.h>
 #include <s3d/hud/hud_pass.h>
+#include <s3d/io/image_io.h>
 #include <s3d/stereo/host_stereo_pass.h>
 #include <s3d/stereo/output_formats.h>
 #include <s3d/stereo/stereo.h>
@@ -64,10 +63,10 @@ s3d::ImageRGBA8 readRgba8(const host::Buffer& buffer, std::uint32_t width, std::
   return image;
 }
 
-bool writePng(const std::string& path, s3d::ImageRGBA8 image) {
+// Written whole or not at all (s3d::io writes a temporary file, then renames it); throws naming the file.
+void writePng(const std::string& path, s3d::ImageRGBA8 image) {
   for (std::size_t i = 3; i < image.pixels.size(); i += 4) image.pixels[i] = 255;  // the packed alpha is no mask
-  return stbi_write_png(path.c_str(), int(image.width), int(image.height), 4, image.pixels.data(),
-                        int(image.width * 4)) != 0;
+  s3d::io::writePng(path, image);
 }
 
 }  // namespace
@@ -234,15 +233,11 @@ int main(int argc, char** argv) try {
   const int sideBySideError = largestDifference(
       gpuSideBySide, s3d::stereo::makeSideBySide(eyes.left, eyes.right, s3d::stereo::PackingMode::Half));
 
-  const bool written = writePng(outputFolder + "/anaglyph.png", gpuAnaglyph) &&
-                       writePng(outputFolder + "/side_by_side.png", gpuSideBySide);
+  writePng(outputFolder + "/anaglyph.png", gpuAnaglyph);
+  writePng(outputFolder + "/side_by_side.png", gpuSideBySide);
   std::printf("device %s: anaglyph %d, side-by-side %d levels from the C++ reference; validation layer %s, %d messages\n",
               device.name.c_str(), anaglyphError, sideBySideError, device.validation ? "on" : "not installed",
               device.validationMessages);
-  if (!written) {
-    std::fprintf(stderr, "s3d_host: cannot write the PNG files into '%s'\n", outputFolder.c_str());
-    return 1;
-  }
   // Eyes within 1 level of the reference (its rounding) and the HUD's 1 level (a float division an ulp apart);
   // half packing filters pixel pairs, the anaglyph mixes both eyes' differences through its matrix.
   const bool agrees = anaglyphError <= 3 && sideBySideError <= 2;

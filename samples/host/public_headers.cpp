@@ -12,6 +12,9 @@
 #include <s3d/hud/hud_pass_shared.h>
 #include <s3d/hud/layer_blend.h>
 #include <s3d/hud/overlay.h>
+#include <s3d/io/depth_io.h>
+#include <s3d/io/image_io.h>
+#include <s3d/io/output_transaction.h>
 #include <s3d/stereo/host_stereo_pass.h>
 #include <s3d/stereo/output_formats.h>
 #include <s3d/stereo/stereo.h>

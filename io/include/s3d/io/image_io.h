@@ -1,5 +1,6 @@
 #pragma once
-// File input/output for the samples: PNG display images, OpenEXR HDR colour + linear depth, text reports.
+// Image files: PNG display images, OpenEXR HDR colour + linear depth, text reports (a host's saved stereo frame,
+// the tools' outputs).
 // Every write is atomic (temporary file in the same folder, then rename), so a crash or error never
 // leaves a truncated output behind; failures throw std::runtime_error naming the file and the reason.
 #include <cstdint>
