@@ -71,6 +71,8 @@ void writePng(const std::string& path, s3d::ImageRGBA8 image) {
 
 }  // namespace
 
+// One frame in a host's order, top to bottom (set up, record, submit, check, write): longer than 80 lines so that the
+// example reads as a walkthrough without jumping between helpers.
 int main(int argc, char** argv) try {
   const std::string outputFolder = argc > 1 ? argv[1] : ".";
   host::Device device(/*validation, when the layer is installed*/ true);

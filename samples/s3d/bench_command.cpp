@@ -23,6 +23,7 @@ namespace {
 
 class BenchCommand final : public Command {
  public:
+  // The option table, one declaration per option in --help's order: longer than 80 lines because it is a list.
   explicit BenchCommand(CLI::App& app) {
     subcommand = app.add_subcommand(
         "bench",

@@ -29,6 +29,7 @@ void drawProgress(std::size_t done, std::size_t total, const std::string& key) {
 
 class ConvertCommand final : public Command {
  public:
+  // The option table, one declaration per option in --help's order: longer than 80 lines because it is a list.
   explicit ConvertCommand(CLI::App& app) {
     subcommand = app.add_subcommand(
         "convert",

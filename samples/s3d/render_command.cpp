@@ -20,6 +20,7 @@ namespace {
 
 class RenderCommand final : public Command {
  public:
+  // The option table, one declaration per option in --help's order: longer than 80 lines because it is a list.
   explicit RenderCommand(CLI::App& app) {
     subcommand = app.add_subcommand(
         "render",
