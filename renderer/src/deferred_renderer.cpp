@@ -18,7 +18,7 @@ std::vector<DeferredRenderer::Impl::ScheduledPass> DeferredRenderer::Impl::sched
   const bool withAmbientOcclusion = scene.ambientOcclusion;
   if (masked) {
     passes.push_back({"mask-tiles", [this, mask](VkCommandBuffer cmd) {
-                        tiles->recordReset(cmd, mask.image, !raycastFrame);
+                        tiles->recordReset(cmd, frameBuffer.buffer, mask.image, !raycastFrame);
                         tiles->recordBuild(cmd, frameBuffer.buffer, *mask.image);
                       }});
     if (withAmbientOcclusion && !maskedGBufferWritesEveryPixel() && !raycastFrame)
@@ -28,13 +28,13 @@ std::vector<DeferredRenderer::Impl::ScheduledPass> DeferredRenderer::Impl::sched
   // shading from a counting pass of its own.
   if (raycastFrame)
     passes.push_back({"raycast", [this, view, mask](VkCommandBuffer cmd) {
-                        if (mask.image == nullptr) tiles->recordReset(cmd, nullptr, false);
+                        if (mask.image == nullptr) tiles->recordReset(cmd, frameBuffer.buffer, nullptr, false);
                         recordRaycastSurfaces(cmd, view, mask);
                       }});
   else
     passes.push_back({"gbuffer",
                       [this, mask](VkCommandBuffer cmd) {
-                        if (mask.image == nullptr) tiles->recordReset(cmd, nullptr, true);
+                        if (mask.image == nullptr) tiles->recordReset(cmd, frameBuffer.buffer, nullptr, true);
                         recordGBuffer(cmd, mask);
                       },
                       S3D_COUNT_GBUFFER});

@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <s3d_spirv/gbuffer_count_comp.h>
 #include <s3d_spirv/mask_tiles_comp.h>
+#include <s3d_spirv/tile_reset_comp.h>
 // clang-format on
 
 namespace s3d::renderer::detail {
@@ -59,7 +60,7 @@ TileLists::TileLists(vk::Context& context, std::uint32_t renderWidth, std::uint3
   const VkDeviceSize entries = S3D_TILE_LIST_WORDS * VkDeviceSize(tilesX_) * tilesY_ * sizeof(std::uint32_t);
   buffer_ = vk::createBuffer(context_, sizeof(gpu::TileHeader) + entries,
                              VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT |
-                                 VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+                                 VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
                              vk::MemoryLocation::Device);
   readback_ = vk::createBuffer(context_, sizeof(gpu::TileHeader), VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                                vk::MemoryLocation::HostVisible);
@@ -74,29 +75,32 @@ TileLists::TileLists(vk::Context& context, std::uint32_t renderWidth, std::uint3
                                                         computeBinding(2, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE)};
   buildLayout_ = vk::createPushDescriptorLayout(context_, buildBindings, 0, 0);
   build_ = createTilePipeline(context_, buildLayout_.layout, spirv_mask_tiles_comp, true, false);
+  reset_ = createTilePipeline(context_, buildLayout_.layout, spirv_tile_reset_comp, false, false);
+  resetMasked_ = createTilePipeline(context_, buildLayout_.layout, spirv_tile_reset_comp, true, false);
   const VkDescriptorSetLayoutBinding countBindings[] = {
       computeBinding(0, ubo), computeBinding(1, ssbo), computeBinding(2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER)};
   countLayout_ = vk::createPushDescriptorLayout(context_, countBindings, 0, 0);
   count_ = createTilePipeline(context_, countLayout_.layout, spirv_gbuffer_count_comp, false, true);
 }
 
-void TileLists::recordReset(VkCommandBuffer cmd, const vk::Image* mask, bool fragmentReads) {
-  // Earlier frames' compute reads and indirect reads finish before the reset overwrites the buffer.
+void TileLists::recordReset(VkCommandBuffer cmd, VkBuffer frameBuffer, const vk::Image* mask, bool fragmentReads) {
+  // Earlier frames' compute reads, indirect reads and counter read-back finish before the reset overwrites the buffer.
   vk::memoryBarrier(cmd, kComputeAndIndirect | VK_PIPELINE_STAGE_2_COPY_BIT, kStorageAndIndirect,
-                VK_PIPELINE_STAGE_2_CLEAR_BIT | VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
-  gpu::TileHeader header{};
-  header.lightingDispatch = glm::uvec4(0, 1, 1, 0);
-  header.ambientDispatch = glm::uvec4(0, 1, 1, 0);
-  for (glm::uvec4& dispatch : header.tileClassDispatch) dispatch = glm::uvec4(0, 1, 1, 0);
-  vkCmdUpdateBuffer(cmd, buffer_.buffer, 0, sizeof(header), &header);
-  if (mask != nullptr) {
-    vkCmdFillBuffer(cmd, buffer_.buffer, sizeof(header), VkDeviceSize(tilesX_) * tilesY_ * sizeof(std::uint32_t), 0);
-    // The host wrote the mask in an earlier submission (or earlier in its command buffer): make it visible.
+                    VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+  VkDescriptorBufferInfo frameInfo{frameBuffer, 0, VK_WHOLE_SIZE};
+  VkDescriptorBufferInfo tileInfo = descriptor();
+  VkDescriptorImageInfo maskInfo = maskDescriptor(mask);
+  VkWriteDescriptorSet writes[] = {vk::uniformBufferWrite(0, &frameInfo), vk::uniformBufferWrite(1, &tileInfo),
+                                   vk::storageImageWrite(2, &maskInfo)};
+  writes[1].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, mask != nullptr ? resetMasked_ : reset_);
+  context_.cmdPushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, buildLayout_.layout, 0, 3, writes);
+  vkCmdDispatch(cmd, mask != nullptr ? groups(tilesX_ * tilesY_, S3D_TILE_RESET_GROUP_SIZE) : 1, 1, 1);
+  if (mask != nullptr)  // the host wrote the mask in an earlier submission (or earlier in its command buffer)
     vk::transition(cmd, *mask, {VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_WRITE_BIT},
                    fragmentReads ? kShadeMaskRead : kShadeMaskComputeRead);
-  }
-  vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_CLEAR_BIT | VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
-                kComputeAndIndirect, kStorageAndIndirect);
+  vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                    kComputeAndIndirect, kStorageAndIndirect);
 }
 
 void TileLists::recordBuild(VkCommandBuffer cmd, VkBuffer frameBuffer, const vk::Image& mask) {

@@ -65,11 +65,12 @@ class TileLists {
   static constexpr VkDeviceSize kMaskedTilesDispatch = offsetof(gpu::TileHeader, lightingDispatch);
   static constexpr VkDeviceSize kAmbientTilesDispatch = offsetof(gpu::TileHeader, ambientDispatch);
 
-  // Zeroes the counters and the dispatch counts (and, for a masked render, the ambient-region flags), then
-  // makes the buffer readable and writable by compute and readable as indirect arguments. `mask` (masked
-  // renders): the host's image, made readable after any earlier write: by compute, and by the fragment stage
-  // where `fragmentReads` (a raster G-buffer; a compute-only frame names no graphics stage).
-  void recordReset(VkCommandBuffer cmd, const vk::Image* mask, bool fragmentReads);
+  // Zeroes the counters and the dispatch counts (and, for a masked render, the ambient-region flags) in a compute
+  // dispatch reading the frame constants, then makes the buffer readable and writable by compute and readable as
+  // indirect arguments. `mask` (masked renders): the host's image, made readable after any earlier write: by
+  // compute, and by the fragment stage where `fragmentReads` (a raster G-buffer; a compute-only frame names no
+  // graphics stage).
+  void recordReset(VkCommandBuffer cmd, VkBuffer frameBuffer, const vk::Image* mask, bool fragmentReads);
   // mask-tiles: reads the frame constants and the mask; writes the lists and dispatch counts, readable by the
   // compute passes and their indirect dispatches after it.
   void recordBuild(VkCommandBuffer cmd, VkBuffer frameBuffer, const vk::Image& mask);
@@ -94,7 +95,7 @@ class TileLists {
   vk::Buffer readback_;  // host visible: the header
   vk::Image placeholderMask_;
   vk::PipelineLayout buildLayout_, countLayout_;
-  vk::Unique<VkPipeline> build_, count_;
+  vk::Unique<VkPipeline> build_, count_, reset_, resetMasked_;
 };
 
 }  // namespace s3d::renderer::detail

@@ -107,7 +107,7 @@ HybridRowShape hybridRowShapeFor(const vk::Context& context) {
 HybridPass::HybridPass(const vk::Context& context, std::optional<HybridRowShape> shape)
     : context_(&context),
       shape_(checkedShape(context, shape)),
-      gridDepthLayout_(storageImageLayout(context, 2)),
+      gridDepthLayout_(storageImageLayout(context, 3)),
       classifyLayout_(storageImageLayout(context, 5)),
       thresholdLayout_(storageImageLayout(context, 4)),
       maskLayout_(storageImageLayout(context, 6)),
@@ -162,18 +162,20 @@ void HybridPass::recordMasks(VkCommandBuffer cmd, const vk::Image& linearDepth, 
                                  &images.splitOffsets, &images.leftMask, &images.rightMask})
     vk::transition(cmd, *image, previous, vk::kComputeWrite);
   if (c.cell > 1) vk::transition(cmd, images.gridDepth, previous, vk::kComputeWrite);
-  vk::transition(cmd, images.histogram, previous, kCleared);
-  const VkClearColorValue zero{};
-  const VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-  vkCmdClearColorImage(cmd, images.histogram.image, VK_IMAGE_LAYOUT_GENERAL, &zero, 1, &range);
-  vk::transition(cmd, images.histogram, kCleared, kAtomics);
-
   const vk::Image* classifiedDepth = &linearDepth;
-  if (c.cell > 1) {  // the cells' nearest depths, classified as pixels
-    dispatch(*context_, cmd, gridDepth_.get(), gridDepthLayout_.layout, {&linearDepth, &images.gridDepth}, c,
-             groups(grid.width), groups(grid.height));
+  if (c.cell > 1) {  // the cells' nearest depths, classified as pixels; the pass zeroes the histogram too
+    vk::transition(cmd, images.histogram, previous, vk::kComputeWrite);
+    dispatch(*context_, cmd, gridDepth_.get(), gridDepthLayout_.layout,
+             {&linearDepth, &images.gridDepth, &images.histogram}, c, groups(grid.width), groups(grid.height));
     vk::transition(cmd, images.gridDepth, vk::kComputeWrite, vk::kComputeRead);
+    vk::transition(cmd, images.histogram, vk::kComputeWrite, kAtomics);
     classifiedDepth = &images.gridDepth;
+  } else {
+    vk::transition(cmd, images.histogram, previous, kCleared);
+    const VkClearColorValue zero{};
+    const VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+    vkCmdClearColorImage(cmd, images.histogram.image, VK_IMAGE_LAYOUT_GENERAL, &zero, 1, &range);
+    vk::transition(cmd, images.histogram, kCleared, kAtomics);
   }
   dispatch(*context_, cmd, classify_.forTaps(grid.baseTapCount), classifyLayout_.layout,
            {classifiedDepth, &images.leftBins, &images.rightBins, &images.histogram, &images.rowHistograms}, grid,

@@ -16,6 +16,7 @@ S3D_GPU_BEGIN
 // Tiles: the lighting pass shades one tile of S3D_TILE_SIZE^2 render pixels per workgroup, one thread per
 // pixel; the half-resolution ambient occlusion covers the same tile with one 8x8 group of its texels.
 #define S3D_TILE_SIZE 16
+#define S3D_TILE_RESET_GROUP_SIZE 256  // tile_reset.comp: one flag word per invocation
 #define S3D_MAX_LIGHTS 256  // point and spot lights of a scene: one bit each in a tile's light mask
 #define S3D_LIGHT_MASK_WORDS (S3D_MAX_LIGHTS / 32)
 // A tile's light list: a word with the count of its lights and (bits 16-31) of its shadowed ones, then the lights'
