@@ -2,10 +2,9 @@
 # package installs (a library's public include folder) or the samples' own; no sample reaches into a library's
 # sources with a relative path. Run: cmake -DSOURCE_DIR=<repo> -P dogfood_public_headers.cmake
 # The folders cmake/Install.cmake installs.
-set(installed vk/include stereo/include renderer/include frame/include comfort/include hud/include capi/include)
-set(own samples/app/include samples/tune/include samples/io/include)
-file(GLOB_RECURSE sources "${SOURCE_DIR}/samples/app/*" "${SOURCE_DIR}/samples/tune/*" "${SOURCE_DIR}/samples/s3d/*"
-     "${SOURCE_DIR}/samples/io/*")
+set(installed vk/include stereo/include renderer/include frame/include comfort/include hud/include io/include capi/include)
+set(own samples/app/include samples/tune/include)
+file(GLOB_RECURSE sources "${SOURCE_DIR}/samples/app/*" "${SOURCE_DIR}/samples/tune/*" "${SOURCE_DIR}/samples/s3d/*")
 list(FILTER sources INCLUDE REGEX "\\.(h|cpp)$")
 set(problems "")
 foreach(source ${sources})
