@@ -83,18 +83,25 @@ TileLists::TileLists(vk::Context& context, std::uint32_t renderWidth, std::uint3
   count_ = createTilePipeline(context_, countLayout_.layout, spirv_gbuffer_count_comp, false, true);
 }
 
-void TileLists::recordReset(VkCommandBuffer cmd, VkBuffer frameBuffer, const vk::Image* mask, bool fragmentReads) {
-  // Earlier frames' compute reads, indirect reads and counter read-back finish before the reset overwrites the buffer.
-  vk::memoryBarrier(cmd, kComputeAndIndirect | VK_PIPELINE_STAGE_2_COPY_BIT, kStorageAndIndirect,
-                    VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+// A pass of buildLayout_ (the reset and the listing): the frame constants, the tile buffer and the mask (or the
+// placeholder) pushed, the pipeline bound.
+void TileLists::bindBuildLayoutPass(VkCommandBuffer cmd, VkPipeline pipeline, VkBuffer frameBuffer,
+                                    const vk::Image* mask) const {
   VkDescriptorBufferInfo frameInfo{frameBuffer, 0, VK_WHOLE_SIZE};
   VkDescriptorBufferInfo tileInfo = descriptor();
   VkDescriptorImageInfo maskInfo = maskDescriptor(mask);
   VkWriteDescriptorSet writes[] = {vk::uniformBufferWrite(0, &frameInfo), vk::uniformBufferWrite(1, &tileInfo),
                                    vk::storageImageWrite(2, &maskInfo)};
   writes[1].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, mask != nullptr ? resetMasked_ : reset_);
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
   context_.cmdPushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, buildLayout_.layout, 0, 3, writes);
+}
+
+void TileLists::recordReset(VkCommandBuffer cmd, VkBuffer frameBuffer, const vk::Image* mask, bool fragmentReads) {
+  // Earlier frames' compute reads, indirect reads and counter read-back finish before the reset overwrites the buffer.
+  vk::memoryBarrier(cmd, kComputeAndIndirect | VK_PIPELINE_STAGE_2_COPY_BIT, kStorageAndIndirect,
+                    VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+  bindBuildLayoutPass(cmd, mask != nullptr ? resetMasked_ : reset_, frameBuffer, mask);
   vkCmdDispatch(cmd, mask != nullptr ? groups(tilesX_ * tilesY_, S3D_TILE_RESET_GROUP_SIZE) : 1, 1, 1);
   if (mask != nullptr)  // the host wrote the mask in an earlier submission (or earlier in its command buffer)
     vk::transition(cmd, *mask, {VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_WRITE_BIT},
@@ -104,14 +111,7 @@ void TileLists::recordReset(VkCommandBuffer cmd, VkBuffer frameBuffer, const vk:
 }
 
 void TileLists::recordBuild(VkCommandBuffer cmd, VkBuffer frameBuffer, const vk::Image& mask) {
-  VkDescriptorBufferInfo frameInfo{frameBuffer, 0, VK_WHOLE_SIZE};
-  VkDescriptorBufferInfo tileInfo = descriptor();
-  VkDescriptorImageInfo maskInfo = maskDescriptor(&mask);
-  VkWriteDescriptorSet writes[] = {vk::uniformBufferWrite(0, &frameInfo), vk::uniformBufferWrite(1, &tileInfo),
-                                   vk::storageImageWrite(2, &maskInfo)};
-  writes[1].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, build_);
-  context_.cmdPushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, buildLayout_.layout, 0, 3, writes);
+  bindBuildLayoutPass(cmd, build_, frameBuffer, &mask);
   vkCmdDispatch(cmd, tilesX_, tilesY_, 1);
   vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, kComputeAndIndirect,
                 kStorageAndIndirect);

@@ -89,6 +89,8 @@ class TileLists {
   VkDescriptorImageInfo maskDescriptor(const vk::Image* mask) const;
 
  private:
+  void bindBuildLayoutPass(VkCommandBuffer cmd, VkPipeline pipeline, VkBuffer frameBuffer, const vk::Image* mask) const;
+
   vk::Context& context_;
   std::uint32_t width_, height_, tilesX_, tilesY_;
   vk::Buffer buffer_;    // device local
