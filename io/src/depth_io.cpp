@@ -25,6 +25,7 @@
 #include <string_view>
 
 #include "exr_memory_stream.h"
+#include "s3d/image_limits.h"
 #include "file_access.h"
 
 namespace s3d::io {
@@ -34,10 +35,7 @@ namespace {
 
 using detail::failRead;
 using detail::FileError;
-
-// Largest accepted side: keeps width * height * channels * 4 far from overflow on every platform.
-constexpr std::uint64_t kMaxSide = 1u << 16;
-constexpr std::uint64_t kMaxPixels = std::uint64_t(1) << 28;
+using detail::requireReadableSize;
 
 std::uint32_t byteSwapped(std::uint32_t value) {
   return (value >> 24) | ((value >> 8) & 0xff00u) | ((value << 8) & 0xff0000u) | (value << 24);
@@ -97,13 +95,14 @@ PfmImage readPfm(const fs::path& file) {
     const std::string_view token = nextToken(what);
     std::uint64_t value = 0;
     auto [ptr, ec] = std::from_chars(token.data(), token.data() + token.size(), value);
-    if (ec != std::errc() || ptr != token.data() + token.size() || value == 0 || value > kMaxSide)
+    if (ec != std::errc() || ptr != token.data() + token.size() || value == 0 || value > kMaxImageSide)
       failRead("PFM", file, std::string("bad ") + what + " '" + std::string(token) + "' (expected 1 to " +
-                                    std::to_string(kMaxSide) + ")");
+                                    std::to_string(kMaxImageSide) + ")");
     return std::uint32_t(value);
   };
   image.width = parseSide("width");
   image.height = parseSide("height");
+  requireReadableSize("PFM", file, image.width, image.height);
   const std::string scaleToken(nextToken("scale"));
   char* scaleEnd = nullptr;
   const double scale = std::strtod(scaleToken.c_str(), &scaleEnd);
@@ -163,29 +162,19 @@ void writePfm(const fs::path& file, const PfmImage& image, bool bigEndian) {
 
 Gray16Image readPngGray16(const fs::path& file) {
   const std::string bytes = detail::readWholeFile("PNG", file);
-  detail::requirePngStructure("PNG", file, bytes);
-  const auto* data = reinterpret_cast<const stbi_uc*>(bytes.data());
-  const int size = static_cast<int>(bytes.size());
-  int width = 0, height = 0, channelsInFile = 0;
-  if (!stbi_info_from_memory(data, size, &width, &height, &channelsInFile)) {
-    const char* reason = stbi_failure_reason();
-    failRead("PNG", file, std::string("corrupt PNG: ") + (reason ? reason : "unknown decoder error"));
-  }
-  if (!stbi_is_16_bit_from_memory(data, size))
-    failRead("PNG", file, "an 8-bit PNG: depth or disparity needs a 16-bit grey PNG");
-  if (channelsInFile > 2)
+  // The header first: a crafted one can claim a huge image in a tiny file, refused before the decoder sizes
+  // its buffers from it.
+  const detail::PngHeader header = detail::readPngHeader("PNG", file, bytes);
+  if (!header.sixteenBit) failRead("PNG", file, "an 8-bit PNG: depth or disparity needs a 16-bit grey PNG");
+  if (header.channels > 2)
     failRead("PNG", file, "a colour PNG: depth or disparity needs a 16-bit grey (single-channel) PNG");
-  // A crafted header can claim a huge image in a tiny file: refuse before the decoder sizes its buffers from it.
-  if (width <= 0 || height <= 0 || std::uint64_t(width) > kMaxSide || std::uint64_t(height) > kMaxSide ||
-      std::uint64_t(width) * std::uint64_t(height) > kMaxPixels)
-    failRead("PNG", file, "image of " + std::to_string(width) + "x" + std::to_string(height) + " is too large");
+  int width = 0, height = 0, channelsInFile = 0;
   std::unique_ptr<stbi_us, void (*)(void*)> decoded(
-      stbi_load_16_from_memory(data, size, &width, &height, &channelsInFile, 1), stbi_image_free);
-  if (!decoded) {
-    const char* reason = stbi_failure_reason();
-    failRead("PNG", file, std::string("corrupt PNG: ") + (reason ? reason : "unknown decoder error"));
-  }
-  Gray16Image image(static_cast<std::uint32_t>(width), static_cast<std::uint32_t>(height));
+      stbi_load_16_from_memory(reinterpret_cast<const stbi_uc*>(bytes.data()), static_cast<int>(bytes.size()), &width,
+                               &height, &channelsInFile, 1),
+      stbi_image_free);
+  if (!decoded) detail::failPngDecode("PNG", file);
+  Gray16Image image(static_cast<std::uint32_t>(header.width), static_cast<std::uint32_t>(header.height));
   std::memcpy(image.pixels.data(), decoded.get(), image.pixels.size() * sizeof(std::uint16_t));
   return image;
 }
@@ -193,7 +182,7 @@ Gray16Image readPngGray16(const fs::path& file) {
 void writePngGray16(const fs::path& file, const Gray16Image& image) {
   if (image.width == 0 || image.height == 0 || image.pixels.size() != image.pixelCount())
     throw std::invalid_argument("16-bit PNG image is empty or its pixel buffer has the wrong size");
-  if (image.width > kMaxSide || image.height > kMaxSide)
+  if (image.width > kMaxImageSide || image.height > kMaxImageSide)  // what the readers accept back
     throw std::invalid_argument("16-bit PNG image is too large");
   // Raw scanlines: filter byte 0, then big-endian samples.
   std::string raw;
@@ -247,11 +236,9 @@ DepthImage readExrChannel(const fs::path& file, const std::string& channel) {
     const Imath::Box2i dataWindow = header.dataWindow();
     const std::int64_t width = std::int64_t(dataWindow.max.x) - dataWindow.min.x + 1;
     const std::int64_t height = std::int64_t(dataWindow.max.y) - dataWindow.min.y + 1;
-    if (width <= 0 || height <= 0 || std::uint64_t(width) > kMaxSide || std::uint64_t(height) > kMaxSide)
-      failRead("EXR", file, "invalid data window");
-    // A crafted header can claim a huge window in a tiny file: refuse before allocating it (1 GiB of floats).
-    if (std::uint64_t(width) * std::uint64_t(height) > kMaxPixels)
-      failRead("EXR", file, "data window of " + std::to_string(width) + "x" + std::to_string(height) + " is too large");
+    if (width <= 0 || height <= 0) failRead("EXR", file, "invalid data window");
+    // A crafted header can claim a huge window in a tiny file: refused before it is allocated.
+    requireReadableSize("EXR", file, width, height);
     const Imf::ChannelList& channels = header.channels();
     const Imf::Channel* found = channels.findChannel(channel);
     if (!found) {

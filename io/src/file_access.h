@@ -1,5 +1,6 @@
 #pragma once
 // Internal to s3d_io: image_io.cpp's whole-file reader and atomic writer, for the other format files.
+#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <string_view>
@@ -23,6 +24,20 @@ std::string readWholeFile(const char* kind, const std::filesystem::path& file);
 // a chunk's declared length before reading it, so a 100-byte file declaring a 2 GB chunk made it allocate
 // 2 GB (found by fuzz_png). Throws FileError "cannot read <kind> file '<file>': ...".
 void requirePngStructure(const char* kind, const std::filesystem::path& file, const std::string& bytes);
+// Throws FileError unless a header's claimed size is within s3d/image_limits.h (every reader's limit), checked
+// before any pixel memory is allocated.
+void requireReadableSize(const char* kind, const std::filesystem::path& file, std::int64_t width, std::int64_t height);
+
+// A PNG's header as stb_image reads it, after requirePngStructure and requireReadableSize: a decoder asked for
+// these sizes cannot be made to allocate more than the readers' limit.
+struct PngHeader {
+  int width = 0, height = 0, channels = 0;
+  bool sixteenBit = false;
+};
+PngHeader readPngHeader(const char* kind, const std::filesystem::path& file, const std::string& bytes);
+// Throws FileError "cannot read <kind> file '<file>': corrupt PNG: <stb_image's reason>".
+[[noreturn]] void failPngDecode(const char* kind, const std::filesystem::path& file);
+
 // Temporary file in the same folder, then rename; the parent folder is created if missing.
 void writeWholeFileAtomically(const char* kind, const std::filesystem::path& file, std::string_view bytes);
 

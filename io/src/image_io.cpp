@@ -76,6 +76,7 @@ namespace detail {
 
 namespace {
 using detail::failRead;
+using detail::requireReadableSize;
 
 // Opens a fresh temporary file beside the target under an unpredictable name, refusing any existing file or
 // link there (O_EXCL | O_NOFOLLOW), so a link planted in a shared folder is never written through.
@@ -179,14 +180,6 @@ void appendToByteVector(void* context, void* data, int size) {
 
 constexpr int kRgbaChannels = 4;
 
-// Called with the size a file's header claims, before the pixels are allocated.
-void requireReadableSize(const char* kind, const fs::path& file, std::int64_t width, std::int64_t height) {
-  if (width > kMaxImageSide || height > kMaxImageSide || std::uint64_t(width) * std::uint64_t(height) > kMaxImagePixels)
-    failRead(kind, file, "image is " + std::to_string(width) + "x" + std::to_string(height) +
-                                  ", beyond the readers' limit of " + std::to_string(kMaxImageSide) + " pixels a side and " +
-                                  std::to_string(kMaxImagePixels) + " pixels in all");
-}
-
 }  // namespace
 
 void writePng(const fs::path& file, const ImageRGBA8& image) {
@@ -202,23 +195,16 @@ void writePng(const fs::path& file, const ImageRGBA8& image) {
 
 ImageRGBA8 readPng(const fs::path& file) {
   const std::string bytes = readFileBytes("PNG", file);
-  detail::requirePngStructure("PNG", file, bytes);
+  const detail::PngHeader header = detail::readPngHeader("PNG", file, bytes);
   int width = 0;
   int height = 0;
   int channelsInFile = 0;
-  // The header alone first: stb would allocate whatever size the header claims before finding the data short.
-  if (stbi_info_from_memory(reinterpret_cast<const stbi_uc*>(bytes.data()), static_cast<int>(bytes.size()), &width,
-                            &height, &channelsInFile) != 0)
-    requireReadableSize("PNG", file, width, height);
   std::unique_ptr<stbi_uc, void (*)(void*)> decoded(
       stbi_load_from_memory(reinterpret_cast<const stbi_uc*>(bytes.data()), static_cast<int>(bytes.size()), &width,
                             &height, &channelsInFile, kRgbaChannels),
       stbi_image_free);
-  if (!decoded) {
-    const char* reason = stbi_failure_reason();
-    failRead("PNG", file, std::string("corrupt PNG: ") + (reason ? reason : "unknown decoder error"));
-  }
-  ImageRGBA8 image(static_cast<std::uint32_t>(width), static_cast<std::uint32_t>(height));
+  if (!decoded) detail::failPngDecode("PNG", file);
+  ImageRGBA8 image(static_cast<std::uint32_t>(header.width), static_cast<std::uint32_t>(header.height));
   std::memcpy(image.pixels.data(), decoded.get(), image.pixels.size());
   return image;
 }
@@ -370,6 +356,30 @@ void writeTextFile(const fs::path& file, std::string_view text) { writeFileAtomi
 
 namespace detail {
 std::string readWholeFile(const char* kind, const fs::path& file) { return readFileBytes(kind, file); }
+
+void requireReadableSize(const char* kind, const fs::path& file, std::int64_t width, std::int64_t height) {
+  if (width > kMaxImageSide || height > kMaxImageSide || std::uint64_t(width) * std::uint64_t(height) > kMaxImagePixels)
+    failRead(kind, file, "image is " + std::to_string(width) + "x" + std::to_string(height) +
+                                  ", beyond the readers' limit of " + std::to_string(kMaxImageSide) + " pixels a side and " +
+                                  std::to_string(kMaxImagePixels) + " pixels in all");
+}
+
+[[noreturn]] void failPngDecode(const char* kind, const fs::path& file) {
+  const char* reason = stbi_failure_reason();
+  failRead(kind, file, std::string("corrupt PNG: ") + (reason ? reason : "unknown decoder error"));
+}
+
+PngHeader readPngHeader(const char* kind, const fs::path& file, const std::string& bytes) {
+  requirePngStructure(kind, file, bytes);
+  const auto* data = reinterpret_cast<const stbi_uc*>(bytes.data());
+  PngHeader header;
+  if (!stbi_info_from_memory(data, static_cast<int>(bytes.size()), &header.width, &header.height, &header.channels))
+    failPngDecode(kind, file);
+  if (header.width <= 0 || header.height <= 0) failRead(kind, file, "corrupt PNG: zero width or height");
+  requireReadableSize(kind, file, header.width, header.height);
+  header.sixteenBit = stbi_is_16_bit_from_memory(data, static_cast<int>(bytes.size())) != 0;
+  return header;
+}
 
 void requirePngStructure(const char* kind, const fs::path& file, const std::string& bytes) {
   if (bytes.size() > INT_MAX) failRead(kind, file, "file is too large");

@@ -79,20 +79,55 @@ TEST(ImageReadLimits, ExrWithinTheLimitGetsAsFarAsItsMissingPixelData) {
   EXPECT_NE(message.find("corrupt EXR"), std::string::npos) << message;
 }
 
-TEST(ImageReadLimits, PngClaimingMoreThanTheSideLimitIsRejected) {
-  // A PNG signature and an IHDR chunk for a 20000x4 RGBA image, without data; CRC is not checked by stb.
+// A PNG signature and an IHDR chunk for a width x height image, without data (stb does not check the CRC).
+std::string pngClaiming(std::uint32_t width, std::uint32_t height, char bitDepth, char colourType) {
   std::string bytes("\x89PNG\r\n\x1a\n", 8);
   bytes += std::string("\0\0\0\x0dIHDR", 8);
   std::string ihdr(13, '\0');
-  ihdr[0] = 0; ihdr[1] = 0; ihdr[2] = char(20000 >> 8); ihdr[3] = char(20000 & 0xff);  // width, big-endian
-  ihdr[7] = 4;                                                                         // height
-  ihdr[8] = 8; ihdr[9] = 6;                                                            // 8-bit RGBA
-  bytes += ihdr + std::string(4, '\0');
-  const fs::path file = scratchFile("wide.png");
+  for (int i = 0; i < 4; ++i) {  // big-endian
+    ihdr[std::size_t(i)] = char((width >> (24 - 8 * i)) & 0xff);
+    ihdr[std::size_t(4 + i)] = char((height >> (24 - 8 * i)) & 0xff);
+  }
+  ihdr[8] = bitDepth;
+  ihdr[9] = colourType;
+  return bytes + ihdr + std::string(4, '\0');
+}
+
+// The message of `read` on a scratch file holding `bytes`.
+template <typename Read>
+std::string messageReading(const std::string& name, const std::string& bytes, Read read) {
+  const fs::path file = scratchFile(name);
   test::writeFileBytes(file, bytes);
-  const std::string message = test::runtimeErrorMessage([&] { readPng(file); });
+  const std::string message = test::runtimeErrorMessage([&] { read(file); });
   fs::remove(file);
+  return message;
+}
+
+TEST(ImageReadLimits, PngClaimingMoreThanTheSideLimitIsRejected) {
+  const std::string message = messageReading("wide.png", pngClaiming(20000, 4, 8, 6), [](const fs::path& f) { readPng(f); });
   EXPECT_NE(message.find("20000x4"), std::string::npos) << message;
+  EXPECT_NE(message.find("beyond the readers' limit"), std::string::npos) << message;
+}
+
+// The depth and disparity readers hold the colour readers' limit: sides within it, pixels beyond it.
+TEST(ImageReadLimits, Gray16PngClaimingMoreThanThePixelLimitIsRejected) {
+  const std::string message =
+      messageReading("big16.png", pngClaiming(9000, 9000, 16, 0), [](const fs::path& f) { readPngGray16(f); });
+  EXPECT_NE(message.find("9000x9000"), std::string::npos) << message;
+  EXPECT_NE(message.find("beyond the readers' limit"), std::string::npos) << message;
+}
+
+TEST(ImageReadLimits, PfmClaimingMoreThanThePixelLimitIsRejected) {
+  const std::string message =
+      messageReading("big.pfm", "Pf\n9000 9000\n-1.0\n" + std::string(64, '\0'), [](const fs::path& f) { readPfm(f); });
+  EXPECT_NE(message.find("9000x9000"), std::string::npos) << message;
+  EXPECT_NE(message.find("beyond the readers' limit"), std::string::npos) << message;
+}
+
+TEST(ImageReadLimits, ExrChannelClaimingAHugeImageIsRejectedBeforeItsPixelsAreAllocated) {
+  const std::string message =
+      messageReading("huge_z.exr", exrClaiming(60000), [](const fs::path& f) { readExrChannel(f, "R"); });
+  EXPECT_NE(message.find("60000x60000"), std::string::npos) << message;
   EXPECT_NE(message.find("beyond the readers' limit"), std::string::npos) << message;
 }
 

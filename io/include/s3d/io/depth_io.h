@@ -1,7 +1,8 @@
 #pragma once
 // Scalar-image inputs of `s3d convert` (depth, disparity): PFM, 16-bit grey PNG and one named OpenEXR channel.
 // Same rules as image_io.h: writes are atomic (temporary file, then rename); failures throw std::runtime_error
-// naming the file and the problem (missing, not the format, truncated, missing channel).
+// naming the file and the problem (missing, not the format, truncated, missing channel, or a header claiming more
+// than every reader's limit in s3d/image_limits.h).
 #include <cstdint>
 #include <filesystem>
 #include <string>
