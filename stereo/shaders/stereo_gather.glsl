@@ -89,12 +89,16 @@ float nearestTapDepth(int x, int y, int direction) {
   return minDepthOverTaps(x, y, direction);
 }
 
+// An 8-bit eye's value as its byte, rounded half away from zero as the C++ reference rounds, for the packings that
+// mix or filter the eyes in the gather. (A stored eye's byte is the store's conversion, which Vulkan lets round
+// ties either way; rounding every stored eye here too slowed the two-eye output: docs/RESULTS.md.)
+vec4 eyeByteValue(vec4 color) { return floor(clamp(color, 0.0, 1.0) * 255.0 + 0.5) * (1.0 / 255.0); }
+
 // Both eyes' pixel: stored in the two eyes, or (from host images) packed straight into the target at binding 2.
 void writeEyes(ivec2 pixel, vec4 left, vec4 right) {
 #ifdef S3D_STEREO_HOST_INPUTS
-  if (h.gatherOutput == S3D_HOST_GATHER_ANAGLYPH) {  // 8-bit eyes: mixed from their stored bytes, as the packing pass
-    const float byteScale = 1.0 / 255.0;
-    vec3 l = round(clamp(left.rgb, 0.0, 1.0) * 255.0) * byteScale, r = round(clamp(right.rgb, 0.0, 1.0) * 255.0) * byteScale;
+  if (h.gatherOutput == S3D_HOST_GATHER_ANAGLYPH) {  // 8-bit eyes: mixed from their bytes, as the packing pass
+    vec3 l = eyeByteValue(left).rgb, r = eyeByteValue(right).rgb;
     l = vec3(hostSrgbToLinear(l.r), hostSrgbToLinear(l.g), hostSrgbToLinear(l.b));
     r = vec3(hostSrgbToLinear(r.r), hostSrgbToLinear(r.g), hostSrgbToLinear(r.b));
     vec3 mixed = clamp(hostDuboisAnaglyph(l, r), 0.0, 1.0);
@@ -122,11 +126,10 @@ vec4 sampleRow(int y, float u) {
 }
 
 #ifdef S3D_STEREO_HOST_HALF_PACKING
-// Eye pixel `pixel` of the eye looking along `side` (+1 left, -1 right), as an 8-bit eye stores it.
+// Eye pixel `pixel` of the eye looking along `side` (+1 left, -1 right), as the reference's 8-bit eye holds it.
 vec4 storedEyePixel(ivec2 pixel, int side) {
   if (pixel.x < c.cropBegin || pixel.x >= c.cropEnd) return vec4(0, 0, 0, 1);  // cropped edges
-  vec4 color = sampleRow(pixel.y, gatherSourceColumn(pixel.x, side, nearestTapDepth(pixel.x, pixel.y, side)));
-  return round(clamp(color, 0.0, 1.0) * 255.0) * (1.0 / 255.0);
+  return eyeByteValue(sampleRow(pixel.y, gatherSourceColumn(pixel.x, side, nearestTapDepth(pixel.x, pixel.y, side))));
 }
 
 vec3 linearOfStored(vec4 v) { return vec3(hostSrgbToLinear(v.r), hostSrgbToLinear(v.g), hostSrgbToLinear(v.b)); }
