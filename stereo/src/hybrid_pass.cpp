@@ -75,7 +75,7 @@ HybridRowShape checkedShape(const vk::Context& context, std::optional<HybridRowS
   if (!hybridRowShapeFits(context, chosen))
     throw std::invalid_argument("hybrid stereo: the device cannot run a row group of " + std::to_string(chosen.rowGroup) +
                                 " invocations with a chunk of " + std::to_string(chosen.chunk) +
-                                " pixels, or a mask row group of " + std::to_string(chosen.maskGroup));
+                                " pixels");
   return chosen;
 }
 
@@ -91,11 +91,10 @@ bool hybridRowShapeFits(const vk::Context& context, HybridRowShape shape) {
   };
   // Independent runs keep the chunk's slots in private memory (one shared slot each), split evenly by the group.
   const std::uint64_t sharedSlots = shape.independentRuns ? 1 : std::uint64_t(shape.chunk);
-  return groupFits(shape.rowGroup) && groupFits(shape.maskGroup) && shape.chunk > 0 &&
+  return groupFits(shape.rowGroup) && shape.chunk > 0 &&
          (!shape.independentRuns || shape.chunk % shape.rowGroup == 0) &&
          std::uint64_t(S3D_HYBRID_CLASSIFY_SHARED_BYTES(std::uint64_t(shape.rowGroup), sharedSlots)) <=
-             limits.maxComputeSharedMemorySize &&
-         8u * std::uint64_t(shape.maskGroup) <= limits.maxComputeSharedMemorySize;  // the mask pass's run counts
+             limits.maxComputeSharedMemorySize;
 }
 
 HybridRowShape hybridRowShapeFor(const vk::Context& context) {
@@ -109,8 +108,8 @@ HybridPass::HybridPass(const vk::Context& context, std::optional<HybridRowShape>
       shape_(checkedShape(context, shape)),
       gridDepthLayout_(storageImageLayout(context, 3)),
       classifyLayout_(storageImageLayout(context, 5)),
-      thresholdLayout_(storageImageLayout(context, 4)),
-      maskLayout_(storageImageLayout(context, 6)),
+      thresholdLayout_(storageImageLayout(context, 5)),
+      maskLayout_(storageImageLayout(context, 5)),
       compositeLayout_(storageImageLayout(context, 3)),
       cropEdgesLayout_(storageImageLayout(context, 1)),
       // Specialization: constant 0 the row group (also the workgroup size), 1 the classification's chunk, 2
@@ -120,8 +119,7 @@ HybridPass::HybridPass(const vk::Context& context, std::optional<HybridRowShape>
                  shape_.independentRuns ? VK_TRUE : VK_FALSE}) {
   gridDepth_ = vk::createComputePipeline(context, gridDepthLayout_.layout, spirv_stereo_hybrid_grid_depth_comp);
   threshold_ = vk::createComputePipeline(context, thresholdLayout_.layout, spirv_stereo_hybrid_threshold_comp);
-  mask_ = vk::createComputePipeline(context, maskLayout_.layout, spirv_stereo_hybrid_mask_comp,
-                                    vk::SpecializationWords({std::uint32_t(shape_.maskGroup)}));
+  mask_ = vk::createComputePipeline(context, maskLayout_.layout, spirv_stereo_hybrid_mask_comp);
   composite_ = vk::createComputePipeline(context, compositeLayout_.layout, spirv_stereo_hybrid_composite_comp);
   cropEdges_ = vk::createComputePipeline(context, cropEdgesLayout_.layout, spirv_stereo_hybrid_crop_edges_comp);
 }
@@ -141,7 +139,6 @@ HybridPass::Images HybridPass::createImages(std::uint32_t width, std::uint32_t h
   images.histogram = image(S3D_HYBRID_BINS, 2);
   images.rowHistograms = image(2 * S3D_HYBRID_BINS, gridHeight);
   images.thresholds = image(S3D_HYBRID_THRESHOLD_FIELDS, 2);
-  images.splitOffsets = image(gridHeight, 2);
   images.leftMask = image(width, height);
   images.rightMask = image(width, height);
   return images;
@@ -159,7 +156,7 @@ void HybridPass::recordMasks(VkCommandBuffer cmd, const vk::Image& linearDepth, 
   for (const vk::Image* image : {&images.leftBins, &images.rightBins}) requireSize(*image, grid, "bins");
   const vk::ImageState previous = images.written ? kReadAnywhere : vk::kUndefined;
   for (const vk::Image* image : {&images.leftBins, &images.rightBins, &images.rowHistograms, &images.thresholds,
-                                 &images.splitOffsets, &images.leftMask, &images.rightMask})
+                                 &images.leftMask, &images.rightMask})
     vk::transition(cmd, *image, previous, vk::kComputeWrite);
   if (c.cell > 1) vk::transition(cmd, images.gridDepth, previous, vk::kComputeWrite);
   const vk::Image* classifiedDepth = &linearDepth;
@@ -182,20 +179,20 @@ void HybridPass::recordMasks(VkCommandBuffer cmd, const vk::Image& linearDepth, 
            std::uint32_t(grid.height), 1);
   mark();
   vk::transition(cmd, images.histogram, kAtomics, vk::kComputeRead);
-  vk::transition(cmd, images.rowHistograms, vk::kComputeWrite, vk::kComputeRead);
-  dispatch(*context_, cmd, threshold_.get(), thresholdLayout_.layout,
-           {&images.histogram, &images.rowHistograms, &images.thresholds, &images.splitOffsets}, grid, 2, 1);
-  mark();
-  for (const vk::Image* image : {&images.thresholds, &images.splitOffsets, &images.leftBins, &images.rightBins})
+  for (const vk::Image* image : {&images.rowHistograms, &images.leftBins, &images.rightBins})
     vk::transition(cmd, *image, vk::kComputeWrite, vk::kComputeRead);
+  dispatch(*context_, cmd, threshold_.get(), thresholdLayout_.layout,
+           {&images.histogram, &images.rowHistograms, &images.thresholds, &images.leftBins, &images.rightBins}, grid, 2,
+           1);
+  mark();
+  vk::transition(cmd, images.thresholds, vk::kComputeWrite, vk::kComputeRead);
   dispatch(*context_, cmd, mask_.get(), maskLayout_.layout,
-           {&images.leftBins, &images.rightBins, &images.thresholds, &images.splitOffsets, &images.leftMask,
-            &images.rightMask},
-           c, std::uint32_t(grid.height), 1);
+           {&images.leftBins, &images.rightBins, &images.thresholds, &images.leftMask, &images.rightMask}, c,
+           groups(grid.width), groups(grid.height));
   mark();
   // Everything ends in one state, so the next frame (and the read-backs) start from one.
   for (const vk::Image* image : {&images.leftBins, &images.rightBins, &images.histogram, &images.rowHistograms,
-                                 &images.thresholds, &images.splitOffsets})
+                                 &images.thresholds})
     vk::transition(cmd, *image, vk::kComputeRead, vk::kComputeWrite);
   if (c.cell > 1) vk::transition(cmd, images.gridDepth, vk::kComputeRead, vk::kComputeWrite);
   images.written = true;

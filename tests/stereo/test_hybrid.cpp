@@ -22,7 +22,7 @@ class HybridPassTest : public test::VulkanTest {};
 
 // The GPUs' row group with a chunk every test device holds (lavapipe has 32 KiB of shared memory, the GPUs' chunk
 // needs 46): the same code, its scan of the runs in parallel, only the chunk's length differs.
-constexpr HybridRowShape kGpuGroupSmallChunk{S3D_HYBRID_GPU_ROW_GROUP, 1024, S3D_HYBRID_GPU_MASK_GROUP};
+constexpr HybridRowShape kGpuGroupSmallChunk{S3D_HYBRID_GPU_ROW_GROUP, 1024};
 
 // Every row shape gives the same bins and masks: the CPU devices' (each invocation classifies its run alone, one
 // chunk for a short row), the fallback (a few invocations share the slots and walk the runs), the GPUs' (many
@@ -32,15 +32,14 @@ constexpr HybridRowShape kGpuGroupSmallChunk{S3D_HYBRID_GPU_ROW_GROUP, 1024, S3D
 std::vector<HybridRowShape> rowShapesToCheck(const vk::Context& context) {
   std::vector<HybridRowShape> shapes;
   for (HybridRowShape shape : {kHybridCpuRowShape, kHybridFallbackRowShape, kHybridGpuRowShape, kGpuGroupSmallChunk,
-                               HybridRowShape{64, 128, 64}, HybridRowShape{8, 64, 16, true}})
+                               HybridRowShape{64, 128}, HybridRowShape{8, 64, true}})
     if (hybridRowShapeFits(context, shape)) shapes.push_back(shape);
   EXPECT_GE(shapes.size(), 1u);
   return shapes;
 }
 
 std::string shapeName(HybridRowShape shape) {
-  return "row group " + std::to_string(shape.rowGroup) + ", chunk " + std::to_string(shape.chunk) + ", mask group " +
-         std::to_string(shape.maskGroup);
+  return "row group " + std::to_string(shape.rowGroup) + ", chunk " + std::to_string(shape.chunk);
 }
 
 // Every pixel its own cell: the row classification's definitions, pixel for pixel (the tests of cells say so).
@@ -566,9 +565,8 @@ TEST_F(HybridPassTest, ACpuDeviceGetsIndependentRunsAndAShapeBeyondTheDeviceIsRe
   EXPECT_TRUE(hybridRowShapeFits(context(), hybridRowShapeFor(context())));
   EXPECT_THROW(HybridPass(context(), HybridRowShape{1 << 20, 512}), std::invalid_argument);
   EXPECT_THROW(HybridPass(context(), HybridRowShape{16, 1 << 20}), std::invalid_argument);
-  EXPECT_THROW(HybridPass(context(), HybridRowShape{16, 512, 1 << 20}), std::invalid_argument);
   // Independent runs split the chunk's private slots evenly: a chunk that is no multiple of the group is refused.
-  EXPECT_THROW(HybridPass(context(), HybridRowShape{8, 100, 16, true}), std::invalid_argument);
+  EXPECT_THROW(HybridPass(context(), HybridRowShape{8, 100, true}), std::invalid_argument);
 }
 
 TEST_F(HybridPassTest, CompositeMatchesTheCppReferenceExactly) {

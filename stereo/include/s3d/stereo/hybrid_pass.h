@@ -16,21 +16,17 @@
 
 namespace s3d::stereo {
 
-// The classification's and the mask pass's workgroups: the classification's invocations per row and chunk of eye
-// pixels, the mask pass's invocations per row (hybrid_shared.h). Any shape the device can run gives the same bins
-// and masks; only the time differs.
+// The classification's workgroups: its invocations per row and chunk of eye pixels (hybrid_shared.h). Any shape the
+// device can run gives the same bins and masks; only the time differs.
 struct HybridRowShape {
   int rowGroup = S3D_HYBRID_ROW_GROUP;
   int chunk = S3D_HYBRID_CHUNK;
-  int maskGroup = S3D_HYBRID_ROW_GROUP;
   bool independentRuns = false;  // each invocation classifies its own run alone (the chunk a multiple of the group)
   bool operator==(const HybridRowShape&) const = default;
 };
-inline constexpr HybridRowShape kHybridCpuRowShape{S3D_HYBRID_CPU_ROW_GROUP, S3D_HYBRID_CPU_CHUNK, S3D_HYBRID_ROW_GROUP,
-                                                   true};
-inline constexpr HybridRowShape kHybridFallbackRowShape{S3D_HYBRID_ROW_GROUP, S3D_HYBRID_CHUNK, S3D_HYBRID_ROW_GROUP};
-inline constexpr HybridRowShape kHybridGpuRowShape{S3D_HYBRID_GPU_ROW_GROUP, S3D_HYBRID_GPU_CHUNK,
-                                                   S3D_HYBRID_GPU_MASK_GROUP};
+inline constexpr HybridRowShape kHybridCpuRowShape{S3D_HYBRID_CPU_ROW_GROUP, S3D_HYBRID_CPU_CHUNK, true};
+inline constexpr HybridRowShape kHybridFallbackRowShape{S3D_HYBRID_ROW_GROUP, S3D_HYBRID_CHUNK};
+inline constexpr HybridRowShape kHybridGpuRowShape{S3D_HYBRID_GPU_ROW_GROUP, S3D_HYBRID_GPU_CHUNK};
 // The fast shape for the device: independent runs on a CPU device, many invocations on a GPU (the fallback where
 // the device's workgroup or shared-memory limits refuse its own).
 HybridRowShape hybridRowShapeFor(const vk::Context& context);
@@ -52,17 +48,17 @@ class HybridPass {
     vk::Image histogram;            // S3D_HYBRID_BINS x 2, row 0 the left eye
     vk::Image rowHistograms;        // 2 S3D_HYBRID_BINS x the grid's height: each row's left-eye bins, then right
     // S3D_HYBRID_THRESHOLD_FIELDS x 2: (0, eye) the threshold bin, (1, eye) the masked cell count, (2, eye) the
-    // split bin, (3, eye) its masked cells (HybridThreshold)
+    // split bin, (3, eye) its masked cells (HybridThreshold), (4, eye) and (5, eye) the row and column of the
+    // split's last masked cell
     vk::Image thresholds;
-    vk::Image splitOffsets;         // the grid's height x 2: the split bin's cells in the rows above each row
     vk::Image leftMask, rightMask;  // per pixel: 1 where the eye camera renders it
     bool written = false;           // set by recordMasks: later frames wait for the earlier frame's reads
   };
   // cell: the classification's (StereoParameters::hybridCell); recordMasks refuses constants of another.
   Images createImages(std::uint32_t width, std::uint32_t height, int cell) const;
 
-  // Classification, threshold and masks in three dispatches (one workgroup per row of cells, two, one per row of
-  // cells), after the grid's depth for a cell of more than one pixel. linearDepth: the center view's (R32F, GENERAL,
+  // Classification, threshold and masks in three dispatches (one workgroup per row of cells, one per eye, one
+  // invocation per cell), after the grid's depth for a cell of more than one pixel. linearDepth: the center view's (R32F, GENERAL,
   // written by an earlier compute pass and made visible by the caller). Leaves every image of `images` in
   // vk::kComputeWrite state: a consumer of the masks (the renderer) transitions them to what it reads with.
   // afterEachDispatch (optional) is called right after each of the three dispatches is recorded (a caller's

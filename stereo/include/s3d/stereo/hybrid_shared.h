@@ -15,27 +15,26 @@ using glm::floor;
 
 S3D_GPU_BEGIN
 
-#define S3D_HYBRID_GROUP_SIZE 8        // the composite: 8 x 8 workgroups
-// The classification and the mask pass: one workgroup per row, each invocation owning a run of its pixels. Its
+#define S3D_HYBRID_GROUP_SIZE 8        // the composite and the mask pass: 8 x 8 workgroups (of pixels, of cells)
+// The classification: one workgroup per row, each invocation owning a run of its pixels. Its
 // invocations, the classification's chunk of eye pixels and whether the runs are classified independently are
 // specialization constants, chosen per device (hybridRowShapeFor): a CPU driver such as lavapipe scalarizes
 // shared-memory atomics per SIMD lane and switches between invocations at every barrier, so it gets one SIMD
 // batch of invocations, each classifying its run alone in private memory; a GPU needs many rows' worth of warps
 // in flight, so it gets many invocations per row sharing the chunk's slots in shared memory.
-#define S3D_HYBRID_ROW_GROUP 16       // the fallback (and the CPU devices' mask pass): invocations per row
+#define S3D_HYBRID_ROW_GROUP 16       // the fallback: invocations per row
 #define S3D_HYBRID_CHUNK 512          // the fallback: the classification's eye pixels per step along its row
 #define S3D_HYBRID_CPU_ROW_GROUP 8    // CPU devices: one SIMD batch of lavapipe's, each invocation a run of its own
 #define S3D_HYBRID_CPU_CHUNK 2048     // CPU devices: a 1920-pixel row in one chunk per eye (private slots: no limit)
 #define S3D_HYBRID_GPU_ROW_GROUP 512  // GPUs: the fastest measured (docs/RESULTS.md, "The classification's row shape")
 #define S3D_HYBRID_GPU_CHUNK 2048     // a 1920-pixel row in one chunk per eye (46 KiB of shared memory)
-#define S3D_HYBRID_GPU_MASK_GROUP 1024 // GPUs: the mask pass's invocations per row (its own measured best)
 #define S3D_HYBRID_BINS 256           // score histogram per eye; bin 0 = nothing expected wrong
 #define S3D_HYBRID_FINE_BINS 64       // scores below 1 px: 1/64 px per bin (the edge band's ranks)
 #define S3D_HYBRID_BINS_PER_PIXEL 8.0f // scores from 1 px on: 1/8 px per bin, the top bin open-ended
 #define S3D_HYBRID_MIN_JUMP_PX 0.015625f // expected errors below this (pixels of parallax) are none: 1/64 px
 #define S3D_HYBRID_NO_PIXEL 256       // threshold bin that masks nothing
 #define S3D_HYBRID_THRESHOLD_GROUP 256 // the threshold pass: one invocation per bin, one workgroup per eye
-#define S3D_HYBRID_THRESHOLD_FIELDS 4  // per eye: threshold bin, masked pixels, split bin, split pixels
+#define S3D_HYBRID_THRESHOLD_FIELDS 6  // per eye: threshold bin, masked pixels, split bin, split pixels, last split cell's row, column
 // Shared slots: the depth steps whose interior (hybridPairInterior) the row group writes together, 32 invocations
 // to a step, instead of the one invocation that found it looping alone while its neighbours wait (two words each);
 // steps beyond these, and interiors shorter than S3D_HYBRID_SHARED_INTERIOR_PX, the finding invocation writes.
