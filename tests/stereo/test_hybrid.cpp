@@ -555,6 +555,27 @@ TEST_F(HybridPassTest, ThresholdAndMasksMatchTheCppReferenceAtEveryBudget) {
   }
 }
 
+// The split bin's share ends at one cell, which the threshold pass finds by scanning its row in runs of columns
+// (one run per invocation): on a row of more cells than the pass has invocations each run holds several, and the
+// masks still equal the reference's raster-order split.
+TEST_F(HybridPassTest, TheSplitEndsAtTheReferencesCellOnARowWiderThanTheThresholdGroup) {
+  const std::uint32_t width = 3 * S3D_HYBRID_THRESHOLD_GROUP + 37, height = 6;
+  const test::SyntheticView view = test::makeBlockView(width, height, 5, 1.0f, 9, 3, true);
+  int splits = 0;
+  for (float budget : {0.03f, 0.1f, 0.3f, 0.6f}) {
+    StereoParameters parameters = parametersFor(0.05f);
+    parameters.hybridBudget = budget;
+    const gpu::HybridConstants image = makeHybridConstants(parameters, width, height);
+    const HybridGpuResult gpu = classifyHybridOnGpu(context(), view.depth, image, hybridRowShapeFor(context()));
+    for (auto [threshold, bins, mask] : {std::tuple{&gpu.leftThreshold, &gpu.classification.leftBins, &gpu.leftMask},
+                                         std::tuple{&gpu.rightThreshold, &gpu.classification.rightBins, &gpu.rightMask}}) {
+      splits += threshold->splitPixels > 0 ? 1 : 0;
+      EXPECT_EQ(*mask, hybridMaskReference(*bins, *threshold, image)) << "budget " << budget;
+    }
+  }
+  EXPECT_GT(splits, 0) << "no budget split a bin: the row scan went untested";
+}
+
 TEST_F(HybridPassTest, ACpuDeviceGetsIndependentRunsAndAShapeBeyondTheDeviceIsRefused) {
   if (context().isCpuDevice()) {
     EXPECT_EQ(hybridRowShapeFor(context()), kHybridCpuRowShape);
