@@ -58,9 +58,9 @@ class HybridPass {
   Images createImages(std::uint32_t width, std::uint32_t height, int cell) const;
 
   // Classification, threshold and masks in three dispatches (one workgroup per row of cells, one per eye, one
-  // invocation per cell), after the grid's depth for a cell of more than one pixel. linearDepth: the center view's (R32F, GENERAL,
-  // written by an earlier compute pass and made visible by the caller). Leaves every image of `images` in
-  // vk::kComputeWrite state: a consumer of the masks (the renderer) transitions them to what it reads with.
+  // invocation per cell), after the grid's depth for a cell of more than one pixel. linearDepth: the center view's
+  // (R32F, GENERAL, written by an earlier compute pass and made visible by the caller). Leaves every image of `images`
+  // in vk::kComputeWrite state: a consumer of the masks (the renderer) transitions them to what it reads with.
   // afterEachDispatch (optional) is called right after each of the three dispatches is recorded (a caller's
   // timestamps: classify with the grid's depth before it, threshold, mask).
   void recordMasks(VkCommandBuffer cmd, const vk::Image& linearDepth, Images& images,

@@ -34,7 +34,8 @@ S3D_GPU_BEGIN
 #define S3D_HYBRID_MIN_JUMP_PX 0.015625f // expected errors below this (pixels of parallax) are none: 1/64 px
 #define S3D_HYBRID_NO_PIXEL 256       // threshold bin that masks nothing
 #define S3D_HYBRID_THRESHOLD_GROUP 256 // the threshold pass: one invocation per bin, one workgroup per eye
-#define S3D_HYBRID_THRESHOLD_FIELDS 6  // per eye: threshold bin, masked pixels, split bin, split pixels, last split cell's row, column
+// Per eye: threshold bin, masked pixels, split bin, split pixels, the split's last cell's row and column.
+#define S3D_HYBRID_THRESHOLD_FIELDS 6
 // Shared slots: the depth steps whose interior (hybridPairInterior) the row group writes together, 32 invocations
 // to a step, instead of the one invocation that found it looping alone while its neighbours wait (two words each);
 // steps beyond these, and interiors shorter than S3D_HYBRID_SHARED_INTERIOR_PX, the finding invocation writes.
