@@ -75,7 +75,7 @@ HybridRowShape checkedShape(const vk::Context& context, std::optional<HybridRowS
   if (!hybridRowShapeFits(context, chosen))
     throw std::invalid_argument("hybrid stereo: the device cannot run a row group of " + std::to_string(chosen.rowGroup) +
                                 " invocations with a chunk of " + std::to_string(chosen.chunk) +
-                                " pixels");
+                                " pixels, or mask runs of " + std::to_string(chosen.maskRun) + " cells");
   return chosen;
 }
 
@@ -91,7 +91,7 @@ bool hybridRowShapeFits(const vk::Context& context, HybridRowShape shape) {
   };
   // Independent runs keep the chunk's slots in private memory (one shared slot each), split evenly by the group.
   const std::uint64_t sharedSlots = shape.independentRuns ? 1 : std::uint64_t(shape.chunk);
-  return groupFits(shape.rowGroup) && shape.chunk > 0 &&
+  return groupFits(shape.rowGroup) && shape.chunk > 0 && shape.maskRun > 0 &&
          (!shape.independentRuns || shape.chunk % shape.rowGroup == 0) &&
          std::uint64_t(S3D_HYBRID_CLASSIFY_SHARED_BYTES(std::uint64_t(shape.rowGroup), sharedSlots)) <=
              limits.maxComputeSharedMemorySize;
@@ -119,7 +119,8 @@ HybridPass::HybridPass(const vk::Context& context, std::optional<HybridRowShape>
                  shape_.independentRuns ? VK_TRUE : VK_FALSE}) {
   gridDepth_ = vk::createComputePipeline(context, gridDepthLayout_.layout, spirv_stereo_hybrid_grid_depth_comp);
   threshold_ = vk::createComputePipeline(context, thresholdLayout_.layout, spirv_stereo_hybrid_threshold_comp);
-  mask_ = vk::createComputePipeline(context, maskLayout_.layout, spirv_stereo_hybrid_mask_comp);
+  mask_ = vk::createComputePipeline(context, maskLayout_.layout, spirv_stereo_hybrid_mask_comp,
+                                    vk::SpecializationWords({std::uint32_t(shape_.maskRun)}));
   composite_ = vk::createComputePipeline(context, compositeLayout_.layout, spirv_stereo_hybrid_composite_comp);
   cropEdges_ = vk::createComputePipeline(context, cropEdgesLayout_.layout, spirv_stereo_hybrid_crop_edges_comp);
 }
@@ -188,7 +189,7 @@ void HybridPass::recordMasks(VkCommandBuffer cmd, const vk::Image& linearDepth, 
   vk::transition(cmd, images.thresholds, vk::kComputeWrite, vk::kComputeRead);
   dispatch(*context_, cmd, mask_.get(), maskLayout_.layout,
            {&images.leftBins, &images.rightBins, &images.thresholds, &images.leftMask, &images.rightMask}, c,
-           groups(grid.width), groups(grid.height));
+           groups((grid.width + shape_.maskRun - 1) / shape_.maskRun), groups(grid.height));
   mark();
   // Everything ends in one state, so the next frame (and the read-backs) start from one.
   for (const vk::Image* image : {&images.leftBins, &images.rightBins, &images.histogram, &images.rowHistograms,

@@ -27,19 +27,21 @@ constexpr HybridRowShape kGpuGroupSmallChunk{S3D_HYBRID_GPU_ROW_GROUP, 1024};
 // Every row shape gives the same bins and masks: the CPU devices' (each invocation classifies its run alone, one
 // chunk for a short row), the fallback (a few invocations share the slots and walk the runs), the GPUs' (many
 // invocations scan them in parallel, one chunk for a short row; where the device holds it) or its group with a
-// smaller chunk, a large group with small chunks (the parallel scan across several chunks of a row), and
-// independent runs in many small chunks (each run's window reaching across its neighbours').
+// smaller chunk, a large group with small chunks (the parallel scan across several chunks of a row) and mask runs of
+// three cells (a run cut by the row's end), and independent runs in many small chunks (each run's window reaching
+// across its neighbours'). The mask pass runs one cell per invocation, or the CPU devices' run of cells.
 std::vector<HybridRowShape> rowShapesToCheck(const vk::Context& context) {
   std::vector<HybridRowShape> shapes;
   for (HybridRowShape shape : {kHybridCpuRowShape, kHybridFallbackRowShape, kHybridGpuRowShape, kGpuGroupSmallChunk,
-                               HybridRowShape{64, 128}, HybridRowShape{8, 64, true}})
+                               HybridRowShape{64, 128, false, 3}, HybridRowShape{8, 64, true}})
     if (hybridRowShapeFits(context, shape)) shapes.push_back(shape);
   EXPECT_GE(shapes.size(), 1u);
   return shapes;
 }
 
 std::string shapeName(HybridRowShape shape) {
-  return "row group " + std::to_string(shape.rowGroup) + ", chunk " + std::to_string(shape.chunk);
+  return "row group " + std::to_string(shape.rowGroup) + ", chunk " + std::to_string(shape.chunk) + ", mask run " +
+         std::to_string(shape.maskRun);
 }
 
 // Every pixel its own cell: the row classification's definitions, pixel for pixel (the tests of cells say so).
@@ -586,6 +588,7 @@ TEST_F(HybridPassTest, ACpuDeviceGetsIndependentRunsAndAShapeBeyondTheDeviceIsRe
   EXPECT_TRUE(hybridRowShapeFits(context(), hybridRowShapeFor(context())));
   EXPECT_THROW(HybridPass(context(), HybridRowShape{1 << 20, 512}), std::invalid_argument);
   EXPECT_THROW(HybridPass(context(), HybridRowShape{16, 1 << 20}), std::invalid_argument);
+  EXPECT_THROW(HybridPass(context(), HybridRowShape{16, 512, false, 0}), std::invalid_argument);
   // Independent runs split the chunk's private slots evenly: a chunk that is no multiple of the group is refused.
   EXPECT_THROW(HybridPass(context(), HybridRowShape{8, 100, true}), std::invalid_argument);
 }

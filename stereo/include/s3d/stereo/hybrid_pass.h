@@ -16,15 +16,18 @@
 
 namespace s3d::stereo {
 
-// The classification's workgroups: its invocations per row and chunk of eye pixels (hybrid_shared.h). Any shape the
-// device can run gives the same bins and masks; only the time differs.
+// The classification's workgroups (its invocations per row and chunk of eye pixels) and the mask pass's cells per
+// invocation along a row (hybrid_shared.h). Any shape the device can run gives the same bins and masks; only the
+// time differs.
 struct HybridRowShape {
   int rowGroup = S3D_HYBRID_ROW_GROUP;
   int chunk = S3D_HYBRID_CHUNK;
   bool independentRuns = false;  // each invocation classifies its own run alone (the chunk a multiple of the group)
+  int maskRun = 1;               // cells per mask-pass invocation: a CPU device loads the thresholds once per run
   bool operator==(const HybridRowShape&) const = default;
 };
-inline constexpr HybridRowShape kHybridCpuRowShape{S3D_HYBRID_CPU_ROW_GROUP, S3D_HYBRID_CPU_CHUNK, true};
+inline constexpr HybridRowShape kHybridCpuRowShape{S3D_HYBRID_CPU_ROW_GROUP, S3D_HYBRID_CPU_CHUNK, true,
+                                                   S3D_HYBRID_CPU_MASK_RUN};
 inline constexpr HybridRowShape kHybridFallbackRowShape{S3D_HYBRID_ROW_GROUP, S3D_HYBRID_CHUNK};
 inline constexpr HybridRowShape kHybridGpuRowShape{S3D_HYBRID_GPU_ROW_GROUP, S3D_HYBRID_GPU_CHUNK};
 // The fast shape for the device: independent runs on a CPU device, many invocations on a GPU (the fallback where
