@@ -38,6 +38,7 @@ uint sumBefore(uint own) {
   return above[local] - own;
 }
 
+// Whether cell (x, y) of the eye's bins is in `bin`.
 bool isSplitCell(int eye, int x, int y, uint bin) {
   uint cellBin = eye == 0 ? imageLoad(leftBins, ivec2(x, y)).r : imageLoad(rightBins, ivec2(x, y)).r;
   return cellBin == bin;
