@@ -174,7 +174,7 @@ Gray16Image readPngGray16(const fs::path& file) {
                                &height, &channelsInFile, 1),
       stbi_image_free);
   if (!decoded) detail::failPngDecode("PNG", file);
-  Gray16Image image(static_cast<std::uint32_t>(header.width), static_cast<std::uint32_t>(header.height));
+  Gray16Image image(static_cast<std::uint32_t>(width), static_cast<std::uint32_t>(height));
   std::memcpy(image.pixels.data(), decoded.get(), image.pixels.size() * sizeof(std::uint16_t));
   return image;
 }

@@ -195,7 +195,7 @@ void writePng(const fs::path& file, const ImageRGBA8& image) {
 
 ImageRGBA8 readPng(const fs::path& file) {
   const std::string bytes = readFileBytes("PNG", file);
-  const detail::PngHeader header = detail::readPngHeader("PNG", file, bytes);
+  (void)detail::readPngHeader("PNG", file, bytes);  // refused before stb sizes its buffers from the header
   int width = 0;
   int height = 0;
   int channelsInFile = 0;
@@ -204,7 +204,7 @@ ImageRGBA8 readPng(const fs::path& file) {
                             &height, &channelsInFile, kRgbaChannels),
       stbi_image_free);
   if (!decoded) detail::failPngDecode("PNG", file);
-  ImageRGBA8 image(static_cast<std::uint32_t>(header.width), static_cast<std::uint32_t>(header.height));
+  ImageRGBA8 image(static_cast<std::uint32_t>(width), static_cast<std::uint32_t>(height));
   std::memcpy(image.pixels.data(), decoded.get(), image.pixels.size());
   return image;
 }
