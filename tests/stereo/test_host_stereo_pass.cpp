@@ -96,9 +96,37 @@ TEST_F(HostStereoPassTest, TheFirstPersonDepthRangeIsLinearizedAndPushed) {
   expectReferenceEyes(VK_FORMAT_R8G8B8A8_UNORM, VK_FORMAT_D32_SFLOAT);
 }
 
+// The gather takes each layer's nearest tap in device depth and converts it: a weapon pushed behind the world is
+// taken at its pushed depth, and a push that reverses the layer's order (negative scale) has every tap converted.
+// The view: blocks of 1-3 columns at depths 0.6-3.4, about half of them nearer than 2 (the fixture's weapon), so a
+// side's taps often meet both layers and several depths of each.
+void useMixedLayerBlocks(HostStereoPassTest& t) {
+  t.view_ = makeBlockView(kWidth, kHeight, 5, 0.6f, 3, 5, true);
+  for (float& z : t.view_.depth.pixels)
+    if (std::isfinite(z)) z = 0.6f + std::fmod(z, 2.8f);
+}
+TEST_F(HostStereoPassTest, AWeaponPushedBehindTheWorldIsTakenAtItsPushedDepth) {
+  useMixedLayerBlocks(*this);
+  frame_.projection.firstPersonDepthRange = 0.1f;
+  frame_.projection.firstPersonNear = 0.05f;
+  frame_.projection.firstPersonFar = 5.0f;
+  frame_.weaponDepthOffset = 20.0f;
+  expectReferenceEyes(VK_FORMAT_R8G8B8A8_UNORM, VK_FORMAT_D32_SFLOAT);
+}
+TEST_F(HostStereoPassTest, APushReversingTheFirstPersonLayersOrderIsConvertedPerTap) {
+  useMixedLayerBlocks(*this);
+  frame_.projection.reversedZ = true;
+  frame_.projection.firstPersonDepthRange = 0.1f;
+  frame_.projection.firstPersonNear = 0.05f;
+  frame_.projection.firstPersonFar = 5.0f;
+  frame_.weaponDepthOffset = 6.0f;
+  frame_.weaponDepthScale = -1.0f;
+  expectReferenceEyes(VK_FORMAT_R8G8B8A8_UNORM, VK_FORMAT_D32_SFLOAT);
+}
+
 // Device depth nearer than the range's near end, and NaN, hold no surface: each reads as the zero-parallax plane
-// (stereoDepthFromDevice), among taps of both layers (converted per tap) or of the world alone (the gather takes
-// the minimum in device depth and converts once).
+// (stereoDepthFromDevice), among taps of both layers or of the world alone (the gather takes each layer's minimum
+// in device depth and converts it).
 void expectOutOfRangeDepthReadsAsTheScreen(HostStereoPassTest& t, float outOfRange, bool firstPersonLayer) {
   if (firstPersonLayer) {
     t.frame_.projection.firstPersonDepthRange = 0.1f;
