@@ -56,32 +56,24 @@ vec4 centerAt(int x, int y) {
 }
 
 #ifdef S3D_STEREO_HOST_INPUTS
-// Listing 4.5 on a host's depth buffer whose layers keep the device depth's key order (firstPersonPushKeepsKeyOrder,
-// linear_depth.h): each layer's nearest tap is its smallest key, so the taps' minimum is taken in keys per layer and
-// each layer's nearest converted once instead of every tap. Out-of-range and NaN taps read as the zero-parallax
-// plane, as their conversion does.
-float minDepthOverLayersTaps(int x, int y, int direction) {
-  float worldKey = S3D_INFINITY, firstPersonKey = S3D_INFINITY;
-  float firstPersonMax = firstPersonKeyMax(h.depth);  // below the range's near end without a first-person layer
+// Listing 4.5 on a host's depth buffer of one layer (no first-person depth range): its stereo depth never
+// decreases with the device depth's key (linear_depth.h), so the taps' minimum is taken in keys and converted
+// once instead of per tap. Out-of-range and NaN taps read as the zero-parallax plane, as their conversion does.
+float minDepthOverOneLayersTaps(int x, int y, int direction) {
+  float nearestKey = S3D_INFINITY;
   bool outOfRange = false;
   for (int i = 0; i < S3D_STEREO_TAP_CAPACITY; ++i) {
     if (i >= c.tapCount) continue;
     ivec2 texel = ivec2(clamp(x + direction * c.tapOffsetPx[i], 0, c.width - 1), y);
     float key = deviceDepthKey(h.depth, texelFetch(hostDepth, texel, 0).r);
-    bool inRange = isDeviceDepthKeyInRange(h.depth, key), firstPerson = key <= firstPersonMax;  // NaN: neither
+    bool inRange = isDeviceDepthKeyInRange(h.depth, key);
     outOfRange = outOfRange || !inRange;
-    worldKey = inRange && !firstPerson ? min(worldKey, key) : worldKey;
-    firstPersonKey = firstPerson && inRange ? min(firstPersonKey, key) : firstPersonKey;
+    nearestKey = inRange ? min(nearestKey, key) : nearestKey;
   }
   float minDepth = outOfRange ? c.zeroParallaxDistance : S3D_INFINITY;
-  // (A key of +inf, a float buffer's infinity, is the sky: no nearer than minDepth.)
-  if (worldKey < S3D_INFINITY)  // the key's negation is its own inverse
-    minDepth = min(minDepth, sanitizedDepth(stereoDepthFromDevice(h.depth, deviceDepthKey(h.depth, worldKey)),
-                                            c.zeroParallaxDistance));
-  if (firstPersonKey < S3D_INFINITY)
-    minDepth = min(minDepth, sanitizedDepth(stereoDepthFromDevice(h.depth, deviceDepthKey(h.depth, firstPersonKey)),
-                                            c.zeroParallaxDistance));
-  return minDepth;
+  if (nearestKey == S3D_INFINITY) return minDepth;  // no tap in range, or the sky at +inf
+  float deviceDepth = deviceDepthKey(h.depth, nearestKey);  // the key's negation is its own inverse
+  return min(minDepth, sanitizedDepth(stereoDepthFromDevice(h.depth, deviceDepth), c.zeroParallaxDistance));
 }
 #endif
 
@@ -89,12 +81,10 @@ float minDepthOverLayersTaps(int x, int y, int direction) {
 #define S3D_GATHER_TAP_OFFSET_PX c.tapOffsetPx
 #include "stereo_gather_source.glsl"
 
-// The taps' nearest depth on one side of the pixel: from a host's depth buffer in keys per layer where the layers
-// keep the keys' order, else per tap.
+// The taps' nearest depth on one side of the pixel: from a host's one-layer depth buffer in keys, else per tap.
 float nearestTapDepth(int x, int y, int direction) {
 #ifdef S3D_STEREO_HOST_INPUTS
-  if (h.depthKind == S3D_HOST_DEPTH_DEVICE && firstPersonPushKeepsKeyOrder(h.depth))
-    return minDepthOverLayersTaps(x, y, direction);
+  if (h.depthKind == S3D_HOST_DEPTH_DEVICE && hasNoFirstPersonLayer(h.depth)) return minDepthOverOneLayersTaps(x, y, direction);
 #endif
   return minDepthOverTaps(x, y, direction);
 }

@@ -96,10 +96,10 @@ TEST_F(HostStereoPassTest, TheFirstPersonDepthRangeIsLinearizedAndPushed) {
   expectReferenceEyes(VK_FORMAT_R8G8B8A8_UNORM, VK_FORMAT_D32_SFLOAT);
 }
 
-// The gather takes each layer's nearest tap in device depth and converts it: a weapon pushed behind the world is
-// taken at its pushed depth, and a push that reverses the layer's order (negative scale) has every tap converted.
-// The view: blocks of 1-3 columns at depths 0.6-3.4, about half of them nearer than 2 (the fixture's weapon), so a
-// side's taps often meet both layers and several depths of each.
+// With a first-person range the gather converts every tap: a weapon pushed behind the world is taken at its pushed
+// depth, and a push that reverses the layer's order (negative scale) at its own. The view: blocks of 1-3 columns at
+// depths 0.6-3.4, about half of them nearer than 2 (the fixture's weapon), so a side's taps often meet both layers
+// and several depths of each.
 void useMixedLayerBlocks(HostStereoPassTest& t) {
   t.view_ = makeBlockView(kWidth, kHeight, 5, 0.6f, 3, 5, true);
   for (float& z : t.view_.depth.pixels)
@@ -113,7 +113,7 @@ TEST_F(HostStereoPassTest, AWeaponPushedBehindTheWorldIsTakenAtItsPushedDepth) {
   frame_.weaponDepthOffset = 20.0f;
   expectReferenceEyes(VK_FORMAT_R8G8B8A8_UNORM, VK_FORMAT_D32_SFLOAT);
 }
-TEST_F(HostStereoPassTest, APushReversingTheFirstPersonLayersOrderIsConvertedPerTap) {
+TEST_F(HostStereoPassTest, APushReversingTheFirstPersonLayersOrderIsTakenAtItsPushedDepth) {
   useMixedLayerBlocks(*this);
   frame_.projection.reversedZ = true;
   frame_.projection.firstPersonDepthRange = 0.1f;
@@ -125,8 +125,8 @@ TEST_F(HostStereoPassTest, APushReversingTheFirstPersonLayersOrderIsConvertedPer
 }
 
 // Device depth nearer than the range's near end, and NaN, hold no surface: each reads as the zero-parallax plane
-// (stereoDepthFromDevice), among taps of both layers or of the world alone (the gather takes each layer's minimum
-// in device depth and converts it).
+// (stereoDepthFromDevice), among taps of both layers (converted per tap) or of the world alone (the gather takes
+// the minimum in device depth and converts once).
 void expectOutOfRangeDepthReadsAsTheScreen(HostStereoPassTest& t, float outOfRange, bool firstPersonLayer) {
   if (firstPersonLayer) {
     t.frame_.projection.firstPersonDepthRange = 0.1f;

@@ -2,7 +2,6 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <vector>
 
 #include "s3d/gpu/linear_depth.h"
 
@@ -97,54 +96,6 @@ TEST(StereoDepth, NeverDecreasesWithTheKeyWithoutAFirstPersonLayer) {
       previousDepth = depth;
     }
   }
-}
-
-// The stereo depths of device depths walked in key order through one convention's range, each with its layer.
-struct KeyOrderWalk {
-  std::vector<float> depths;
-  std::vector<bool> firstPerson;
-};
-KeyOrderWalk walkInKeyOrder(const LinearDepthParams& p, bool isReversed) {
-  KeyOrderWalk walk;
-  for (int i = 0; i <= 1 << 14; ++i) {
-    const float device = isReversed ? 1.0f - float(i) / float(1 << 14) : float(i) / float(1 << 14);
-    walk.depths.push_back(stereoDepthFromDevice(p, device));
-    walk.firstPerson.push_back(deviceDepthKey(p, device) <= firstPersonKeyMax(p));
-  }
-  return walk;
-}
-
-TEST(StereoDepth, ANonNegativePushKeepsEachLayersKeyOrder) {
-  // What lets the host gather take each layer's nearest tap as its smallest key: with a weapon push of
-  // non-negative offset and scale, the stereo depth never decreases with the key within the first-person layer,
-  // nor within the world (through the sky), in both conventions.
-  for (bool isReversed : {false, true}) {
-    LinearDepthParams p = isReversed ? makeReversedLinearDepthParams(kWorldNear, kWorldFar, kWeaponNear, kWeaponFar, kSplit)
-                                     : makeLinearDepthParams(kWorldNear, kWorldFar, kWeaponNear, kWeaponFar, kSplit);
-    p.firstPersonDepthOffset = 1.0f;
-    p.firstPersonDepthScale = 1.5f;
-    ASSERT_TRUE(firstPersonPushKeepsKeyOrder(p));
-    const KeyOrderWalk walk = walkInKeyOrder(p, isReversed);
-    for (std::size_t i = 1; i < walk.depths.size(); ++i) {
-      if (walk.firstPerson[i] != walk.firstPerson[i - 1]) continue;  // the layers' boundary
-      EXPECT_GE(walk.depths[i], walk.depths[i - 1]) << i << (isReversed ? " reversed" : "");
-    }
-  }
-}
-
-TEST(StereoDepth, ANegativeScaleReversesTheFirstPersonLayersOrderAndIsNotKeyOrdered) {
-  // So the host gather converts every tap for it (a negative offset likewise: a near weapon's depth would fall to
-  // zero, which reads as the zero-parallax plane, farther than the layer's positive depths).
-  LinearDepthParams p = makeLinearDepthParams(kWorldNear, kWorldFar, kWeaponNear, kWeaponFar, kSplit);
-  p.firstPersonDepthOffset = 10.0f;
-  p.firstPersonDepthScale = -1.0f;
-  EXPECT_FALSE(firstPersonPushKeepsKeyOrder(p));
-  const KeyOrderWalk walk = walkInKeyOrder(p, false);
-  EXPECT_TRUE(walk.firstPerson.front());
-  EXPECT_LT(walk.depths[1000], walk.depths[0]) << "the layer's depth falls as its key grows";
-  p.firstPersonDepthScale = 1.0f;
-  p.firstPersonDepthOffset = -0.5f;
-  EXPECT_FALSE(firstPersonPushKeepsKeyOrder(p));
 }
 
 TEST(StereoDepth, AFirstPersonRangeIsALayer) {

@@ -72,13 +72,6 @@ S3D_INLINE bool isDeviceDepthKeyInRange(LinearDepthParams p, float key) { return
 // No device depth in range belongs to the first-person layer (the host gave it no depth range of its own).
 S3D_INLINE bool hasNoFirstPersonLayer(LinearDepthParams p) { return firstPersonKeyMax(p) < deviceDepthKeyMin(p); }
 
-// Within the first-person layer the pushed depth (offset + scale * depth) never decreases with the key, and stays
-// positive, when neither the push's offset nor its scale is negative: then each layer's nearest depth is its
-// smallest key's (the stereo gather converts one key per layer instead of every tap).
-S3D_INLINE bool firstPersonPushKeepsKeyOrder(LinearDepthParams p) {
-  return hasNoFirstPersonLayer(p) || (p.firstPersonDepthOffset >= 0.0f && p.firstPersonDepthScale >= 0.0f);
-}
-
 // The depth the stereo pass sees: linear depth, with the first-person layer pushed into the screen by
 // offsetting and scaling its depth (seed 4.6.2). Per pixel, so the weapon's own visibility is untouched.
 // Out-of-range device depth reads 0, which the stereo pass takes as the zero-parallax plane (sanitizedDepth).
