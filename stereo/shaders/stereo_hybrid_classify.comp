@@ -6,14 +6,14 @@
 // One workgroup per row, in linear time: each pair of neighbouring center texels scatters its terms into the eye
 // pixels it reaches (shared-memory atomics), the change pairs' landing intervals are swept along the row for the
 // nearest boundary (a running maximum and minimum, each invocation along its own run of pixels, then across the
-// runs), then every pixel's coverage is complete. The row is walked in chunks of eye pixels, one eye at a time; a
-// chunk takes the pairs whose landings can reach it or lie within the separation window of it (bounded by the
-// row's parallax range). The row group, the chunk and the runs' independence are specialization constants
-// (hybrid_shared.h). Shared slots (GPUs): a small group walks the runs' extremes with one invocation (four barriers
-// per chunk and eye), a large one scans them in parallel (two barriers per doubling). Independent runs (CPU
+// runs), then every pixel's coverage is complete. The row is walked in chunks of eye pixels; a chunk takes the pairs
+// whose landings can reach it or lie within the separation window of it (bounded by the row's parallax range). The
+// row group, the chunk and the runs' independence are specialization constants (hybrid_shared.h). Shared slots
+// (GPUs): the group's two halves take the two eyes at once; a small half walks its runs' extremes with one
+// invocation (four barriers per chunk), a large one scans them in parallel (two barriers per doubling). Independent runs (CPU
 // devices: lavapipe scalarizes every shared-memory atomic per SIMD lane and switches between invocations at each
-// barrier): each invocation classifies its run of the chunk alone, as a chunk of its own (its pairs, window
-// included), in private slots with plain reads and writes and no barrier. Every order of the atomics and scans,
+// barrier): each invocation classifies its run of the chunk alone, one eye then the other, as a chunk of its own
+// (its pairs, window included), in private slots with plain reads and writes and no barrier. Every order of the atomics and scans,
 // and every split into runs, gives the same bits.
 #extension GL_GOOGLE_include_directive : require
 #include "s3d/stereo/hybrid_shared.h"
@@ -35,9 +35,13 @@ layout(binding = 4, r32ui) uniform writeonly uimage2D rowHistograms;  // 2 S3D_H
 layout(push_constant) uniform Push { HybridConstants c; };
 
 shared uint groupHistogram[2 * S3D_HYBRID_BINS];
-// Per chunk pixel of the eye at hand, as order-preserving bits of floats, shared by the group's invocations (one
-// slot each with independent runs):
-const int kSharedSlots = kIndependentRuns ? 1 : kChunk;
+// Shared slots: the group's two halves classify the two eyes at once, each eye's chunk on its own slots (the left
+// eye's first), so the row's barriers and memory latencies are paid once for both eyes. Independent runs: each
+// invocation classifies the two eyes in turn.
+const int kLanes = kIndependentRuns ? kGroup : kGroup / 2;  // invocations per eye
+// Per chunk pixel of each eye, as order-preserving bits of floats, shared by the eye's invocations (one slot each
+// with independent runs):
+const int kSharedSlots = kIndependentRuns ? 1 : 2 * kChunk;
 shared uint coverBits[kSharedSlots];         // the smallest covering parallax (+inf: none)
 shared uint holeBits[kSharedSlots];          // the largest straddling step
 shared uint edgeBits[kSharedSlots];          // the largest edge band score
@@ -48,15 +52,18 @@ shared uint nearestStartBits[kSharedSlots];  // change pairs starting just after
 const int kRunSlots = kIndependentRuns ? kChunk / kGroup : 1;
 uint runCoverBits[kRunSlots], runHoleBits[kRunSlots], runEdgeBits[kRunSlots];
 uint runFarthestEndBits[kRunSlots], runNearestStartBits[kRunSlots];
-shared uint runEnd[kGroup], runStart[kGroup];  // each invocation's run: its largest end, its smallest start
-// Step interiors the group writes together (S3D_HYBRID_INTERIOR_CAP): x the first slot | the last << 15 | whether
-// the step is between two surfaces << 30, y the step's ordered bits. The count may pass the cap: those are written
-// by the invocation that found them.
+shared uint runEnd[kGroup], runStart[kGroup];  // each invocation's run: its largest end, its smallest start (by eye)
+// Step interiors each eye's invocations write together (S3D_HYBRID_INTERIOR_CAP per eye): x the first slot | the
+// last << 15 | whether the step is between two surfaces << 30, y the step's ordered bits. The count may pass the
+// cap: those are written by the invocation that found them.
 const int kInteriorSlots = kIndependentRuns ? 1 : S3D_HYBRID_INTERIOR_CAP;
-shared uvec2 interiors[kInteriorSlots];
-shared uint interiorCount;
-const int kTeam = kGroup < 32 ? kGroup : 32;  // invocations per queued interior: a GPU's SIMD group (a warp)
+shared uvec2 interiors[2 * kInteriorSlots];
+shared uint interiorCount[2];
+const int kTeam = kLanes < 32 ? kLanes : 32;  // invocations per queued interior: a GPU's SIMD group (a warp)
 shared uint rowParallaxMin, rowParallaxMax;    // the row's parallax range, as ordered bits
+
+// This invocation's eye (0 left, 1 right), its place among the eye's invocations, and the eye's first shared slot.
+int laneEye = 0, lane = 0, slotBase = 0;
 
 // Floats as unsigned integers in the same order (negative ones too), for atomicMin / atomicMax.
 uint orderedBits(float value) {
@@ -81,23 +88,23 @@ float parallaxAt(int x, int y) { return parallaxFromSanitized(sanitizedDepthAt(x
 // plain reads and writes where each invocation owns its run's slots.
 void lowerCover(int at, uint bits) {
   if (kIndependentRuns) runCoverBits[at] = min(runCoverBits[at], bits);
-  else atomicMin(coverBits[at], bits);
+  else atomicMin(coverBits[slotBase + at], bits);
 }
 void raiseHole(int at, uint bits) {
   if (kIndependentRuns) runHoleBits[at] = max(runHoleBits[at], bits);
-  else atomicMax(holeBits[at], bits);
+  else atomicMax(holeBits[slotBase + at], bits);
 }
 void raiseEdge(int at, uint bits) {
   if (kIndependentRuns) runEdgeBits[at] = max(runEdgeBits[at], bits);
-  else atomicMax(edgeBits[at], bits);
+  else atomicMax(edgeBits[slotBase + at], bits);
 }
 void raiseFarthestEnd(int at, uint bits) {
   if (kIndependentRuns) runFarthestEndBits[at] = max(runFarthestEndBits[at], bits);
-  else atomicMax(farthestEndBits[at], bits);
+  else atomicMax(farthestEndBits[slotBase + at], bits);
 }
 void lowerNearestStart(int at, uint bits) {
   if (kIndependentRuns) runNearestStartBits[at] = min(runNearestStartBits[at], bits);
-  else atomicMin(nearestStartBits[at], bits);
+  else atomicMin(nearestStartBits[slotBase + at], bits);
 }
 
 // A pair's terms into the eye pixels [from, to] (slots from x0), each evaluated.
@@ -123,22 +130,22 @@ void writeInterior(int first, int last, int stride, uint stepBits, bool betweenS
 // A long step interior (slots first..last) onto the group's list; false: the caller writes it.
 bool queueInterior(HybridPair pair, int first, int last) {
   if (last - first + 1 < S3D_HYBRID_SHARED_INTERIOR_PX) return false;
-  uint entry = atomicAdd(interiorCount, 1u);
+  uint entry = atomicAdd(interiorCount[laneEye], 1u);
   if (entry >= uint(S3D_HYBRID_INTERIOR_CAP)) return false;
-  interiors[entry] = uvec2(uint(first) | (uint(last) << 15) | (pair.edgeBase > 0.0f ? 1u << 30 : 0u),
+  interiors[laneEye * S3D_HYBRID_INTERIOR_CAP + int(entry)] = uvec2(uint(first) | (uint(last) << 15) | (pair.edgeBase > 0.0f ? 1u << 30 : 0u),
                            orderedBits(pair.jumpPx));
   return true;
 }
 
-// The queued step interiors into the slots, each by a team of kTeam invocations (after the scatter's barrier).
+// The eye's queued step interiors into its slots, each by a team of kTeam invocations (after the scatter's barrier).
 void writeQueuedInteriors() {
-  int local = int(gl_LocalInvocationIndex), team = local / kTeam, teams = kGroup / kTeam;
+  int team = lane / kTeam, teams = kLanes / kTeam;
   if (team >= teams) return;
-  uint queued = min(interiorCount, uint(S3D_HYBRID_INTERIOR_CAP));
+  uint queued = min(interiorCount[laneEye], uint(S3D_HYBRID_INTERIOR_CAP));
   for (uint entry = uint(team); entry < queued; entry += uint(teams)) {
-    uvec2 interior = interiors[entry];
+    uvec2 interior = interiors[laneEye * S3D_HYBRID_INTERIOR_CAP + int(entry)];
     int first = int(interior.x & 0x7fffu), last = int((interior.x >> 15) & 0x7fffu);
-    writeInterior(first + local % kTeam, last, kTeam, interior.y, (interior.x & (1u << 30)) != 0u);
+    writeInterior(first + lane % kTeam, last, kTeam, interior.y, (interior.x & (1u << 30)) != 0u);
   }
 }
 
@@ -192,10 +199,10 @@ float depthAt(int x, int y) { return sanitizedDepthAt(x, y); }
 float pixelScore(int x, int y, int at, float direction, float farthestEnd, float nearestStart) {
   precise float eyeX = float(x);
   HybridCoverage coverage;
-  coverage.visibleParallaxPx = orderedFloat(kIndependentRuns ? runCoverBits[at] : coverBits[at]);
+  coverage.visibleParallaxPx = orderedFloat(kIndependentRuns ? runCoverBits[at] : coverBits[slotBase + at]);
   coverage.covered = coverage.visibleParallaxPx < S3D_INFINITY;
-  coverage.holeJumpPx = orderedFloat(kIndependentRuns ? runHoleBits[at] : holeBits[at]);
-  coverage.edgeScore = orderedFloat(kIndependentRuns ? runEdgeBits[at] : edgeBits[at]);
+  coverage.holeJumpPx = orderedFloat(kIndependentRuns ? runHoleBits[at] : holeBits[slotBase + at]);
+  coverage.edgeScore = orderedFloat(kIndependentRuns ? runEdgeBits[at] : edgeBits[slotBase + at]);
   coverage.nearestChangePx = hybridChangeDistancePx(eyeX, farthestEnd, nearestStart);
   float gatherError = 0.0f;
   if (c.baseTapCount > 0) {  // the gather's own choice of source column (stereo_gather_source.glsl)
@@ -211,6 +218,14 @@ float pixelScore(int x, int y, int at, float direction, float farthestEnd, float
   return hybridPixelScore(coverage, gatherError, c.windowPx);
 }
 
+void clearSharedSlot(int index) {
+  coverBits[index] = orderedBits(S3D_INFINITY);
+  holeBits[index] = orderedBits(0.0f);
+  edgeBits[index] = orderedBits(0.0f);
+  farthestEndBits[index] = orderedBits(-S3D_INFINITY);
+  nearestStartBits[index] = orderedBits(S3D_INFINITY);
+}
+
 void clearSlot(int at) {
   if (kIndependentRuns) {
     runCoverBits[at] = orderedBits(S3D_INFINITY);
@@ -219,11 +234,7 @@ void clearSlot(int at) {
     runFarthestEndBits[at] = orderedBits(-S3D_INFINITY);
     runNearestStartBits[at] = orderedBits(S3D_INFINITY);
   } else {
-    coverBits[at] = orderedBits(S3D_INFINITY);
-    holeBits[at] = orderedBits(0.0f);
-    edgeBits[at] = orderedBits(0.0f);
-    farthestEndBits[at] = orderedBits(-S3D_INFINITY);
-    nearestStartBits[at] = orderedBits(S3D_INFINITY);
+    clearSharedSlot(slotBase + at);
   }
 }
 
@@ -288,68 +299,75 @@ void classifyRun(int eye, int x0, int x1, int y, float parallaxMin, float parall
   if (sameBinPixels != 0u) atomicAdd(groupHistogram[eye * S3D_HYBRID_BINS + int(sameBin)], sameBinPixels);
 }
 
-// One eye's pixels [x0, x1) of row y; the slots are clear on entry and left clear.
-void classifyChunk(int eye, int x0, int x1, int y, float parallaxMin, float parallaxMax) {
-  int local = int(gl_LocalInvocationIndex);
+// The pixels [x0, x1) of row y of this invocation's eye, by the eye's invocations (the other half of the group
+// classifies the other eye alongside); the slots are clear on entry and left clear.
+void classifyChunk(int x0, int x1, int y, float parallaxMin, float parallaxMax) {
+  int eye = laneEye, eyeRuns = laneEye * kLanes;  // the eye's first entry in runEnd and runStart
   float direction = eye == 0 ? 1.0f : -1.0f;
   ivec2 pairs = pairRange(eye, x0, x1, parallaxMin, parallaxMax);
-  for (int i = pairs.x + local; i <= pairs.y; i += kGroup) {
+  for (int i = pairs.x + lane; i <= pairs.y; i += kLanes) {
     float dA = sanitizedDepthAt(i, y), dB = sanitizedDepthAt(i + 1, y);
     scatterPair(direction, x0, x1, i, dA, parallaxFromSanitized(dA), dB, parallaxFromSanitized(dB));
   }
   barrier();
   writeQueuedInteriors();  // (the hole and edge slots are next read after the runs' barriers below)
   // The nearest boundary: each invocation runs along its own run of pixels, then takes the runs before and after.
-  int n = x1 - x0, runLength = (n + kGroup - 1) / kGroup;
-  int runBegin = min(local * runLength, n), runStop = min(runBegin + runLength, n);
+  int n = x1 - x0, runLength = (n + kLanes - 1) / kLanes;
+  int runBegin = min(lane * runLength, n), runStop = min(runBegin + runLength, n);
   uint end = orderedBits(-S3D_INFINITY), start = orderedBits(S3D_INFINITY);
-  for (int at = runBegin; at < runStop; ++at) farthestEndBits[at] = end = max(end, farthestEndBits[at]);
-  for (int at = runStop - 1; at >= runBegin; --at) nearestStartBits[at] = start = min(start, nearestStartBits[at]);
-  runEnd[local] = end;
-  runStart[local] = start;
+  for (int at = slotBase + runBegin; at < slotBase + runStop; ++at) farthestEndBits[at] = end = max(end, farthestEndBits[at]);
+  for (int at = slotBase + runStop - 1; at >= slotBase + runBegin; --at)
+    nearestStartBits[at] = start = min(start, nearestStartBits[at]);
+  runEnd[eyeRuns + lane] = end;
+  runStart[eyeRuns + lane] = start;
   barrier();
-  // Each run's extremes of itself and the runs before it (the end) or after it (the start): one invocation walks a
-  // few runs; many scan in parallel (Hillis-Steele).
-  if (kGroup <= 32) {
-    if (local == 0) {
-      for (int r = 1; r < kGroup; ++r) runEnd[r] = max(runEnd[r], runEnd[r - 1]);
-      for (int r = kGroup - 2; r >= 0; --r) runStart[r] = min(runStart[r], runStart[r + 1]);
+  // Each run's extremes of itself and the runs before it (the end) or after it (the start): one invocation per eye
+  // walks a few runs; many scan in parallel (Hillis-Steele).
+  if (kLanes <= 32) {
+    if (lane == 0) {
+      for (int r = 1; r < kLanes; ++r) runEnd[eyeRuns + r] = max(runEnd[eyeRuns + r], runEnd[eyeRuns + r - 1]);
+      for (int r = kLanes - 2; r >= 0; --r) runStart[eyeRuns + r] = min(runStart[eyeRuns + r], runStart[eyeRuns + r + 1]);
     }
     barrier();
   } else {
-    for (int step = 1; step < kGroup; step <<= 1) {
-      uint endBefore = local >= step ? runEnd[local - step] : orderedBits(-S3D_INFINITY);
-      uint startAfter = local + step < kGroup ? runStart[local + step] : orderedBits(S3D_INFINITY);
+    for (int step = 1; step < kLanes; step <<= 1) {
+      uint endBefore = lane >= step ? runEnd[eyeRuns + lane - step] : orderedBits(-S3D_INFINITY);
+      uint startAfter = lane + step < kLanes ? runStart[eyeRuns + lane + step] : orderedBits(S3D_INFINITY);
       barrier();
-      runEnd[local] = max(runEnd[local], endBefore);
-      runStart[local] = min(runStart[local], startAfter);
+      runEnd[eyeRuns + lane] = max(runEnd[eyeRuns + lane], endBefore);
+      runStart[eyeRuns + lane] = min(runStart[eyeRuns + lane], startAfter);
       barrier();
     }
   }
   // Then every pixel in turn, with the runs before and after its own.
-  for (int at = local; at < n; at += kGroup) {
+  for (int at = lane; at < n; at += kLanes) {
     int run = at / runLength;
-    uint endBefore = run > 0 ? runEnd[run - 1] : orderedBits(-S3D_INFINITY);
-    uint startAfter = run + 1 < kGroup ? runStart[run + 1] : orderedBits(S3D_INFINITY);
-    float farthestEnd = orderedFloat(max(endBefore, farthestEndBits[at]));
-    float nearestStart = orderedFloat(min(startAfter, nearestStartBits[at]));
+    uint endBefore = run > 0 ? runEnd[eyeRuns + run - 1] : orderedBits(-S3D_INFINITY);
+    uint startAfter = run + 1 < kLanes ? runStart[eyeRuns + run + 1] : orderedBits(S3D_INFINITY);
+    float farthestEnd = orderedFloat(max(endBefore, farthestEndBits[slotBase + at]));
+    float nearestStart = orderedFloat(min(startAfter, nearestStartBits[slotBase + at]));
     storeBin(eye, x0 + at, y, hybridScoreBin(pixelScore(x0 + at, y, at, direction, farthestEnd, nearestStart)));
     clearSlot(at);
   }
-  if (local == 0) interiorCount = 0u;  // read before the runs' barriers
+  if (lane == 0) interiorCount[eye] = 0u;  // read before the runs' barriers
   barrier();  // the slots are clear again, runEnd and runStart read
 }
 
 void main() {
   int local = int(gl_LocalInvocationIndex);
   int y = int(gl_WorkGroupID.x);
+  if (!kIndependentRuns) {
+    laneEye = local / kLanes;
+    lane = local % kLanes;
+    slotBase = laneEye * kChunk;
+  }
   for (int i = local; i < 2 * S3D_HYBRID_BINS; i += kGroup) groupHistogram[i] = 0u;
   if (!kIndependentRuns)
-    for (int at = local; at < kChunk; at += kGroup) clearSlot(at);
+    for (int index = local; index < kSharedSlots; index += kGroup) clearSharedSlot(index);
   if (local == 0) {
     rowParallaxMin = orderedBits(S3D_INFINITY);
     rowParallaxMax = orderedBits(-S3D_INFINITY);
-    interiorCount = 0u;
+    interiorCount[0] = interiorCount[1] = 0u;
   }
   unscoredPixels[0] = unscoredPixels[1] = 0u;
   barrier();
@@ -375,9 +393,11 @@ void main() {
   parallaxMax = min(parallaxMax, float(c.width + 2 * c.windowPx));
   for (int x0 = c.cropBegin; x0 < c.cropEnd; x0 += kChunk) {
     int x1 = min(x0 + kChunk, c.cropEnd);
-    for (int eye = 0; eye < 2; ++eye) {
-      if (kIndependentRuns) classifyRun(eye, x0, x1, y, parallaxMin, parallaxMax);
-      else classifyChunk(eye, x0, x1, y, parallaxMin, parallaxMax);
+    if (kIndependentRuns) {
+      classifyRun(0, x0, x1, y, parallaxMin, parallaxMax);
+      classifyRun(1, x0, x1, y, parallaxMin, parallaxMax);
+    } else {
+      classifyChunk(x0, x1, y, parallaxMin, parallaxMax);
     }
   }
   if (unscoredPixels[0] != 0u) atomicAdd(groupHistogram[0], unscoredPixels[0]);

@@ -17,7 +17,7 @@ namespace s3d::stereo {
 namespace {
 
 // The fallback shape fits what every Vulkan device has (16 KiB of shared memory, 128 invocations).
-static_assert(S3D_HYBRID_CLASSIFY_SHARED_BYTES(S3D_HYBRID_ROW_GROUP, S3D_HYBRID_CHUNK) <= 16384);
+static_assert(S3D_HYBRID_CLASSIFY_SHARED_BYTES(S3D_HYBRID_ROW_GROUP, 2 * S3D_HYBRID_CHUNK) <= 16384);
 static_assert(S3D_HYBRID_ROW_GROUP <= 128);
 
 constexpr VkFormat kUintFormat = VK_FORMAT_R32_UINT;
@@ -89,10 +89,11 @@ bool hybridRowShapeFits(const vk::Context& context, HybridRowShape shape) {
     return group > 0 && std::uint32_t(group) <= limits.maxComputeWorkGroupInvocations &&
            std::uint32_t(group) <= limits.maxComputeWorkGroupSize[0];
   };
-  // Independent runs keep the chunk's slots in private memory (one shared slot each), split evenly by the group.
-  const std::uint64_t sharedSlots = shape.independentRuns ? 1 : std::uint64_t(shape.chunk);
+  // Independent runs keep the chunk's slots in private memory (one shared slot each), split evenly by the group;
+  // shared slots hold both eyes' chunks, each eye classified by half the group.
+  const std::uint64_t sharedSlots = shape.independentRuns ? 1 : 2 * std::uint64_t(shape.chunk);
   return groupFits(shape.rowGroup) && shape.chunk > 0 && shape.maskRun > 0 &&
-         (!shape.independentRuns || shape.chunk % shape.rowGroup == 0) &&
+         (shape.independentRuns ? shape.chunk % shape.rowGroup == 0 : shape.rowGroup % 2 == 0) &&
          std::uint64_t(S3D_HYBRID_CLASSIFY_SHARED_BYTES(std::uint64_t(shape.rowGroup), sharedSlots)) <=
              limits.maxComputeSharedMemorySize;
 }

@@ -21,8 +21,8 @@ namespace {
 class HybridPassTest : public test::VulkanTest {};
 
 // The GPUs' row group with a chunk every test device holds (lavapipe has 32 KiB of shared memory, the GPUs' chunk
-// needs 46): the same code, its scan of the runs in parallel, only the chunk's length differs.
-constexpr HybridRowShape kGpuGroupSmallChunk{S3D_HYBRID_GPU_ROW_GROUP, 1024};
+// needs 48): the same code, its scans of the runs in parallel, only the chunk's length differs.
+constexpr HybridRowShape kGpuGroupSmallChunk{S3D_HYBRID_GPU_ROW_GROUP, 512};
 
 // Every row shape gives the same bins and masks: the CPU devices' (each invocation classifies its run alone, one
 // chunk for a short row), the fallback (a few invocations share the slots and walk the runs), the GPUs' (many

@@ -22,13 +22,13 @@ S3D_GPU_BEGIN
 // shared-memory atomics per SIMD lane and switches between invocations at every barrier, so it gets one SIMD
 // batch of invocations, each classifying its run alone in private memory; a GPU needs many rows' worth of warps
 // in flight, so it gets many invocations per row sharing the chunk's slots in shared memory.
-#define S3D_HYBRID_ROW_GROUP 16       // the fallback: invocations per row
-#define S3D_HYBRID_CHUNK 512          // the fallback: the classification's eye pixels per step along its row
+#define S3D_HYBRID_ROW_GROUP 16       // the fallback: invocations per row (half per eye)
+#define S3D_HYBRID_CHUNK 256          // the fallback: the classification's eye pixels per step along its row
 #define S3D_HYBRID_CPU_ROW_GROUP 8    // CPU devices: one SIMD batch of lavapipe's, each invocation a run of its own
 #define S3D_HYBRID_CPU_CHUNK 2048     // CPU devices: a 1920-pixel row in one chunk per eye (private slots: no limit)
 #define S3D_HYBRID_CPU_MASK_RUN 16    // CPU devices: the mask pass's cells per invocation (one on a GPU)
 #define S3D_HYBRID_GPU_ROW_GROUP 512  // GPUs: the fastest measured (docs/RESULTS.md, "The classification's row shape")
-#define S3D_HYBRID_GPU_CHUNK 2048     // a 1920-pixel row in one chunk per eye (46 KiB of shared memory)
+#define S3D_HYBRID_GPU_CHUNK 1024     // a row of 2x2 cells at 1920 pixels in one chunk per eye (48 KiB of shared memory)
 #define S3D_HYBRID_BINS 256           // score histogram per eye; bin 0 = nothing expected wrong
 #define S3D_HYBRID_FINE_BINS 64       // scores below 1 px: 1/64 px per bin (the edge band's ranks)
 #define S3D_HYBRID_BINS_PER_PIXEL 8.0f // scores from 1 px on: 1/8 px per bin, the top bin open-ended
@@ -40,13 +40,13 @@ S3D_GPU_BEGIN
 // Shared slots: the depth steps whose interior (hybridPairInterior) the row group writes together, 32 invocations
 // to a step, instead of the one invocation that found it looping alone while its neighbours wait (two words each);
 // steps beyond these, and interiors shorter than S3D_HYBRID_SHARED_INTERIOR_PX, the finding invocation writes.
-#define S3D_HYBRID_INTERIOR_CAP 192
+#define S3D_HYBRID_INTERIOR_CAP 120  // per eye
 #define S3D_HYBRID_SHARED_INTERIOR_PX 4
-// The classification's shared memory for a row group and its shared slots (the chunk; 1 with independent runs):
-// five per-pixel arrays, both histograms, each invocation's run extremes, the row's parallax range and, with shared
-// slots, the list of step interiors and its count (HybridPass checks the device's limit).
+// The classification's shared memory for a row group and its shared slots (both eyes' chunks; 1 with independent
+// runs): five per-pixel arrays, both histograms, each invocation's run extremes, the row's parallax range and, with
+// shared slots, each eye's list of step interiors and its count (HybridPass checks the device's limit).
 #define S3D_HYBRID_CLASSIFY_SHARED_BYTES(group, slots) \
-  (4 * (5 * (slots) + 2 * S3D_HYBRID_BINS + 2 * (group) + 2 + ((slots) > 1 ? 2 * S3D_HYBRID_INTERIOR_CAP + 1 : 3)))
+  (4 * (5 * (slots) + 2 * S3D_HYBRID_BINS + 2 * (group) + 2 + ((slots) > 1 ? 2 * (2 * S3D_HYBRID_INTERIOR_CAP + 1) : 6)))
 
 // Push constants of the hybrid passes; scalars only, so the std430 and C++ layouts agree.
 struct HybridConstants {
