@@ -27,7 +27,7 @@ S3D_GPU_BEGIN
 #define S3D_HYBRID_CPU_ROW_GROUP 8    // CPU devices: one SIMD batch of lavapipe's, each invocation a run of its own
 #define S3D_HYBRID_CPU_CHUNK 2048     // CPU devices: a 1920-pixel row in one chunk per eye (private slots: no limit)
 #define S3D_HYBRID_CPU_MASK_RUN 16    // CPU devices: the mask pass's cells per invocation (one on a GPU)
-#define S3D_HYBRID_GPU_ROW_GROUP 512  // GPUs: the fastest measured (docs/RESULTS.md, "The classification's row shape")
+#define S3D_HYBRID_GPU_ROW_GROUP 512  // GPUs: the fastest measured (docs/RESULTS.md, "Both eyes at once in the classification")
 #define S3D_HYBRID_GPU_CHUNK 1024     // a row of 2x2 cells at 1920 pixels in one chunk per eye (48 KiB of shared memory)
 #define S3D_HYBRID_BINS 256           // score histogram per eye; bin 0 = nothing expected wrong
 #define S3D_HYBRID_FINE_BINS 64       // scores below 1 px: 1/64 px per bin (the edge band's ranks)
