@@ -591,6 +591,9 @@ TEST_F(HybridPassTest, ACpuDeviceGetsIndependentRunsAndAShapeBeyondTheDeviceIsRe
   EXPECT_THROW(HybridPass(context(), HybridRowShape{16, 512, false, 0}), std::invalid_argument);
   // Independent runs split the chunk's private slots evenly: a chunk that is no multiple of the group is refused.
   EXPECT_THROW(HybridPass(context(), HybridRowShape{8, 100, true}), std::invalid_argument);
+  // Shared slots give each eye half the group: an odd group is refused.
+  EXPECT_THROW(HybridPass(context(), HybridRowShape{15, 256}), std::invalid_argument);
+  EXPECT_NO_THROW(HybridPass(context(), HybridRowShape{14, 256}));
 }
 
 TEST_F(HybridPassTest, CompositeMatchesTheCppReferenceExactly) {

@@ -20,8 +20,8 @@ namespace s3d::stereo {
 // invocation along a row (hybrid_shared.h). Any shape the device can run gives the same bins and masks; only the
 // time differs.
 struct HybridRowShape {
-  int rowGroup = S3D_HYBRID_ROW_GROUP;
-  int chunk = S3D_HYBRID_CHUNK;
+  int rowGroup = S3D_HYBRID_ROW_GROUP;  // invocations per row; sharing slots, half of them per eye (an even count)
+  int chunk = S3D_HYBRID_CHUNK;         // eye pixels per step along the row, per eye
   bool independentRuns = false;  // each invocation classifies its own run alone (the chunk a multiple of the group)
   int maskRun = 1;               // cells per mask-pass invocation: a CPU device loads the thresholds once per run
   bool operator==(const HybridRowShape&) const = default;
@@ -33,7 +33,8 @@ inline constexpr HybridRowShape kHybridGpuRowShape{S3D_HYBRID_GPU_ROW_GROUP, S3D
 // The fast shape for the device: independent runs on a CPU device, many invocations on a GPU (the fallback where
 // the device's workgroup or shared-memory limits refuse its own).
 HybridRowShape hybridRowShapeFor(const vk::Context& context);
-// Whether the device can run `shape` (invocations, shared memory; the chunk and groups positive).
+// Whether the device can run `shape` (invocations, shared memory; the chunk and groups positive, a group sharing
+// slots even).
 bool hybridRowShapeFits(const vk::Context& context, HybridRowShape shape);
 
 class HybridPass {
