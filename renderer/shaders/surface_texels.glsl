@@ -17,11 +17,10 @@ vec4 texelOf(uvec4 entry, int x, int y) {
   return texel;
 }
 
-// Repeat addressing: the texel index modulo the size, never negative.
-int wrapTexel(int i, int size) {
-  int m = i % size;
-  return m < 0 ? m + size : m;
-}
+// Repeat addressing for a bilinear tap of a coordinate within one repeat: i in [-1, size], so one wrap each way.
+// Not `%`: GLSL leaves a negative operand's remainder undefined, and a GPU was seen to take the tap left of texel 0
+// (i = -1) from another column than the last, along the repeat's seam.
+int wrapTexel(int i, int size) { return i < 0 ? i + size : (i >= size ? i - size : i); }
 
 vec4 sampleTexels(uint textureIndex, vec2 uv) {
   uvec4 entry = textureTable[textureIndex];  // first texel, width, height, sRGB
