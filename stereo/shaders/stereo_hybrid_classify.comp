@@ -10,11 +10,11 @@
 // whose landings can reach it or lie within the separation window of it (bounded by the row's parallax range). The
 // row group, the chunk and the runs' independence are specialization constants (hybrid_shared.h). Shared slots
 // (GPUs): the group's two halves take the two eyes at once; a small half walks its runs' extremes with one
-// invocation (four barriers per chunk), a large one scans them in parallel (two barriers per doubling). Independent runs (CPU
-// devices: lavapipe scalarizes every shared-memory atomic per SIMD lane and switches between invocations at each
-// barrier): each invocation classifies its run of the chunk alone, one eye then the other, as a chunk of its own
-// (its pairs, window included), in private slots with plain reads and writes and no barrier. Every order of the atomics and scans,
-// and every split into runs, gives the same bits.
+// invocation (four barriers per chunk), a large one scans them in parallel (two barriers per doubling).
+// Independent runs (CPU devices: lavapipe scalarizes every shared-memory atomic per SIMD lane and switches between
+// invocations at each barrier): each invocation classifies its run of the chunk alone, one eye then the other, as a
+// chunk of its own (its pairs, window included), in private slots with plain reads and writes and no barrier.
+// Every order of the atomics and scans, and every split into runs, gives the same bits.
 #extension GL_GOOGLE_include_directive : require
 #include "s3d/stereo/hybrid_shared.h"
 
@@ -132,8 +132,8 @@ bool queueInterior(HybridPair pair, int first, int last) {
   if (last - first + 1 < S3D_HYBRID_SHARED_INTERIOR_PX) return false;
   uint entry = atomicAdd(interiorCount[laneEye], 1u);
   if (entry >= uint(S3D_HYBRID_INTERIOR_CAP)) return false;
-  interiors[laneEye * S3D_HYBRID_INTERIOR_CAP + int(entry)] = uvec2(uint(first) | (uint(last) << 15) | (pair.edgeBase > 0.0f ? 1u << 30 : 0u),
-                           orderedBits(pair.jumpPx));
+  uint bounds = uint(first) | (uint(last) << 15) | (pair.edgeBase > 0.0f ? 1u << 30 : 0u);
+  interiors[laneEye * S3D_HYBRID_INTERIOR_CAP + int(entry)] = uvec2(bounds, orderedBits(pair.jumpPx));
   return true;
 }
 
@@ -315,7 +315,8 @@ void classifyChunk(int x0, int x1, int y, float parallaxMin, float parallaxMax) 
   int n = x1 - x0, runLength = (n + kLanes - 1) / kLanes;
   int runBegin = min(lane * runLength, n), runStop = min(runBegin + runLength, n);
   uint end = orderedBits(-S3D_INFINITY), start = orderedBits(S3D_INFINITY);
-  for (int at = slotBase + runBegin; at < slotBase + runStop; ++at) farthestEndBits[at] = end = max(end, farthestEndBits[at]);
+  for (int at = slotBase + runBegin; at < slotBase + runStop; ++at)
+    farthestEndBits[at] = end = max(end, farthestEndBits[at]);
   for (int at = slotBase + runStop - 1; at >= slotBase + runBegin; --at)
     nearestStartBits[at] = start = min(start, nearestStartBits[at]);
   runEnd[eyeRuns + lane] = end;
@@ -326,7 +327,8 @@ void classifyChunk(int x0, int x1, int y, float parallaxMin, float parallaxMax) 
   if (kLanes <= 32) {
     if (lane == 0) {
       for (int r = 1; r < kLanes; ++r) runEnd[eyeRuns + r] = max(runEnd[eyeRuns + r], runEnd[eyeRuns + r - 1]);
-      for (int r = kLanes - 2; r >= 0; --r) runStart[eyeRuns + r] = min(runStart[eyeRuns + r], runStart[eyeRuns + r + 1]);
+      for (int r = kLanes - 2; r >= 0; --r)
+        runStart[eyeRuns + r] = min(runStart[eyeRuns + r], runStart[eyeRuns + r + 1]);
     }
     barrier();
   } else {

@@ -27,8 +27,8 @@ S3D_GPU_BEGIN
 #define S3D_HYBRID_CPU_ROW_GROUP 8    // CPU devices: one SIMD batch of lavapipe's, each invocation a run of its own
 #define S3D_HYBRID_CPU_CHUNK 2048     // CPU devices: a 1920-pixel row in one chunk per eye (private slots: no limit)
 #define S3D_HYBRID_CPU_MASK_RUN 16    // CPU devices: the mask pass's cells per invocation (one on a GPU)
-#define S3D_HYBRID_GPU_ROW_GROUP 512  // GPUs: the fastest measured (docs/RESULTS.md, "Both eyes at once in the classification")
-#define S3D_HYBRID_GPU_CHUNK 1024     // a row of 2x2 cells at 1920 pixels in one chunk per eye (48 KiB of shared memory)
+#define S3D_HYBRID_GPU_ROW_GROUP 512  // GPUs: fastest measured (RESULTS.md "Both eyes at once in the classification")
+#define S3D_HYBRID_GPU_CHUNK 1024     // a row of 2x2 cells at 1920 px in one chunk per eye (48 KiB shared memory)
 #define S3D_HYBRID_BINS 256           // score histogram per eye; bin 0 = nothing expected wrong
 #define S3D_HYBRID_FINE_BINS 64       // scores below 1 px: 1/64 px per bin (the edge band's ranks)
 #define S3D_HYBRID_BINS_PER_PIXEL 8.0f // scores from 1 px on: 1/8 px per bin, the top bin open-ended
@@ -45,8 +45,9 @@ S3D_GPU_BEGIN
 // The classification's shared memory for a row group and its shared slots (both eyes' chunks; 1 with independent
 // runs): five per-pixel arrays, both histograms, each invocation's run extremes, the row's parallax range and, with
 // shared slots, each eye's list of step interiors and its count (HybridPass checks the device's limit).
-#define S3D_HYBRID_CLASSIFY_SHARED_BYTES(group, slots) \
-  (4 * (5 * (slots) + 2 * S3D_HYBRID_BINS + 2 * (group) + 2 + ((slots) > 1 ? 2 * (2 * S3D_HYBRID_INTERIOR_CAP + 1) : 6)))
+#define S3D_HYBRID_CLASSIFY_SHARED_BYTES(group, slots)               \
+  (4 * (5 * (slots) + 2 * S3D_HYBRID_BINS + 2 * (group) + 2 +         \
+        ((slots) > 1 ? 2 * (2 * S3D_HYBRID_INTERIOR_CAP + 1) : 6)))
 
 // Push constants of the hybrid passes; scalars only, so the std430 and C++ layouts agree.
 struct HybridConstants {
