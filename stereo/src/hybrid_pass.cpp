@@ -74,8 +74,9 @@ HybridRowShape checkedShape(const vk::Context& context, std::optional<HybridRowS
   const HybridRowShape chosen = shape.value_or(hybridRowShapeFor(context));
   if (!hybridRowShapeFits(context, chosen))
     throw std::invalid_argument("hybrid stereo: the device cannot run a row group of " + std::to_string(chosen.rowGroup) +
-                                " invocations with a chunk of " + std::to_string(chosen.chunk) +
-                                " pixels, or mask runs of " + std::to_string(chosen.maskRun) + " cells");
+                                " invocations (an even count where they share slots) with a chunk of " +
+                                std::to_string(chosen.chunk) + " pixels, or mask runs of " +
+                                std::to_string(chosen.maskRun) + " cells");
   return chosen;
 }
 
