@@ -16,7 +16,10 @@
 #include "s3d/comfort/display_profile.h"
 #include "s3d/comfort/host_comfort_frame.h"
 #include "s3d/hud/hud_pass.h"
+#include "s3d/stereo/forward_pass.h"
 #include "s3d/stereo/host_stereo_pass.h"
+#include "s3d/stereo/previous_fill_pass.h"
+#include "s3d/stereo/reprojection.h"
 #include "s3d/stereo/stereo_frame.h"
 #include "s3d/stereo/stereo_pass.h"
 #include "s3d/stereo/synthesis.h"
@@ -112,8 +115,36 @@ void timeRecording(benchmark::State& state, const Record& record) {
 const stereo::StereoMethod kMethods[] = {stereo::StereoMethod::Seed, stereo::StereoMethod::Search,
                                          stereo::StereoMethod::Iterative, stereo::StereoMethod::Forward};
 
-// The bare kernel of each method (argument: 0 seed, 1 search-4, 2 iterative-6, 3 forward) on RGBA8 + R32F storage
-// images, as the renderer hands them over.
+// The harness's center camera: a perspective projection (reversed Z) that does not move from frame to frame.
+glm::mat4 centerProjection() {
+  glm::mat4 projection(0.0f);
+  projection[0][0] = 1.0f;
+  projection[1][1] = 1.7f;
+  projection[2][3] = -1.0f;
+  projection[3][2] = 0.1f;
+  return projection;
+}
+
+// The forward kernel and the previous-frame fill, each recording a new frame of a camera that does not move (the
+// fill's full work, as HostStereoFrame's).
+void recordForwardWithFill(VkCommandBuffer cmd, const stereo::ForwardStereoPass& forward, stereo::PreviousFillPass& fill,
+                           const vk::Image& color, const vk::Image& depth, const vk::Image& left, const vk::Image& right) {
+  stereo::StereoParameters parameters;
+  parameters.method = stereo::StereoMethod::Forward;
+  const gpu::ForwardConstants constants = stereo::makeForwardConstants(parameters, kWidth, kHeight);
+  forward.record(cmd, color, depth, left, right, constants);
+  std::array<gpu::EyeMotion, 2> motion{};
+  for (std::size_t e = 0; e < 2; ++e)
+    motion[e] = stereo::staticEyeMotion(stereo::offAxisEyeCamera(glm::mat4(1.0f), centerProjection(),
+                                                                  e == 0 ? stereo::Eye::Left : stereo::Eye::Right,
+                                                                  parameters.maxSeparation, parameters.zeroParallaxDistance)
+                                            .projection);
+  fill.record(cmd, forward, left, right, constants, motion);
+  fill.advance();
+}
+
+// The bare kernel of each method (argument: 0 seed, 1 search-4, 2 iterative-6, 3 forward, 4 forward with the
+// previous-frame fill) on RGBA8 + R32F storage images, as the renderer hands them over.
 void BareKernel(benchmark::State& state) {
   vk::Context& context = benchContext();
   const VkImageUsageFlags usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
@@ -127,6 +158,13 @@ void BareKernel(benchmark::State& state) {
     vk::transition(cmd, left, vk::kUndefined, vk::kComputeWrite);
     vk::transition(cmd, right, vk::kUndefined, vk::kComputeWrite);
   });
+  if (state.range(0) == 4) {
+    const stereo::ForwardStereoPass forward(context, stereo::StereoKernel::Auto, stereo::ForwardKeys::Kept);
+    stereo::PreviousFillPass fill(context);
+    timeRecording(state, [&](VkCommandBuffer cmd) { recordForwardWithFill(cmd, forward, fill, color, depth, left, right); });
+    state.SetLabel(context.deviceName() + ", forward + fill");
+    return;
+  }
   stereo::StereoParameters parameters;
   parameters.method = kMethods[state.range(0)];
   const stereo::DisplacementPass pass(context, parameters, kWidth, kHeight);
@@ -167,11 +205,7 @@ struct HostFrameImages {
     dispatch.right = hostSynchronized(right, VK_IMAGE_LAYOUT_GENERAL);
     dispatch.target = hostSynchronized(target, VK_IMAGE_LAYOUT_GENERAL);
     dispatch.projection = frame().projection;
-    dispatch.centerProjection[0][0] = 1.0f;
-    dispatch.centerProjection[1][1] = 1.7f;
-    dispatch.centerProjection[2][3] = -1.0f;
-    dispatch.centerProjection[3][2] = 0.1f;
-    dispatch.centerProjection[3][3] = 0.0f;
+    dispatch.centerProjection = centerProjection();
   }
 };
 
@@ -364,7 +398,7 @@ void HudPass(benchmark::State& state) {
   timeRecording(state, [&](VkCommandBuffer cmd) { pass.record(cmd, frames, hostLayers, l, r); });
 }
 
-BENCHMARK(BareKernel)->DenseRange(0, 3)->ArgName("method")->UseManualTime()->Unit(benchmark::kMillisecond)->MinTime(0.05);
+BENCHMARK(BareKernel)->DenseRange(0, 4)->ArgName("method")->UseManualTime()->Unit(benchmark::kMillisecond)->MinTime(0.05);
 BENCHMARK(HostStereoFrame)
     ->ArgsProduct({{0, 1, 2, 3, 4}, {0, 1}, {0}, {0}, {0}})
     ->ArgsProduct({{0, 1}, {2, 3, 4}, {0}, {0}, {0}})
