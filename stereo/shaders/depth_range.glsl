@@ -1,15 +1,19 @@
 // The depth-range reduction's body (depth_range.comp, depth_range_host.comp). Each invocation reduces a run of
 // S3D_DEPTH_RUN pixels of one row in registers (a histogram bin is added once per run of equal bins: neighbouring
-// depths mostly share one), then the workgroup in shared memory, then once per group into the result buffer: few
-// atomics, which a CPU device (lavapipe) serializes. Positive floats order as their bits: min/max are exact. The
-// includer declares the depth it reads: S3D_DEPTH_AT(texel), the linear depth there, and S3D_DEPTH_SIZE().
+// depths mostly share one), then the workgroup in shared memory, then once per group into the device counters: few
+// atomics, which a CPU device (lavapipe) serializes. The last group to finish hands the counters to the result and
+// resets them (a clear and a copy between compute passes cost more than the reduction). Positive floats order as
+// their bits: min/max are exact. The includer declares the depth it reads: S3D_DEPTH_AT(texel), the linear depth
+// there, and S3D_DEPTH_SIZE().
 #include "s3d/stereo/depth_range_shared.h"
 
 layout(local_size_x = S3D_DEPTH_GROUP_SIZE, local_size_y = S3D_DEPTH_GROUP_SIZE) in;
-layout(std430, binding = 1) buffer Result { DepthRangeBuffer result; };
+layout(std430, binding = 1) coherent buffer Counters { DepthRangeCounters counters; };
+layout(std430, binding = 2) writeonly buffer Result { DepthRangeBuffer result; };
 
 shared uint groupBins[S3D_DEPTH_HISTOGRAM_BINS];
 shared uint groupNearest, groupFarthest, groupSky, groupInvalid;
+shared uint lastGroup;
 
 const uint kGroupInvocations = S3D_DEPTH_GROUP_SIZE * S3D_DEPTH_GROUP_SIZE;
 
@@ -58,13 +62,30 @@ void main() {
   if (invalid != 0u) atomicAdd(groupInvalid, invalid);
   barrier();
   for (uint i = local; i < S3D_DEPTH_HISTOGRAM_BINS; i += kGroupInvocations)
-    if (groupBins[i] != 0u) atomicAdd(result.bins[i], groupBins[i]);
+    if (groupBins[i] != 0u) atomicAdd(counters.range.bins[i], groupBins[i]);
   if (local == 0u) {
     if (groupNearest != 0x7f800000u) {
-      atomicMin(result.nearestBits, groupNearest);
-      atomicMax(result.farthestBits, groupFarthest);
+      atomicMin(counters.range.nearestBits, groupNearest);
+      atomicMax(counters.range.farthestBits, groupFarthest);
     }
-    if (groupSky != 0u) atomicAdd(result.skyPixels, groupSky);
-    if (groupInvalid != 0u) atomicAdd(result.invalidPixels, groupInvalid);
+    if (groupSky != 0u) atomicAdd(counters.range.skyPixels, groupSky);
+    if (groupInvalid != 0u) atomicAdd(counters.range.invalidPixels, groupInvalid);
+  }
+  // The group's atomics are visible before it counts itself done, so the last one to finish reads every group's.
+  memoryBarrierBuffer();
+  barrier();
+  if (local == 0u) lastGroup = atomicAdd(counters.groupsDone, 1u) == gl_NumWorkGroups.x * gl_NumWorkGroups.y - 1u ? 1u : 0u;
+  barrier();
+  if (lastGroup == 0u) return;
+  memoryBarrierBuffer();
+  // Each counter read and reset in one atomic: the next dispatch starts from nearest +inf and zeros.
+  for (uint i = local; i < S3D_DEPTH_HISTOGRAM_BINS; i += kGroupInvocations)
+    result.bins[i] = atomicExchange(counters.range.bins[i], 0u);
+  if (local == 0u) {
+    result.nearestBits = atomicExchange(counters.range.nearestBits, 0x7f800000u);
+    result.farthestBits = atomicExchange(counters.range.farthestBits, 0u);
+    result.skyPixels = atomicExchange(counters.range.skyPixels, 0u);
+    result.invalidPixels = atomicExchange(counters.range.invalidPixels, 0u);
+    atomicExchange(counters.groupsDone, 0u);
   }
 }

@@ -1,6 +1,7 @@
 #include "s3d/stereo/depth_range_pass.h"
 
 #include <cstring>
+#include <span>
 #include <stdexcept>
 #include <string>
 
@@ -16,6 +17,12 @@ namespace s3d::stereo {
 
 namespace {
 
+VkWriteDescriptorSet storageBufferWrite(std::uint32_t binding, const VkDescriptorBufferInfo* info) {
+  VkWriteDescriptorSet write = vk::uniformBufferWrite(binding, info);
+  write.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+  return write;
+}
+
 struct HostDepthPush {
   gpu::LinearDepthParams depthParams;
   int deviceDepth;  // 1: hardware depth to linearize
@@ -23,56 +30,53 @@ struct HostDepthPush {
 
 }  // namespace
 
-DepthRangePass::DepthRangePass(const vk::Context& context) : context_(&context) {
+DepthRangePass::DepthRangePass(vk::Context& context) : context_(&context) {
   const VkDescriptorSetLayoutBinding bindings[] = {
       {0, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
-      {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr}};
+      {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
+      {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr}};
   layout_ = vk::createPushDescriptorLayout(context, bindings, 0, VK_SHADER_STAGE_COMPUTE_BIT);
   pipeline_ = vk::createComputePipeline(context, layout_.layout, spirv_depth_range_comp);
   const VkDescriptorSetLayoutBinding hostBindings[] = {
       {0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
-      {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr}};
+      {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
+      {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr}};
   hostLayout_ = vk::createPushDescriptorLayout(context, hostBindings, sizeof(HostDepthPush), VK_SHADER_STAGE_COMPUTE_BIT);
   hostPipeline_ = vk::createComputePipeline(context, hostLayout_.layout, spirv_depth_range_host_comp);
   sampler_ = vk::createNearestClampSampler(context);
-  // The atomics land in device memory (host-visible memory may sit across the bus on a discrete GPU); one small
-  // copy brings the result back (both layouts measured alike: RESULTS.md "Cost of the depth reduction").
-  counters_ = vk::createBuffer(context, sizeof(gpu::DepthRangeBuffer),
-                               VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT |
-                                   VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+  // The atomics land in device memory (host-visible memory may sit across the bus on a discrete GPU); the last
+  // workgroup writes the result into the host-visible buffer.
+  counters_ = vk::createBuffer(context, sizeof(gpu::DepthRangeCounters),
+                               VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                                vk::MemoryLocation::Device);
-  buffer_ = vk::createBuffer(context, sizeof(gpu::DepthRangeBuffer), VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+  gpu::DepthRangeCounters start{};
+  start.range.nearestBits = 0x7f800000u;  // +inf
+  vk::uploadBuffer(context, counters_, std::as_bytes(std::span(&start, 1)));
+  buffer_ = vk::createBuffer(context, sizeof(gpu::DepthRangeBuffer), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                              vk::MemoryLocation::HostVisible);
+  std::memcpy(buffer_.mapped, &start.range, sizeof(start.range));  // no frame: an empty range
 }
 
 void DepthRangePass::recordReduction(VkCommandBuffer cmd, const std::function<void()>& bindAndPush, std::uint32_t width,
                                      std::uint32_t height) const {
-  // Nearest starts at +inf's bits, every other counter at 0 (fills synchronize as transfer writes).
-  vkCmdFillBuffer(cmd, counters_.buffer, 0, sizeof(std::uint32_t), 0x7f800000u);
-  vkCmdFillBuffer(cmd, counters_.buffer, sizeof(std::uint32_t), VK_WHOLE_SIZE, 0u);
-  vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
-                    VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                    VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+  // The previous dispatch on the queue (this pass's or another's) has reset the counters and written the result.
+  constexpr VkAccessFlags2 storage = VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
+  vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, storage, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, storage);
   bindAndPush();
   auto groups = [](std::uint32_t size, std::uint32_t perGroup) { return (size + perGroup - 1) / perGroup; };
   vkCmdDispatch(cmd, groups(width, S3D_DEPTH_GROUP_SIZE * S3D_DEPTH_RUN), groups(height, S3D_DEPTH_GROUP_SIZE), 1);
-
   vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
-                    VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
-  const VkBufferCopy whole{0, 0, sizeof(gpu::DepthRangeBuffer)};
-  vkCmdCopyBuffer(cmd, counters_.buffer, buffer_.buffer, 1, &whole);
-  vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT,
-                    VK_ACCESS_2_HOST_READ_BIT);
+                    VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
 }
 
 void DepthRangePass::record(VkCommandBuffer cmd, const vk::Image& linearDepth) const {
   VkDescriptorImageInfo image{VK_NULL_HANDLE, linearDepth.view, VK_IMAGE_LAYOUT_GENERAL};
-  VkDescriptorBufferInfo buffer{counters_.buffer, 0, VK_WHOLE_SIZE};
+  const VkDescriptorBufferInfo buffers[2] = {{counters_.buffer, 0, VK_WHOLE_SIZE}, {buffer_.buffer, 0, VK_WHOLE_SIZE}};
   recordReduction(cmd, [&] {
-    VkWriteDescriptorSet writes[2] = {vk::storageImageWrite(0, &image), vk::uniformBufferWrite(1, &buffer)};
-    writes[1].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    VkWriteDescriptorSet writes[3] = {vk::storageImageWrite(0, &image), storageBufferWrite(1, &buffers[0]),
+                                      storageBufferWrite(2, &buffers[1])};
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_);
-    context_->cmdPushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_.layout, 0, 2, writes);
+    context_->cmdPushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_.layout, 0, 3, writes);
   }, linearDepth.width, linearDepth.height);
 }
 
@@ -98,13 +102,13 @@ void DepthRangePass::recordHost(VkCommandBuffer cmd, const HostImage& depth, std
     before.record(cmd);
   }
   VkDescriptorImageInfo image{sampler_.get(), depth.view, layout};
-  VkDescriptorBufferInfo buffer{counters_.buffer, 0, VK_WHOLE_SIZE};
+  const VkDescriptorBufferInfo buffers[2] = {{counters_.buffer, 0, VK_WHOLE_SIZE}, {buffer_.buffer, 0, VK_WHOLE_SIZE}};
   recordReduction(cmd, [&] {
-    VkWriteDescriptorSet writes[2] = {vk::sampledImageWrite(0, &image), vk::uniformBufferWrite(1, &buffer)};
+    VkWriteDescriptorSet writes[3] = {vk::sampledImageWrite(0, &image), storageBufferWrite(1, &buffers[0]),
+                                      storageBufferWrite(2, &buffers[1])};
     writes[0].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-    writes[1].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, hostPipeline_);
-    context_->cmdPushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, hostLayout_.layout, 0, 2, writes);
+    context_->cmdPushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, hostLayout_.layout, 0, 3, writes);
     vkCmdPushConstants(cmd, hostLayout_.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push, &push);
   }, width, height);
   if (barriers) {

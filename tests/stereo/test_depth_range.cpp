@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <random>
+#include <span>
 
 #include "s3d/stereo/depth_range.h"
 #include "s3d/stereo/depth_range_pass.h"
@@ -84,6 +85,51 @@ TEST_F(DepthRangeGpu, MatchesTheReferenceBinForBin) {
   EXPECT_GT(expected.skyPixels, 0u);
   EXPECT_GT(expected.bins.front(), 0u);
   EXPECT_GT(expected.bins.back(), 0u);
+}
+
+// A depth image of `width` x `height` at `depth` everywhere, in the compute-read state the pass reads.
+vk::Image uploadedDepth(vk::Context& context, std::uint32_t width, std::uint32_t height, float depth) {
+  const DepthImage pixels(width, height, depth);
+  vk::Image image = vk::createImage(context, VK_FORMAT_R32_SFLOAT, width, height,
+                                    VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
+  vk::uploadImage(context, image, std::as_bytes(std::span(pixels.pixels)), vk::kComputeRead);
+  return image;
+}
+
+// The counters a dispatch adds into start each reduction afresh: its last workgroup resets them. A large image
+// (many workgroups) then a small one with other depths, in one submission and in the next.
+TEST_F(DepthRangeGpu, EachReductionCountsOnlyItsOwnImage) {
+  const vk::Image large = uploadedDepth(context(), 300, 70, 40.0f), small = uploadedDepth(context(), 9, 5, 2.0f);
+  const DepthRangePass pass(context());
+  auto expectSmall = [&] {
+    const DepthRange range = pass.result();
+    EXPECT_EQ(range.nearest, 2.0f);
+    EXPECT_EQ(range.farthest, 2.0f);
+    std::uint64_t counted = 0;
+    for (std::uint32_t bin : range.bins) counted += bin;
+    EXPECT_EQ(counted, 45u);
+  };
+  context().submitAndWait([&](VkCommandBuffer cmd) {
+    pass.record(cmd, large);
+    pass.record(cmd, small);
+  });
+  expectSmall();
+  context().submitAndWait([&](VkCommandBuffer cmd) { pass.record(cmd, large); });
+  EXPECT_EQ(pass.result().nearest, 40.0f);
+  context().submitAndWait([&](VkCommandBuffer cmd) { pass.record(cmd, small); });
+  expectSmall();
+}
+
+// Two passes on one queue, one after the other in a submission: each has its own counters and result.
+TEST_F(DepthRangeGpu, TwoPassesKeepTheirOwnResults) {
+  const vk::Image near = uploadedDepth(context(), 64, 16, 1.5f), far = uploadedDepth(context(), 64, 16, 30.0f);
+  const DepthRangePass first(context()), second(context());
+  context().submitAndWait([&](VkCommandBuffer cmd) {
+    first.record(cmd, near);
+    second.record(cmd, far);
+  });
+  EXPECT_EQ(first.result().nearest, 1.5f);
+  EXPECT_EQ(second.result().farthest, 30.0f);
 }
 
 TEST_F(DepthRangeGpu, AnImageOfSkyHasNoFiniteRange) {

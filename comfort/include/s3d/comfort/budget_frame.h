@@ -43,7 +43,7 @@ struct DisparityMapReport {
 // The passes the mapping needs, made once per job.
 class FrameDisparityMapper {
  public:
-  explicit FrameDisparityMapper(const vk::Context& context) : reduction_(context), pass_(context) {}
+  explicit FrameDisparityMapper(vk::Context& context) : reduction_(context), pass_(context) {}
   // Nonlinear: the frame's curve from a GPU reduction of `linearDepth` (vk::kComputeWrite state, left so) and
   // the zero-parallax distance, applied to it in place on the GPU; linear: nothing recorded, the identity.
   DisparityMapReport apply(vk::Context& context, const vk::Image& linearDepth,

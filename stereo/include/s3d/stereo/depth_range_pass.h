@@ -1,7 +1,8 @@
 #pragma once
-// The frame's depth range (depth_range.h) on the GPU: one compute dispatch over the linear depth image into a
-// small device buffer (nearest, farthest, sky and invalid counts, 192 histogram bins: 784 bytes), copied to a
-// host-visible one: the only thing read back.
+// The frame's depth range (depth_range.h) on the GPU: one compute dispatch over the linear depth image. Its
+// workgroups add into small device counters (nearest, farthest, sky and invalid counts, 192 histogram bins: 784
+// bytes); the last workgroup to finish writes them into a host-visible buffer, the only thing read back, and resets
+// them for the next reduction, so no clear or copy runs between compute passes.
 #include <cstdint>
 #include <functional>
 #include <optional>
@@ -18,8 +19,10 @@ namespace s3d::stereo {
 
 class DepthRangePass {
  public:
-  explicit DepthRangePass(const vk::Context& context);
-  // Clears the result buffer and reduces `linearDepth` (R32F, GENERAL, readable by compute shaders).
+  // Uploads the counters' starting values (submits on the context's queue and waits).
+  explicit DepthRangePass(vk::Context& context);
+  // Reduces `linearDepth` (R32F, GENERAL, readable by compute shaders) into the result. Recordings of one pass run
+  // in submission order: each begins with a barrier after the compute work before it on the queue.
   void record(VkCommandBuffer cmd, const vk::Image& linearDepth) const;
   // The same for a host's depth buffer as it is, sampled: D32, D24S8 or D16 linearized with `projection` as the
   // stereo pass reads it (the first-person layer pushed by the weapon offset and scale), or R32F linear depth. With
@@ -32,7 +35,7 @@ class DepthRangePass {
   DepthRange result() const;
 
  private:
-  // Clears the counters, dispatches the bound reduction over width x height, copies the result back.
+  // Dispatches the bound reduction over width x height after the queue's earlier compute work.
   void recordReduction(VkCommandBuffer cmd, const std::function<void()>& bindAndPush, std::uint32_t width,
                        std::uint32_t height) const;
 
@@ -40,8 +43,8 @@ class DepthRangePass {
   vk::PipelineLayout layout_, hostLayout_;
   vk::Unique<VkPipeline> pipeline_, hostPipeline_;
   vk::Unique<VkSampler> sampler_;  // nearest, clamped: the host depth's texels as they are
-  vk::Buffer counters_;  // device memory: the dispatch's atomics
-  vk::Buffer buffer_;    // host-visible and coherent: the copy of counters_ read straight from the mapping
+  vk::Buffer counters_;  // device memory: the dispatch's atomics, at their starting values between dispatches
+  vk::Buffer buffer_;    // host-visible and coherent: the last dispatch's result, read straight from the mapping
 };
 
 struct TimedDepthRange {

@@ -23,6 +23,14 @@ struct DepthRangeBuffer {
   uint bins[S3D_DEPTH_HISTOGRAM_BINS];
 };
 
+// The reduction's device counters: the frame's buffer as the workgroups add into it, and how many have finished.
+// Between dispatches they hold their starting values (nearest +inf's bits, everything else 0): the last workgroup
+// of each dispatch hands the buffer on and resets them.
+struct DepthRangeCounters {
+  DepthRangeBuffer range;
+  uint groupsDone;
+};
+
 S3D_INLINE uint depthHistogramBin(uint depthBits) {
   const int key = int(depthBits >> (23 - S3D_DEPTH_MANTISSA_BITS)) - (S3D_DEPTH_FIRST_OCTAVE << S3D_DEPTH_MANTISSA_BITS);
   return uint(min(max(key, 0), S3D_DEPTH_HISTOGRAM_BINS - 1));
