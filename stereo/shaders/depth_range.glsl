@@ -1,5 +1,5 @@
 // The depth-range reduction's body (depth_range.comp, depth_range_host.comp). Each invocation reduces a run of
-// S3D_DEPTH_RUN pixels of one row in registers (a histogram bin is added once per run of equal bins: neighbouring
+// kRun pixels of one row in registers (a histogram bin is added once per run of equal bins: neighbouring
 // depths mostly share one), then the workgroup in shared memory, then once per group into the device counters: few
 // atomics, which a CPU device (lavapipe) serializes. The last group to finish hands the counters to the result and
 // resets them (a clear and a copy between compute passes cost more than the reduction). Positive floats order as
@@ -7,7 +7,11 @@
 // there, and S3D_DEPTH_SIZE().
 #include "s3d/stereo/depth_range_shared.h"
 
-layout(local_size_x = S3D_DEPTH_GROUP_SIZE, local_size_y = S3D_DEPTH_GROUP_SIZE) in;
+// The device's shape (stereo::DepthReductionShape): the workgroup's side (ids 0 and 1) and each invocation's run.
+layout(local_size_x_id = 0, local_size_y_id = 1) in;
+layout(constant_id = 0) const int kGroupSide = S3D_DEPTH_CPU_GROUP_SIDE;
+layout(constant_id = 1) const int kGroupSideY = S3D_DEPTH_CPU_GROUP_SIDE;
+layout(constant_id = 2) const int kRun = S3D_DEPTH_CPU_RUN;
 layout(std430, binding = 1) coherent buffer Counters { DepthRangeCounters counters; };
 layout(std430, binding = 2) writeonly buffer Result { DepthRangeBuffer result; };
 
@@ -15,7 +19,7 @@ shared uint groupBins[S3D_DEPTH_HISTOGRAM_BINS];
 shared uint groupNearest, groupFarthest, groupSky, groupInvalid;
 shared uint lastGroup;
 
-const uint kGroupInvocations = S3D_DEPTH_GROUP_SIZE * S3D_DEPTH_GROUP_SIZE;
+const uint kGroupInvocations = uint(kGroupSide * kGroupSideY);
 
 void main() {
   const uint local = gl_LocalInvocationIndex;
@@ -29,11 +33,11 @@ void main() {
   barrier();
   const ivec2 size = S3D_DEPTH_SIZE();
   const int y = int(gl_GlobalInvocationID.y);
-  const int x0 = int(gl_GlobalInvocationID.x) * S3D_DEPTH_RUN;
+  const int x0 = int(gl_GlobalInvocationID.x) * kRun;
   uint nearest = 0x7f800000u, farthest = 0u, sky = 0u, invalid = 0u;
   uint runBin = 0u, runCount = 0u;
   if (y < size.y) {
-    for (int x = x0; x < min(x0 + S3D_DEPTH_RUN, size.x); ++x) {
+    for (int x = x0; x < min(x0 + kRun, size.x); ++x) {
       const uint bits = floatBitsToUint(S3D_DEPTH_AT(ivec2(x, y)));
       const uint kind = depthKind(bits);
       if (kind == 0u) {

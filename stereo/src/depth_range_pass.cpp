@@ -23,6 +23,19 @@ VkWriteDescriptorSet storageBufferWrite(std::uint32_t binding, const VkDescripto
   return write;
 }
 
+DepthReductionShape checkedShape(const vk::Context& context, DepthReductionShape shape) {
+  VkPhysicalDeviceProperties properties;
+  vkGetPhysicalDeviceProperties(context.physicalDevice(), &properties);
+  const VkPhysicalDeviceLimits& limits = properties.limits;
+  if (shape.groupSide == 0 || shape.run == 0 || shape.groupSide > limits.maxComputeWorkGroupSize[0] ||
+      shape.groupSide > limits.maxComputeWorkGroupSize[1] ||
+      std::uint64_t(shape.groupSide) * shape.groupSide > limits.maxComputeWorkGroupInvocations)
+    throw std::invalid_argument("DepthRangePass: the device cannot run workgroups of " + std::to_string(shape.groupSide) +
+                                "x" + std::to_string(shape.groupSide) + " invocations with runs of " +
+                                std::to_string(shape.run) + " pixels");
+  return shape;
+}
+
 struct HostDepthPush {
   gpu::LinearDepthParams depthParams;
   int deviceDepth;  // 1: hardware depth to linearize
@@ -30,19 +43,25 @@ struct HostDepthPush {
 
 }  // namespace
 
-DepthRangePass::DepthRangePass(vk::Context& context) : context_(&context) {
+DepthReductionShape depthReductionShapeFor(const vk::Context& context) {
+  return context.isCpuDevice() ? kDepthReductionCpuShape : kDepthReductionGpuShape;
+}
+
+DepthRangePass::DepthRangePass(vk::Context& context, std::optional<DepthReductionShape> shape)
+    : context_(&context), shape_(checkedShape(context, shape.value_or(depthReductionShapeFor(context)))) {
+  const vk::SpecializationWords constants({shape_.groupSide, shape_.groupSide, shape_.run});
   const VkDescriptorSetLayoutBinding bindings[] = {
       {0, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
       {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
       {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr}};
   layout_ = vk::createPushDescriptorLayout(context, bindings, 0, VK_SHADER_STAGE_COMPUTE_BIT);
-  pipeline_ = vk::createComputePipeline(context, layout_.layout, spirv_depth_range_comp);
+  pipeline_ = vk::createComputePipeline(context, layout_.layout, spirv_depth_range_comp, constants);
   const VkDescriptorSetLayoutBinding hostBindings[] = {
       {0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
       {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
       {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr}};
   hostLayout_ = vk::createPushDescriptorLayout(context, hostBindings, sizeof(HostDepthPush), VK_SHADER_STAGE_COMPUTE_BIT);
-  hostPipeline_ = vk::createComputePipeline(context, hostLayout_.layout, spirv_depth_range_host_comp);
+  hostPipeline_ = vk::createComputePipeline(context, hostLayout_.layout, spirv_depth_range_host_comp, constants);
   sampler_ = vk::createNearestClampSampler(context);
   // The atomics land in device memory (host-visible memory may sit across the bus on a discrete GPU); the last
   // workgroup writes the result into the host-visible buffer.
@@ -64,7 +83,7 @@ void DepthRangePass::recordReduction(VkCommandBuffer cmd, const std::function<vo
   vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, storage, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, storage);
   bindAndPush();
   auto groups = [](std::uint32_t size, std::uint32_t perGroup) { return (size + perGroup - 1) / perGroup; };
-  vkCmdDispatch(cmd, groups(width, S3D_DEPTH_GROUP_SIZE * S3D_DEPTH_RUN), groups(height, S3D_DEPTH_GROUP_SIZE), 1);
+  vkCmdDispatch(cmd, groups(width, shape_.groupSide * shape_.run), groups(height, shape_.groupSide), 1);
   vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
                     VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
 }
@@ -139,11 +158,12 @@ TimedDepthRange reduceDepthRangeTimed(vk::Context& context, const DepthRangePass
   return {pass.result(), timestamps.elapsedMs(0, 1)};
 }
 
-DepthRange reduceDepthRangeOnGpu(vk::Context& context, const DepthImage& linearDepth) {
+DepthRange reduceDepthRangeOnGpu(vk::Context& context, const DepthImage& linearDepth,
+                                 std::optional<DepthReductionShape> shape) {
   const VkImageUsageFlags usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
   vk::Image depth = vk::createImage(context, VK_FORMAT_R32_SFLOAT, linearDepth.width, linearDepth.height, usage);
   vk::uploadImage(context, depth, std::as_bytes(std::span(linearDepth.pixels)), vk::kComputeRead);
-  const DepthRangePass pass(context);
+  const DepthRangePass pass(context, shape);
   context.submitAndWait([&](VkCommandBuffer cmd) { pass.record(cmd, depth); });
   return pass.result();
 }

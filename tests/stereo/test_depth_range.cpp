@@ -7,6 +7,8 @@
 #include <limits>
 #include <random>
 #include <span>
+#include <stdexcept>
+#include <string>
 
 #include "s3d/stereo/depth_range.h"
 #include "s3d/stereo/depth_range_pass.h"
@@ -61,6 +63,14 @@ TEST(DepthRangeReference, AnImageWithoutFiniteDepthHasNoRange) {
 
 class DepthRangeGpu : public test::VulkanTest {};
 
+// Every device's shape gives the same result (each device runs its own; both fit every test device).
+constexpr DepthReductionShape kShapes[] = {kDepthReductionCpuShape, kDepthReductionGpuShape};
+
+std::string shapeName(DepthReductionShape shape) {
+  return std::to_string(shape.groupSide) + "x" + std::to_string(shape.groupSide) + " groups, runs of " +
+         std::to_string(shape.run);
+}
+
 TEST_F(DepthRangeGpu, MatchesTheReferenceBinForBin) {
   // 67x41 (not a multiple of the 16x16 groups): log-uniform depths from 1 cm to 1000 km (both clamped bins
   // hit), plus sky, NaN, zero and negative pixels. Integer binning of the float bits: exact, no tolerance.
@@ -76,12 +86,15 @@ TEST_F(DepthRangeGpu, MatchesTheReferenceBinForBin) {
                      : std::pow(10.0f, exponent(random));
   }
   const DepthRange expected = reduceDepthRangeReference(depth);
-  const DepthRange gpu = reduceDepthRangeOnGpu(context(), depth);
-  EXPECT_EQ(gpu.nearest, expected.nearest);
-  EXPECT_EQ(gpu.farthest, expected.farthest);
-  EXPECT_EQ(gpu.skyPixels, expected.skyPixels);
-  EXPECT_EQ(gpu.invalidPixels, expected.invalidPixels);
-  EXPECT_EQ(gpu.bins, expected.bins);
+  for (const DepthReductionShape shape : kShapes) {
+    SCOPED_TRACE(shapeName(shape));
+    const DepthRange gpu = reduceDepthRangeOnGpu(context(), depth, shape);
+    EXPECT_EQ(gpu.nearest, expected.nearest);
+    EXPECT_EQ(gpu.farthest, expected.farthest);
+    EXPECT_EQ(gpu.skyPixels, expected.skyPixels);
+    EXPECT_EQ(gpu.invalidPixels, expected.invalidPixels);
+    EXPECT_EQ(gpu.bins, expected.bins);
+  }
   EXPECT_GT(expected.skyPixels, 0u);
   EXPECT_GT(expected.bins.front(), 0u);
   EXPECT_GT(expected.bins.back(), 0u);
@@ -100,24 +113,32 @@ vk::Image uploadedDepth(vk::Context& context, std::uint32_t width, std::uint32_t
 // (many workgroups) then a small one with other depths, in one submission and in the next.
 TEST_F(DepthRangeGpu, EachReductionCountsOnlyItsOwnImage) {
   const vk::Image large = uploadedDepth(context(), 300, 70, 40.0f), small = uploadedDepth(context(), 9, 5, 2.0f);
-  const DepthRangePass pass(context());
-  auto expectSmall = [&] {
-    const DepthRange range = pass.result();
-    EXPECT_EQ(range.nearest, 2.0f);
-    EXPECT_EQ(range.farthest, 2.0f);
-    std::uint64_t counted = 0;
-    for (std::uint32_t bin : range.bins) counted += bin;
-    EXPECT_EQ(counted, 45u);
-  };
-  context().submitAndWait([&](VkCommandBuffer cmd) {
-    pass.record(cmd, large);
-    pass.record(cmd, small);
-  });
-  expectSmall();
-  context().submitAndWait([&](VkCommandBuffer cmd) { pass.record(cmd, large); });
-  EXPECT_EQ(pass.result().nearest, 40.0f);
-  context().submitAndWait([&](VkCommandBuffer cmd) { pass.record(cmd, small); });
-  expectSmall();
+  for (const DepthReductionShape shape : kShapes) {
+    SCOPED_TRACE(shapeName(shape));
+    const DepthRangePass pass(context(), shape);
+    auto expectSmall = [&] {
+      const DepthRange range = pass.result();
+      EXPECT_EQ(range.nearest, 2.0f);
+      EXPECT_EQ(range.farthest, 2.0f);
+      std::uint64_t counted = 0;
+      for (std::uint32_t bin : range.bins) counted += bin;
+      EXPECT_EQ(counted, 45u);
+    };
+    context().submitAndWait([&](VkCommandBuffer cmd) {
+      pass.record(cmd, large);
+      pass.record(cmd, small);
+    });
+    expectSmall();
+    context().submitAndWait([&](VkCommandBuffer cmd) { pass.record(cmd, large); });
+    EXPECT_EQ(pass.result().nearest, 40.0f);
+    context().submitAndWait([&](VkCommandBuffer cmd) { pass.record(cmd, small); });
+    expectSmall();
+  }
+}
+
+TEST_F(DepthRangeGpu, AShapeBeyondTheDeviceIsRefused) {
+  EXPECT_THROW(DepthRangePass(context(), DepthReductionShape{4096, 8}), std::invalid_argument);
+  EXPECT_THROW(DepthRangePass(context(), DepthReductionShape{8, 0}), std::invalid_argument);
 }
 
 // Two passes on one queue, one after the other in a submission: each has its own counters and result.

@@ -10,6 +10,7 @@
 #include <vulkan/vulkan.h>
 
 #include "s3d/stereo/depth_range.h"
+#include "s3d/stereo/depth_range_shared.h"
 #include "s3d/stereo/host_stereo_pass.h"
 #include "s3d/vk/context.h"
 #include "s3d/vk/pipeline.h"
@@ -17,10 +18,21 @@
 
 namespace s3d::stereo {
 
+// How the reduction's dispatch is cut: square workgroups of groupSide^2 invocations, each reducing `run` pixels of a
+// row. Any shape gives the same result; the device's (depthReductionShapeFor) is the faster measured there.
+struct DepthReductionShape {
+  std::uint32_t groupSide = S3D_DEPTH_CPU_GROUP_SIDE;
+  std::uint32_t run = S3D_DEPTH_CPU_RUN;
+};
+inline constexpr DepthReductionShape kDepthReductionCpuShape{S3D_DEPTH_CPU_GROUP_SIDE, S3D_DEPTH_CPU_RUN};
+inline constexpr DepthReductionShape kDepthReductionGpuShape{S3D_DEPTH_GPU_GROUP_SIDE, S3D_DEPTH_GPU_RUN};
+DepthReductionShape depthReductionShapeFor(const vk::Context& context);
+
 class DepthRangePass {
  public:
-  // Uploads the counters' starting values (submits on the context's queue and waits).
-  explicit DepthRangePass(vk::Context& context);
+  // Uploads the counters' starting values (submits on the context's queue and waits). Without a shape, the
+  // device's; a shape beyond the device's workgroup limits throws std::invalid_argument.
+  explicit DepthRangePass(vk::Context& context, std::optional<DepthReductionShape> shape = std::nullopt);
   // Reduces `linearDepth` (R32F, GENERAL, readable by compute shaders) into the result. Recordings of one pass run
   // in submission order: each begins with a barrier after the compute work before it on the queue.
   void record(VkCommandBuffer cmd, const vk::Image& linearDepth) const;
@@ -40,6 +52,7 @@ class DepthRangePass {
                        std::uint32_t height) const;
 
   const vk::Context* context_;
+  DepthReductionShape shape_;
   vk::PipelineLayout layout_, hostLayout_;
   vk::Unique<VkPipeline> pipeline_, hostPipeline_;
   vk::Unique<VkSampler> sampler_;  // nearest, clamped: the host depth's texels as they are
@@ -55,7 +68,8 @@ struct TimedDepthRange {
 // Reduces an image the renderer left in vk::kComputeWrite state (and leaves it so).
 TimedDepthRange reduceDepthRangeTimed(vk::Context& context, const DepthRangePass& pass, const vk::Image& linearDepth);
 
-// Uploads a CPU image and reduces it (tests).
-DepthRange reduceDepthRangeOnGpu(vk::Context& context, const DepthImage& linearDepth);
+// Uploads a CPU image and reduces it (tests), with the device's shape or the one given.
+DepthRange reduceDepthRangeOnGpu(vk::Context& context, const DepthImage& linearDepth,
+                                 std::optional<DepthReductionShape> shape = std::nullopt);
 
 }  // namespace s3d::stereo

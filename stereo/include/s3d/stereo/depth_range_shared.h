@@ -7,8 +7,13 @@
 
 S3D_GPU_BEGIN
 
-#define S3D_DEPTH_GROUP_SIZE 8  // 8x8 invocations per workgroup
-#define S3D_DEPTH_RUN 32        // each invocation reduces a run of 32 pixels of one row in registers
+// Square workgroups whose invocations each reduce a run of pixels of one row in registers, shaped per device
+// (stereo::DepthReductionShape): a CPU device serializes atomics and switches invocations at barriers, so it takes
+// few long runs; a GPU takes short runs to keep many invocations in flight (RESULTS.md "Cost of the depth reduction").
+#define S3D_DEPTH_CPU_GROUP_SIDE 8
+#define S3D_DEPTH_CPU_RUN 32
+#define S3D_DEPTH_GPU_GROUP_SIDE 16
+#define S3D_DEPTH_GPU_RUN 8
 #define S3D_DEPTH_MANTISSA_BITS 3  // 8 bins per octave: each bin spans a factor of at most 2^(1/8) = 1.09
 #define S3D_DEPTH_HISTOGRAM_BINS 192  // 24 octaves
 #define S3D_DEPTH_FIRST_OCTAVE 121    // float exponent of 2^-6 m: bin 0 starts at 1/64 world unit
