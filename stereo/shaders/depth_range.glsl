@@ -2,7 +2,7 @@
 // kRun pixels of one row in registers (a histogram bin is added once per run of equal bins: neighbouring
 // depths mostly share one), then the workgroup in shared memory, then once per group into the device counters: few
 // atomics, which a CPU device (lavapipe) serializes. The last group to finish hands the counters to the result and
-// resets them (a clear and a copy between compute passes cost more than the reduction). Positive floats order as
+// resets them (a clear and a copy around the dispatch were measured slower on a GPU). Positive floats order as
 // their bits: min/max are exact. The includer declares the depth it reads: S3D_DEPTH_AT(texel), the linear depth
 // there, and S3D_DEPTH_SIZE().
 #include "s3d/stereo/depth_range_shared.h"
