@@ -109,8 +109,8 @@ vk::Image uploadedDepth(vk::Context& context, std::uint32_t width, std::uint32_t
   return image;
 }
 
-// The counters a dispatch adds into start each reduction afresh: its last workgroup resets them. A large image
-// (many workgroups) then a small one with other depths, in one submission and in the next.
+// Each reduction starts from fresh counters (the last workgroup of the one before reset them): a large image (many
+// workgroups), then a small one at another depth, in one submission and in the next two.
 TEST_F(DepthRangeGpu, EachReductionCountsOnlyItsOwnImage) {
   const vk::Image large = uploadedDepth(context(), 300, 70, 40.0f), small = uploadedDepth(context(), 9, 5, 2.0f);
   for (const DepthReductionShape shape : kShapes) {
