@@ -30,7 +30,6 @@ S3D_GPU_BEGIN
 #define S3D_BVH_MAX_DEPTH 64         // the traversal stack's size; the build refuses deeper trees
 #define S3D_BVH_DOUBLE_SIDED 1u      // BvhTriangle::flags: drawn without back-face culling
 #define S3D_BVH_CUTOUT 2u            // an alpha cut-out: only the raster pass's alpha test decides its pixels
-#define S3D_RAYCAST_GROUP_SIZE 8
 // The rasterizer's vertex snapping: VkPhysicalDeviceLimits::subPixelPrecisionBits of the devices s3d runs on
 // (lavapipe and the desktop GPUs report 8), so positions are multiples of 1/256 pixel.
 #define S3D_SUBPIXEL_BITS 8
@@ -81,6 +80,8 @@ struct RaycastConstants {
 // leaf test in a loop every pixel of the bin shares, instead of a traversal whose length and path differ from
 // ray to ray. A list longer than its capacity is incomplete: its pixels traverse the tree.
 #define S3D_RAYCAST_BIN_SIZE 16
+// The cast's workgroup is one bin: its pixels share the bin's list (and its cache lines).
+#define S3D_RAYCAST_GROUP_SIZE S3D_RAYCAST_BIN_SIZE
 #define S3D_RAYCAST_BIN_CAPACITY 64
 // A triangle whose bounds span more bins than this is binned by a workgroup of its own (the indirect pass).
 #define S3D_RAYCAST_BIN_DIRECT 8
