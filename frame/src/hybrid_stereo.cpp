@@ -97,12 +97,13 @@ std::pair<std::vector<renderer::FrameTimings>, std::optional<double>> renderOnce
 }
 
 EyeRenderTimes renderEyes(const std::vector<EyeRender>& eyes, const renderer::DeferredRenderer& centerRenderer,
-                          bool together, int timedRuns) {
+                          bool together, int timedRuns, const std::function<void()>& prepare) {
   (void)renderOnce(eyes, centerRenderer, together);
   std::vector<double> totals;
   std::vector<std::map<std::string, std::vector<double>>> passTimes(eyes.size());
   std::vector<std::vector<renderer::PassTiming>> order(eyes.size());
   for (int run = 0; run < timedRuns; ++run) {
+    prepare();
     const auto [frames, total] = renderOnce(eyes, centerRenderer, together);
     if (!total) continue;
     totals.push_back(*total);
@@ -221,7 +222,35 @@ struct HybridFrame {
   // the pixels of the occlusion's region that are not cast (none: the region is cast); made on first use.
   std::array<vk::Image, 2>& baseDepth;
   bool givesBaseDepth = false;
+  // The eye cameras' views, and the eyes whose ray-cast surfaces' setup and screen bins run beside the
+  // classification (one renderer per eye: each holds its own view's).
+  std::array<renderer::ViewMatrices, 2> eyeViews{};
+  std::array<bool, 2> preparesRays{};
 };
+
+// One step of the ray-cast eyes' work that no mask decides (DeferredRenderer::recordRaycastPreparation).
+void recordEyePreparation(const HybridFrame& f, VkCommandBuffer cmd, int step) {
+  for (std::size_t eye = 0; eye < 2; ++eye)
+    if (f.preparesRays[eye])
+      f.eyeRenderers[eye]->recordRaycastPreparation(cmd, f.eyeViews[eye],
+                                                    renderer::RaycastVisibility::PreparationStep(step));
+}
+
+void computeToCompute(VkCommandBuffer cmd) {
+  constexpr VkAccessFlags2 access = VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
+  vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, access, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, access);
+}
+
+// The ray-cast eyes' setup and bins on their own (before each timed eye render: a frame prepares its eyes once).
+void prepareEyes(const HybridFrame& f) {
+  if (!f.preparesRays[0] && !f.preparesRays[1]) return;
+  f.context.submitAndWait([&](VkCommandBuffer cmd) {
+    for (int step = 0; step < 3; ++step) {
+      computeToCompute(cmd);
+      recordEyePreparation(f, cmd, step);
+    }
+  });
+}
 
 // Displacement, classification, threshold and masks: one submission, nothing read back in between. Returns the
 // displacement's method (the hybrid's base). With every pixel masked the eyes are rendered whole: no displacement.
@@ -251,6 +280,36 @@ stereo::StereoMethod displaceAndClassify(HybridFrame& f, const stereo::StereoPar
   }
   timings.classification = sum(sum(timings.classify, timings.threshold), timings.mask);
   return displacement.method();
+}
+
+// The frame up to the eye renders as it runs: the classification with the work that does not wait for it beside
+// it, filling the GPU while the classification's passes leave it idle (few workgroups, and barriers): the
+// displacement (the classification reads the center's depth, not the eyes) and both eyes' base depth beside the
+// classify pass and, after the classify, threshold and mask dispatches, each step of the ray-cast eyes' setup and
+// screen bins (each step's barrier recorded next to the classification's own). Timed as one span; the sections
+// above time the passes alone.
+void timeFrontSpan(HybridFrame& f, const stereo::StereoParameters& parameters, HybridTimings& timings) {
+  timings.frontSpan = sum(sum(timings.displacement, timings.classification), timings.baseDepth);
+  if (!f.classify) return;
+  const vk::Image& centerColor = f.centerRenderer.displayColor();
+  const vk::Image& linearDepth = f.centerRenderer.linearDepth();
+  const stereo::DisplacementPass displacement(f.context, parameters, f.width, f.height);
+  timings.frontSpan = timeSections(f.context, f.timedRuns, 1, [&](VkCommandBuffer cmd, const std::function<void()>& mark) {
+    if (f.givesBaseDepth)
+      for (const vk::Image& eye : f.baseDepth) vk::transition(cmd, eye, vk::kUndefined, vk::kComputeWrite);
+    stereo::StereoPass::recordInputBarriers(cmd, centerColor, linearDepth, f.left, f.right);
+    int step = 0;
+    f.hybrid.recordMasks(cmd, linearDepth, f.images, f.constants, [&] {
+      if (step == 0) displacement.record(cmd, centerColor, linearDepth, f.left, f.right);
+      if (step == 0 && f.givesBaseDepth)
+        f.baseDepthPass.record(cmd, linearDepth, f.centerRenderer.deviceDepth(), f.baseDepth[0], f.baseDepth[1],
+                               f.constants);
+      recordEyePreparation(f, cmd, step++);
+      computeToCompute(cmd);  // beside the classification's next barrier: orders the steps' buffers too
+    });
+    stereo::StereoPass::recordInputRelease(cmd, centerColor, linearDepth);
+    mark();
+  })[0];
 }
 
 // Ray-cast eyes over a gather base with ambient occlusion (and a mask): the rays are cast for the masked pixels
@@ -285,8 +344,7 @@ void recordBaseDepth(HybridFrame& f, HybridTimings& timings) {
 // Both eyes: their masked pixels rendered from the eye cameras straight into the displaced eyes (the renderers'
 // display targets), or with every pixel masked the whole eyes rendered into them and their cropped columns made
 // black. An eye with nothing masked is the displaced eye as it is, and costs no render.
-void renderIntoEyes(HybridFrame& f, const renderer::Scene& scene, const renderer::ViewMatrices& center,
-                    const stereo::StereoParameters& parameters, HybridSynthesis& result) {
+void renderIntoEyes(HybridFrame& f, HybridSynthesis& result) {
   std::vector<EyeRender> renders;
   std::vector<std::size_t> rendered;  // the eyes (0 left, 1 right) with masked pixels
   for (const std::size_t index : {std::size_t(0), std::size_t(1)}) {
@@ -300,13 +358,12 @@ void renderIntoEyes(HybridFrame& f, const renderer::Scene& scene, const renderer
       result.renderedHdr[index] = ImageRGBA32F(f.width, f.height);
       continue;
     }
-    const stereo::Eye eye = index == 0 ? stereo::Eye::Left : stereo::Eye::Right;
     // HybridPass masks: 1 where the eye camera renders the pixel; none: every pixel (an unmasked render).
     const bool casts = result.surfaces[index] == renderer::ShadeMask::Surfaces::RayCast;
     const renderer::ShadeMask shadeMask{f.everythingMasked ? nullptr : &mask, 1, result.surfaces[index],
                                         f.givesBaseDepth && casts ? &f.baseDepth[index] : nullptr,
                                         index == 0 ? &f.left : &f.right};
-    renders.push_back({f.eyeRenderers[index], referenceEyeView(scene, center, eye, parameters), shadeMask});
+    renders.push_back({f.eyeRenderers[index], f.eyeViews[index], shadeMask});
     rendered.push_back(index);
   }
   HybridTimings& timings = result.timings;
@@ -321,7 +378,7 @@ void renderIntoEyes(HybridFrame& f, const renderer::Scene& scene, const renderer
   const std::size_t batch = together ? renders.size() : 1;
   for (std::size_t first = 0; first < renders.size(); first += batch) {
     const std::vector<EyeRender> now(renders.begin() + std::ptrdiff_t(first), renders.begin() + std::ptrdiff_t(first + batch));
-    const EyeRenderTimes times = renderEyes(now, f.centerRenderer, together, f.timedRuns);
+    const EyeRenderTimes times = renderEyes(now, f.centerRenderer, together, f.timedRuns, [&] { prepareEyes(f); });
     timings.eyeGeometry = sum(timings.eyeGeometry, times.geometry);
     timings.maskedShading = sum(timings.maskedShading, times.shading);
     timings.eyeRenders = sum(timings.eyeRenders, times.together);
@@ -427,14 +484,19 @@ HybridSynthesis HybridSynthesizer::synthesize(const renderer::DeferredRenderer& 
   HybridTimings& timings = result.timings;
   timings.raycastSurfaces = castsRays(result.surfaces);
   timings.mixedSurfaces = result.surfaces[0] != result.surfaces[1];
+  for (const stereo::Eye eye : {stereo::Eye::Left, stereo::Eye::Right})
+    f.eyeViews[eye == stereo::Eye::Left ? 0 : 1] = referenceEyeView(scene, center, eye, parameters);
+  for (std::size_t eye = 0; eye < 2; ++eye)
+    f.preparesRays[eye] = f.classify && result.surfaces[eye] == renderer::ShadeMask::Surfaces::RayCast &&
+                          eyeRenderers[0] != eyeRenderers[1];
   const stereo::StereoMethod base = displaceAndClassify(f, parameters, timings);
   timings.maskedShading = timings.composite = timings.baseDepth = 0.0;
   if (givesBaseDepth(f, scene, result.surfaces, surfaces)) recordBaseDepth(f, timings);
   timings.eyeGeometry = timings.baseDepth;
+  timeFrontSpan(f, parameters, timings);
   // The masked counts come back first (the submission above was waited for anyway).
-  renderIntoEyes(f, scene, center, parameters, result);
-  timings.total = sum(sum(sum(sum(timings.displacement, timings.classification), timings.baseDepth), timings.eyeRenders),
-                      timings.composite);
+  renderIntoEyes(f, result);
+  timings.total = sum(sum(timings.frontSpan, timings.eyeRenders), timings.composite);
   result.eyes = {readEye(context, f.left), readEye(context, f.right)};
   if (base == stereo::StereoMethod::Iterative)
     std::tie(result.filledLeft, result.filledRight) =

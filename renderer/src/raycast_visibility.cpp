@@ -5,6 +5,7 @@
 #include <cstring>
 #include <span>
 #include <stdexcept>
+#include <string>
 
 #include "compute_binding.h"
 #include "s3d/renderer/renderer_shared.h"
@@ -49,6 +50,8 @@ void RaycastVisibility::setBvh(const SceneBvh& bvh) {
   if (bvh.visibilityPacking.y != 0)
     throw std::invalid_argument("the ray-cast visibility pass writes narrow visibility ids; this scene's objects and "
                                 "largest mesh need wide ones");
+  preparing_.reset();  // a view prepared for the former tree is not this one's
+  prepared_.reset();
   auto upload = [this](vk::Buffer& buffer, std::span<const std::byte> bytes) {
     // An empty tree still binds a buffer (one placeholder element's size).
     buffer = vk::createBuffer(context_, std::max<VkDeviceSize>(bytes.size(), 48),
@@ -112,21 +115,19 @@ void RaycastVisibility::bindSetupLayoutPass(VkCommandBuffer cmd, VkPipeline pipe
                      push.data());
 }
 
-// Every triangle set up for the view (after the previous recording's casts read the buffer), then ordered before
-// this recording's casts.
-void RaycastVisibility::recordSetup(VkCommandBuffer cmd, const VkDescriptorBufferInfo& constants,
-                                    const VkDescriptorBufferInfo& triangles, const VkDescriptorBufferInfo& snapped) const {
-  computeToCompute(cmd);
-  if (triangleCount_ > 0) {
-    const std::uint32_t binCount = binning_ ? 2 * binsPerLayer_ : 0;
-    // Without bins the triangles stand in for their buffers (the shader does not write them then).
-    const VkDescriptorBufferInfo countInfo{binning_ ? binCounts_.buffer : triangles.buffer, 0, VK_WHOLE_SIZE};
-    const VkDescriptorBufferInfo largeInfo{binning_ ? binLarge_.buffer : triangles.buffer, 0, VK_WHOLE_SIZE};
-    const std::uint32_t push[3] = {triangleCount_, firstPersonFirst_, binCount};
-    bindSetupLayoutPass(cmd, setupPipeline_.get(), constants, {triangles, snapped, countInfo, largeInfo}, push);
-    vkCmdDispatch(cmd, (std::max(triangleCount_, binCount) + 63) / 64, 1, 1);
-  }
-  computeToCompute(cmd);
+// Every triangle set up for the view, and the bins' counts zeroed; no barrier (the callers order it).
+void RaycastVisibility::dispatchSetup(VkCommandBuffer cmd) const {
+  if (triangleCount_ == 0) return;
+  const VkDescriptorBufferInfo constantInfo{constants_.buffer, 0, VK_WHOLE_SIZE};
+  const VkDescriptorBufferInfo triangleInfo{triangles_.buffer, 0, VK_WHOLE_SIZE};
+  const VkDescriptorBufferInfo snappedInfo{snapped_.buffer, 0, VK_WHOLE_SIZE};
+  const std::uint32_t binCount = binning_ ? 2 * binsPerLayer_ : 0;
+  // Without bins the triangles stand in for their buffers (the shader does not write them then).
+  const VkDescriptorBufferInfo countInfo{binning_ ? binCounts_.buffer : triangles_.buffer, 0, VK_WHOLE_SIZE};
+  const VkDescriptorBufferInfo largeInfo{binning_ ? binLarge_.buffer : triangles_.buffer, 0, VK_WHOLE_SIZE};
+  const std::uint32_t push[3] = {triangleCount_, firstPersonFirst_, binCount};
+  bindSetupLayoutPass(cmd, setupPipeline_.get(), constantInfo, {triangleInfo, snappedInfo, countInfo, largeInfo}, push);
+  vkCmdDispatch(cmd, (std::max(triangleCount_, binCount) + 63) / 64, 1, 1);
 }
 
 bool RaycastVisibility::usesBins(std::uint32_t width, std::uint32_t height) const {
@@ -148,23 +149,85 @@ void RaycastVisibility::sizeBins(std::uint32_t width, std::uint32_t height) {
   binsSize_ = {width, height};
 }
 
-// Every set-up triangle into the bins its pixel bounds touch: the small ones by their own threads, then the large
-// ones by the indirect pass; ordered before the casts.
-void RaycastVisibility::recordBins(VkCommandBuffer cmd, const VkDescriptorBufferInfo& constants,
-                                   const VkDescriptorBufferInfo& snapped) const {
-  if (triangleCount_ == 0) return;
+// Every set-up triangle into the bins its pixel bounds touch, by its own thread, or queued when large; no barrier
+// (the callers order it after the setup).
+void RaycastVisibility::dispatchBins(VkCommandBuffer cmd) const {
+  if (triangleCount_ == 0 || !binning_) return;
+  bindBinPass(cmd, binPipeline_.get());
+  vkCmdDispatch(cmd, (triangleCount_ + S3D_RAYCAST_BIN_GROUP - 1) / S3D_RAYCAST_BIN_GROUP, 1, 1);
+}
+
+// The queued large triangles into their bins by the indirect pass, after the binning pass's queue and dispatch
+// arguments.
+void RaycastVisibility::recordLargeBins(VkCommandBuffer cmd) const {
+  if (triangleCount_ == 0 || !binning_) return;
+  vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, kStorageAccess,
+                    VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT,
+                    kStorageAccess | VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT);
+  bindBinPass(cmd, largeBinPipeline_.get());
+  vkCmdDispatchIndirect(cmd, binLarge_.buffer, 0);
+}
+
+void RaycastVisibility::bindBinPass(VkCommandBuffer cmd, VkPipeline pipeline) const {
+  const VkDescriptorBufferInfo constantInfo{constants_.buffer, 0, VK_WHOLE_SIZE};
+  const VkDescriptorBufferInfo snappedInfo{snapped_.buffer, 0, VK_WHOLE_SIZE};
   const VkDescriptorBufferInfo countInfo{binCounts_.buffer, 0, VK_WHOLE_SIZE};
   const VkDescriptorBufferInfo entryInfo{binEntries_.buffer, 0, VK_WHOLE_SIZE};
   const VkDescriptorBufferInfo largeInfo{binLarge_.buffer, 0, VK_WHOLE_SIZE};
   const std::uint32_t push[2] = {triangleCount_, firstPersonFirst_};
-  bindSetupLayoutPass(cmd, binPipeline_.get(), constants, {snapped, countInfo, entryInfo, largeInfo}, push);
-  vkCmdDispatch(cmd, (triangleCount_ + S3D_RAYCAST_BIN_GROUP - 1) / S3D_RAYCAST_BIN_GROUP, 1, 1);
-  vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, kStorageAccess,
-                    VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT,
-                    kStorageAccess | VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT);
-  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, largeBinPipeline_.get());  // the same descriptors and push
-  vkCmdDispatchIndirect(cmd, binLarge_.buffer, 0);
-  computeToCompute(cmd);
+  bindSetupLayoutPass(cmd, pipeline, constantInfo, {snappedInfo, countInfo, entryInfo, largeInfo}, push);
+}
+
+// Whether a view of this size uses bins, and its bins.
+void RaycastVisibility::sizeView(std::uint32_t width, std::uint32_t height) {
+  binning_ = usesBins(width, height);
+  if (binning_) sizeBins(width, height);
+}
+
+void RaycastVisibility::writeCameraConstants(gpu::RaycastConstants& constants, const RaycastCamera& camera,
+                                             std::uint32_t width, std::uint32_t height) const {
+  constants.clipToLayer[S3D_LAYER_WORLD] = clipToLayerOf(camera.worldViewProjection);
+  constants.clipToLayer[S3D_LAYER_FIRST_PERSON] = clipToLayerOf(camera.firstPersonViewProjection);
+  constants.viewProjection[S3D_LAYER_WORLD] = camera.worldViewProjection;
+  constants.viewProjection[S3D_LAYER_FIRST_PERSON] = camera.firstPersonViewProjection;
+  constants.depthRanges = glm::vec4(camera.worldDepthRange, camera.firstPersonDepthRange);
+  constants.screen = glm::vec4(float(width), float(height), 1.0f / float(width), 1.0f / float(height));
+  constants.roots = glm::uvec4(worldRoot_, firstPersonRoot_, 0u, 0u);
+  constants.clearedDepth = glm::vec4(camera.clearedDepth, nearerOf(camera), 0.0f, 0.0f);
+  constants.bins = glm::uvec4(binsX_, binsPerLayer_, binning_ ? 1u : 0u, 0u);
+}
+
+void RaycastVisibility::recordPreparation(VkCommandBuffer cmd, PreparationStep step, const RaycastCamera& camera,
+                                          std::uint32_t width, std::uint32_t height) {
+  if (!hasBvh_) throw std::invalid_argument("the ray-cast visibility pass was prepared before it had a BVH");
+  const PreparedView view{camera, {width, height}};
+  switch (step) {
+    case PreparationStep::Setup: {
+      sizeView(width, height);
+      gpu::RaycastConstants constants{};  // the camera's fields: the setup and bins read no others
+      writeCameraConstants(constants, camera, width, height);
+      std::memcpy(constants_.mapped, &constants, sizeof(constants));
+      preparing_ = view;
+      prepared_.reset();
+      dispatchSetup(cmd);
+      return;
+    }
+    case PreparationStep::Bins:
+      requirePreparing(view, "binned");
+      dispatchBins(cmd);
+      return;
+    case PreparationStep::LargeBins:
+      requirePreparing(view, "given its large triangles");
+      recordLargeBins(cmd);
+      prepared_ = preparing_;
+      preparing_.reset();
+      return;
+  }
+}
+
+void RaycastVisibility::requirePreparing(const PreparedView& view, const char* what) const {
+  if (!preparing_ || !(*preparing_ == view))
+    throw std::logic_error(std::string("the ray-cast view was ") + what + " before its setup for the same camera and size");
 }
 
 void RaycastVisibility::record(VkCommandBuffer cmd, const RaycastCamera& camera, const ShadeMask& mask,
@@ -180,29 +243,32 @@ void RaycastVisibility::record(VkCommandBuffer cmd, const RaycastCamera& camera,
   if (mask.uncastDepth && (mask.uncastDepth->format != VK_FORMAT_R32_SFLOAT || mask.uncastDepth->width != width ||
                            mask.uncastDepth->height != height))
     throw std::invalid_argument("the ray-cast visibility pass's uncast depth must be R32_SFLOAT and the size of its targets");
-  binning_ = usesBins(width, height);
-  if (binning_) sizeBins(width, height);
+  // Prepared ahead for this camera and size (recordPreparation): its setup and bins stand.
+  const bool prepared = isPrepared(camera, width, height);
+  prepared_.reset();
+  preparing_.reset();
+  if (!prepared) sizeView(width, height);
   gpu::RaycastConstants constants{};
-  constants.clipToLayer[S3D_LAYER_WORLD] = clipToLayerOf(camera.worldViewProjection);
-  constants.clipToLayer[S3D_LAYER_FIRST_PERSON] = clipToLayerOf(camera.firstPersonViewProjection);
-  constants.viewProjection[S3D_LAYER_WORLD] = camera.worldViewProjection;
-  constants.viewProjection[S3D_LAYER_FIRST_PERSON] = camera.firstPersonViewProjection;
-  constants.depthRanges = glm::vec4(camera.worldDepthRange, camera.firstPersonDepthRange);
-  constants.screen = glm::vec4(float(width), float(height), 1.0f / float(width), 1.0f / float(height));
-  constants.roots = glm::uvec4(worldRoot_, firstPersonRoot_, 0u, 0u);
+  writeCameraConstants(constants, camera, width, height);
   constants.options = glm::uvec4(mask.threshold, mask.image ? 1u : 0u, packing_.x, packing_.y);
-  constants.clearedDepth = glm::vec4(camera.clearedDepth, nearerOf(camera), 0.0f, 0.0f);
   constants.region = glm::uvec4(region.tiles != VK_NULL_HANDLE ? 1u : 0u, region.tilesX,
                                  mask.image && mask.uncastDepth ? 1u : 0u, 0u);
-  constants.bins = glm::uvec4(binsX_, binsPerLayer_, binning_ ? 1u : 0u, 0u);
   std::memcpy(constants_.mapped, &constants, sizeof(constants));
+  if (!prepared) {  // after the previous recording's casts read the set-up triangles and bins
+    computeToCompute(cmd);
+    dispatchSetup(cmd);
+    if (binning_) {
+      computeToCompute(cmd);
+      dispatchBins(cmd);
+      recordLargeBins(cmd);
+    }
+  }
+  computeToCompute(cmd);
 
   VkDescriptorBufferInfo constantInfo{constants_.buffer, 0, VK_WHOLE_SIZE};
   VkDescriptorBufferInfo nodeInfo{nodes_.buffer, 0, VK_WHOLE_SIZE};
   VkDescriptorBufferInfo triangleInfo{triangles_.buffer, 0, VK_WHOLE_SIZE};
   VkDescriptorBufferInfo snappedInfo{snapped_.buffer, 0, VK_WHOLE_SIZE};
-  recordSetup(cmd, constantInfo, triangleInfo, snappedInfo);
-  if (binning_) recordBins(cmd, constantInfo, snappedInfo);
   // Without a mask the ids image stands in for it (the shader does not read it then).
   VkDescriptorImageInfo maskInfo{VK_NULL_HANDLE, mask.image ? mask.image->view : visibilityIds.view, VK_IMAGE_LAYOUT_GENERAL};
   VkDescriptorImageInfo idInfo{VK_NULL_HANDLE, visibilityIds.view, VK_IMAGE_LAYOUT_GENERAL};

@@ -43,6 +43,13 @@ void DeferredRenderer::Impl::uploadSurfaceTexels() {
   vk::uploadBuffer(context, surfaceTexels, std::as_bytes(std::span(texels)));
 }
 
+void DeferredRenderer::recordRaycastPreparation(VkCommandBuffer cmd, const ViewMatrices& view,
+                                                RaycastVisibility::PreparationStep step) {
+  Impl& r = *impl_;
+  if (!hasSurfaceBvh()) throw std::invalid_argument("ray-cast surfaces were prepared before the renderer had a BVH");
+  r.raycast->recordPreparation(cmd, step, raycastCamera(r.scene, view, r.options.reversedZ), r.width, r.height);
+}
+
 std::optional<std::string> DeferredRenderer::raycastSurfacesRefusal() const { return impl_->raycastRefusal(); }
 bool DeferredRenderer::hasSurfaceBvh() const { return impl_->raycast && impl_->raycastBvhCurrent; }
 

@@ -34,20 +34,24 @@ std::string hybridBenchMarkdown(const BenchReport& report) {
         "the masked pixels' surfaces were found, ray cast (with ambient occlusion the region around them takes the\n"
         "base's depth, or with --hybrid-surfaces raycast-region is cast too), rasterized (G-buffer and occlusion\n"
         "depth), or the left eye rasterized beside the right eye's rays (raster + ray cast). Times: the base\n"
-        "displacement, the classification (classify, threshold, masks), both eyes' surfaces\n"
-        "(with the base's depth), both eyes' other renderer passes (mask tiles, occlusion, lighting and resolve of\n"
-        "the masked pixels; the shadow maps are the center frame's), the eye renders together (surfaces less the\n"
-        "base's depth, and shading: their sum one eye after the other, the span from first start to last end where\n"
-        "the eyes render at once, marked *) and both composites; / eye: the total over one reference eye.\n"
+        "displacement, the classification (classify, threshold, masks), each timed alone; the front: both as the\n"
+        "frame runs them, with the work no mask decides beside them (the base's depth, and with one renderer per\n"
+        "eye the ray-cast eyes' triangle setup and screen bins), from first start to last end; both eyes' surfaces\n"
+        "(with the base's depth timed alone), both eyes' other renderer passes (mask tiles, occlusion, lighting and\n"
+        "resolve of the masked pixels; the shadow maps are the center frame's), the eye renders together (surfaces\n"
+        "less the base's depth, and shading: their sum one eye after the other, the span from first start to last\n"
+        "end where the eyes render at once, marked *) and both composites; total: the front, the eye renders and\n"
+        "the composites; / eye: the total over one reference eye.\n"
         "PSNR and SSIM left / right against the two-pass reference.\n\n"
-        "| scene | sep % | budget | masked % | surfaces | displace ms | classify ms | surfaces ms | shading ms | "
-        "eye renders ms | composite ms | total ms | / eye | PSNR all | halo | disocclusion | SSIM |\n"
-        "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+        "| scene | sep % | budget | masked % | surfaces | displace ms | classify ms | front ms | surfaces ms | "
+        "shading ms | eye renders ms | composite ms | total ms | / eye | PSNR all | halo | disocclusion | SSIM |\n"
+        "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const BenchRow* row : rows) {
     const frame::HybridTimings& t = row->hybridTimings ? *row->hybridTimings : frame::HybridTimings{};
     md << "| " << row->scene << " | " << percentText(row->maxSeparation) << " | " << format("%g", row->setting.budget)
        << " | " << shareText(row->maskedShareLeft) << " / " << shareText(row->maskedShareRight) << " | "
-       << (t.mixedSurfaces ? "raster + ray cast" : t.raycastSurfaces ? "ray cast" : "raster") << " | " << msText(t.displacement) << " | " << msText(t.classification) << " | " << msText(t.eyeGeometry) << " | "
+       << (t.mixedSurfaces ? "raster + ray cast" : t.raycastSurfaces ? "ray cast" : "raster") << " | " << msText(t.displacement) << " | " << msText(t.classification) << " | " << msText(t.frontSpan) << " | "
+       << msText(t.eyeGeometry) << " | "
        << msText(t.maskedShading) << " | " << msText(t.eyeRenders) << (t.concurrentEyes ? "*" : "") << " | "
        << msText(t.composite) << " | " << msText(row->stereoGpuMs) << " | "
        << ratioText(ratio(row->stereoGpuMs, row->referenceEyeGpuMs)) << " | "

@@ -33,7 +33,11 @@ struct HybridTimings {
   std::optional<double> eyeRenders;
   bool concurrentEyes = false;           // the eyes rendered at once, by one eye renderer each
   std::optional<double> composite;       // both eyes
-  std::optional<double> total;           // displacement, classification, baseDepth, eyeRenders and composite
+  // The displacement and classification with the work no mask decides beside them (baseDepth, the ray-cast eyes'
+  // triangle setup and screen bins), from first start to last end: the frame up to the eye renders. Where nothing
+  // runs beside them, displacement + classification + baseDepth.
+  std::optional<double> frontSpan;
+  std::optional<double> total;           // frontSpan, eyeRenders and composite
   std::vector<renderer::PassTiming> leftEyePasses, rightEyePasses;  // the masked renders' passes
   bool raycastSurfaces = false;  // an eye's geometry cast rays (HybridSynthesis::surfaces), or both rasterized
   bool mixedSurfaces = false;    // the left eye rasterized, the right eye's surfaces cast (HybridSurfaces::Mixed)

@@ -13,6 +13,7 @@
 #include <glm/glm.hpp>
 
 #include "s3d/image.h"
+#include "s3d/renderer/raycast_visibility.h"
 #include "s3d/renderer/renderer_options.h"
 #include "s3d/renderer/scene.h"
 #include "s3d/renderer/shade_mask.h"
@@ -79,6 +80,11 @@ class DeferredRenderer {
   std::optional<std::string> raycastSurfacesRefusal() const;
   // Whether a BVH of the current scene (or pose) was given (setSurfaceBvh).
   bool hasSurfaceBvh() const;
+  // One step of ray-cast surfaces' work for `view` that no mask decides (RaycastVisibility::recordPreparation,
+  // with its ordering rules), recorded by the caller ahead of this renderer's next ray-cast render of the same
+  // view, which then skips it: the triangles' setup and screen bins can run beside the caller's other dispatches
+  // (the hybrid's classification). Throws std::invalid_argument without a BVH (setSurfaceBvh).
+  void recordRaycastPreparation(VkCommandBuffer cmd, const ViewMatrices& view, RaycastVisibility::PreparationStep step);
   // Renders one view; the results stay on the GPU until read back. With a mask (its image non-null), only the
   // mask's pixels (ShadeMask). Throws std::invalid_argument for a mask of another size or format, or for a RayCast
   // mask this renderer refuses (raycastSurfacesRefusal) or has no BVH for.

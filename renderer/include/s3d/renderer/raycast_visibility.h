@@ -6,6 +6,7 @@
 // depth clear. Agreement with the raster pass: docs/DESIGN.md "Ray-cast visibility".
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <span>
 
 #include "s3d/renderer/scene_bvh.h"
@@ -67,14 +68,47 @@ class RaycastVisibility {
   void record(VkCommandBuffer cmd, const RaycastCamera& camera, const ShadeMask& mask, const vk::Image& visibilityIds,
               const vk::Image& deviceDepth, const RaycastRegion& region = {}, const RaycastCutouts& cutouts = {});
 
+  // The view's work that no mask decides, recorded ahead of record() in three steps a caller may place beside its
+  // own dispatches (the hybrid runs them beside its classification): Setup (every triangle set up for the camera
+  // at this image size), Bins (the screen bins), LargeBins (the large triangles' indirect pass, with its own
+  // barrier for the indirect arguments). Setup and Bins record no barrier: the caller orders Setup after the
+  // previous recording's casts, and Bins after Setup, with compute-to-compute barriers of its own. The next
+  // record() for the same camera and size then casts without setting up or binning again (it still orders its
+  // casts after LargeBins); for another camera it prepares its own. Throws std::logic_error for a step out of
+  // order, std::invalid_argument before setBvh.
+  enum class PreparationStep { Setup, Bins, LargeBins };
+  void recordPreparation(VkCommandBuffer cmd, PreparationStep step, const RaycastCamera& camera, std::uint32_t width,
+                         std::uint32_t height);
+  // Whether the next record() for this camera and size casts without setting up (all three steps recorded since
+  // the last record() or setBvh).
+  bool isPrepared(const RaycastCamera& camera, std::uint32_t width, std::uint32_t height) const {
+    return prepared_ && *prepared_ == PreparedView{camera, {width, height}};
+  }
+
  private:
+  struct PreparedView {
+    RaycastCamera camera;
+    glm::uvec2 size;
+    bool operator==(const PreparedView& other) const {
+      return camera.worldViewProjection == other.camera.worldViewProjection &&
+             camera.firstPersonViewProjection == other.camera.firstPersonViewProjection &&
+             camera.worldDepthRange == other.camera.worldDepthRange &&
+             camera.firstPersonDepthRange == other.camera.firstPersonDepthRange &&
+             camera.clearedDepth == other.camera.clearedDepth && size == other.size;
+    }
+  };
+  void sizeView(std::uint32_t width, std::uint32_t height);
+  void writeCameraConstants(gpu::RaycastConstants& constants, const RaycastCamera& camera, std::uint32_t width,
+                            std::uint32_t height) const;
+  void requirePreparing(const PreparedView& view, const char* what) const;
+  void dispatchSetup(VkCommandBuffer cmd) const;
+  void dispatchBins(VkCommandBuffer cmd) const;
+  void recordLargeBins(VkCommandBuffer cmd) const;
+  void bindBinPass(VkCommandBuffer cmd, VkPipeline pipeline) const;
   VkPipeline alphaTestPipeline();
   void bindSetupLayoutPass(VkCommandBuffer cmd, VkPipeline pipeline, const VkDescriptorBufferInfo& constants,
                            const std::array<VkDescriptorBufferInfo, 4>& buffers, std::span<const std::uint32_t> push) const;
-  void recordSetup(VkCommandBuffer cmd, const VkDescriptorBufferInfo& constants, const VkDescriptorBufferInfo& triangles,
-                   const VkDescriptorBufferInfo& snapped) const;
   void sizeBins(std::uint32_t width, std::uint32_t height);
-  void recordBins(VkCommandBuffer cmd, const VkDescriptorBufferInfo& constants, const VkDescriptorBufferInfo& snapped) const;
 
   vk::Context& context_;
   vk::PipelineLayout layout_, setupLayout_;
@@ -94,6 +128,8 @@ class RaycastVisibility {
   vk::Unique<VkPipeline> alphaTestPipeline_;
   glm::uvec2 packing_{0, 0};
   bool hasBvh_ = false;
+  // The view being prepared ahead (Setup recorded), and the one prepared (LargeBins recorded) for record().
+  std::optional<PreparedView> preparing_, prepared_;
 };
 
 }  // namespace s3d::renderer

@@ -27,6 +27,7 @@ nlohmann::json toJson(const frame::HybridTimings& t) {
           {"classify", optionalMs(t.classify)},         {"threshold", optionalMs(t.threshold)},
           {"mask", optionalMs(t.mask)},
           {"eyeGeometry", optionalMs(t.eyeGeometry)},   {"baseDepth", optionalMs(t.baseDepth)},
+          {"frontSpan", optionalMs(t.frontSpan)},
           {"maskedShading", optionalMs(t.maskedShading)}, {"eyeRenders", optionalMs(t.eyeRenders)},
           {"concurrentEyes", t.concurrentEyes},
           {"composite", optionalMs(t.composite)},       {"total", optionalMs(t.total)},
