@@ -17,8 +17,8 @@ std::vector<DeferredRenderer::Impl::ScheduledPass> DeferredRenderer::Impl::sched
   sortFrontToBack(view);
   const bool withAmbientOcclusion = scene.ambientOcclusion;
   if (masked) {
-    passes.push_back({"mask-tiles", [this, mask](VkCommandBuffer cmd) {
-                        tiles->recordReset(cmd, frameBuffer.buffer, mask.image, !raycastFrame);
+    passes.push_back({"mask-tiles", [this, mask, resetAhead = tilesResetAhead](VkCommandBuffer cmd) {
+                        tiles->recordReset(cmd, frameBuffer.buffer, mask.image, !raycastFrame, resetAhead);
                         tiles->recordBuild(cmd, frameBuffer.buffer, *mask.image);
                       }});
     if (withAmbientOcclusion && !maskedGBufferWritesEveryPixel() && !raycastFrame)
@@ -133,6 +133,7 @@ std::vector<DeferredRenderer::Impl::ScheduledPass> DeferredRenderer::Impl::prepa
   const detail::ShadowMaps* lentShadows = shadowSource != nullptr ? &lentShadowMaps(view, *shadowSource) : nullptr;
   writeFrameConstants(view, mask);
   std::vector<ScheduledPass> passes = schedulePasses(view, mask, lentShadows);
+  tilesResetAhead = false;  // a reset recorded ahead serves the render right after it only
   if (passes.size() > kMaxPasses) throw std::logic_error("renderer: more passes than timestamps");
   return passes;
 }

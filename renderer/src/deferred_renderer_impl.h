@@ -62,6 +62,7 @@ struct DeferredRenderer::Impl {
   vk::Image raycastIds, raycastDepth;
   bool raycastBvhCurrent = false;  // the BVH last given matches the scene (setScene, updateGeometry drop it)
   bool raycastFrame = false;       // the last render ray-cast its surfaces
+  bool tilesResetAhead = false;    // the next render's masked tile reset was recorded (recordRaycastPreparation)
   // What the G-buffer resolve samples for ray-cast textured surfaces: per texture (first texel, width, height,
   // sRGB) and every texture's RGBA8 texels; made at setSurfaceBvh for the scene (setScene drops them).
   vk::Buffer surfaceTextureTable, surfaceTexels;

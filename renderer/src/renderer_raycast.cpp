@@ -48,6 +48,11 @@ void DeferredRenderer::recordRaycastPreparation(VkCommandBuffer cmd, const ViewM
   Impl& r = *impl_;
   if (!hasSurfaceBvh()) throw std::invalid_argument("ray-cast surfaces were prepared before the renderer had a BVH");
   r.raycast->recordPreparation(cmd, step, raycastCamera(r.scene, view, r.options.reversedZ), r.width, r.height);
+  if (step == RaycastVisibility::PreparationStep::Setup) {  // the next masked render's tile reset (it reads the tile
+    r.writeFrameConstants(view, ShadeMask{});                // grid from the frame constants, which it rewrites)
+    r.tiles->recordMaskedResetAhead(cmd, r.frameBuffer.buffer);
+    r.tilesResetAhead = true;
+  }
 }
 
 std::optional<std::string> DeferredRenderer::raycastSurfacesRefusal() const { return impl_->raycastRefusal(); }

@@ -97,12 +97,20 @@ void TileLists::bindBuildLayoutPass(VkCommandBuffer cmd, VkPipeline pipeline, Vk
   context_.cmdPushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, buildLayout_.layout, 0, 3, writes);
 }
 
-void TileLists::recordReset(VkCommandBuffer cmd, VkBuffer frameBuffer, const vk::Image* mask, bool fragmentReads) {
-  // Earlier frames' compute reads, indirect reads and counter read-back finish before the reset overwrites the buffer.
-  vk::memoryBarrier(cmd, kComputeAndIndirect | VK_PIPELINE_STAGE_2_COPY_BIT, kStorageAndIndirect,
-                    VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
-  bindBuildLayoutPass(cmd, mask != nullptr ? resetMasked_ : reset_, frameBuffer, mask);
-  vkCmdDispatch(cmd, mask != nullptr ? groups(tilesX_ * tilesY_, S3D_TILE_RESET_GROUP_SIZE) : 1, 1, 1);
+void TileLists::recordMaskedResetAhead(VkCommandBuffer cmd, VkBuffer frameBuffer) const {
+  bindBuildLayoutPass(cmd, resetMasked_, frameBuffer, nullptr);
+  vkCmdDispatch(cmd, groups(tilesX_ * tilesY_, S3D_TILE_RESET_GROUP_SIZE), 1, 1);
+}
+
+void TileLists::recordReset(VkCommandBuffer cmd, VkBuffer frameBuffer, const vk::Image* mask, bool fragmentReads,
+                            bool resetAhead) {
+  if (!resetAhead || mask == nullptr) {
+    // Earlier frames' compute reads, indirect reads and counter read-back finish before the reset overwrites it.
+    vk::memoryBarrier(cmd, kComputeAndIndirect | VK_PIPELINE_STAGE_2_COPY_BIT, kStorageAndIndirect,
+                      VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+    bindBuildLayoutPass(cmd, mask != nullptr ? resetMasked_ : reset_, frameBuffer, mask);
+    vkCmdDispatch(cmd, mask != nullptr ? groups(tilesX_ * tilesY_, S3D_TILE_RESET_GROUP_SIZE) : 1, 1, 1);
+  }
   if (mask != nullptr)  // the host wrote the mask in an earlier submission (or earlier in its command buffer)
     vk::transition(cmd, *mask, {VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_WRITE_BIT},
                    fragmentReads ? kShadeMaskRead : kShadeMaskComputeRead);

@@ -70,7 +70,13 @@ class TileLists {
   // indirect arguments. `mask` (masked renders): the host's image, made readable after any earlier write: by
   // compute, and by the fragment stage where `fragmentReads` (a raster G-buffer; a compute-only frame names no
   // graphics stage).
-  void recordReset(VkCommandBuffer cmd, VkBuffer frameBuffer, const vk::Image* mask, bool fragmentReads);
+  // `resetAhead`: a masked render whose reset a caller recorded earlier (recordMaskedResetAhead): only the mask's
+  // transition and the closing barrier.
+  void recordReset(VkCommandBuffer cmd, VkBuffer frameBuffer, const vk::Image* mask, bool fragmentReads,
+                   bool resetAhead = false);
+  // A masked render's reset dispatch alone, without barriers, for a caller that runs it beside other work: ordered
+  // after the previous frame's uses of the buffer, and before the render, by the caller.
+  void recordMaskedResetAhead(VkCommandBuffer cmd, VkBuffer frameBuffer) const;
   // mask-tiles: reads the frame constants and the mask; writes the lists and dispatch counts, readable by the
   // compute passes and their indirect dispatches after it.
   void recordBuild(VkCommandBuffer cmd, VkBuffer frameBuffer, const vk::Image& mask);

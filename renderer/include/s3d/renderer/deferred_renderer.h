@@ -83,7 +83,9 @@ class DeferredRenderer {
   // One step of ray-cast surfaces' work for `view` that no mask decides (RaycastVisibility::recordPreparation,
   // with its ordering rules), recorded by the caller ahead of this renderer's next ray-cast render of the same
   // view, which then skips it: the triangles' setup and screen bins can run beside the caller's other dispatches
-  // (the hybrid's classification). Throws std::invalid_argument without a BVH (setSurfaceBvh).
+  // (the hybrid's classification). The Setup step also records the tile lists' reset for the next render (a masked
+  // one skips its own), so the caller orders Setup after this renderer's previous render; nothing else may render
+  // with this renderer in between. Throws std::invalid_argument without a BVH (setSurfaceBvh).
   void recordRaycastPreparation(VkCommandBuffer cmd, const ViewMatrices& view, RaycastVisibility::PreparationStep step);
   // Renders one view; the results stay on the GPU until read back. With a mask (its image non-null), only the
   // mask's pixels (ShadeMask). Throws std::invalid_argument for a mask of another size or format, or for a RayCast
