@@ -222,7 +222,7 @@ struct HybridFrame {
   // the pixels of the occlusion's region that are not cast (none: the region is cast); made on first use.
   std::array<vk::Image, 2>& baseDepth;
   bool givesBaseDepth = false;
-  // The eye cameras' views, and the eyes whose ray-cast surfaces' setup and screen bins run beside the
+  // The eye cameras' views, and the eyes whose ray-cast surfaces' setup, screen bins and tile reset run beside the
   // classification (one renderer per eye: each holds its own view's).
   std::array<renderer::ViewMatrices, 2> eyeViews{};
   std::array<bool, 2> preparesRays{};
@@ -241,7 +241,8 @@ void computeToCompute(VkCommandBuffer cmd) {
   vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, access, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, access);
 }
 
-// The ray-cast eyes' setup and bins on their own (before each timed eye render: a frame prepares its eyes once).
+// The ray-cast eyes' setup, bins and tile reset on their own (before each timed eye render: a frame prepares its
+// eyes once).
 void prepareEyes(const HybridFrame& f) {
   if (!f.preparesRays[0] && !f.preparesRays[1]) return;
   f.context.submitAndWait([&](VkCommandBuffer cmd) {
@@ -285,9 +286,9 @@ stereo::StereoMethod displaceAndClassify(HybridFrame& f, const stereo::StereoPar
 // The frame up to the eye renders as it runs: the classification with the work that does not wait for it beside
 // it, filling the GPU while the classification's passes leave it idle (few workgroups, and barriers): the
 // displacement (the classification reads the center's depth, not the eyes) and both eyes' base depth beside the
-// classify pass and, after the classify, threshold and mask dispatches, each step of the ray-cast eyes' setup and
-// screen bins (each step's barrier recorded next to the classification's own). Timed as one span; the sections
-// above time the passes alone.
+// classify pass and, after the classify, threshold and mask dispatches, each step of the ray-cast eyes' setup (with
+// their renderers' tile reset) and screen bins (each step's barrier recorded next to the classification's own).
+// Timed as one span; the sections above time the passes alone.
 void timeFrontSpan(HybridFrame& f, const stereo::StereoParameters& parameters, HybridTimings& timings) {
   timings.frontSpan = sum(sum(timings.displacement, timings.classification), timings.baseDepth);
   if (!f.classify) return;
