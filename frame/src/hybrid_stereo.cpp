@@ -236,81 +236,75 @@ void recordEyePreparation(const HybridFrame& f, VkCommandBuffer cmd, int step) {
                                                     renderer::RaycastVisibility::PreparationStep(step));
 }
 
-void computeToCompute(VkCommandBuffer cmd) {
-  constexpr VkAccessFlags2 access = VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
-  vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, access, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, access);
-}
-
 // The ray-cast eyes' setup, bins and tile reset on their own (before each timed eye render: a frame prepares its
 // eyes once).
 void prepareEyes(const HybridFrame& f) {
   if (!f.preparesRays[0] && !f.preparesRays[1]) return;
   f.context.submitAndWait([&](VkCommandBuffer cmd) {
     for (int step = 0; step < 3; ++step) {
-      computeToCompute(cmd);
+      vk::computeStorageBarrier(cmd);
       recordEyePreparation(f, cmd, step);
     }
   });
 }
 
-// Displacement, classification, threshold and masks: one submission, nothing read back in between. Returns the
-// displacement's method (the hybrid's base). With every pixel masked the eyes are rendered whole: no displacement.
+// Displacement, classification, threshold and masks: one submission, nothing read back in between, timed twice.
+// First each pass alone. Then, with a classification, as the frame runs them (frontSpan, one span): the work that
+// does not wait for the classification beside it, filling the GPU while its passes leave it idle (few workgroups,
+// and barriers): the displacement (the classification reads the center's depth, not the eyes) and both eyes' base
+// depth beside the classify pass and, after the classify, threshold and mask dispatches, each step of the ray-cast
+// eyes' setup (with their renderers' tile reset) and screen bins (each step's barrier next to one of the
+// classification's). Returns the displacement's method (the hybrid's base). With every pixel masked the eyes are
+// rendered whole: no displacement.
 stereo::StereoMethod displaceAndClassify(HybridFrame& f, const stereo::StereoParameters& parameters, HybridTimings& timings) {
   if (f.everythingMasked) {
     timings.displacement = timings.classify = timings.threshold = timings.mask = timings.classification = 0.0;
+    timings.frontSpan = timings.baseDepth;
     return stereo::displacementParameters(parameters).method;
   }
   const vk::Image& centerColor = f.centerRenderer.displayColor();
   const vk::Image& linearDepth = f.centerRenderer.linearDepth();
   const stereo::DisplacementPass displacement(f.context, parameters, f.width, f.height);
-  const std::vector<std::optional<double>> front = timeSections(
-      f.context, f.timedRuns, f.classify ? 4 : 1, [&](VkCommandBuffer cmd, const std::function<void()>& mark) {
-        stereo::StereoPass::recordInputBarriers(cmd, centerColor, linearDepth, f.left, f.right);
-        displacement.record(cmd, centerColor, linearDepth, f.left, f.right);
-        mark();
-        if (f.classify) f.hybrid.recordMasks(cmd, linearDepth, f.images, f.constants, mark);
-        stereo::StereoPass::recordInputRelease(cmd, centerColor, linearDepth);
-      });
-  timings.displacement = front[0];
-  if (f.classify) {
-    timings.classify = front[1];
-    timings.threshold = front[2];
-    timings.mask = front[3];
-  } else {
-    timings.classify = timings.threshold = timings.mask = 0.0;
-  }
-  timings.classification = sum(sum(timings.classify, timings.threshold), timings.mask);
-  return displacement.method();
-}
-
-// The frame up to the eye renders as it runs: the classification with the work that does not wait for it beside
-// it, filling the GPU while the classification's passes leave it idle (few workgroups, and barriers): the
-// displacement (the classification reads the center's depth, not the eyes) and both eyes' base depth beside the
-// classify pass and, after the classify, threshold and mask dispatches, each step of the ray-cast eyes' setup (with
-// their renderers' tile reset) and screen bins (each step's barrier recorded next to the classification's own).
-// Timed as one span; the sections above time the passes alone.
-void timeFrontSpan(HybridFrame& f, const stereo::StereoParameters& parameters, HybridTimings& timings) {
-  timings.frontSpan = sum(sum(timings.displacement, timings.classification), timings.baseDepth);
-  if (!f.classify) return;
-  const vk::Image& centerColor = f.centerRenderer.displayColor();
-  const vk::Image& linearDepth = f.centerRenderer.linearDepth();
-  const stereo::DisplacementPass displacement(f.context, parameters, f.width, f.height);
-  timings.frontSpan = timeSections(f.context, f.timedRuns, 1, [&](VkCommandBuffer cmd, const std::function<void()>& mark) {
-    if (f.givesBaseDepth)
+  const auto record = [&](VkCommandBuffer cmd, const std::function<void()>& mark, bool beside) {
+    if (beside && f.givesBaseDepth)
       for (const vk::Image& eye : f.baseDepth) vk::transition(cmd, eye, vk::kUndefined, vk::kComputeWrite);
     stereo::StereoPass::recordInputBarriers(cmd, centerColor, linearDepth, f.left, f.right);
+    if (!beside) {
+      displacement.record(cmd, centerColor, linearDepth, f.left, f.right);
+      mark();
+    }
     int step = 0;
-    f.hybrid.recordMasks(cmd, linearDepth, f.images, f.constants, [&] {
+    const auto besideNextDispatch = [&] {
       if (step == 0) displacement.record(cmd, centerColor, linearDepth, f.left, f.right);
       if (step == 0 && f.givesBaseDepth)
         f.baseDepthPass.record(cmd, linearDepth, f.centerRenderer.deviceDepth(), f.baseDepth[0], f.baseDepth[1],
                                f.constants);
       recordEyePreparation(f, cmd, step++);
-      computeToCompute(cmd);  // beside the classification's next barrier: orders the steps' buffers too
-    });
+      vk::computeStorageBarrier(cmd);  // beside the classification's next barrier: orders the steps' buffers too
+    };
+    if (f.classify)
+      f.hybrid.recordMasks(cmd, linearDepth, f.images, f.constants,
+                           beside ? std::function<void()>(besideNextDispatch) : mark);
     stereo::StereoPass::recordInputRelease(cmd, centerColor, linearDepth);
-    mark();
-  })[0];
+    if (beside) mark();
+  };
+  const std::vector<std::optional<double>> alone =
+      timeSections(f.context, f.timedRuns, f.classify ? 4 : 1,
+                   [&](VkCommandBuffer cmd, const std::function<void()>& mark) { record(cmd, mark, false); });
+  timings.displacement = alone[0];
+  if (f.classify) {
+    timings.classify = alone[1];
+    timings.threshold = alone[2];
+    timings.mask = alone[3];
+  } else {
+    timings.classify = timings.threshold = timings.mask = 0.0;
+  }
+  timings.classification = sum(sum(timings.classify, timings.threshold), timings.mask);
+  timings.frontSpan =
+      f.classify ? timeSections(f.context, f.timedRuns, 1,
+                                [&](VkCommandBuffer cmd, const std::function<void()>& mark) { record(cmd, mark, true); })[0]
+                 : sum(sum(timings.displacement, timings.classification), timings.baseDepth);
+  return displacement.method();
 }
 
 // Ray-cast eyes over a gather base with ambient occlusion (and a mask): the rays are cast for the masked pixels
@@ -490,11 +484,10 @@ HybridSynthesis HybridSynthesizer::synthesize(const renderer::DeferredRenderer& 
   for (std::size_t eye = 0; eye < 2; ++eye)
     f.preparesRays[eye] = f.classify && result.surfaces[eye] == renderer::ShadeMask::Surfaces::RayCast &&
                           eyeRenderers[0] != eyeRenderers[1];
-  const stereo::StereoMethod base = displaceAndClassify(f, parameters, timings);
   timings.maskedShading = timings.composite = timings.baseDepth = 0.0;
   if (givesBaseDepth(f, scene, result.surfaces, surfaces)) recordBaseDepth(f, timings);
   timings.eyeGeometry = timings.baseDepth;
-  timeFrontSpan(f, parameters, timings);
+  const stereo::StereoMethod base = displaceAndClassify(f, parameters, timings);
   // The masked counts come back first (the submission above was waited for anyway).
   renderIntoEyes(f, result);
   timings.total = sum(sum(timings.frontSpan, timings.eyeRenders), timings.composite);

@@ -88,11 +88,6 @@ namespace {
 
 constexpr VkAccessFlags2 kStorageAccess = VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
 
-void computeToCompute(VkCommandBuffer cmd) {
-  vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, kStorageAccess, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                    kStorageAccess);
-}
-
 // Bins of S3D_RAYCAST_BIN_SIZE pixels across and down an image.
 glm::uvec2 binGrid(std::uint32_t width, std::uint32_t height) {
   return {(width + S3D_RAYCAST_BIN_SIZE - 1) / S3D_RAYCAST_BIN_SIZE, (height + S3D_RAYCAST_BIN_SIZE - 1) / S3D_RAYCAST_BIN_SIZE};
@@ -226,7 +221,7 @@ void RaycastVisibility::recordPreparation(VkCommandBuffer cmd, PreparationStep s
 }
 
 void RaycastVisibility::requirePreparing(const PreparedView& view, const char* what) const {
-  if (!preparing_ || !(*preparing_ == view))
+  if (preparing_ != view)
     throw std::logic_error(std::string("the ray-cast view was ") + what + " before its setup for the same camera and size");
 }
 
@@ -255,15 +250,15 @@ void RaycastVisibility::record(VkCommandBuffer cmd, const RaycastCamera& camera,
                                  mask.image && mask.uncastDepth ? 1u : 0u, 0u);
   std::memcpy(constants_.mapped, &constants, sizeof(constants));
   if (!prepared) {  // after the previous recording's casts read the set-up triangles and bins
-    computeToCompute(cmd);
+    vk::computeStorageBarrier(cmd);
     dispatchSetup(cmd);
     if (binning_) {
-      computeToCompute(cmd);
+      vk::computeStorageBarrier(cmd);
       dispatchBins(cmd);
       recordLargeBins(cmd);
     }
   }
-  computeToCompute(cmd);
+  vk::computeStorageBarrier(cmd);
 
   VkDescriptorBufferInfo constantInfo{constants_.buffer, 0, VK_WHOLE_SIZE};
   VkDescriptorBufferInfo nodeInfo{nodes_.buffer, 0, VK_WHOLE_SIZE};

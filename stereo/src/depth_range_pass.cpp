@@ -79,8 +79,7 @@ DepthRangePass::DepthRangePass(vk::Context& context, std::optional<DepthReductio
 void DepthRangePass::recordReduction(VkCommandBuffer cmd, const std::function<void()>& bindAndPush, std::uint32_t width,
                                      std::uint32_t height) const {
   // The previous dispatch on the queue (this pass's or another's) has reset the counters and written the result.
-  constexpr VkAccessFlags2 storage = VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
-  vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, storage, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, storage);
+  vk::computeStorageBarrier(cmd);
   bindAndPush();
   auto groups = [](std::uint32_t size, std::uint32_t perGroup) { return (size + perGroup - 1) / perGroup; };
   vkCmdDispatch(cmd, groups(width, shape_.groupSide * shape_.run), groups(height, shape_.groupSide), 1);

@@ -72,12 +72,6 @@ constexpr int kRecordsPerTiming = 32;
 // A GPU's clocks fall while it idles (the H200 to 345 MHz) and take about a second of load to come back.
 constexpr std::chrono::milliseconds kWarmUp{1000};
 
-// Between two recordings of the same pass: its writes before the next one's reads and writes.
-void computeBarrier(VkCommandBuffer cmd) {
-  constexpr VkAccessFlags2 storage = VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
-  vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, storage, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, storage);
-}
-
 // Every earlier command's writes before every later command: for steps that mix copies and compute.
 void fullBarrier(VkCommandBuffer cmd) {
   constexpr VkAccessFlags2 memory = VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT;
@@ -91,7 +85,7 @@ void timeRecording(benchmark::State& state, const Record& record) {
   do {
     context.submitAndWait([&](VkCommandBuffer cmd) {
       for (int i = 0; i < kRecordsPerTiming; ++i) {
-        if (i > 0) computeBarrier(cmd);
+        if (i > 0) vk::computeStorageBarrier(cmd);  // the previous recording's writes before this one's
         record(cmd);
       }
     });
@@ -102,7 +96,7 @@ void timeRecording(benchmark::State& state, const Record& record) {
       timestamps.reset(cmd);
       timestamps.write(cmd, 0, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT);
       for (int i = 0; i < kRecordsPerTiming; ++i) {
-        if (i > 0) computeBarrier(cmd);
+        if (i > 0) vk::computeStorageBarrier(cmd);  // the previous recording's writes before this one's
         record(cmd);
       }
       timestamps.write(cmd, 1, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT);

@@ -38,7 +38,7 @@ class RaycastPreparation : public test::VulkanTest {
   void prepare(const RaycastCamera& view) {
     context().submitAndWait([&](VkCommandBuffer cmd) {
       for (const Step step : {Step::Setup, Step::Bins, Step::LargeBins}) {
-        computeBarrier(cmd);
+        vk::computeStorageBarrier(cmd);
         pass_.recordPreparation(cmd, step, view, kWidth, kHeight);
       }
     });
@@ -60,11 +60,6 @@ class RaycastPreparation : public test::VulkanTest {
     std::memcpy(words.data(), idBytes.data(), idBytes.size());
     std::memcpy(words.data() + words.size() / 2, depthBytes.data(), depthBytes.size());
     return words;
-  }
-
-  static void computeBarrier(VkCommandBuffer cmd) {
-    constexpr VkAccessFlags2 access = VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
-    vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, access, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, access);
   }
 
   renderer::Scene scene_;
@@ -102,7 +97,7 @@ TEST_F(RaycastPreparation, StepsOutOfOrderAreRefused) {
   context().submitAndWait([&](VkCommandBuffer cmd) {
     EXPECT_THROW(pass_.recordPreparation(cmd, Step::Bins, left, kWidth, kHeight), std::logic_error);
     pass_.recordPreparation(cmd, Step::Setup, left, kWidth, kHeight);
-    computeBarrier(cmd);
+    vk::computeStorageBarrier(cmd);
     EXPECT_THROW(pass_.recordPreparation(cmd, Step::LargeBins, right, kWidth, kHeight), std::logic_error);
   });
   prepare(left);

@@ -149,6 +149,11 @@ void memoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags2 srcStage, VkAccess
   vkCmdPipelineBarrier2(cmd, &dependency);
 }
 
+void computeStorageBarrier(VkCommandBuffer cmd) {
+  constexpr VkAccessFlags2 storage = VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
+  memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, storage, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, storage);
+}
+
 Unique<VkSampler> createNearestClampSampler(const Context& context) {
   VkSamplerCreateInfo samplerInfo{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
   samplerInfo.magFilter = samplerInfo.minFilter = VK_FILTER_NEAREST;

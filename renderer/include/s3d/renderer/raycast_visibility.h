@@ -82,20 +82,14 @@ class RaycastVisibility {
   // Whether the next record() for this camera and size casts without setting up (all three steps recorded since
   // the last record() or setBvh).
   bool isPrepared(const RaycastCamera& camera, std::uint32_t width, std::uint32_t height) const {
-    return prepared_ && *prepared_ == PreparedView{camera, {width, height}};
+    return prepared_ == PreparedView{camera, {width, height}};
   }
 
  private:
   struct PreparedView {
     RaycastCamera camera;
     glm::uvec2 size;
-    bool operator==(const PreparedView& other) const {
-      return camera.worldViewProjection == other.camera.worldViewProjection &&
-             camera.firstPersonViewProjection == other.camera.firstPersonViewProjection &&
-             camera.worldDepthRange == other.camera.worldDepthRange &&
-             camera.firstPersonDepthRange == other.camera.firstPersonDepthRange &&
-             camera.clearedDepth == other.camera.clearedDepth && size == other.size;
-    }
+    bool operator==(const PreparedView&) const = default;
   };
   void sizeView(std::uint32_t width, std::uint32_t height);
   void writeCameraConstants(gpu::RaycastConstants& constants, const RaycastCamera& camera, std::uint32_t width,

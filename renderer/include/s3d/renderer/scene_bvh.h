@@ -33,6 +33,7 @@ struct RaycastCamera {
   glm::vec2 worldDepthRange{0.1f, 1.0f};      // viewport depth ranges (Listing 4.3)
   glm::vec2 firstPersonDepthRange{0.0f, 0.1f};
   float clearedDepth = 1.0f;  // device depth where nothing is hit
+  bool operator==(const RaycastCamera&) const = default;
 };
 // The inverse of a layer's view projection that pixel rays are unprojected with (inverted in double).
 glm::mat4 clipToLayerOf(const glm::mat4& viewProjection);

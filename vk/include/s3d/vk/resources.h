@@ -55,6 +55,8 @@ void transition(VkCommandBuffer cmd, const Image& image, const ImageState& from,
 // One global memory barrier (synchronization2): the source stage's accesses before the destination stage's.
 void memoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess,
                    VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess);
+// Earlier compute shaders' storage reads and writes before later ones'.
+void computeStorageBarrier(VkCommandBuffer cmd);
 
 // The sampler compute passes read images through with texelFetch: no filtering, clamped at the edges (a texel is
 // fetched as written; a sampled descriptor needs one).
