@@ -250,12 +250,13 @@ void prepareEyes(const HybridFrame& f) {
 
 // Displacement, classification, threshold and masks: one submission, nothing read back in between, timed twice.
 // First each pass alone. Then, with a classification, as the frame runs them (frontSpan, one span): the work that
-// does not wait for the classification beside it, filling the GPU while its passes leave it idle (few workgroups,
-// and barriers): the displacement (the classification reads the center's depth, not the eyes) and both eyes' base
-// depth beside the classify pass and, after the classify, threshold and mask dispatches, each step of the ray-cast
-// eyes' setup (with their renderers' tile reset) and screen bins (each step's barrier next to one of the
-// classification's). Returns the displacement's method (the hybrid's base). With every pixel masked the eyes are
-// rendered whole: no displacement.
+// does not wait for the classification beside it, so it needs no barrier of its own and fills the GPU's gaps (the
+// passes' tails and barriers; the classify pass itself occupies every SM): the displacement (the classification reads
+// the center's depth, not the eyes), with both eyes' base depth in the same dispatch where the eyes get one, beside
+// the classify pass and, after the classify, threshold and mask dispatches, each step of the ray-cast eyes' setup
+// (with their renderers' tile reset) and screen bins (each step's barrier next to one of the classification's).
+// Returns the displacement's method (the hybrid's base). With every pixel masked the eyes are rendered whole: no
+// displacement.
 stereo::StereoMethod displaceAndClassify(HybridFrame& f, const stereo::StereoParameters& parameters, HybridTimings& timings) {
   if (f.everythingMasked) {
     timings.displacement = timings.classify = timings.threshold = timings.mask = timings.classification = 0.0;
@@ -265,6 +266,8 @@ stereo::StereoMethod displaceAndClassify(HybridFrame& f, const stereo::StereoPar
   const vk::Image& centerColor = f.centerRenderer.displayColor();
   const vk::Image& linearDepth = f.centerRenderer.linearDepth();
   const stereo::DisplacementPass displacement(f.context, parameters, f.width, f.height);
+  const gpu::StereoConstants gather =
+      stereo::makeStereoConstants(stereo::displacementParameters(parameters), f.width, f.height);
   const auto record = [&](VkCommandBuffer cmd, const std::function<void()>& mark, bool beside) {
     if (beside && f.givesBaseDepth)
       for (const vk::Image& eye : f.baseDepth) vk::transition(cmd, eye, vk::kUndefined, vk::kComputeWrite);
@@ -275,10 +278,11 @@ stereo::StereoMethod displaceAndClassify(HybridFrame& f, const stereo::StereoPar
     }
     int step = 0;
     const auto besideNextDispatch = [&] {
-      if (step == 0) displacement.record(cmd, centerColor, linearDepth, f.left, f.right);
-      if (step == 0 && f.givesBaseDepth)
-        f.baseDepthPass.record(cmd, linearDepth, f.centerRenderer.deviceDepth(), f.baseDepth[0], f.baseDepth[1],
-                               f.constants);
+      if (step == 0 && f.givesBaseDepth)  // the gather base and its depth in one dispatch
+        f.baseDepthPass.recordWithGather(cmd, centerColor, linearDepth, f.centerRenderer.deviceDepth(), f.left, f.right,
+                                         f.baseDepth[0], f.baseDepth[1], gather);
+      else if (step == 0)
+        displacement.record(cmd, centerColor, linearDepth, f.left, f.right);
       recordEyePreparation(f, cmd, step++);
       vk::computeStorageBarrier(cmd);  // beside the classification's next barrier: orders the steps' buffers too
     };

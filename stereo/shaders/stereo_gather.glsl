@@ -1,5 +1,8 @@
 // Listing 4.5 as a compute pass (and its N-tap search): one invocation writes the pixel of both eyes.
 // Included by stereo_seed.comp and stereo_search.comp, which set S3D_STEREO_TAP_CAPACITY first. With
+// S3D_STEREO_BASE_DEPTH_OUTPUT (stereo_*_base_depth.comp) it also writes the hybrid's base depth: per eye pixel the
+// center's device depth at the texel nearest its source column, as stereo_hybrid_base_depth.comp does, the source
+// columns found once for both outputs. With
 // S3D_STEREO_HOST_INPUTS (stereo_gather_host*.comp) it reads a host's colour and depth buffer as they are, sampled,
 // converting each texel as the host pass's input conversion would (host_input.glsl), so no conversion pass runs;
 // with S3D_STEREO_HOST_HALF_PACKING too, each invocation writes one pixel of a half packing instead.
@@ -24,6 +27,11 @@ layout(binding = 1, r32f) uniform readonly image2D linearDepth;
 #endif
 layout(binding = 2, S3D_STEREO_COLOR_FORMAT) uniform writeonly image2D leftEye;
 layout(binding = 3, S3D_STEREO_COLOR_FORMAT) uniform writeonly image2D rightEye;
+#ifdef S3D_STEREO_BASE_DEPTH_OUTPUT
+layout(binding = 4) uniform sampler2D deviceDepth;  // the center's (a depth attachment: sampled, not storage)
+layout(binding = 5, r32f) uniform writeonly image2D leftBaseDepth;
+layout(binding = 6, r32f) uniform writeonly image2D rightBaseDepth;
+#endif
 
 layout(push_constant) uniform Push {
   StereoConstants c;
@@ -168,10 +176,32 @@ vec4 halfPackedPixel(ivec2 pixel) {
 }
 #endif
 
+#ifdef S3D_STEREO_BASE_DEPTH_OUTPUT
+// The center device depth at the texel nearest source column u (ties to the right), as the hybrid's base depth pass.
+float deviceDepthAtSource(float u, int y) {
+  float base = floor(u);
+  int texel = int(base) + (u - base < 0.5 ? 0 : 1);
+  return texelFetch(deviceDepth, ivec2(clamp(texel, 0, c.width - 1), y), 0).r;
+}
+
+// Both eyes' pixel and base depth (every pixel's depth: the cropped edges' too, as the base depth pass).
+void gatherWithBaseDepth(ivec2 pixel) {
+  float leftSource = gatherSourceColumn(pixel.x, +1, nearestTapDepth(pixel.x, pixel.y, +1));
+  float rightSource = gatherSourceColumn(pixel.x, -1, nearestTapDepth(pixel.x, pixel.y, -1));
+  imageStore(leftBaseDepth, pixel, vec4(deviceDepthAtSource(leftSource, pixel.y)));
+  imageStore(rightBaseDepth, pixel, vec4(deviceDepthAtSource(rightSource, pixel.y)));
+  bool cropped = pixel.x < c.cropBegin || pixel.x >= c.cropEnd;
+  writeEyes(pixel, cropped ? vec4(0, 0, 0, 1) : sampleRow(pixel.y, leftSource),
+            cropped ? vec4(0, 0, 0, 1) : sampleRow(pixel.y, rightSource));
+}
+#endif
+
 void main() {
   ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
   if (pixel.x >= c.width || pixel.y >= c.height) return;
-#ifdef S3D_STEREO_HOST_HALF_PACKING
+#if defined(S3D_STEREO_BASE_DEPTH_OUTPUT)
+  gatherWithBaseDepth(pixel);
+#elif defined(S3D_STEREO_HOST_HALF_PACKING)
   imageStore(leftEye, pixel, halfPackedPixel(pixel));
 #else
   if (pixel.x < c.cropBegin || pixel.x >= c.cropEnd) {  // cropped edges

@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 #include <cstring>
+#include <random>
 #include <stdexcept>
 #include <span>
 #include <vector>
@@ -13,6 +14,7 @@
 #include "s3d/stereo/hybrid.h"
 #include "s3d/stereo/hybrid_base_depth.h"
 #include "s3d/stereo/hybrid_base_depth_pass.h"
+#include "s3d/stereo/stereo_pass.h"
 #include "vulkan_test.h"
 
 namespace s3d::stereo {
@@ -120,6 +122,80 @@ TEST_F(HybridBaseDepthPassTest, MatchesTheCppReferenceTexelForTexel) {
     }
     EXPECT_NE(expected[0].pixels, expected[1].pixels);  // the eyes do sample different texels
   }
+}
+
+std::vector<float> readFloats(vk::Context& context, const vk::Image& image) {
+  const std::vector<std::byte> bytes = vk::readbackImage(context, image, vk::kComputeWrite);
+  std::vector<float> values(bytes.size() / sizeof(float));
+  std::memcpy(values.data(), bytes.data(), bytes.size());
+  return values;
+}
+
+// Tolerance: none. The gather that also writes the base depth (one dispatch) writes the eyes the gather pass writes,
+// byte for byte, and the depth the reference takes, texel for texel: the seed, a 4-tap and a 9-tap search, with
+// cropped edges (black eyes there, depth still written).
+TEST_F(HybridBaseDepthPassTest, TheGatherWithTheBaseDepthWritesTheGathersEyesAndTheReferencesDepth) {
+  const DepthImage linear = steppedLinearDepth();
+  const DepthImage device = distinctDeviceDepth(linear);
+  std::vector<std::uint8_t> colour(std::size_t(kWidth) * kHeight * 4);
+  std::mt19937 random(5);
+  for (std::uint8_t& channel : colour) channel = std::uint8_t(random() % 256);
+  const VkImageUsageFlags usage =
+      VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+  const auto image = [&](VkFormat format, VkImageUsageFlags extra = 0) {
+    return vk::createImage(context(), format, kWidth, kHeight, usage | extra);
+  };
+  const vk::Image centerColor = image(StereoPass::kColorFormat), linearImage = image(VK_FORMAT_R32_SFLOAT);
+  const vk::Image deviceImage = image(VK_FORMAT_R32_SFLOAT, VK_IMAGE_USAGE_SAMPLED_BIT);
+  constexpr vk::ImageState kSampledByCompute{VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+                                             VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT};
+  vk::uploadImage(context(), centerColor, std::as_bytes(std::span(colour)), vk::kComputeRead);
+  vk::uploadImage(context(), linearImage, std::as_bytes(std::span(linear.pixels)), vk::kComputeRead);
+  vk::uploadImage(context(), deviceImage, std::as_bytes(std::span(device.pixels)), kSampledByCompute);
+  const vk::Image left = image(StereoPass::kColorFormat), right = image(StereoPass::kColorFormat);
+  const vk::Image gatheredLeft = image(StereoPass::kColorFormat), gatheredRight = image(StereoPass::kColorFormat);
+  const vk::Image leftDepth = HybridBaseDepthPass::createEyeDepth(context(), kWidth, kHeight);
+  const vk::Image rightDepth = HybridBaseDepthPass::createEyeDepth(context(), kWidth, kHeight);
+  const HybridBaseDepthPass pass(context());
+  const StereoPass gather(context());
+  for (const auto& [base, taps] : {std::pair{StereoMethod::Seed, 0}, std::pair{StereoMethod::Search, 4},
+                                   std::pair{StereoMethod::Search, 9}}) {
+    StereoParameters parameters = searchHybrid(0.2f);
+    parameters.hybridBase = base;
+    if (taps > 0) parameters.searchTaps = taps;
+    parameters.edgeCrop = 0.03f;
+    const gpu::StereoConstants constants = makeStereoConstants(displacementParameters(parameters), kWidth, kHeight);
+    ASSERT_GT(constants.cropBegin, 0);
+    context().submitAndWait([&](VkCommandBuffer cmd) {
+      for (const vk::Image* target : {&left, &right, &gatheredLeft, &gatheredRight, &leftDepth, &rightDepth})
+        vk::transition(cmd, *target, vk::kUndefined, vk::kComputeWrite);
+      pass.recordWithGather(cmd, centerColor, linearImage, deviceImage, left, right, leftDepth, rightDepth, constants);
+      gather.record(cmd, centerColor, linearImage, gatheredLeft, gatheredRight, constants);
+    });
+    const std::array<DepthImage, 2> expected =
+        hybridBaseDepthReference(linear, device, makeHybridConstants(parameters, kWidth, kHeight));
+    const char* name = taps == 0 ? "seed" : taps == 4 ? "search-4" : "search-9";
+    EXPECT_EQ(readFloats(context(), leftDepth), expected[0].pixels) << name;
+    EXPECT_EQ(readFloats(context(), rightDepth), expected[1].pixels) << name;
+    EXPECT_EQ(vk::readbackImage(context(), left, vk::kComputeWrite),
+              vk::readbackImage(context(), gatheredLeft, vk::kComputeWrite)) << name;
+    EXPECT_EQ(vk::readbackImage(context(), right, vk::kComputeWrite),
+              vk::readbackImage(context(), gatheredRight, vk::kComputeWrite)) << name;
+  }
+}
+
+TEST_F(HybridBaseDepthPassTest, TheGatherWithTheBaseDepthRefusesImagesOfAnotherSize) {
+  const HybridBaseDepthPass pass(context());
+  const auto image = [&](std::uint32_t width) {
+    return vk::createImage(context(), VK_FORMAT_R32_SFLOAT, width, kHeight, VK_IMAGE_USAGE_STORAGE_BIT);
+  };
+  const vk::Image small = image(kWidth / 2), full = image(kWidth);
+  const gpu::StereoConstants constants =
+      makeStereoConstants(displacementParameters(searchHybrid(0.05f)), kWidth, kHeight);
+  context().submitAndWait([&](VkCommandBuffer cmd) {
+    EXPECT_THROW(pass.recordWithGather(cmd, full, full, full, full, full, small, full, constants),
+                 std::invalid_argument);
+  });
 }
 
 }  // namespace
