@@ -41,8 +41,7 @@ HybridBaseDepthPass::HybridBaseDepthPass(const vk::Context& context)
       nearest_(vk::createNearestClampSampler(context)),
       layout_(createLayout(context)),
       pipeline_(context, layout_.layout, spirv_stereo_hybrid_base_depth_comp, {}),
-      gatherLayout_(createGatherLayout(context)),
-      gatherShortTaps_(vk::createComputePipeline(context, gatherLayout_.layout, spirv_stereo_seed_base_depth_comp)) {}
+      gatherLayout_(createGatherLayout(context)) {}
 
 vk::Image HybridBaseDepthPass::createEyeDepth(const vk::Context& context, std::uint32_t width, std::uint32_t height) {
   return vk::createImage(context, VK_FORMAT_R32_SFLOAT, width, height,
@@ -82,8 +81,11 @@ void HybridBaseDepthPass::recordWithGather(VkCommandBuffer cmd, const vk::Image&
     if (int(image->width) != c.width || int(image->height) != c.height)
       throw std::invalid_argument("hybrid base depth: an image's size does not match the gather's constants");
   const bool shortTaps = c.tapCount <= S3D_STEREO_SMALL_TAP_CAPACITY;
-  if (!shortTaps && !gatherAllTaps_)
-    gatherAllTaps_ = vk::createComputePipeline(*context_, gatherLayout_.layout, spirv_stereo_search_base_depth_comp);
+  vk::Unique<VkPipeline>& pipeline = shortTaps ? gatherShortTaps_ : gatherAllTaps_;
+  if (!pipeline)
+    pipeline = vk::createComputePipeline(*context_, gatherLayout_.layout,
+                                         shortTaps ? std::span<const std::uint32_t>(spirv_stereo_seed_base_depth_comp)
+                                                   : std::span<const std::uint32_t>(spirv_stereo_search_base_depth_comp));
   VkDescriptorImageInfo infos[] = {{VK_NULL_HANDLE, centerColor.view, VK_IMAGE_LAYOUT_GENERAL},
                                    {VK_NULL_HANDLE, linearDepth.view, VK_IMAGE_LAYOUT_GENERAL},
                                    {VK_NULL_HANDLE, leftEye.view, VK_IMAGE_LAYOUT_GENERAL},
@@ -96,7 +98,7 @@ void HybridBaseDepthPass::recordWithGather(VkCommandBuffer cmd, const vk::Image&
     writes[binding] = binding == 4 ? vk::sampledImageWrite(binding, &infos[binding])
                                    : vk::storageImageWrite(binding, &infos[binding]);
   writes[4].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, shortTaps ? gatherShortTaps_.get() : gatherAllTaps_.get());
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.get());
   context_->cmdPushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, gatherLayout_.layout, 0, 7, writes);
   vkCmdPushConstants(cmd, gatherLayout_.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(c), &c);
   const auto groups = [](int size) {

@@ -44,8 +44,9 @@ class HybridBaseDepthPass {
   vk::PipelineLayout layout_;
   detail::BaseTapPipelines pipeline_;
   vk::PipelineLayout gatherLayout_;
-  vk::Unique<VkPipeline> gatherShortTaps_;         // up to S3D_STEREO_SMALL_TAP_CAPACITY taps (the default base)
-  mutable vk::Unique<VkPipeline> gatherAllTaps_;   // up to S3D_STEREO_MAX_TAPS, made at first use
+  // Made at first use (a CPU device compiles at creation, and its hybrid rasterizes the eyes: no base depth).
+  mutable vk::Unique<VkPipeline> gatherShortTaps_;  // up to S3D_STEREO_SMALL_TAP_CAPACITY taps (the default base)
+  mutable vk::Unique<VkPipeline> gatherAllTaps_;    // up to S3D_STEREO_MAX_TAPS
 };
 
 }  // namespace s3d::stereo
