@@ -1,6 +1,7 @@
 #include "s3d/stereo/hybrid_base_depth_pass.h"
 
-#include <cstddef>
+#include <cstdint>
+#include <span>
 #include <stdexcept>
 
 // clang-format off
