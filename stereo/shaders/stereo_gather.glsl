@@ -177,12 +177,8 @@ vec4 halfPackedPixel(ivec2 pixel) {
 #endif
 
 #ifdef S3D_STEREO_BASE_DEPTH_OUTPUT
-// The center device depth at the texel nearest source column u (ties to the right), as the hybrid's base depth pass.
-float deviceDepthAtSource(float u, int y) {
-  float base = floor(u);
-  int texel = int(base) + (u - base < 0.5 ? 0 : 1);
-  return texelFetch(deviceDepth, ivec2(clamp(texel, 0, c.width - 1), y), 0).r;
-}
+// The center device depth at the texel nearest source column u, as the hybrid's base depth pass reads it.
+float deviceDepthAtSource(float u, int y) { return texelFetch(deviceDepth, ivec2(nearestSourceTexel(u), y), 0).r; }
 
 // Both eyes' pixel and base depth (every pixel's depth: the cropped edges' too, as the base depth pass).
 void gatherWithBaseDepth(ivec2 pixel) {

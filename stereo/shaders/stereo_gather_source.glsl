@@ -20,3 +20,10 @@ float gatherSourceColumn(int x, int direction, float minDepth) {
   precise float column = direction > 0 ? float(x) + parallax * float(c.width) : float(x) - parallax * float(c.width);
   return column;
 }
+
+// The center texel nearest a source column (ties to the right, as the classification's nearest landing), clamped to
+// the row: where the hybrid's base depth reads the center's device depth.
+int nearestSourceTexel(float column) {
+  float base = floor(column);
+  return clamp(int(base) + (column - base < 0.5 ? 0 : 1), 0, c.width - 1);
+}

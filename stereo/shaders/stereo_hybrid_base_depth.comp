@@ -32,9 +32,7 @@ float depthAt(int x, int y) {
 // classification's nearest landing).
 float sourceDeviceDepth(int x, int y, int direction) {
   float column = gatherSourceColumn(x, direction, minDepthOverTaps(x, y, direction));
-  float base = floor(column);
-  int texel = int(base) + (column - base < 0.5 ? 0 : 1);
-  return texelFetch(deviceDepth, ivec2(clamp(texel, 0, c.width - 1), y), 0).r;
+  return texelFetch(deviceDepth, ivec2(nearestSourceTexel(column), y), 0).r;
 }
 
 void main() {

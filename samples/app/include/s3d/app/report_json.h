@@ -16,7 +16,8 @@ double tidy(float value);
 nlohmann::json finiteOrNull(double value);
 nlohmann::json optionalMs(const std::optional<double>& value);  // null when absent or not finite
 // {"displacement", "classification" (with "classify", "threshold", "mask"), "eyeGeometry" (with "baseDepth"),
-// "frontSpan", "maskedShading", "eyeRenders", "composite", "total"}: ms or null; "concurrentEyes": whether the eyes rendered at once; "surfaces": "raycast" or "raster".
+// "frontSpan", "maskedShading", "eyeRenders", "composite", "total"}: ms or null; "concurrentEyes": whether the eyes
+// rendered at once; "surfaces": "raycast" or "raster".
 nlohmann::json toJson(const frame::HybridTimings& timings);
 // {"psnrDb", "ssim", "meanAbsoluteError", "shareAbove8", "pixelCount"}: every ErrorStats field, non-finite as null.
 nlohmann::json statsJson(const stereo::ErrorStats& stats);
