@@ -13,6 +13,8 @@
 #include <optional>
 #include <random>
 
+#include <glm/gtc/packing.hpp>
+
 #include "s3d/comfort/display_profile.h"
 #include "s3d/comfort/host_comfort_frame.h"
 #include "s3d/hud/hud_pass.h"
@@ -23,6 +25,7 @@
 #include "s3d/stereo/stereo_frame.h"
 #include "s3d/stereo/stereo_pass.h"
 #include "s3d/stereo/synthesis.h"
+#include "s3d/vk/check.h"
 #include "s3d/vk/timestamps.h"
 #include "bench_context.h"
 
@@ -178,14 +181,18 @@ struct HostFrameImages {
   vk::Image color, depth, left, right, target;
   stereo::StereoFrameDispatch dispatch;
 
-  HostFrameImages(vk::Context& context, const stereo::StereoFrameDesc& desc, const stereo::StereoFrame& stereoFrame) {
+  // colorTexels, depthTexels: the view as stored in the description's formats (empty: RGBA8 colour, and D32 or R32F
+  // depth).
+  HostFrameImages(vk::Context& context, const stereo::StereoFrameDesc& desc, const stereo::StereoFrame& stereoFrame,
+                  std::span<const std::byte> colorTexels = {}, std::span<const std::byte> depthTexels = {}) {
     const VkImageUsageFlags inputUsage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
     color = vk::createImage(context, desc.colorFormat, kWidth, kHeight, inputUsage);
     depth = vk::createImage(context, desc.depthFormat, kWidth, kHeight, inputUsage);
-    vk::uploadImage(context, color, std::as_bytes(std::span(view().color)), vk::kFragmentRead);
     const bool linearDepth = desc.depthFormat == VK_FORMAT_R32_SFLOAT;  // the host's own linear depth, else D32
-    vk::uploadImage(context, depth, std::as_bytes(std::span(linearDepth ? view().linear : view().device)),
-                    vk::kFragmentRead);
+    if (colorTexels.empty()) colorTexels = std::as_bytes(std::span(view().color));
+    if (depthTexels.empty()) depthTexels = std::as_bytes(std::span(linearDepth ? view().linear : view().device));
+    vk::uploadImage(context, color, colorTexels, vk::kFragmentRead);
+    vk::uploadImage(context, depth, depthTexels, vk::kFragmentRead);
     left = vk::createImage(context, stereoFrame.eyeFormat(), kWidth, kHeight, VK_IMAGE_USAGE_STORAGE_BIT);
     right = vk::createImage(context, stereoFrame.eyeFormat(), kWidth, kHeight, VK_IMAGE_USAGE_STORAGE_BIT);
     target = vk::createImage(context, stereoFrame.eyeFormat(), stereoFrame.packedWidth(), stereoFrame.packedHeight(),
@@ -236,6 +243,104 @@ void HostStereoFrame(benchmark::State& state) {
   state.SetLabel(context.deviceName() + ", " + stereo::methodName(desc.method) + (fill ? " + fill" : "") +
                  (state.range(2) == 0 ? ", sRGB" : ", UNORM view") + (state.range(3) == 0 ? ", D32" : ", R32F") +
                  (state.range(4) != 0 ? ", first-person layer" : ""));
+}
+
+// The colour formats and depth formats a host may hand over (HostStereoFrameFormats's arguments).
+const VkFormat kColorFormats[] = {VK_FORMAT_R8G8B8A8_SRGB, VK_FORMAT_R16G16B16A16_SFLOAT, VK_FORMAT_B10G11R11_UFLOAT_PACK32};
+const VkFormat kDepthFormats[] = {VK_FORMAT_D32_SFLOAT, VK_FORMAT_D24_UNORM_S8_UINT, VK_FORMAT_D16_UNORM,
+                                  VK_FORMAT_R32_SFLOAT};
+
+// The synthetic view's colour stored as `format` (the HDR formats hold the bytes over 255 as linear values).
+std::vector<std::byte> colorTexels(VkFormat format) {
+  const std::vector<std::uint8_t>& bytes = view().color;
+  std::vector<std::byte> texels;
+  auto append = [&texels](const auto& value) {
+    const auto* first = reinterpret_cast<const std::byte*>(&value);
+    texels.insert(texels.end(), first, first + sizeof(value));
+  };
+  for (std::size_t i = 0; i < bytes.size(); i += 4) {
+    const glm::vec4 c = glm::vec4(bytes[i], bytes[i + 1], bytes[i + 2], bytes[i + 3]) / 255.0f;
+    if (format == VK_FORMAT_R16G16B16A16_SFLOAT) append(glm::packHalf4x16(c));
+    else if (format == VK_FORMAT_B10G11R11_UFLOAT_PACK32) append(glm::packF2x11_1x10(glm::vec3(c)));
+    else append(std::uint32_t(bytes[i] | bytes[i + 1] << 8 | bytes[i + 2] << 16 | std::uint32_t(bytes[i + 3]) << 24));
+  }
+  return texels;
+}
+
+// The synthetic view's depth stored as `format`: its device depth in D32, D24S8 (24 bits, stencil 0) or D16, or
+// its linear depth in R32F.
+std::vector<std::byte> depthTexels(VkFormat format) {
+  std::vector<std::byte> texels;
+  auto append = [&texels](const auto& value) {
+    const auto* first = reinterpret_cast<const std::byte*>(&value);
+    texels.insert(texels.end(), first, first + sizeof(value));
+  };
+  for (std::size_t i = 0; i < view().device.size(); ++i) {
+    const float device = view().device[i];
+    if (format == VK_FORMAT_D24_UNORM_S8_UINT) append(std::uint32_t(std::lround(double(device) * 16777215.0)));
+    else if (format == VK_FORMAT_D16_UNORM) append(std::uint16_t(std::lround(device * 65535.0f)));
+    else append(format == VK_FORMAT_R32_SFLOAT ? view().linear[i] : device);
+  }
+  return texels;
+}
+
+// The host's stereo frame to two eyes from every input format, the eyes as two images or as the two layers of one
+// array image (what an OpenXR swapchain or a multiview host hands over). Arguments: the method (0 seed, 1
+// search-4), the colour (kColorFormats: 0 sRGB, 1 RGBA16F, 2 B10G11R11), the depth (kDepthFormats: 0 D32, 1
+// D24S8, 2 D16, 3 R32F linear depth) and the eyes (0 two images, 1 one 2-layer array).
+void HostStereoFrameFormats(benchmark::State& state) {
+  vk::Context& context = benchContext();
+  stereo::StereoFrameDesc desc;
+  desc.width = kWidth;
+  desc.height = kHeight;
+  desc.method = kMethods[state.range(0)];
+  desc.colorFormat = kColorFormats[state.range(1)];
+  desc.depthFormat = kDepthFormats[state.range(2)];
+  VkFormatProperties properties{};
+  vkGetPhysicalDeviceFormatProperties(context.physicalDevice(), desc.depthFormat, &properties);
+  if ((properties.optimalTilingFeatures & VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT) == 0) {
+    state.SkipWithError("the device cannot sample this depth format");
+    return;
+  }
+  stereo::StereoFrame stereoFrame(context, desc);
+  HostFrameImages images(context, desc, stereoFrame, colorTexels(desc.colorFormat), depthTexels(desc.depthFormat));
+  vk::Image array;
+  std::array<vk::Unique<VkImageView>, 2> layerViews;
+  if (state.range(3) != 0) {
+    array = vk::createImage(context, stereoFrame.eyeFormat(), kWidth, kHeight, VK_IMAGE_USAGE_STORAGE_BIT, 2);
+    for (std::uint32_t layer = 0; layer < 2; ++layer) {
+      VkImageViewCreateInfo info{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
+      info.image = array.image;
+      info.viewType = VK_IMAGE_VIEW_TYPE_2D;
+      info.format = array.format;
+      info.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, layer, 1};
+      VkImageView layerView = VK_NULL_HANDLE;
+      vk::check(vkCreateImageView(context.device(), &info, nullptr, &layerView), "vkCreateImageView");
+      layerViews[layer] = vk::Unique<VkImageView>(context.device(), layerView, vkDestroyImageView);
+    }
+    context.submitAndWait([&](VkCommandBuffer cmd) {
+      VkImageMemoryBarrier2 barrier{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
+      barrier.dstStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
+      barrier.dstAccessMask = VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
+      barrier.newLayout = VK_IMAGE_LAYOUT_GENERAL;
+      barrier.srcQueueFamilyIndex = barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+      barrier.image = array.image;
+      barrier.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 2};
+      VkDependencyInfo dependency{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+      dependency.imageMemoryBarrierCount = 1;
+      dependency.pImageMemoryBarriers = &barrier;
+      vkCmdPipelineBarrier2(cmd, &dependency);
+    });
+    for (std::uint32_t layer = 0; layer < 2; ++layer)
+      (layer == 0 ? images.dispatch.left : images.dispatch.right) =
+          stereo::HostImage{array.image,      layerViews[layer],        array.format, VK_IMAGE_LAYOUT_GENERAL,
+                            VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE, layer};
+  }
+  timeRecording(state, [&](VkCommandBuffer cmd) { stereoFrame.record(cmd, images.dispatch); });
+  static const char* const colorNames[] = {"sRGB", "RGBA16F", "B10G11R11"};
+  static const char* const depthNames[] = {"D32", "D24S8", "D16", "R32F"};
+  state.SetLabel(context.deviceName() + ", " + stereo::methodName(desc.method) + ", " + colorNames[state.range(1)] +
+                 ", " + depthNames[state.range(2)] + (state.range(3) != 0 ? ", 2-layer array" : ", two images"));
 }
 
 // The host's stereo frame with its comfort rules (comfort::HostComfortFrame): the frame's depth reduction, then
@@ -400,6 +505,13 @@ BENCHMARK(HostStereoFrame)
     ->ArgsProduct({{0, 1}, {0, 1}, {0}, {1}, {0}})
     ->ArgsProduct({{0, 1}, {0, 1}, {0}, {0}, {1}})
     ->ArgNames({"method", "output", "unormView", "linearDepth", "firstPersonLayer"})
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond)
+    ->MinTime(0.05);
+BENCHMARK(HostStereoFrameFormats)
+    ->ArgsProduct({{0, 1}, {0, 1, 2}, {0, 1, 2, 3}, {0}})
+    ->ArgsProduct({{0, 1}, {0}, {0}, {1}})
+    ->ArgNames({"method", "color", "depth", "arrayEyes"})
     ->UseManualTime()
     ->Unit(benchmark::kMillisecond)
     ->MinTime(0.05);
