@@ -6,6 +6,7 @@
 // Device: S3D_BENCH_DEVICE (default auto).
 #include <benchmark/benchmark.h>
 
+#include <array>
 #include <chrono>
 #include <cstdlib>
 #include <cstring>
@@ -250,19 +251,21 @@ const VkFormat kColorFormats[] = {VK_FORMAT_R8G8B8A8_SRGB, VK_FORMAT_R16G16B16A1
 const VkFormat kDepthFormats[] = {VK_FORMAT_D32_SFLOAT, VK_FORMAT_D24_UNORM_S8_UINT, VK_FORMAT_D16_UNORM,
                                   VK_FORMAT_R32_SFLOAT};
 
+template <typename Value>
+void appendBytes(std::vector<std::byte>& bytes, const Value& value) {
+  const auto* first = reinterpret_cast<const std::byte*>(&value);
+  bytes.insert(bytes.end(), first, first + sizeof(value));
+}
+
 // The synthetic view's colour stored as `format` (the HDR formats hold the bytes over 255 as linear values).
 std::vector<std::byte> colorTexels(VkFormat format) {
   const std::vector<std::uint8_t>& bytes = view().color;
   std::vector<std::byte> texels;
-  auto append = [&texels](const auto& value) {
-    const auto* first = reinterpret_cast<const std::byte*>(&value);
-    texels.insert(texels.end(), first, first + sizeof(value));
-  };
   for (std::size_t i = 0; i < bytes.size(); i += 4) {
     const glm::vec4 c = glm::vec4(bytes[i], bytes[i + 1], bytes[i + 2], bytes[i + 3]) / 255.0f;
-    if (format == VK_FORMAT_R16G16B16A16_SFLOAT) append(glm::packHalf4x16(c));
-    else if (format == VK_FORMAT_B10G11R11_UFLOAT_PACK32) append(glm::packF2x11_1x10(glm::vec3(c)));
-    else append(std::uint32_t(bytes[i] | bytes[i + 1] << 8 | bytes[i + 2] << 16 | std::uint32_t(bytes[i + 3]) << 24));
+    if (format == VK_FORMAT_R16G16B16A16_SFLOAT) appendBytes(texels, glm::packHalf4x16(c));
+    else if (format == VK_FORMAT_B10G11R11_UFLOAT_PACK32) appendBytes(texels, glm::packF2x11_1x10(glm::vec3(c)));
+    else appendBytes(texels, glm::packUnorm4x8(c));
   }
   return texels;
 }
@@ -271,18 +274,53 @@ std::vector<std::byte> colorTexels(VkFormat format) {
 // its linear depth in R32F.
 std::vector<std::byte> depthTexels(VkFormat format) {
   std::vector<std::byte> texels;
-  auto append = [&texels](const auto& value) {
-    const auto* first = reinterpret_cast<const std::byte*>(&value);
-    texels.insert(texels.end(), first, first + sizeof(value));
-  };
   for (std::size_t i = 0; i < view().device.size(); ++i) {
     const float device = view().device[i];
-    if (format == VK_FORMAT_D24_UNORM_S8_UINT) append(std::uint32_t(std::lround(double(device) * 16777215.0)));
-    else if (format == VK_FORMAT_D16_UNORM) append(std::uint16_t(std::lround(device * 65535.0f)));
-    else append(format == VK_FORMAT_R32_SFLOAT ? view().linear[i] : device);
+    if (format == VK_FORMAT_D24_UNORM_S8_UINT) appendBytes(texels, std::uint32_t(std::lround(double(device) * 16777215.0)));
+    else if (format == VK_FORMAT_D16_UNORM) appendBytes(texels, std::uint16_t(std::lround(device * 65535.0f)));
+    else appendBytes(texels, format == VK_FORMAT_R32_SFLOAT ? view().linear[i] : device);
   }
   return texels;
 }
+
+// One image with two array layers, a 2D view of each, in GENERAL for compute writes: the eyes as an OpenXR
+// swapchain or a multiview host hands them over.
+struct ArrayEyes {
+  vk::Image image;  // its own view shows layer 0
+  std::array<vk::Unique<VkImageView>, 2> views;
+
+  ArrayEyes(vk::Context& context, VkFormat format) {
+    image = vk::createImage(context, format, kWidth, kHeight, VK_IMAGE_USAGE_STORAGE_BIT, 2);
+    for (std::uint32_t layer = 0; layer < 2; ++layer) {
+      VkImageViewCreateInfo info{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
+      info.image = image.image;
+      info.viewType = VK_IMAGE_VIEW_TYPE_2D;
+      info.format = format;
+      info.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, layer, 1};
+      VkImageView view = VK_NULL_HANDLE;
+      vk::check(vkCreateImageView(context.device(), &info, nullptr, &view), "vkCreateImageView");
+      views[layer] = vk::Unique<VkImageView>(context.device(), view, vkDestroyImageView);
+    }
+    context.submitAndWait([&](VkCommandBuffer cmd) {
+      VkImageMemoryBarrier2 barrier{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
+      barrier.dstStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
+      barrier.dstAccessMask = VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
+      barrier.newLayout = VK_IMAGE_LAYOUT_GENERAL;
+      barrier.srcQueueFamilyIndex = barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+      barrier.image = image.image;
+      barrier.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 2};
+      VkDependencyInfo dependency{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+      dependency.imageMemoryBarrierCount = 1;
+      dependency.pImageMemoryBarriers = &barrier;
+      vkCmdPipelineBarrier2(cmd, &dependency);
+    });
+  }
+  // Layer `layer` as an eye the host synchronizes itself.
+  stereo::HostImage eye(std::uint32_t layer) const {
+    return {image.image, views[layer], image.format, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE,
+            layer};
+  }
+};
 
 // The host's stereo frame to two eyes from every input format, the eyes as two images or as the two layers of one
 // array image (what an OpenXR swapchain or a multiview host hands over). Arguments: the method (0 seed, 1
@@ -304,37 +342,11 @@ void HostStereoFrameFormats(benchmark::State& state) {
   }
   stereo::StereoFrame stereoFrame(context, desc);
   HostFrameImages images(context, desc, stereoFrame, colorTexels(desc.colorFormat), depthTexels(desc.depthFormat));
-  vk::Image array;
-  std::array<vk::Unique<VkImageView>, 2> layerViews;
+  std::optional<ArrayEyes> array;
   if (state.range(3) != 0) {
-    array = vk::createImage(context, stereoFrame.eyeFormat(), kWidth, kHeight, VK_IMAGE_USAGE_STORAGE_BIT, 2);
-    for (std::uint32_t layer = 0; layer < 2; ++layer) {
-      VkImageViewCreateInfo info{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
-      info.image = array.image;
-      info.viewType = VK_IMAGE_VIEW_TYPE_2D;
-      info.format = array.format;
-      info.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, layer, 1};
-      VkImageView layerView = VK_NULL_HANDLE;
-      vk::check(vkCreateImageView(context.device(), &info, nullptr, &layerView), "vkCreateImageView");
-      layerViews[layer] = vk::Unique<VkImageView>(context.device(), layerView, vkDestroyImageView);
-    }
-    context.submitAndWait([&](VkCommandBuffer cmd) {
-      VkImageMemoryBarrier2 barrier{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
-      barrier.dstStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
-      barrier.dstAccessMask = VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
-      barrier.newLayout = VK_IMAGE_LAYOUT_GENERAL;
-      barrier.srcQueueFamilyIndex = barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-      barrier.image = array.image;
-      barrier.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 2};
-      VkDependencyInfo dependency{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-      dependency.imageMemoryBarrierCount = 1;
-      dependency.pImageMemoryBarriers = &barrier;
-      vkCmdPipelineBarrier2(cmd, &dependency);
-    });
-    for (std::uint32_t layer = 0; layer < 2; ++layer)
-      (layer == 0 ? images.dispatch.left : images.dispatch.right) =
-          stereo::HostImage{array.image,      layerViews[layer],        array.format, VK_IMAGE_LAYOUT_GENERAL,
-                            VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE, layer};
+    array.emplace(context, stereoFrame.eyeFormat());
+    images.dispatch.left = array->eye(0);
+    images.dispatch.right = array->eye(1);
   }
   timeRecording(state, [&](VkCommandBuffer cmd) { stereoFrame.record(cmd, images.dispatch); });
   static const char* const colorNames[] = {"sRGB", "RGBA16F", "B10G11R11"};
