@@ -39,12 +39,18 @@ layout(push_constant) uniform Push {
   HostInputConstants h;  // right after the short tap array (HostGatherConstants in C++)
 #endif
 };
+#ifdef S3D_STEREO_HOST_INPUTS
+// The host hands over linear depth (R32F), known when the pipeline is made: no device-depth conversion is compiled
+// in, so its registers do not weigh on the linear path.
+layout(constant_id = 0) const bool kLinearDepthInput = false;
+bool hostDeviceDepth() { return !kLinearDepthInput && h.depthKind == S3D_HOST_DEPTH_DEVICE; }
+#endif
 
 float depthAt(int x, int y) {
   ivec2 texel = ivec2(clamp(x, 0, c.width - 1), y);
 #ifdef S3D_STEREO_HOST_INPUTS
   float depth = texelFetch(hostDepth, texel, 0).r;
-  if (h.depthKind == S3D_HOST_DEPTH_DEVICE) depth = stereoDepthFromDevice(h.depth, depth);
+  if (hostDeviceDepth()) depth = stereoDepthFromDevice(h.depth, depth);
 #else
   float depth = imageLoad(linearDepth, texel).r;
 #endif
@@ -92,7 +98,7 @@ float minDepthOverOneLayersTaps(int x, int y, int direction) {
 // The taps' nearest depth on one side of the pixel: from a host's one-layer depth buffer in keys, else per tap.
 float nearestTapDepth(int x, int y, int direction) {
 #ifdef S3D_STEREO_HOST_INPUTS
-  if (h.depthKind == S3D_HOST_DEPTH_DEVICE && hasNoFirstPersonLayer(h.depth)) return minDepthOverOneLayersTaps(x, y, direction);
+  if (hostDeviceDepth() && hasNoFirstPersonLayer(h.depth)) return minDepthOverOneLayersTaps(x, y, direction);
 #endif
   return minDepthOverTaps(x, y, direction);
 }

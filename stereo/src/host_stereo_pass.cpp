@@ -6,6 +6,8 @@
 #include <span>
 #include <stdexcept>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "s3d/stereo/detail/host_barriers.h"
 #include "s3d/vk/pipeline.h"
@@ -55,10 +57,12 @@ gpu::vec2 layerRatio(float nearPlane, float farPlane, bool infinite, bool revers
 }
 
 detail::EyePairPipeline makePipeline(const vk::Context& context, std::span<const VkDescriptorSetLayoutBinding> bindings,
-                                     std::span<const std::uint32_t> spirv, std::uint32_t pushBytes, int group) {
+                                     std::span<const std::uint32_t> spirv, std::uint32_t pushBytes, int group,
+                                     std::vector<std::uint32_t> specialization = {}) {
   detail::EyePairPipeline result;
   result.layout = vk::createPushDescriptorLayout(context, bindings, pushBytes, VK_SHADER_STAGE_COMPUTE_BIT);
-  result.pipeline = vk::createComputePipeline(context, result.layout.layout, spirv);
+  result.pipeline = vk::createComputePipeline(context, result.layout.layout, spirv,
+                                              vk::SpecializationWords(std::move(specialization)));
   result.pushConstantBytes = pushBytes;
   result.groupWidth = group;
   result.groupHeight = group;
@@ -164,7 +168,11 @@ HostStereoPass::HostStereoPass(vk::Context& context, const HostStereoPassDesc& d
     const Spirv gather = hdr_          ? Spirv(spirv_stereo_gather_host_hdr_comp)
                          : halfPacking ? Spirv(spirv_stereo_gather_host_half_comp)
                                        : Spirv(spirv_stereo_gather_host_comp);
-    if (direct) hostGather_ = makePipeline(context, bindings, gather, kHostGatherBytes, S3D_STEREO_GROUP_SIZE);
+    // Specialization: constant 0, whether the depth is linear (R32F) rather than a depth buffer.
+    const bool linearDepth = desc.depthFormat == VK_FORMAT_R32_SFLOAT;
+    if (direct)
+      hostGather_ = makePipeline(context, bindings, gather, kHostGatherBytes, S3D_STEREO_GROUP_SIZE,
+                                 {linearDepth ? VK_TRUE : VK_FALSE});
   }
   shortTaps_ = makePipeline(context, storage4, hdr_ ? std::span<const std::uint32_t>(spirv_stereo_seed_hdr_comp)
                                                     : std::span<const std::uint32_t>(spirv_stereo_seed_comp),
