@@ -41,7 +41,7 @@ layout(push_constant) uniform Push {
 };
 #ifdef S3D_STEREO_HOST_INPUTS
 // The host hands over linear depth (R32F), known when the pipeline is made: no device-depth conversion is compiled
-// in, so its registers do not weigh on the linear path.
+// in: with it behind a per-frame branch the linear path was slower (docs/RESULTS.md "Every input format").
 layout(constant_id = 0) const bool kLinearDepthInput = false;
 bool hostDeviceDepth() { return !kLinearDepthInput && h.depthKind == S3D_HOST_DEPTH_DEVICE; }
 #endif
