@@ -40,8 +40,8 @@ layout(push_constant) uniform Push {
 #endif
 };
 #ifdef S3D_STEREO_HOST_INPUTS
-// The host hands over linear depth (R32F), known when the pipeline is made: no device-depth conversion is compiled
-// in: with it behind a per-frame branch the linear path was slower (docs/RESULTS.md "Every input format").
+// Whether the host hands over linear depth (R32F), fixed when the pipeline is made, so that pipeline compiles no
+// device-depth conversion (behind a per-frame branch it slowed the linear path: docs/RESULTS.md "Every input format").
 layout(constant_id = 0) const bool kLinearDepthInput = false;
 bool hostDeviceDepth() { return !kLinearDepthInput && h.depthKind == S3D_HOST_DEPTH_DEVICE; }
 #endif
