@@ -26,8 +26,8 @@
 #include "s3d/stereo/stereo_frame.h"
 #include "s3d/stereo/stereo_pass.h"
 #include "s3d/stereo/synthesis.h"
-#include "s3d/vk/check.h"
 #include "s3d/vk/timestamps.h"
+#include "array_image.h"
 #include "bench_context.h"
 
 namespace {
@@ -172,7 +172,8 @@ void BareKernel(benchmark::State& state) {
 
 // An image the host synchronizes itself (stage NONE): the time is s3d's own work and barriers.
 stereo::HostImage hostSynchronized(const vk::Image& image, VkImageLayout layout) {
-  return stereo::HostImage{image.image, image.view, image.format, layout, VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE};
+  return stereo::HostImage{image.image, image.view, image.format, layout, VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE,
+                           image.layer};
 }
 
 // A host's images for a stereo frame of `desc`: colour and depth uploaded from the synthetic view and sampled,
@@ -283,45 +284,6 @@ std::vector<std::byte> depthTexels(VkFormat format) {
   return texels;
 }
 
-// One image with two array layers, a 2D view of each, in GENERAL for compute writes: the eyes as an OpenXR
-// swapchain or a multiview host hands them over.
-struct ArrayEyes {
-  vk::Image image;  // its own view shows layer 0
-  std::array<vk::Unique<VkImageView>, 2> views;
-
-  ArrayEyes(vk::Context& context, VkFormat format) {
-    image = vk::createImage(context, format, kWidth, kHeight, VK_IMAGE_USAGE_STORAGE_BIT, 2);
-    for (std::uint32_t layer = 0; layer < 2; ++layer) {
-      VkImageViewCreateInfo info{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
-      info.image = image.image;
-      info.viewType = VK_IMAGE_VIEW_TYPE_2D;
-      info.format = format;
-      info.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, layer, 1};
-      VkImageView view = VK_NULL_HANDLE;
-      vk::check(vkCreateImageView(context.device(), &info, nullptr, &view), "vkCreateImageView");
-      views[layer] = vk::Unique<VkImageView>(context.device(), view, vkDestroyImageView);
-    }
-    context.submitAndWait([&](VkCommandBuffer cmd) {
-      VkImageMemoryBarrier2 barrier{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
-      barrier.dstStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
-      barrier.dstAccessMask = VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
-      barrier.newLayout = VK_IMAGE_LAYOUT_GENERAL;
-      barrier.srcQueueFamilyIndex = barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-      barrier.image = image.image;
-      barrier.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 2};
-      VkDependencyInfo dependency{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-      dependency.imageMemoryBarrierCount = 1;
-      dependency.pImageMemoryBarriers = &barrier;
-      vkCmdPipelineBarrier2(cmd, &dependency);
-    });
-  }
-  // Layer `layer` as an eye the host synchronizes itself.
-  stereo::HostImage eye(std::uint32_t layer) const {
-    return {image.image, views[layer], image.format, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE,
-            layer};
-  }
-};
-
 // The host's stereo frame to two eyes from every input format, the eyes as two images or as the two layers of one
 // array image (what an OpenXR swapchain or a multiview host hands over). Arguments: the method (0 seed, 1
 // search-4), the colour (kColorFormats: 0 sRGB, 1 RGBA16F, 2 B10G11R11), the depth (kDepthFormats: 0 D32, 1
@@ -342,11 +304,14 @@ void HostStereoFrameFormats(benchmark::State& state) {
   }
   stereo::StereoFrame stereoFrame(context, desc);
   HostFrameImages images(context, desc, stereoFrame, colorTexels(desc.colorFormat), depthTexels(desc.depthFormat));
-  std::optional<ArrayEyes> array;
+  std::optional<test::ArrayImage> array;
   if (state.range(3) != 0) {
-    array.emplace(context, stereoFrame.eyeFormat());
-    images.dispatch.left = array->eye(0);
-    images.dispatch.right = array->eye(1);
+    array = test::createArrayImage(context, stereoFrame.eyeFormat(), kWidth, kHeight, VK_IMAGE_USAGE_STORAGE_BIT);
+    for (std::uint32_t layer = 0; layer < 2; ++layer) {
+      const vk::Image eye = array->layer(layer);
+      context.submitAndWait([&](VkCommandBuffer cmd) { vk::transition(cmd, eye, vk::kUndefined, vk::kComputeWrite); });
+      (layer == 0 ? images.dispatch.left : images.dispatch.right) = hostSynchronized(eye, VK_IMAGE_LAYOUT_GENERAL);
+    }
   }
   timeRecording(state, [&](VkCommandBuffer cmd) { stereoFrame.record(cmd, images.dispatch); });
   static const char* const colorNames[] = {"sRGB", "RGBA16F", "B10G11R11"};

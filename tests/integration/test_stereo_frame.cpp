@@ -3,6 +3,7 @@
 // dispatches refused naming the field. Synchronization validation on (TestHost).
 #include <gtest/gtest.h>
 
+#include "array_image.h"
 #include "host_pass_fixture.h"
 #include "io_test_support.h"
 #include "s3d/renderer/deferred_renderer.h"
@@ -19,29 +20,6 @@ namespace s3d::test {
 namespace {
 
 using stereo::StereoMethod;
-
-// One image with two array layers and a 2D view of each: what an OpenXR swapchain or a multiview host hands over.
-struct ArrayImage {
-  vk::Image image;  // its own view shows layer 0
-  std::array<vk::Unique<VkImageView>, 2> views;
-};
-
-ArrayImage createArrayImage(vk::Context& context, VkFormat format) {
-  ArrayImage result{vk::createImage(context, format, kWidth, kHeight,
-                                    VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT, 2),
-                    {}};
-  for (std::uint32_t layer = 0; layer < 2; ++layer) {
-    VkImageViewCreateInfo viewInfo{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
-    viewInfo.image = result.image.image;
-    viewInfo.viewType = VK_IMAGE_VIEW_TYPE_2D;
-    viewInfo.format = format;
-    viewInfo.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, layer, 1};
-    VkImageView view = VK_NULL_HANDLE;
-    S3D_VK_CHECK(vkCreateImageView(context.device(), &viewInfo, nullptr, &view));
-    result.views[layer] = vk::Unique<VkImageView>(context.device(), view, vkDestroyImageView);
-  }
-  return result;
-}
 
 class StereoFrameTest : public HostStereoPassTest {
  public:
@@ -81,12 +59,13 @@ class StereoFrameTest : public HostStereoPassTest {
     std::optional<ArrayImage> array;
     vk::Image left, right;
     if (arrayEyes) {
-      array = createArrayImage(*context_, frame.eyeFormat());
+      array = createArrayImage(*context_, frame.eyeFormat(), kWidth, kHeight,
+                               VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
       for (std::uint32_t layer = 0; layer < 2; ++layer) {
         stereo::HostImage& eye = layer == 0 ? d.left : d.right;
         eye = {array->image.image, array->views[layer], frame.eyeFormat(), kCopiedOut.layout, kCopiedOut.stage,
                kCopiedOut.access, layer};
-        const vk::Image borrowed = vk::borrowImage(eye.image, eye.view, eye.format, kWidth, kHeight, layer);
+        const vk::Image borrowed = array->layer(layer);
         context_->submitAndWait([&](VkCommandBuffer cmd) { vk::transition(cmd, borrowed, vk::kUndefined, kCopiedOut); });
       }
     } else {
