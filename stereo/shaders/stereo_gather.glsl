@@ -40,10 +40,13 @@ layout(push_constant) uniform Push {
 #endif
 };
 #ifdef S3D_STEREO_HOST_INPUTS
-// Whether the host hands over linear depth (R32F), fixed when the pipeline is made, so that pipeline compiles no
-// device-depth conversion (behind a per-frame branch it slowed the linear path: docs/RESULTS.md "Every input format").
-layout(constant_id = 0) const bool kLinearDepthInput = false;
-bool hostDeviceDepth() { return !kLinearDepthInput && h.depthKind == S3D_HOST_DEPTH_DEVICE; }
+// How the host's depth reads (S3D_HOST_GATHER_DEPTH_*), where the gather writes (S3D_HOST_GATHER_*) and the colour's
+// transfer, fixed when the pipeline is made: each pipeline compiles only its own paths (the unused ones behind
+// per-frame branches slowed the gather: docs/RESULTS.md "Where the host frame's extra time goes").
+layout(constant_id = 0) const int kHostDepthPath = S3D_HOST_GATHER_DEPTH_ONE_LAYER;
+layout(constant_id = 1) const int kGatherOutput = S3D_HOST_GATHER_TWO_EYES;
+layout(constant_id = 2) const int kColorTransfer = S3D_HOST_COLOR_AS_STORED;
+bool hostDeviceDepth() { return kHostDepthPath != S3D_HOST_GATHER_DEPTH_LINEAR; }
 #endif
 
 float depthAt(int x, int y) {
@@ -61,7 +64,7 @@ vec4 centerAt(int x, int y) {
   ivec2 texel = ivec2(clamp(x, 0, c.width - 1), y);
 #ifdef S3D_STEREO_HOST_INPUTS
   vec4 color = texelFetch(hostColor, texel, 0);
-  if (h.colorTransfer == S3D_HOST_COLOR_ENCODE_SRGB)
+  if (kColorTransfer == S3D_HOST_COLOR_ENCODE_SRGB)
     color.rgb = vec3(hostLinearToSrgb(color.r), hostLinearToSrgb(color.g), hostLinearToSrgb(color.b));
   return color;
 #else
@@ -98,7 +101,7 @@ float minDepthOverOneLayersTaps(int x, int y, int direction) {
 // The taps' nearest depth on one side of the pixel: from a host's one-layer depth buffer in keys, else per tap.
 float nearestTapDepth(int x, int y, int direction) {
 #ifdef S3D_STEREO_HOST_INPUTS
-  if (hostDeviceDepth() && hasNoFirstPersonLayer(h.depth)) return minDepthOverOneLayersTaps(x, y, direction);
+  if (kHostDepthPath == S3D_HOST_GATHER_DEPTH_ONE_LAYER) return minDepthOverOneLayersTaps(x, y, direction);
 #endif
   return minDepthOverTaps(x, y, direction);
 }
@@ -111,7 +114,7 @@ vec4 eyeByteValue(vec4 color) { return floor(clamp(color, 0.0, 1.0) * 255.0 + 0.
 // Both eyes' pixel: stored in the two eyes, or (from host images) packed straight into the target at binding 2.
 void writeEyes(ivec2 pixel, vec4 left, vec4 right) {
 #ifdef S3D_STEREO_HOST_INPUTS
-  if (h.gatherOutput == S3D_HOST_GATHER_ANAGLYPH) {  // 8-bit eyes: mixed from their bytes, as the packing pass
+  if (kGatherOutput == S3D_HOST_GATHER_ANAGLYPH) {  // 8-bit eyes: mixed from their bytes, as the packing pass
     vec3 l = eyeByteValue(left).rgb, r = eyeByteValue(right).rgb;
     l = vec3(hostSrgbToLinear(l.r), hostSrgbToLinear(l.g), hostSrgbToLinear(l.b));
     r = vec3(hostSrgbToLinear(r.r), hostSrgbToLinear(r.g), hostSrgbToLinear(r.b));
@@ -119,9 +122,9 @@ void writeEyes(ivec2 pixel, vec4 left, vec4 right) {
     imageStore(leftEye, pixel, vec4(hostLinearToSrgb(mixed.r), hostLinearToSrgb(mixed.g), hostLinearToSrgb(mixed.b), 1.0));
     return;
   }
-  if (h.gatherOutput == S3D_HOST_GATHER_SIDE_BY_SIDE_FULL || h.gatherOutput == S3D_HOST_GATHER_TOP_BOTTOM_FULL) {
+  if (kGatherOutput == S3D_HOST_GATHER_SIDE_BY_SIDE_FULL || kGatherOutput == S3D_HOST_GATHER_TOP_BOTTOM_FULL) {
     imageStore(leftEye, pixel, left);
-    imageStore(leftEye, pixel + (h.gatherOutput == S3D_HOST_GATHER_SIDE_BY_SIDE_FULL ? ivec2(c.width, 0) : ivec2(0, c.height)),
+    imageStore(leftEye, pixel + (kGatherOutput == S3D_HOST_GATHER_SIDE_BY_SIDE_FULL ? ivec2(c.width, 0) : ivec2(0, c.height)),
                right);
     return;
   }
@@ -173,7 +176,7 @@ vec4 squeezedEyePixel(int side, ivec2 fixedPixel, bool horizontal, int k, int le
 // Pixel `pixel` of a half packing: the left (top) eye's squeezed columns (rows), then the right (bottom) eye's; an
 // odd size gives the spare one to the left (top) eye, as output_formats.cpp.
 vec4 halfPackedPixel(ivec2 pixel) {
-  bool horizontal = h.gatherOutput == S3D_HOST_GATHER_SIDE_BY_SIDE_HALF;
+  bool horizontal = kGatherOutput == S3D_HOST_GATHER_SIDE_BY_SIDE_HALF;
   int length = horizontal ? c.width : c.height, at = horizontal ? pixel.x : pixel.y;
   int firstSlots = (length + 1) / 2;
   bool first = at < firstSlots;

@@ -88,10 +88,10 @@ VkImageLayout inputLayout(const HostImage& image, bool storage, const char* what
 }
 
 // What the gather from host images writes for an output, or -1 where the packing pass must run: HDR packings
-// mix without the 8-bit eyes' encoding, and an overlay (the HUD) draws on the eyes before they are packed.
-int gatherOutputFor(HostOutput output, bool hdr, bool overlay) {
+// mix without the 8-bit eyes' encoding. (An overlay, the HUD, draws on the eyes before they are packed, so a
+// packed frame with one never gathers from the host's images.)
+int gatherOutputFor(HostOutput output, bool hdr) {
   if (output == HostOutput::TwoEyes) return S3D_HOST_GATHER_TWO_EYES;
-  if (overlay) return -1;
   switch (output) {
     case HostOutput::Anaglyph: return hdr ? -1 : S3D_HOST_GATHER_ANAGLYPH;
     case HostOutput::SideBySideHalf: return hdr ? -1 : S3D_HOST_GATHER_SIDE_BY_SIDE_HALF;
@@ -168,11 +168,19 @@ HostStereoPass::HostStereoPass(vk::Context& context, const HostStereoPassDesc& d
     const Spirv gather = hdr_          ? Spirv(spirv_stereo_gather_host_hdr_comp)
                          : halfPacking ? Spirv(spirv_stereo_gather_host_half_comp)
                                        : Spirv(spirv_stereo_gather_host_comp);
-    // Specialization: constant 0, whether the depth is linear (R32F) rather than a depth buffer.
-    const bool linearDepth = desc.depthFormat == VK_FORMAT_R32_SFLOAT;
-    if (direct)
-      hostGather_ = makePipeline(context, bindings, gather, kHostGatherBytes, S3D_STEREO_GROUP_SIZE,
-                                 {linearDepth ? VK_TRUE : VK_FALSE});
+    // Specialization constants: how the depth reads (S3D_HOST_GATHER_DEPTH_*), where the gather writes and the
+    // colour's transfer, so each pipeline compiles only its own paths (unused ones behind per-frame branches cost).
+    const int gatherOutput = gatherOutputFor(desc.output, hdr_);
+    const auto gatherFor = [&](std::uint32_t depthPath) {
+      return makePipeline(context, bindings, gather, kHostGatherBytes, S3D_STEREO_GROUP_SIZE,
+                          {depthPath, std::uint32_t(gatherOutput), std::uint32_t(colorTransfer_)});
+    };
+    if (direct && gatherOutput >= 0 && desc.depthFormat == VK_FORMAT_R32_SFLOAT) {
+      hostGather_ = gatherFor(S3D_HOST_GATHER_DEPTH_LINEAR);
+    } else if (direct && gatherOutput >= 0) {
+      hostGather_ = gatherFor(S3D_HOST_GATHER_DEPTH_ONE_LAYER);
+      hostGatherFirstPerson_ = gatherFor(S3D_HOST_GATHER_DEPTH_FIRST_PERSON);
+    }
   }
   shortTaps_ = makePipeline(context, storage4, hdr_ ? std::span<const std::uint32_t>(spirv_stereo_seed_hdr_comp)
                                                     : std::span<const std::uint32_t>(spirv_stereo_seed_comp),
@@ -273,9 +281,8 @@ HostStereoPass::Recording HostStereoPass::begin(VkCommandBuffer cmd, const HostI
   r.input.depthKind = isHostDepthFormat(desc_.depthFormat) ? S3D_HOST_DEPTH_DEVICE : S3D_HOST_DEPTH_LINEAR;
   // Seed and short searches read the host's images themselves and pack straight into the target, each packed
   // pixel gathering the eye pixels it holds: one dispatch instead of a conversion, a kernel and a packing pass.
-  r.input.gatherOutput = gatherOutputFor(desc_.output, hdr_, overlay);
   r.gatherFromHost =
-      hostGather_ && !kernel && constants.tapCount <= S3D_STEREO_SMALL_TAP_CAPACITY && r.input.gatherOutput >= 0;
+      hostGather_ && !kernel && !(overlay && pack_) && constants.tapCount <= S3D_STEREO_SMALL_TAP_CAPACITY;
   r.packedByGather = r.gatherFromHost && pack_;
   r.centerView = color.view;
   r.depthView = depth.view;
@@ -354,7 +361,9 @@ void HostStereoPass::recordGatherFromHost(const Recording& r) const {
   std::memcpy(push.data(), &r.frame.stereo, kShortTapBytes);
   std::memcpy(push.data() + kShortTapBytes, &r.input, sizeof r.input);
   const SamplingWrites w(sampler_, r.color.view, r.colorLayout, r.depth.view, r.depthLayout, r.leftView, r.rightView);
-  dispatch(r.cmd, *hostGather_, w.writes, push.data(), desc_.width, desc_.height);
+  const bool firstPerson = hostGatherFirstPerson_ && !gpu::hasNoFirstPersonLayer(r.input.depth);
+  dispatch(r.cmd, firstPerson ? *hostGatherFirstPerson_ : *hostGather_, w.writes, push.data(), desc_.width,
+           desc_.height);
 }
 
 void HostStereoPass::recordConversion(Recording& r) const {

@@ -124,6 +124,27 @@ TEST_F(HostStereoPassTest, APushReversingTheFirstPersonLayersOrderIsTakenAtItsPu
   expectReferenceEyes(VK_FORMAT_R8G8B8A8_UNORM, VK_FORMAT_D32_SFLOAT);
 }
 
+// The gather has a pipeline for a depth buffer of one layer and one for a first-person range, picked per frame by
+// the projection: one pass follows a host that turns its weapon layer on and off, each frame to the reference. The
+// weapon is pushed behind the world (useMixedLayerBlocks), where the one-layer path's order of keys would be wrong.
+TEST_F(HostStereoPassTest, OnePassFollowsTheFirstPersonRangeFromFrameToFrame) {
+  useMixedLayerBlocks(*this);
+  const stereo::HostStereoPass pass(*context_, {kWidth, kHeight, VK_FORMAT_R8G8B8A8_UNORM, VK_FORMAT_D32_SFLOAT,
+                                                HostOutput::TwoEyes, false, stereo::HostInputRead::Direct});
+  frame_.projection.firstPersonNear = 0.05f;
+  frame_.projection.firstPersonFar = 5.0f;
+  frame_.weaponDepthOffset = 20.0f;
+  for (float range : {0.0f, 0.1f, 0.0f}) {
+    frame_.projection.firstPersonDepthRange = range;
+    DepthImage expectedLinear;
+    const stereo::StereoPair gpu = eyesOf(pass, &expectedLinear);
+    const stereo::StereoPair cpu = stereo::synthesizeStereoReference(view_.color, expectedLinear, frame_.stereo);
+    // 1 level: the reference's rounding, as expectReferenceEyes.
+    EXPECT_LE(largestChannelDifference(gpu.left, cpu.left), 1) << "first-person range " << range;
+    EXPECT_LE(largestChannelDifference(gpu.right, cpu.right), 1) << "first-person range " << range;
+  }
+}
+
 // Device depth nearer than the range's near end, and NaN, hold no surface: each reads as the zero-parallax plane
 // (stereoDepthFromDevice), among taps of both layers (converted per tap) or of the world alone (the gather takes
 // the minimum in device depth and converts once).

@@ -139,6 +139,13 @@ class HostStereoPassTest : public HostContextTest {
   // Both eyes of the pass for the given colour and depth formats (8-bit eyes).
   stereo::StereoPair eyes(VkFormat colorFormat, VkFormat depthFormat, DepthImage* expectedLinear,
                           stereo::HostInputRead inputRead = stereo::HostInputRead::Auto) {
+    const stereo::HostStereoPass pass(*context_,
+                                      {kWidth, kHeight, colorFormat, depthFormat, HostOutput::TwoEyes, false, inputRead});
+    return eyesOf(pass, expectedLinear);
+  }
+  // Both eyes of frame_ recorded by an existing pass (to two eyes), from view_ in the pass's formats.
+  stereo::StereoPair eyesOf(const stereo::HostStereoPass& pass, DepthImage* expectedLinear) {
+    const VkFormat colorFormat = pass.desc().colorFormat, depthFormat = pass.desc().depthFormat;
     DepthUpload depth = depthUpload(depthFormat);
     if (editDepth_) editDepth_(depth);
     *expectedLinear = depth.expectedLinear;
@@ -146,8 +153,6 @@ class HostStereoPassTest : public HostContextTest {
     vk::Image color = uploaded(colorFormat, colorBytes(view_.color, colorFormat), kShaderRead);
     vk::Image depthImage = uploaded(depthFormat, depth.bytes, hardware ? kDepthWritten : kShaderRead,
                                     hardware ? VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT : 0);
-    stereo::HostStereoPass pass(*context_,
-                                {kWidth, kHeight, colorFormat, depthFormat, HostOutput::TwoEyes, false, inputRead});
     vk::Image left = output(pass.eyeFormat(), kWidth, kHeight), right = output(pass.eyeFormat(), kWidth, kHeight);
     const HostImage leftHost = hostImage(left, kCopiedOut), rightHost = hostImage(right, kCopiedOut);
     runOnHostQueue([&](VkCommandBuffer cmd) {

@@ -15,8 +15,14 @@ S3D_GPU_BEGIN
 #define S3D_HOST_DEPTH_LINEAR 0  // R32F linear depth in world units (+inf or <= 0 as in the stereo pass)
 #define S3D_HOST_DEPTH_DEVICE 1  // a hardware depth buffer, linearized with LinearDepthParams
 
-// Where the gather from a host's images (stereo_gather_host*.comp) writes: the two eyes, or packed straight into
-// one target (the half packings gather the pixels of one eye that a packed pixel filters).
+// How the gather from a host's images reads its depth: the specialization constant its pipelines are made with.
+#define S3D_HOST_GATHER_DEPTH_ONE_LAYER 0     // a depth buffer without a first-person range: taps compared as keys
+#define S3D_HOST_GATHER_DEPTH_FIRST_PERSON 1  // a depth buffer with a first-person range: every tap converted
+#define S3D_HOST_GATHER_DEPTH_LINEAR 2        // R32F linear depth: read as it is
+
+// Where the gather from a host's images (stereo_gather_host*.comp) writes, a specialization constant of its
+// pipelines: the two eyes, or packed straight into one target (the half packings gather the pixels of one eye that
+// a packed pixel filters).
 #define S3D_HOST_GATHER_TWO_EYES 0
 #define S3D_HOST_GATHER_ANAGLYPH 1
 #define S3D_HOST_GATHER_SIDE_BY_SIDE_FULL 2
@@ -30,8 +36,8 @@ struct HostInputConstants {
   int height;
   int colorTransfer;
   int depthKind;
-  int gatherOutput;  // the gather from host images only
   int padding0;
+  int padding1;
 };
 
 #define S3D_HOST_PACK_SIDE_BY_SIDE_HALF 0

@@ -146,8 +146,9 @@ class HostStereoPass {
   int colorTransfer_ = S3D_HOST_COLOR_AS_STORED;
   vk::Unique<VkSampler> sampler_;
   // hostGather_: seed and searches of up to four taps straight from the host's sampled images (no conversion), in
-  // the half packings' own module for those outputs.
-  std::optional<detail::EyePairPipeline> input_, hostGather_, shortTaps_, allTaps_, pack_;
+  // the half packings' own module for those outputs; hostGatherFirstPerson_ the same for a depth buffer with a
+  // first-person range, picked per frame by the projection.
+  std::optional<detail::EyePairPipeline> input_, hostGather_, hostGatherFirstPerson_, shortTaps_, allTaps_, pack_;
   vk::Image centerColor_, linearDepth_, leftEye_, rightEye_;  // intermediates (unused ones stay empty)
 };
 
