@@ -395,9 +395,14 @@ std::vector<hud::HudElementFrame> hudFrames(std::size_t count) {
   return frames;
 }
 
+const stereo::HostInputRead kInputReads[] = {stereo::HostInputRead::Auto, stereo::HostInputRead::Direct,
+                                             stereo::HostInputRead::Convert};
+
 // Argument: 0 sRGB colour + D32 depth -> two eyes; 1 RGBA8 + R32F storage inputs (no conversion) -> two eyes;
 // 2 sRGB + D32 -> anaglyph; 3 sRGB + D32 -> side-by-side half; 4 RGBA16F + D32 -> two half-float eyes;
-// 5 sRGB + D32 -> anaglyph with the built-in HUD drawn into the eyes before packing (hud::HudOverlay).
+// 5 sRGB + D32 -> anaglyph with the built-in HUD drawn into the eyes before packing (hud::HudOverlay). Second
+// argument, how the host's images are read (kInputReads: 0 Auto, 1 Direct, 2 Convert), so a device's run shows
+// which read Auto should pick there.
 void HostPass(benchmark::State& state) {
   vk::Context& context = benchContext();
   const int variant = int(state.range(0));
@@ -419,7 +424,8 @@ void HostPass(benchmark::State& state) {
     vk::uploadImage(context, color, std::as_bytes(std::span(view().color)), readable);
   }
   vk::uploadImage(context, depth, std::as_bytes(std::span(storage ? view().linear : view().device)), readable);
-  const stereo::HostStereoPass pass(context, {kWidth, kHeight, colorFormat, depthFormat, output, storage});
+  const stereo::HostStereoPass pass(context, {kWidth, kHeight, colorFormat, depthFormat, output, storage,
+                                              kInputReads[state.range(1)]});
   const VkImageUsageFlags outputUsage = VK_IMAGE_USAGE_STORAGE_BIT;
   vk::Image left = vk::createImage(context, pass.eyeFormat(), kWidth, kHeight, outputUsage);
   vk::Image right = vk::createImage(context, pass.eyeFormat(), kWidth, kHeight, outputUsage);
@@ -494,7 +500,10 @@ BENCHMARK(HostStereoFrameFormats)
     ->MinTime(0.05);
 BENCHMARK(HostComfortFrame)->UseManualTime()->Unit(benchmark::kMillisecond)->MinTime(0.05);
 BENCHMARK(HostHybridMasks)->Arg(20)->Arg(60)->ArgName("budgetPercent")->UseManualTime()->Unit(benchmark::kMillisecond)->MinTime(0.05);
-BENCHMARK(HostPass)->DenseRange(0, 5)->ArgName("variant")->UseManualTime()->Unit(benchmark::kMillisecond)->MinTime(0.05);
+BENCHMARK(HostPass)
+    ->ArgsProduct({{0, 1, 2, 3, 4, 5}, {0}})
+    ->ArgsProduct({{0, 2, 3}, {1, 2}})
+    ->ArgNames({"variant", "read"})->UseManualTime()->Unit(benchmark::kMillisecond)->MinTime(0.05);
 BENCHMARK(HudPass)->Arg(0)->Arg(256)->Arg(512)->ArgName("hostLayer")->UseManualTime()->Unit(benchmark::kMillisecond)->MinTime(0.05);
 
 }  // namespace
