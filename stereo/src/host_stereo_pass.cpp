@@ -161,9 +161,10 @@ HostStereoPass::HostStereoPass(vk::Context& context, const HostStereoPassDesc& d
     input_ = makePipeline(context, bindings, hdr_ ? std::span<const std::uint32_t>(spirv_host_input_rgba16f_comp)
                                                   : std::span<const std::uint32_t>(spirv_host_input_rgba8_comp),
                           sizeof(gpu::HostInputConstants), S3D_HOST_GROUP_SIZE);
-    const bool direct = desc.inputRead == HostInputRead::Direct ||
-                        (desc.inputRead == HostInputRead::Auto && !context.isCpuDevice());
     const bool halfPacking = desc.output == HostOutput::SideBySideHalf || desc.output == HostOutput::TopBottomHalf;
+    const bool mixedByGather = !hdr_ && (halfPacking || desc.output == HostOutput::Anaglyph);
+    const bool direct = desc.inputRead == HostInputRead::Direct ||
+                        (desc.inputRead == HostInputRead::Auto && (!context.isCpuDevice() || mixedByGather));
     using Spirv = std::span<const std::uint32_t>;
     const Spirv gather = hdr_          ? Spirv(spirv_stereo_gather_host_hdr_comp)
                          : halfPacking ? Spirv(spirv_stereo_gather_host_half_comp)

@@ -49,8 +49,9 @@ enum class HostOutput { TwoEyes, SideBySideHalf, SideBySideFull, TopBottomHalf, 
 
 // How the seed and short searches (up to four taps) read the host's colour and depth: Direct samples them inside
 // the gather (one dispatch; per texel the sRGB encode and the depth linearization), Convert runs the input
-// conversion into RGBA8 + R32F first. Auto: Direct on GPUs, Convert on CPU devices (lavapipe), each the faster
-// there (docs/RESULTS.md).
+// conversion into RGBA8 + R32F first. Auto: Direct on GPUs; on CPU devices (lavapipe) Convert to two eyes and
+// Direct where the gather packs the anaglyph or a half packing (sparing the packing pass), each the faster there
+// (docs/RESULTS.md "Host pass against the bare stereo pass").
 enum class HostInputRead { Auto, Direct, Convert };
 
 // What the pass is set up for; everything it creates (pipelines, sampler, intermediate images) is made from this
