@@ -176,11 +176,10 @@ HostStereoPass::HostStereoPass(vk::Context& context, const HostStereoPassDesc& d
       return makePipeline(context, bindings, gather, kHostGatherBytes, S3D_STEREO_GROUP_SIZE,
                           {depthPath, std::uint32_t(gatherOutput), std::uint32_t(colorTransfer_)});
     };
-    if (direct && gatherOutput >= 0 && desc.depthFormat == VK_FORMAT_R32_SFLOAT) {
-      hostGather_ = gatherFor(S3D_HOST_GATHER_DEPTH_LINEAR);
-    } else if (direct && gatherOutput >= 0) {
-      hostGather_ = gatherFor(S3D_HOST_GATHER_DEPTH_ONE_LAYER);
-      hostGatherFirstPerson_ = gatherFor(S3D_HOST_GATHER_DEPTH_FIRST_PERSON);
+    if (direct && gatherOutput >= 0) {
+      const bool linearDepth = desc.depthFormat == VK_FORMAT_R32_SFLOAT;
+      hostGather_ = gatherFor(linearDepth ? S3D_HOST_GATHER_DEPTH_LINEAR : S3D_HOST_GATHER_DEPTH_ONE_LAYER);
+      if (!linearDepth) hostGatherFirstPerson_ = gatherFor(S3D_HOST_GATHER_DEPTH_FIRST_PERSON);
     }
   }
   shortTaps_ = makePipeline(context, storage4, hdr_ ? std::span<const std::uint32_t>(spirv_stereo_seed_hdr_comp)
