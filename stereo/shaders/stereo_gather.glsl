@@ -42,7 +42,7 @@ layout(push_constant) uniform Push {
 #ifdef S3D_STEREO_HOST_INPUTS
 // How the host's depth reads (S3D_HOST_GATHER_DEPTH_*), where the gather writes (S3D_HOST_GATHER_*) and the colour's
 // transfer, fixed when the pipeline is made: each pipeline compiles only its own paths (the unused ones behind
-// per-frame branches slowed the gather: docs/RESULTS.md "Where the host frame's extra time goes").
+// per-frame branches slowed the gather: docs/RESULTS.md "Every input format").
 layout(constant_id = 0) const int kHostDepthPath = S3D_HOST_GATHER_DEPTH_ONE_LAYER;
 layout(constant_id = 1) const int kGatherOutput = S3D_HOST_GATHER_TWO_EYES;
 layout(constant_id = 2) const int kColorTransfer = S3D_HOST_COLOR_AS_STORED;
