@@ -29,6 +29,7 @@
 #include "s3d/vk/timestamps.h"
 #include "array_image.h"
 #include "bench_context.h"
+#include "depth_texels.h"
 
 namespace {
 
@@ -252,11 +253,7 @@ const VkFormat kColorFormats[] = {VK_FORMAT_R8G8B8A8_SRGB, VK_FORMAT_R16G16B16A1
 const VkFormat kDepthFormats[] = {VK_FORMAT_D32_SFLOAT, VK_FORMAT_D24_UNORM_S8_UINT, VK_FORMAT_D16_UNORM,
                                   VK_FORMAT_R32_SFLOAT};
 
-template <typename Value>
-void appendBytes(std::vector<std::byte>& bytes, const Value& value) {
-  const auto* first = reinterpret_cast<const std::byte*>(&value);
-  bytes.insert(bytes.end(), first, first + sizeof(value));
-}
+using test::appendBytes;
 
 // The synthetic view's colour stored as `format` (the HDR formats hold the bytes over 255 as linear values).
 std::vector<std::byte> colorTexels(VkFormat format) {
@@ -276,10 +273,8 @@ std::vector<std::byte> colorTexels(VkFormat format) {
 std::vector<std::byte> depthTexels(VkFormat format) {
   std::vector<std::byte> texels;
   for (std::size_t i = 0; i < view().device.size(); ++i) {
-    const float device = view().device[i];
-    if (format == VK_FORMAT_D24_UNORM_S8_UINT) appendBytes(texels, std::uint32_t(std::lround(double(device) * 16777215.0)));
-    else if (format == VK_FORMAT_D16_UNORM) appendBytes(texels, std::uint16_t(std::lround(device * 65535.0f)));
-    else appendBytes(texels, format == VK_FORMAT_R32_SFLOAT ? view().linear[i] : device);
+    if (format == VK_FORMAT_R32_SFLOAT) appendBytes(texels, view().linear[i]);
+    else test::appendDepthTexel(texels, format, view().device[i]);
   }
   return texels;
 }

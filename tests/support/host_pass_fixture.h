@@ -10,6 +10,7 @@
 #include <functional>
 #include <memory>
 
+#include "depth_texels.h"
 #include "s3d/stereo/host_stereo_pass.h"
 #include "stereo_test_views.h"
 #include "test_host.h"
@@ -63,18 +64,8 @@ DepthUpload hardwareDepth(const DepthImage& linear, VkFormat format, const stere
       stereo::linearDepthParams(frame.projection, frame.weaponDepthOffset, frame.weaponDepthScale);
   DepthUpload upload{{}, DepthImage(linear.width, linear.height)};
   for (std::size_t i = 0; i < linear.pixels.size(); ++i) {
-    float d = std::clamp(deviceDepth(frame.projection, linear.pixels[i]), 0.0f, 1.0f);
-    if (format == VK_FORMAT_D16_UNORM) {
-      const auto q = std::uint16_t(std::lround(d * 65535.0f));
-      d = float(q) / 65535.0f;
-      upload.bytes.insert(upload.bytes.end(), reinterpret_cast<const std::byte*>(&q), reinterpret_cast<const std::byte*>(&q) + 2);
-    } else if (format == VK_FORMAT_D24_UNORM_S8_UINT) {
-      const auto q = std::uint32_t(std::lround(double(d) * 16777215.0));
-      d = float(double(q) / 16777215.0);
-      upload.bytes.insert(upload.bytes.end(), reinterpret_cast<const std::byte*>(&q), reinterpret_cast<const std::byte*>(&q) + 4);
-    } else {
-      upload.bytes.insert(upload.bytes.end(), reinterpret_cast<const std::byte*>(&d), reinterpret_cast<const std::byte*>(&d) + 4);
-    }
+    const float d =
+        appendDepthTexel(upload.bytes, format, std::clamp(deviceDepth(frame.projection, linear.pixels[i]), 0.0f, 1.0f));
     upload.expectedLinear.pixels[i] = gpu::stereoDepthFromDevice(params, d);
   }
   return upload;
