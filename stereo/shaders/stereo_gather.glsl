@@ -73,24 +73,50 @@ vec4 centerAt(int x, int y) {
 }
 
 #ifdef S3D_STEREO_HOST_INPUTS
-// Listing 4.5 on a host's depth buffer of one layer (no first-person depth range): its stereo depth never
-// decreases with the device depth's key (linear_depth.h), so the taps' minimum is taken in keys and converted
-// once instead of per tap. Out-of-range and NaN taps read as the zero-parallax plane, as their conversion does.
-float minDepthOverOneLayersTaps(int x, int y, int direction) {
+// The device-depth keys (linear_depth.h) of the taps on one side of the pixel, unused taps +inf: every tap read
+// before any is compared, so the reads overlap (reading and comparing tap by tap cost the frame a seventh more:
+// docs/RESULTS.md "Where the host frame's extra time goes").
+void tapKeys(int x, int y, int direction, out float keys[S3D_STEREO_TAP_CAPACITY]) {
+  for (int i = 0; i < S3D_STEREO_TAP_CAPACITY; ++i) {
+    keys[i] = S3D_INFINITY;
+    if (i >= c.tapCount) continue;
+    ivec2 texel = ivec2(clamp(x + direction * c.tapOffsetPx[i], 0, c.width - 1), y);
+    keys[i] = deviceDepthKey(h.depth, texelFetch(hostDepth, texel, 0).r);
+  }
+}
+
+// Listing 4.5 over taps of one layer (the world): its stereo depth never decreases with the device depth's key, so
+// the taps' minimum is taken in keys and converted once instead of per tap. Out-of-range and NaN taps read as the
+// zero-parallax plane, as their conversion does.
+float minDepthOverOneLayersKeys(float keys[S3D_STEREO_TAP_CAPACITY]) {
   float nearestKey = S3D_INFINITY;
   bool outOfRange = false;
   for (int i = 0; i < S3D_STEREO_TAP_CAPACITY; ++i) {
-    if (i >= c.tapCount) continue;
-    ivec2 texel = ivec2(clamp(x + direction * c.tapOffsetPx[i], 0, c.width - 1), y);
-    float key = deviceDepthKey(h.depth, texelFetch(hostDepth, texel, 0).r);
-    bool inRange = isDeviceDepthKeyInRange(h.depth, key);
+    bool inRange = isDeviceDepthKeyInRange(h.depth, keys[i]);
     outOfRange = outOfRange || !inRange;
-    nearestKey = inRange ? min(nearestKey, key) : nearestKey;
+    nearestKey = inRange ? min(nearestKey, keys[i]) : nearestKey;
   }
   float minDepth = outOfRange ? c.zeroParallaxDistance : S3D_INFINITY;
   if (nearestKey == S3D_INFINITY) return minDepth;  // no tap in range, or the sky at +inf
   float deviceDepth = deviceDepthKey(h.depth, nearestKey);  // the key's negation is its own inverse
   return min(minDepth, sanitizedDepth(stereoDepthFromDevice(h.depth, deviceDepth), c.zeroParallaxDistance));
+}
+
+// Listing 4.5 on a depth buffer with a first-person range. Taps whose keys all lie above the first-person layer's
+// (the world, the sky, NaN) are one layer: one conversion. Otherwise every tap is converted, since the weapon's
+// push may interleave the layers' depths (and a key below the range's near end is the zero-parallax plane).
+float minDepthOverTwoLayersKeys(float keys[S3D_STEREO_TAP_CAPACITY]) {
+  bool firstPersonTap = false;
+  for (int i = 0; i < S3D_STEREO_TAP_CAPACITY; ++i)
+    firstPersonTap = firstPersonTap || keys[i] <= firstPersonKeyMax(h.depth);
+  if (!firstPersonTap) return minDepthOverOneLayersKeys(keys);
+  float minDepth = S3D_INFINITY;
+  for (int i = 0; i < S3D_STEREO_TAP_CAPACITY; ++i) {
+    float depth =
+        sanitizedDepth(stereoDepthFromDevice(h.depth, deviceDepthKey(h.depth, keys[i])), c.zeroParallaxDistance);
+    minDepth = i < c.tapCount ? min(minDepth, depth) : minDepth;
+  }
+  return minDepth;
 }
 #endif
 
@@ -98,10 +124,15 @@ float minDepthOverOneLayersTaps(int x, int y, int direction) {
 #define S3D_GATHER_TAP_OFFSET_PX c.tapOffsetPx
 #include "stereo_gather_source.glsl"
 
-// The taps' nearest depth on one side of the pixel: from a host's one-layer depth buffer in keys, else per tap.
+// The taps' nearest depth on one side of the pixel: from a host's depth buffer through its keys, else per tap.
 float nearestTapDepth(int x, int y, int direction) {
 #ifdef S3D_STEREO_HOST_INPUTS
-  if (kHostDepthPath == S3D_HOST_GATHER_DEPTH_ONE_LAYER) return minDepthOverOneLayersTaps(x, y, direction);
+  if (kHostDepthPath != S3D_HOST_GATHER_DEPTH_LINEAR) {
+    float keys[S3D_STEREO_TAP_CAPACITY];
+    tapKeys(x, y, direction, keys);
+    return kHostDepthPath == S3D_HOST_GATHER_DEPTH_ONE_LAYER ? minDepthOverOneLayersKeys(keys)
+                                                             : minDepthOverTwoLayersKeys(keys);
+  }
 #endif
   return minDepthOverTaps(x, y, direction);
 }

@@ -219,10 +219,28 @@ struct HostFrameImages {
 // view (0 sRGB: the sampler decodes, the gather encodes again; 1 UNORM, as a host's UNORM view of an sRGB image
 // made with VK_IMAGE_CREATE_MUTABLE_FORMAT_BIT reads: the display values as stored) and the depth (0 D32, 1 the
 // host's linear depth in R32F: no conversion per tap) and whether the host's projection gives a first-person layer
-// its own depth range (1: every depth tap converted on its own; 0: one conversion per side).
+// its own depth range (0: no; 1: yes, with no weapon in the view; 2: yes, with a weapon over 9 % of the view, where
+// the gather converts each tap).
 const stereo::HostOutput kFrameOutputs[] = {stereo::HostOutput::TwoEyes, stereo::HostOutput::Anaglyph,
                                             stereo::HostOutput::SideBySideHalf, stereo::HostOutput::TopBottomHalf,
                                             stereo::HostOutput::SideBySideFull};
+
+// The synthetic view's D32 depth with a weapon in the first-person range [0, 0.1]: the lower right 480x400 pixels
+// (9 % of the view), in 16x8 blocks between 0.02 and 0.09.
+std::vector<std::byte> weaponDepthTexels() {
+  std::vector<std::byte> texels;
+  std::mt19937 random(7);
+  std::uniform_real_distribution<float> weapon(0.02f, 0.09f);
+  std::vector<float> blocks(std::size_t(kWidth / 16 + 1) * (kHeight / 8 + 1));
+  for (float& b : blocks) b = weapon(random);
+  for (std::uint32_t y = 0; y < kHeight; ++y)
+    for (std::uint32_t x = 0; x < kWidth; ++x) {
+      const bool inWeapon = x >= kWidth - 480 && y >= kHeight - 400;
+      test::appendBytes(texels, inWeapon ? blocks[std::size_t(y / 8) * (kWidth / 16 + 1) + x / 16]
+                                   : view().device[std::size_t(y) * kWidth + x]);
+    }
+  return texels;
+}
 
 void HostStereoFrame(benchmark::State& state) {
   vk::Context& context = benchContext();
@@ -236,7 +254,8 @@ void HostStereoFrame(benchmark::State& state) {
   desc.previousFrameFill = fill;
   desc.output = kFrameOutputs[state.range(1)];
   stereo::StereoFrame stereoFrame(context, desc);
-  HostFrameImages images(context, desc, stereoFrame);
+  const std::vector<std::byte> depth = state.range(4) == 2 ? weaponDepthTexels() : std::vector<std::byte>{};
+  HostFrameImages images(context, desc, stereoFrame, {}, depth);
   if (state.range(4) != 0) {  // the world's device depths stay in the world's range [0.1, 1]
     images.dispatch.projection.firstPersonDepthRange = 0.1f;
     images.dispatch.projection.firstPersonNear = 0.05f;
@@ -245,7 +264,7 @@ void HostStereoFrame(benchmark::State& state) {
   timeRecording(state, [&](VkCommandBuffer cmd) { stereoFrame.record(cmd, images.dispatch); });
   state.SetLabel(context.deviceName() + ", " + stereo::methodName(desc.method) + (fill ? " + fill" : "") +
                  (state.range(2) == 0 ? ", sRGB" : ", UNORM view") + (state.range(3) == 0 ? ", D32" : ", R32F") +
-                 (state.range(4) != 0 ? ", first-person layer" : ""));
+                 (state.range(4) == 1 ? ", first-person layer" : state.range(4) == 2 ? ", first-person layer with a weapon" : ""));
 }
 
 // The colour formats and depth formats a host may hand over (HostStereoFrameFormats's arguments).
@@ -481,7 +500,7 @@ BENCHMARK(HostStereoFrame)
     ->ArgsProduct({{0, 1}, {2, 3, 4}, {0}, {0}, {0}})
     ->ArgsProduct({{0, 1}, {0, 1}, {1}, {0}, {0}})
     ->ArgsProduct({{0, 1}, {0, 1}, {0}, {1}, {0}})
-    ->ArgsProduct({{0, 1}, {0, 1}, {0}, {0}, {1}})
+    ->ArgsProduct({{0, 1}, {0, 1}, {0}, {0}, {1, 2}})
     ->ArgNames({"method", "output", "unormView", "linearDepth", "firstPersonLayer"})
     ->UseManualTime()
     ->Unit(benchmark::kMillisecond)

@@ -17,7 +17,7 @@ S3D_GPU_BEGIN
 
 // How the gather from a host's images reads its depth: the specialization constant its pipelines are made with.
 #define S3D_HOST_GATHER_DEPTH_ONE_LAYER 0     // a depth buffer without a first-person range: taps compared as keys
-#define S3D_HOST_GATHER_DEPTH_FIRST_PERSON 1  // a depth buffer with a first-person range: every tap converted
+#define S3D_HOST_GATHER_DEPTH_FIRST_PERSON 1  // with a first-person range: keys, or each tap near the weapon
 #define S3D_HOST_GATHER_DEPTH_LINEAR 2        // R32F linear depth: read as it is
 
 // Where the gather from a host's images (stereo_gather_host*.comp) writes, a specialization constant of its
