@@ -264,7 +264,9 @@ void HostStereoFrame(benchmark::State& state) {
   timeRecording(state, [&](VkCommandBuffer cmd) { stereoFrame.record(cmd, images.dispatch); });
   state.SetLabel(context.deviceName() + ", " + stereo::methodName(desc.method) + (fill ? " + fill" : "") +
                  (state.range(2) == 0 ? ", sRGB" : ", UNORM view") + (state.range(3) == 0 ? ", D32" : ", R32F") +
-                 (state.range(4) == 1 ? ", first-person layer" : state.range(4) == 2 ? ", first-person layer with a weapon" : ""));
+                 (state.range(4) == 1   ? ", first-person layer"
+                  : state.range(4) == 2 ? ", first-person layer with a weapon"
+                                        : ""));
 }
 
 // The colour formats and depth formats a host may hand over (HostStereoFrameFormats's arguments).
