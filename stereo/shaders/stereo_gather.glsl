@@ -74,8 +74,8 @@ vec4 centerAt(int x, int y) {
 
 #ifdef S3D_STEREO_HOST_INPUTS
 // The device-depth keys (linear_depth.h) of the taps on one side of the pixel, unused taps +inf: every tap read
-// before any is compared, so the reads overlap (reading and comparing tap by tap cost the frame a seventh more:
-// docs/RESULTS.md "Where the host frame's extra time goes").
+// before any is compared, so the reads overlap (comparing each tap as it was read was slower: docs/RESULTS.md
+// "Where the host frame's extra time goes").
 void tapKeys(int x, int y, int direction, out float keys[S3D_STEREO_TAP_CAPACITY]) {
   for (int i = 0; i < S3D_STEREO_TAP_CAPACITY; ++i) {
     keys[i] = S3D_INFINITY;

@@ -237,7 +237,7 @@ std::vector<std::byte> weaponDepthTexels() {
     for (std::uint32_t x = 0; x < kWidth; ++x) {
       const bool inWeapon = x >= kWidth - 480 && y >= kHeight - 400;
       test::appendBytes(texels, inWeapon ? blocks[std::size_t(y / 8) * (kWidth / 16 + 1) + x / 16]
-                                   : view().device[std::size_t(y) * kWidth + x]);
+                                         : view().device[std::size_t(y) * kWidth + x]);
     }
   return texels;
 }
