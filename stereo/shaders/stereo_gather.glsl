@@ -46,14 +46,12 @@ layout(push_constant) uniform Push {
 layout(constant_id = 0) const int kHostDepthPath = S3D_HOST_GATHER_DEPTH_ONE_LAYER;
 layout(constant_id = 1) const int kGatherOutput = S3D_HOST_GATHER_TWO_EYES;
 layout(constant_id = 2) const int kColorTransfer = S3D_HOST_COLOR_AS_STORED;
-bool hostDeviceDepth() { return kHostDepthPath != S3D_HOST_GATHER_DEPTH_LINEAR; }
 #endif
 
 float depthAt(int x, int y) {
   ivec2 texel = ivec2(clamp(x, 0, c.width - 1), y);
 #ifdef S3D_STEREO_HOST_INPUTS
-  float depth = texelFetch(hostDepth, texel, 0).r;
-  if (hostDeviceDepth()) depth = stereoDepthFromDevice(h.depth, depth);
+  float depth = texelFetch(hostDepth, texel, 0).r;  // linear R32F: a depth buffer's taps go through tapKeys
 #else
   float depth = imageLoad(linearDepth, texel).r;
 #endif
@@ -175,9 +173,12 @@ vec4 sampleRow(int y, float u) {
 
 #ifdef S3D_STEREO_HOST_HALF_PACKING
 // Eye pixel `pixel` of the eye looking along `side` (+1 left, -1 right), as the reference's 8-bit eye holds it.
+// Gathered before the crop test, with no branch, so a packed pixel's two eye pixels read together (returning
+// early for the cropped edges was slower: docs/RESULTS.md "Every packed output from the gather").
 vec4 storedEyePixel(ivec2 pixel, int side) {
-  if (pixel.x < c.cropBegin || pixel.x >= c.cropEnd) return vec4(0, 0, 0, 1);  // cropped edges
-  return eyeByteValue(sampleRow(pixel.y, gatherSourceColumn(pixel.x, side, nearestTapDepth(pixel.x, pixel.y, side))));
+  float source = gatherSourceColumn(pixel.x, side, nearestTapDepth(pixel.x, pixel.y, side));
+  vec4 gathered = eyeByteValue(sampleRow(pixel.y, source));
+  return pixel.x < c.cropBegin || pixel.x >= c.cropEnd ? vec4(0, 0, 0, 1) : gathered;  // cropped edges
 }
 
 vec3 linearOfStored(vec4 v) { return vec3(hostSrgbToLinear(v.r), hostSrgbToLinear(v.g), hostSrgbToLinear(v.b)); }
