@@ -231,12 +231,13 @@ std::vector<std::byte> weaponDepthTexels() {
   std::vector<std::byte> texels;
   std::mt19937 random(7);
   std::uniform_real_distribution<float> weapon(0.02f, 0.09f);
-  std::vector<float> blocks(std::size_t(kWidth / 16 + 1) * (kHeight / 8 + 1));
+  const std::size_t blocksPerRow = kWidth / 16 + 1;
+  std::vector<float> blocks(blocksPerRow * (kHeight / 8 + 1));
   for (float& b : blocks) b = weapon(random);
   for (std::uint32_t y = 0; y < kHeight; ++y)
     for (std::uint32_t x = 0; x < kWidth; ++x) {
       const bool inWeapon = x >= kWidth - 480 && y >= kHeight - 400;
-      test::appendBytes(texels, inWeapon ? blocks[std::size_t(y / 8) * (kWidth / 16 + 1) + x / 16]
+      test::appendBytes(texels, inWeapon ? blocks[std::size_t(y / 8) * blocksPerRow + x / 16]
                                          : view().device[std::size_t(y) * kWidth + x]);
     }
   return texels;
