@@ -73,6 +73,48 @@ nlohmann::json rewritten(const nlohmann::json& json) {
   return changed ? copy : nlohmann::json();
 }
 
+// `document[arrayName][index]` when both exist and `index` is an unsigned integer, else null.
+const nlohmann::json* element(const nlohmann::json& document, const char* arrayName, const nlohmann::json& index) {
+  const auto array = document.find(arrayName);
+  if (array == document.end() || !array->is_array() || !index.is_number_unsigned()) return nullptr;
+  const auto at = index.get<std::uint64_t>();
+  return at < array->size() ? &(*array)[at] : nullptr;
+}
+
+std::uint64_t unsignedOr(const nlohmann::json& object, const char* name, std::uint64_t absent, bool& valid) {
+  const auto field = object.find(name);
+  if (field == object.end()) return absent;
+  if (!field->is_number_unsigned()) valid = false;
+  return field->is_number_unsigned() ? field->get<std::uint64_t>() : 0;
+}
+
+// tinygltf hands an image's buffer view to the image decoder without checking that the view lies inside its
+// buffer, so a view past the end is decoded from whatever memory follows: every such view is held to its
+// buffer's byteLength first (tinygltf holds a buffer's data to exactly that length). Missing or out-of-range
+// indices are left to tinygltf, which refuses them.
+bool imageViewsInsideTheirBuffers(const nlohmann::json& document, std::string& errors) {
+  const auto images = document.find("images");
+  if (images == document.end() || !images->is_array()) return true;
+  for (std::size_t index = 0; index < images->size(); ++index) {
+    const nlohmann::json& image = (*images)[index];
+    if (!image.is_object() || !image.contains("bufferView")) continue;
+    const nlohmann::json* view = element(document, "bufferViews", image["bufferView"]);
+    if (!view || !view->is_object() || !view->contains("buffer")) continue;
+    const nlohmann::json* buffer = element(document, "buffers", (*view)["buffer"]);
+    if (!buffer || !buffer->is_object()) continue;
+    bool valid = true;
+    const std::uint64_t offset = unsignedOr(*view, "byteOffset", 0, valid);
+    const std::uint64_t length = unsignedOr(*view, "byteLength", 0, valid);
+    const std::uint64_t bufferLength = unsignedOr(*buffer, "byteLength", 0, valid);
+    if (valid && length <= bufferLength && offset <= bufferLength - length) continue;
+    errors += "image " + std::to_string(index) + "'s buffer view " + image["bufferView"].dump() +
+              " does not lie inside buffer " + (*view)["buffer"].dump() + " (bytes " + std::to_string(offset) + " to " +
+              std::to_string(offset + length) + " of " + std::to_string(bufferLength) + ")\n";
+    return false;
+  }
+  return true;
+}
+
 void appendWord(std::string& bytes, std::uint32_t word) {
   char raw[4];
   std::memcpy(raw, &word, 4);
@@ -99,6 +141,7 @@ std::string glbWithJson(const std::filesystem::path& file, const std::string& gl
 bool parseGltf(tinygltf::TinyGLTF& loader, tinygltf::Model& model, std::string& errors, std::string& warnings,
                const std::filesystem::path& file, bool binary, const nlohmann::json& json) {
   const nlohmann::json changed = json.is_object() ? rewritten(json) : nlohmann::json();
+  if (!imageViewsInsideTheirBuffers(changed.is_null() ? json : changed, errors)) return false;
   if (changed.is_null())
     return binary ? loader.LoadBinaryFromFile(&model, &errors, &warnings, file.string())
                   : loader.LoadASCIIFromFile(&model, &errors, &warnings, file.string());

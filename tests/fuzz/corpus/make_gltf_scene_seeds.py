@@ -1,8 +1,9 @@
 #!/usr/bin/env python3
 """Writes the gltf_scene fuzz seeds that probe the scene-file sandbox and the texture size limits (standard
-library only): URIs that are absolute or climb out of the scene's folder (plain and percent-encoded), and a
+library only): URIs that are absolute or climb out of the scene's folder (plain and percent-encoded), a
 textured triangle whose embedded PNG (in a buffer view, and as a data: URI) declares 20000x20000 pixels in a
-header of 45 bytes. Run from this folder: python3 make_gltf_scene_seeds.py"""
+header of 45 bytes, and one whose valid PNG's buffer view runs past the end of its buffer (the bytes are in
+the file, past the buffer's byteLength). Run from this folder: python3 make_gltf_scene_seeds.py"""
 import base64
 import json
 import struct
@@ -14,6 +15,14 @@ def png_header_claiming(width, height):
         return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data) & 0xFFFFFFFF)
     ihdr = struct.pack(">IIBBBBB", width, height, 8, 0, 0, 0, 0)  # 8-bit grey: stb_image decodes it (to RGBA, 1.6 GB)
     return b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", ihdr) + chunk(b"IDAT", b"\x78\x01")
+
+
+def png_one_pixel():
+    def chunk(kind, data):
+        return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data) & 0xFFFFFFFF)
+    ihdr = struct.pack(">IIBBBBB", 1, 1, 8, 6, 0, 0, 0)  # 8-bit RGBA
+    pixels = zlib.compress(b"\x00\xff\x80\x00\xff")  # one row: filter byte, then RGBA
+    return b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", ihdr) + chunk(b"IDAT", pixels) + chunk(b"IEND", b"")
 
 
 def glb(document, binary=b""):
@@ -62,6 +71,12 @@ def main():
     seeds["oversized_texture.glb"] = glb(document, geometry + png)
     document, geometry = textured_triangle({"uri": "data:image/png;base64," + base64.b64encode(png).decode()})
     seeds["oversized_data_uri_texture.glb"] = glb(document, geometry)
+    png = png_one_pixel()
+    document, geometry = textured_triangle({"bufferView": 2, "mimeType": "image/png"})
+    document["bufferViews"].append({"buffer": 0, "byteOffset": len(geometry), "byteLength": len(png)})
+    # The buffer ends two bytes into the pixel data: the decoder copies the rest from past the buffer's end.
+    document["buffers"][0]["byteLength"] = len(geometry) + png.index(b"IDAT") + 4 + 2
+    seeds["image_view_past_buffer.glb"] = glb(document, geometry + png)
     for name, data in seeds.items():
         with open("gltf_scene/" + name, "wb") as out:
             out.write(data)
