@@ -107,9 +107,11 @@ bool imageViewsInsideTheirBuffers(const nlohmann::json& document, std::string& e
     const std::uint64_t length = unsignedOr(*view, "byteLength", 0, valid);
     const std::uint64_t bufferLength = unsignedOr(*buffer, "byteLength", 0, valid);
     if (valid && length <= bufferLength && offset <= bufferLength - length) continue;
-    errors += "image " + std::to_string(index) + "'s buffer view " + image["bufferView"].dump() +
-              " does not lie inside buffer " + (*view)["buffer"].dump() + " (bytes " + std::to_string(offset) + " to " +
-              std::to_string(offset + length) + " of " + std::to_string(bufferLength) + ")\n";
+    const std::string where = "image " + std::to_string(index) + "'s buffer view " + image["bufferView"].dump();
+    const std::string bufferName = "buffer " + (*view)["buffer"].dump();
+    errors += valid ? where + " runs past the end of " + bufferName + " (" + std::to_string(length) + " bytes from byte " +
+                          std::to_string(offset) + ", in a buffer of " + std::to_string(bufferLength) + ")\n"
+                    : where + " or " + bufferName + " gives a byte offset or length that is not a whole number\n";
     return false;
   }
   return true;
