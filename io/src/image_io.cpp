@@ -3,6 +3,7 @@
 #include "exr_memory_stream.h"
 #include "file_access.h"
 #include "s3d/io/output_transaction.h"
+#include "s3d/png_chunks.h"
 
 // Third-party headers are silenced here because pkg-config exposes them with -I, not -isystem
 // (Imath's half.h trips -Wconversion); our own code below keeps the full warning set.
@@ -338,8 +339,7 @@ ImageSize readImageSize(const fs::path& file) {
     return {std::uint32_t(width), std::uint32_t(height)};
   }
   // PNG: the signature, then IHDR's width and height (big-endian) at bytes 16..23.
-  constexpr std::string_view kPngSignature("\x89PNG\r\n\x1a\n", 8);
-  if (head.size() < 24 || std::string_view(head).substr(0, 8) != kPngSignature || head.compare(12, 4, "IHDR") != 0)
+  if (head.size() < 24 || !hasPngSignature(head) || head.compare(12, 4, "IHDR") != 0)
     failRead("PNG", file, "not a PNG file (bad signature or header)");
   auto bigEndian = [&](std::size_t at) {
     std::uint32_t value = 0;
@@ -384,18 +384,10 @@ PngHeader readPngHeader(const char* kind, const fs::path& file, const std::strin
 void requirePngStructure(const char* kind, const fs::path& file, const std::string& bytes) {
   if (bytes.size() > INT_MAX) failRead(kind, file, "file is too large");
   // stb_image accepts several formats; the signature check keeps the readers honest about "PNG".
-  constexpr std::string_view kPngSignature("\x89PNG\r\n\x1a\n", 8);
-  if (std::string_view(bytes).substr(0, kPngSignature.size()) != kPngSignature)
-    failRead(kind, file, "not a PNG file (bad signature)");
-  for (std::size_t at = kPngSignature.size(); at + 8 <= bytes.size();) {
-    const auto byte = [&](std::size_t i) { return std::uint32_t(static_cast<unsigned char>(bytes[at + i])); };
-    const std::uint64_t length = (byte(0) << 24) | (byte(1) << 16) | (byte(2) << 8) | byte(3);
-    if (length + 12 > bytes.size() - at)
-      failRead(kind, file, "corrupt PNG: chunk '" + bytes.substr(at + 4, 4) + "' declares " +
-                                    std::to_string(length) + " bytes, more than the file holds");
-    if (bytes.compare(at + 4, 4, "IEND") == 0) break;
-    at += std::size_t(length) + 12;
-  }
+  if (!hasPngSignature(bytes)) failRead(kind, file, "not a PNG file (bad signature)");
+  if (const auto overrun = pngChunkOverrun(bytes))
+    failRead(kind, file, "corrupt PNG: chunk '" + overrun->name + "' declares " + std::to_string(overrun->declared) +
+                             " bytes, more than the file holds");
 }
 
 void writeWholeFileAtomically(const char* kind, const fs::path& file, std::string_view bytes) {

@@ -5,6 +5,7 @@
 #include <cstring>
 #include <iterator>
 #include <stdexcept>
+#include <string_view>
 #include <system_error>
 #include <vector>
 
@@ -15,6 +16,7 @@
 #include "s3d/image_limits.h"
 #include "s3d/input_file.h"
 #include "s3d/json_document.h"
+#include "s3d/png_chunks.h"
 
 namespace s3d::renderer::gltf {
 namespace fs = std::filesystem;
@@ -162,10 +164,19 @@ bool writeNothing(std::string* error, const std::string&, const std::vector<unsi
 
 // Every texture is held to the readers' size limits (s3d/image_limits.h) before it is decoded: a PNG of a few
 // hundred bytes can declare 20000x20000 pixels, 1.6 GB decoded (6 GB was measured through the renderer).
-// The decoded pixels count against the scene's memory (SceneMemory) the same way, before decoding. WebP
+// The decoded pixels count against the scene's memory (SceneMemory) the same way, before decoding, and a PNG's
+// chunks must fit in its bytes (s3d/png_chunks.h: stb_image would allocate what they declare first). WebP
 // (EXT_texture_webp) is told apart by its bytes and decoded with libwebp, the rest by tinygltf's stb_image.
 bool loadImageWithinLimits(tinygltf::Image* image, const int index, std::string* error, std::string* warning,
                            int requestedWidth, int requestedHeight, const unsigned char* bytes, int size, void* memory) {
+  const std::string_view data(reinterpret_cast<const char*>(bytes), std::size_t(std::max(size, 0)));
+  if (hasPngSignature(data))
+    if (const auto overrun = pngChunkOverrun(data)) {
+      if (error)
+        *error += "image " + std::to_string(index) + " is a corrupt PNG: chunk '" + overrun->name + "' declares " +
+                  std::to_string(overrun->declared) + " bytes, more than the image holds\n";
+      return false;
+    }
   int width = 0, height = 0, channels = 0;
   const bool webp = webpInfo(bytes, size, width, height);
   if ((webp || stbi_info_from_memory(bytes, size, &width, &height, &channels) != 0) &&

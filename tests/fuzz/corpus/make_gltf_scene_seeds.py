@@ -2,24 +2,32 @@
 """Writes the gltf_scene fuzz seeds that probe the scene-file sandbox and the texture size limits (standard
 library only): URIs that are absolute or climb out of the scene's folder (plain and percent-encoded), a
 textured triangle whose embedded PNG (in a buffer view, and as a data: URI) declares 20000x20000 pixels in a
-header of 45 bytes, and one whose valid PNG's buffer view runs past the end of its buffer (the bytes are in
-the file, past the buffer's byteLength). Run from this folder: python3 make_gltf_scene_seeds.py"""
+header of 45 bytes, one whose PNG's IDAT chunk declares 1 GiB in a file of a few hundred bytes (stb_image
+allocated it before finding the bytes missing), and one whose valid PNG's buffer view runs past the end of its
+buffer (the bytes are in the file, past the buffer's byteLength). Run from this folder:
+python3 make_gltf_scene_seeds.py"""
 import base64
 import json
 import struct
 import zlib
 
 
+def chunk(kind, data, declared=None):
+    length = len(data) if declared is None else declared
+    return struct.pack(">I", length) + kind + data + struct.pack(">I", zlib.crc32(kind + data) & 0xFFFFFFFF)
+
+
 def png_header_claiming(width, height):
-    def chunk(kind, data):
-        return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data) & 0xFFFFFFFF)
     ihdr = struct.pack(">IIBBBBB", width, height, 8, 0, 0, 0, 0)  # 8-bit grey: stb_image decodes it (to RGBA, 1.6 GB)
     return b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", ihdr) + chunk(b"IDAT", b"\x78\x01")
 
 
+def png_idat_claiming(declared):
+    ihdr = struct.pack(">IIBBBBB", 1, 1, 8, 6, 0, 0, 0)
+    return b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", ihdr) + chunk(b"IDAT", b"\x78\x01", declared)
+
+
 def png_one_pixel():
-    def chunk(kind, data):
-        return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data) & 0xFFFFFFFF)
     ihdr = struct.pack(">IIBBBBB", 1, 1, 8, 6, 0, 0, 0)  # 8-bit RGBA
     pixels = zlib.compress(b"\x00\xff\x80\x00\xff")  # one row: filter byte, then RGBA
     return b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", ihdr) + chunk(b"IDAT", pixels) + chunk(b"IEND", b"")
@@ -71,6 +79,11 @@ def main():
     seeds["oversized_texture.glb"] = glb(document, geometry + png)
     document, geometry = textured_triangle({"uri": "data:image/png;base64," + base64.b64encode(png).decode()})
     seeds["oversized_data_uri_texture.glb"] = glb(document, geometry)
+    png = png_idat_claiming(2**30 - 16)
+    document, geometry = textured_triangle({"bufferView": 2, "mimeType": "image/png"})
+    document["bufferViews"].append({"buffer": 0, "byteOffset": len(geometry), "byteLength": len(png)})
+    document["buffers"][0]["byteLength"] = len(geometry) + len(png)
+    seeds["oversized_png_chunk.glb"] = glb(document, geometry + png)
     png = png_one_pixel()
     document, geometry = textured_triangle({"bufferView": 2, "mimeType": "image/png"})
     document["bufferViews"].append({"buffer": 0, "byteOffset": len(geometry), "byteLength": len(png)})
