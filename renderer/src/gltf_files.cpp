@@ -160,25 +160,39 @@ bool writeNothing(std::string* error, const std::string&, const std::vector<unsi
   return false;
 }
 
+// Why stb_image must not decode a texture that is not WebP (empty when it may). glTF textures are PNG or JPEG:
+// stb_image's other decoders (GIF, PSD, PIC, TGA, ...) are code a scene has no use for, so hostile bytes never
+// reach them. A PNG's chunks must fit in its bytes (s3d/png_chunks.h: stb_image allocates what they declare first).
+std::string stbTextureProblem(std::string_view bytes) {
+  if (hasPngSignature(bytes)) {
+    const auto overrun = pngChunkOverrun(bytes);
+    return overrun ? "is a corrupt PNG: chunk '" + overrun->name + "' declares " + std::to_string(overrun->declared) +
+                         " bytes, more than the image holds"
+                   : "";
+  }
+  if (bytes.substr(0, 3) == "\xff\xd8\xff") return "";  // a JPEG's start-of-image marker and the next marker's byte
+  if (bytes.substr(0, 4) == "RIFF" && bytes.substr(8, 4) == "WEBP") return "is a WebP file whose header does not read";
+  return "is neither a PNG, a JPEG nor a WebP file (the formats a glTF texture may have)";
+}
+
 }  // namespace
 
 // Every texture is held to the readers' size limits (s3d/image_limits.h) before it is decoded: a PNG of a few
 // hundred bytes can declare 20000x20000 pixels, 1.6 GB decoded (6 GB was measured through the renderer).
-// The decoded pixels count against the scene's memory (SceneMemory) the same way, before decoding, and a PNG's
-// chunks must fit in its bytes (s3d/png_chunks.h: stb_image would allocate what they declare first). WebP
-// (EXT_texture_webp) is told apart by its bytes and decoded with libwebp, the rest by tinygltf's stb_image.
+// The decoded pixels count against the scene's memory (SceneMemory) the same way, before decoding. WebP
+// (EXT_texture_webp) is told apart by its bytes and decoded with libwebp, PNG and JPEG by tinygltf's stb_image.
 bool loadImageWithinLimits(tinygltf::Image* image, const int index, std::string* error, std::string* warning,
                            int requestedWidth, int requestedHeight, const unsigned char* bytes, int size, void* memory) {
-  const std::string_view data(reinterpret_cast<const char*>(bytes), std::size_t(std::max(size, 0)));
-  if (hasPngSignature(data))
-    if (const auto overrun = pngChunkOverrun(data)) {
-      if (error)
-        *error += "image " + std::to_string(index) + " is a corrupt PNG: chunk '" + overrun->name + "' declares " +
-                  std::to_string(overrun->declared) + " bytes, more than the image holds\n";
-      return false;
-    }
   int width = 0, height = 0, channels = 0;
   const bool webp = webpInfo(bytes, size, width, height);
+  if (!webp) {
+    const std::string problem =
+        stbTextureProblem(std::string_view(reinterpret_cast<const char*>(bytes), std::size_t(std::max(size, 0))));
+    if (!problem.empty()) {
+      if (error) *error += "image " + std::to_string(index) + " " + problem + "\n";
+      return false;
+    }
+  }
   if ((webp || stbi_info_from_memory(bytes, size, &width, &height, &channels) != 0) &&
       (std::uint32_t(width) > kMaxImageSide || std::uint32_t(height) > kMaxImageSide ||
        std::uint64_t(width) * std::uint64_t(height) > kMaxImagePixels)) {

@@ -3,8 +3,10 @@
 library only): URIs that are absolute or climb out of the scene's folder (plain and percent-encoded), a
 textured triangle whose embedded PNG (in a buffer view, and as a data: URI) declares 20000x20000 pixels in a
 header of 45 bytes, one whose PNG's IDAT chunk declares 1 GiB in a file of a few hundred bytes (stb_image
-allocated it before finding the bytes missing), and one whose valid PNG's buffer view runs past the end of its
-buffer (the bytes are in the file, past the buffer's byteLength). Run from this folder:
+allocated it before finding the bytes missing), one whose valid PNG's buffer view runs past the end of its
+buffer (the bytes are in the file, past the buffer's byteLength), and one whose texture is a BMP that stb_image
+would decode (glTF textures are PNG or JPEG; stb_image's other decoders are kept from hostile bytes). Run from
+this folder:
 python3 make_gltf_scene_seeds.py"""
 import base64
 import json
@@ -31,6 +33,12 @@ def png_one_pixel():
     ihdr = struct.pack(">IIBBBBB", 1, 1, 8, 6, 0, 0, 0)  # 8-bit RGBA
     pixels = zlib.compress(b"\x00\xff\x80\x00\xff")  # one row: filter byte, then RGBA
     return b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", ihdr) + chunk(b"IDAT", pixels) + chunk(b"IEND", b"")
+
+
+def bmp_one_pixel():
+    pixels = b"\x00\x00\xff\x00"  # one red BGR pixel, its row padded to 4 bytes
+    info = struct.pack("<IiiHHIIiiII", 40, 1, 1, 1, 24, 0, len(pixels), 2835, 2835, 0, 0)
+    return b"BM" + struct.pack("<IHHI", 14 + len(info) + len(pixels), 0, 0, 14 + len(info)) + info + pixels
 
 
 def glb(document, binary=b""):
@@ -90,6 +98,11 @@ def main():
     # The buffer ends two bytes into the pixel data: the decoder copies the rest from past the buffer's end.
     document["buffers"][0]["byteLength"] = len(geometry) + png.index(b"IDAT") + 4 + 2
     seeds["image_view_past_buffer.glb"] = glb(document, geometry + png)
+    bmp = bmp_one_pixel()
+    document, geometry = textured_triangle({"bufferView": 2, "mimeType": "image/png"})
+    document["bufferViews"].append({"buffer": 0, "byteOffset": len(geometry), "byteLength": len(bmp)})
+    document["buffers"][0]["byteLength"] = len(geometry) + len(bmp)
+    seeds["bmp_texture.glb"] = glb(document, geometry + bmp)
     for name, data in seeds.items():
         with open("gltf_scene/" + name, "wb") as out:
             out.write(data)
