@@ -171,7 +171,8 @@ std::string stbTextureProblem(std::string_view bytes) {
                    : "";
   }
   if (bytes.substr(0, 3) == "\xff\xd8\xff") return "";  // a JPEG's start-of-image marker and the next marker's byte
-  if (bytes.substr(0, 4) == "RIFF" && bytes.substr(8, 4) == "WEBP") return "is a WebP file whose header does not read";
+  if (bytes.size() >= 12 && bytes.substr(0, 4) == "RIFF" && bytes.substr(8, 4) == "WEBP")
+    return "is a WebP file whose header does not read";
   return "is neither a PNG, a JPEG nor a WebP file (the formats a glTF texture may have)";
 }
 

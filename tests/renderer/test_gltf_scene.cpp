@@ -203,6 +203,23 @@ TEST(GltfScene, ATextureBeyondTheReadersLimitsIsRefusedBeforeItIsDecoded) {
   EXPECT_NE(message.find("20000x20000, beyond the readers' limit of 16384 pixels a side"), std::string::npos) << message;
 }
 
+TEST(GltfScene, ATextureInAFormatGltfDoesNotAllowIsRefused) {
+  ScratchFolder scratch;
+  const fs::path file = scratch.copyOfTexturedQuad();
+  writeText(scratch.path() / "textured_quad_base_color.png", "RIFF");  // shorter than any header it starts like
+  const std::string message = errorOf<std::runtime_error>([&] { loadGltfScene(file); });
+  EXPECT_NE(message.find("textured_quad.gltf"), std::string::npos) << message;
+  EXPECT_NE(message.find("image 0 is neither a PNG, a JPEG nor a WebP file"), std::string::npos) << message;
+}
+
+TEST(GltfScene, AWebpTextureWhoseHeaderDoesNotReadIsNamedAsWebp) {
+  ScratchFolder scratch;
+  const fs::path file = scratch.copyOfTexturedQuad();
+  writeText(scratch.path() / "textured_quad_base_color.png", std::string("RIFF\x04\0\0\0WEBP", 12));
+  const std::string message = errorOf<std::runtime_error>([&] { loadGltfScene(file); });
+  EXPECT_NE(message.find("image 0 is a WebP file whose header does not read"), std::string::npos) << message;
+}
+
 TEST(GltfScene, EachHostileFuzzSeedIsRefusedByTheCheckItWasWrittenFor) {
   // tests/fuzz/corpus/gltf_scene (make_gltf_scene_seeds.py): each seed must reach the check it was written for.
   const fs::path corpus = kDataDir.parent_path() / "fuzz" / "corpus" / "gltf_scene";
