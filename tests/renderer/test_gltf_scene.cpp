@@ -194,29 +194,28 @@ std::string pngHeaderClaiming(std::uint32_t width, std::uint32_t height) {
          bigEndian(crc32(idat));
 }
 
-TEST(GltfScene, ATextureBeyondTheReadersLimitsIsRefusedBeforeItIsDecoded) {
+// The error loading the textured quad whose base-colour texture file (image 0) holds `bytes`.
+std::string errorWithBaseColorTexture(const std::string& bytes) {
   ScratchFolder scratch;
   const fs::path file = scratch.copyOfTexturedQuad();
-  writeText(scratch.path() / "textured_quad_base_color.png", pngHeaderClaiming(20000, 20000));
-  const std::string message = errorOf<std::runtime_error>([&] { loadGltfScene(file); });
+  writeText(scratch.path() / "textured_quad_base_color.png", bytes);
+  return errorOf<std::runtime_error>([&] { loadGltfScene(file); });
+}
+
+TEST(GltfScene, ATextureBeyondTheReadersLimitsIsRefusedBeforeItIsDecoded) {
+  const std::string message = errorWithBaseColorTexture(pngHeaderClaiming(20000, 20000));
   EXPECT_NE(message.find("textured_quad.gltf"), std::string::npos) << message;
   EXPECT_NE(message.find("20000x20000, beyond the readers' limit of 16384 pixels a side"), std::string::npos) << message;
 }
 
 TEST(GltfScene, ATextureInAFormatGltfDoesNotAllowIsRefused) {
-  ScratchFolder scratch;
-  const fs::path file = scratch.copyOfTexturedQuad();
-  writeText(scratch.path() / "textured_quad_base_color.png", "RIFF");  // shorter than any header it starts like
-  const std::string message = errorOf<std::runtime_error>([&] { loadGltfScene(file); });
+  const std::string message = errorWithBaseColorTexture("RIFF");  // shorter than the WebP header it starts like
   EXPECT_NE(message.find("textured_quad.gltf"), std::string::npos) << message;
   EXPECT_NE(message.find("image 0 is neither a PNG, a JPEG nor a WebP file"), std::string::npos) << message;
 }
 
 TEST(GltfScene, AWebpTextureWhoseHeaderDoesNotReadIsNamedAsWebp) {
-  ScratchFolder scratch;
-  const fs::path file = scratch.copyOfTexturedQuad();
-  writeText(scratch.path() / "textured_quad_base_color.png", std::string("RIFF\x04\0\0\0WEBP", 12));
-  const std::string message = errorOf<std::runtime_error>([&] { loadGltfScene(file); });
+  const std::string message = errorWithBaseColorTexture(std::string("RIFF\x04\0\0\0WEBP", 12));
   EXPECT_NE(message.find("image 0 is a WebP file whose header does not read"), std::string::npos) << message;
 }
 
