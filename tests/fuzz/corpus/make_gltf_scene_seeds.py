@@ -5,9 +5,8 @@ textured triangle whose embedded PNG (in a buffer view, and as a data: URI) decl
 header of 45 bytes, one whose PNG's IDAT chunk declares 1 GiB in a file of a few hundred bytes (stb_image
 allocated it before finding the bytes missing), one whose valid PNG's buffer view runs past the end of its
 buffer (the bytes are in the file, past the buffer's byteLength), and one whose texture is a BMP that stb_image
-would decode (glTF textures are PNG or JPEG; stb_image's other decoders are kept from hostile bytes). Run from
-this folder:
-python3 make_gltf_scene_seeds.py"""
+would decode (glTF textures are PNG or JPEG; stb_image's other decoders are kept from hostile bytes).
+Run from this folder: python3 make_gltf_scene_seeds.py"""
 import base64
 import json
 import struct
@@ -74,6 +73,16 @@ def textured_triangle(image):
     return document, geometry
 
 
+def triangle_with_embedded_texture(image, image_bytes_in_buffer=None):
+    """The textured triangle as a .glb whose texture is `image` in a buffer view after the geometry; the buffer's
+    byteLength covers `image_bytes_in_buffer` of it (all by default), though the file holds all of it."""
+    document, geometry = textured_triangle({"bufferView": 2, "mimeType": "image/png"})
+    document["bufferViews"].append({"buffer": 0, "byteOffset": len(geometry), "byteLength": len(image)})
+    covered = len(image) if image_bytes_in_buffer is None else image_bytes_in_buffer
+    document["buffers"][0]["byteLength"] = len(geometry) + covered
+    return glb(document, geometry + image)
+
+
 def main():
     seeds = {
         "absolute_buffer_uri.glb": glb({"asset": {"version": "2.0"}, "buffers": [{"uri": "/etc/hostname", "byteLength": 4}]}),
@@ -81,28 +90,14 @@ def main():
         "encoded_escaping_image_uri.glb": glb({"asset": {"version": "2.0"}, "images": [{"uri": "..%2Foutside.png"}]}),
     }
     png = png_header_claiming(20000, 20000)
-    document, geometry = textured_triangle({"bufferView": 2, "mimeType": "image/png"})
-    document["bufferViews"].append({"buffer": 0, "byteOffset": len(geometry), "byteLength": len(png)})
-    document["buffers"][0]["byteLength"] = len(geometry) + len(png)
-    seeds["oversized_texture.glb"] = glb(document, geometry + png)
+    seeds["oversized_texture.glb"] = triangle_with_embedded_texture(png)
     document, geometry = textured_triangle({"uri": "data:image/png;base64," + base64.b64encode(png).decode()})
     seeds["oversized_data_uri_texture.glb"] = glb(document, geometry)
-    png = png_idat_claiming(2**30 - 16)
-    document, geometry = textured_triangle({"bufferView": 2, "mimeType": "image/png"})
-    document["bufferViews"].append({"buffer": 0, "byteOffset": len(geometry), "byteLength": len(png)})
-    document["buffers"][0]["byteLength"] = len(geometry) + len(png)
-    seeds["oversized_png_chunk.glb"] = glb(document, geometry + png)
-    png = png_one_pixel()
-    document, geometry = textured_triangle({"bufferView": 2, "mimeType": "image/png"})
-    document["bufferViews"].append({"buffer": 0, "byteOffset": len(geometry), "byteLength": len(png)})
+    seeds["oversized_png_chunk.glb"] = triangle_with_embedded_texture(png_idat_claiming(2**30 - 16))
     # The buffer ends two bytes into the pixel data: the decoder copies the rest from past the buffer's end.
-    document["buffers"][0]["byteLength"] = len(geometry) + png.index(b"IDAT") + 4 + 2
-    seeds["image_view_past_buffer.glb"] = glb(document, geometry + png)
-    bmp = bmp_one_pixel()
-    document, geometry = textured_triangle({"bufferView": 2, "mimeType": "image/png"})
-    document["bufferViews"].append({"buffer": 0, "byteOffset": len(geometry), "byteLength": len(bmp)})
-    document["buffers"][0]["byteLength"] = len(geometry) + len(bmp)
-    seeds["bmp_texture.glb"] = glb(document, geometry + bmp)
+    png = png_one_pixel()
+    seeds["image_view_past_buffer.glb"] = triangle_with_embedded_texture(png, png.index(b"IDAT") + 4 + 2)
+    seeds["bmp_texture.glb"] = triangle_with_embedded_texture(bmp_one_pixel())
     for name, data in seeds.items():
         with open("gltf_scene/" + name, "wb") as out:
             out.write(data)
