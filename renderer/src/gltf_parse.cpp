@@ -73,12 +73,12 @@ nlohmann::json rewritten(const nlohmann::json& json) {
   return changed ? copy : nlohmann::json();
 }
 
-// `document[arrayName][index]` when both exist and `index` is an unsigned integer, else null.
+// `document[arrayName][index]` when both exist and `index` is an unsigned integer inside the array, else null.
 const nlohmann::json* element(const nlohmann::json& document, const char* arrayName, const nlohmann::json& index) {
   const auto array = document.find(arrayName);
   if (array == document.end() || !array->is_array() || !index.is_number_unsigned()) return nullptr;
   const auto at = index.get<std::uint64_t>();
-  return at < array->size() ? &(*array)[at] : nullptr;
+  return at < array->size() && (*array)[at].is_object() ? &(*array)[at] : nullptr;
 }
 
 std::uint64_t unsignedOr(const nlohmann::json& object, const char* name, std::uint64_t absent, bool& valid) {
@@ -88,31 +88,38 @@ std::uint64_t unsignedOr(const nlohmann::json& object, const char* name, std::ui
   return field->is_number_unsigned() ? field->get<std::uint64_t>() : 0;
 }
 
-// tinygltf hands an image's buffer view to the image decoder without checking that the view lies inside its
-// buffer, so a view past the end is decoded from whatever memory follows: every such view is held to its
-// buffer's byteLength first (tinygltf holds a buffer's data to exactly that length). Missing or out-of-range
-// indices are left to tinygltf, which refuses them.
+// Why image `index`'s buffer view cannot be decoded safely, or empty. tinygltf hands an image's buffer view to the
+// image decoder without checking that the view lies inside its buffer, so a view past the end was decoded from
+// whatever memory follows: the view is held to its buffer's byteLength first (tinygltf holds a buffer's data to
+// exactly that length). Its indices must be in range as written: tinygltf cuts a larger integer to 32 bits, so
+// 4294967298 would name view 2 there but nothing here.
+std::string imageViewProblem(const nlohmann::json& document, std::size_t index, const nlohmann::json& image) {
+  const std::string where = "image " + std::to_string(index) + "'s buffer view " + image["bufferView"].dump();
+  const nlohmann::json* view = element(document, "bufferViews", image["bufferView"]);
+  if (!view) return where + " is not one of the file's buffer views";
+  const nlohmann::json* buffer = view->contains("buffer") ? element(document, "buffers", (*view)["buffer"]) : nullptr;
+  if (!buffer) return where + " names no buffer of the file";
+  const std::string bufferName = "buffer " + (*view)["buffer"].dump();
+  bool valid = true;
+  const std::uint64_t offset = unsignedOr(*view, "byteOffset", 0, valid);
+  const std::uint64_t length = unsignedOr(*view, "byteLength", 0, valid);
+  const std::uint64_t bufferLength = unsignedOr(*buffer, "byteLength", 0, valid);
+  if (!valid) return where + " or " + bufferName + " gives a byte offset or length that is not a whole number";
+  if (length <= bufferLength && offset <= bufferLength - length) return "";
+  return where + " runs past the end of " + bufferName + " (" + std::to_string(length) + " bytes from byte " +
+         std::to_string(offset) + ", in a buffer of " + std::to_string(bufferLength) + ")";
+}
+
 bool imageViewsInsideTheirBuffers(const nlohmann::json& document, std::string& errors) {
   const auto images = document.find("images");
   if (images == document.end() || !images->is_array()) return true;
   for (std::size_t index = 0; index < images->size(); ++index) {
     const nlohmann::json& image = (*images)[index];
     if (!image.is_object() || !image.contains("bufferView")) continue;
-    const nlohmann::json* view = element(document, "bufferViews", image["bufferView"]);
-    if (!view || !view->is_object() || !view->contains("buffer")) continue;
-    const nlohmann::json* buffer = element(document, "buffers", (*view)["buffer"]);
-    if (!buffer || !buffer->is_object()) continue;
-    bool valid = true;
-    const std::uint64_t offset = unsignedOr(*view, "byteOffset", 0, valid);
-    const std::uint64_t length = unsignedOr(*view, "byteLength", 0, valid);
-    const std::uint64_t bufferLength = unsignedOr(*buffer, "byteLength", 0, valid);
-    if (valid && length <= bufferLength && offset <= bufferLength - length) continue;
-    const std::string where = "image " + std::to_string(index) + "'s buffer view " + image["bufferView"].dump();
-    const std::string bufferName = "buffer " + (*view)["buffer"].dump();
-    errors += valid ? where + " runs past the end of " + bufferName + " (" + std::to_string(length) + " bytes from byte " +
-                          std::to_string(offset) + ", in a buffer of " + std::to_string(bufferLength) + ")\n"
-                    : where + " or " + bufferName + " gives a byte offset or length that is not a whole number\n";
-    return false;
+    if (const std::string problem = imageViewProblem(document, index, image); !problem.empty()) {
+      errors += problem + "\n";
+      return false;
+    }
   }
   return true;
 }

@@ -230,6 +230,7 @@ TEST(GltfScene, EachHostileFuzzSeedIsRefusedByTheCheckItWasWrittenFor) {
       {"oversized_data_uri_texture.glb", "20000x20000, beyond the readers' limit"},
       {"oversized_png_chunk.glb", "image 0 is a corrupt PNG: chunk 'IDAT' declares 1073741808 bytes, more than"},
       {"bmp_texture.glb", "image 0 is neither a PNG, a JPEG nor a WebP file"},
+      {"image_view_index_past_32_bits.glb", "image 0's buffer view 4294967298 is not one of the file's buffer views"},
       {"image_view_past_buffer.glb", "image 0's buffer view 2 runs past the end of buffer 0"}};
   for (const auto& [seed, expected] : seeds) {
     std::string message;

@@ -1,12 +1,12 @@
 #!/usr/bin/env python3
-"""Writes the gltf_scene fuzz seeds that probe the scene-file sandbox and the texture size limits (standard
-library only): URIs that are absolute or climb out of the scene's folder (plain and percent-encoded), a
-textured triangle whose embedded PNG (in a buffer view, and as a data: URI) declares 20000x20000 pixels in a
-header of 45 bytes, one whose PNG's IDAT chunk declares 1 GiB in a file of a few hundred bytes (stb_image
-allocated it before finding the bytes missing), one whose valid PNG's buffer view runs past the end of its
-buffer (the bytes are in the file, past the buffer's byteLength), and one whose texture is a BMP that stb_image
-would decode (glTF textures are PNG or JPEG; stb_image's other decoders are kept from hostile bytes).
-Run from this folder: python3 make_gltf_scene_seeds.py"""
+"""Writes the gltf_scene fuzz seeds that probe the scene-file sandbox and the texture checks (standard library
+only): URIs that are absolute or climb out of the scene's folder (plain and percent-encoded); a textured
+triangle whose embedded PNG (in a buffer view, and as a data: URI) declares 20000x20000 pixels in a header of
+45 bytes; one whose PNG's IDAT chunk declares 1 GiB in a file of a few hundred bytes (stb_image allocated it
+before finding the bytes missing); one whose valid PNG's buffer view runs past the end of its buffer (the bytes
+are in the file, past the buffer's byteLength), also with the view named by an index past 32 bits; and one whose
+texture is a BMP that stb_image would decode (glTF textures are PNG or JPEG; stb_image's other decoders are kept
+from hostile bytes). Run from this folder: python3 make_gltf_scene_seeds.py"""
 import base64
 import json
 import struct
@@ -73,10 +73,11 @@ def textured_triangle(image):
     return document, geometry
 
 
-def triangle_with_embedded_texture(image, image_bytes_in_buffer=None):
-    """The textured triangle as a .glb whose texture is `image` in a buffer view after the geometry; the buffer's
-    byteLength covers `image_bytes_in_buffer` of it (all by default), though the file holds all of it."""
-    document, geometry = textured_triangle({"bufferView": 2, "mimeType": "image/png"})
+def triangle_with_embedded_texture(image, image_bytes_in_buffer=None, view_index=2):
+    """The textured triangle as a .glb whose texture is `image` in a buffer view after the geometry (view 2, named
+    as `view_index`); the buffer's byteLength covers `image_bytes_in_buffer` of it (all by default), though the
+    file holds all of it."""
+    document, geometry = textured_triangle({"bufferView": view_index, "mimeType": "image/png"})
     document["bufferViews"].append({"buffer": 0, "byteOffset": len(geometry), "byteLength": len(image)})
     covered = len(image) if image_bytes_in_buffer is None else image_bytes_in_buffer
     document["buffers"][0]["byteLength"] = len(geometry) + covered
@@ -96,7 +97,10 @@ def main():
     seeds["oversized_png_chunk.glb"] = triangle_with_embedded_texture(png_idat_claiming(2**30 - 16))
     # The buffer ends two bytes into the pixel data: the decoder copies the rest from past the buffer's end.
     png = png_one_pixel()
-    seeds["image_view_past_buffer.glb"] = triangle_with_embedded_texture(png, png.index(b"IDAT") + 4 + 2)
+    covered = png.index(b"IDAT") + 4 + 2
+    seeds["image_view_past_buffer.glb"] = triangle_with_embedded_texture(png, covered)
+    # The same view named as 2^32 + 2, which tinygltf cuts to 32 bits: view 2.
+    seeds["image_view_index_past_32_bits.glb"] = triangle_with_embedded_texture(png, covered, 2**32 + 2)
     seeds["bmp_texture.glb"] = triangle_with_embedded_texture(bmp_one_pixel())
     for name, data in seeds.items():
         with open("gltf_scene/" + name, "wb") as out:
