@@ -386,8 +386,7 @@ void requirePngStructure(const char* kind, const fs::path& file, const std::stri
   // stb_image accepts several formats; the signature check keeps the readers honest about "PNG".
   if (!hasPngSignature(bytes)) failRead(kind, file, "not a PNG file (bad signature)");
   if (const auto overrun = pngChunkOverrun(bytes))
-    failRead(kind, file, "corrupt PNG: chunk '" + overrun->name + "' declares " + std::to_string(overrun->declared) +
-                             " bytes, more than the file holds");
+    failRead(kind, file, "corrupt PNG: " + overrun->describe("file"));
 }
 
 void writeWholeFileAtomically(const char* kind, const fs::path& file, std::string_view bytes) {

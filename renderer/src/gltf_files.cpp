@@ -166,9 +166,7 @@ bool writeNothing(std::string* error, const std::string&, const std::vector<unsi
 std::string stbTextureProblem(std::string_view bytes) {
   if (hasPngSignature(bytes)) {
     const auto overrun = pngChunkOverrun(bytes);
-    return overrun ? "is a corrupt PNG: chunk '" + overrun->name + "' declares " + std::to_string(overrun->declared) +
-                         " bytes, more than the image holds"
-                   : "";
+    return overrun ? "is a corrupt PNG: " + overrun->describe("image") : "";
   }
   if (bytes.substr(0, 3) == "\xff\xd8\xff") return "";  // a JPEG's start-of-image marker and the next marker's byte
   if (bytes.size() >= 12 && bytes.substr(0, 4) == "RIFF" && bytes.substr(8, 4) == "WEBP")

@@ -81,9 +81,10 @@ const nlohmann::json* element(const nlohmann::json& document, const char* arrayN
   return at < array->size() && (*array)[at].is_object() ? &(*array)[at] : nullptr;
 }
 
-std::uint64_t unsignedOr(const nlohmann::json& object, const char* name, std::uint64_t absent, bool& valid) {
+// `object[name]` as an unsigned integer, 0 when absent; clears `valid` when it is something else.
+std::uint64_t unsignedOrZero(const nlohmann::json& object, const char* name, bool& valid) {
   const auto field = object.find(name);
-  if (field == object.end()) return absent;
+  if (field == object.end()) return 0;
   if (!field->is_number_unsigned()) valid = false;
   return field->is_number_unsigned() ? field->get<std::uint64_t>() : 0;
 }
@@ -101,9 +102,9 @@ std::string imageViewProblem(const nlohmann::json& document, std::size_t index, 
   if (!buffer) return where + " names no buffer of the file";
   const std::string bufferName = "buffer " + (*view)["buffer"].dump();
   bool valid = true;
-  const std::uint64_t offset = unsignedOr(*view, "byteOffset", 0, valid);
-  const std::uint64_t length = unsignedOr(*view, "byteLength", 0, valid);
-  const std::uint64_t bufferLength = unsignedOr(*buffer, "byteLength", 0, valid);
+  const std::uint64_t offset = unsignedOrZero(*view, "byteOffset", valid);
+  const std::uint64_t length = unsignedOrZero(*view, "byteLength", valid);
+  const std::uint64_t bufferLength = unsignedOrZero(*buffer, "byteLength", valid);
   if (!valid) return where + " or " + bufferName + " gives a byte offset or length that is not a whole number";
   if (length <= bufferLength && offset <= bufferLength - length) return "";
   return where + " runs past the end of " + bufferName + " (" + std::to_string(length) + " bytes from byte " +

@@ -12,7 +12,8 @@
 namespace s3d::renderer::gltf {
 
 // Parses `file` (`json`: its JSON part as gltfJson read it, null when unreadable) into `model`; false with
-// tinygltf's `errors` when it cannot, or when an image's buffer view runs past the end of its buffer.
+// tinygltf's `errors` when it cannot, or when an image's buffer view is not one of the file's or does not lie
+// inside its buffer.
 bool parseGltf(tinygltf::TinyGLTF& loader, tinygltf::Model& model, std::string& errors, std::string& warnings,
                const std::filesystem::path& file, bool binary, const nlohmann::json& json);
 

@@ -17,6 +17,12 @@ inline bool hasPngSignature(std::string_view bytes) { return bytes.substr(0, kPn
 struct PngChunkOverrun {
   std::string name;          // the chunk's four-letter type, as written
   std::uint64_t declared{};  // the length it declares, in bytes
+
+  // For an error message: "chunk 'IDAT' declares N bytes, more than the `holder` holds".
+  std::string describe(std::string_view holder) const {
+    return "chunk '" + name + "' declares " + std::to_string(declared) + " bytes, more than the " +
+           std::string(holder) + " holds";
+  }
 };
 
 inline std::optional<PngChunkOverrun> pngChunkOverrun(std::string_view bytes) {
