@@ -26,6 +26,7 @@
 
 #include "exr_memory_stream.h"
 #include "s3d/image_limits.h"
+#include "s3d/png_chunks.h"
 #include "file_access.h"
 
 namespace s3d::io {
@@ -219,7 +220,7 @@ void writePngGray16(const fs::path& file, const Gray16Image& image) {
   appendBigEndian(header, image.width);
   appendBigEndian(header, image.height);
   header += std::string("\x10\x00\x00\x00\x00", 5);  // bit depth 16, grey, deflate, adaptive filters, no interlace
-  std::string png("\x89PNG\r\n\x1a\n", 8);
+  std::string png(kPngSignature);
   appendChunk(png, "IHDR", header);
   appendChunk(png, "IDAT", zlib);
   appendChunk(png, "IEND", {});
